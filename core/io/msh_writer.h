@@ -1,0 +1,55 @@
+// Gmsh MSH writer, ASCII format 4.1 (default) and 2.2.
+// Format reference: Gmsh reference manual, "MSH file format".
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/util/result.h"
+
+namespace vm {
+
+enum class MshVersion { k41, k22 };
+
+/// Gmsh element type codes used by vesselmesh.
+enum class MshElementType : int { kTriangle = 2, kTetrahedron = 4, kPrism = 6 };
+
+/// A named physical group. Tags are positive and unique per dimension.
+struct MshPhysical {
+  int dim = 2;  ///< 2 surface, 3 volume
+  int tag = 1;
+  std::string name;
+};
+
+/// Elements of one type on one geometric entity, which belongs to exactly one
+/// physical group (so every element is in a physical group).
+/// nodes: nodes_per_element(type) * count zero-based point indices.
+struct MshBlock {
+  MshElementType type = MshElementType::kTriangle;
+  int entity_tag = 1;     ///< unique per dimension among blocks
+  int physical_tag = 1;   ///< tag of an MshPhysical of the block's dimension
+  std::vector<int32_t> nodes;
+};
+
+/// Everything written to a file. points: 3 doubles per node; node i is
+/// written with tag i + 1.
+struct MshModel {
+  std::vector<double> points;
+  std::vector<MshPhysical> physicals;
+  std::vector<MshBlock> blocks;
+};
+
+int nodes_per_element(MshElementType type);
+int element_dimension(MshElementType type);
+
+/// Serializes `model`. Errors: a block referring to a missing physical group,
+/// a node index out of range, duplicate entity tags in one dimension.
+/// Nodes no element uses are still written (Gmsh accepts them).
+Result<std::string> write_msh(const MshModel& model,
+                              MshVersion version = MshVersion::k41);
+
+/// Parses "4.1" / "2.2"; error for anything else.
+Result<MshVersion> parse_msh_version(const std::string& text);
+
+}  // namespace vm

@@ -1,0 +1,31 @@
+// Safe repairs of a welded surface: degenerate and duplicate triangles,
+// consistent orientation, outward orientation.
+#pragma once
+
+#include <cstddef>
+
+#include "core/mesh/surface_mesh.h"
+
+namespace vm {
+
+struct RepairStats {
+  size_t degenerate_removed = 0;  ///< repeated corner or zero area
+  size_t duplicates_removed = 0;  ///< same vertex set as an earlier triangle
+  size_t flipped = 0;             ///< triangles reversed to orient consistently
+  size_t unused_vertices_removed = 0;
+  bool orientable = true;  ///< false if some component is non-orientable
+};
+
+/// Removes triangles with a repeated vertex or zero area (exactly collinear
+/// corners) and duplicates (same three vertices in any order), then drops the
+/// vertices no triangle uses (renumbering, order kept).
+void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats);
+
+/// Flips triangles so that every manifold edge is traversed in opposite
+/// directions by its two triangles, per connected component, then orients
+/// each component outward (positive enclosed volume, with openings closed by
+/// a fan to each loop's centroid). Non-manifold edges do not propagate the
+/// orientation. Precondition: no degenerate triangles.
+void orient_consistently(SurfaceMesh& mesh, RepairStats& stats);
+
+}  // namespace vm

@@ -1,0 +1,56 @@
+// Synthetic segmentation-like vessel surfaces for tests, the bundled sample
+// and benchmarks: an implicit vessel model (tubes of varying radius along
+// curved centerlines, a bifurcation, optionally an aneurysm bulb) sampled on
+// a voxel grid, extracted by marching cubes and cut open at the vessel ends,
+// so that it looks like real segmentation output (staircase, oversampled,
+// poorly shaped triangles).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh/surface_mesh.h"
+#include "core/util/result.h"
+
+namespace vm {
+
+enum class PhantomKind {
+  kTube,         ///< one curved tube of varying radius, 2 openings
+  kBifurcation,  ///< a parent vessel splitting into two branches, 3 openings
+  kAneurysm,     ///< the bifurcation with a saccular bulb, 3 openings
+  kTorus,        ///< a closed torus-like handle (genus 1, 0 openings)
+};
+
+struct PhantomOptions {
+  PhantomKind kind = PhantomKind::kBifurcation;
+  /// Voxel edge length in model units (the model's parent radius is 1).
+  /// Smaller voxels give more triangles (~ 1/voxel^2).
+  double voxel = 0.1;
+  /// Open the vessel ends by clipping with planes (openings); when false the
+  /// surface is closed (the tube ends are rounded).
+  bool open_ends = true;
+  /// Amplitude of the voxel-value noise, relative to the voxel size
+  /// (0 = clean staircase). Deterministic for a given seed.
+  double noise = 0.0;
+  uint32_t seed = 1;
+  /// Uniform scale applied to the output coordinates (e.g. 10 for "mm").
+  double scale = 1.0;
+};
+
+/// What the generator knows about the model, for tests to compare against.
+struct PhantomTruth {
+  int openings = 0;  ///< boundary loops expected when open_ends
+  int genus = 0;
+  /// Radius of each opening (same order as `opening_centers`), scaled.
+  std::vector<double> opening_radii;
+  std::vector<std::array<double, 3>> opening_centers;
+};
+
+/// Builds the phantom. The result is a closed or open, oriented (outward),
+/// manifold, single-component indexed triangle surface with welded vertices.
+/// Errors: voxel <= 0 or a grid that would exceed ~200M voxels.
+Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& options,
+                                        PhantomTruth* truth = nullptr);
+
+}  // namespace vm

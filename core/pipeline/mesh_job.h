@@ -1,0 +1,40 @@
+// The whole job: STL bytes + options in, MSH text + report out.
+// For now (walking skeleton) it writes the prepared surface as `wall`; later
+// stages (remeshing, caps, layers, volume) plug in here.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/io/msh_writer.h"
+#include "core/pipeline/prepare_surface.h"
+#include "core/util/progress.h"
+#include "core/util/result.h"
+
+namespace vm {
+
+struct MeshJobOptions {
+  PrepareOptions prepare;
+  MshVersion msh_version = MshVersion::k41;
+  /// Keep only the largest connected component instead of refusing inputs
+  /// with several components.
+  bool largest_component_only = false;
+};
+
+struct MeshJobResult {
+  std::string msh;               ///< the MSH file contents
+  PreparedSurface surface;       ///< the input as read and analyzed
+  SurfaceMesh output_surface;    ///< the surface written (wall)
+  std::vector<float> output_quality;  ///< gamma_k per output triangle
+  QualityStats output_quality_stats;
+  std::vector<std::string> warnings;
+  double seconds_total = 0;
+};
+
+Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
+                                   const MeshJobOptions& options = {},
+                                   const ProgressFn& progress = {});
+
+}  // namespace vm
