@@ -18,6 +18,8 @@ struct TriangleSoup {
   std::vector<float> coords;
   bool ascii = false;  ///< true when read from an ASCII STL
   std::string header;  ///< binary header (80 bytes, trimmed) or ASCII solid name
+  /// Tolerated oddities (e.g. trailing bytes after a binary STL).
+  std::vector<std::string> warnings;
   size_t num_triangles() const { return coords.size() / 9; }
 };
 

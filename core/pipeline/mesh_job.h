@@ -23,12 +23,20 @@ struct MeshJobOptions {
   bool largest_component_only = false;
 };
 
+/// One physical group of the written file and its element count.
+struct OutputGroup {
+  int dim = 2;
+  std::string name;
+  size_t elements = 0;
+};
+
 struct MeshJobResult {
   std::string msh;               ///< the MSH file contents
   PreparedSurface surface;       ///< the input as read and analyzed
   SurfaceMesh output_surface;    ///< the surface written (wall)
   std::vector<float> output_quality;  ///< gamma_k per output triangle
   QualityStats output_quality_stats;
+  std::vector<OutputGroup> groups;  ///< physical groups written
   std::vector<std::string> warnings;
   double seconds_total = 0;
 };

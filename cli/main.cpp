@@ -1,0 +1,284 @@
+// The `vesselmesh` command: parse arguments, call core, print results.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <new>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/io/stl.h"
+#include "core/phantom/vessel_phantom.h"
+#include "core/pipeline/mesh_job.h"
+#include "core/pipeline/report_json.h"
+
+namespace {
+
+constexpr const char* kVersion = "0.1.0";
+
+constexpr const char* kUsage =
+    R"(vesselmesh: quality meshes for cardiovascular flow simulation
+
+usage:
+  vesselmesh info FILE.stl [--json]
+      Read, weld and analyze a lumen surface: counts, openings, genus,
+      non-manifold edges, triangle quality gamma_k.
+  vesselmesh mesh FILE.stl -o OUT.msh [--msh-version 4.1|2.2]
+                  [--largest-component] [--report FILE.json]
+      Write the mesh as Gmsh MSH (for now: the welded, repaired surface as
+      the physical surface `wall`).
+  vesselmesh phantom OUT.stl [--kind bifurcation|tube|aneurysm|torus]
+                  [--voxel V] [--noise A] [--seed N] [--scale S] [--closed]
+      Write a synthetic segmentation-like vessel surface (binary STL).
+  vesselmesh --help | --version
+
+Exit status: 0 success, 1 bad input or failure, 2 bad usage.
+)";
+
+int usage_error(const std::string& msg) {
+  std::cerr << "vesselmesh: " << msg << "\n(run 'vesselmesh --help' for usage)\n";
+  return 2;
+}
+
+int fail(const std::string& msg) {
+  std::cerr << "vesselmesh: error: " << msg << "\n";
+  return 1;
+}
+
+std::optional<std::vector<uint8_t>> read_file(const std::string& path,
+                                              std::string& error) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) {
+    error = "cannot open '" + path + "'";
+    return std::nullopt;
+  }
+  std::streamsize size = in.tellg();
+  if (size < 0) {
+    error = "cannot read '" + path + "' (is it a directory?)";
+    return std::nullopt;
+  }
+  in.seekg(0);
+  std::vector<uint8_t> bytes(static_cast<size_t>(size));
+  if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size)) {
+    error = "cannot read '" + path + "'";
+    return std::nullopt;
+  }
+  return bytes;
+}
+
+bool write_file(const std::string& path, const void* data, size_t size,
+                std::string& error) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out || !out.write(static_cast<const char*>(data), std::streamsize(size))) {
+    error = "cannot write '" + path + "'";
+    return false;
+  }
+  return true;
+}
+
+// Simple option scanner: positional arguments and --flag [value].
+struct Args {
+  std::vector<std::string> positional;
+  std::vector<std::pair<std::string, std::string>> options;
+  std::string error;
+
+  bool has(const std::string& name) const {
+    for (auto& o : options)
+      if (o.first == name) return true;
+    return false;
+  }
+  std::optional<std::string> get(const std::string& name) const {
+    for (auto& o : options)
+      if (o.first == name) return o.second;
+    return std::nullopt;
+  }
+};
+
+Args parse(int argc, char** argv, int first,
+           const std::vector<std::string>& with_value,
+           const std::vector<std::string>& flags) {
+  Args a;
+  for (int i = first; i < argc; ++i) {
+    std::string s = argv[i];
+    if (s.size() > 1 && s[0] == '-') {
+      std::string name = s, value;
+      size_t eq = s.find('=');
+      if (eq != std::string::npos) {
+        name = s.substr(0, eq);
+        value = s.substr(eq + 1);
+      }
+      bool takes = std::find(with_value.begin(), with_value.end(), name) != with_value.end();
+      bool flag = std::find(flags.begin(), flags.end(), name) != flags.end();
+      if (!takes && !flag) {
+        a.error = "unknown option '" + name + "'";
+        return a;
+      }
+      if (takes && eq == std::string::npos) {
+        if (i + 1 >= argc) {
+          a.error = "option '" + name + "' needs a value";
+          return a;
+        }
+        value = argv[++i];
+      }
+      a.options.emplace_back(name, value);
+    } else {
+      a.positional.push_back(s);
+    }
+  }
+  return a;
+}
+
+bool parse_double(const std::string& s, double& out) {
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return !s.empty() && end == s.c_str() + s.size() && std::isfinite(out);
+}
+
+void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
+  const vm::TopologyReport& t = s.topology;
+  std::printf("file:        %s (%s STL, %zu triangles)\n", path.c_str(),
+              s.ascii ? "ASCII" : "binary", s.input_triangles);
+  std::printf("welded:      %zu vertices, %zu triangles, %zu edges\n", t.vertices,
+              t.triangles, t.edges);
+  std::printf("bounding box: [%g, %g, %g] - [%g, %g, %g] (diagonal %g)\n",
+              s.box.min[0], s.box.min[1], s.box.min[2], s.box.max[0], s.box.max[1],
+              s.box.max[2], s.box.diagonal());
+  std::printf("components:  %d\n", t.components);
+  std::printf("closed:      %s\n", t.closed ? "yes" : "no");
+  if (t.genus >= 0) std::printf("genus:       %d\n", t.genus);
+  else std::printf("genus:       undefined (non-manifold)\n");
+  std::printf("euler char.: %ld\n", t.euler_characteristic);
+  std::printf("non-manifold edges: %zu, vertices: %zu\n", t.nonmanifold_edges,
+              t.nonmanifold_vertices);
+  std::printf("openings:    %zu\n", t.openings.size());
+  for (size_t i = 0; i < t.openings.size(); ++i) {
+    const vm::Opening& o = t.openings[i];
+    std::printf("  %zu: perimeter %g, radius %g, centroid (%g, %g, %g), %zu vertices\n",
+                i + 1, o.perimeter, o.radius, o.centroid[0], o.centroid[1],
+                o.centroid[2], o.loop.size());
+  }
+  std::printf("quality gamma_k: min %.4f, mean %.4f\n", s.quality_stats.min,
+              s.quality_stats.mean);
+  for (const std::string& w : s.warnings) std::printf("warning: %s\n", w.c_str());
+}
+
+int cmd_info(int argc, char** argv) {
+  Args a = parse(argc, argv, 2, {}, {"--json"});
+  if (!a.error.empty()) return usage_error(a.error);
+  if (a.positional.size() != 1) return usage_error("info needs exactly one FILE.stl");
+  std::string err;
+  auto bytes = read_file(a.positional[0], err);
+  if (!bytes) return fail(err);
+  auto r = vm::prepare_surface(*bytes);
+  if (!r.ok()) return fail(a.positional[0] + ": " + r.message());
+  if (a.has("--json")) {
+    std::printf("%s\n", vm::analysis_json(r.value()).c_str());
+  } else {
+    print_text_report(a.positional[0], r.value());
+  }
+  return 0;
+}
+
+int cmd_mesh(int argc, char** argv) {
+  Args a = parse(argc, argv, 2, {"-o", "--output", "--msh-version", "--report"},
+                 {"--largest-component", "--quiet"});
+  if (!a.error.empty()) return usage_error(a.error);
+  if (a.positional.size() != 1) return usage_error("mesh needs exactly one FILE.stl");
+  auto out = a.get("-o") ? a.get("-o") : a.get("--output");
+  if (!out) return usage_error("mesh needs an output file: -o OUT.msh");
+  vm::MeshJobOptions options;
+  if (auto v = a.get("--msh-version")) {
+    auto parsed = vm::parse_msh_version(*v);
+    if (!parsed.ok()) return usage_error(parsed.message());
+    options.msh_version = parsed.value();
+  }
+  options.largest_component_only = a.has("--largest-component");
+  std::string err;
+  auto bytes = read_file(a.positional[0], err);
+  if (!bytes) return fail(err);
+  auto r = vm::run_mesh_job(*bytes, options);
+  if (!r.ok()) return fail(a.positional[0] + ": " + r.message());
+  const vm::MeshJobResult& res = r.value();
+  if (!write_file(*out, res.msh.data(), res.msh.size(), err)) return fail(err);
+  if (auto rep = a.get("--report")) {
+    std::string json = vm::mesh_report_json(res) + "\n";
+    if (!write_file(*rep, json.data(), json.size(), err)) return fail(err);
+  }
+  if (!a.has("--quiet")) {
+    for (const std::string& w : res.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    std::printf("wrote %s: %zu vertices, %zu triangles (wall), gamma_k min %.4f mean %.4f, %.3f s\n",
+                out->c_str(), res.output_surface.num_vertices(),
+                res.output_surface.num_triangles(), res.output_quality_stats.min,
+                res.output_quality_stats.mean, res.seconds_total);
+  }
+  return 0;
+}
+
+int cmd_phantom(int argc, char** argv) {
+  Args a = parse(argc, argv, 2, {"--kind", "--voxel", "--noise", "--seed", "--scale"},
+                 {"--closed"});
+  if (!a.error.empty()) return usage_error(a.error);
+  if (a.positional.size() != 1) return usage_error("phantom needs exactly one OUT.stl");
+  vm::PhantomOptions o;
+  if (auto k = a.get("--kind")) {
+    if (*k == "tube") o.kind = vm::PhantomKind::kTube;
+    else if (*k == "bifurcation") o.kind = vm::PhantomKind::kBifurcation;
+    else if (*k == "aneurysm") o.kind = vm::PhantomKind::kAneurysm;
+    else if (*k == "torus") o.kind = vm::PhantomKind::kTorus;
+    else return usage_error("unknown phantom kind '" + *k + "' (tube, bifurcation, aneurysm, torus)");
+  }
+  double d;
+  if (auto v = a.get("--voxel")) {
+    if (!parse_double(*v, d)) return usage_error("--voxel needs a number");
+    o.voxel = d;
+  }
+  if (auto v = a.get("--noise")) {
+    if (!parse_double(*v, d)) return usage_error("--noise needs a number");
+    o.noise = d;
+  }
+  if (auto v = a.get("--scale")) {
+    if (!parse_double(*v, d)) return usage_error("--scale needs a number");
+    o.scale = d;
+  }
+  if (auto v = a.get("--seed")) {
+    if (!parse_double(*v, d) || d < 0) return usage_error("--seed needs a non-negative integer");
+    o.seed = uint32_t(d);
+  }
+  o.open_ends = !a.has("--closed");
+  auto r = vm::make_vessel_phantom(o);
+  if (!r.ok()) return fail(r.message());
+  std::vector<uint8_t> stl = vm::write_stl_binary(r.value(), "vesselmesh phantom");
+  std::string err;
+  if (!write_file(a.positional[0], stl.data(), stl.size(), err)) return fail(err);
+  std::printf("wrote %s: %zu triangles\n", a.positional[0].c_str(), r.value().num_triangles());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fputs(kUsage, stderr);
+    return 2;
+  }
+  std::string cmd = argv[1];
+  try {
+    if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    if (cmd == "--version") {
+      std::printf("vesselmesh %s\n", kVersion);
+      return 0;
+    }
+    if (cmd == "info") return cmd_info(argc, argv);
+    if (cmd == "mesh") return cmd_mesh(argc, argv);
+    if (cmd == "phantom") return cmd_phantom(argc, argv);
+  } catch (const std::bad_alloc&) {
+    return fail("out of memory: the input is too large for this machine");
+  }
+  return usage_error("unknown command '" + cmd + "'");
+}

@@ -1,0 +1,174 @@
+// Safe surface repairs. Orientation follows the usual breadth-first
+// propagation across manifold edges (each shared edge must be traversed in
+// opposite directions), then each component is turned outward by the sign of
+// its enclosed volume, openings closed by fans to their centroids.
+#include "core/mesh/repair.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+
+#include "core/mesh/adjacency.h"
+#include "core/mesh/boundary_loops.h"
+#include "core/util/index_hash_table.h"
+
+namespace vm {
+namespace {
+
+bool zero_area(const SurfaceMesh& m, size_t t) {
+  const double* a = &m.points[3 * m.triangles[3 * t]];
+  const double* b = &m.points[3 * m.triangles[3 * t + 1]];
+  const double* c = &m.points[3 * m.triangles[3 * t + 2]];
+  double u[3], v[3];
+  for (int k = 0; k < 3; ++k) u[k] = b[k] - a[k], v[k] = c[k] - a[k];
+  return u[1] * v[2] - u[2] * v[1] == 0 && u[2] * v[0] - u[0] * v[2] == 0 &&
+         u[0] * v[1] - u[1] * v[0] == 0;
+}
+
+void remove_unused_vertices(SurfaceMesh& mesh, RepairStats& stats) {
+  std::vector<int32_t> remap(mesh.num_vertices(), -1);
+  for (int32_t v : mesh.triangles) remap[v] = 0;
+  int32_t next = 0;
+  for (size_t v = 0; v < remap.size(); ++v) {
+    if (remap[v] < 0) continue;
+    remap[v] = next;
+    for (int k = 0; k < 3; ++k) mesh.points[3 * next + k] = mesh.points[3 * v + k];
+    ++next;
+  }
+  stats.unused_vertices_removed += remap.size() - size_t(next);
+  mesh.points.resize(3 * size_t(next));
+  for (int32_t& v : mesh.triangles) v = remap[v];
+}
+
+// Signed volume enclosed by the triangles of one component, each boundary
+// loop closed by a fan from its centroid (the cap's sign follows the loop
+// direction, which follows the triangles).
+double closed_signed_volume(const SurfaceMesh& m,
+                            const std::vector<int32_t>& tris,
+                            const std::vector<std::vector<int32_t>>& loops) {
+  auto vol = [](const double* a, const double* b, const double* c) {
+    return (a[0] * (b[1] * c[2] - b[2] * c[1]) -
+            a[1] * (b[0] * c[2] - b[2] * c[0]) +
+            a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+  };
+  // Translate to the first point to limit cancellation.
+  const double* o = &m.points[3 * m.triangles[3 * tris[0]]];
+  auto rel = [&](int32_t v, double* out) {
+    for (int k = 0; k < 3; ++k) out[k] = m.points[3 * v + k] - o[k];
+  };
+  double total = 0, a[3], b[3], c[3];
+  for (int32_t t : tris) {
+    rel(m.triangles[3 * t], a);
+    rel(m.triangles[3 * t + 1], b);
+    rel(m.triangles[3 * t + 2], c);
+    total += vol(a, b, c);
+  }
+  for (const auto& loop : loops) {
+    double cen[3] = {0, 0, 0};
+    for (int32_t v : loop) {
+      rel(v, a);
+      for (int k = 0; k < 3; ++k) cen[k] += a[k] / double(loop.size());
+    }
+    // The cap runs against the loop direction.
+    for (size_t i = 0; i < loop.size(); ++i) {
+      rel(loop[(i + 1) % loop.size()], a);
+      rel(loop[i], b);
+      total += vol(cen, a, b);
+    }
+  }
+  return total;
+}
+
+}  // namespace
+
+void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats) {
+  const size_t nt = mesh.num_triangles();
+  auto& tri = mesh.triangles;
+  IndexHashTable seen(nt);
+  size_t out = 0;
+  std::vector<std::array<int32_t, 3>> sorted;  // sorted corners of kept tris
+  sorted.reserve(nt);
+  for (size_t t = 0; t < nt; ++t) {
+    int32_t a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
+    if (a == b || b == c || a == c || zero_area(mesh, t)) {
+      ++stats.degenerate_removed;
+      continue;
+    }
+    std::array<int32_t, 3> s = {a, b, c};
+    std::sort(s.begin(), s.end());
+    uint64_t h = uint64_t(s[0]) * 0x9E3779B97F4A7C15ULL ^
+                 uint64_t(s[1]) * 0xC2B2AE3D27D4EB4FULL ^ uint64_t(s[2]);
+    int32_t cand = int32_t(sorted.size());
+    if (seen.find_or_insert(h, cand, [&](int32_t i) { return sorted[i] == s; }) !=
+        cand) {
+      ++stats.duplicates_removed;
+      continue;
+    }
+    sorted.push_back(s);
+    tri[3 * out] = a, tri[3 * out + 1] = b, tri[3 * out + 2] = c;
+    ++out;
+  }
+  tri.resize(3 * out);
+  remove_unused_vertices(mesh, stats);
+}
+
+void orient_consistently(SurfaceMesh& mesh, RepairStats& stats) {
+  const size_t nt = mesh.num_triangles();
+  if (nt == 0) return;
+  TriangleAdjacency adj = build_adjacency(mesh);
+  auto& tri = mesh.triangles;
+  std::vector<int32_t> component(nt, -1);
+  std::vector<uint8_t> flip(nt, 0);
+  std::vector<std::vector<int32_t>> comp_tris;
+  std::vector<int32_t> queue;
+  for (size_t seed = 0; seed < nt; ++seed) {
+    if (component[seed] >= 0) continue;
+    int32_t cid = int32_t(comp_tris.size());
+    comp_tris.emplace_back();
+    component[seed] = cid;
+    queue.assign(1, int32_t(seed));
+    while (!queue.empty()) {
+      int32_t t = queue.back();
+      queue.pop_back();
+      comp_tris[cid].push_back(t);
+      for (int k = 0; k < 3; ++k) {
+        int32_t o = adj.opposite[3 * t + k];
+        if (o < 0) continue;
+        int32_t s = o / 3;
+        // Consistent iff the two half-edges run in opposite directions,
+        // taking the flips decided so far into account.
+        bool same_dir = half_edge_from(mesh, 3 * t + k) == half_edge_from(mesh, o);
+        bool need_flip = same_dir != bool(flip[t]);
+        if (component[s] < 0) {
+          component[s] = cid;
+          flip[s] = need_flip;
+          queue.push_back(s);
+        } else if (bool(flip[s]) != need_flip) {
+          stats.orientable = false;
+        }
+      }
+    }
+  }
+  for (size_t t = 0; t < nt; ++t)
+    if (flip[t]) std::swap(tri[3 * t + 1], tri[3 * t + 2]);
+  if (std::find(flip.begin(), flip.end(), 1) != flip.end())
+    adj = build_adjacency(mesh);
+  // Outward: per component, positive enclosed volume.
+  std::vector<std::vector<std::vector<int32_t>>> comp_loops(comp_tris.size());
+  std::vector<int32_t> vertex_comp(mesh.num_vertices(), -1);
+  for (size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) vertex_comp[tri[3 * t + k]] = component[t];
+  for (auto& loop : boundary_loops(mesh, adj))
+    comp_loops[vertex_comp[loop[0]]].push_back(std::move(loop));
+  for (size_t c = 0; c < comp_tris.size(); ++c) {
+    if (closed_signed_volume(mesh, comp_tris[c], comp_loops[c]) >= 0) continue;
+    for (int32_t t : comp_tris[c]) {
+      std::swap(tri[3 * t + 1], tri[3 * t + 2]);
+      flip[t] = !flip[t];
+    }
+  }
+  // Net count of triangles reversed relative to the input.
+  for (uint8_t f : flip) stats.flipped += f;
+}
+
+}  // namespace vm

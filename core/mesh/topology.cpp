@@ -1,0 +1,202 @@
+// Surface topology: components (union-find over shared vertices), edges and
+// boundary loops (adjacency.h, boundary_loops.h), bow-tie vertices (more
+// than one triangle fan in a vertex star), Euler characteristic and genus
+// from chi = 2 - 2 g - b per component.
+#include "core/mesh/topology.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+
+#include "core/mesh/adjacency.h"
+#include "core/mesh/boundary_loops.h"
+
+namespace vm {
+namespace {
+
+int32_t find_root(std::vector<int32_t>& parent, int32_t i) {
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i = parent[i];
+  }
+  return i;
+}
+
+void unite(std::vector<int32_t>& parent, int32_t a, int32_t b) {
+  a = find_root(parent, a);
+  b = find_root(parent, b);
+  if (a != b) parent[std::max(a, b)] = std::min(a, b);
+}
+
+// Number of triangle fans around v (triangles linked through manifold edges
+// incident to v).
+int count_fans(const SurfaceMesh& m, const TriangleAdjacency& adj, int32_t v,
+               std::vector<int32_t>& local_parent) {
+  int32_t b = adj.star_offsets[v], e = adj.star_offsets[v + 1];
+  int32_t d = e - b;
+  local_parent.resize(d);
+  std::iota(local_parent.begin(), local_parent.end(), 0);
+  for (int32_t i = 0; i < d; ++i) {
+    int32_t t = adj.star[b + i];
+    for (int k = 0; k < 3; ++k) {
+      int32_t h = 3 * t + k;
+      if (half_edge_from(m, h) != v && half_edge_to(m, h) != v) continue;
+      int32_t o = adj.opposite[h];
+      if (o < 0) continue;
+      for (int32_t j = 0; j < d; ++j)
+        if (adj.star[b + j] == o / 3) unite(local_parent, i, j);
+    }
+  }
+  int fans = 0;
+  for (int32_t i = 0; i < d; ++i) fans += find_root(local_parent, i) == i;
+  return fans;
+}
+
+Opening describe_loop(const SurfaceMesh& m, std::vector<int32_t> loop) {
+  Opening op;
+  const size_t n = loop.size();
+  auto p = [&](size_t i) { return &m.points[3 * loop[i % n]]; };
+  double wsum = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const double *a = p(i), *b = p(i + 1);
+    double len = std::sqrt((b[0] - a[0]) * (b[0] - a[0]) +
+                           (b[1] - a[1]) * (b[1] - a[1]) +
+                           (b[2] - a[2]) * (b[2] - a[2]));
+    op.perimeter += len;
+    for (int k = 0; k < 3; ++k) op.centroid[k] += len * 0.5 * (a[k] + b[k]);
+    wsum += len;
+  }
+  if (wsum > 0)
+    for (int k = 0; k < 3; ++k) op.centroid[k] /= wsum;
+  double area[3] = {0, 0, 0};
+  for (size_t i = 0; i < n; ++i) {
+    double u[3], w[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = p(i)[k] - op.centroid[k];
+      w[k] = p(i + 1)[k] - op.centroid[k];
+    }
+    area[0] += 0.5 * (u[1] * w[2] - u[2] * w[1]);
+    area[1] += 0.5 * (u[2] * w[0] - u[0] * w[2]);
+    area[2] += 0.5 * (u[0] * w[1] - u[1] * w[0]);
+  }
+  double amag = std::sqrt(area[0] * area[0] + area[1] * area[1] + area[2] * area[2]);
+  op.radius = std::sqrt(amag / std::numbers::pi);
+  // The loop follows its triangles' half-edges; the cap faces the other way,
+  // i.e. outward for an outward-oriented surface.
+  if (amag > 0)
+    for (int k = 0; k < 3; ++k) op.normal[k] = -area[k] / amag;
+  op.loop = std::move(loop);
+  return op;
+}
+
+}  // namespace
+
+TopologyReport analyze_topology(const SurfaceMesh& mesh) {
+  TopologyReport r;
+  const size_t nv = mesh.num_vertices(), nt = mesh.num_triangles();
+  r.vertices = nv;
+  r.triangles = nt;
+  if (nt == 0) return r;
+  const auto& tri = mesh.triangles;
+  TriangleAdjacency adj = build_adjacency(mesh);
+  r.edges = adj.num_edges;
+  r.nonmanifold_edges = adj.num_nonmanifold_edges;
+  if (!adj.nonmanifold_example.empty()) {
+    for (int k = 0; k < 3; ++k)
+      r.nonmanifold_edge_example[k] =
+          0.5 * (mesh.points[3 * adj.nonmanifold_example[0] + k] +
+                 mesh.points[3 * adj.nonmanifold_example[1] + k]);
+  }
+  for (int32_t o : adj.opposite) r.boundary_edges += o == TriangleAdjacency::kBoundary;
+
+  // Components over shared vertices, numbered by decreasing size.
+  std::vector<int32_t> parent(nv);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (size_t t = 0; t < nt; ++t) {
+    unite(parent, tri[3 * t], tri[3 * t + 1]);
+    unite(parent, tri[3 * t], tri[3 * t + 2]);
+  }
+  std::vector<int32_t> root_id(nv, -1);
+  std::vector<size_t> sizes;
+  for (size_t t = 0; t < nt; ++t) {
+    int32_t root = find_root(parent, tri[3 * t]);
+    if (root_id[root] < 0) {
+      root_id[root] = int32_t(sizes.size());
+      sizes.push_back(0);
+    }
+    ++sizes[root_id[root]];
+  }
+  std::vector<int32_t> order(sizes.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int32_t a, int32_t b) { return sizes[a] > sizes[b]; });
+  std::vector<int32_t> rank(sizes.size());
+  for (size_t i = 0; i < order.size(); ++i) rank[order[i]] = int32_t(i);
+  r.components = int(sizes.size());
+  r.component_triangles.resize(sizes.size());
+  for (size_t i = 0; i < order.size(); ++i) r.component_triangles[i] = sizes[order[i]];
+  r.triangle_component.resize(nt);
+  for (size_t t = 0; t < nt; ++t)
+    r.triangle_component[t] = rank[root_id[find_root(parent, tri[3 * t])]];
+
+  // Bow-tie vertices.
+  std::vector<int32_t> local;
+  for (size_t v = 0; v < nv; ++v) {
+    if (adj.star_offsets[v + 1] == adj.star_offsets[v]) continue;
+    if (count_fans(mesh, adj, int32_t(v), local) > 1) ++r.nonmanifold_vertices;
+  }
+
+  // Openings, largest first.
+  for (auto& loop : boundary_loops(mesh, adj))
+    r.openings.push_back(describe_loop(mesh, std::move(loop)));
+  std::stable_sort(r.openings.begin(), r.openings.end(),
+                   [](const Opening& a, const Opening& b) { return a.radius > b.radius; });
+  r.closed = r.boundary_edges == 0;
+
+  // Euler characteristic and genus, per component.
+  r.euler_characteristic = long(nv) - long(r.edges) + long(nt);
+  if (r.nonmanifold_edges == 0 && r.nonmanifold_vertices == 0) {
+    const int nc = r.components;
+    std::vector<long> chi(nc, 0), loops(nc, 0);
+    std::vector<int32_t> vcomp(nv, -1);
+    for (size_t t = 0; t < nt; ++t) {
+      int c = r.triangle_component[t];
+      chi[c] += 1;  // F
+      for (int k = 0; k < 3; ++k) vcomp[tri[3 * t + k]] = c;
+      for (int k = 0; k < 3; ++k) {
+        // E: each manifold edge counted from its half-edge with the smaller
+        // index, each boundary edge once.
+        int32_t h = int32_t(3 * t + k), o = adj.opposite[h];
+        if (o == TriangleAdjacency::kBoundary || o > h) chi[c] -= 1;
+      }
+    }
+    for (size_t v = 0; v < nv; ++v)
+      if (vcomp[v] >= 0) chi[vcomp[v]] += 1;  // V
+    for (const Opening& op : r.openings) loops[vcomp[op.loop[0]]] += 1;
+    long genus = 0;
+    for (int c = 0; c < nc; ++c) genus += (2 - chi[c] - loops[c]) / 2;
+    r.genus = int(genus);
+  }
+  return r;
+}
+
+SurfaceMesh extract_component(const SurfaceMesh& mesh,
+                              const TopologyReport& report, int component) {
+  SurfaceMesh out;
+  std::vector<int32_t> remap(mesh.num_vertices(), -1);
+  for (size_t t = 0; t < mesh.num_triangles(); ++t) {
+    if (report.triangle_component[t] != component) continue;
+    for (int k = 0; k < 3; ++k) {
+      int32_t v = mesh.triangles[3 * t + k];
+      if (remap[v] < 0) {
+        remap[v] = int32_t(out.num_vertices());
+        for (int q = 0; q < 3; ++q) out.points.push_back(mesh.points[3 * v + q]);
+      }
+      out.triangles.push_back(remap[v]);
+    }
+  }
+  return out;
+}
+
+}  // namespace vm

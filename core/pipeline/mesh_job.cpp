@@ -1,0 +1,69 @@
+// The whole job (DESIGN.md pipeline). Walking skeleton: stage 1 (prepare)
+// and stage 7 (write); the welded surface is written as the `wall` group.
+#include "core/pipeline/mesh_job.h"
+
+#include <chrono>
+
+namespace vm {
+
+Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
+                                   const MeshJobOptions& options,
+                                   const ProgressFn& progress) {
+  auto t0 = std::chrono::steady_clock::now();
+  MeshJobResult r;
+  // Stage 1 takes the first half of the progress bar.
+  ProgressFn sub = [&](double f, std::string_view stage) {
+    return report_progress(progress, 0.5 * f, stage);
+  };
+  Result<PreparedSurface> prepared = prepare_surface(stl_bytes, options.prepare, sub);
+  if (!prepared.ok()) return prepared.status();
+  r.surface = std::move(prepared).value();
+  r.warnings = r.surface.warnings;
+
+  const TopologyReport& topo = r.surface.topology;
+  if (options.largest_component_only && topo.components > 1) {
+    r.output_surface = extract_component(r.surface.mesh, topo, 0);
+    r.warnings.push_back("kept the largest of " + std::to_string(topo.components) +
+                         " components (" + std::to_string(topo.component_triangles[0]) +
+                         " triangles)");
+    PreparedSurface check = r.surface;
+    check.topology.components = 1;
+    Status s = check_meshable(check);
+    if (!s.ok()) return s;
+  } else {
+    Status s = check_meshable(r.surface);
+    if (!s.ok()) return s;
+    r.output_surface = r.surface.mesh;
+  }
+
+  if (!report_progress(progress, 0.6, "quality")) return Status::Error(kCancelledMessage);
+  r.output_quality = triangle_qualities(r.output_surface);
+  r.output_quality_stats = quality_stats(r.output_quality, options.prepare.histogram_bins);
+
+  if (!report_progress(progress, 0.7, "write")) return Status::Error(kCancelledMessage);
+  MshModel model;
+  model.points = r.output_surface.points;
+  model.physicals.push_back({2, 1, "wall"});
+  MshBlock wall;
+  wall.type = MshElementType::kTriangle;
+  wall.entity_tag = 1;
+  wall.physical_tag = 1;
+  wall.nodes = r.output_surface.triangles;
+  model.blocks.push_back(std::move(wall));
+  for (const MshPhysical& ph : model.physicals) {
+    OutputGroup g{ph.dim, ph.name, 0};
+    for (const MshBlock& b : model.blocks)
+      if (b.physical_tag == ph.tag && element_dimension(b.type) == ph.dim)
+        g.elements += b.nodes.size() / size_t(nodes_per_element(b.type));
+    r.groups.push_back(g);
+  }
+  Result<std::string> text = write_msh(model, options.msh_version);
+  if (!text.ok()) return text.status();
+  r.msh = std::move(text).value();
+  report_progress(progress, 1.0, "done");
+  r.seconds_total =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace vm

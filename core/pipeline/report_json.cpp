@@ -1,0 +1,94 @@
+#include "core/pipeline/report_json.h"
+
+#include "core/util/json_writer.h"
+
+namespace vm {
+namespace {
+
+void write_quality(JsonWriter& j, const QualityStats& q) {
+  j.begin_object();
+  j.key("min").value(q.min);
+  j.key("mean").value(q.mean);
+  j.key("max").value(q.max);
+  j.key("count").value(q.count);
+  j.key("histogram").array(q.histogram);
+  j.end_object();
+}
+
+}  // namespace
+
+std::string analysis_json(const PreparedSurface& s) {
+  const TopologyReport& t = s.topology;
+  JsonWriter j;
+  j.begin_object();
+  j.key("vertices").value(t.vertices);
+  j.key("triangles").value(t.triangles);
+  j.key("input_triangles").value(s.input_triangles);
+  j.key("format").value(s.ascii ? "ascii" : "binary");
+  j.key("bounding_box").begin_object();
+  j.key("min").array(s.box.min);
+  j.key("max").array(s.box.max);
+  j.key("diagonal").value(s.box.diagonal());
+  j.end_object();
+  j.key("components").value(t.components);
+  j.key("component_triangles").array(t.component_triangles);
+  j.key("openings").begin_array();
+  for (const Opening& op : t.openings) {
+    j.begin_object();
+    j.key("perimeter").value(op.perimeter);
+    j.key("radius").value(op.radius);
+    j.key("centroid").array(op.centroid);
+    j.key("normal").array(op.normal);
+    j.key("vertices").array(op.loop);
+    j.end_object();
+  }
+  j.end_array();
+  j.key("closed").value(t.closed);
+  if (t.genus >= 0) j.key("genus").value(t.genus); else j.key("genus").null();
+  j.key("euler_characteristic").value(t.euler_characteristic);
+  j.key("edges").value(t.edges);
+  j.key("boundary_edges").value(t.boundary_edges);
+  j.key("nonmanifold_edges").value(t.nonmanifold_edges);
+  j.key("nonmanifold_vertices").value(t.nonmanifold_vertices);
+  j.key("orientable").value(s.repair.orientable);
+  j.key("repairs").begin_object();
+  j.key("welded_corners").value(s.weld.corners);
+  j.key("merged_by_tolerance").value(s.weld.merged_by_tolerance);
+  j.key("degenerate_removed").value(s.repair.degenerate_removed);
+  j.key("duplicates_removed").value(s.repair.duplicates_removed);
+  j.key("flipped").value(s.repair.flipped);
+  j.key("unused_vertices_removed").value(s.repair.unused_vertices_removed);
+  j.end_object();
+  j.key("quality");
+  write_quality(j, s.quality_stats);
+  j.key("warnings").array(s.warnings);
+  j.end_object();
+  return j.str();
+}
+
+std::string mesh_report_json(const MeshJobResult& r) {
+  JsonWriter j;
+  j.begin_object();
+  j.key("input").raw(analysis_json(r.surface));
+  j.key("output").begin_object();
+  j.key("vertices").value(r.output_surface.num_vertices());
+  j.key("triangles").value(r.output_surface.num_triangles());
+  j.key("quality");
+  write_quality(j, r.output_quality_stats);
+  j.key("groups").begin_array();
+  for (const OutputGroup& g : r.groups) {
+    j.begin_object();
+    j.key("dim").value(g.dim);
+    j.key("name").value(g.name);
+    j.key("elements").value(g.elements);
+    j.end_object();
+  }
+  j.end_array();
+  j.end_object();
+  j.key("warnings").array(r.warnings);
+  j.key("seconds").value(r.seconds_total);
+  j.end_object();
+  return j.str();
+}
+
+}  // namespace vm

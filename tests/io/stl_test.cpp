@@ -1,0 +1,160 @@
+#include "core/io/stl.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "tests/support/test_meshes.h"
+
+namespace vm {
+namespace {
+
+using testing::ascii_stl;
+using testing::bytes_of;
+
+TEST(Stl, BinaryRoundTripKeepsCoordinates) {
+  SurfaceMesh tube = testing::open_tube(12, 5);
+  std::vector<uint8_t> bytes = write_stl_binary(tube);
+  ASSERT_EQ(bytes.size(), 84u + 50u * tube.num_triangles());
+  auto r = read_stl(bytes);
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_FALSE(r.value().ascii);
+  ASSERT_EQ(r.value().num_triangles(), tube.num_triangles());
+  for (size_t t = 0; t < tube.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c)
+        EXPECT_FLOAT_EQ(r.value().coords[9 * t + 3 * k + c],
+                        float(tube.points[3 * tube.triangles[3 * t + k] + c]));
+}
+
+TEST(Stl, BinaryHeaderStartingWithSolidIsStillBinary) {
+  SurfaceMesh tet = testing::tetrahedron();
+  std::vector<uint8_t> bytes = write_stl_binary(tet, "x");
+  std::memcpy(bytes.data(), "solid looks like ascii", 22);
+  auto r = read_stl(bytes);
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_FALSE(r.value().ascii);
+  EXPECT_EQ(r.value().num_triangles(), 4u);
+}
+
+TEST(Stl, AsciiIsRead) {
+  auto r = read_stl(bytes_of(ascii_stl(testing::tetrahedron(), "tet")));
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_TRUE(r.value().ascii);
+  EXPECT_EQ(r.value().num_triangles(), 4u);
+  EXPECT_EQ(r.value().header, "tet");
+  EXPECT_FLOAT_EQ(r.value().coords[3 + 1], 1.0f);  // second corner (0,1,0)
+}
+
+TEST(Stl, AsciiAcceptsUpperCaseAndCrLf) {
+  std::string s =
+      "SOLID x\r\nFACET NORMAL 0 0 1\r\nOUTER LOOP\r\nVERTEX 0 0 0\r\n"
+      "VERTEX 1 0 0\r\nVERTEX 0 1 0\r\nENDLOOP\r\nENDFACET\r\nENDSOLID x\r\n";
+  auto r = read_stl(bytes_of(s));
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(r.value().num_triangles(), 1u);
+}
+
+TEST(Stl, EmptyFileIsRefused) {
+  auto r = read_stl({});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.message(), "empty file");
+}
+
+TEST(Stl, TruncatedBinaryIsRefusedWithCounts) {
+  std::vector<uint8_t> bytes = write_stl_binary(testing::open_tube(8, 2));
+  bytes.resize(bytes.size() - 30);
+  auto r = read_stl(bytes);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("truncated binary STL"), std::string::npos) << r.message();
+  EXPECT_NE(r.message().find("32 triangles"), std::string::npos) << r.message();
+}
+
+TEST(Stl, HeaderCountLargerThanFileIsRefused) {
+  std::vector<uint8_t> bytes = write_stl_binary(testing::tetrahedron());
+  bytes[80] = 200;  // claims 200 triangles, has 4
+  auto r = read_stl(bytes);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("announces 200 triangles"), std::string::npos) << r.message();
+}
+
+TEST(Stl, TrailingBytesAreToleratedWithWarning) {
+  std::vector<uint8_t> bytes = write_stl_binary(testing::tetrahedron());
+  bytes.push_back(0);
+  bytes.push_back(0);
+  auto r = read_stl(bytes);
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(r.value().num_triangles(), 4u);
+  ASSERT_EQ(r.value().warnings.size(), 1u);
+  EXPECT_NE(r.value().warnings[0].find("2 bytes"), std::string::npos);
+}
+
+TEST(Stl, AsciiGarbageIsRefusedWithLine) {
+  auto r = read_stl(bytes_of("hello world, this is not a mesh\n"));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("not an STL"), std::string::npos) << r.message();
+
+  std::string bad = "solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n"
+                    " vertex 1 zero 0\n";
+  r = read_stl(bytes_of(bad));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("line 5"), std::string::npos) << r.message();
+  EXPECT_NE(r.message().find("zero"), std::string::npos) << r.message();
+}
+
+TEST(Stl, AsciiQuadFacetIsRefused) {
+  std::string s = "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                  "vertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid q\n";
+  auto r = read_stl(bytes_of(s));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("exactly 3 vertices"), std::string::npos) << r.message();
+}
+
+TEST(Stl, AsciiWithoutEndsolidIsRefused) {
+  std::string s = ascii_stl(testing::tetrahedron());
+  s.resize(s.find("endsolid"));
+  auto r = read_stl(bytes_of(s));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("missing 'endsolid'"), std::string::npos) << r.message();
+}
+
+TEST(Stl, NonFiniteCoordinatesAreRefused) {
+  SurfaceMesh tet = testing::tetrahedron();
+  tet.points[4] = std::numeric_limits<double>::quiet_NaN();  // vertex 1, y
+  auto r = read_stl(write_stl_binary(tet));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("NaN"), std::string::npos) << r.message();
+
+  std::string s = "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex inf 0 0\n"
+                  "vertex 0 1 0\nendloop\nendfacet\nendsolid x\n";
+  r = read_stl(bytes_of(s));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("Inf"), std::string::npos) << r.message();
+}
+
+TEST(Stl, TooManyTrianglesIsRefusedBeforeAllocating) {
+  std::vector<uint8_t> bytes(84, 0);
+  uint32_t huge = 4000000000u;
+  std::memcpy(bytes.data() + 80, &huge, 4);
+  auto r = read_stl(bytes);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("too large"), std::string::npos) << r.message();
+
+  StlReadOptions small;
+  small.max_triangles = 3;
+  r = read_stl(write_stl_binary(testing::tetrahedron()), small);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("too large"), std::string::npos) << r.message();
+}
+
+TEST(Stl, ShortBinaryIsRefused) {
+  std::vector<uint8_t> bytes = {1, 2, 3, 0, 0};
+  auto r = read_stl(bytes);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("shorter than a binary STL header"), std::string::npos)
+      << r.message();
+}
+
+}  // namespace
+}  // namespace vm

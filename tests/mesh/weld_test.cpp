@@ -1,0 +1,65 @@
+#include "core/mesh/weld.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/support/test_meshes.h"
+
+namespace vm {
+namespace {
+
+TriangleSoup soup_of(const SurfaceMesh& m) {
+  auto r = read_stl(write_stl_binary(m));
+  EXPECT_TRUE(r.ok());
+  return r.value();
+}
+
+TEST(Weld, RecoversSharedVerticesOfATube) {
+  SurfaceMesh tube = testing::open_tube(16, 6);
+  WeldStats stats;
+  SurfaceMesh w = weld(soup_of(tube), {}, &stats);
+  EXPECT_EQ(w.num_vertices(), tube.num_vertices());
+  EXPECT_EQ(w.num_triangles(), tube.num_triangles());
+  EXPECT_EQ(stats.corners, 3 * tube.num_triangles());
+  // Same connectivity up to renumbering: each welded triangle's corners are
+  // at the positions of the original's.
+  for (size_t t = 0; t < w.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c)
+        EXPECT_FLOAT_EQ(float(w.points[3 * w.triangles[3 * t + k] + c]),
+                        float(tube.points[3 * tube.triangles[3 * t + k] + c]));
+}
+
+TEST(Weld, MergesNearCoincidentCornersWithinTolerance) {
+  TriangleSoup soup;
+  // Two triangles sharing an edge, the second's copy of that edge moved by
+  // 1e-9 (far below 1e-7 of the diagonal ~1.4).
+  soup.coords = {0, 0, 0, 1, 0, 0, 0, 1, 0,  //
+                 1, 1e-9f, 0, 1, 1, 0, 1e-9f, 1, 0};
+  WeldStats stats;
+  SurfaceMesh w = weld(soup, {}, &stats);
+  EXPECT_EQ(w.num_vertices(), 4u);
+  EXPECT_EQ(stats.merged_by_tolerance, 2u);
+  EXPECT_EQ(w.triangles[1], w.triangles[3]);
+  EXPECT_EQ(w.triangles[2], w.triangles[5]);
+
+  WeldOptions exact;
+  exact.relative_tolerance = 0;
+  EXPECT_EQ(weld(soup, exact).num_vertices(), 6u);
+}
+
+TEST(Weld, KeepsDistinctPointsApart) {
+  TriangleSoup soup;
+  soup.coords = {0, 0, 0, 1e-3f, 0, 0, 0, 1e-3f, 0};
+  EXPECT_EQ(weld(soup).num_vertices(), 3u);
+}
+
+TEST(Weld, NegativeZeroIsZero) {
+  TriangleSoup soup;
+  soup.coords = {0, 0, 0, 1, 0, 0, 0, 1, 0, -0.0f, -0.0f, 0, 0, 1, 0, -1, 0, 0};
+  WeldOptions exact;
+  exact.relative_tolerance = 0;
+  EXPECT_EQ(weld(soup, exact).num_vertices(), 4u);
+}
+
+}  // namespace
+}  // namespace vm

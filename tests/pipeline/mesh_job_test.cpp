@@ -1,0 +1,129 @@
+#include "core/pipeline/mesh_job.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/pipeline/report_json.h"
+#include "tests/support/test_meshes.h"
+
+namespace vm {
+namespace {
+
+std::vector<uint8_t> two_components_stl() {
+  SurfaceMesh a = testing::open_tube(12, 4);
+  SurfaceMesh b = testing::tetrahedron();
+  int32_t off = int32_t(a.num_vertices());
+  for (double& x : b.points) x += 10;
+  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
+  for (int32_t v : b.triangles) a.triangles.push_back(v + off);
+  return write_stl_binary(a);
+}
+
+size_t count(const std::string& s, const std::string& what) {
+  size_t n = 0;
+  for (size_t p = s.find(what); p != std::string::npos; p = s.find(what, p + 1)) ++n;
+  return n;
+}
+
+TEST(PrepareSurface, InsideOutTubeIsReversedAndAnalyzed) {
+  SurfaceMesh tube = testing::open_tube(16, 5);
+  for (size_t t = 0; t < tube.num_triangles(); ++t) testing::flip_triangle(tube, t);
+  auto r = prepare_surface(write_stl_binary(tube));
+  ASSERT_TRUE(r.ok()) << r.message();
+  const PreparedSurface& s = r.value();
+  EXPECT_EQ(s.topology.vertices, tube.num_vertices());
+  EXPECT_EQ(s.topology.openings.size(), 2u);
+  EXPECT_EQ(s.repair.flipped, tube.num_triangles());
+  ASSERT_FALSE(s.warnings.empty());
+  EXPECT_NE(s.warnings[0].find("inward"), std::string::npos);
+  EXPECT_EQ(s.quality.size(), s.mesh.num_triangles());
+  EXPECT_TRUE(check_meshable(s).ok());
+}
+
+TEST(PrepareSurface, AllDegenerateIsAnError) {
+  TriangleSoup soup;
+  std::string stl = "solid d\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                    "vertex 2 0 0\nendloop\nendfacet\nendsolid d\n";
+  auto r = prepare_surface(testing::bytes_of(stl));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("zero area"), std::string::npos) << r.message();
+}
+
+TEST(MeshJob, WritesTheWallGroupWithAllTriangles) {
+  SurfaceMesh tube = testing::open_tube(16, 5);
+  for (auto version : {MshVersion::k41, MshVersion::k22}) {
+    MeshJobOptions o;
+    o.msh_version = version;
+    auto r = run_mesh_job(write_stl_binary(tube), o);
+    ASSERT_TRUE(r.ok()) << r.message();
+    const std::string& msh = r.value().msh;
+    EXPECT_EQ(msh.rfind(version == MshVersion::k41 ? "$MeshFormat\n4.1 0 8\n"
+                                                   : "$MeshFormat\n2.2 0 8\n", 0), 0u);
+    EXPECT_NE(msh.find("2 1 \"wall\""), std::string::npos);
+    EXPECT_EQ(r.value().output_surface.num_triangles(), tube.num_triangles());
+    ASSERT_EQ(r.value().groups.size(), 1u);
+    EXPECT_EQ(r.value().groups[0].name, "wall");
+    EXPECT_EQ(r.value().groups[0].elements, tube.num_triangles());
+  }
+}
+
+TEST(MeshJob, SeveralComponentsAreRefusedUnlessLargestIsKept) {
+  auto bytes = two_components_stl();
+  auto r = run_mesh_job(bytes);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("2 connected components"), std::string::npos) << r.message();
+  EXPECT_NE(r.message().find("--largest-component"), std::string::npos);
+
+  MeshJobOptions o;
+  o.largest_component_only = true;
+  r = run_mesh_job(bytes, o);
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(r.value().output_surface.num_triangles(), 96u);
+}
+
+TEST(MeshJob, NonManifoldIsRefusedWithALocation) {
+  SurfaceMesh m = testing::tetrahedron();
+  m.points.insert(m.points.end(), {0.5, -1, 0.5});
+  m.triangles.insert(m.triangles.end(), {0, 1, 4});
+  auto r = run_mesh_job(write_stl_binary(m));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("1 non-manifold edges"), std::string::npos) << r.message();
+  EXPECT_NE(r.message().find("(0.5, 0, 0)"), std::string::npos) << r.message();
+}
+
+TEST(MeshJob, ProgressIsMonotoneAndCancelStops) {
+  std::vector<double> seen;
+  auto bytes = write_stl_binary(testing::open_tube(16, 5));
+  auto r = run_mesh_job(bytes, {}, [&](double f, std::string_view) {
+    seen.push_back(f);
+    return true;
+  });
+  ASSERT_TRUE(r.ok());
+  ASSERT_GE(seen.size(), 4u);
+  for (size_t i = 1; i < seen.size(); ++i) EXPECT_GE(seen[i], seen[i - 1]);
+  EXPECT_EQ(seen.back(), 1.0);
+
+  int calls = 0;
+  r = run_mesh_job(bytes, {}, [&](double, std::string_view) { return ++calls < 3; });
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.message(), kCancelledMessage);
+}
+
+TEST(ReportJson, HasTheDocumentedKeys) {
+  auto r = run_mesh_job(write_stl_binary(testing::open_tube(16, 5)));
+  ASSERT_TRUE(r.ok());
+  std::string a = analysis_json(r.value().surface);
+  for (const char* key : {"\"vertices\":96", "\"triangles\":160", "\"components\":1",
+                          "\"openings\":[{\"perimeter\":", "\"genus\":0",
+                          "\"nonmanifold_edges\":0", "\"quality\":{\"min\":",
+                          "\"closed\":false", "\"format\":\"binary\""})
+    EXPECT_NE(a.find(key), std::string::npos) << key << " in " << a;
+  EXPECT_EQ(count(a, "\"radius\":"), 2u);
+  std::string m = mesh_report_json(r.value());
+  EXPECT_NE(m.find("\"groups\":[{\"dim\":2,\"name\":\"wall\",\"elements\":160}]"),
+            std::string::npos) << m;
+}
+
+}  // namespace
+}  // namespace vm
