@@ -14,6 +14,7 @@
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/mesh_job.h"
 #include "core/pipeline/report_json.h"
+#include "core/util/allocator_tuning.h"
 
 namespace {
 
@@ -260,6 +261,7 @@ int cmd_phantom(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  vm::keep_freed_memory_for_reuse();
   if (argc < 2) {
     std::fputs(kUsage, stderr);
     return 2;

@@ -24,9 +24,14 @@ struct TriangleAdjacency {
   std::vector<int32_t> nonmanifold_example;  ///< one edge (a, b) if any
 };
 
-/// Builds the adjacency in O(sum of star sizes squared / star size), linear
-/// for bounded vertex degree. Precondition: no triangle has a repeated vertex.
+/// Builds the adjacency in time linear in the triangles for bounded vertex
+/// degree (each edge is found once, by scanning one vertex star). Precondition: no triangle has a repeated vertex.
 TriangleAdjacency build_adjacency(const SurfaceMesh& mesh);
+
+/// Updates `adj` after the triangles t with flipped[t] != 0 were reversed
+/// by swapping their corners 1 and 2 (stars are unchanged).
+void remap_after_flips(TriangleAdjacency& adj,
+                       const std::vector<uint8_t>& flipped);
 
 /// Vertex a of half-edge h and vertex b (its end).
 inline int32_t half_edge_from(const SurfaceMesh& m, int32_t h) {

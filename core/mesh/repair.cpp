@@ -6,11 +6,9 @@
 
 #include <algorithm>
 #include <array>
-#include <cstring>
 
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
-#include "core/util/index_hash_table.h"
 
 namespace vm {
 namespace {
@@ -84,35 +82,65 @@ double closed_signed_volume(const SurfaceMesh& m,
 void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats) {
   const size_t nt = mesh.num_triangles();
   auto& tri = mesh.triangles;
-  IndexHashTable seen(nt);
-  size_t out = 0;
-  std::vector<std::array<int32_t, 3>> sorted;  // sorted corners of kept tris
-  sorted.reserve(nt);
+  // Phase 1: drop degenerate triangles, compacting in place.
+  size_t kept = 0;
   for (size_t t = 0; t < nt; ++t) {
     int32_t a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
     if (a == b || b == c || a == c || zero_area(mesh, t)) {
       ++stats.degenerate_removed;
       continue;
     }
-    std::array<int32_t, 3> s = {a, b, c};
+    tri[3 * kept] = a, tri[3 * kept + 1] = b, tri[3 * kept + 2] = c;
+    ++kept;
+  }
+  tri.resize(3 * kept);
+  // Phase 2: duplicates share their smallest vertex; bucket the triangles by
+  // it (counting sort) and compare within each bucket.
+  const size_t nv = mesh.num_vertices();
+  std::vector<int32_t> offset(nv + 1, 0);
+  auto min_vertex = [&](size_t t) {
+    return std::min({tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]});
+  };
+  for (size_t t = 0; t < kept; ++t) ++offset[min_vertex(t) + 1];
+  for (size_t v = 0; v < nv; ++v) offset[v + 1] += offset[v];
+  std::vector<int32_t> bucket(kept);
+  {
+    std::vector<int32_t> fill(offset.begin(), offset.end() - 1);
+    for (size_t t = 0; t < kept; ++t) bucket[fill[min_vertex(t)]++] = int32_t(t);
+  }
+  auto sorted = [&](int32_t t) {
+    std::array<int32_t, 3> s = {tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]};
     std::sort(s.begin(), s.end());
-    uint64_t h = uint64_t(s[0]) * 0x9E3779B97F4A7C15ULL ^
-                 uint64_t(s[1]) * 0xC2B2AE3D27D4EB4FULL ^ uint64_t(s[2]);
-    int32_t cand = int32_t(sorted.size());
-    if (seen.find_or_insert(h, cand, [&](int32_t i) { return sorted[i] == s; }) !=
-        cand) {
+    return s;
+  };
+  std::vector<uint8_t> duplicate(kept, 0);
+  for (size_t v = 0; v < nv; ++v) {
+    for (int32_t i = offset[v]; i < offset[v + 1]; ++i) {
+      auto si = sorted(bucket[i]);
+      for (int32_t j = offset[v]; j < i; ++j) {
+        // Buckets are filled in triangle order: j is the earlier triangle.
+        if (!duplicate[bucket[j]] && sorted(bucket[j]) == si) {
+          duplicate[bucket[i]] = 1;
+          break;
+        }
+      }
+    }
+  }
+  size_t out = 0;
+  for (size_t t = 0; t < kept; ++t) {
+    if (duplicate[t]) {
       ++stats.duplicates_removed;
       continue;
     }
-    sorted.push_back(s);
-    tri[3 * out] = a, tri[3 * out + 1] = b, tri[3 * out + 2] = c;
+    for (int k = 0; k < 3; ++k) tri[3 * out + k] = tri[3 * t + k];
     ++out;
   }
   tri.resize(3 * out);
   remove_unused_vertices(mesh, stats);
 }
 
-void orient_consistently(SurfaceMesh& mesh, RepairStats& stats) {
+void orient_consistently(SurfaceMesh& mesh, RepairStats& stats,
+                         TriangleAdjacency* adjacency) {
   const size_t nt = mesh.num_triangles();
   if (nt == 0) return;
   TriangleAdjacency adj = build_adjacency(mesh);
@@ -151,8 +179,7 @@ void orient_consistently(SurfaceMesh& mesh, RepairStats& stats) {
   }
   for (size_t t = 0; t < nt; ++t)
     if (flip[t]) std::swap(tri[3 * t + 1], tri[3 * t + 2]);
-  if (std::find(flip.begin(), flip.end(), 1) != flip.end())
-    adj = build_adjacency(mesh);
+  remap_after_flips(adj, flip);
   // Outward: per component, positive enclosed volume.
   std::vector<std::vector<std::vector<int32_t>>> comp_loops(comp_tris.size());
   std::vector<int32_t> vertex_comp(mesh.num_vertices(), -1);
@@ -160,12 +187,18 @@ void orient_consistently(SurfaceMesh& mesh, RepairStats& stats) {
     for (int k = 0; k < 3; ++k) vertex_comp[tri[3 * t + k]] = component[t];
   for (auto& loop : boundary_loops(mesh, adj))
     comp_loops[vertex_comp[loop[0]]].push_back(std::move(loop));
+  std::vector<uint8_t> reversed(nt, 0);
   for (size_t c = 0; c < comp_tris.size(); ++c) {
     if (closed_signed_volume(mesh, comp_tris[c], comp_loops[c]) >= 0) continue;
     for (int32_t t : comp_tris[c]) {
       std::swap(tri[3 * t + 1], tri[3 * t + 2]);
       flip[t] = !flip[t];
+      reversed[t] = 1;
     }
+  }
+  if (adjacency) {
+    remap_after_flips(adj, reversed);
+    *adjacency = std::move(adj);
   }
   // Net count of triangles reversed relative to the input.
   for (uint8_t f : flip) stats.flipped += f;

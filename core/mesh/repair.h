@@ -4,6 +4,7 @@
 
 #include <cstddef>
 
+#include "core/mesh/adjacency.h"
 #include "core/mesh/surface_mesh.h"
 
 namespace vm {
@@ -25,7 +26,9 @@ void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats);
 /// directions by its two triangles, per connected component, then orients
 /// each component outward (positive enclosed volume, with openings closed by
 /// a fan to each loop's centroid). Non-manifold edges do not propagate the
-/// orientation. Precondition: no degenerate triangles.
-void orient_consistently(SurfaceMesh& mesh, RepairStats& stats);
+/// orientation. Precondition: no degenerate triangles. If `adjacency` is
+/// given it receives the adjacency of the oriented mesh.
+void orient_consistently(SurfaceMesh& mesh, RepairStats& stats,
+                         TriangleAdjacency* adjacency = nullptr);
 
 }  // namespace vm

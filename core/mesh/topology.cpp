@@ -93,13 +93,17 @@ Opening describe_loop(const SurfaceMesh& m, std::vector<int32_t> loop) {
 }  // namespace
 
 TopologyReport analyze_topology(const SurfaceMesh& mesh) {
+  return analyze_topology(mesh, build_adjacency(mesh));
+}
+
+TopologyReport analyze_topology(const SurfaceMesh& mesh,
+                                const TriangleAdjacency& adj) {
   TopologyReport r;
   const size_t nv = mesh.num_vertices(), nt = mesh.num_triangles();
   r.vertices = nv;
   r.triangles = nt;
   if (nt == 0) return r;
   const auto& tri = mesh.triangles;
-  TriangleAdjacency adj = build_adjacency(mesh);
   r.edges = adj.num_edges;
   r.nonmanifold_edges = adj.num_nonmanifold_edges;
   if (!adj.nonmanifold_example.empty()) {

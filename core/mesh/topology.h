@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/mesh/adjacency.h"
 #include "core/mesh/surface_mesh.h"
 
 namespace vm {
@@ -51,6 +52,10 @@ struct TopologyReport {
 /// Boundary loops through a bow-tie vertex are split at that vertex by
 /// following the triangle fans, so each loop is a simple cycle.
 TopologyReport analyze_topology(const SurfaceMesh& mesh);
+
+/// Same, reusing an adjacency already built for `mesh`.
+TopologyReport analyze_topology(const SurfaceMesh& mesh,
+                                const TriangleAdjacency& adj);
 
 /// Keeps only the triangles of component `component` (as numbered by
 /// `report.triangle_component`) and drops unused vertices.

@@ -1,10 +1,12 @@
 // Welding a triangle soup: phase 1 merges bit-identical corners through a
-// hash table; phase 2 merges distinct points closer than the tolerance with
+// hash table laid out by spatial cell (see weld_exact); phase 2 merges distinct points closer than the tolerance with
 // a hashed grid of cells much larger than the tolerance (so most points look
 // at one cell) and a union-find, keeping the first-seen point as the
 // representative.
 #include "core/mesh/weld.h"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -33,6 +35,110 @@ int32_t find_root(std::vector<int32_t>& parent, int32_t i) {
   return i;
 }
 
+// floor() as an integer without a libm call (inputs are finite and far
+// inside the int64 range after scaling by a cell size of the model).
+int64_t floor_to_int(double x) {
+  int64_t i = int64_t(x);
+  return i - (double(i) > x);
+}
+
+// A cell size holding a few dozen surface points: four times the median
+// edge length of a sample of triangles; 0 when it cannot be estimated.
+double locality_cell_size(const TriangleSoup& soup) {
+  const size_t nt = soup.num_triangles();
+  if (nt < 64) return 0.0;
+  std::vector<double> lengths;
+  const size_t step = std::max<size_t>(1, nt / 2048);
+  for (size_t t = 0; t < nt; t += step) {
+    const float* p = &soup.coords[9 * t];
+    double d = 0;
+    for (int k = 0; k < 3; ++k) d += double(p[3 + k] - p[k]) * double(p[3 + k] - p[k]);
+    lengths.push_back(std::sqrt(d));
+  }
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  double median = lengths[lengths.size() / 2];
+  return std::isfinite(median) && median > 0 ? 4 * median : 0.0;
+}
+
+// Merges bit-identical corners. Table slots hold only the id of a unique
+// point (keys are compared in `keys`), so the table is 4 bytes a slot. With
+// cell > 0 a point's probe starts in a block of 64 slots chosen by its
+// spatial cell, so that corners close in the file (which are close in space)
+// probe nearby memory instead of missing the cache on every new point.
+// Returns false (and must be re-run with cell = 0) if probes grow long, which
+// happens only when the cell estimate is far off (very uneven sampling).
+bool weld_exact(const float* c, size_t corners, double cell,
+                std::vector<int32_t>& corner_to_unique,
+                std::vector<int32_t>& unique_corner) {
+  constexpr size_t kBlock = 64;
+  constexpr size_t kMaxProbe = 1024;
+  unique_corner.clear();
+  unique_corner.reserve(corners / 5 + 16);
+  std::vector<uint32_t> keys;  // 3 per unique point: float bits of x, y, z
+  keys.reserve(3 * (corners / 5 + 16));
+  size_t cap = std::bit_ceil(corners / 2 + 2 * kBlock);
+  std::vector<int32_t> table(cap, -1);
+  const double inv_cell = cell > 0 ? 1.0 / cell : 0.0;
+  auto start_slot = [&](const float* p, uint32_t x, uint32_t y, uint32_t z) {
+    uint64_t fine = IndexHashTable::mix(hash3(x, y, z));
+    if (cell <= 0) return size_t(fine >> 16) & (cap - 1);
+    uint64_t block = IndexHashTable::mix(
+        hash3(uint64_t(floor_to_int(p[0] * inv_cell)),
+              uint64_t(floor_to_int(p[1] * inv_cell)),
+              uint64_t(floor_to_int(p[2] * inv_cell))));
+    return size_t(block * kBlock + (fine & (kBlock - 1))) & (cap - 1);
+  };
+  bool long_probe = false;
+  auto probe = [&](size_t j, uint32_t x, uint32_t y, uint32_t z) {
+    size_t steps = 0;
+    while (table[j] >= 0) {
+      const uint32_t* k = &keys[3 * size_t(table[j])];
+      if (k[0] == x && k[1] == y && k[2] == z) break;
+      j = (j + 1) & (cap - 1);
+      if (++steps > kMaxProbe) long_probe = true;
+    }
+    return j;
+  };
+  // Recently seen corners first: each vertex recurs in about six triangles
+  // that are usually close in the file.
+  struct Recent {
+    uint32_t x, y, z;
+    int32_t id;  // -1: empty
+  };
+  constexpr size_t kRecent = 1 << 12;
+  std::vector<Recent> recent(kRecent, Recent{0, 0, 0, -1});
+  for (size_t i = 0; i < corners; ++i) {
+    const float* p = c + 3 * i;
+    uint32_t x = float_bits(p[0]), y = float_bits(p[1]), z = float_bits(p[2]);
+    Recent& r = recent[(x * 0x9E3779B1u ^ y * 0x85EBCA77u ^ z * 0xC2B2AE3Du) >> 20];
+    if (r.id >= 0 && r.x == x && r.y == y && r.z == z) {
+      corner_to_unique[i] = r.id;
+      continue;
+    }
+    size_t j = probe(start_slot(p, x, y, z), x, y, z);
+    if (long_probe && cell > 0) return false;
+    if (table[j] < 0) {
+      table[j] = int32_t(unique_corner.size());
+      unique_corner.push_back(int32_t(i));
+      keys.insert(keys.end(), {x, y, z});
+      if (2 * unique_corner.size() > cap) {  // keep the load factor <= 1/2
+        cap *= 2;
+        table.assign(cap, -1);
+        for (size_t u = 0; u < unique_corner.size(); ++u) {
+          const uint32_t* k = &keys[3 * u];
+          const float* q = c + 3 * size_t(unique_corner[u]);
+          table[probe(start_slot(q, k[0], k[1], k[2]), k[0], k[1], k[2])] =
+              int32_t(u);
+        }
+        j = probe(start_slot(p, x, y, z), x, y, z);
+      }
+    }
+    corner_to_unique[i] = table[j];
+    r = Recent{x, y, z, table[j]};
+  }
+  return true;
+}
+
 // Phase 2: returns for each unique point the index of its representative
 // (the smallest index among the points merged with it, transitively).
 std::vector<int32_t> merge_close_points(const std::vector<double>& pts,
@@ -43,10 +149,12 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts,
   *merged = 0;
   if (tol <= 0 || n == 0) return parent;
   const double cell = 64 * tol;
-  auto cell_of = [&](double x) { return int64_t(std::floor(x / cell)); };
+  const double inv_cell = 1.0 / cell;
+  auto cell_of = [&](double x) { return floor_to_int(x * inv_cell); };
   // Cell -> linked list of points in it.
   IndexHashTable cells(n);
   std::vector<int32_t> next(n, -1);
+  std::vector<int32_t> head(n, -1);  // the list head of each point's cell
   std::vector<int64_t> key(3 * n);
   for (size_t i = 0; i < n; ++i) {
     for (int k = 0; k < 3; ++k) key[3 * i + k] = cell_of(pts[3 * i + k]);
@@ -66,6 +174,7 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts,
       next[i] = next[h];
       next[h] = int32_t(i);
     }
+    head[i] = h;
   }
   const double tol2 = tol * tol;
   for (size_t i = 0; i < n; ++i) {
@@ -76,6 +185,9 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts,
       lo[k] = cell_of(p[k] - tol);
       hi[k] = cell_of(p[k] + tol);
     }
+    // Fast path: alone in its cell and farther than tol from its faces.
+    if (next[head[i]] < 0 && lo[0] == hi[0] && lo[1] == hi[1] && lo[2] == hi[2])
+      continue;
     for (int64_t x = lo[0]; x <= hi[0]; ++x)
       for (int64_t y = lo[1]; y <= hi[1]; ++y)
         for (int64_t z = lo[2]; z <= hi[2]; ++z) {
@@ -112,23 +224,11 @@ SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options,
   const size_t corners = soup.coords.size() / 3;
   const float* c = soup.coords.data();
   // Phase 1: exact duplicates.
-  IndexHashTable table(corners / 4 + 16);
   std::vector<int32_t> corner_to_unique(corners);
   std::vector<int32_t> unique_corner;  // first corner of each unique point
-  unique_corner.reserve(corners / 5 + 16);
-  for (size_t i = 0; i < corners; ++i) {
-    const float* p = c + 3 * i;
-    uint64_t h = hash3(float_bits(p[0]), float_bits(p[1]), float_bits(p[2]));
-    int32_t candidate = int32_t(unique_corner.size());
-    int32_t found = table.find_or_insert(h, candidate, [&](int32_t u) {
-      const float* q = c + 3 * size_t(unique_corner[u]);
-      return float_bits(q[0]) == float_bits(p[0]) &&
-             float_bits(q[1]) == float_bits(p[1]) &&
-             float_bits(q[2]) == float_bits(p[2]);
-    });
-    if (found == candidate) unique_corner.push_back(int32_t(i));
-    corner_to_unique[i] = found;
-  }
+  if (!weld_exact(c, corners, locality_cell_size(soup), corner_to_unique,
+                  unique_corner))
+    weld_exact(c, corners, 0.0, corner_to_unique, unique_corner);
   std::vector<double> pts(3 * unique_corner.size());
   for (size_t u = 0; u < unique_corner.size(); ++u)
     for (int k = 0; k < 3; ++k)

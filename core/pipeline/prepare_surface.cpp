@@ -51,7 +51,8 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
     return Status::Error("no triangle left: all " + num(s.input_triangles) +
                          " triangles of the file have zero area");
   }
-  orient_consistently(s.mesh, s.repair);
+  TriangleAdjacency adjacency;
+  orient_consistently(s.mesh, s.repair, &adjacency);
   if (!s.repair.orientable) {
     s.warnings.push_back(
         "the surface is not orientable: it cannot bound a volume");
@@ -64,7 +65,7 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
   }
 
   if (!report_progress(progress, 0.6, "analyze")) return cancelled();
-  s.topology = analyze_topology(s.mesh);
+  s.topology = analyze_topology(s.mesh, adjacency);
   s.box = bounding_box(s.mesh.points);
   const TopologyReport& t = s.topology;
   if (t.nonmanifold_edges > 0) {

@@ -1,2 +1,99 @@
-#!/bin/sh
-exit 0
+#!/usr/bin/env bash
+# The vesselmesh command as a user runs it: exit codes, messages, outputs,
+# and Gmsh (its Python API, when installed) reading what we write.
+# Usage: cli_test.sh PATH/TO/vesselmesh
+set -uo pipefail
+VM=$1
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+failures=0
+passes=0
+check() {  # check NAME CONDITION...
+  local name=$1; shift
+  if "$@"; then passes=$((passes + 1)); else echo "FAIL: $name"; failures=$((failures + 1)); fi
+}
+expect_exit() {  # expect_exit CODE MESSAGE-SUBSTRING CMD...
+  local code=$1 msg=$2; shift 2
+  local out; out=$("$@" 2>&1); local rc=$?
+  [[ $rc -eq $code ]] || { echo "  exit $rc, expected $code: $*"; echo "  $out"; return 1; }
+  [[ -z $msg || $out == *"$msg"* ]] || { echo "  output lacks '$msg': $out"; return 1; }
+}
+json() {  # json FILE EXPR -> prints python expression over d
+  python3 -c "import json,sys; d=json.load(open('$1')); print($2)"
+}
+
+check "help" expect_exit 0 "usage:" "$VM" --help
+check "no arguments" expect_exit 2 "usage:" "$VM"
+check "unknown command" expect_exit 2 "unknown command 'frobnicate'" "$VM" frobnicate
+check "unknown option" expect_exit 2 "unknown option '--bogus'" "$VM" info x.stl --bogus
+check "missing file" expect_exit 1 "cannot open '$T/none.stl'" "$VM" info "$T/none.stl"
+: > "$T/empty.stl"
+check "empty file" expect_exit 1 "empty file" "$VM" info "$T/empty.stl"
+printf 'this is not a mesh at all\n' > "$T/garbage.stl"
+check "garbage" expect_exit 1 "not an STL" "$VM" info "$T/garbage.stl"
+
+check "phantom" expect_exit 0 "wrote" "$VM" phantom "$T/bif.stl" --kind bifurcation --voxel 0.1 --noise 0.3
+check "phantom bad kind" expect_exit 2 "unknown phantom kind" "$VM" phantom "$T/x.stl" --kind blob
+head -c 1000 "$T/bif.stl" > "$T/truncated.stl"
+check "truncated" expect_exit 1 "truncated binary STL" "$VM" info "$T/truncated.stl"
+
+"$VM" info "$T/bif.stl" --json > "$T/info.json"
+check "info json openings" [ "$(json "$T/info.json" "len(d['openings'])")" = 3 ]
+check "info json genus" [ "$(json "$T/info.json" "d['genus']")" = 0 ]
+check "info json components" [ "$(json "$T/info.json" "d['components']")" = 1 ]
+check "info json quality" [ "$(json "$T/info.json" "0 <= d['quality']['min'] <= d['quality']['mean'] <= 1")" = True ]
+check "info text" expect_exit 0 "openings:    3" "$VM" info "$T/bif.stl"
+
+check "mesh needs -o" expect_exit 2 "-o OUT.msh" "$VM" mesh "$T/bif.stl"
+check "mesh bad version" expect_exit 2 "use 4.1 or 2.2" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --msh-version 3
+check "mesh 4.1" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif41.msh" --report "$T/report.json"
+check "mesh 2.2" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif22.msh" --msh-version 2.2
+check "msh 4.1 header" [ "$(sed -n 2p "$T/bif41.msh")" = "4.1 0 8" ]
+check "msh 2.2 header" [ "$(sed -n 2p "$T/bif22.msh")" = "2.2 0 8" ]
+check "report groups" [ "$(json "$T/report.json" "d['output']['groups'][0]['name']")" = wall ]
+check "mesh unwritable output" expect_exit 1 "cannot write" "$VM" mesh "$T/bif.stl" -o "$T/no/such/dir/x.msh"
+
+# Two components: refused, then accepted with --largest-component.
+cat "$T/bif.stl" > "$T/two.stl"
+python3 - "$T/bif.stl" "$T/two.stl" <<'PY'
+import struct, sys
+data = open(sys.argv[1], 'rb').read()
+n = struct.unpack('<I', data[80:84])[0]
+tris = data[84:]
+# second copy shifted far away in x
+shifted = bytearray()
+for i in range(n):
+    rec = bytearray(tris[50*i:50*i+50])
+    for k in range(3):
+        off = 12 + 12*k
+        x = struct.unpack('<f', rec[off:off+4])[0]
+        rec[off:off+4] = struct.pack('<f', x + 100.0)
+    shifted += rec
+open(sys.argv[2], 'wb').write(data[:80] + struct.pack('<I', 2*n) + tris + bytes(shifted))
+PY
+check "two components refused" expect_exit 1 "2 connected components" "$VM" mesh "$T/two.stl" -o "$T/two.msh"
+check "largest component" expect_exit 0 "wrote" "$VM" mesh "$T/two.stl" -o "$T/two.msh" --largest-component
+
+# Gmsh reads both versions with the same triangle count and a `wall` group.
+if /usr/bin/python3 -c "import gmsh" 2>/dev/null; then
+  ntri=$(json "$T/info.json" "d['triangles']")
+  for f in bif41 bif22; do
+    got=$(/usr/bin/python3 - "$T/$f.msh" <<'PY'
+import sys, gmsh
+gmsh.initialize(["-v", "0"])
+gmsh.open(sys.argv[1])
+names = [gmsh.model.getPhysicalName(d, t) for d, t in gmsh.model.getPhysicalGroups()]
+types, tags, _ = gmsh.model.mesh.getElements(2)
+n = sum(len(t) for ty, t in zip(types, tags) if ty == 2)
+print(n, ",".join(names))
+gmsh.finalize()
+PY
+)
+    check "gmsh reads $f" [ "$got" = "$ntri wall" ]
+  done
+else
+  echo "note: gmsh Python API not installed; Gmsh read check skipped"
+fi
+
+echo "$passes passed, $failures failed"
+[[ $failures -eq 0 ]]

@@ -164,3 +164,43 @@ TEST(Repair, DegenerateAndDuplicateTrianglesAreRemoved) {
 
 }  // namespace
 }  // namespace vm
+
+namespace vm {
+namespace {
+
+TEST(Adjacency, OppositeHalfEdgesAreSymmetricAndReversed) {
+  SurfaceMesh t = testing::torus(12, 8);
+  TriangleAdjacency adj = build_adjacency(t);
+  EXPECT_EQ(adj.num_edges, 3 * t.num_triangles() / 2);
+  for (size_t h = 0; h < adj.opposite.size(); ++h) {
+    int32_t o = adj.opposite[h];
+    ASSERT_GE(o, 0);
+    EXPECT_EQ(adj.opposite[o], int32_t(h));
+    EXPECT_EQ(half_edge_from(t, int32_t(h)), half_edge_to(t, o));
+    EXPECT_EQ(half_edge_to(t, int32_t(h)), half_edge_from(t, o));
+  }
+}
+
+TEST(Adjacency, RemapAfterFlipsEqualsRebuild) {
+  SurfaceMesh t = testing::open_tube(10, 6);
+  std::vector<uint8_t> flipped(t.num_triangles(), 0);
+  for (size_t i = 0; i < flipped.size(); i += 3) flipped[i] = 1;
+  TriangleAdjacency adj = build_adjacency(t);
+  for (size_t i = 0; i < flipped.size(); ++i)
+    if (flipped[i]) testing::flip_triangle(t, i);
+  remap_after_flips(adj, flipped);
+  EXPECT_EQ(adj.opposite, build_adjacency(t).opposite);
+}
+
+TEST(Repair, OrientReturnsTheAdjacencyOfTheResult) {
+  SurfaceMesh tube = testing::open_tube(12, 4);
+  for (size_t i = 0; i < tube.num_triangles(); i += 2) testing::flip_triangle(tube, i);
+  RepairStats stats;
+  TriangleAdjacency adj;
+  orient_consistently(tube, stats, &adj);
+  EXPECT_EQ(adj.opposite, build_adjacency(tube).opposite);
+  EXPECT_EQ(tube.triangles, testing::open_tube(12, 4).triangles);
+}
+
+}  // namespace
+}  // namespace vm

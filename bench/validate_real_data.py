@@ -1,0 +1,127 @@
+#!/usr/bin/env python3
+"""Real-data validation: run the vesselmesh CLI on the reference surfaces in
+../shared/data/vascular (read in place, never copied) and check what it
+reports and writes against known facts, with Gmsh as independent reader.
+
+usage: validate_real_data.py --data DIR --vesselmesh PATH
+Exit status 0 when every check passes.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+# Known facts about the reference inputs (their README and issue 2).
+EXPECTED = {
+    "abdominal-aorta-closed.stl": dict(triangles=12932, openings=0, genus=0, closed=True),
+    "abdominal-aorta-open.stl": dict(triangles=11887, openings=3, genus=0, closed=False),
+    "aortic-arch.stl": dict(triangles=41176, vertices=20730, openings=5, genus=0, closed=False),
+    "bifurcation.stl": dict(triangles=16448, openings=3, genus=0, closed=False),
+    "carotid-metres.stl": dict(triangles=11594, openings=3, genus=0, closed=False),
+    "coronary-closed-ascii.stl": dict(triangles=14336, openings=0, genus=0, closed=True, format="ascii"),
+    "femoral-bypass.stl": dict(triangles=46522, openings=2, genus=1, closed=False),
+}
+# Opening perimeters from the data README (largest first), 2% tolerance.
+PERIMETERS = {
+    "aortic-arch.stl": [10.1, 7.6, 3.6, 2.5, 1.7],
+    "abdominal-aorta-open.stl": [48.6, 28.0, 28.0],
+}
+
+failures = []
+
+
+def check(name, ok, what):
+    status = "ok  " if ok else "FAIL"
+    print(f"  [{status}] {what}")
+    if not ok:
+        failures.append(f"{name}: {what}")
+
+
+def gmsh_read(path):
+    """Triangle count and physical names as Gmsh itself reads the file, plus
+    the number of triangles outside any physical group."""
+    import gmsh
+    gmsh.initialize(["-v", "0"])
+    try:
+        gmsh.open(path)
+        names = [gmsh.model.getPhysicalName(d, t) for d, t in gmsh.model.getPhysicalGroups()]
+        n = 0
+        orphans = 0
+        for dim, tag in gmsh.model.getEntities(2):
+            types, tags, _ = gmsh.model.mesh.getElements(dim, tag)
+            count = sum(len(t) for ty, t in zip(types, tags) if ty == 2)
+            n += count
+            if not gmsh.model.getPhysicalGroupsForEntity(dim, tag):
+                orphans += count
+        return n, names, orphans
+    finally:
+        gmsh.finalize()
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--data", required=True)
+    ap.add_argument("--vesselmesh", required=True)
+    args = ap.parse_args()
+    try:
+        import gmsh  # noqa: F401
+        have_gmsh = True
+    except ImportError:
+        have_gmsh = False
+        print("note: gmsh Python API missing (apt-get install python3-gmsh); Gmsh checks skipped")
+
+    with tempfile.TemporaryDirectory() as tmp:
+        for fname, exp in EXPECTED.items():
+            path = os.path.join(args.data, fname)
+            print(fname)
+            if not os.path.exists(path):
+                check(fname, False, "file present")
+                continue
+            info = subprocess.run([args.vesselmesh, "info", path, "--json"],
+                                  capture_output=True, text=True)
+            check(fname, info.returncode == 0, f"info exit 0 {info.stderr.strip()}")
+            if info.returncode != 0:
+                continue
+            d = json.loads(info.stdout)
+            check(fname, d["input_triangles"] == exp["triangles"],
+                  f"input triangles {d['input_triangles']} == {exp['triangles']}")
+            if "vertices" in exp:
+                check(fname, d["vertices"] == exp["vertices"],
+                      f"welded vertices {d['vertices']} == {exp['vertices']}")
+            check(fname, len(d["openings"]) == exp["openings"],
+                  f"openings {len(d['openings'])} == {exp['openings']}")
+            check(fname, d["genus"] == exp["genus"], f"genus {d['genus']} == {exp['genus']}")
+            check(fname, d["closed"] == exp["closed"], f"closed {d['closed']} == {exp['closed']}")
+            check(fname, d["components"] == 1, f"components {d['components']} == 1")
+            check(fname, d["nonmanifold_edges"] == 0, "no non-manifold edge")
+            check(fname, d["format"] == exp.get("format", "binary"), f"format {d['format']}")
+            for got, want in zip([o["perimeter"] for o in d["openings"]], PERIMETERS.get(fname, [])):
+                check(fname, abs(got - want) <= 0.02 * want, f"opening perimeter {got:.3f} ~ {want}")
+            q = d["quality"]
+            print(f"  gamma_k min {q['min']:.4f} mean {q['mean']:.4f}; warnings: {d['warnings']}")
+            for version in ("4.1", "2.2"):
+                out = os.path.join(tmp, f"{fname}.{version}.msh")
+                r = subprocess.run([args.vesselmesh, "mesh", path, "-o", out,
+                                    "--msh-version", version, "--quiet"],
+                                   capture_output=True, text=True)
+                check(fname, r.returncode == 0, f"mesh --msh-version {version} exit 0 {r.stderr.strip()}")
+                if r.returncode != 0 or not have_gmsh:
+                    continue
+                n, names, orphans = gmsh_read(out)
+                check(fname, n == d["triangles"], f"Gmsh reads {n} triangles == {d['triangles']} (MSH {version})")
+                check(fname, "wall" in names, f"Gmsh finds physical group 'wall' (MSH {version}): {names}")
+                check(fname, orphans == 0, f"every triangle in a physical group (MSH {version})")
+    print()
+    if failures:
+        print(f"{len(failures)} check(s) failed:")
+        for f in failures:
+            print("  " + f)
+        return 1
+    print("all real-data checks passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

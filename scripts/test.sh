@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# README command 2: set up, build, run every test: GoogleTest + CLI (ctest),
+# the same suite under AddressSanitizer/UBSan, the Node test of the built
+# WebAssembly module, and the Playwright specs in Chromium.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+jobs=$(nproc)
+
+echo "== ctest (native, Release)"
+ctest --test-dir build --output-on-failure -j "$jobs"
+
+echo "== ctest (Debug, -fsanitize=address,undefined)"
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DVM_SANITIZE=ON >/dev/null
+cmake --build build-asan -j "$jobs"
+UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ctest --test-dir build-asan --output-on-failure -j "$jobs"
+
+echo "== node --test (WebAssembly module)"
+npm run --silent test:wasm
+
+echo "== playwright (Chromium)"
+npm run --silent test:e2e
