@@ -77,16 +77,95 @@ double closed_signed_volume(const SurfaceMesh& m,
   return total;
 }
 
+// Removes each triangle t = (a, b, c) whose corners are distinct but
+// collinear (c strictly inside the longest edge a-b) by splitting its
+// neighbor s across a-b at c into two triangles with s's orientation, which
+// keeps the surface closed: dropping t alone would open a slit. A few passes
+// handle chains; flat triangles left then (no single neighbor across the
+// long edge, or a flat neighbor) are dropped and counted as degenerate.
+void repair_collinear_triangles(SurfaceMesh& mesh, RepairStats& stats) {
+  auto& tri = mesh.triangles;
+  for (int pass = 0; pass < 4; ++pass) {
+    std::vector<int32_t> flat;
+    for (size_t t = 0; t < mesh.num_triangles(); ++t)
+      if (zero_area(mesh, t)) flat.push_back(int32_t(t));
+    if (flat.empty()) return;
+    const bool last_pass = pass == 3;
+    // Vertex -> triangles, for the neighbors of the flat triangles.
+    const size_t nv = mesh.num_vertices();
+    std::vector<int32_t> off(nv + 1, 0), star(tri.size());
+    for (int32_t v : tri) ++off[v + 1];
+    for (size_t v = 0; v < nv; ++v) off[v + 1] += off[v];
+    std::vector<int32_t> fill(off.begin(), off.end() - 1);
+    for (size_t t = 0; t < mesh.num_triangles(); ++t)
+      for (int k = 0; k < 3; ++k) star[fill[tri[3 * t + k]]++] = int32_t(t);
+    std::vector<uint8_t> touched(mesh.num_triangles(), 0), remove(mesh.num_triangles(), 0);
+    for (int32_t t : flat) touched[t] = 1;
+    size_t progress = 0;
+    for (int32_t t : flat) {
+      // Longest edge (a, b) and the middle corner c.
+      int32_t best = 0;
+      double best_len = -1;
+      for (int k = 0; k < 3; ++k) {
+        const double* p = &mesh.points[3 * tri[3 * t + k]];
+        const double* q = &mesh.points[3 * tri[3 * t + (k + 1) % 3]];
+        double d = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                   (p[2] - q[2]) * (p[2] - q[2]);
+        if (d > best_len) best_len = d, best = k;
+      }
+      int32_t a = tri[3 * t + best], b = tri[3 * t + (best + 1) % 3];
+      int32_t c = tri[3 * t + (best + 2) % 3];
+      int32_t neighbor = -1, count = 0;
+      for (int32_t i = off[a]; i < off[a + 1]; ++i) {
+        int32_t s = star[i];
+        if (s == t) continue;
+        if (tri[3 * s] == b || tri[3 * s + 1] == b || tri[3 * s + 2] == b) {
+          neighbor = s;
+          ++count;
+        }
+      }
+      if (count != 1 || touched[neighbor]) {
+        if (last_pass) {
+          remove[t] = 1;
+          ++stats.degenerate_removed;
+        }
+        continue;
+      }
+      // s with b replaced by c stays in place; s with a replaced by c is new.
+      std::array<int32_t, 3> s2;
+      for (int k = 0; k < 3; ++k) {
+        int32_t v = tri[3 * neighbor + k];
+        s2[k] = v == a ? c : v;
+        if (v == b) tri[3 * neighbor + k] = c;
+      }
+      tri.insert(tri.end(), s2.begin(), s2.end());
+      touched[neighbor] = 1;
+      remove[t] = 1;
+      ++progress;
+      ++stats.collinear_repaired;
+    }
+    remove.resize(mesh.num_triangles(), 0);
+    size_t out = 0;
+    for (size_t t = 0; t < mesh.num_triangles(); ++t) {
+      if (remove[t]) continue;
+      for (int k = 0; k < 3; ++k) tri[3 * out + k] = tri[3 * t + k];
+      ++out;
+    }
+    tri.resize(3 * out);
+    if (progress == 0 && !last_pass) pass = 2;  // go straight to the last pass
+  }
+}
+
 }  // namespace
 
 void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats) {
   const size_t nt = mesh.num_triangles();
   auto& tri = mesh.triangles;
-  // Phase 1: drop degenerate triangles, compacting in place.
+  // Phase 1: drop triangles with a repeated vertex, compacting in place.
   size_t kept = 0;
   for (size_t t = 0; t < nt; ++t) {
     int32_t a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
-    if (a == b || b == c || a == c || zero_area(mesh, t)) {
+    if (a == b || b == c || a == c) {
       ++stats.degenerate_removed;
       continue;
     }
@@ -94,6 +173,9 @@ void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats) {
     ++kept;
   }
   tri.resize(3 * kept);
+  // Phase 1b: flat triangles with three distinct collinear corners.
+  repair_collinear_triangles(mesh, stats);
+  kept = mesh.num_triangles();
   // Phase 2: duplicates share their smallest vertex; bucket the triangles by
   // it (counting sort) and compare within each bucket.
   const size_t nv = mesh.num_vertices();

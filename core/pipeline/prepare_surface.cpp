@@ -43,6 +43,11 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
     s.warnings.push_back(num(s.repair.degenerate_removed) +
                          " zero-area triangles were removed");
   }
+  if (s.repair.collinear_repaired > 0) {
+    s.warnings.push_back(num(s.repair.collinear_repaired) +
+                         " flat triangles (collinear corners) were removed by "
+                         "splitting their neighbors");
+  }
   if (s.repair.duplicates_removed > 0) {
     s.warnings.push_back(num(s.repair.duplicates_removed) +
                          " duplicate triangles were removed");

@@ -55,6 +55,7 @@ std::string analysis_json(const PreparedSurface& s) {
   j.key("welded_corners").value(s.weld.corners);
   j.key("merged_by_tolerance").value(s.weld.merged_by_tolerance);
   j.key("degenerate_removed").value(s.repair.degenerate_removed);
+  j.key("collinear_repaired").value(s.repair.collinear_repaired);
   j.key("duplicates_removed").value(s.repair.duplicates_removed);
   j.key("flipped").value(s.repair.flipped);
   j.key("unused_vertices_removed").value(s.repair.unused_vertices_removed);

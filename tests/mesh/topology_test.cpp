@@ -151,15 +151,47 @@ TEST(Repair, DegenerateAndDuplicateTrianglesAreRemoved) {
   SurfaceMesh m = testing::tetrahedron();
   m.triangles.insert(m.triangles.end(), {0, 0, 1});  // repeated vertex
   m.triangles.insert(m.triangles.end(), {1, 0, 2});  // duplicate of 0 2 1
-  m.points.insert(m.points.end(), {2, 0, 0});        // vertex 4 on line 0-1
-  m.triangles.insert(m.triangles.end(), {0, 1, 4});  // zero area
+  m.points.insert(m.points.end(), {5, 5, 5});        // vertex 4, unused
   RepairStats stats;
   remove_degenerate_and_duplicates(m, stats);
-  EXPECT_EQ(stats.degenerate_removed, 2u);
+  EXPECT_EQ(stats.degenerate_removed, 1u);
   EXPECT_EQ(stats.duplicates_removed, 1u);
   EXPECT_EQ(stats.unused_vertices_removed, 1u);
-  EXPECT_EQ(m.num_triangles(), 4u);
+  EXPECT_EQ(m.triangles, testing::tetrahedron().triangles);
   EXPECT_EQ(m.num_vertices(), 4u);
+}
+
+TEST(Repair, FlatTriangleIsRemovedWithoutOpeningTheSurface) {
+  // Tetrahedron whose edge 0-1 carries a midpoint 4 on one side: the face
+  // (0, 1, 3) becomes (0, 4, 3) + (4, 1, 3) and a flat sliver (0, 1, 4)
+  // fills the gap between edge 0-1 of face (0, 2, 1) and the split edge.
+  SurfaceMesh m = testing::tetrahedron();
+  m.points.insert(m.points.end(), {0.5, 0, 0});
+  m.triangles = {0, 2, 1, 0, 4, 3, 4, 1, 3, 0, 3, 2, 1, 2, 3, 0, 1, 4};
+  ASSERT_TRUE(analyze_topology(m).closed);
+  RepairStats stats;
+  remove_degenerate_and_duplicates(m, stats);
+  EXPECT_EQ(stats.collinear_repaired, 1u);
+  EXPECT_EQ(stats.degenerate_removed, 0u);
+  EXPECT_EQ(m.num_triangles(), 6u);
+  TopologyReport r = analyze_topology(m);
+  EXPECT_TRUE(r.closed);
+  EXPECT_EQ(r.genus, 0);
+  EXPECT_EQ(r.nonmanifold_edges, 0u);
+  // Orientation kept: every shared edge runs both ways.
+  TriangleAdjacency adj = build_adjacency(m);
+  for (size_t h = 0; h < adj.opposite.size(); ++h)
+    EXPECT_EQ(half_edge_from(m, int32_t(h)), half_edge_to(m, adj.opposite[h]));
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    const double* a = &m.points[3 * m.triangles[3 * t]];
+    const double* b = &m.points[3 * m.triangles[3 * t + 1]];
+    const double* c = &m.points[3 * m.triangles[3 * t + 2]];
+    double u[3], v[3];
+    for (int k = 0; k < 3; ++k) u[k] = b[k] - a[k], v[k] = c[k] - a[k];
+    double cross = std::abs(u[1] * v[2] - u[2] * v[1]) + std::abs(u[2] * v[0] - u[0] * v[2]) +
+                   std::abs(u[0] * v[1] - u[1] * v[0]);
+    EXPECT_GT(cross, 0) << "triangle " << t << " is flat";
+  }
 }
 
 }  // namespace
