@@ -78,6 +78,12 @@ void write_header(TextOut& out, const MshModel& m, const char* version) {
   out.str("$EndPhysicalNames\n");
 }
 
+size_t element_count(const MshModel& m) {
+  size_t n = 0;
+  for (const auto& b : m.blocks) n += b.nodes.size() / size_t(nodes_per_element(b.type));
+  return n;
+}
+
 void write_point(TextOut& out, const double* p) {
   out.real(p[0]);
   out.ch(' ');
@@ -166,8 +172,7 @@ std::string write41(const MshModel& m) {
   }
   out.str("$EndNodes\n");
 
-  size_t ne = 0;
-  for (const auto& b : m.blocks) ne += b.nodes.size() / size_t(nodes_per_element(b.type));
+  const size_t ne = element_count(m);
   out.str("$Elements\n");
   out.integer(m.blocks.size());
   out.ch(' ');
@@ -213,8 +218,7 @@ std::string write22(const MshModel& m) {
     out.ch('\n');
   }
   out.str("$EndNodes\n");
-  size_t ne = 0;
-  for (const auto& b : m.blocks) ne += b.nodes.size() / size_t(nodes_per_element(b.type));
+  const size_t ne = element_count(m);
   out.str("$Elements\n");
   out.integer(ne);
   out.ch('\n');

@@ -41,4 +41,16 @@ inline int32_t half_edge_to(const SurfaceMesh& m, int32_t h) {
   return m.triangles[h - h % 3 + (h % 3 + 1) % 3];
 }
 
+/// The half-edge of triangle t other than `not_this` that has vertex v as an
+/// endpoint; -1 if none.
+inline int32_t other_half_edge_at(const SurfaceMesh& m, int32_t t, int32_t v,
+                                  int32_t not_this) {
+  for (int k = 0; k < 3; ++k) {
+    int32_t h = 3 * t + k;
+    if (h == not_this) continue;
+    if (half_edge_from(m, h) == v || half_edge_to(m, h) == v) return h;
+  }
+  return -1;
+}
+
 }  // namespace vm

@@ -3,17 +3,6 @@
 namespace vm {
 namespace {
 
-// The half-edge of triangle t other than `not_this` that contains vertex v.
-int32_t other_half_edge_at(const SurfaceMesh& m, int32_t t, int32_t v,
-                           int32_t not_this) {
-  for (int k = 0; k < 3; ++k) {
-    int32_t h = 3 * t + k;
-    if (h == not_this) continue;
-    if (half_edge_from(m, h) == v || half_edge_to(m, h) == v) return h;
-  }
-  return -1;
-}
-
 // Next boundary half-edge after `h` around vertex `v` (an endpoint of h),
 // walking through the triangle fan of v; -1 if a non-manifold edge stops it.
 int32_t next_by_fan(const SurfaceMesh& m, const TriangleAdjacency& adj,

@@ -29,28 +29,24 @@ void unite(std::vector<int32_t>& parent, int32_t a, int32_t b) {
   if (a != b) parent[std::max(a, b)] = std::min(a, b);
 }
 
-// Number of triangle fans around v (triangles linked through manifold edges
-// incident to v).
-int count_fans(const SurfaceMesh& m, const TriangleAdjacency& adj, int32_t v,
-               std::vector<int32_t>& local_parent) {
-  int32_t b = adj.star_offsets[v], e = adj.star_offsets[v + 1];
-  int32_t d = e - b;
-  local_parent.resize(d);
-  std::iota(local_parent.begin(), local_parent.end(), 0);
-  for (int32_t i = 0; i < d; ++i) {
-    int32_t t = adj.star[b + i];
-    for (int k = 0; k < 3; ++k) {
-      int32_t h = 3 * t + k;
-      if (half_edge_from(m, h) != v && half_edge_to(m, h) != v) continue;
+// Whether the triangles around v form a single fan: walking from one of them
+// across the manifold edges incident to v, both ways, reaches all of them.
+bool single_fan(const SurfaceMesh& m, const TriangleAdjacency& adj, int32_t v) {
+  const int32_t b = adj.star_offsets[v], d = adj.star_offsets[v + 1] - b;
+  const int32_t t0 = adj.star[b];
+  int32_t reached = 1;
+  int32_t first = other_half_edge_at(m, t0, v, -1);
+  for (int32_t start : {first, other_half_edge_at(m, t0, v, first)}) {
+    int32_t h = start;
+    for (int32_t steps = 0; steps < d; ++steps) {
       int32_t o = adj.opposite[h];
-      if (o < 0) continue;
-      for (int32_t j = 0; j < d; ++j)
-        if (adj.star[b + j] == o / 3) unite(local_parent, i, j);
+      if (o < 0) break;  // boundary or non-manifold edge: the fan ends
+      if (o / 3 == t0) return reached == d;  // closed around v
+      ++reached;
+      h = other_half_edge_at(m, o / 3, v, o);
     }
   }
-  int fans = 0;
-  for (int32_t i = 0; i < d; ++i) fans += find_root(local_parent, i) == i;
-  return fans;
+  return reached == d;
 }
 
 Opening describe_loop(const SurfaceMesh& m, std::vector<int32_t> loop) {
@@ -145,10 +141,9 @@ TopologyReport analyze_topology(const SurfaceMesh& mesh,
     r.triangle_component[t] = rank[root_id[find_root(parent, tri[3 * t])]];
 
   // Bow-tie vertices.
-  std::vector<int32_t> local;
   for (size_t v = 0; v < nv; ++v) {
     if (adj.star_offsets[v + 1] == adj.star_offsets[v]) continue;
-    if (count_fans(mesh, adj, int32_t(v), local) > 1) ++r.nonmanifold_vertices;
+    if (!single_fan(mesh, adj, int32_t(v))) ++r.nonmanifold_vertices;
   }
 
   // Openings, largest first.
