@@ -43,7 +43,8 @@ def gmsh_read(path):
     """Triangle count and physical names as Gmsh itself reads the file, plus
     the number of triangles outside any physical group."""
     import gmsh
-    gmsh.initialize(["-v", "0"])
+    gmsh.initialize()
+    gmsh.option.setNumber("General.Verbosity", 0)
     try:
         gmsh.open(path)
         names = [gmsh.model.getPhysicalName(d, t) for d, t in gmsh.model.getPhysicalGroups()]

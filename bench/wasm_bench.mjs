@@ -11,7 +11,7 @@ import { createVesselmesh } from '../wasm/src/vesselmesh.js';
 
 const args = process.argv.slice(2);
 let runs = 7;
-let voxel = 0.0123;
+let voxel = 0.0115;
 const files = [];
 for (let i = 0; i < args.length; i++) {
   if (args[i] === '--runs') runs = Math.max(1, Number(args[++i]));

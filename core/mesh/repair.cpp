@@ -38,44 +38,51 @@ void remove_unused_vertices(SurfaceMesh& mesh, RepairStats& stats) {
   for (int32_t& v : mesh.triangles) v = remap[v];
 }
 
-// Signed volume enclosed by the triangles of one component, each boundary
-// loop closed by a fan from its centroid (the cap's sign follows the loop
-// direction, which follows the triangles).
-double closed_signed_volume(const SurfaceMesh& m,
-                            const std::vector<int32_t>& tris,
-                            const std::vector<std::vector<int32_t>>& loops) {
-  auto vol = [](const double* a, const double* b, const double* c) {
-    return (a[0] * (b[1] * c[2] - b[2] * c[1]) -
-            a[1] * (b[0] * c[2] - b[2] * c[0]) +
-            a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
-  };
-  // Translate to the first point to limit cancellation.
-  const double* o = &m.points[3 * m.triangles[3 * tris[0]]];
-  auto rel = [&](int32_t v, double* out) {
-    for (int k = 0; k < 3; ++k) out[k] = m.points[3 * v + k] - o[k];
-  };
-  double total = 0, a[3], b[3], c[3];
-  for (int32_t t : tris) {
-    rel(m.triangles[3 * t], a);
-    rel(m.triangles[3 * t + 1], b);
-    rel(m.triangles[3 * t + 2], c);
-    total += vol(a, b, c);
+// Union-find over triangles where each triangle also stores whether its
+// orientation is reversed relative to its parent, so that the relative
+// orientation of any two triangles of a tree is the xor along their paths.
+class ParityUnionFind {
+ public:
+  explicit ParityUnionFind(size_t n) : parent_(n), parity_(n, 0), size_(n, 1) {
+    for (size_t i = 0; i < n; ++i) parent_[i] = int32_t(i);
   }
-  for (const auto& loop : loops) {
-    double cen[3] = {0, 0, 0};
-    for (int32_t v : loop) {
-      rel(v, a);
-      for (int k = 0; k < 3; ++k) cen[k] += a[k] / double(loop.size());
+  /// Root of t, and t's parity relative to it (with path compression).
+  std::pair<int32_t, uint8_t> find(int32_t t) {
+    int32_t root = t;
+    uint8_t p = 0;
+    while (parent_[root] != root) {
+      p ^= parity_[root];
+      root = parent_[root];
     }
-    // The cap runs against the loop direction.
-    for (size_t i = 0; i < loop.size(); ++i) {
-      rel(loop[(i + 1) % loop.size()], a);
-      rel(loop[i], b);
-      total += vol(cen, a, b);
+    // Second pass: point the path at the root with the right parities.
+    uint8_t rest = p;
+    while (parent_[t] != root && t != root) {
+      int32_t next = parent_[t];
+      uint8_t own = parity_[t];
+      parent_[t] = root;
+      parity_[t] = rest;
+      rest ^= own;
+      t = next;
     }
+    return {root, p};
   }
-  return total;
-}
+  /// Records that t and s have relative parity `rel`; false on contradiction.
+  bool unite(int32_t t, int32_t s, uint8_t rel) {
+    auto [rt, pt] = find(t);
+    auto [rs, ps] = find(s);
+    if (rt == rs) return (pt ^ ps) == rel;
+    if (size_[rt] < size_[rs]) std::swap(rt, rs);
+    parent_[rs] = rt;
+    parity_[rs] = pt ^ ps ^ rel;
+    size_[rt] += size_[rs];
+    return true;
+  }
+
+ private:
+  std::vector<int32_t> parent_;
+  std::vector<uint8_t> parity_;
+  std::vector<int32_t> size_;
+};
 
 // Removes each triangle t = (a, b, c) whose corners are distinct but
 // collinear (c strictly inside the longest edge a-b) by splitting its
@@ -227,63 +234,76 @@ void orient_consistently(SurfaceMesh& mesh, RepairStats& stats,
   if (nt == 0) return;
   TriangleAdjacency adj = build_adjacency(mesh);
   auto& tri = mesh.triangles;
-  std::vector<int32_t> component(nt, -1);
-  std::vector<uint8_t> flip(nt, 0);
-  std::vector<std::vector<int32_t>> comp_tris;
-  std::vector<int32_t> queue;
-  for (size_t seed = 0; seed < nt; ++seed) {
-    if (component[seed] >= 0) continue;
-    int32_t cid = int32_t(comp_tris.size());
-    comp_tris.emplace_back();
-    component[seed] = cid;
-    queue.assign(1, int32_t(seed));
-    while (!queue.empty()) {
-      int32_t t = queue.back();
-      queue.pop_back();
-      comp_tris[cid].push_back(t);
-      for (int k = 0; k < 3; ++k) {
-        int32_t o = adj.opposite[3 * t + k];
-        if (o < 0) continue;
-        int32_t s = o / 3;
-        // Consistent iff the two half-edges run in opposite directions,
-        // taking the flips decided so far into account.
-        bool same_dir = half_edge_from(mesh, 3 * t + k) == half_edge_from(mesh, o);
-        bool need_flip = same_dir != bool(flip[t]);
-        if (component[s] < 0) {
-          component[s] = cid;
-          flip[s] = need_flip;
-          queue.push_back(s);
-        } else if (bool(flip[s]) != need_flip) {
-          stats.orientable = false;
-        }
-      }
-    }
+  // Phase 1: relative orientations across manifold edges, in memory order.
+  // Two triangles agree when their shared edge runs in opposite directions.
+  ParityUnionFind uf(nt);
+  for (size_t h = 0; h < adj.opposite.size(); ++h) {
+    int32_t o = adj.opposite[h];
+    if (o <= int32_t(h)) continue;  // boundary, non-manifold, or seen
+    uint8_t rel = half_edge_from(mesh, int32_t(h)) == half_edge_from(mesh, o);
+    if (!uf.unite(int32_t(h / 3), o / 3, rel)) stats.orientable = false;
   }
-  for (size_t t = 0; t < nt; ++t)
-    if (flip[t]) std::swap(tri[3 * t + 1], tri[3 * t + 2]);
+  // Phase 2: flip every triangle that disagrees with its component's root.
+  std::vector<uint8_t> flip(nt);
+  std::vector<int32_t> root(nt);
+  for (size_t t = 0; t < nt; ++t) {
+    auto [r, p] = uf.find(int32_t(t));
+    root[t] = r;
+    flip[t] = p;
+    if (p) std::swap(tri[3 * t + 1], tri[3 * t + 2]);
+  }
   remap_after_flips(adj, flip);
-  // Outward: per component, positive enclosed volume.
-  std::vector<std::vector<std::vector<int32_t>>> comp_loops(comp_tris.size());
-  std::vector<int32_t> vertex_comp(mesh.num_vertices(), -1);
+  // Phase 3: outward. Signed volume per component (keyed by root), each
+  // opening closed by a fan from its centroid against the loop direction.
+  BoundingBox box = bounding_box(mesh.points);
+  const double o[3] = {0.5 * (box.min[0] + box.max[0]), 0.5 * (box.min[1] + box.max[1]),
+                       0.5 * (box.min[2] + box.max[2])};
+  auto rel = [&](int32_t v, double* out) {
+    for (int k = 0; k < 3; ++k) out[k] = mesh.points[3 * v + k] - o[k];
+  };
+  auto det = [](const double* a, const double* b, const double* c) {
+    return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+           a[2] * (b[0] * c[1] - b[1] * c[0]);
+  };
+  std::vector<double> volume(nt, 0.0);  // indexed by root
+  double a[3], b[3], c[3];
+  for (size_t t = 0; t < nt; ++t) {
+    rel(tri[3 * t], a);
+    rel(tri[3 * t + 1], b);
+    rel(tri[3 * t + 2], c);
+    volume[root[t]] += det(a, b, c);
+  }
+  std::vector<int32_t> vertex_root(mesh.num_vertices(), -1);
   for (size_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) vertex_comp[tri[3 * t + k]] = component[t];
-  for (auto& loop : boundary_loops(mesh, adj))
-    comp_loops[vertex_comp[loop[0]]].push_back(std::move(loop));
-  std::vector<uint8_t> reversed(nt, 0);
-  for (size_t c = 0; c < comp_tris.size(); ++c) {
-    if (closed_signed_volume(mesh, comp_tris[c], comp_loops[c]) >= 0) continue;
-    for (int32_t t : comp_tris[c]) {
-      std::swap(tri[3 * t + 1], tri[3 * t + 2]);
-      flip[t] = !flip[t];
-      reversed[t] = 1;
+    for (int k = 0; k < 3; ++k) vertex_root[tri[3 * t + k]] = root[t];
+  for (const auto& loop : boundary_loops(mesh, adj)) {
+    double cen[3] = {0, 0, 0};
+    for (int32_t v : loop) {
+      rel(v, a);
+      for (int k = 0; k < 3; ++k) cen[k] += a[k] / double(loop.size());
+    }
+    double& vol = volume[vertex_root[loop[0]]];
+    for (size_t i = 0; i < loop.size(); ++i) {
+      rel(loop[(i + 1) % loop.size()], a);
+      rel(loop[i], b);
+      vol += det(cen, a, b);
     }
   }
-  if (adjacency) {
-    remap_after_flips(adj, reversed);
-    *adjacency = std::move(adj);
+  std::vector<uint8_t> reversed(nt, 0);
+  bool any_reversed = false;
+  for (size_t t = 0; t < nt; ++t) {
+    if (volume[root[t]] >= 0) continue;
+    std::swap(tri[3 * t + 1], tri[3 * t + 2]);
+    flip[t] = !flip[t];
+    reversed[t] = 1;
+    any_reversed = true;
   }
   // Net count of triangles reversed relative to the input.
   for (uint8_t f : flip) stats.flipped += f;
+  if (adjacency) {
+    if (any_reversed) remap_after_flips(adj, reversed);
+    *adjacency = std::move(adj);
+  }
 }
 
 }  // namespace vm

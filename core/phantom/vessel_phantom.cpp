@@ -1,0 +1,340 @@
+// Synthetic segmentation-like vessels: an implicit model (sphere sweeps along
+// smooth centerlines, branches joined by a smooth minimum, an optional bulb)
+// sampled on a voxel grid with optional value noise, extracted by marching
+// cubes (marching_cubes.h) and cut open by planes across the vessel ends, so
+// the result has the staircase, oversampling and slivers of real
+// segmentation output.
+#include "core/phantom/vessel_phantom.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/mesh/adjacency.h"
+#include "core/mesh/topology.h"
+#include "core/phantom/marching_cubes.h"
+
+namespace vm {
+namespace {
+
+using Vec = std::array<double, 3>;
+
+Vec lerp(const Vec& a, const Vec& b, double t) {
+  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+}
+double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec unit(const Vec& a) {
+  double n = std::sqrt(dot(a, a));
+  return {a[0] / n, a[1] / n, a[2] / n};
+}
+
+/// A vessel branch: a polyline centerline with a radius per point.
+struct Branch {
+  std::vector<Vec> points;
+  std::vector<double> radii;
+};
+
+/// Catmull-Rom spline through `ctrl` sampled with `n` points per span, radius
+/// from `radius(s)` with s in [0, 1] along the samples.
+template <class RadiusFn>
+Branch spline_branch(const std::vector<Vec>& ctrl, int n, RadiusFn radius) {
+  Branch b;
+  const size_t spans = ctrl.size() - 1;
+  for (size_t s = 0; s < spans; ++s) {
+    const Vec& p0 = ctrl[s == 0 ? 0 : s - 1];
+    const Vec& p1 = ctrl[s];
+    const Vec& p2 = ctrl[s + 1];
+    const Vec& p3 = ctrl[std::min(s + 2, spans)];
+    for (int i = 0; i < n || (s + 1 == spans && i == n); ++i) {
+      double t = double(i) / n, t2 = t * t, t3 = t2 * t;
+      Vec p;
+      for (int k = 0; k < 3; ++k)
+        p[k] = 0.5 * (2 * p1[k] + (-p0[k] + p2[k]) * t +
+                      (2 * p0[k] - 5 * p1[k] + 4 * p2[k] - p3[k]) * t2 +
+                      (-p0[k] + 3 * p1[k] - 3 * p2[k] + p3[k]) * t3);
+      b.points.push_back(p);
+    }
+  }
+  for (size_t i = 0; i < b.points.size(); ++i)
+    b.radii.push_back(radius(double(i) / double(b.points.size() - 1)));
+  return b;
+}
+
+/// A plane cutting one vessel end; the part on the +normal side near `center`
+/// is removed.
+struct EndCut {
+  Vec center, normal;
+  double radius;
+};
+
+struct Model {
+  std::vector<Branch> branches;
+  bool has_bulb = false;
+  Vec bulb_center{};
+  double bulb_radius = 0;
+  std::vector<EndCut> cuts;  ///< used when open_ends
+  int genus = 0;
+};
+
+/// The cut across the end of `b` at sample `i`, facing away from sample j.
+EndCut cut_at(const Branch& b, size_t i, size_t j) {
+  return {b.points[i], unit(sub(b.points[i], b.points[j])), b.radii[i]};
+}
+
+Model build_model(PhantomKind kind) {
+  Model m;
+  const int n = 24;
+  switch (kind) {
+    case PhantomKind::kTube: {
+      m.branches.push_back(spline_branch(
+          {{0, 0, -5}, {0.8, 0.3, -2}, {-0.4, 0.2, 1}, {0.5, -0.5, 4}, {0.2, 0, 6.5}}, n,
+          [](double s) { return 1.0 + 0.18 * std::sin(2 * std::numbers::pi * s); }));
+      break;
+    }
+    case PhantomKind::kBifurcation:
+    case PhantomKind::kAneurysm: {
+      m.branches.push_back(spline_branch({{0, 0, -6}, {0.2, 0.1, -3}, {0, 0, 0}}, n,
+                                         [](double s) { return 1.0 - 0.05 * s; }));
+      m.branches.push_back(spline_branch({{0, 0, 0}, {0.9, 0.1, 1.6}, {2.3, 0.3, 3.6}, {3.2, 0.2, 6}}, n,
+                                         [](double s) { return 0.78 - 0.08 * s; }));
+      m.branches.push_back(spline_branch({{0, 0, 0}, {-0.8, -0.1, 1.7}, {-1.8, -0.4, 3.8}, {-2.2, -0.3, 6.2}}, n,
+                                         [](double s) { return 0.66 - 0.06 * s; }));
+      if (kind == PhantomKind::kAneurysm) {
+        m.has_bulb = true;
+        m.bulb_center = {0.15, 1.05, 1.6};
+        m.bulb_radius = 0.95;
+      }
+      break;
+    }
+    case PhantomKind::kTorus: {
+      std::vector<Vec> ring;
+      for (int i = 0; i <= 8; ++i) {
+        double a = 2 * std::numbers::pi * i / 8;
+        ring.push_back({3.2 * std::cos(a), 2.6 * std::sin(a), 0.4 * std::sin(2 * a)});
+      }
+      // Close the loop: repeat the first span's neighbors for the spline.
+      ring.push_back(ring[1]);
+      Branch b = spline_branch(ring, n, [](double s) {
+        return 0.8 + 0.12 * std::cos(2 * std::numbers::pi * s * 9 / 8);
+      });
+      // Keep one full turn (8 spans).
+      size_t keep = size_t(8 * n + 1);
+      b.points.resize(keep);
+      b.radii.resize(keep);
+      m.branches.push_back(b);
+      m.genus = 1;
+      return m;
+    }
+  }
+  // Free ends: cut a twelfth of the way in. A single tube has two; in a
+  // bifurcation the parent ends and the children start at the junction.
+  for (size_t bi = 0; bi < m.branches.size(); ++bi) {
+    const Branch& b = m.branches[bi];
+    size_t last = b.points.size() - 1, in = std::max<size_t>(1, b.points.size() / 12);
+    bool free_start = bi == 0;
+    bool free_end = bi > 0 || m.branches.size() == 1;
+    if (free_start) m.cuts.push_back(cut_at(b, in, in + 1));
+    if (free_end) m.cuts.push_back(cut_at(b, last - in, last - in - 1));
+  }
+  return m;
+}
+
+double smooth_min(double a, double b, double k) {
+  double h = std::max(k - std::fabs(a - b), 0.0) / k;
+  return std::min(a, b) - h * h * k * 0.25;
+}
+
+uint64_t splitmix64(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ULL;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+  return x ^ (x >> 31);
+}
+
+/// Field of one branch over plane z = zk: distance to the polyline minus the
+/// interpolated radius, computed only in the xy boxes of the segments that
+/// reach the plane (elsewhere `far`).
+void branch_plane(const Branch& b, const GridSpec& g, double zk, float far,
+                  float* out) {
+  std::fill(out, out + size_t(g.nx) * size_t(g.ny), far);
+  const double band = far;
+  for (size_t s = 0; s + 1 < b.points.size(); ++s) {
+    const Vec &p = b.points[s], &q = b.points[s + 1];
+    double rmax = std::max(b.radii[s], b.radii[s + 1]) + band;
+    if (zk < std::min(p[2], q[2]) - rmax || zk > std::max(p[2], q[2]) + rmax) continue;
+    int i0 = std::max(0, int(std::floor((std::min(p[0], q[0]) - rmax - g.origin[0]) / g.spacing)));
+    int i1 = std::min(g.nx - 1, int(std::ceil((std::max(p[0], q[0]) + rmax - g.origin[0]) / g.spacing)));
+    int j0 = std::max(0, int(std::floor((std::min(p[1], q[1]) - rmax - g.origin[1]) / g.spacing)));
+    int j1 = std::min(g.ny - 1, int(std::ceil((std::max(p[1], q[1]) + rmax - g.origin[1]) / g.spacing)));
+    Vec d = sub(q, p);
+    double len2 = dot(d, d);
+    for (int j = j0; j <= j1; ++j) {
+      for (int i = i0; i <= i1; ++i) {
+        Vec x = {g.origin[0] + g.spacing * i, g.origin[1] + g.spacing * j, zk};
+        Vec w = sub(x, p);
+        double t = len2 > 0 ? std::clamp(dot(w, d) / len2, 0.0, 1.0) : 0.0;
+        Vec c = lerp(p, q, t);
+        Vec e = sub(x, c);
+        double v = std::sqrt(dot(e, e)) - (b.radii[s] + t * (b.radii[s + 1] - b.radii[s]));
+        float& o = out[size_t(i) + size_t(g.nx) * size_t(j)];
+        o = std::min(o, float(v));
+      }
+    }
+  }
+}
+
+/// Removes the part of `mesh` beyond the plane of `cut`, within 3 radii of
+/// its center, splitting the crossing triangles (new vertices exactly on the
+/// plane, shared between neighbors).
+void clip(SurfaceMesh& mesh, const EndCut& cut) {
+  const size_t nv = mesh.num_vertices();
+  std::vector<double> dist(nv);
+  const double reach2 = 9 * cut.radius * cut.radius;
+  for (size_t v = 0; v < nv; ++v) {
+    Vec p = {mesh.points[3 * v], mesh.points[3 * v + 1], mesh.points[3 * v + 2]};
+    Vec r = sub(p, cut.center);
+    double d = dot(r, cut.normal);
+    double lateral2 = dot(r, r) - d * d;
+    // Outside the reach of this cut everything is kept.
+    dist[v] = lateral2 > reach2 || std::fabs(d) > 3 * cut.radius ? -1.0 : d;
+  }
+  std::vector<std::pair<uint64_t, int32_t>> cache;  // edge -> vertex on plane
+  auto on_plane = [&](int32_t a, int32_t b) -> int32_t {
+    uint64_t key = uint64_t(std::min(a, b)) << 32 | uint64_t(std::max(a, b));
+    for (auto& [k, v] : cache)
+      if (k == key) return v;
+    double t = dist[a] / (dist[a] - dist[b]);
+    for (int k = 0; k < 3; ++k)
+      mesh.points.push_back(mesh.points[3 * a + k] + t * (mesh.points[3 * b + k] - mesh.points[3 * a + k]));
+    int32_t id = int32_t(mesh.num_vertices() - 1);
+    cache.push_back({key, id});
+    return id;
+  };
+  std::vector<int32_t> out;
+  out.reserve(mesh.triangles.size());
+  for (size_t t = 0; t < mesh.num_triangles(); ++t) {
+    const int32_t* v = &mesh.triangles[3 * t];
+    bool beyond[3];
+    int n_beyond = 0;
+    for (int k = 0; k < 3; ++k) n_beyond += beyond[k] = dist[v[k]] > 0;
+    if (n_beyond == 0) {
+      out.insert(out.end(), v, v + 3);
+      continue;
+    }
+    if (n_beyond == 3) continue;
+    std::vector<int32_t> poly;
+    for (int k = 0; k < 3; ++k) {
+      int32_t a = v[k], b = v[(k + 1) % 3];
+      if (!beyond[k]) poly.push_back(a);
+      if (beyond[k] != beyond[(k + 1) % 3]) {
+        // The kept end may lie on the plane itself: reuse it.
+        int32_t kept = beyond[k] ? b : a, gone = beyond[k] ? a : b;
+        int32_t p = dist[kept] == 0 ? kept : on_plane(kept, gone);
+        if (poly.empty() || poly.back() != p) poly.push_back(p);
+      }
+    }
+    if (poly.size() > 1 && poly.front() == poly.back()) poly.pop_back();
+    for (size_t i = 1; i + 1 < poly.size(); ++i)
+      out.insert(out.end(), {poly[0], poly[i], poly[i + 1]});
+  }
+  mesh.triangles.swap(out);
+}
+
+/// Keeps the largest connected component (clipping may leave noise specks).
+void keep_largest_component(SurfaceMesh& mesh) {
+  TopologyReport r = analyze_topology(mesh);
+  if (r.components > 0) mesh = extract_component(mesh, r, 0);
+}
+
+}  // namespace
+
+Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* truth) {
+  if (!(o.voxel > 0) || !std::isfinite(o.voxel))
+    return Result<SurfaceMesh>::Error("phantom voxel size must be a positive number");
+  if (!(o.scale > 0) || !std::isfinite(o.scale))
+    return Result<SurfaceMesh>::Error("phantom scale must be a positive number");
+  if (!(o.noise >= 0) || o.noise > 2)
+    return Result<SurfaceMesh>::Error("phantom noise must be between 0 and 2 voxels");
+  Model m = build_model(o.kind);
+  // Grid around the model, with 3 voxels of margin.
+  Vec lo = {1e30, 1e30, 1e30}, hi = {-1e30, -1e30, -1e30};
+  for (const Branch& b : m.branches)
+    for (size_t i = 0; i < b.points.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], b.points[i][k] - b.radii[i]);
+        hi[k] = std::max(hi[k], b.points[i][k] + b.radii[i]);
+      }
+  if (m.has_bulb)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], m.bulb_center[k] - m.bulb_radius);
+      hi[k] = std::max(hi[k], m.bulb_center[k] + m.bulb_radius);
+    }
+  GridSpec g;
+  g.spacing = o.voxel;
+  double n[3];
+  for (int k = 0; k < 3; ++k) {
+    g.origin[k] = lo[k] - 3 * o.voxel;
+    n[k] = std::ceil((hi[k] - lo[k]) / o.voxel) + 7;
+  }
+  if (n[0] * n[1] * n[2] > 2e8)
+    return Result<SurfaceMesh>::Error(
+        "phantom grid too large (" + std::to_string(size_t(n[0] * n[1] * n[2])) +
+        " voxels, limit 200M): use a larger voxel size");
+  g.nx = int(n[0]), g.ny = int(n[1]), g.nz = int(n[2]);
+
+  const float far = float(4 * o.voxel + 0.5);
+  const double k_blend = 0.35;
+  std::vector<std::vector<float>> branch(m.branches.size(),
+                                         std::vector<float>(size_t(g.nx) * size_t(g.ny)));
+  auto plane_fn = [&](int k, float* out) {
+    double z = g.origin[2] + g.spacing * k;
+    for (size_t b = 0; b < m.branches.size(); ++b) branch_plane(m.branches[b], g, z, far, branch[b].data());
+    const size_t np = size_t(g.nx) * size_t(g.ny);
+    for (size_t i = 0; i < np; ++i) {
+      double v = branch[0][i];
+      for (size_t b = 1; b < branch.size(); ++b) v = smooth_min(v, branch[b][i], k_blend);
+      out[i] = float(v);
+    }
+    if (m.has_bulb) {
+      for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i) {
+          Vec x = {g.origin[0] + g.spacing * i, g.origin[1] + g.spacing * j, z};
+          Vec d = sub(x, m.bulb_center);
+          double s = std::sqrt(dot(d, d)) - m.bulb_radius;
+          float& v = out[size_t(i) + size_t(g.nx) * size_t(j)];
+          v = float(smooth_min(v, s, 0.3));
+        }
+    }
+    if (o.noise > 0) {
+      for (size_t i = 0; i < np; ++i) {
+        uint64_t h = splitmix64((uint64_t(o.seed) << 40) ^ (uint64_t(k) * np + i));
+        double u = double(h >> 11) * (1.0 / 9007199254740992.0);  // [0, 1)
+        out[i] += float(o.noise * o.voxel * (2 * u - 1));
+      }
+    }
+  };
+  SurfaceMesh mesh = marching_cubes(g, plane_fn);
+  const bool open = o.open_ends && !m.cuts.empty();
+  if (open)
+    for (const EndCut& c : m.cuts) clip(mesh, c);
+  keep_largest_component(mesh);
+  for (double& x : mesh.points) x *= o.scale;
+  if (truth) {
+    truth->genus = m.genus;
+    truth->openings = open ? int(m.cuts.size()) : 0;
+    truth->opening_radii.clear();
+    truth->opening_centers.clear();
+    if (open)
+      for (const EndCut& c : m.cuts) {
+        truth->opening_radii.push_back(c.radius * o.scale);
+        truth->opening_centers.push_back(
+            {c.center[0] * o.scale, c.center[1] * o.scale, c.center[2] * o.scale});
+      }
+  }
+  if (mesh.num_triangles() == 0)
+    return Result<SurfaceMesh>::Error("phantom is empty: voxel size too large for the model");
+  return mesh;
+}
+
+}  // namespace vm
