@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdio>
 #include <limits>
 #include <set>
 
@@ -22,10 +23,18 @@ class TextOut {
     auto r = std::to_chars(tmp, tmp + sizeof(tmp), v);
     buf_.append(tmp, r.ptr);
   }
+  /// Shortest text that reads back to exactly v (to_chars where the
+  /// standard library has it for doubles; %.17g, also exact, elsewhere, e.g.
+  /// Emscripten's libc++ 14).
   void real(double v) {
     char tmp[32];
+#if defined(__cpp_lib_to_chars)
     auto r = std::to_chars(tmp, tmp + sizeof(tmp), v);
     buf_.append(tmp, r.ptr);
+#else
+    int n = std::snprintf(tmp, sizeof(tmp), "%.17g", v);
+    buf_.append(tmp, size_t(n));
+#endif
   }
   std::string take() { return std::move(buf_); }
   void reserve(size_t n) { buf_.reserve(n); }

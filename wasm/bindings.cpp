@@ -1,0 +1,123 @@
+// Embind bindings: the WebAssembly face of vmcore. Thin on purpose: convert
+// JS values in, call core, copy results out as owned typed arrays (heap views
+// detach when memory grows), report errors as {ok: false, error}. Nothing
+// throws across this boundary; JSON reports come from core/pipeline/
+// report_json.h and are parsed by the JS wrapper.
+#include <emscripten/bind.h>
+#include <emscripten/val.h>
+
+#include <string>
+#include <vector>
+
+#include "core/io/stl.h"
+#include "core/phantom/vessel_phantom.h"
+#include "core/pipeline/mesh_job.h"
+#include "core/pipeline/report_json.h"
+
+namespace {
+
+using emscripten::val;
+
+constexpr const char* kVersion = "0.1.0";
+
+std::vector<uint8_t> bytes_from(const val& array) {
+  const size_t n = array["length"].as<size_t>();
+  std::vector<uint8_t> bytes(n);
+  val(emscripten::typed_memory_view(n, bytes.data())).call<void>("set", array);
+  return bytes;
+}
+
+template <class T>
+val copy_out(const T* data, size_t n, const char* type) {
+  // Constructing a typed array from a view copies it out of the heap.
+  return val::global(type).new_(val(emscripten::typed_memory_view(n, data)));
+}
+
+vm::ProgressFn progress_from(val fn) {
+  if (fn.isUndefined() || fn.isNull()) return {};
+  return [fn](double fraction, std::string_view stage) {
+    val r = fn(fraction, std::string(stage));
+    return !r.strictlyEquals(val(false));  // returning false cancels
+  };
+}
+
+val error(const std::string& message) {
+  val r = val::object();
+  r.set("ok", false);
+  r.set("error", message);
+  if (message == vm::kCancelledMessage) r.set("cancelled", true);
+  return r;
+}
+
+void set_surface(val& r, const vm::SurfaceMesh& m, const std::vector<float>& quality) {
+  std::vector<float> positions(m.points.begin(), m.points.end());
+  val s = val::object();
+  s.set("positions", copy_out(positions.data(), positions.size(), "Float32Array"));
+  s.set("triangles", copy_out(reinterpret_cast<const uint32_t*>(m.triangles.data()),
+                              m.triangles.size(), "Uint32Array"));
+  s.set("quality", copy_out(quality.data(), quality.size(), "Float32Array"));
+  r.set("surface", s);
+}
+
+val analyze(val stl, val progress) {
+  std::vector<uint8_t> bytes = bytes_from(stl);
+  auto prepared = vm::prepare_surface(bytes, {}, progress_from(progress));
+  if (!prepared.ok()) return error(prepared.message());
+  val r = val::object();
+  r.set("ok", true);
+  r.set("analysisJson", vm::analysis_json(prepared.value()));
+  set_surface(r, prepared.value().mesh, prepared.value().quality);
+  return r;
+}
+
+val mesh(val stl, std::string msh_version, bool largest_component_only, val progress) {
+  vm::MeshJobOptions options;
+  auto version = vm::parse_msh_version(msh_version);
+  if (!version.ok()) return error(version.message());
+  options.msh_version = version.value();
+  options.largest_component_only = largest_component_only;
+  std::vector<uint8_t> bytes = bytes_from(stl);
+  auto result = vm::run_mesh_job(bytes, options, progress_from(progress));
+  if (!result.ok()) return error(result.message());
+  const vm::MeshJobResult& res = result.value();
+  val r = val::object();
+  r.set("ok", true);
+  r.set("msh", copy_out(reinterpret_cast<const uint8_t*>(res.msh.data()), res.msh.size(),
+                        "Uint8Array"));
+  r.set("reportJson", vm::mesh_report_json(res));
+  set_surface(r, res.output_surface, res.output_quality);
+  return r;
+}
+
+val make_phantom(std::string kind, double voxel, bool open_ends, double noise, double seed,
+                 double scale) {
+  vm::PhantomOptions o;
+  if (kind == "tube") o.kind = vm::PhantomKind::kTube;
+  else if (kind == "bifurcation") o.kind = vm::PhantomKind::kBifurcation;
+  else if (kind == "aneurysm") o.kind = vm::PhantomKind::kAneurysm;
+  else if (kind == "torus") o.kind = vm::PhantomKind::kTorus;
+  else return error("unknown phantom kind '" + kind + "'");
+  o.voxel = voxel;
+  o.open_ends = open_ends;
+  o.noise = noise;
+  o.seed = uint32_t(seed);
+  o.scale = scale;
+  auto m = vm::make_vessel_phantom(o);
+  if (!m.ok()) return error(m.message());
+  std::vector<uint8_t> stl = vm::write_stl_binary(m.value(), "vesselmesh phantom " + kind);
+  val r = val::object();
+  r.set("ok", true);
+  r.set("stl", copy_out(stl.data(), stl.size(), "Uint8Array"));
+  return r;
+}
+
+std::string version() { return kVersion; }
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(vesselmesh) {
+  emscripten::function("analyze", &analyze);
+  emscripten::function("mesh", &mesh);
+  emscripten::function("makePhantom", &make_phantom);
+  emscripten::function("version", &version);
+}

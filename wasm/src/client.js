@@ -1,0 +1,94 @@
+// Promise-based client of the vesselmesh worker (worker.js): the page's only
+// way to the WebAssembly core. One job runs at a time in the worker; cancel()
+// terminates it and starts a fresh worker.
+
+const defaultWorker = () =>
+  new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+
+export class VesselmeshClient {
+  /** @param {{ createWorker?: () => Worker }} [options] */
+  constructor({ createWorker = defaultWorker } = {}) {
+    this._createWorker = createWorker;
+    this._nextId = 1;
+    this._pending = new Map();
+    this._start();
+  }
+
+  _start() {
+    this._worker = this._createWorker();
+    this.ready = new Promise((resolve, reject) => {
+      this._readyResolve = resolve;
+      this._readyReject = reject;
+    });
+    // A failed load rejects `ready`; calls then resolve with { ok: false }.
+    this.ready.catch(() => {});
+    this._worker.onmessage = (event) => this._onMessage(event.data);
+    this._worker.onerror = (event) => {
+      const error = `the mesher worker failed: ${event.message || 'unknown error'}`;
+      this._readyReject(new Error(error));
+      this._failAll({ ok: false, error });
+    };
+  }
+
+  _onMessage(msg) {
+    if (msg.type === 'ready') {
+      this.version = msg.version;
+      this._readyResolve(msg.version);
+      return;
+    }
+    if (msg.type === 'error') {
+      this._readyReject(new Error(msg.error));
+      this._failAll({ ok: false, error: msg.error });
+      return;
+    }
+    const job = this._pending.get(msg.id);
+    if (!job) return;
+    if (msg.type === 'progress') {
+      job.onProgress?.(msg.fraction, msg.stage);
+    } else if (msg.type === 'result') {
+      this._pending.delete(msg.id);
+      job.resolve(msg.result);
+    }
+  }
+
+  _failAll(result) {
+    for (const job of this._pending.values()) job.resolve(result);
+    this._pending.clear();
+  }
+
+  _call(op, args, onProgress) {
+    const id = this._nextId++;
+    return new Promise((resolve) => {
+      this._pending.set(id, { resolve, onProgress });
+      this._worker.postMessage({ id, op, args });
+    });
+  }
+
+  /** Reads, repairs and analyzes STL bytes (the bytes are copied, not moved). */
+  analyze(bytes, { onProgress } = {}) {
+    return this._call('analyze', [bytes, {}], onProgress);
+  }
+
+  /** Meshes STL bytes; options as in the API's mesh(). */
+  mesh(bytes, { onProgress, ...options } = {}) {
+    return this._call('mesh', [bytes, options], onProgress);
+  }
+
+  /** Generates a phantom STL; options as in the API's makePhantom(). */
+  makePhantom(options = {}) {
+    return this._call('makePhantom', [options]);
+  }
+
+  /** Stops the running job: its promise resolves { ok: false, cancelled: true }. */
+  cancel() {
+    this._worker.terminate();
+    this._failAll({ ok: false, cancelled: true, error: 'cancelled' });
+    this._start();
+  }
+
+  /** Ends the worker for good. */
+  dispose() {
+    this._worker.terminate();
+    this._failAll({ ok: false, error: 'the mesher was closed' });
+  }
+}

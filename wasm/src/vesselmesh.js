@@ -1,0 +1,114 @@
+// The vesselmesh JavaScript API over the WebAssembly core: validates inputs,
+// applies defaults, parses the JSON reports and maps every failure to
+// { ok: false, error } (nothing throws for a user error).
+import createVesselmeshCore from '../dist/vesselmesh_core.mjs';
+
+const PHANTOM_KINDS = ['tube', 'bifurcation', 'aneurysm', 'torus'];
+const MSH_VERSIONS = ['4.1', '2.2'];
+
+const fail = (error) => ({ ok: false, error });
+
+/** Uint8Array view of STL input, or null when the input is not bytes. */
+function asBytes(input) {
+  if (input instanceof Uint8Array) return input;
+  if (input instanceof ArrayBuffer) return new Uint8Array(input);
+  if (ArrayBuffer.isView(input)) {
+    return new Uint8Array(input.buffer, input.byteOffset, input.byteLength);
+  }
+  return null;
+}
+
+function progressCallback(onProgress) {
+  if (onProgress === undefined || onProgress === null) return undefined;
+  if (typeof onProgress !== 'function') return null;
+  return onProgress;
+}
+
+async function loadWasmBinary() {
+  const url = new URL('../dist/vesselmesh_core.wasm', import.meta.url);
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`cannot load ${url}: HTTP ${response.status}`);
+  return response.arrayBuffer();
+}
+
+/**
+ * Loads the WebAssembly module and returns the API.
+ * @param {{ wasmBinary?: ArrayBuffer|Uint8Array }} [options] In Node pass
+ *   wasmBinary (fs.readFileSync of wasm/dist/vesselmesh_core.wasm); in the
+ *   browser it is fetched next to this module.
+ */
+export async function createVesselmesh({ wasmBinary } = {}) {
+  const binary = wasmBinary ?? (await loadWasmBinary());
+  const core = await createVesselmeshCore({ wasmBinary: binary });
+
+  const withSurface = (raw, extra) => ({ ok: true, ...extra, surface: raw.surface });
+
+  return {
+    version: core.version(),
+
+    /**
+     * Reads, welds, repairs and analyzes an STL.
+     * @returns {{ok: true, analysis: object, surface: {positions: Float32Array,
+     *   triangles: Uint32Array, quality: Float32Array}} | {ok: false, error: string}}
+     */
+    analyze(stlBytes, { onProgress } = {}) {
+      const bytes = asBytes(stlBytes);
+      if (!bytes) return fail('analyze: the input must be a Uint8Array or ArrayBuffer');
+      const progress = progressCallback(onProgress);
+      if (progress === null) return fail('analyze: onProgress must be a function');
+      const raw = core.analyze(bytes, progress);
+      if (!raw.ok) return { ok: false, error: raw.error, ...(raw.cancelled && { cancelled: true }) };
+      return withSurface(raw, { analysis: JSON.parse(raw.analysisJson) });
+    },
+
+    /**
+     * Meshes an STL and returns the MSH file bytes and the report.
+     * @returns {{ok: true, msh: Uint8Array, report: object, surface: object} |
+     *   {ok: false, error: string}}
+     */
+    mesh(stlBytes, { mshVersion = '4.1', largestComponentOnly = false, onProgress } = {}) {
+      const bytes = asBytes(stlBytes);
+      if (!bytes) return fail('mesh: the input must be a Uint8Array or ArrayBuffer');
+      if (!MSH_VERSIONS.includes(mshVersion)) {
+        return fail(`mesh: unknown mshVersion '${mshVersion}' (use 4.1 or 2.2)`);
+      }
+      if (typeof largestComponentOnly !== 'boolean') {
+        return fail('mesh: largestComponentOnly must be true or false');
+      }
+      const progress = progressCallback(onProgress);
+      if (progress === null) return fail('mesh: onProgress must be a function');
+      const raw = core.mesh(bytes, mshVersion, largestComponentOnly, progress);
+      if (!raw.ok) return { ok: false, error: raw.error, ...(raw.cancelled && { cancelled: true }) };
+      return withSurface(raw, { msh: raw.msh, report: JSON.parse(raw.reportJson) });
+    },
+
+    /**
+     * Generates a synthetic segmentation-like vessel surface as binary STL.
+     * @returns {{ok: true, stl: Uint8Array} | {ok: false, error: string}}
+     */
+    makePhantom({
+      kind = 'bifurcation',
+      voxel = 0.08,
+      openEnds = true,
+      noise = 0.3,
+      seed = 1,
+      scale = 1,
+    } = {}) {
+      if (!PHANTOM_KINDS.includes(kind)) {
+        return fail(`makePhantom: unknown kind '${kind}' (${PHANTOM_KINDS.join(', ')})`);
+      }
+      for (const [name, value] of [['voxel', voxel], ['scale', scale]]) {
+        if (typeof value !== 'number' || !(value > 0) || !Number.isFinite(value)) {
+          return fail(`makePhantom: ${name} must be a positive number`);
+        }
+      }
+      if (typeof noise !== 'number' || !(noise >= 0)) {
+        return fail('makePhantom: noise must be a non-negative number');
+      }
+      if (!Number.isInteger(seed) || seed < 0 || seed > 0xffffffff) {
+        return fail('makePhantom: seed must be an unsigned 32-bit integer');
+      }
+      return core.makePhantom(kind, voxel, Boolean(openEnds), noise, seed, scale);
+    },
+  };
+}

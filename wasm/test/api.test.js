@@ -1,0 +1,201 @@
+// Node tests of the built WebAssembly module through the JS API
+// (wasm/dist must be built: scripts/setup.sh).
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { before, describe, test } from 'node:test';
+
+import { createVesselmesh } from '../src/vesselmesh.js';
+
+let api;
+before(async () => {
+  const wasmBinary = readFileSync(new URL('../dist/vesselmesh_core.wasm', import.meta.url));
+  api = await createVesselmesh({ wasmBinary });
+});
+
+const text = (bytes) => new TextDecoder().decode(bytes);
+const ascii = (s) => new TextEncoder().encode(s);
+
+// Closed tetrahedron as ASCII STL, one facet inside out.
+const TETRA = `solid tet
+facet normal 0 0 0
+outer loop
+vertex 0 0 0
+vertex 0 1 0
+vertex 1 0 0
+endloop
+endfacet
+facet normal 0 0 0
+outer loop
+vertex 0 0 0
+vertex 1 0 0
+vertex 0 0 1
+endloop
+endfacet
+facet normal 0 0 0
+outer loop
+vertex 0 0 0
+vertex 0 0 1
+vertex 0 1 0
+endloop
+endfacet
+facet normal 0 0 0
+outer loop
+vertex 1 0 0
+vertex 0 0 1
+vertex 0 1 0
+endloop
+endfacet
+endsolid tet
+`;
+
+describe('analyze', () => {
+  test('a generated bifurcation: counts, openings, arrays consistent', () => {
+    const p = api.makePhantom({ kind: 'bifurcation', voxel: 0.12 });
+    assert.equal(p.ok, true);
+    const r = api.analyze(p.stl);
+    assert.equal(r.ok, true, r.error);
+    const { analysis: a, surface: s } = r;
+    assert.equal(a.format, 'binary');
+    assert.equal(a.openings.length, 3);
+    assert.equal(a.genus, 0);
+    assert.equal(a.components, 1);
+    assert.equal(a.closed, false);
+    assert.equal(s.positions.length, 3 * a.vertices);
+    assert.equal(s.triangles.length, 3 * a.triangles);
+    assert.equal(s.quality.length, a.triangles);
+    assert.ok(s.triangles.every((v) => v < a.vertices));
+    assert.ok(s.quality.every((q) => q >= 0 && q <= 1));
+    assert.ok(a.quality.min <= a.quality.mean && a.quality.mean <= 1);
+    assert.equal(a.quality.histogram.reduce((x, y) => x + y, 0), a.triangles);
+    // The openings' loops index real vertices and are listed largest first.
+    for (const o of a.openings) assert.ok(o.vertices.every((v) => v < a.vertices));
+    assert.ok(a.openings[0].radius >= a.openings[1].radius);
+  });
+
+  test('ASCII STL of a closed tetrahedron, re-oriented outward', () => {
+    const r = api.analyze(ascii(TETRA));
+    assert.equal(r.ok, true, r.error);
+    assert.equal(r.analysis.format, 'ascii');
+    assert.equal(r.analysis.vertices, 4);
+    assert.equal(r.analysis.triangles, 4);
+    assert.equal(r.analysis.closed, true);
+    assert.equal(r.analysis.genus, 0);
+    assert.equal(r.analysis.openings.length, 0);
+    assert.ok(r.analysis.repairs.flipped >= 1);
+  });
+
+  test('accepts an ArrayBuffer', () => {
+    const r = api.analyze(ascii(TETRA).buffer);
+    assert.equal(r.ok, true, r.error);
+  });
+
+  test('bad inputs give specific errors', () => {
+    const cases = [
+      [new Uint8Array(0), /empty file/],
+      [ascii('hello, not a mesh\n'), /not an STL/],
+      [ascii('solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex nan 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid x\n'), /NaN/],
+    ];
+    const p = api.makePhantom({ voxel: 0.2 });
+    cases.push([p.stl.subarray(0, 2000), /truncated binary STL/]);
+    for (const [bytes, pattern] of cases) {
+      const r = api.analyze(bytes);
+      assert.equal(r.ok, false);
+      assert.match(r.error, pattern);
+    }
+    assert.match(api.analyze('not bytes').error, /Uint8Array/);
+    assert.match(api.analyze(ascii(TETRA), { onProgress: 3 }).error, /onProgress/);
+  });
+
+  test('progress increases to 1; returning false cancels', () => {
+    const stl = api.makePhantom({ voxel: 0.15 }).stl;
+    const seen = [];
+    const r = api.analyze(stl, { onProgress: (f, stage) => { seen.push([f, stage]); } });
+    assert.equal(r.ok, true);
+    assert.ok(seen.length >= 4);
+    for (let i = 1; i < seen.length; i++) assert.ok(seen[i][0] >= seen[i - 1][0]);
+    assert.equal(seen.at(-1)[0], 1);
+    assert.ok(seen.some(([, stage]) => stage === 'weld'));
+    let calls = 0;
+    const c = api.analyze(stl, { onProgress: () => ++calls < 2 });
+    assert.deepEqual([c.ok, c.cancelled, c.error], [false, true, 'cancelled']);
+  });
+});
+
+describe('mesh', () => {
+  const countElements = (msh) => {
+    const lines = text(msh).split('\n');
+    const i = lines.indexOf('$Elements');
+    return lines[i + 1].split(' ');
+  };
+
+  test('MSH 4.1 by default with the wall group and every triangle', () => {
+    const stl = api.makePhantom({ kind: 'tube', voxel: 0.15 }).stl;
+    const r = api.mesh(stl);
+    assert.equal(r.ok, true, r.error);
+    const t = text(r.msh);
+    assert.ok(t.startsWith('$MeshFormat\n4.1 0 8\n'));
+    assert.ok(t.includes('2 1 "wall"'));
+    const triangles = r.report.output.triangles;
+    assert.equal(Number(countElements(r.msh)[1]), triangles);
+    assert.deepEqual(r.report.output.groups, [{ dim: 2, name: 'wall', elements: triangles }]);
+    assert.equal(r.surface.triangles.length, 3 * triangles);
+  });
+
+  test('MSH 2.2 on request; bad version refused', () => {
+    const stl = ascii(TETRA);
+    const r = api.mesh(stl, { mshVersion: '2.2' });
+    assert.equal(r.ok, true, r.error);
+    assert.ok(text(r.msh).startsWith('$MeshFormat\n2.2 0 8\n'));
+    assert.equal(countElements(r.msh)[0], '4');
+    assert.match(api.mesh(stl, { mshVersion: '3' }).error, /unknown mshVersion '3'/);
+  });
+
+  test('several components refused unless the largest is kept', () => {
+    const a = api.makePhantom({ kind: 'tube', voxel: 0.2 }).stl;
+    const tet = api.analyze(ascii(TETRA));
+    assert.equal(tet.ok, true);
+    // Append the tetrahedron's 4 triangles to the tube's binary STL.
+    const n = new DataView(a.buffer, a.byteOffset).getUint32(80, true);
+    const both = new Uint8Array(a.length + 4 * 50);
+    both.set(a);
+    const view = new DataView(both.buffer);
+    view.setUint32(80, n + 4, true);
+    const { positions, triangles } = tet.surface;
+    for (let t = 0; t < 4; t++) {
+      for (let c = 0; c < 3; c++) {
+        for (let k = 0; k < 3; k++) {
+          view.setFloat32(a.length + 50 * t + 12 + 12 * c + 4 * k, positions[3 * triangles[3 * t + c] + k] + 50, true);
+        }
+      }
+    }
+    const refused = api.mesh(both);
+    assert.equal(refused.ok, false);
+    assert.match(refused.error, /2 connected components/);
+    const kept = api.mesh(both, { largestComponentOnly: true });
+    assert.equal(kept.ok, true, kept.error);
+    assert.equal(kept.report.output.triangles, n);
+  });
+});
+
+describe('makePhantom', () => {
+  test('each kind has its openings and genus', () => {
+    const expected = { tube: [2, 0], bifurcation: [3, 0], aneurysm: [3, 0], torus: [0, 1] };
+    for (const [kind, [openings, genus]] of Object.entries(expected)) {
+      const p = api.makePhantom({ kind, voxel: 0.15 });
+      assert.equal(p.ok, true, p.error);
+      const r = api.analyze(p.stl);
+      assert.equal(r.analysis.openings.length, openings, kind);
+      assert.equal(r.analysis.genus, genus, kind);
+    }
+  });
+
+  test('deterministic for a seed; bad options refused', () => {
+    const a = api.makePhantom({ voxel: 0.2, seed: 7 });
+    const b = api.makePhantom({ voxel: 0.2, seed: 7 });
+    assert.deepEqual(a.stl, b.stl);
+    assert.match(api.makePhantom({ kind: 'blob' }).error, /unknown kind 'blob'/);
+    assert.match(api.makePhantom({ voxel: 0 }).error, /voxel must be a positive number/);
+    assert.match(api.makePhantom({ voxel: 1e-4 }).error, /too large/);
+    assert.match(api.makePhantom({ seed: -1 }).error, /seed/);
+  });
+});
