@@ -1,0 +1,54 @@
+// Shared helpers of the e2e specs: open the app with every request outside
+// its origin recorded, and generate STL inputs in the test itself.
+import { expect } from '@playwright/test';
+
+/** Opens the app; returns the list of requests made to any other origin. */
+export async function openApp(page) {
+  const foreign = [];
+  page.on('request', (request) => {
+    const url = new URL(request.url());
+    if (!['http:', 'https:', 'ws:', 'wss:'].includes(url.protocol)) return; // data:, blob:
+    if (url.host !== '127.0.0.1:4173') foreign.push(request.url());
+  });
+  await page.goto('/');
+  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  return foreign;
+}
+
+/** ASCII STL of a closed tetrahedron (4 triangles, 4 vertices, genus 0),
+ * one facet inside out. */
+export const TETRA_ASCII = `solid tet
+${[
+  [[0, 0, 0], [0, 1, 0], [1, 0, 0]],
+  [[0, 0, 0], [1, 0, 0], [0, 0, 1]],
+  [[0, 0, 0], [0, 0, 1], [0, 1, 0]],
+  [[1, 0, 0], [0, 0, 1], [0, 1, 0]], // inside out: repaired
+]
+  .map((f) => `facet normal 0 0 0\nouter loop\n${f.map((v) => `vertex ${v.join(' ')}`).join('\n')}\nendloop\nendfacet`)
+  .join('\n')}
+endsolid tet
+`;
+
+/** Binary STL of an open box without its top: 5 squares = 10 triangles. */
+export function openBoxBinary() {
+  const q = (a, b, c, d) => [[a, b, c], [a, c, d]];
+  const P = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]];
+  const faces = [
+    ...q(0, 3, 2, 1), // bottom
+    ...q(0, 1, 5, 4),
+    ...q(1, 2, 6, 5),
+    ...q(2, 3, 7, 6),
+    ...q(3, 0, 4, 7),
+  ];
+  const buf = Buffer.alloc(84 + 50 * faces.length);
+  buf.write('open box', 0);
+  buf.writeUInt32LE(faces.length, 80);
+  faces.forEach((f, t) => {
+    f.forEach((v, c) => P[v].forEach((x, k) => buf.writeFloatLE(x, 84 + 50 * t + 12 + 12 * c + 4 * k)));
+  });
+  return buf;
+}
+
+export async function upload(page, name, buffer) {
+  await page.getByTestId('file-input').setInputFiles({ name, mimeType: 'model/stl', buffer });
+}

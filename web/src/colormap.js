@@ -1,0 +1,29 @@
+// Quality colormap for gamma in [0, 1]: red (degenerate) through yellow to
+// green and blue (equilateral).
+const STOPS = [
+  [0.0, [0.78, 0.1, 0.12]],
+  [0.3, [0.95, 0.55, 0.1]],
+  [0.55, [0.95, 0.88, 0.25]],
+  [0.8, [0.35, 0.75, 0.4]],
+  [1.0, [0.2, 0.45, 0.8]],
+];
+
+/** Writes the RGB (0..1) color of quality q into out[offset..offset+3). */
+export function qualityColor(q, out, offset = 0) {
+  const x = Math.min(1, Math.max(0, q));
+  let i = 1;
+  while (i < STOPS.length - 1 && x > STOPS[i][0]) i++;
+  const [x0, c0] = STOPS[i - 1];
+  const [x1, c1] = STOPS[i];
+  const t = (x - x0) / (x1 - x0);
+  for (let k = 0; k < 3; k++) out[offset + k] = c0[k] + t * (c1[k] - c0[k]);
+}
+
+/** CSS linear-gradient of the colormap, for the legend. */
+export function qualityGradientCss() {
+  const stops = STOPS.map(([x, c]) => {
+    const rgb = c.map((v) => Math.round(v * 255)).join(',');
+    return `rgb(${rgb}) ${Math.round(x * 100)}%`;
+  });
+  return `linear-gradient(to right, ${stops.join(', ')})`;
+}

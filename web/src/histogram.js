@@ -1,0 +1,35 @@
+// Bar chart of a histogram of counts over [0, 1], drawn as SVG.
+const NS = 'http://www.w3.org/2000/svg';
+
+function el(name, attrs) {
+  const node = document.createElementNS(NS, name);
+  for (const [k, v] of Object.entries(attrs)) node.setAttribute(k, String(v));
+  return node;
+}
+
+/** Draws `counts` (equal bins over [0, 1]) into the <svg> element. */
+export function drawHistogram(svg, counts) {
+  svg.replaceChildren();
+  const width = 320;
+  const height = 110;
+  const bottom = 14;
+  svg.setAttribute('viewBox', `0 0 ${width} ${height}`);
+  svg.setAttribute('preserveAspectRatio', 'none');
+  const max = Math.max(1, ...counts);
+  const w = width / counts.length;
+  counts.forEach((c, i) => {
+    const h = c > 0 ? Math.max(1, (c / max) * (height - bottom - 4)) : 0;
+    const bar = el('rect', { x: i * w + 0.5, y: height - bottom - h, width: w - 1, height: h });
+    const lo = (i / counts.length).toFixed(2);
+    const hi = ((i + 1) / counts.length).toFixed(2);
+    const title = el('title', {});
+    title.textContent = `${lo}–${hi}: ${c.toLocaleString()} triangles`;
+    bar.append(title);
+    svg.append(bar);
+  });
+  for (const x of [0, 0.5, 1]) {
+    const label = el('text', { x: Math.min(width - 8, Math.max(2, x * width - 6)), y: height - 2 });
+    label.textContent = String(x);
+    svg.append(label);
+  }
+}

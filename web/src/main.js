@@ -1,0 +1,155 @@
+// The vesselmesh page: load an STL (drop, file picker or generated sample),
+// analyze it in the worker, show it, export MSH. All work happens in the Web
+// Worker behind VesselmeshClient, so the page stays responsive.
+import { VesselmeshClient } from '../../wasm/src/client.js';
+import { qualityGradientCss } from './colormap.js';
+import { hideAnalysis, showAnalysis } from './panel.js';
+import { Viewer } from './viewer.js';
+
+const $ = (id) => document.getElementById(id);
+// Above this the browser tab would run out of memory (the wasm heap is 4 GB).
+const MAX_FILE_BYTES = 1.5 * 2 ** 30;
+
+const client = new VesselmeshClient();
+const viewer = new Viewer($('viewer'));
+let current = null; // { name, bytes, analysis }
+let busy = false;
+
+$('legend').querySelector('.ramp').style.background = qualityGradientCss();
+
+function showError(message) {
+  $('error').textContent = message;
+  $('error').hidden = false;
+}
+
+function clearError() {
+  $('error').hidden = true;
+  $('error').textContent = '';
+}
+
+function setBusy(on, stage = '') {
+  busy = on;
+  $('progress').hidden = !on;
+  $('progress-bar').value = 0;
+  $('progress-stage').textContent = stage;
+  for (const id of ['load-sample', 'export-msh', 'file-input']) $(id).disabled = on;
+}
+
+function onProgress(fraction, stage) {
+  $('progress-bar').value = fraction;
+  $('progress-stage').textContent = stage;
+}
+
+/** Runs one worker job with the progress bar; returns its result. */
+async function run(stage, job) {
+  clearError();
+  setBusy(true, stage);
+  try {
+    return await job();
+  } finally {
+    setBusy(false);
+  }
+}
+
+async function loadBytes(name, bytes) {
+  const result = await run('read', () => client.analyze(bytes, { onProgress }));
+  if (!result.ok) {
+    showError(result.cancelled ? 'Cancelled.' : `${name}: ${result.error}`);
+    return;
+  }
+  current = { name, bytes, analysis: result.analysis };
+  $('drop-hint').hidden = true;
+  $('legend').hidden = false;
+  viewer.setSurface(result.surface);
+  showAnalysis(name, result.analysis, (loop) => viewer.highlightLoop(loop));
+  if (result.analysis.components > 1) {
+    showError(
+      `${name} has ${result.analysis.components} connected components. ` +
+        'Export refuses it unless "Keep the largest component only" is checked.',
+    );
+  }
+}
+
+async function loadFile(file) {
+  if (busy) return;
+  if (file.size > MAX_FILE_BYTES) {
+    showError(`${file.name}: file too large (${(file.size / 2 ** 30).toFixed(1)} GB; the limit in a browser tab is 1.5 GB).`);
+    return;
+  }
+  let bytes;
+  try {
+    bytes = new Uint8Array(await file.arrayBuffer());
+  } catch (e) {
+    showError(`${file.name}: cannot read the file (${e.message}).`);
+    return;
+  }
+  await loadBytes(file.name, bytes);
+}
+
+async function loadSample() {
+  if (busy) return;
+  const made = await run('generating sample', () =>
+    client.makePhantom({ kind: 'bifurcation', voxel: 0.08, noise: 0.3 }),
+  );
+  if (!made.ok) {
+    showError(made.cancelled ? 'Cancelled.' : `sample: ${made.error}`);
+    return;
+  }
+  await loadBytes('sample-bifurcation.stl', made.stl);
+}
+
+function download(name, bytes) {
+  const url = URL.createObjectURL(new Blob([bytes], { type: 'text/plain' }));
+  const a = document.createElement('a');
+  a.href = url;
+  a.download = name;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+async function exportMsh() {
+  if (!current || busy) return;
+  const options = {
+    mshVersion: $('msh-version').value,
+    largestComponentOnly: $('largest-only').checked,
+    onProgress,
+  };
+  const result = await run('mesh', () => client.mesh(current.bytes, options));
+  if (!result.ok) {
+    showError(result.cancelled ? 'Cancelled.' : `${current.name}: ${result.error}`);
+    return;
+  }
+  download(current.name.replace(/\.stl$/i, '') + '.msh', result.msh);
+}
+
+$('file-input').addEventListener('change', (e) => {
+  const file = e.target.files[0];
+  e.target.value = '';
+  if (file) loadFile(file);
+});
+$('load-sample').addEventListener('click', loadSample);
+$('export-msh').addEventListener('click', exportMsh);
+$('cancel').addEventListener('click', () => client.cancel());
+$('fit-view').addEventListener('click', () => viewer.fitView());
+$('wireframe').addEventListener('change', (e) => viewer.setWireframe(e.target.checked));
+
+const view = $('viewer');
+view.addEventListener('dragover', (e) => {
+  e.preventDefault();
+  view.classList.add('dragging');
+});
+view.addEventListener('dragleave', () => view.classList.remove('dragging'));
+view.addEventListener('drop', (e) => {
+  e.preventDefault();
+  view.classList.remove('dragging');
+  const file = e.dataTransfer.files[0];
+  if (file) loadFile(file);
+});
+
+client.ready.then(
+  () => document.body.setAttribute('data-ready', 'true'),
+  (e) => showError(`The mesher could not start: ${e.message}`),
+);
+hideAnalysis();
