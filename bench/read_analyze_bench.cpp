@@ -77,16 +77,14 @@ int main(int argc, char** argv) {
     inputs.push_back({"generated-bifurcation (voxel " + std::to_string(voxel) + ")",
                       vm::write_stl_binary(p.value())});
   }
-  std::printf("%-44s %10s %10s %12s\n", "input", "triangles", "median s",
-              "Mtri/s");
+  std::printf("%-44s %10s %10s %12s\n", "input", "triangles", "median s", "Mtri/s");
   for (const Input& in : inputs) {
     std::vector<double> times;
     size_t triangles = 0;
     for (int r = 0; r < runs; ++r) {
       auto t0 = std::chrono::steady_clock::now();
       auto s = vm::prepare_surface(in.bytes);
-      double dt =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (!s.ok()) {
         std::fprintf(stderr, "%s: %s\n", in.name.c_str(), s.message().c_str());
         return 1;

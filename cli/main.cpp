@@ -49,8 +49,7 @@ int fail(const std::string& msg) {
   return 1;
 }
 
-std::optional<std::vector<uint8_t>> read_file(const std::string& path,
-                                              std::string& error) {
+std::optional<std::vector<uint8_t>> read_file(const std::string& path, std::string& error) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) {
     error = "cannot open '" + path + "'";
@@ -70,8 +69,7 @@ std::optional<std::vector<uint8_t>> read_file(const std::string& path,
   return bytes;
 }
 
-bool write_file(const std::string& path, const void* data, size_t size,
-                std::string& error) {
+bool write_file(const std::string& path, const void* data, size_t size, std::string& error) {
   std::ofstream out(path, std::ios::binary);
   if (!out || !out.write(static_cast<const char*>(data), std::streamsize(size))) {
     error = "cannot write '" + path + "'";
@@ -98,8 +96,7 @@ struct Args {
   }
 };
 
-Args parse(int argc, char** argv, int first,
-           const std::vector<std::string>& with_value,
+Args parse(int argc, char** argv, int first, const std::vector<std::string>& with_value,
            const std::vector<std::string>& flags) {
   Args a;
   for (int i = first; i < argc; ++i) {
@@ -142,27 +139,27 @@ void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
   const vm::TopologyReport& t = s.topology;
   std::printf("file:        %s (%s STL, %zu triangles)\n", path.c_str(),
               s.ascii ? "ASCII" : "binary", s.input_triangles);
-  std::printf("welded:      %zu vertices, %zu triangles, %zu edges\n", t.vertices,
-              t.triangles, t.edges);
-  std::printf("bounding box: [%g, %g, %g] - [%g, %g, %g] (diagonal %g)\n",
-              s.box.min[0], s.box.min[1], s.box.min[2], s.box.max[0], s.box.max[1],
-              s.box.max[2], s.box.diagonal());
+  std::printf("welded:      %zu vertices, %zu triangles, %zu edges\n", t.vertices, t.triangles,
+              t.edges);
+  std::printf("bounding box: [%g, %g, %g] - [%g, %g, %g] (diagonal %g)\n", s.box.min[0],
+              s.box.min[1], s.box.min[2], s.box.max[0], s.box.max[1], s.box.max[2],
+              s.box.diagonal());
   std::printf("components:  %d\n", t.components);
   std::printf("closed:      %s\n", t.closed ? "yes" : "no");
-  if (t.genus >= 0) std::printf("genus:       %d\n", t.genus);
-  else std::printf("genus:       undefined (non-manifold)\n");
+  if (t.genus >= 0)
+    std::printf("genus:       %d\n", t.genus);
+  else
+    std::printf("genus:       undefined (non-manifold)\n");
   std::printf("euler char.: %ld\n", t.euler_characteristic);
   std::printf("non-manifold edges: %zu, vertices: %zu\n", t.nonmanifold_edges,
               t.nonmanifold_vertices);
   std::printf("openings:    %zu\n", t.openings.size());
   for (size_t i = 0; i < t.openings.size(); ++i) {
     const vm::Opening& o = t.openings[i];
-    std::printf("  %zu: perimeter %g, radius %g, centroid (%g, %g, %g), %zu vertices\n",
-                i + 1, o.perimeter, o.radius, o.centroid[0], o.centroid[1],
-                o.centroid[2], o.loop.size());
+    std::printf("  %zu: perimeter %g, radius %g, centroid (%g, %g, %g), %zu vertices\n", i + 1,
+                o.perimeter, o.radius, o.centroid[0], o.centroid[1], o.centroid[2], o.loop.size());
   }
-  std::printf("quality gamma_k: min %.4f, mean %.4f\n", s.quality_stats.min,
-              s.quality_stats.mean);
+  std::printf("quality gamma_k: min %.4f, mean %.4f\n", s.quality_stats.min, s.quality_stats.mean);
   for (const std::string& w : s.warnings) std::printf("warning: %s\n", w.c_str());
 }
 
@@ -210,26 +207,31 @@ int cmd_mesh(int argc, char** argv) {
   }
   if (!a.has("--quiet")) {
     for (const std::string& w : res.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-    std::printf("wrote %s: %zu vertices, %zu triangles (wall), gamma_k min %.4f mean %.4f, %.3f s\n",
-                out->c_str(), res.output_surface.num_vertices(),
-                res.output_surface.num_triangles(), res.output_quality_stats.min,
-                res.output_quality_stats.mean, res.seconds_total);
+    std::printf(
+        "wrote %s: %zu vertices, %zu triangles (wall), gamma_k min %.4f mean %.4f, %.3f s\n",
+        out->c_str(), res.output_surface.num_vertices(), res.output_surface.num_triangles(),
+        res.output_quality_stats.min, res.output_quality_stats.mean, res.seconds_total);
   }
   return 0;
 }
 
 int cmd_phantom(int argc, char** argv) {
-  Args a = parse(argc, argv, 2, {"--kind", "--voxel", "--noise", "--seed", "--scale"},
-                 {"--closed"});
+  Args a =
+      parse(argc, argv, 2, {"--kind", "--voxel", "--noise", "--seed", "--scale"}, {"--closed"});
   if (!a.error.empty()) return usage_error(a.error);
   if (a.positional.size() != 1) return usage_error("phantom needs exactly one OUT.stl");
   vm::PhantomOptions o;
   if (auto k = a.get("--kind")) {
-    if (*k == "tube") o.kind = vm::PhantomKind::kTube;
-    else if (*k == "bifurcation") o.kind = vm::PhantomKind::kBifurcation;
-    else if (*k == "aneurysm") o.kind = vm::PhantomKind::kAneurysm;
-    else if (*k == "torus") o.kind = vm::PhantomKind::kTorus;
-    else return usage_error("unknown phantom kind '" + *k + "' (tube, bifurcation, aneurysm, torus)");
+    if (*k == "tube")
+      o.kind = vm::PhantomKind::kTube;
+    else if (*k == "bifurcation")
+      o.kind = vm::PhantomKind::kBifurcation;
+    else if (*k == "aneurysm")
+      o.kind = vm::PhantomKind::kAneurysm;
+    else if (*k == "torus")
+      o.kind = vm::PhantomKind::kTorus;
+    else
+      return usage_error("unknown phantom kind '" + *k + "' (tube, bifurcation, aneurysm, torus)");
   }
   double d;
   if (auto v = a.get("--voxel")) {

@@ -82,8 +82,8 @@ val mesh(val stl, std::string msh_version, bool largest_component_only, val prog
   const vm::MeshJobResult& res = result.value();
   val r = val::object();
   r.set("ok", true);
-  r.set("msh", copy_out(reinterpret_cast<const uint8_t*>(res.msh.data()), res.msh.size(),
-                        "Uint8Array"));
+  r.set("msh",
+        copy_out(reinterpret_cast<const uint8_t*>(res.msh.data()), res.msh.size(), "Uint8Array"));
   r.set("reportJson", vm::mesh_report_json(res));
   set_surface(r, res.output_surface, res.output_quality);
   return r;
@@ -92,11 +92,16 @@ val mesh(val stl, std::string msh_version, bool largest_component_only, val prog
 val make_phantom(std::string kind, double voxel, bool open_ends, double noise, double seed,
                  double scale) {
   vm::PhantomOptions o;
-  if (kind == "tube") o.kind = vm::PhantomKind::kTube;
-  else if (kind == "bifurcation") o.kind = vm::PhantomKind::kBifurcation;
-  else if (kind == "aneurysm") o.kind = vm::PhantomKind::kAneurysm;
-  else if (kind == "torus") o.kind = vm::PhantomKind::kTorus;
-  else return error("unknown phantom kind '" + kind + "'");
+  if (kind == "tube")
+    o.kind = vm::PhantomKind::kTube;
+  else if (kind == "bifurcation")
+    o.kind = vm::PhantomKind::kBifurcation;
+  else if (kind == "aneurysm")
+    o.kind = vm::PhantomKind::kAneurysm;
+  else if (kind == "torus")
+    o.kind = vm::PhantomKind::kTorus;
+  else
+    return error("unknown phantom kind '" + kind + "'");
   o.voxel = voxel;
   o.open_ends = open_ends;
   o.noise = noise;

@@ -55,16 +55,14 @@ Status validate(const MshModel& m) {
     int dim = element_dimension(b.type);
     if (!physicals.count({dim, b.physical_tag}))
       return Status::Error("element block on entity " + std::to_string(b.entity_tag) +
-                           " refers to missing physical group " +
-                           std::to_string(b.physical_tag));
+                           " refers to missing physical group " + std::to_string(b.physical_tag));
     if (!entities.insert({dim, b.entity_tag}).second)
       return Status::Error("duplicate entity tag " + std::to_string(b.entity_tag));
     if (b.nodes.size() % size_t(nodes_per_element(b.type)) != 0)
       return Status::Error("element block node list has a partial element");
     for (int32_t v : b.nodes)
       if (v < 0 || size_t(v) >= nn)
-        return Status::Error("element refers to node " + std::to_string(v) +
-                             " out of range");
+        return Status::Error("element refers to node " + std::to_string(v) + " out of range");
   }
   return Status::Ok();
 }
@@ -147,9 +145,8 @@ std::string write41(const MshModel& m) {
   // Nodes: one block on the first entity of the highest dimension.
   int node_dim = 2, node_entity = 1;
   for (int dim = 3; dim >= 2; --dim) {
-    auto it = std::find_if(m.blocks.begin(), m.blocks.end(), [&](const MshBlock& b) {
-      return element_dimension(b.type) == dim;
-    });
+    auto it = std::find_if(m.blocks.begin(), m.blocks.end(),
+                           [&](const MshBlock& b) { return element_dimension(b.type) == dim; });
     if (it != m.blocks.end()) {
       node_dim = dim;
       node_entity = it->entity_tag;
@@ -257,16 +254,17 @@ std::string write22(const MshModel& m) {
 
 int nodes_per_element(MshElementType type) {
   switch (type) {
-    case MshElementType::kTriangle: return 3;
-    case MshElementType::kTetrahedron: return 4;
-    case MshElementType::kPrism: return 6;
+    case MshElementType::kTriangle:
+      return 3;
+    case MshElementType::kTetrahedron:
+      return 4;
+    case MshElementType::kPrism:
+      return 6;
   }
   return 0;
 }
 
-int element_dimension(MshElementType type) {
-  return type == MshElementType::kTriangle ? 2 : 3;
-}
+int element_dimension(MshElementType type) { return type == MshElementType::kTriangle ? 2 : 3; }
 
 Result<std::string> write_msh(const MshModel& model, MshVersion version) {
   Status s = validate(model);
@@ -277,8 +275,7 @@ Result<std::string> write_msh(const MshModel& model, MshVersion version) {
 Result<MshVersion> parse_msh_version(const std::string& text) {
   if (text == "4.1" || text == "4") return MshVersion::k41;
   if (text == "2.2" || text == "2") return MshVersion::k22;
-  return Result<MshVersion>::Error("unknown MSH version '" + text +
-                                   "' (use 4.1 or 2.2)");
+  return Result<MshVersion>::Error("unknown MSH version '" + text + "' (use 4.1 or 2.2)");
 }
 
 }  // namespace vm

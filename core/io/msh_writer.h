@@ -27,8 +27,8 @@ struct MshPhysical {
 /// nodes: nodes_per_element(type) * count zero-based point indices.
 struct MshBlock {
   MshElementType type = MshElementType::kTriangle;
-  int entity_tag = 1;     ///< unique per dimension among blocks
-  int physical_tag = 1;   ///< tag of an MshPhysical of the block's dimension
+  int entity_tag = 1;    ///< unique per dimension among blocks
+  int physical_tag = 1;  ///< tag of an MshPhysical of the block's dimension
   std::vector<int32_t> nodes;
 };
 
@@ -46,8 +46,7 @@ int element_dimension(MshElementType type);
 /// Serializes `model`. Errors: a block referring to a missing physical group,
 /// a node index out of range, duplicate entity tags in one dimension.
 /// Nodes no element uses are still written (Gmsh accepts them).
-Result<std::string> write_msh(const MshModel& model,
-                              MshVersion version = MshVersion::k41);
+Result<std::string> write_msh(const MshModel& model, MshVersion version = MshVersion::k41);
 
 /// Parses "4.1" / "2.2"; error for anything else.
 Result<MshVersion> parse_msh_version(const std::string& text);

@@ -16,8 +16,7 @@ constexpr size_t kHeaderBytes = 84;
 constexpr size_t kTriangleBytes = 50;
 
 uint32_t read_u32(const uint8_t* p) {
-  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 |
-         uint32_t(p[3]) << 24;
+  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
 }
 
 float read_f32(const uint8_t* p) {
@@ -30,8 +29,8 @@ float read_f32(const uint8_t* p) {
 std::string trim(std::string_view s) {
   size_t b = 0, e = s.size();
   while (b < e && (s[b] == ' ' || s[b] == '\0' || s[b] == '\t')) ++b;
-  while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\0' || s[e - 1] == '\t' ||
-                   s[e - 1] == '\r' || s[e - 1] == '\n'))
+  while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\0' || s[e - 1] == '\t' || s[e - 1] == '\r' ||
+                   s[e - 1] == '\n'))
     --e;
   return std::string(s.substr(b, e - b));
 }
@@ -41,10 +40,8 @@ std::string fmt_count(size_t n) { return std::to_string(n); }
 Status check_finite(const std::vector<float>& coords, size_t first) {
   for (size_t i = first; i < coords.size(); ++i) {
     if (!std::isfinite(coords[i])) {
-      return Status::Error("triangle " + fmt_count(i / 9 + 1) +
-                           " has a non-finite coordinate (" +
-                           (std::isnan(coords[i]) ? "NaN" : "Inf") +
-                           "): the file is corrupt");
+      return Status::Error("triangle " + fmt_count(i / 9 + 1) + " has a non-finite coordinate (" +
+                           (std::isnan(coords[i]) ? "NaN" : "Inf") + "): the file is corrupt");
     }
   }
   return Status::Ok();
@@ -55,8 +52,7 @@ Status check_finite(const std::vector<float>& coords, size_t first) {
 class AsciiCursor {
  public:
   explicit AsciiCursor(std::span<const uint8_t> bytes)
-      : p_(reinterpret_cast<const char*>(bytes.data())),
-        end_(p_ + bytes.size()) {}
+      : p_(reinterpret_cast<const char*>(bytes.data())), end_(p_ + bytes.size()) {}
 
   /// Next whitespace-separated token; empty at end of input.
   std::string_view next() {
@@ -78,8 +74,7 @@ class AsciiCursor {
 
  private:
   static bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' ||
-           c == '\v';
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
   }
   const char* p_;
   const char* end_;
@@ -108,18 +103,15 @@ bool iequals(std::string_view a, std::string_view b) {
   return true;
 }
 
-Result<TriangleSoup> read_ascii(std::span<const uint8_t> bytes,
-                                const StlReadOptions& options) {
+Result<TriangleSoup> read_ascii(std::span<const uint8_t> bytes, const StlReadOptions& options) {
   TriangleSoup soup;
   soup.ascii = true;
   AsciiCursor cur(bytes);
   auto fail = [&](const std::string& what) {
-    return Result<TriangleSoup>::Error("ASCII STL, line " +
-                                       std::to_string(cur.line()) + ": " + what);
+    return Result<TriangleSoup>::Error("ASCII STL, line " + std::to_string(cur.line()) + ": " +
+                                       what);
   };
-  auto expect = [&](std::string_view word) -> bool {
-    return iequals(cur.next(), word);
-  };
+  auto expect = [&](std::string_view word) -> bool { return iequals(cur.next(), word); };
   std::string_view tok = cur.next();
   if (!iequals(tok, "solid")) return fail("expected 'solid'");
   soup.header = trim(cur.rest_of_line());
@@ -134,16 +126,14 @@ Result<TriangleSoup> read_ascii(std::span<const uint8_t> bytes,
       tok = cur.next();
       if (tok.empty()) break;
       if (!iequals(tok, "solid")) {
-        return fail("unexpected '" + std::string(tok.substr(0, 32)) +
-                    "' after 'endsolid'");
+        return fail("unexpected '" + std::string(tok.substr(0, 32)) + "' after 'endsolid'");
       }
       cur.rest_of_line();
       ++solids;
       continue;
     }
     if (!iequals(tok, "facet")) {
-      return fail("expected 'facet' or 'endsolid', found '" +
-                  std::string(tok.substr(0, 32)) + "'");
+      return fail("expected 'facet' or 'endsolid', found '" + std::string(tok.substr(0, 32)) + "'");
     }
     if (!expect("normal")) return fail("expected 'normal' after 'facet'");
     float dummy;
@@ -157,8 +147,7 @@ Result<TriangleSoup> read_ascii(std::span<const uint8_t> bytes,
         float x;
         std::string_view t = cur.next();
         if (!parse_float(t, x)) {
-          return fail("bad vertex coordinate '" +
-                      std::string(t.substr(0, 32)) + "'");
+          return fail("bad vertex coordinate '" + std::string(t.substr(0, 32)) + "'");
         }
         soup.coords.push_back(x);
       }
@@ -168,9 +157,9 @@ Result<TriangleSoup> read_ascii(std::span<const uint8_t> bytes,
     }
     if (!expect("endfacet")) return fail("expected 'endfacet'");
     if (soup.num_triangles() > options.max_triangles) {
-      return Result<TriangleSoup>::Error(
-          "file too large: more than " + fmt_count(options.max_triangles) +
-          " triangles (the limit of this build)");
+      return Result<TriangleSoup>::Error("file too large: more than " +
+                                         fmt_count(options.max_triangles) +
+                                         " triangles (the limit of this build)");
     }
   }
   if (solids > 1) {
@@ -191,19 +180,16 @@ bool looks_like_text(std::span<const uint8_t> bytes) {
 
 bool starts_with_solid(std::span<const uint8_t> bytes) {
   size_t i = 0;
-  while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t' ||
-                              bytes[i] == '\r' || bytes[i] == '\n'))
+  while (i < bytes.size() &&
+         (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\r' || bytes[i] == '\n'))
     ++i;
   return bytes.size() - i >= 5 &&
-         iequals(std::string_view(
-                     reinterpret_cast<const char*>(bytes.data() + i), 5),
-                 "solid");
+         iequals(std::string_view(reinterpret_cast<const char*>(bytes.data() + i), 5), "solid");
 }
 
 }  // namespace
 
-Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes,
-                              const StlReadOptions& options) {
+Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes, const StlReadOptions& options) {
   if (bytes.empty()) return Result<TriangleSoup>::Error("empty file");
   bool binary_law = false;
   uint64_t count = 0;
@@ -214,8 +200,7 @@ Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes,
   bool text = looks_like_text(bytes);
   if (!binary_law && text) {
     if (!starts_with_solid(bytes)) {
-      return Result<TriangleSoup>::Error(
-          "not an STL file: text that does not start with 'solid'");
+      return Result<TriangleSoup>::Error("not an STL file: text that does not start with 'solid'");
     }
     Result<TriangleSoup> r = read_ascii(bytes, options);
     if (!r.ok()) return r;
@@ -227,36 +212,32 @@ Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes,
     return r;
   }
   if (bytes.size() < kHeaderBytes) {
-    return Result<TriangleSoup>::Error(
-        "not an STL file: " + fmt_count(bytes.size()) +
-        " bytes is shorter than a binary STL header (84 bytes)");
+    return Result<TriangleSoup>::Error("not an STL file: " + fmt_count(bytes.size()) +
+                                       " bytes is shorter than a binary STL header (84 bytes)");
   }
   if (count > options.max_triangles) {
-    return Result<TriangleSoup>::Error(
-        "file too large: the header announces " + fmt_count(count) +
-        " triangles, the limit of this build is " +
-        fmt_count(options.max_triangles));
+    return Result<TriangleSoup>::Error("file too large: the header announces " + fmt_count(count) +
+                                       " triangles, the limit of this build is " +
+                                       fmt_count(options.max_triangles));
   }
   uint64_t need = kHeaderBytes + kTriangleBytes * count;
   TriangleSoup soup;
   if (bytes.size() < need) {
     uint64_t have = (bytes.size() - kHeaderBytes) / kTriangleBytes;
-    return Result<TriangleSoup>::Error(
-        "truncated binary STL: the header announces " + fmt_count(count) +
-        " triangles (" + fmt_count(need) + " bytes) but the file has " +
-        fmt_count(bytes.size()) + " bytes (room for " + fmt_count(have) +
-        " triangles)");
+    return Result<TriangleSoup>::Error("truncated binary STL: the header announces " +
+                                       fmt_count(count) + " triangles (" + fmt_count(need) +
+                                       " bytes) but the file has " + fmt_count(bytes.size()) +
+                                       " bytes (room for " + fmt_count(have) + " triangles)");
   }
   if (count == 0) {
     return Result<TriangleSoup>::Error("binary STL contains no triangle");
   }
   if (bytes.size() > need) {
-    soup.warnings.push_back(
-        "binary STL has " + fmt_count(bytes.size() - need) +
-        " bytes after its " + fmt_count(count) + " triangles; they were ignored");
+    soup.warnings.push_back("binary STL has " + fmt_count(bytes.size() - need) +
+                            " bytes after its " + fmt_count(count) +
+                            " triangles; they were ignored");
   }
-  soup.header = trim(std::string_view(
-      reinterpret_cast<const char*>(bytes.data()), 80));
+  soup.header = trim(std::string_view(reinterpret_cast<const char*>(bytes.data()), 80));
   soup.coords.resize(9 * count);
   const uint8_t* p = bytes.data() + kHeaderBytes;
   float* out = soup.coords.data();
@@ -268,8 +249,7 @@ Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes,
   return soup;
 }
 
-std::vector<uint8_t> write_stl_binary(const SurfaceMesh& mesh,
-                                      const std::string& header) {
+std::vector<uint8_t> write_stl_binary(const SurfaceMesh& mesh, const std::string& header) {
   size_t n = mesh.num_triangles();
   std::vector<uint8_t> out(kHeaderBytes + kTriangleBytes * n, 0);
   // A binary header must not start with "solid" (readers would take it for
@@ -299,8 +279,7 @@ std::vector<uint8_t> write_stl_binary(const SurfaceMesh& mesh,
     for (int k = 0; k < 3; ++k) put_f32(at + 4 * k, len > 0 ? nrm[k] / len : 0);
     const double* corners[3] = {a, b, c};
     for (int v2 = 0; v2 < 3; ++v2)
-      for (int k = 0; k < 3; ++k)
-        put_f32(at + 12 + 12 * v2 + 4 * k, float(corners[v2][k]));
+      for (int k = 0; k < 3; ++k) put_f32(at + 12 + 12 * v2 + 4 * k, float(corners[v2][k]));
   }
   return out;
 }

@@ -35,8 +35,7 @@ struct StlReadOptions {
 /// start with "solid" too). Errors: empty input, truncated binary, count in
 /// header disagreeing with the size, malformed ASCII (with line number),
 /// NaN/Inf coordinates (with triangle index), too many triangles.
-Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes,
-                              const StlReadOptions& options = {});
+Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes, const StlReadOptions& options = {});
 
 /// Serializes a surface as binary STL (normals computed from the triangles).
 std::vector<uint8_t> write_stl_binary(const SurfaceMesh& mesh,

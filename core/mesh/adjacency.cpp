@@ -56,8 +56,7 @@ TriangleAdjacency build_adjacency(const SurfaceMesh& mesh) {
   return adj;
 }
 
-void remap_after_flips(TriangleAdjacency& adj,
-                       const std::vector<uint8_t>& flipped) {
+void remap_after_flips(TriangleAdjacency& adj, const std::vector<uint8_t>& flipped) {
   // Reversing (v0, v1, v2) to (v0, v2, v1) maps its half-edges 0, 1, 2 to
   // 2, 1, 0 (each now runs the other way).
   auto map = [&](int32_t h) {

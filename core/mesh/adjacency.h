@@ -19,32 +19,29 @@ struct TriangleAdjacency {
   std::vector<int32_t> opposite;  ///< 3 * num_triangles
   static constexpr int32_t kBoundary = -1;
   static constexpr int32_t kNonManifold = -2;
-  size_t num_edges = 0;           ///< distinct undirected edges
+  size_t num_edges = 0;  ///< distinct undirected edges
   size_t num_nonmanifold_edges = 0;
   std::vector<int32_t> nonmanifold_example;  ///< one edge (a, b) if any
 };
 
 /// Builds the adjacency in time linear in the triangles for bounded vertex
-/// degree (each edge is found once, by scanning one vertex star). Precondition: no triangle has a repeated vertex.
+/// degree (each edge is found once, by scanning one vertex star). Precondition: no triangle has a
+/// repeated vertex.
 TriangleAdjacency build_adjacency(const SurfaceMesh& mesh);
 
 /// Updates `adj` after the triangles t with flipped[t] != 0 were reversed
 /// by swapping their corners 1 and 2 (stars are unchanged).
-void remap_after_flips(TriangleAdjacency& adj,
-                       const std::vector<uint8_t>& flipped);
+void remap_after_flips(TriangleAdjacency& adj, const std::vector<uint8_t>& flipped);
 
 /// Vertex a of half-edge h and vertex b (its end).
-inline int32_t half_edge_from(const SurfaceMesh& m, int32_t h) {
-  return m.triangles[h];
-}
+inline int32_t half_edge_from(const SurfaceMesh& m, int32_t h) { return m.triangles[h]; }
 inline int32_t half_edge_to(const SurfaceMesh& m, int32_t h) {
   return m.triangles[h - h % 3 + (h % 3 + 1) % 3];
 }
 
 /// The half-edge of triangle t other than `not_this` that has vertex v as an
 /// endpoint; -1 if none.
-inline int32_t other_half_edge_at(const SurfaceMesh& m, int32_t t, int32_t v,
-                                  int32_t not_this) {
+inline int32_t other_half_edge_at(const SurfaceMesh& m, int32_t t, int32_t v, int32_t not_this) {
   for (int k = 0; k < 3; ++k) {
     int32_t h = 3 * t + k;
     if (h == not_this) continue;

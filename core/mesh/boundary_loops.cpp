@@ -5,8 +5,7 @@ namespace {
 
 // Next boundary half-edge after `h` around vertex `v` (an endpoint of h),
 // walking through the triangle fan of v; -1 if a non-manifold edge stops it.
-int32_t next_by_fan(const SurfaceMesh& m, const TriangleAdjacency& adj,
-                    int32_t h, int32_t v) {
+int32_t next_by_fan(const SurfaceMesh& m, const TriangleAdjacency& adj, int32_t h, int32_t v) {
   int32_t cur = h;
   for (size_t guard = 0; guard < 1000000; ++guard) {
     int32_t g = other_half_edge_at(m, cur / 3, v, cur);
@@ -27,8 +26,7 @@ std::vector<std::vector<int32_t>> boundary_loops(const SurfaceMesh& mesh,
   const size_t nh = mesh.triangles.size();
   std::vector<uint8_t> visited(nh, 0);
   for (size_t h0 = 0; h0 < nh; ++h0) {
-    if (adj.opposite[h0] != TriangleAdjacency::kBoundary || visited[h0])
-      continue;
+    if (adj.opposite[h0] != TriangleAdjacency::kBoundary || visited[h0]) continue;
     std::vector<int32_t> loop;
     int32_t h = int32_t(h0);
     int32_t v = half_edge_from(mesh, h);

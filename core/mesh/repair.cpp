@@ -228,8 +228,7 @@ void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats) {
   remove_unused_vertices(mesh, stats);
 }
 
-void orient_consistently(SurfaceMesh& mesh, RepairStats& stats,
-                         TriangleAdjacency* adjacency) {
+void orient_consistently(SurfaceMesh& mesh, RepairStats& stats, TriangleAdjacency* adjacency) {
   const size_t nt = mesh.num_triangles();
   if (nt == 0) return;
   TriangleAdjacency adj = build_adjacency(mesh);

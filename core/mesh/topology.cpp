@@ -40,7 +40,7 @@ bool single_fan(const SurfaceMesh& m, const TriangleAdjacency& adj, int32_t v) {
     int32_t h = start;
     for (int32_t steps = 0; steps < d; ++steps) {
       int32_t o = adj.opposite[h];
-      if (o < 0) break;  // boundary or non-manifold edge: the fan ends
+      if (o < 0) break;                      // boundary or non-manifold edge: the fan ends
       if (o / 3 == t0) return reached == d;  // closed around v
       ++reached;
       h = other_half_edge_at(m, o / 3, v, o);
@@ -56,8 +56,7 @@ Opening describe_loop(const SurfaceMesh& m, std::vector<int32_t> loop) {
   double wsum = 0;
   for (size_t i = 0; i < n; ++i) {
     const double *a = p(i), *b = p(i + 1);
-    double len = std::sqrt((b[0] - a[0]) * (b[0] - a[0]) +
-                           (b[1] - a[1]) * (b[1] - a[1]) +
+    double len = std::sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
                            (b[2] - a[2]) * (b[2] - a[2]));
     op.perimeter += len;
     for (int k = 0; k < 3; ++k) op.centroid[k] += len * 0.5 * (a[k] + b[k]);
@@ -92,8 +91,7 @@ TopologyReport analyze_topology(const SurfaceMesh& mesh) {
   return analyze_topology(mesh, build_adjacency(mesh));
 }
 
-TopologyReport analyze_topology(const SurfaceMesh& mesh,
-                                const TriangleAdjacency& adj) {
+TopologyReport analyze_topology(const SurfaceMesh& mesh, const TriangleAdjacency& adj) {
   TopologyReport r;
   const size_t nv = mesh.num_vertices(), nt = mesh.num_triangles();
   r.vertices = nv;
@@ -104,9 +102,8 @@ TopologyReport analyze_topology(const SurfaceMesh& mesh,
   r.nonmanifold_edges = adj.num_nonmanifold_edges;
   if (!adj.nonmanifold_example.empty()) {
     for (int k = 0; k < 3; ++k)
-      r.nonmanifold_edge_example[k] =
-          0.5 * (mesh.points[3 * adj.nonmanifold_example[0] + k] +
-                 mesh.points[3 * adj.nonmanifold_example[1] + k]);
+      r.nonmanifold_edge_example[k] = 0.5 * (mesh.points[3 * adj.nonmanifold_example[0] + k] +
+                                             mesh.points[3 * adj.nonmanifold_example[1] + k]);
   }
   for (int32_t o : adj.opposite) r.boundary_edges += o == TriangleAdjacency::kBoundary;
 
@@ -180,8 +177,8 @@ TopologyReport analyze_topology(const SurfaceMesh& mesh,
   return r;
 }
 
-SurfaceMesh extract_component(const SurfaceMesh& mesh,
-                              const TopologyReport& report, int component) {
+SurfaceMesh extract_component(const SurfaceMesh& mesh, const TopologyReport& report,
+                              int component) {
   SurfaceMesh out;
   std::vector<int32_t> remap(mesh.num_vertices(), -1);
   for (size_t t = 0; t < mesh.num_triangles(); ++t) {

@@ -54,12 +54,10 @@ struct TopologyReport {
 TopologyReport analyze_topology(const SurfaceMesh& mesh);
 
 /// Same, reusing an adjacency already built for `mesh`.
-TopologyReport analyze_topology(const SurfaceMesh& mesh,
-                                const TriangleAdjacency& adj);
+TopologyReport analyze_topology(const SurfaceMesh& mesh, const TriangleAdjacency& adj);
 
 /// Keeps only the triangles of component `component` (as numbered by
 /// `report.triangle_component`) and drops unused vertices.
-SurfaceMesh extract_component(const SurfaceMesh& mesh,
-                              const TopologyReport& report, int component);
+SurfaceMesh extract_component(const SurfaceMesh& mesh, const TopologyReport& report, int component);
 
 }  // namespace vm

@@ -1,8 +1,8 @@
 // Welding a triangle soup: phase 1 merges bit-identical corners through a
-// hash table laid out by spatial cell (see weld_exact); phase 2 merges distinct points closer than the tolerance with
-// a hashed grid of cells much larger than the tolerance (so most points look
-// at one cell) and a union-find, keeping the first-seen point as the
-// representative.
+// hash table laid out by spatial cell (see weld_exact); phase 2 merges
+// distinct points closer than the tolerance with a hashed grid of cells much
+// larger than the tolerance (so most points look at one cell) and a
+// union-find, keeping the first-seen point as the representative.
 #include "core/mesh/weld.h"
 
 #include <algorithm>
@@ -23,8 +23,7 @@ uint32_t float_bits(float f) {
 }
 
 uint64_t hash3(uint64_t a, uint64_t b, uint64_t c) {
-  return (a * 0x9E3779B97F4A7C15ULL) ^ (b * 0xC2B2AE3D27D4EB4FULL) ^
-         (c * 0x165667B19E3779F9ULL);
+  return (a * 0x9E3779B97F4A7C15ULL) ^ (b * 0xC2B2AE3D27D4EB4FULL) ^ (c * 0x165667B19E3779F9ULL);
 }
 
 int32_t find_root(std::vector<int32_t>& parent, int32_t i) {
@@ -35,9 +34,12 @@ int32_t find_root(std::vector<int32_t>& parent, int32_t i) {
   return i;
 }
 
-// floor() as an integer without a libm call (inputs are finite and far
-// inside the int64 range after scaling by a cell size of the model).
+// floor() as an integer without a libm call. Values beyond +-2^62 (a model
+// placed absurdly far from the origin for its size) are clamped: they then
+// share cells, which costs time but stays correct.
 int64_t floor_to_int(double x) {
+  constexpr double kLimit = 4.6e18;
+  x = std::clamp(x, -kLimit, kLimit);
   int64_t i = int64_t(x);
   return i - (double(i) > x);
 }
@@ -67,8 +69,7 @@ double locality_cell_size(const TriangleSoup& soup) {
 // probe nearby memory instead of missing the cache on every new point.
 // Returns false (and must be re-run with cell = 0) if probes grow long, which
 // happens only when the cell estimate is far off (very uneven sampling).
-bool weld_exact(const float* c, size_t corners, double cell,
-                std::vector<int32_t>& corner_to_unique,
+bool weld_exact(const float* c, size_t corners, double cell, std::vector<int32_t>& corner_to_unique,
                 std::vector<int32_t>& unique_corner) {
   constexpr size_t kBlock = 64;
   constexpr size_t kMaxProbe = 1024;
@@ -82,10 +83,9 @@ bool weld_exact(const float* c, size_t corners, double cell,
   auto start_slot = [&](const float* p, uint32_t x, uint32_t y, uint32_t z) {
     uint64_t fine = IndexHashTable::mix(hash3(x, y, z));
     if (cell <= 0) return size_t(fine >> 16) & (cap - 1);
-    uint64_t block = IndexHashTable::mix(
-        hash3(uint64_t(floor_to_int(p[0] * inv_cell)),
-              uint64_t(floor_to_int(p[1] * inv_cell)),
-              uint64_t(floor_to_int(p[2] * inv_cell))));
+    uint64_t block = IndexHashTable::mix(hash3(uint64_t(floor_to_int(p[0] * inv_cell)),
+                                               uint64_t(floor_to_int(p[1] * inv_cell)),
+                                               uint64_t(floor_to_int(p[2] * inv_cell))));
     return size_t(block * kBlock + (fine & (kBlock - 1))) & (cap - 1);
   };
   bool long_probe = false;
@@ -127,8 +127,7 @@ bool weld_exact(const float* c, size_t corners, double cell,
         for (size_t u = 0; u < unique_corner.size(); ++u) {
           const uint32_t* k = &keys[3 * u];
           const float* q = c + 3 * size_t(unique_corner[u]);
-          table[probe(start_slot(q, k[0], k[1], k[2]), k[0], k[1], k[2])] =
-              int32_t(u);
+          table[probe(start_slot(q, k[0], k[1], k[2]), k[0], k[1], k[2])] = int32_t(u);
         }
         j = probe(start_slot(p, x, y, z), x, y, z);
       }
@@ -141,8 +140,8 @@ bool weld_exact(const float* c, size_t corners, double cell,
 
 // Phase 2: returns for each unique point the index of its representative
 // (the smallest index among the points merged with it, transitively).
-std::vector<int32_t> merge_close_points(const std::vector<double>& pts,
-                                        double tol, size_t* merged) {
+std::vector<int32_t> merge_close_points(const std::vector<double>& pts, double tol,
+                                        size_t* merged) {
   size_t n = pts.size() / 3;
   std::vector<int32_t> parent(n);
   for (size_t i = 0; i < n; ++i) parent[i] = int32_t(i);
@@ -167,9 +166,9 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts,
     return hash3(uint64_t(x), uint64_t(y), uint64_t(z));
   };
   for (size_t i = 0; i < n; ++i) {
-    int32_t h = cells.find_or_insert(
-        cell_hash(key[3 * i], key[3 * i + 1], key[3 * i + 2]), int32_t(i),
-        [&](int32_t s) { return same_cell(size_t(s), i); });
+    int32_t h =
+        cells.find_or_insert(cell_hash(key[3 * i], key[3 * i + 1], key[3 * i + 2]), int32_t(i),
+                             [&](int32_t s) { return same_cell(size_t(s), i); });
     if (h != int32_t(i)) {
       next[i] = next[h];
       next[h] = int32_t(i);
@@ -186,26 +185,26 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts,
       hi[k] = cell_of(p[k] + tol);
     }
     // Fast path: alone in its cell and farther than tol from its faces.
-    if (next[head[i]] < 0 && lo[0] == hi[0] && lo[1] == hi[1] && lo[2] == hi[2])
-      continue;
+    if (next[head[i]] < 0 && lo[0] == hi[0] && lo[1] == hi[1] && lo[2] == hi[2]) continue;
     for (int64_t x = lo[0]; x <= hi[0]; ++x)
       for (int64_t y = lo[1]; y <= hi[1]; ++y)
         for (int64_t z = lo[2]; z <= hi[2]; ++z) {
           uint64_t h = cell_hash(x, y, z);
           cells.for_each_with_hash(h, [&](int32_t s) {
-            if (key[3 * s] != x || key[3 * s + 1] != y || key[3 * s + 2] != z)
-              return;
+            if (key[3 * s] != x || key[3 * s + 1] != y || key[3 * s + 2] != z) return;
             for (int32_t j = s; j >= 0; j = next[j]) {
               if (size_t(j) <= i) continue;  // each pair once
               const double* q = &pts[3 * j];
-              double d2 = (p[0] - q[0]) * (p[0] - q[0]) +
-                          (p[1] - q[1]) * (p[1] - q[1]) +
+              double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
                           (p[2] - q[2]) * (p[2] - q[2]);
               if (d2 <= tol2) {
                 int32_t ri = find_root(parent, int32_t(i));
                 int32_t rj = find_root(parent, j);
                 if (ri != rj) {
-                  if (ri < rj) parent[rj] = ri; else parent[ri] = rj;
+                  if (ri < rj)
+                    parent[rj] = ri;
+                  else
+                    parent[ri] = rj;
                   ++*merged;
                 }
               }
@@ -219,20 +218,17 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts,
 
 }  // namespace
 
-SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options,
-                 WeldStats* stats) {
+SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options, WeldStats* stats) {
   const size_t corners = soup.coords.size() / 3;
   const float* c = soup.coords.data();
   // Phase 1: exact duplicates.
   std::vector<int32_t> corner_to_unique(corners);
   std::vector<int32_t> unique_corner;  // first corner of each unique point
-  if (!weld_exact(c, corners, locality_cell_size(soup), corner_to_unique,
-                  unique_corner))
+  if (!weld_exact(c, corners, locality_cell_size(soup), corner_to_unique, unique_corner))
     weld_exact(c, corners, 0.0, corner_to_unique, unique_corner);
   std::vector<double> pts(3 * unique_corner.size());
   for (size_t u = 0; u < unique_corner.size(); ++u)
-    for (int k = 0; k < 3; ++k)
-      pts[3 * u + k] = c[3 * size_t(unique_corner[u]) + k];
+    for (int k = 0; k < 3; ++k) pts[3 * u + k] = c[3 * size_t(unique_corner[u]) + k];
 
   // Phase 2: near duplicates.
   double tol = options.relative_tolerance * bounding_box(pts).diagonal();
@@ -252,8 +248,7 @@ SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options,
     for (int k = 0; k < 3; ++k) mesh.points[3 * new_index[u] + k] = pts[3 * u + k];
   }
   mesh.triangles.resize(corners);
-  for (size_t i = 0; i < corners; ++i)
-    mesh.triangles[i] = new_index[corner_to_unique[i]];
+  for (size_t i = 0; i < corners; ++i) mesh.triangles[i] = new_index[corner_to_unique[i]];
   if (stats) {
     stats->corners = corners;
     stats->exact_unique = rep.size();

@@ -13,8 +13,8 @@ struct WeldOptions {
 };
 
 struct WeldStats {
-  size_t corners = 0;         ///< 3 * triangles in the soup
-  size_t exact_unique = 0;    ///< distinct coordinates before tolerance merge
+  size_t corners = 0;              ///< 3 * triangles in the soup
+  size_t exact_unique = 0;         ///< distinct coordinates before tolerance merge
   size_t merged_by_tolerance = 0;  ///< distinct coordinates merged by tolerance
 };
 

@@ -23,8 +23,7 @@ constexpr int kFace[6][4] = {{0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4},
 
 int edge_between(int a, int b) {
   for (int e = 0; e < 12; ++e)
-    if ((kEdge[e][0] == a && kEdge[e][1] == b) || (kEdge[e][0] == b && kEdge[e][1] == a))
-      return e;
+    if ((kEdge[e][0] == a && kEdge[e][1] == b) || (kEdge[e][0] == b && kEdge[e][1] == a)) return e;
   return -1;
 }
 
@@ -131,8 +130,8 @@ SurfaceMesh marching_cubes(const GridSpec& g, const PlaneFn& plane_values) {
   };
   // Vertex ids of the edges: x- and y-edges of the lower and upper planes,
   // z-edges between them.
-  std::vector<int32_t> xlo(plane, -1), ylo(plane, -1), xhi(plane, -1),
-      yhi(plane, -1), zmid(plane, -1);
+  std::vector<int32_t> xlo(plane, -1), ylo(plane, -1), xhi(plane, -1), yhi(plane, -1),
+      zmid(plane, -1);
   auto point = [&](int i, int j, int k, int axis, float v0, float v1) {
     double t = double(v0) / (double(v0) - double(v1));
     double p[3] = {double(i), double(j), double(k)};
@@ -155,7 +154,7 @@ SurfaceMesh marching_cubes(const GridSpec& g, const PlaneFn& plane_values) {
       int ai = i + (a & 1), aj = j + ((a >> 1) & 1), ak = (a >> 2) & 1;
       int axis = e < 4 ? 0 : e < 8 ? 1 : 2;
       size_t idx = size_t(ai) + size_t(g.nx) * size_t(aj);
-      std::vector<int32_t>& ids = axis == 2 ? zmid
+      std::vector<int32_t>& ids = axis == 2   ? zmid
                                   : axis == 0 ? (ak ? xhi : xlo)
                                               : (ak ? yhi : ylo);
       if (ids[idx] < 0) {

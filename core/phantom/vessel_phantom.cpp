@@ -96,10 +96,12 @@ Model build_model(PhantomKind kind) {
     case PhantomKind::kAneurysm: {
       m.branches.push_back(spline_branch({{0, 0, -6}, {0.2, 0.1, -3}, {0, 0, 0}}, n,
                                          [](double s) { return 1.0 - 0.05 * s; }));
-      m.branches.push_back(spline_branch({{0, 0, 0}, {0.9, 0.1, 1.6}, {2.3, 0.3, 3.6}, {3.2, 0.2, 6}}, n,
-                                         [](double s) { return 0.78 - 0.08 * s; }));
-      m.branches.push_back(spline_branch({{0, 0, 0}, {-0.8, -0.1, 1.7}, {-1.8, -0.4, 3.8}, {-2.2, -0.3, 6.2}}, n,
-                                         [](double s) { return 0.66 - 0.06 * s; }));
+      m.branches.push_back(
+          spline_branch({{0, 0, 0}, {0.9, 0.1, 1.6}, {2.3, 0.3, 3.6}, {3.2, 0.2, 6}}, n,
+                        [](double s) { return 0.78 - 0.08 * s; }));
+      m.branches.push_back(
+          spline_branch({{0, 0, 0}, {-0.8, -0.1, 1.7}, {-1.8, -0.4, 3.8}, {-2.2, -0.3, 6.2}}, n,
+                        [](double s) { return 0.66 - 0.06 * s; }));
       if (kind == PhantomKind::kAneurysm) {
         m.has_bulb = true;
         m.bulb_center = {0.15, 1.05, 1.6};
@@ -155,8 +157,7 @@ uint64_t splitmix64(uint64_t x) {
 /// Field of one branch over plane z = zk: distance to the polyline minus the
 /// interpolated radius, computed only in the xy boxes of the segments that
 /// reach the plane (elsewhere `far`).
-void branch_plane(const Branch& b, const GridSpec& g, double zk, float far,
-                  float* out) {
+void branch_plane(const Branch& b, const GridSpec& g, double zk, float far, float* out) {
   std::fill(out, out + size_t(g.nx) * size_t(g.ny), far);
   const double band = far;
   for (size_t s = 0; s + 1 < b.points.size(); ++s) {
@@ -164,9 +165,11 @@ void branch_plane(const Branch& b, const GridSpec& g, double zk, float far,
     double rmax = std::max(b.radii[s], b.radii[s + 1]) + band;
     if (zk < std::min(p[2], q[2]) - rmax || zk > std::max(p[2], q[2]) + rmax) continue;
     int i0 = std::max(0, int(std::floor((std::min(p[0], q[0]) - rmax - g.origin[0]) / g.spacing)));
-    int i1 = std::min(g.nx - 1, int(std::ceil((std::max(p[0], q[0]) + rmax - g.origin[0]) / g.spacing)));
+    int i1 =
+        std::min(g.nx - 1, int(std::ceil((std::max(p[0], q[0]) + rmax - g.origin[0]) / g.spacing)));
     int j0 = std::max(0, int(std::floor((std::min(p[1], q[1]) - rmax - g.origin[1]) / g.spacing)));
-    int j1 = std::min(g.ny - 1, int(std::ceil((std::max(p[1], q[1]) + rmax - g.origin[1]) / g.spacing)));
+    int j1 =
+        std::min(g.ny - 1, int(std::ceil((std::max(p[1], q[1]) + rmax - g.origin[1]) / g.spacing)));
     Vec d = sub(q, p);
     double len2 = dot(d, d);
     for (int j = j0; j <= j1; ++j) {
@@ -206,7 +209,8 @@ void clip(SurfaceMesh& mesh, const EndCut& cut) {
       if (k == key) return v;
     double t = dist[a] / (dist[a] - dist[b]);
     for (int k = 0; k < 3; ++k)
-      mesh.points.push_back(mesh.points[3 * a + k] + t * (mesh.points[3 * b + k] - mesh.points[3 * a + k]));
+      mesh.points.push_back(mesh.points[3 * a + k] +
+                            t * (mesh.points[3 * b + k] - mesh.points[3 * a + k]));
     int32_t id = int32_t(mesh.num_vertices() - 1);
     cache.push_back({key, id});
     return id;
@@ -278,9 +282,9 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
     n[k] = std::ceil((hi[k] - lo[k]) / o.voxel) + 7;
   }
   if (n[0] * n[1] * n[2] > 2e8)
-    return Result<SurfaceMesh>::Error(
-        "phantom grid too large (" + std::to_string(size_t(n[0] * n[1] * n[2])) +
-        " voxels, limit 200M): use a larger voxel size");
+    return Result<SurfaceMesh>::Error("phantom grid too large (" +
+                                      std::to_string(size_t(n[0] * n[1] * n[2])) +
+                                      " voxels, limit 200M): use a larger voxel size");
   g.nx = int(n[0]), g.ny = int(n[1]), g.nz = int(n[2]);
 
   const float far = float(4 * o.voxel + 0.5);
@@ -289,7 +293,8 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
                                          std::vector<float>(size_t(g.nx) * size_t(g.ny)));
   auto plane_fn = [&](int k, float* out) {
     double z = g.origin[2] + g.spacing * k;
-    for (size_t b = 0; b < m.branches.size(); ++b) branch_plane(m.branches[b], g, z, far, branch[b].data());
+    for (size_t b = 0; b < m.branches.size(); ++b)
+      branch_plane(m.branches[b], g, z, far, branch[b].data());
     const size_t np = size_t(g.nx) * size_t(g.ny);
     for (size_t i = 0; i < np; ++i) {
       double v = branch[0][i];

@@ -7,8 +7,7 @@
 namespace vm {
 
 Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
-                                   const MeshJobOptions& options,
-                                   const ProgressFn& progress) {
+                                   const MeshJobOptions& options, const ProgressFn& progress) {
   auto t0 = std::chrono::steady_clock::now();
   MeshJobResult r;
   // Stage 1 takes the first half of the progress bar.
@@ -61,8 +60,7 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
   if (!text.ok()) return text.status();
   r.msh = std::move(text).value();
   report_progress(progress, 1.0, "done");
-  r.seconds_total =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
 

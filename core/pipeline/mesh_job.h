@@ -31,9 +31,9 @@ struct OutputGroup {
 };
 
 struct MeshJobResult {
-  std::string msh;               ///< the MSH file contents
-  PreparedSurface surface;       ///< the input as read and analyzed
-  SurfaceMesh output_surface;    ///< the surface written (wall)
+  std::string msh;                    ///< the MSH file contents
+  PreparedSurface surface;            ///< the input as read and analyzed
+  SurfaceMesh output_surface;         ///< the surface written (wall)
   std::vector<float> output_quality;  ///< gamma_k per output triangle
   QualityStats output_quality_stats;
   std::vector<OutputGroup> groups;  ///< physical groups written

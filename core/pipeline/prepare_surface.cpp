@@ -19,8 +19,7 @@ Status cancelled() { return Status::Error(kCancelledMessage); }
 }  // namespace
 
 Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
-                                        const PrepareOptions& options,
-                                        const ProgressFn& progress) {
+                                        const PrepareOptions& options, const ProgressFn& progress) {
   PreparedSurface s;
   if (!report_progress(progress, 0.0, "read")) return cancelled();
   Result<TriangleSoup> soup = read_stl(stl_bytes, options.read);
@@ -40,8 +39,7 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
   if (!report_progress(progress, 0.45, "repair")) return cancelled();
   remove_degenerate_and_duplicates(s.mesh, s.repair);
   if (s.repair.degenerate_removed > 0) {
-    s.warnings.push_back(num(s.repair.degenerate_removed) +
-                         " zero-area triangles were removed");
+    s.warnings.push_back(num(s.repair.degenerate_removed) + " zero-area triangles were removed");
   }
   if (s.repair.collinear_repaired > 0) {
     s.warnings.push_back(num(s.repair.collinear_repaired) +
@@ -49,8 +47,7 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
                          "splitting their neighbors");
   }
   if (s.repair.duplicates_removed > 0) {
-    s.warnings.push_back(num(s.repair.duplicates_removed) +
-                         " duplicate triangles were removed");
+    s.warnings.push_back(num(s.repair.duplicates_removed) + " duplicate triangles were removed");
   }
   if (s.mesh.num_triangles() == 0) {
     return Status::Error("no triangle left: all " + num(s.input_triangles) +
@@ -59,11 +56,9 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
   TriangleAdjacency adjacency;
   orient_consistently(s.mesh, s.repair, &adjacency);
   if (!s.repair.orientable) {
-    s.warnings.push_back(
-        "the surface is not orientable: it cannot bound a volume");
+    s.warnings.push_back("the surface is not orientable: it cannot bound a volume");
   } else if (s.repair.flipped == s.mesh.num_triangles()) {
-    s.warnings.push_back(
-        "the normals pointed inward: all triangles were reversed to face out");
+    s.warnings.push_back("the normals pointed inward: all triangles were reversed to face out");
   } else if (s.repair.flipped > 0) {
     s.warnings.push_back(num(s.repair.flipped) +
                          " triangles were re-oriented (consistent, outward)");
@@ -76,7 +71,8 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
   if (t.nonmanifold_edges > 0) {
     s.warnings.push_back(num(t.nonmanifold_edges) +
                          " non-manifold edges (shared by 3 or more triangles), "
-                         "e.g. near " + point_text(t.nonmanifold_edge_example));
+                         "e.g. near " +
+                         point_text(t.nonmanifold_edge_example));
   }
   if (t.nonmanifold_vertices > 0) {
     s.warnings.push_back(num(t.nonmanifold_vertices) +
@@ -84,9 +80,8 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
                          "a single vertex)");
   }
   if (t.components > 1) {
-    s.warnings.push_back(
-        std::to_string(t.components) + " connected components; the largest has " +
-        num(t.component_triangles[0]) + " of " + num(t.triangles) + " triangles");
+    s.warnings.push_back(std::to_string(t.components) + " connected components; the largest has " +
+                         num(t.component_triangles[0]) + " of " + num(t.triangles) + " triangles");
   }
 
   if (!report_progress(progress, 0.85, "quality")) return cancelled();
@@ -99,27 +94,24 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
 Status check_meshable(const PreparedSurface& s) {
   const TopologyReport& t = s.topology;
   if (t.nonmanifold_edges > 0) {
-    return Status::Error(
-        "cannot mesh: the surface has " + num(t.nonmanifold_edges) +
-        " non-manifold edges (shared by 3 or more triangles), e.g. near " +
-        point_text(t.nonmanifold_edge_example) +
-        "; fix the segmentation or export a manifold surface");
+    return Status::Error("cannot mesh: the surface has " + num(t.nonmanifold_edges) +
+                         " non-manifold edges (shared by 3 or more triangles), e.g. near " +
+                         point_text(t.nonmanifold_edge_example) +
+                         "; fix the segmentation or export a manifold surface");
   }
   if (t.nonmanifold_vertices > 0) {
-    return Status::Error("cannot mesh: the surface has " +
-                         num(t.nonmanifold_vertices) +
+    return Status::Error("cannot mesh: the surface has " + num(t.nonmanifold_vertices) +
                          " non-manifold vertices (sheets touching at a vertex)");
   }
   if (!s.repair.orientable) {
     return Status::Error("cannot mesh: the surface is not orientable");
   }
   if (t.components > 1) {
-    return Status::Error(
-        "cannot mesh: the surface has " + std::to_string(t.components) +
-        " connected components (the largest has " + num(t.component_triangles[0]) +
-        " of " + num(t.triangles) +
-        " triangles); keep only the largest (--largest-component) or clean the "
-        "segmentation");
+    return Status::Error("cannot mesh: the surface has " + std::to_string(t.components) +
+                         " connected components (the largest has " + num(t.component_triangles[0]) +
+                         " of " + num(t.triangles) +
+                         " triangles); keep only the largest (--largest-component) or clean the "
+                         "segmentation");
   }
   return Status::Ok();
 }

@@ -44,7 +44,10 @@ std::string analysis_json(const PreparedSurface& s) {
   }
   j.end_array();
   j.key("closed").value(t.closed);
-  if (t.genus >= 0) j.key("genus").value(t.genus); else j.key("genus").null();
+  if (t.genus >= 0)
+    j.key("genus").value(t.genus);
+  else
+    j.key("genus").null();
   j.key("euler_characteristic").value(t.euler_characteristic);
   j.key("edges").value(t.edges);
   j.key("boundary_edges").value(t.boundary_edges);

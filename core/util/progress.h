@@ -14,8 +14,7 @@ using ProgressFn = std::function<bool(double fraction, std::string_view stage)>;
 inline constexpr const char* kCancelledMessage = "cancelled";
 
 /// Calls `fn` if set; returns false when the caller asked to cancel.
-inline bool report_progress(const ProgressFn& fn, double fraction,
-                            std::string_view stage) {
+inline bool report_progress(const ProgressFn& fn, double fraction, std::string_view stage) {
   return !fn || fn(fraction, stage);
 }
 

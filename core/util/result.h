@@ -32,11 +32,9 @@ class Status {
 template <class T>
 class Result {
  public:
-  Result(T value) : v_(std::move(value)) {}  // NOLINT: implicit by design
+  Result(T value) : v_(std::move(value)) {}       // NOLINT: implicit by design
   Result(Status error) : v_(std::move(error)) {}  // NOLINT: must be an error
-  static Result Error(std::string message) {
-    return Result(Status::Error(std::move(message)));
-  }
+  static Result Error(std::string message) { return Result(Status::Error(std::move(message))); }
   bool ok() const { return std::holds_alternative<T>(v_); }
   /// Precondition: ok().
   T& value() & { return std::get<T>(v_); }

@@ -95,8 +95,9 @@ TEST(Stl, AsciiGarbageIsRefusedWithLine) {
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("not an STL"), std::string::npos) << r.message();
 
-  std::string bad = "solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n"
-                    " vertex 1 zero 0\n";
+  std::string bad =
+      "solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n"
+      " vertex 1 zero 0\n";
   r = read_stl(bytes_of(bad));
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("line 5"), std::string::npos) << r.message();
@@ -104,8 +105,9 @@ TEST(Stl, AsciiGarbageIsRefusedWithLine) {
 }
 
 TEST(Stl, AsciiQuadFacetIsRefused) {
-  std::string s = "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
-                  "vertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid q\n";
+  std::string s =
+      "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+      "vertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid q\n";
   auto r = read_stl(bytes_of(s));
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("exactly 3 vertices"), std::string::npos) << r.message();
@@ -126,8 +128,9 @@ TEST(Stl, NonFiniteCoordinatesAreRefused) {
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("NaN"), std::string::npos) << r.message();
 
-  std::string s = "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex inf 0 0\n"
-                  "vertex 0 1 0\nendloop\nendfacet\nendsolid x\n";
+  std::string s =
+      "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex inf 0 0\n"
+      "vertex 0 1 0\nendloop\nendfacet\nendsolid x\n";
   r = read_stl(bytes_of(s));
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("Inf"), std::string::npos) << r.message();
@@ -152,8 +155,7 @@ TEST(Stl, ShortBinaryIsRefused) {
   std::vector<uint8_t> bytes = {1, 2, 3, 0, 0};
   auto r = read_stl(bytes);
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("shorter than a binary STL header"), std::string::npos)
-      << r.message();
+  EXPECT_NE(r.message().find("shorter than a binary STL header"), std::string::npos) << r.message();
 }
 
 }  // namespace

@@ -132,9 +132,9 @@ TEST(Repair, MobiusStripIsNotOrientable) {
     double u = 2 * std::numbers::pi * i / n;
     for (int s = -1; s <= 1; s += 2) {
       double w = 0.3 * s;
-      m.points.insert(m.points.end(), {(1 + w * std::cos(u / 2)) * std::cos(u),
-                                       (1 + w * std::cos(u / 2)) * std::sin(u),
-                                       w * std::sin(u / 2)});
+      m.points.insert(m.points.end(),
+                      {(1 + w * std::cos(u / 2)) * std::cos(u),
+                       (1 + w * std::cos(u / 2)) * std::sin(u), w * std::sin(u / 2)});
     }
   }
   for (int i = 0; i < n; ++i) {

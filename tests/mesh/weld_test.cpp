@@ -33,7 +33,7 @@ TEST(Weld, MergesNearCoincidentCornersWithinTolerance) {
   TriangleSoup soup;
   // Two triangles sharing an edge, the second's copy of that edge moved by
   // 1e-9 (far below 1e-7 of the diagonal ~1.4).
-  soup.coords = {0, 0, 0, 1, 0, 0, 0, 1, 0,  //
+  soup.coords = {0, 0,     0, 1, 0, 0, 0,     1, 0,  //
                  1, 1e-9f, 0, 1, 1, 0, 1e-9f, 1, 0};
   WeldStats stats;
   SurfaceMesh w = weld(soup, {}, &stats);
@@ -59,6 +59,19 @@ TEST(Weld, NegativeZeroIsZero) {
   WeldOptions exact;
   exact.relative_tolerance = 0;
   EXPECT_EQ(weld(soup, exact).num_vertices(), 4u);
+}
+
+TEST(Weld, FarFromTheOriginStillWelds) {
+  // A unit tube translated by 1e20: cell coordinates exceed the int64 range.
+  SurfaceMesh tube = testing::open_tube(12, 4);
+  for (size_t i = 0; i < tube.points.size(); i += 3) tube.points[i] += 1e20;
+  WeldStats stats;
+  SurfaceMesh w = weld(soup_of(tube), {}, &stats);
+  // In float, x collapses to 1e20 for all points: y and z still separate
+  // the 12 x 5 grid positions into 12 angles x 5 heights at most.
+  EXPECT_LE(w.num_vertices(), tube.num_vertices());
+  EXPECT_GT(w.num_vertices(), 0u);
+  EXPECT_EQ(w.num_triangles(), tube.num_triangles());
 }
 
 }  // namespace

@@ -32,7 +32,8 @@ double signed_volume(const SurfaceMesh& m) {
     const double* b = &m.points[3 * m.triangles[3 * t + 1]];
     const double* c = &m.points[3 * m.triangles[3 * t + 2]];
     v += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-          a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+          a[2] * (b[0] * c[1] - b[1] * c[0])) /
+         6;
   }
   return v;
 }

@@ -39,7 +39,8 @@ TEST_P(PhantomKinds, TopologyMatchesTheTruth) {
     for (size_t i = 0; i < truth.opening_centers.size(); ++i) {
       double d = 0;
       for (int k = 0; k < 3; ++k)
-        d += (op.centroid[k] - truth.opening_centers[i][k]) * (op.centroid[k] - truth.opening_centers[i][k]);
+        d += (op.centroid[k] - truth.opening_centers[i][k]) *
+             (op.centroid[k] - truth.opening_centers[i][k]);
       if (d < best) best = d, which = i;
     }
     EXPECT_LT(std::sqrt(best), 0.15);

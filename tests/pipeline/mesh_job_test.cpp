@@ -43,8 +43,9 @@ TEST(PrepareSurface, InsideOutTubeIsReversedAndAnalyzed) {
 
 TEST(PrepareSurface, AllDegenerateIsAnError) {
   TriangleSoup soup;
-  std::string stl = "solid d\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
-                    "vertex 2 0 0\nendloop\nendfacet\nendsolid d\n";
+  std::string stl =
+      "solid d\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+      "vertex 2 0 0\nendloop\nendfacet\nendsolid d\n";
   auto r = prepare_surface(testing::bytes_of(stl));
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("zero area"), std::string::npos) << r.message();
@@ -58,8 +59,10 @@ TEST(MeshJob, WritesTheWallGroupWithAllTriangles) {
     auto r = run_mesh_job(write_stl_binary(tube), o);
     ASSERT_TRUE(r.ok()) << r.message();
     const std::string& msh = r.value().msh;
-    EXPECT_EQ(msh.rfind(version == MshVersion::k41 ? "$MeshFormat\n4.1 0 8\n"
-                                                   : "$MeshFormat\n2.2 0 8\n", 0), 0u);
+    EXPECT_EQ(
+        msh.rfind(version == MshVersion::k41 ? "$MeshFormat\n4.1 0 8\n" : "$MeshFormat\n2.2 0 8\n",
+                  0),
+        0u);
     EXPECT_NE(msh.find("2 1 \"wall\""), std::string::npos);
     EXPECT_EQ(r.value().output_surface.num_triangles(), tube.num_triangles());
     ASSERT_EQ(r.value().groups.size(), 1u);
@@ -115,14 +118,14 @@ TEST(ReportJson, HasTheDocumentedKeys) {
   ASSERT_TRUE(r.ok());
   std::string a = analysis_json(r.value().surface);
   for (const char* key : {"\"vertices\":96", "\"triangles\":160", "\"components\":1",
-                          "\"openings\":[{\"perimeter\":", "\"genus\":0",
-                          "\"nonmanifold_edges\":0", "\"quality\":{\"min\":",
-                          "\"closed\":false", "\"format\":\"binary\""})
+                          "\"openings\":[{\"perimeter\":", "\"genus\":0", "\"nonmanifold_edges\":0",
+                          "\"quality\":{\"min\":", "\"closed\":false", "\"format\":\"binary\""})
     EXPECT_NE(a.find(key), std::string::npos) << key << " in " << a;
   EXPECT_EQ(count(a, "\"radius\":"), 2u);
   std::string m = mesh_report_json(r.value());
   EXPECT_NE(m.find("\"groups\":[{\"dim\":2,\"name\":\"wall\",\"elements\":160}]"),
-            std::string::npos) << m;
+            std::string::npos)
+      << m;
 }
 
 }  // namespace

@@ -36,8 +36,8 @@ TEST(TriangleQuality, MatchesTheSineFormulaOfTheSeed) {
     double p[3], q[3], r[3];
     for (int k = 0; k < 3; ++k) p[k] = u(rng), q[k] = u(rng), r[k] = u(rng);
     double A = angle(p, q, r), B = angle(q, r, p), C = angle(r, p, q);
-    double sine = 4 * std::sin(A) * std::sin(B) * std::sin(C) /
-                  (std::sin(A) + std::sin(B) + std::sin(C));
+    double sine =
+        4 * std::sin(A) * std::sin(B) * std::sin(C) / (std::sin(A) + std::sin(B) + std::sin(C));
     EXPECT_NEAR(triangle_gamma(p, q, r), sine, 1e-9);
   }
 }

@@ -45,8 +45,7 @@ inline SurfaceMesh torus(int n, int m, double R = 3.0, double r = 1.0) {
     for (int i = 0; i < n; ++i) {
       double u = 2 * std::numbers::pi * i / n, v = 2 * std::numbers::pi * j / m;
       s.points.insert(s.points.end(), {(R + r * std::cos(v)) * std::cos(u),
-                                       (R + r * std::cos(v)) * std::sin(u),
-                                       r * std::sin(v)});
+                                       (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
     }
   for (int j = 0; j < m; ++j)
     for (int i = 0; i < n; ++i) {
