@@ -81,7 +81,60 @@ class AsciiCursor {
   size_t line_ = 1;
 };
 
+// Plain decimals ([-+]digits[.digits][e[-+]digits], at most 19 significant
+// digits): mantissa as an integer scaled by an exact power of ten. The
+// double result is within an ulp or two of the true value, so the float
+// stored is the correctly rounded one except in rare ties. Returns false for
+// anything else (inf, nan, hex, long mantissas), which strtod then handles.
+bool parse_decimal_fast(std::string_view tok, double& out) {
+  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                      1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                      1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  size_t i = 0, n = tok.size();
+  bool negative = false;
+  if (i < n && (tok[i] == '-' || tok[i] == '+')) negative = tok[i++] == '-';
+  uint64_t mantissa = 0;
+  int digits = 0, scale = 0;
+  bool any = false;
+  for (; i < n && tok[i] >= '0' && tok[i] <= '9'; ++i, any = true) {
+    if (mantissa == 0 && tok[i] == '0') continue;
+    if (++digits > 19) return false;
+    mantissa = mantissa * 10 + uint64_t(tok[i] - '0');
+  }
+  if (i < n && tok[i] == '.') {
+    for (++i; i < n && tok[i] >= '0' && tok[i] <= '9'; ++i, any = true) {
+      --scale;
+      if (mantissa == 0 && tok[i] == '0') continue;
+      if (++digits > 19) return false;
+      mantissa = mantissa * 10 + uint64_t(tok[i] - '0');
+    }
+  }
+  if (!any) return false;
+  if (i < n && (tok[i] == 'e' || tok[i] == 'E')) {
+    ++i;
+    bool eneg = false;
+    if (i < n && (tok[i] == '-' || tok[i] == '+')) eneg = tok[i++] == '-';
+    if (i == n) return false;
+    int e = 0;
+    for (; i < n && tok[i] >= '0' && tok[i] <= '9'; ++i) {
+      if (e > 1000) return false;
+      e = e * 10 + (tok[i] - '0');
+    }
+    scale += eneg ? -e : e;
+  }
+  if (i != n || scale < -22 || scale > 22) return false;
+  double v = double(mantissa);
+  v = scale < 0 ? v / kPow10[-scale] : v * kPow10[scale];
+  out = negative ? -v : v;
+  return true;
+}
+
 bool parse_float(std::string_view tok, float& out) {
+  double fast;
+  if (parse_decimal_fast(tok, fast)) {
+    out = static_cast<float>(fast);
+    return true;
+  }
   char buf[64];
   if (tok.empty() || tok.size() >= sizeof(buf)) return false;
   std::memcpy(buf, tok.data(), tok.size());

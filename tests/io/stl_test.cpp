@@ -56,6 +56,26 @@ TEST(Stl, AsciiAcceptsUpperCaseAndCrLf) {
   EXPECT_EQ(r.value().num_triangles(), 1u);
 }
 
+TEST(Stl, AsciiNumbersParseLikeStrtod) {
+  // Every syntax the reader accepts, compared with strtod rounded to float.
+  const char* numbers[] = {"0",        "-0",      "1",         "-1.5",       "+2.25",
+                           "3.",       ".5",      "-.125",     "1e3",        "1E-3",
+                           "1.5e+2",   "123456789.123456789",    "0.000001234",
+                           "6.02214076e23", "-7.5e-30", "1234567890123456789012", "3.4e38"};
+  for (const char* num : numbers) {
+    std::string s = "solid n\nfacet normal 0 0 0\nouter loop\nvertex " + std::string(num) +
+                    " 0 0\nvertex 0 1 0\nvertex 0 0 1\nendloop\nendfacet\nendsolid n\n";
+    auto r = read_stl(bytes_of(s));
+    ASSERT_TRUE(r.ok()) << num << ": " << r.message();
+    EXPECT_EQ(r.value().coords[0], float(std::strtod(num, nullptr))) << num;
+  }
+  for (const char* bad : {"1e", "--1", "1.2.3", "e5", "+", "0x1p3z"}) {
+    std::string s = "solid n\nfacet normal 0 0 0\nouter loop\nvertex " + std::string(bad) +
+                    " 0 0\nvertex 0 1 0\nvertex 0 0 1\nendloop\nendfacet\nendsolid n\n";
+    EXPECT_FALSE(read_stl(bytes_of(s)).ok()) << bad;
+  }
+}
+
 TEST(Stl, EmptyFileIsRefused) {
   auto r = read_stl({});
   ASSERT_FALSE(r.ok());
