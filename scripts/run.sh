@@ -11,5 +11,5 @@ mkdir -p out
 ./build/vesselmesh info out/sample.stl
 ./build/vesselmesh mesh out/sample.stl -o out/sample.msh
 echo
-echo "== vesselmesh app: http://localhost:${PORT:-4173}/  (Ctrl-C to stop)"
+echo "== vesselmesh app: http://127.0.0.1:${PORT:-4173}/  (Ctrl-C to stop)"
 exec npx vite preview --config web/vite.config.js --host 127.0.0.1 --port "${PORT:-4173}" --strictPort
