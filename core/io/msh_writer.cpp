@@ -91,6 +91,15 @@ size_t element_count(const MshModel& m) {
   return n;
 }
 
+// " n1 n2 ...\n" with one-based node tags.
+void write_element_nodes(TextOut& out, const int32_t* nodes, size_t count) {
+  for (size_t k = 0; k < count; ++k) {
+    out.ch(' ');
+    out.integer(nodes[k] + 1);
+  }
+  out.ch('\n');
+}
+
 void write_point(TextOut& out, const double* p) {
   out.real(p[0]);
   out.ch(' ');
@@ -199,11 +208,7 @@ std::string write41(const MshModel& m) {
     out.ch('\n');
     for (size_t e = 0; e < b.nodes.size(); e += npe) {
       out.integer(tag++);
-      for (size_t k = 0; k < npe; ++k) {
-        out.ch(' ');
-        out.integer(b.nodes[e + k] + 1);
-      }
-      out.ch('\n');
+      write_element_nodes(out, &b.nodes[e], npe);
     }
   }
   out.str("$EndElements\n");
@@ -239,11 +244,7 @@ std::string write22(const MshModel& m) {
       out.integer(b.physical_tag);
       out.ch(' ');
       out.integer(b.entity_tag);
-      for (size_t k = 0; k < npe; ++k) {
-        out.ch(' ');
-        out.integer(b.nodes[e + k] + 1);
-      }
-      out.ch('\n');
+      write_element_nodes(out, &b.nodes[e], npe);
     }
   }
   out.str("$EndElements\n");
