@@ -150,7 +150,8 @@ SurfaceMesh marching_cubes(const GridSpec& g, const PlaneFn& plane_values) {
     };
     // Vertex on cube edge e of cube (i, j, k), created on first use.
     auto edge_vertex = [&](int i, int j, int e) -> int32_t {
-      int a = kEdge[e][0], b = kEdge[e][1];
+      // Edges run from their lower corner a along +axis.
+      int a = kEdge[e][0];
       int ai = i + (a & 1), aj = j + ((a >> 1) & 1), ak = (a >> 2) & 1;
       int axis = e < 4 ? 0 : e < 8 ? 1 : 2;
       size_t idx = size_t(ai) + size_t(g.nx) * size_t(aj);
@@ -158,7 +159,6 @@ SurfaceMesh marching_cubes(const GridSpec& g, const PlaneFn& plane_values) {
                                   : axis == 0 ? (ak ? xhi : xlo)
                                               : (ak ? yhi : ylo);
       if (ids[idx] < 0) {
-        (void)b;
         float v0 = value(ai, aj, ak);
         int bi = ai + (axis == 0), bj = aj + (axis == 1), bk = ak + (axis == 2);
         ids[idx] = point(ai, aj, k + ak, axis, v0, value(bi, bj, bk));
