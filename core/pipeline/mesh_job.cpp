@@ -20,18 +20,14 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
   r.warnings = r.surface.warnings;
 
   const TopologyReport& topo = r.surface.topology;
+  Status meshable = check_meshable(r.surface, options.largest_component_only);
+  if (!meshable.ok()) return meshable;
   if (options.largest_component_only && topo.components > 1) {
     r.output_surface = extract_component(r.surface.mesh, topo, 0);
     r.warnings.push_back("kept the largest of " + std::to_string(topo.components) +
                          " components (" + std::to_string(topo.component_triangles[0]) +
                          " triangles)");
-    PreparedSurface check = r.surface;
-    check.topology.components = 1;
-    Status s = check_meshable(check);
-    if (!s.ok()) return s;
   } else {
-    Status s = check_meshable(r.surface);
-    if (!s.ok()) return s;
     r.output_surface = r.surface.mesh;
   }
 

@@ -91,7 +91,7 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
   return s;
 }
 
-Status check_meshable(const PreparedSurface& s) {
+Status check_meshable(const PreparedSurface& s, bool several_components_ok) {
   const TopologyReport& t = s.topology;
   if (t.nonmanifold_edges > 0) {
     return Status::Error("cannot mesh: the surface has " + num(t.nonmanifold_edges) +

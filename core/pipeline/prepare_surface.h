@@ -45,8 +45,9 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
                                         const PrepareOptions& options = {},
                                         const ProgressFn& progress = {});
 
-/// Checks that a prepared surface can be meshed: manifold, orientable, one
-/// component. The error message says what is wrong, where, and what to do.
-Status check_meshable(const PreparedSurface& surface);
+/// Checks that a prepared surface can be meshed: manifold, orientable, and
+/// one component unless `several_components_ok` (the caller then keeps the
+/// largest). The error message says what is wrong, where, and what to do.
+Status check_meshable(const PreparedSurface& surface, bool several_components_ok = false);
 
 }  // namespace vm
