@@ -106,7 +106,7 @@ Status check_meshable(const PreparedSurface& s, bool several_components_ok) {
   if (!s.repair.orientable) {
     return Status::Error("cannot mesh: the surface is not orientable");
   }
-  if (t.components > 1) {
+  if (t.components > 1 && !several_components_ok) {
     return Status::Error("cannot mesh: the surface has " + std::to_string(t.components) +
                          " connected components (the largest has " + num(t.component_triangles[0]) +
                          " of " + num(t.triangles) +
