@@ -1,0 +1,132 @@
+#include "core/geom/predicates.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace vm {
+namespace {
+
+using i128 = __int128;
+
+int sign(double x) { return (x > 0) - (x < 0); }
+int sign(i128 x) { return (x > 0) - (x < 0); }
+
+i128 orient2d_ref(const i128* a, const i128* b, const i128* c) {
+  return (a[0] - c[0]) * (b[1] - c[1]) - (a[1] - c[1]) * (b[0] - c[0]);
+}
+
+i128 incircle_ref(const i128* a, const i128* b, const i128* c, const i128* d) {
+  i128 adx = a[0] - d[0], ady = a[1] - d[1], bdx = b[0] - d[0], bdy = b[1] - d[1];
+  i128 cdx = c[0] - d[0], cdy = c[1] - d[1];
+  return (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) +
+         (bdx * bdx + bdy * bdy) * (cdx * ady - adx * cdy) +
+         (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
+}
+
+i128 det3_ref(const i128* a, const i128* b, const i128* c) {
+  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+         a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
+i128 orient3d_ref(const i128* a, const i128* b, const i128* c, const i128* d) {
+  i128 ad[3], bd[3], cd[3];
+  for (int k = 0; k < 3; ++k) ad[k] = a[k] - d[k], bd[k] = b[k] - d[k], cd[k] = c[k] - d[k];
+  return det3_ref(ad, bd, cd);
+}
+
+i128 insphere_ref(const i128* a, const i128* b, const i128* c, const i128* d, const i128* e) {
+  i128 p[4][3];
+  const i128* pts[4] = {a, b, c, d};
+  i128 lift[4];
+  for (int i = 0; i < 4; ++i) {
+    for (int k = 0; k < 3; ++k) p[i][k] = pts[i][k] - e[k];
+    lift[i] = p[i][0] * p[i][0] + p[i][1] * p[i][1] + p[i][2] * p[i][2];
+  }
+  return lift[3] * det3_ref(p[0], p[1], p[2]) - lift[2] * det3_ref(p[0], p[1], p[3]) +
+         lift[1] * det3_ref(p[0], p[2], p[3]) - lift[0] * det3_ref(p[1], p[2], p[3]);
+}
+
+TEST(Predicates, RandomIntegerPointsMatchExactArithmetic) {
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<int64_t> small(-20, 20), big(-(1 << 20), 1 << 20);
+  for (int it = 0; it < 20000; ++it) {
+    auto& dist = it % 2 ? small : big;  // small coordinates are often degenerate
+    double p[5][3];
+    i128 q[5][3];
+    for (int i = 0; i < 5; ++i)
+      for (int k = 0; k < 3; ++k) q[i][k] = dist(rng), p[i][k] = double(q[i][k]);
+    ASSERT_EQ(sign(orient2d(p[0], p[1], p[2])), sign(orient2d_ref(q[0], q[1], q[2])));
+    ASSERT_EQ(sign(incircle(p[0], p[1], p[2], p[3])), sign(incircle_ref(q[0], q[1], q[2], q[3])));
+    ASSERT_EQ(sign(orient3d(p[0], p[1], p[2], p[3])), sign(orient3d_ref(q[0], q[1], q[2], q[3])));
+    ASSERT_EQ(sign(insphere(p[0], p[1], p[2], p[3], p[4])),
+              sign(insphere_ref(q[0], q[1], q[2], q[3], q[4])));
+  }
+}
+
+TEST(Predicates, Orient2dOnANearlyCollinearUlpGrid) {
+  // The classic failure of naive orient2d: points near the line y = x,
+  // perturbed by a few ulps. Doubles in [0.5, 32) are integers times 2^-53,
+  // so the exact reference fits in 128 bits.
+  const double b[2] = {12, 12}, c[2] = {24, 24};
+  auto scaled = [](double x) { return i128(std::ldexp(x, 53)); };
+  int degenerate = 0, wrong_naive = 0;
+  for (int i = 0; i < 64; ++i) {
+    for (int j = 0; j < 64; ++j) {
+      double a[2] = {0.5, 0.5};
+      for (int k = 0; k < i; ++k) a[0] = std::nextafter(a[0], 1.0);
+      for (int k = 0; k < j; ++k) a[1] = std::nextafter(a[1], 1.0);
+      i128 qa[2] = {scaled(a[0]), scaled(a[1])}, qb[2] = {scaled(b[0]), scaled(b[1])},
+           qc[2] = {scaled(c[0]), scaled(c[1])};
+      int exact = sign(orient2d_ref(qa, qb, qc));
+      ASSERT_EQ(sign(orient2d(a, b, c)), exact) << i << " " << j;
+      ASSERT_EQ(sign(orient2d(b, c, a)), exact);
+      ASSERT_EQ(sign(orient2d(b, a, c)), -exact);
+      degenerate += exact == 0;
+      double naive = (a[0] - c[0]) * (b[1] - c[1]) - (a[1] - c[1]) * (b[0] - c[0]);
+      wrong_naive += sign(naive) != exact;
+    }
+  }
+  EXPECT_GT(degenerate, 0);
+  EXPECT_GT(wrong_naive, 0) << "the grid does not exercise the exact path";
+}
+
+TEST(Predicates, CocircularAndCosphericalAreZero) {
+  // Integer points on x^2 + y^2 = 25^2 and on a sphere of radius 3 (with
+  // points (0,0,3), (2,2,1), ...), shifted off the origin.
+  const double s = 1e6;
+  double c1[][2] = {
+      {7 + s, 24 + s}, {-24 + s, 7 + s}, {-20 + s, -15 + s}, {15 + s, -20 + s}, {25 + s, 0 + s}};
+  EXPECT_EQ(incircle(c1[0], c1[1], c1[2], c1[3]), 0.0);
+  EXPECT_EQ(incircle(c1[0], c1[1], c1[2], c1[4]), 0.0);
+  double inside[2] = {1 + s, 1 + s}, outside[2] = {30 + s, 0 + s};
+  EXPECT_GT(incircle(c1[0], c1[1], c1[2], inside), 0);  // 7,24 -> -24,7 -> -20,-15 is ccw
+  EXPECT_LT(incircle(c1[0], c1[1], c1[2], outside), 0);
+  double sp[][3] = {{0, 0, 3}, {2, 2, 1}, {-2, 1, 2}, {1, -2, -2}, {0, 3, 0}};
+  for (auto& p : sp)
+    for (double& x : p) x += 1000;
+  EXPECT_EQ(insphere(sp[0], sp[1], sp[2], sp[3], sp[4]), 0.0);
+  double center[3] = {1000, 1000, 1000};
+  double o = orient3d(sp[0], sp[1], sp[2], sp[3]);
+  ASSERT_NE(o, 0);
+  EXPECT_EQ(sign(insphere(sp[0], sp[1], sp[2], sp[3], center)), sign(o));
+}
+
+TEST(Predicates, CoplanarAndCollinearAreZero) {
+  double a[3] = {0.1, 0.2, 0.3}, b[3] = {1.1, 0.7, 0.3}, c[3] = {-3.3, 5.25, 0.3},
+         d[3] = {7.5, -1.25, 0.3};
+  EXPECT_EQ(orient3d(a, b, c, d), 0.0);
+  double up[3] = {0.1, 0.2, 0.30000000000000004};
+  EXPECT_NE(orient3d(a, b, c, up), 0.0);
+  double p[2] = {0.1, 0.1}, q[2] = {0.3, 0.3}, r[2] = {0.7, 0.7};
+  // 0.1, 0.3, 0.7 are not exactly on one line in binary; the sign must
+  // agree with the exact determinant, which is tiny but non-zero or zero.
+  auto scaled = [](double x) { return i128(std::ldexp(x, 60)); };
+  i128 qp[2] = {scaled(p[0]), scaled(p[1])}, qq[2] = {scaled(q[0]), scaled(q[1])},
+       qr[2] = {scaled(r[0]), scaled(r[1])};
+  EXPECT_EQ(sign(orient2d(p, q, r)), sign(orient2d_ref(qp, qq, qr)));
+}
+
+}  // namespace
+}  // namespace vm
