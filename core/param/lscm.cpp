@@ -1,0 +1,204 @@
+// Least-squares conformal map, finite-element form of Marchandise et al.
+// (section 2.1): assemble A_kj = int grad phi_k . grad phi_j (cotangent
+// weights) and C_kj = int n . (grad phi_k x grad phi_j) (+-1/2 per oriented
+// edge of each triangle, so only boundary edges survive), pin two far-apart
+// boundary vertices, solve [A -C; C A] (U; V) = rhs.
+#include "core/param/lscm.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+
+#include "core/mesh/adjacency.h"
+#include "core/mesh/boundary_loops.h"
+
+namespace vm {
+namespace {
+
+struct Vec3 {
+  double x, y, z;
+};
+Vec3 sub(const double* a, const double* b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+
+const double* point(const SurfaceMesh& m, int32_t v) { return &m.points[3 * size_t(v)]; }
+
+// The two vertices of `loop` farthest apart, by two sweeps (exact for
+// convex-ish loops, a good choice otherwise, as the seed recommends).
+std::pair<int32_t, int32_t> far_pair(const SurfaceMesh& m, const std::vector<int32_t>& loop) {
+  auto farthest_from = [&](int32_t a) {
+    int32_t best = loop[0];
+    double best_d = -1;
+    for (int32_t v : loop) {
+      double d = norm(sub(point(m, v), point(m, a)));
+      if (d > best_d) best_d = d, best = v;
+    }
+    return best;
+  };
+  int32_t a = farthest_from(loop[0]);
+  return {a, farthest_from(a)};
+}
+
+// Gradients of the three P1 shape functions of triangle t in 3D, and its
+// area and unit normal. Returns false for a zero-area triangle.
+bool shape_gradients(const SurfaceMesh& m, size_t t, Vec3 grad[3], double& area) {
+  const int32_t* v = &m.triangles[3 * t];
+  Vec3 e0 = sub(point(m, v[2]), point(m, v[1]));  // opposite vertex 0
+  Vec3 e1 = sub(point(m, v[0]), point(m, v[2]));
+  Vec3 e2 = sub(point(m, v[1]), point(m, v[0]));
+  Vec3 n = cross(e2, sub(point(m, v[2]), point(m, v[0])));
+  double twice_area = norm(n);
+  if (!(twice_area > 0)) return false;
+  area = 0.5 * twice_area;
+  Vec3 un = {n.x / twice_area, n.y / twice_area, n.z / twice_area};
+  // grad phi_i = (n x e_i) / (2 area).
+  const Vec3 e[3] = {e0, e1, e2};
+  for (int i = 0; i < 3; ++i) {
+    Vec3 g = cross(un, e[i]);
+    grad[i] = {g.x / twice_area, g.y / twice_area, g.z / twice_area};
+  }
+  return true;
+}
+
+}  // namespace
+
+Result<Parametrization> lscm(const SurfaceMesh& m) {
+  const size_t nv = m.num_vertices(), nt = m.num_triangles();
+  if (nv < 3 || nt == 0) return Result<Parametrization>::Error("patch has fewer than 3 vertices");
+  TriangleAdjacency adj = build_adjacency(m);
+  std::vector<std::vector<int32_t>> loops = boundary_loops(m, adj);
+  if (loops.empty())
+    return Result<Parametrization>::Error("patch has no boundary: a closed surface must be cut");
+  const auto& longest = *std::max_element(
+      loops.begin(), loops.end(), [](const auto& a, const auto& b) { return a.size() < b.size(); });
+  auto [p0, p1] = far_pair(m, longest);
+
+  Parametrization out;
+  out.pinned[0] = p0;
+  out.pinned[1] = p1;
+  out.uv.assign(2 * nv, 0.0);
+  out.uv[2 * size_t(p1)] = norm(sub(point(m, p1), point(m, p0)));
+
+  // Unknown numbering: free vertices get rows 0..nf-1 for u and nf..2nf-1
+  // for v; pinned vertices are moved to the right-hand side.
+  std::vector<int32_t> row(nv, -1);
+  int32_t nf = 0;
+  for (size_t v = 0; v < nv; ++v)
+    if (int32_t(v) != p0 && int32_t(v) != p1) row[v] = nf++;
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(nt * 9 * 4);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * nf);
+  // Adds coefficient `a` of the quadratic form's matrix at (unknown i of
+  // block bi, unknown j of block bj), block 0 = u, 1 = v.
+  auto add = [&](int32_t vi, int bi, int32_t vj, int bj, double a) {
+    if (row[vi] < 0) return;  // pinned rows are not equations
+    int32_t r = row[vi] + bi * nf;
+    if (row[vj] >= 0) {
+      triplets.emplace_back(r, row[vj] + bj * nf, a);
+    } else {
+      rhs[r] -= a * out.uv[2 * size_t(vj) + size_t(bj)];
+    }
+  };
+  for (size_t t = 0; t < nt; ++t) {
+    const int32_t* v = &m.triangles[3 * t];
+    Vec3 g[3];
+    double area = 0;
+    bool ok = shape_gradients(m, t, g, area);
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        if (ok) {
+          double a = dot(g[i], g[j]) * area;  // A_ij
+          add(v[i], 0, v[j], 0, a);
+          add(v[i], 1, v[j], 1, a);
+        }
+        // C_ij = +1/2 when j follows i counterclockwise, -1/2 when it
+        // precedes it (independent of the shape), so zero-area triangles
+        // still cancel their neighbors' interior-edge terms.
+        double c = j == (i + 1) % 3 ? 0.5 : (i == (j + 1) % 3 ? -0.5 : 0.0);
+        if (c != 0) {
+          add(v[i], 0, v[j], 1, -c);  // [A -C; C A]
+          add(v[i], 1, v[j], 0, c);
+        }
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> L(2 * nf, 2 * nf);
+  L.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
+  if (solver.info() != Eigen::Success)
+    return Result<Parametrization>::Error("conformal map: the sparse factorization failed");
+  Eigen::VectorXd x = solver.solve(rhs);
+  if (solver.info() != Eigen::Success || !x.allFinite())
+    return Result<Parametrization>::Error("conformal map: the sparse solve failed");
+  for (size_t v = 0; v < nv; ++v) {
+    if (row[v] < 0) continue;
+    out.uv[2 * v] = x[row[v]];
+    out.uv[2 * v + 1] = x[row[v] + nf];
+  }
+  for (size_t t = 0; t < nt; ++t) {
+    const double* a = &out.uv[2 * size_t(m.triangles[3 * t])];
+    const double* b = &out.uv[2 * size_t(m.triangles[3 * t + 1])];
+    const double* c = &out.uv[2 * size_t(m.triangles[3 * t + 2])];
+    if ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) <= 0) ++out.flipped_triangles;
+  }
+  out.conformal_energy = conformal_energy(m, out.uv);
+  return out;
+}
+
+double dirichlet_energy(const SurfaceMesh& m, const std::vector<double>& f) {
+  double e = 0;
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    Vec3 g[3];
+    double area;
+    if (!shape_gradients(m, t, g, area)) continue;
+    Vec3 grad = {0, 0, 0};
+    for (int i = 0; i < 3; ++i) {
+      double fi = f[size_t(m.triangles[3 * t + i])];
+      grad = {grad.x + fi * g[i].x, grad.y + fi * g[i].y, grad.z + fi * g[i].z};
+    }
+    e += 0.5 * dot(grad, grad) * area;
+  }
+  return e;
+}
+
+double signed_area(const SurfaceMesh& m, const std::vector<double>& uv) {
+  double s = 0;
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    const double* a = &uv[2 * size_t(m.triangles[3 * t])];
+    const double* b = &uv[2 * size_t(m.triangles[3 * t + 1])];
+    const double* c = &uv[2 * size_t(m.triangles[3 * t + 2])];
+    s += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+  }
+  return s;
+}
+
+double conformal_energy(const SurfaceMesh& m, const std::vector<double>& uv) {
+  double e = 0;
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    Vec3 g[3];
+    double area;
+    if (!shape_gradients(m, t, g, area)) continue;
+    Vec3 n = cross(sub(point(m, m.triangles[3 * t + 1]), point(m, m.triangles[3 * t])),
+                   sub(point(m, m.triangles[3 * t + 2]), point(m, m.triangles[3 * t])));
+    double nn = norm(n);
+    n = {n.x / nn, n.y / nn, n.z / nn};
+    Vec3 gu = {0, 0, 0}, gv = {0, 0, 0};
+    for (int i = 0; i < 3; ++i) {
+      size_t vi = size_t(m.triangles[3 * t + i]);
+      gu = {gu.x + uv[2 * vi] * g[i].x, gu.y + uv[2 * vi] * g[i].y, gu.z + uv[2 * vi] * g[i].z};
+      gv = {gv.x + uv[2 * vi + 1] * g[i].x, gv.y + uv[2 * vi + 1] * g[i].y,
+            gv.z + uv[2 * vi + 1] * g[i].z};
+    }
+    Vec3 r = cross(n, gu);  // grad u rotated by +90 degrees in the plane
+    Vec3 d = {r.x - gv.x, r.y - gv.y, r.z - gv.z};
+    e += 0.5 * dot(d, d) * area;
+  }
+  return e;
+}
+
+}  // namespace vm
