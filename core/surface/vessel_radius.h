@@ -1,0 +1,22 @@
+// Local vessel radius R(x) at the surface vertices, for the radius-adaptive
+// size field h = 2 pi R / N (Marchandise et al., eq. 11).
+#pragma once
+
+#include <vector>
+
+#include "core/mesh/surface_mesh.h"
+
+namespace vm {
+
+/// Radius of the maximal inscribed ball touching each vertex, by the
+/// shrinking-ball method (Ma, Bai and Kim, "3D medial axis point
+/// approximation using nearest neighbors and the normal field", Visual
+/// Computer 28, 2012) with their separation-angle denoising, then two passes
+/// of a median over each vertex's 1-ring to remove remaining outliers.
+/// Returns num_vertices radii in model units. Preconditions: manifold,
+/// outward oriented (inward normals point into the lumen), at least one
+/// triangle. Vertices whose ball never closes (e.g. facing an opening) get
+/// the median of their neighbors, or at most half the bounding-box diagonal.
+std::vector<double> vessel_radius(const SurfaceMesh& mesh);
+
+}  // namespace vm

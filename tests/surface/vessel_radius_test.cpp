@@ -1,0 +1,77 @@
+#include "core/surface/vessel_radius.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/mesh/topology.h"
+#include "core/phantom/vessel_phantom.h"
+#include "tests/support/test_meshes.h"
+
+namespace vm {
+namespace {
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+TEST(VesselRadius, ExactOnACylinder) {
+  SurfaceMesh tube = testing::open_tube(48, 40, 1.5, 12.0);
+  std::vector<double> r = vessel_radius(tube);
+  ASSERT_EQ(r.size(), tube.num_vertices());
+  for (double x : r) EXPECT_NEAR(x, 1.5, 0.02 * 1.5);
+}
+
+TEST(VesselRadius, TorusGivesItsTubeRadius) {
+  SurfaceMesh t = testing::torus(96, 32, 4.0, 0.8);
+  std::vector<double> r = vessel_radius(t);
+  for (double x : r) EXPECT_NEAR(x, 0.8, 0.05 * 0.8);
+}
+
+TEST(VesselRadius, WithinTenPercentOnNoisySegmentationPhantoms) {
+  // At each opening of the phantom the true tube radius is known: the
+  // median estimate over the rim vertices must be within 10% of it.
+  for (PhantomKind kind : {PhantomKind::kTube, PhantomKind::kBifurcation}) {
+    PhantomOptions o;
+    o.kind = kind;
+    o.voxel = 0.06;
+    o.noise = 0.3;
+    PhantomTruth truth;
+    auto m = make_vessel_phantom(o, &truth);
+    ASSERT_TRUE(m.ok());
+    std::vector<double> r = vessel_radius(m.value());
+    TopologyReport topo = analyze_topology(m.value());
+    ASSERT_EQ(int(topo.openings.size()), truth.openings);
+    for (const Opening& op : topo.openings) {
+      // The truth entry with the nearest center.
+      size_t best = 0;
+      double best_d = 1e300;
+      for (size_t i = 0; i < truth.opening_centers.size(); ++i) {
+        double d = 0;
+        for (int k = 0; k < 3; ++k) d += std::pow(op.centroid[k] - truth.opening_centers[i][k], 2);
+        if (d < best_d) best_d = d, best = i;
+      }
+      // Vertices within one radius of the rim's centroid plane, away from
+      // the cut itself.
+      std::vector<double> near;
+      for (size_t v = 0; v < m.value().num_vertices(); ++v) {
+        double d = 0, dist = 0;
+        for (int k = 0; k < 3; ++k) {
+          double x = m.value().points[3 * v + k] - op.centroid[k];
+          d += x * op.normal[k];
+          dist += x * x;
+        }
+        if (d < -0.3 && d > -0.8 &&
+            dist < 4 * truth.opening_radii[best] * truth.opening_radii[best])
+          near.push_back(r[v]);
+      }
+      ASSERT_GT(near.size(), 20u);
+      EXPECT_NEAR(median(near), truth.opening_radii[best], 0.1 * truth.opening_radii[best]);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace vm
