@@ -17,448 +17,32 @@
 #include <string>
 
 #include "core/geom/predicates.h"
+#include "core/mesh2d/triangulation2d.h"
 
 namespace vm {
-namespace {
 
-struct Tri {
-  std::array<int32_t, 3> v;  // counterclockwise
-  std::array<int32_t, 3> n;  // n[k]: neighbor across the edge opposite v[k]
-  std::array<uint8_t, 3> c;  // c[k]: that edge is a constraint
-};
+using detail::Triangulation;
 
-inline int next3(int k) { return k == 2 ? 0 : k + 1; }
-inline int prev3(int k) { return k == 0 ? 2 : k - 1; }
+namespace detail {
 
-class Triangulation {
- public:
-  explicit Triangulation(std::vector<double> pts) : p_(std::move(pts)) {}
-
-  const double* pt(int32_t v) const { return &p_[2 * size_t(v)]; }
-  size_t num_points() const { return p_.size() / 2; }
-
-  /// Adds the enclosing triangle (vertices appended to the point list).
-  void init_super(double cx, double cy, double size) {
-    super_ = int32_t(num_points());
-    const double pts[3][2] = {
-        {cx - 20 * size, cy - 20 * size}, {cx + 20 * size, cy - 20 * size}, {cx, cy + 20 * size}};
-    for (auto& q : pts) p_.insert(p_.end(), {q[0], q[1]});
-    tris_.push_back({{super_, super_ + 1, super_ + 2}, {-1, -1, -1}, {0, 0, 0}});
-    vtri_.assign(num_points(), -1);
-    for (int k = 0; k < 3; ++k) vtri_[super_ + k] = 0;
-  }
-
-  bool is_super(int32_t v) const { return v >= super_; }
-
-  /// Inserts point v; returns v, or the vertex it coincides with.
-  int32_t insert(int32_t v) {
-    int32_t t = locate(pt(v));
-    Tri& T = tris_[t];
-    int zero = -1, zeros = 0;
-    for (int k = 0; k < 3; ++k) {
-      if (orient2d(pt(T.v[next3(k)]), pt(T.v[prev3(k)]), pt(v)) == 0) {
-        zero = k;
-        ++zeros;
-      }
-    }
-    if (zeros >= 2) {  // on a vertex: the one shared by the two zero edges
-      for (int k = 0; k < 3; ++k)
-        if (pt(T.v[k])[0] == pt(v)[0] && pt(T.v[k])[1] == pt(v)[1]) return T.v[k];
-    }
-    if (zeros == 1)
-      split_edge(t, zero, v);
-    else
-      split_triangle(t, v);
-    legalize();
-    return v;
-  }
-
-  /// Makes segment (a, b) an edge, splitting it at collinear vertices.
-  /// Returns false if it crosses an existing constraint.
-  bool recover(int32_t a, int32_t b) {
-    std::vector<std::pair<int32_t, int32_t>> todo = {{a, b}};
-    while (!todo.empty()) {
-      auto [s, e] = todo.back();
-      todo.pop_back();
-      if (s == e) continue;
-      int32_t t, k;
-      if (find_edge(s, e, t, k)) {
-        mark_constraint(t, k);
-        continue;
-      }
-      // Walk from s toward e collecting the crossed edges.
-      std::deque<std::pair<int32_t, int32_t>> crossing;  // vertex pairs
-      int32_t on_segment = -1;
-      if (!crossed_edges(s, e, crossing, on_segment)) return false;
-      if (on_segment >= 0) {  // a vertex lies on the segment: split there
-        todo.push_back({on_segment, e});
-        todo.push_back({s, on_segment});
-        continue;
-      }
-      // Sloan: flip crossing edges of convex quads until none crosses.
-      size_t stall = 0;
-      while (!crossing.empty()) {
-        auto [u, w] = crossing.front();
-        crossing.pop_front();
-        int32_t tt, kk;
-        if (!find_edge(u, w, tt, kk)) continue;
-        const Tri& T = tris_[tt];
-        int32_t x = T.v[kk];
-        int jj = opposite_index(T.n[kk], tt);
-        if (jj < 0) return false;
-        int32_t y = tris_[T.n[kk]].v[jj];
-        // Convex quad x, u, y, w (strictly): the flip is valid.
-        if (orient2d(pt(x), pt(y), pt(u)) * orient2d(pt(x), pt(y), pt(w)) < 0 &&
-            orient2d(pt(u), pt(w), pt(x)) * orient2d(pt(u), pt(w), pt(y)) < 0) {
-          flip(tt, kk);
-          stall = 0;
-          // The new edge (x, y) may still cross the segment.
-          if (x != s && x != e && y != s && y != e && crosses(s, e, x, y))
-            crossing.push_back({x, y});
-        } else {
-          crossing.push_back({u, w});
-          if (++stall > 4 * crossing.size() + 16) return false;
-        }
-      }
-      if (!find_edge(s, e, t, k)) return false;
-      mark_constraint(t, k);
-    }
-    return true;
-  }
-
-  /// Flips unconstrained non-Delaunay edges until none is left.
-  void make_delaunay() {
-    for (int32_t t = 0; t < int32_t(tris_.size()); ++t)
-      for (int k = 0; k < 3; ++k) stack_.push_back({t, k});
-    legalize();
-  }
-
-  /// Triangles inside the domain (odd number of constraints crossed from
-  /// the enclosing triangle), without the enclosing vertices.
-  std::vector<int32_t> inside_triangles() const {
-    std::vector<int> depth(tris_.size(), -1);
-    std::vector<int32_t> layer, next_layer;
-    for (int32_t t = 0; t < int32_t(tris_.size()); ++t)
-      if (is_super(tris_[t].v[0]) || is_super(tris_[t].v[1]) || is_super(tris_[t].v[2])) {
-        depth[t] = 0;
-        layer.push_back(t);
-      }
-    for (int d = 0; !layer.empty(); ++d) {
-      // Spread within the layer across unconstrained edges, collect the
-      // triangles across constraints for the next layer.
-      for (size_t i = 0; i < layer.size(); ++i) {
-        const Tri& T = tris_[layer[i]];
-        for (int k = 0; k < 3; ++k) {
-          int32_t u = T.n[k];
-          if (u < 0 || depth[u] >= 0) continue;
-          if (T.c[k]) {
-            next_layer.push_back(u);
-          } else {
-            depth[u] = d;
-            layer.push_back(u);
-          }
-        }
-      }
-      layer.clear();
-      for (int32_t u : next_layer)
-        if (depth[u] < 0) {
-          depth[u] = d + 1;
-          layer.push_back(u);
-        }
-      next_layer.clear();
-    }
-    std::vector<int32_t> out;
-    for (int32_t t = 0; t < int32_t(tris_.size()); ++t) {
-      const Tri& T = tris_[t];
-      if (depth[t] % 2 == 1 && !is_super(T.v[0]) && !is_super(T.v[1]) && !is_super(T.v[2]))
-        out.insert(out.end(), T.v.begin(), T.v.end());
-    }
-    return out;
-  }
-
-  std::vector<int32_t> all_real_triangles() const {
-    std::vector<int32_t> out;
-    for (const Tri& T : tris_)
-      if (!is_super(T.v[0]) && !is_super(T.v[1]) && !is_super(T.v[2]))
-        out.insert(out.end(), T.v.begin(), T.v.end());
-    return out;
-  }
-
- private:
-  void set(int32_t t, const Tri& T) {
-    tris_[t] = T;
-    for (int32_t v : T.v) vtri_[v] = t;
-  }
-
-  int opposite_index(int32_t t, int32_t neighbor) const {
-    for (int k = 0; k < 3; ++k)
-      if (tris_[t].n[k] == neighbor) return k;
-    return -1;
-  }
-
-  void relink(int32_t t, int32_t from, int32_t to) {
-    if (t < 0) return;
-    for (int k = 0; k < 3; ++k)
-      if (tris_[t].n[k] == from) tris_[t].n[k] = to;
-  }
-
-  // Stochastic visibility walk (Devillers, Pion, Teillaud 2002).
-  int32_t locate(const double* q) {
-    int32_t t = last_ >= 0 && last_ < int32_t(tris_.size()) ? last_ : 0;
-    for (size_t steps = 0; steps < 4 * tris_.size() + 64; ++steps) {
-      const Tri& T = tris_[t];
-      int start = int(rng_() % 3);
-      int32_t go = -1;
-      for (int i = 0; i < 3 && go < 0; ++i) {
-        int k = (start + i) % 3;
-        if (orient2d(pt(T.v[next3(k)]), pt(T.v[prev3(k)]), q) < 0) go = T.n[k];
-      }
-      if (go < 0) return last_ = t;
-      t = go;
-    }
-    // Fallback (never expected): scan.
-    for (int32_t s = 0; s < int32_t(tris_.size()); ++s) {
-      const Tri& T = tris_[s];
-      bool inside = true;
-      for (int k = 0; k < 3 && inside; ++k)
-        inside = orient2d(pt(T.v[next3(k)]), pt(T.v[prev3(k)]), q) >= 0;
-      if (inside) return last_ = s;
-    }
-    return last_ = 0;
-  }
-
-  void split_triangle(int32_t t, int32_t p) {
-    const Tri T = tris_[t];
-    const int32_t t1 = int32_t(tris_.size()), t2 = t1 + 1;
-    tris_.resize(tris_.size() + 2);
-    set(t, {{p, T.v[1], T.v[2]}, {T.n[0], t1, t2}, {T.c[0], 0, 0}});
-    set(t1, {{p, T.v[2], T.v[0]}, {T.n[1], t2, t}, {T.c[1], 0, 0}});
-    set(t2, {{p, T.v[0], T.v[1]}, {T.n[2], t, t1}, {T.c[2], 0, 0}});
-    relink(T.n[1], t, t1);
-    relink(T.n[2], t, t2);
-    stack_.insert(stack_.end(), {{t, 0}, {t1, 0}, {t2, 0}});
-  }
-
-  // p lies on the edge opposite vertex k of t.
-  void split_edge(int32_t t, int k, int32_t p) {
-    const Tri T = tris_[t];
-    const int32_t a = T.v[k], b = T.v[next3(k)], c = T.v[prev3(k)];
-    const int32_t u = T.n[k];
-    const uint8_t cbc = T.c[k];
-    const int32_t Nb = T.n[next3(k)], Nc = T.n[prev3(k)];
-    const uint8_t cNb = T.c[next3(k)], cNc = T.c[prev3(k)];
-    const int32_t t1 = int32_t(tris_.size());
-    tris_.resize(tris_.size() + 1);
-    if (u < 0) {  // hull edge (only possible on the enclosing triangle)
-      set(t, {{a, b, p}, {-1, t1, Nc}, {cbc, 0, cNc}});
-      set(t1, {{a, p, c}, {-1, Nb, t}, {cbc, cNb, 0}});
-      relink(Nb, t, t1);
-      stack_.insert(stack_.end(), {{t, 2}, {t1, 1}});
-      return;
-    }
-    const Tri U = tris_[u];
-    const int j = opposite_index(u, t);
-    if (j < 0) return;  // broken adjacency: cannot happen
-    const int32_t d = U.v[j];
-    const int32_t Mc = U.n[next3(j)], Mb = U.n[prev3(j)];  // opposite c, b in u
-    const uint8_t cMc = U.c[next3(j)], cMb = U.c[prev3(j)];
-    const int32_t u1 = int32_t(tris_.size());
-    tris_.resize(tris_.size() + 1);
-    set(t, {{a, b, p}, {u1, t1, Nc}, {cbc, 0, cNc}});
-    set(t1, {{a, p, c}, {u, Nb, t}, {cbc, cNb, 0}});
-    set(u, {{d, c, p}, {t1, u1, Mb}, {cbc, 0, cMb}});
-    set(u1, {{d, p, b}, {t, Mc, u}, {cbc, cMc, 0}});
-    relink(Nb, t, t1);
-    relink(Mc, u, u1);
-    stack_.insert(stack_.end(), {{t, 2}, {t1, 1}, {u, 2}, {u1, 1}});
-  }
-
-  // Flips the edge opposite vertex k of t (the quad must be convex).
-  void flip(int32_t t, int k) {
-    const Tri T = tris_[t];
-    const int32_t u = T.n[k];
-    const Tri U = tris_[u];
-    const int j = opposite_index(u, t);
-    if (j < 0) return;  // broken adjacency: cannot happen
-    const int32_t P = T.v[k], A = T.v[next3(k)], B = T.v[prev3(k)], Q = U.v[j];
-    const int32_t N1 = T.n[next3(k)], N2 = T.n[prev3(k)];  // opposite A, B in t
-    const uint8_t c1 = T.c[next3(k)], c2 = T.c[prev3(k)];
-    const int32_t M1 = U.n[next3(j)], M2 = U.n[prev3(j)];  // opposite B, A in u
-    const uint8_t d1 = U.c[next3(j)], d2 = U.c[prev3(j)];
-    set(t, {{P, A, Q}, {M1, u, N2}, {d1, 0, c2}});
-    set(u, {{Q, B, P}, {N1, t, M2}, {c1, 0, d2}});
-    relink(N1, t, u);
-    relink(M1, u, t);
-  }
-
-  // Lawson: pops (t, k) and flips the edge opposite v[k] when the vertex
-  // across it lies strictly inside t's circumcircle.
-  void legalize() {
-    while (!stack_.empty()) {
-      auto [t, k] = stack_.back();
-      stack_.pop_back();
-      const Tri& T = tris_[t];
-      int32_t u = T.n[k];
-      if (u < 0 || T.c[k]) continue;
-      int j = opposite_index(u, t);
-      if (j < 0) continue;
-      int32_t q = tris_[u].v[j];
-      if (incircle(pt(T.v[0]), pt(T.v[1]), pt(T.v[2]), pt(q)) <= 0) continue;
-      flip(t, k);
-      // The two outer edges of the new triangles may now be illegal.
-      stack_.insert(stack_.end(), {{t, 0}, {t, 2}, {u, 0}, {u, 2}});
-    }
-  }
-
-  // Finds the triangle t with edge (a, b) (either direction) opposite v[k].
-  bool find_edge(int32_t a, int32_t b, int32_t& t, int32_t& k) const {
-    int32_t start = vtri_[a];
-    int32_t cur = start;
-    // Rotate around a; a is interior (enclosing triangle), so the loop closes.
-    for (size_t guard = 0; guard < tris_.size() + 1; ++guard) {
-      const Tri& T = tris_[cur];
-      int ia = -1;
-      for (int i = 0; i < 3; ++i)
-        if (T.v[i] == a) ia = i;
-      if (ia < 0) return false;
-      if (T.v[next3(ia)] == b) {
-        t = cur;
-        k = prev3(ia);
-        return true;
-      }
-      if (T.v[prev3(ia)] == b) {
-        t = cur;
-        k = next3(ia);
-        return true;
-      }
-      int32_t nx = T.n[next3(ia)];  // across edge (v[prev], a)
-      if (nx < 0 || nx == start) return false;
-      cur = nx;
-    }
-    return false;
-  }
-
-  void mark_constraint(int32_t t, int32_t k) {
-    tris_[t].c[k] = 1;
-    int32_t u = tris_[t].n[k];
-    if (u >= 0) tris_[u].c[opposite_index(u, t)] = 1;
-  }
-
-  // Do segments (s, e) and (x, y) cross at a point interior to both?
-  bool crosses(int32_t s, int32_t e, int32_t x, int32_t y) const {
-    double o1 = orient2d(pt(s), pt(e), pt(x)), o2 = orient2d(pt(s), pt(e), pt(y));
-    double o3 = orient2d(pt(x), pt(y), pt(s)), o4 = orient2d(pt(x), pt(y), pt(e));
-    return o1 * o2 < 0 && o3 * o4 < 0;
-  }
-
-  // Edges crossed by segment (s, e), walking from s. Sets on_segment to a
-  // vertex lying strictly inside the segment if one is met first. Returns
-  // false if a crossed edge is a constraint (crossing segments).
-  bool crossed_edges(int32_t s, int32_t e, std::deque<std::pair<int32_t, int32_t>>& out,
-                     int32_t& on_segment) const {
-    // The triangle around s whose opposite edge the segment passes through.
-    int32_t start = vtri_[s], cur = start, t = -1, k = -1;
-    for (size_t guard = 0; guard < tris_.size() + 1; ++guard) {
-      const Tri& T = tris_[cur];
-      int is = 0;
-      while (T.v[is] != s) ++is;
-      int32_t l = T.v[next3(is)], r = T.v[prev3(is)];
-      double ol = orient2d(pt(s), pt(e), pt(l)), or_ = orient2d(pt(s), pt(e), pt(r));
-      if (ol == 0 && dot_ahead(s, e, l)) {
-        on_segment = l;
-        return true;
-      }
-      if (or_ == 0 && dot_ahead(s, e, r)) {
-        on_segment = r;
-        return true;
-      }
-      if (ol < 0 && or_ > 0) {
-        t = cur;
-        k = is;
-        break;
-      }
-      cur = T.n[next3(is)];
-      if (cur < 0 || cur == start) return false;
-    }
-    if (t < 0) return false;
-    // Cross triangles until e.
-    for (size_t guard = 0; guard < tris_.size() + 1; ++guard) {
-      const Tri& T = tris_[t];
-      int32_t a = T.v[next3(k)], b = T.v[prev3(k)];
-      if (T.c[k]) return false;
-      out.push_back({a, b});
-      int32_t u = T.n[k];
-      const Tri& U = tris_[u];
-      int j = opposite_index(u, t);
-      if (j < 0) return false;
-      int32_t w = U.v[j];
-      if (w == e) return true;
-      double ow = orient2d(pt(s), pt(e), pt(w));
-      if (ow == 0) {
-        on_segment = w;
-        out.clear();
-        return true;
-      }
-      // Leave u = (w, b, a) by the edge joining a right vertex to a left one:
-      // a is right of s->e and b left, so w left means edge (a, w), opposite
-      // b; w right means edge (w, b), opposite a.
-      t = u;
-      k = ow > 0 ? index_of(U, b) : index_of(U, a);
-    }
-    return false;
-  }
-
-  static int index_of(const Tri& T, int32_t v) {
-    for (int i = 0; i < 3; ++i)
-      if (T.v[i] == v) return i;
-    return -1;
-  }
-
-  // Is v (collinear with s, e) strictly between s and e?
-  bool dot_ahead(int32_t s, int32_t e, int32_t v) const {
-    double dx = pt(e)[0] - pt(s)[0], dy = pt(e)[1] - pt(s)[1];
-    double t = (pt(v)[0] - pt(s)[0]) * dx + (pt(v)[1] - pt(s)[1]) * dy;
-    return t > 0 && t < dx * dx + dy * dy;
-  }
-
-  std::vector<double> p_;
-  std::vector<Tri> tris_;
-  std::vector<int32_t> vtri_;
-  std::vector<std::pair<int32_t, int>> stack_;
-  int32_t super_ = 0;
-  int32_t last_ = -1;
-  uint64_t state_ = 0x9E3779B97F4A7C15ULL;
-  uint64_t rng_() {
-    state_ ^= state_ << 13;
-    state_ ^= state_ >> 7;
-    state_ ^= state_ << 17;
-    return state_;
-  }
-};
-
-}  // namespace
-
-Result<Mesh2D> constrained_delaunay(const std::vector<double>& points,
-                                    const std::vector<int32_t>& segments) {
+Status build_constrained(const std::vector<double>& points, const std::vector<int32_t>& segments,
+                         Triangulation& tr, std::vector<int32_t>& alias) {
   const size_t n = points.size() / 2;
-  Mesh2D out;
-  out.points = points;
-  if (n < 3) return out;
   double lo[2] = {points[0], points[1]}, hi[2] = {points[0], points[1]};
   for (size_t i = 0; i < n; ++i)
     for (int k = 0; k < 2; ++k) {
       double x = points[2 * i + k];
-      if (!std::isfinite(x)) return Result<Mesh2D>::Error("non-finite point coordinate");
+      if (!std::isfinite(x)) return Status::Error("non-finite point coordinate");
       lo[k] = std::min(lo[k], x);
       hi[k] = std::max(hi[k], x);
     }
   for (int32_t s : segments)
-    if (s < 0 || size_t(s) >= n) return Result<Mesh2D>::Error("segment index out of range");
+    if (s < 0 || size_t(s) >= n) return Status::Error("segment index out of range");
   double size = std::max({hi[0] - lo[0], hi[1] - lo[1], 1e-300});
-  Triangulation tr(points);
   tr.init_super(0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), size);
   // Phase 1: insert in a shuffled order (deterministic).
-  std::vector<int32_t> order(n), alias(n);
+  std::vector<int32_t> order(n);
+  alias.assign(n, -1);
   for (size_t i = 0; i < n; ++i) order[i] = int32_t(i);
   uint64_t s = 88172645463325252ULL;
   for (size_t i = n - 1; i > 0; --i) {
@@ -471,11 +55,25 @@ Result<Mesh2D> constrained_delaunay(const std::vector<double>& points,
     int32_t a = alias[segments[i]], b = alias[segments[i + 1]];
     if (a == b) continue;
     if (!tr.recover(a, b))
-      return Result<Mesh2D>::Error("segments cross each other (segment " + std::to_string(i / 2) +
-                                   ")");
+      return Status::Error("segments cross each other (segment " + std::to_string(i / 2) + ")");
   }
   tr.make_delaunay();
   // Phase 3: regions.
+  tr.classify_regions();
+  return Status::Ok();
+}
+
+}  // namespace detail
+
+Result<Mesh2D> constrained_delaunay(const std::vector<double>& points,
+                                    const std::vector<int32_t>& segments) {
+  Mesh2D out;
+  out.points = points;
+  if (points.size() / 2 < 3) return out;
+  Triangulation tr(points);
+  std::vector<int32_t> alias;
+  Status st = detail::build_constrained(points, segments, tr, alias);
+  if (!st.ok()) return st;
   out.triangles = segments.empty() ? tr.all_real_triangles() : tr.inside_triangles();
   return out;
 }

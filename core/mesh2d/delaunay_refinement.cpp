@@ -1,0 +1,115 @@
+// Delaunay refinement (Chew 1989; Ruppert, J. Algorithms 18, 1995) with the
+// boundary frozen: bad triangles, by size relative to the size field or by
+// smallest angle, get their circumcenter inserted by Lawson insertion into
+// the constrained triangulation (triangulation2d.h), in passes.
+#include "core/mesh2d/delaunay_refinement.h"
+
+#include <cmath>
+#include <numbers>
+#include <unordered_set>
+
+#include "core/mesh2d/triangulation2d.h"
+
+namespace vm {
+namespace {
+
+using detail::Triangulation;
+
+struct Circle {
+  double cx, cy, r2;
+};
+
+// Circumcircle of a (non-degenerate) triangle.
+Circle circumcircle(const double* a, const double* b, const double* c) {
+  double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
+  double d = 2 * (bx * cy - by * cx);
+  double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  double ux = (cy * b2 - by * c2) / d, uy = (bx * c2 - cx * b2) / d;
+  return {a[0] + ux, a[1] + uy, ux * ux + uy * uy};
+}
+
+uint64_t triple_key(std::array<int32_t, 3> v) {
+  std::sort(v.begin(), v.end());
+  return (uint64_t(uint32_t(v[0])) * 0x9E3779B97F4A7C15ULL) ^
+         (uint64_t(uint32_t(v[1])) * 0xC2B2AE3D27D4EB4FULL) ^ uint64_t(uint32_t(v[2]));
+}
+
+}  // namespace
+
+Result<Mesh2D> delaunay_refinement(const std::vector<double>& points,
+                                   const std::vector<int32_t>& segments, const SizeField2D& size,
+                                   const RefinementOptions& options) {
+  if (points.size() / 2 < 3) return Result<Mesh2D>::Error("refinement needs at least 3 points");
+  Triangulation tr(points);
+  std::vector<int32_t> alias;
+  Status st = detail::build_constrained(points, segments, tr, alias);
+  if (!st.ok()) return st;
+
+  const double sin_min = std::sin(options.min_angle_degrees * std::numbers::pi / 180);
+  const double max_ratio = 1.0 / (2 * sin_min);  // circumradius / shortest edge
+  std::unordered_set<uint64_t> tried;            // circumcenter already tried
+  size_t inserted = 0;
+  for (int pass = 0; pass < 200; ++pass) {
+    size_t inserted_this_pass = 0;
+    for (int32_t t = 0; t < int32_t(tr.num_triangles()); ++t) {
+      const auto& T = tr.tri(t);
+      if (!T.in || tr.has_super_vertex(t)) continue;
+      const double *a = tr.pt(T.v[0]), *b = tr.pt(T.v[1]), *c = tr.pt(T.v[2]);
+      double g[2] = {(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3};
+      double h = size(g[0], g[1]);
+      if (!(h > 0)) return Result<Mesh2D>::Error("the size field must be positive");
+      Circle cc = circumcircle(a, b, c);
+      double shortest2 = std::min({(a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]),
+                                   (b[0] - c[0]) * (b[0] - c[0]) + (b[1] - c[1]) * (b[1] - c[1]),
+                                   (c[0] - a[0]) * (c[0] - a[0]) + (c[1] - a[1]) * (c[1] - a[1])});
+      const double r_target = options.size_tolerance * h / std::sqrt(3.0);
+      bool too_large = cc.r2 > r_target * r_target;
+      bool too_poor = cc.r2 > max_ratio * max_ratio * shortest2 && shortest2 > 0.25 * h * h;
+      if (!too_large && !too_poor) continue;
+      // Candidate: the circumcenter, unless outside the domain or tried.
+      uint64_t key = triple_key(T.v);
+      double q[2] = {cc.cx, cc.cy};
+      bool use_centroid = !std::isfinite(q[0]) || !std::isfinite(q[1]) || tried.count(key);
+      if (!use_centroid) {
+        int32_t s = tr.find_triangle(q);
+        use_centroid = !tr.tri(s).in || tr.has_super_vertex(s);
+        tried.insert(key);
+      }
+      if (use_centroid) {
+        if (!too_large) continue;  // poor but small: leave it
+        q[0] = g[0];
+        q[1] = g[1];
+      }
+      // Never on a constrained edge (the boundary is frozen).
+      int32_t s = tr.find_triangle(q);
+      const auto& S = tr.tri(s);
+      bool on_constraint = false;
+      for (int k = 0; k < 3; ++k)
+        if (S.c[k] && orient2d(tr.pt(S.v[(k + 1) % 3]), tr.pt(S.v[(k + 2) % 3]), q) == 0)
+          on_constraint = true;
+      if (on_constraint || !S.in) continue;
+      int32_t v = tr.add_point(q[0], q[1]);
+      tr.insert(v);
+      ++inserted_this_pass;
+      if (++inserted > options.max_inserted)
+        return Result<Mesh2D>::Error("refinement stopped: more than " +
+                                     std::to_string(options.max_inserted) + " points inserted");
+    }
+    if (inserted_this_pass == 0) break;
+  }
+  // Output: the input points, then the inserted ones (which come after the
+  // enclosing triangle's three in tr.points()).
+  Mesh2D out;
+  out.points = points;
+  const size_t n_input = points.size() / 2;
+  std::vector<int32_t> remap(tr.num_points(), -1);
+  for (size_t i = 0; i < n_input; ++i) remap[i] = int32_t(i);
+  for (size_t i = n_input + 3; i < tr.num_points(); ++i) {
+    remap[i] = int32_t(out.points.size() / 2);
+    out.points.insert(out.points.end(), {tr.pt(int32_t(i))[0], tr.pt(int32_t(i))[1]});
+  }
+  for (int32_t v : tr.inside_triangles()) out.triangles.push_back(remap[v]);
+  return out;
+}
+
+}  // namespace vm
