@@ -113,12 +113,7 @@ Result<Parametrization> map_to_disk(const SurfaceMesh& m, DiskWeights weights) {
       out.uv[2 * v + 1] = x(row[v], 1);
     }
   }
-  for (size_t t = 0; t < nt; ++t) {
-    const double* a = &out.uv[2 * size_t(m.triangles[3 * t])];
-    const double* b = &out.uv[2 * size_t(m.triangles[3 * t + 1])];
-    const double* c = &out.uv[2 * size_t(m.triangles[3 * t + 2])];
-    if ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) <= 0) ++out.flipped_triangles;
-  }
+  out.flipped_triangles = count_flipped(m, out.uv);
   out.conformal_energy = conformal_energy(m, out.uv);
   return out;
 }

@@ -65,6 +65,14 @@ bool shape_gradients(const SurfaceMesh& m, size_t t, Vec3 grad[3], double& area)
   return true;
 }
 
+// Twice the signed area of the image of triangle t under uv.
+double twice_uv_area(const SurfaceMesh& m, const std::vector<double>& uv, size_t t) {
+  const double* a = &uv[2 * size_t(m.triangles[3 * t])];
+  const double* b = &uv[2 * size_t(m.triangles[3 * t + 1])];
+  const double* c = &uv[2 * size_t(m.triangles[3 * t + 2])];
+  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
 }  // namespace
 
 Result<Parametrization> lscm(const SurfaceMesh& m) {
@@ -140,12 +148,7 @@ Result<Parametrization> lscm(const SurfaceMesh& m) {
     out.uv[2 * v] = x[row[v]];
     out.uv[2 * v + 1] = x[row[v] + nf];
   }
-  for (size_t t = 0; t < nt; ++t) {
-    const double* a = &out.uv[2 * size_t(m.triangles[3 * t])];
-    const double* b = &out.uv[2 * size_t(m.triangles[3 * t + 1])];
-    const double* c = &out.uv[2 * size_t(m.triangles[3 * t + 2])];
-    if ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) <= 0) ++out.flipped_triangles;
-  }
+  out.flipped_triangles = count_flipped(m, out.uv);
   out.conformal_energy = conformal_energy(m, out.uv);
   return out;
 }
@@ -168,13 +171,14 @@ double dirichlet_energy(const SurfaceMesh& m, const std::vector<double>& f) {
 
 double signed_area(const SurfaceMesh& m, const std::vector<double>& uv) {
   double s = 0;
-  for (size_t t = 0; t < m.num_triangles(); ++t) {
-    const double* a = &uv[2 * size_t(m.triangles[3 * t])];
-    const double* b = &uv[2 * size_t(m.triangles[3 * t + 1])];
-    const double* c = &uv[2 * size_t(m.triangles[3 * t + 2])];
-    s += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
-  }
+  for (size_t t = 0; t < m.num_triangles(); ++t) s += 0.5 * twice_uv_area(m, uv, t);
   return s;
+}
+
+size_t count_flipped(const SurfaceMesh& m, const std::vector<double>& uv) {
+  size_t n = 0;
+  for (size_t t = 0; t < m.num_triangles(); ++t) n += twice_uv_area(m, uv, t) <= 0;
+  return n;
 }
 
 double conformal_energy(const SurfaceMesh& m, const std::vector<double>& uv) {

@@ -40,4 +40,7 @@ double dirichlet_energy(const SurfaceMesh& patch, const std::vector<double>& f);
 /// Signed area of the image of `patch` under `uv`.
 double signed_area(const SurfaceMesh& patch, const std::vector<double>& uv);
 
+/// Number of triangles whose image under `uv` has non-positive area.
+size_t count_flipped(const SurfaceMesh& patch, const std::vector<double>& uv);
+
 }  // namespace vm
