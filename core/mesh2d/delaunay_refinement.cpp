@@ -34,6 +34,22 @@ uint64_t triple_key(std::array<int32_t, 3> v) {
          (uint64_t(uint32_t(v[1])) * 0xC2B2AE3D27D4EB4FULL) ^ uint64_t(uint32_t(v[2]));
 }
 
+// Does q lie on or inside the diametral circle of a boundary edge of
+// triangle s or of its neighbors?
+bool encroaches(const Triangulation& tr, int32_t s, const double* q) {
+  int32_t around[4] = {s, tr.tri(s).n[0], tr.tri(s).n[1], tr.tri(s).n[2]};
+  for (int32_t t : around) {
+    if (t < 0) continue;
+    const auto& T = tr.tri(t);
+    for (int k = 0; k < 3; ++k) {
+      if (!T.c[k]) continue;
+      const double *a = tr.pt(T.v[(k + 1) % 3]), *b = tr.pt(T.v[(k + 2) % 3]);
+      if ((q[0] - a[0]) * (q[0] - b[0]) + (q[1] - a[1]) * (q[1] - b[1]) <= 0) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 Result<Mesh2D> delaunay_refinement(const std::vector<double>& points,
@@ -51,19 +67,33 @@ Result<Mesh2D> delaunay_refinement(const std::vector<double>& points,
   size_t inserted = 0;
   for (int pass = 0; pass < 200; ++pass) {
     size_t inserted_this_pass = 0;
-    for (int32_t t = 0; t < int32_t(tr.num_triangles()); ++t) {
+    // Triangles created during a pass wait for the next one, so a pass ends.
+    const int32_t count = int32_t(tr.num_triangles());
+    for (int32_t t = 0; t < count; ++t) {
       const auto& T = tr.tri(t);
       if (!T.in || tr.has_super_vertex(t)) continue;
       const double *a = tr.pt(T.v[0]), *b = tr.pt(T.v[1]), *c = tr.pt(T.v[2]);
       double g[2] = {(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3};
       double h = size(g[0], g[1]);
       if (!(h > 0)) return Result<Mesh2D>::Error("the size field must be positive");
+      // The frozen boundary bounds what can be reached next to it: a
+      // triangle on a boundary edge is judged against that edge's length
+      // (else its centroid would be inserted again and again).
+      for (int k = 0; k < 3; ++k) {
+        if (!T.c[k]) continue;
+        const double *p = tr.pt(T.v[(k + 1) % 3]), *q = tr.pt(T.v[(k + 2) % 3]);
+        h = std::max(h, std::hypot(p[0] - q[0], p[1] - q[1]));
+      }
       Circle cc = circumcircle(a, b, c);
-      double shortest2 = std::min({(a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]),
-                                   (b[0] - c[0]) * (b[0] - c[0]) + (b[1] - c[1]) * (b[1] - c[1]),
-                                   (c[0] - a[0]) * (c[0] - a[0]) + (c[1] - a[1]) * (c[1] - a[1])});
-      const double r_target = options.size_tolerance * h / std::sqrt(3.0);
-      bool too_large = cc.r2 > r_target * r_target;
+      const double e2[3] = {(a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]),
+                            (b[0] - c[0]) * (b[0] - c[0]) + (b[1] - c[1]) * (b[1] - c[1]),
+                            (c[0] - a[0]) * (c[0] - a[0]) + (c[1] - a[1]) * (c[1] - a[1])};
+      const double shortest2 = std::min({e2[0], e2[1], e2[2]});
+      const double longest2 = std::max({e2[0], e2[1], e2[2]});
+      // Size by the longest edge (a sliver has a huge circumradius but is
+      // not too large; its shape is the angle criterion's business).
+      const double l_target = options.size_tolerance * h;
+      bool too_large = longest2 > l_target * l_target;
       bool too_poor = cc.r2 > max_ratio * max_ratio * shortest2 && shortest2 > 0.25 * h * h;
       if (!too_large && !too_poor) continue;
       // Candidate: the circumcenter, unless outside the domain or tried.
@@ -77,17 +107,19 @@ Result<Mesh2D> delaunay_refinement(const std::vector<double>& points,
       }
       if (use_centroid) {
         if (!too_large) continue;  // poor but small: leave it
+        // On the boundary with its circumcenter outside: the boundary edge is
+        // encroached and cannot be split (it is shared with the neighbor
+        // patch); a centroid would only make a flatter triangle on the same
+        // edge, again and again. Accept the triangle.
+        if (T.c[0] || T.c[1] || T.c[2]) continue;
         q[0] = g[0];
         q[1] = g[1];
       }
-      // Never on a constrained edge (the boundary is frozen).
+      // The boundary is frozen: never insert on a boundary edge or inside its
+      // diametral circle (Ruppert would split such an encroached edge; here
+      // the point is rejected and the triangle accepted as it is).
       int32_t s = tr.find_triangle(q);
-      const auto& S = tr.tri(s);
-      bool on_constraint = false;
-      for (int k = 0; k < 3; ++k)
-        if (S.c[k] && orient2d(tr.pt(S.v[(k + 1) % 3]), tr.pt(S.v[(k + 2) % 3]), q) == 0)
-          on_constraint = true;
-      if (on_constraint || !S.in) continue;
+      if (!tr.tri(s).in || encroaches(tr, s, q)) continue;
       int32_t v = tr.add_point(q[0], q[1]);
       tr.insert(v);
       ++inserted_this_pass;

@@ -14,9 +14,9 @@ namespace vm {
 using SizeField2D = std::function<double(double u, double v)>;
 
 struct RefinementOptions {
-  /// A triangle is too large when its circumradius exceeds this times the
-  /// circumradius h / sqrt(3) of the equilateral triangle of side h.
-  double size_tolerance = 1.25;
+  /// A triangle is too large when its longest edge exceeds this times the
+  /// local size h.
+  double size_tolerance = 1.4;
   /// A triangle is too poor when its smallest angle is below this (degrees)
   /// and its shortest edge is longer than half the local size.
   double min_angle_degrees = 28.0;
@@ -27,9 +27,16 @@ struct RefinementOptions {
 /// Meshes the domain bounded by `segments` (as constrained_delaunay) by
 /// inserting circumcenters of triangles that are too large for `size` or too
 /// poorly shaped, in passes until none is left. The boundary is kept as
-/// given: no point is added on a segment, so patches that share a boundary
-/// discretization stay conforming. A circumcenter outside the domain, or
-/// already tried for the same triangle, is replaced by the centroid.
+/// given: no point is added on a segment or inside a segment's diametral
+/// circle, so patches that share a boundary discretization stay conforming
+/// and the refinement terminates even when the size is finer than the
+/// boundary. A circumcenter outside the domain, or
+/// already tried for the same triangle, is replaced by the centroid, except
+/// for triangles on the boundary, which are then accepted (their boundary
+/// edge cannot be split). A
+/// triangle on a boundary edge longer than the local size is judged against
+/// that edge (the boundary cannot be refined), so a size field finer than
+/// the boundary discretization still terminates.
 /// Errors: those of constrained_delaunay, a non-positive size, or the safety
 /// limit reached.
 Result<Mesh2D> delaunay_refinement(const std::vector<double>& points,

@@ -135,6 +135,21 @@ TEST(DelaunayRefinement, AnnulusKeepsItsHole) {
   EXPECT_GT(s.min_angle, 20.0);
 }
 
+TEST(DelaunayRefinement, SizeMuchFinerThanTheBoundaryTerminates) {
+  // Boundary every 0.1, size 0.025: the boundary cannot follow, the
+  // interior does; the refinement ends with a valid mesh (points that would
+  // encroach the boundary are rejected instead of piling up along it).
+  std::vector<double> pts;
+  std::vector<int32_t> seg;
+  square(1.0, 0.1, pts, seg);
+  auto r = delaunay_refinement(pts, seg, [](double, double) { return 0.025; });
+  ASSERT_TRUE(r.ok()) << r.message();
+  Stats s = stats_of(r.value());
+  EXPECT_NEAR(s.area, 1.0, 1e-12);
+  EXPECT_GT(r.value().num_triangles(), 2000u);
+  EXPECT_LT(r.value().num_triangles(), 20000u);
+}
+
 TEST(DelaunayRefinement, RefusesANonPositiveSize) {
   std::vector<double> pts;
   std::vector<int32_t> seg;

@@ -1,0 +1,115 @@
+// Planar mesh optimization: Lawson flips toward the Delaunay triangulation
+// of the current points, and constrained Laplacian smoothing (a move is kept
+// only if the star stays valid and its worst triangle quality, gamma of the
+// seed's section 3, does not decrease).
+#include "core/mesh2d/optimize2d.h"
+
+#include <algorithm>
+#include <map>
+
+#include "core/geom/predicates.h"
+#include "core/quality/triangle_quality.h"
+
+namespace vm {
+namespace {
+
+double gamma2d(const double* a, const double* b, const double* c) {
+  const double p[3] = {a[0], a[1], 0}, q[3] = {b[0], b[1], 0}, r[3] = {c[0], c[1], 0};
+  return triangle_gamma(p, q, r);
+}
+
+// Edge (min, max) -> up to two (triangle, local index of the opposite corner).
+using EdgeMap = std::map<std::pair<int32_t, int32_t>, std::vector<std::pair<int32_t, int>>>;
+
+EdgeMap edge_map(const Mesh2D& m) {
+  EdgeMap e;
+  for (int32_t t = 0; t < int32_t(m.num_triangles()); ++t)
+    for (int k = 0; k < 3; ++k) {
+      int32_t a = m.triangles[3 * t + (k + 1) % 3], b = m.triangles[3 * t + (k + 2) % 3];
+      e[std::minmax(a, b)].push_back({t, k});
+    }
+  return e;
+}
+
+size_t flip_pass(Mesh2D& m) {
+  size_t flips = 0;
+  EdgeMap edges = edge_map(m);
+  std::vector<uint8_t> touched(m.num_triangles(), 0);
+  auto P = [&](int32_t v) { return &m.points[2 * size_t(v)]; };
+  for (auto& [e, uses] : edges) {
+    if (uses.size() != 2) continue;
+    auto [t, k] = uses[0];
+    auto [u, j] = uses[1];
+    if (touched[t] || touched[u]) continue;  // stale: handled next pass
+    int32_t* T = &m.triangles[3 * size_t(t)];
+    int32_t* U = &m.triangles[3 * size_t(u)];
+    int32_t p = T[k], a = T[(k + 1) % 3], b = T[(k + 2) % 3], q = U[j];
+    if (incircle(P(p), P(a), P(b), P(q)) <= 0) continue;
+    // q inside the circumcircle of (p, a, b): the quad is convex; flip a-b
+    // to p-q keeping both triangles counterclockwise.
+    if (orient2d(P(p), P(a), P(q)) <= 0 || orient2d(P(q), P(b), P(p)) <= 0) continue;
+    T[0] = p, T[1] = a, T[2] = q;
+    U[0] = q, U[1] = b, U[2] = p;
+    touched[t] = touched[u] = 1;
+    ++flips;
+  }
+  return flips;
+}
+
+}  // namespace
+
+Optimize2DStats optimize_mesh2d(Mesh2D& m, int passes) {
+  Optimize2DStats stats;
+  const size_t nv = m.num_vertices();
+  for (int pass = 0; pass < passes; ++pass) {
+    for (int sweep = 0; sweep < 8; ++sweep) {
+      size_t f = flip_pass(m);
+      stats.flips += f;
+      if (f == 0) break;
+    }
+    // Boundary vertices: on an edge used by a single triangle.
+    EdgeMap edges = edge_map(m);
+    std::vector<uint8_t> fixed(nv, 0);
+    std::vector<std::vector<int32_t>> neighbors(nv), star(nv);
+    for (auto& [e, uses] : edges) {
+      if (uses.size() == 1) fixed[e.first] = fixed[e.second] = 1;
+      neighbors[e.first].push_back(e.second);
+      neighbors[e.second].push_back(e.first);
+    }
+    for (int32_t t = 0; t < int32_t(m.num_triangles()); ++t)
+      for (int k = 0; k < 3; ++k) star[m.triangles[3 * size_t(t) + k]].push_back(t);
+    auto worst = [&](int32_t v) {
+      double w = 1;
+      for (int32_t t : star[v]) {
+        const int32_t* T = &m.triangles[3 * size_t(t)];
+        const double *a = &m.points[2 * size_t(T[0])], *b = &m.points[2 * size_t(T[1])],
+                     *c = &m.points[2 * size_t(T[2])];
+        if (orient2d(a, b, c) <= 0) return -1.0;
+        w = std::min(w, gamma2d(a, b, c));
+      }
+      return w;
+    };
+    for (size_t v = 0; v < nv; ++v) {
+      if (fixed[v] || neighbors[v].empty()) continue;
+      double c[2] = {0, 0};
+      for (int32_t n : neighbors[v]) {
+        c[0] += m.points[2 * size_t(n)] / double(neighbors[v].size());
+        c[1] += m.points[2 * size_t(n) + 1] / double(neighbors[v].size());
+      }
+      double before = worst(int32_t(v));
+      double old[2] = {m.points[2 * v], m.points[2 * v + 1]};
+      m.points[2 * v] = c[0];
+      m.points[2 * v + 1] = c[1];
+      if (worst(int32_t(v)) < before) {
+        m.points[2 * v] = old[0];
+        m.points[2 * v + 1] = old[1];
+      } else {
+        ++stats.moves;
+      }
+    }
+  }
+  for (int sweep = 0; sweep < 8 && flip_pass(m) > 0; ++sweep) ++stats.flips;
+  return stats;
+}
+
+}  // namespace vm
