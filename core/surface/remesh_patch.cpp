@@ -1,7 +1,8 @@
 // Patch remeshing by the conformal map (Marchandise et al. 2.1) in phases:
 // map (param/lscm.h), boundary resampling in 3D, point location structure on
 // the parametric triangulation, 2D Delaunay refinement with the size field
-// pulled back to the plane (mesh2d/delaunay_refinement.h), map back.
+// pulled back to the plane (mesh2d/delaunay_refinement.h), flips and
+// smoothing in the plane (mesh2d/optimize2d.h), map back.
 #include "core/surface/remesh_patch.h"
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/mesh2d/optimize2d.h"
 #include "core/param/lscm.h"
 
 namespace vm {
@@ -176,6 +178,8 @@ Result<SurfaceMesh> remesh_disk_patch(const SurfaceMesh& m, const SizeField3D& s
   };
   auto plane = delaunay_refinement(pts2, seg, size2d, options);
   if (!plane.ok()) return plane.status();
+  // Phase 3b: flips and smoothing in the plane; the boundary does not move.
+  optimize_mesh2d(plane.value());
 
   // Phase 4: map back.
   SurfaceMesh out;

@@ -24,7 +24,8 @@ struct PatchRemeshStats {
 /// loop in 3D at the target size (so a neighbor sharing it can do the same),
 /// meshes the plane by Delaunay refinement with the size scaled by the local
 /// conformal factor (the map preserves angles, so isotropic stays
-/// isotropic), and maps every new vertex back by barycentric interpolation
+/// isotropic), optimizes it there (flips, smoothing), and maps every new
+/// vertex back by barycentric interpolation
 /// in the parametric triangle containing it: every output vertex lies on the
 /// input surface. Output triangles are oriented like the input.
 /// Errors: not exactly one boundary loop, a folded map, a meshing failure.
