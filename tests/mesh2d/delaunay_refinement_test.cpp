@@ -9,6 +9,7 @@
 
 #include "core/geom/predicates.h"
 #include "core/quality/triangle_quality.h"
+#include "tests/mesh2d/mesh2d_test_shapes.h"
 
 namespace vm {
 namespace {
@@ -116,16 +117,7 @@ TEST(DelaunayRefinement, AnnulusKeepsItsHole) {
   const int n_out = 64, n_in = 26;
   std::vector<double> pts;
   std::vector<int32_t> seg;
-  for (int i = 0; i < n_out; ++i) {
-    double a = 2 * std::numbers::pi * i / n_out;
-    pts.insert(pts.end(), {std::cos(a), std::sin(a)});
-    seg.insert(seg.end(), {i, (i + 1) % n_out});
-  }
-  for (int i = 0; i < n_in; ++i) {
-    double a = 2 * std::numbers::pi * i / n_in;
-    pts.insert(pts.end(), {0.4 * std::cos(a), 0.4 * std::sin(a)});
-    seg.insert(seg.end(), {n_out + i, n_out + (i + 1) % n_in});
-  }
+  testing::annulus(n_out, n_in, 0.4, pts, seg);
   auto r = delaunay_refinement(pts, seg, [](double, double) { return 0.1; });
   ASSERT_TRUE(r.ok()) << r.message();
   double outer = 0.5 * n_out * std::sin(2 * std::numbers::pi / n_out);

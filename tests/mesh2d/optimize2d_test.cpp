@@ -9,6 +9,7 @@
 #include "core/geom/predicates.h"
 #include "core/mesh2d/delaunay_refinement.h"
 #include "core/quality/triangle_quality.h"
+#include "tests/mesh2d/mesh2d_test_shapes.h"
 
 namespace vm {
 namespace {
@@ -49,16 +50,7 @@ TEST(Optimize2D, ImprovesARefinedAnnulusAndKeepsItsBoundary) {
   const int n_out = 80, n_in = 30;
   std::vector<double> pts;
   std::vector<int32_t> seg;
-  for (int i = 0; i < n_out; ++i) {
-    double a = 2 * std::numbers::pi * i / n_out;
-    pts.insert(pts.end(), {std::cos(a), std::sin(a)});
-    seg.insert(seg.end(), {i, (i + 1) % n_out});
-  }
-  for (int i = 0; i < n_in; ++i) {
-    double a = 2 * std::numbers::pi * i / n_in;
-    pts.insert(pts.end(), {0.4 * std::cos(a), 0.4 * std::sin(a)});
-    seg.insert(seg.end(), {n_out + i, n_out + (i + 1) % n_in});
-  }
+  testing::annulus(n_out, n_in, 0.4, pts, seg);
   auto r = delaunay_refinement(pts, seg, [](double u, double) { return 0.07 + 0.02 * u; });
   ASSERT_TRUE(r.ok()) << r.message();
   Mesh2D m = r.value();
