@@ -12,6 +12,7 @@
 
 #include "core/io/stl.h"
 #include "core/phantom/vessel_phantom.h"
+#include "core/pipeline/job_options.h"
 #include "core/pipeline/mesh_job.h"
 #include "core/pipeline/report_json.h"
 #include "core/util/allocator_tuning.h"
@@ -27,10 +28,21 @@ usage:
   vesselmesh info FILE.stl [--json]
       Read, weld and analyze a lumen surface: counts, openings, genus,
       non-manifold edges, triangle quality gamma_k.
-  vesselmesh mesh FILE.stl -o OUT.msh [--msh-version 4.1|2.2]
-                  [--largest-component] [--report FILE.json]
-      Write the mesh as Gmsh MSH (for now: the welded, repaired surface as
-      the physical surface `wall`).
+  vesselmesh mesh FILE.stl -o OUT.msh --surface-only [size options]
+                  [--param lscm|harmonic|floater] [--mesher2d frontal|delaunay|adapt]
+                  [--msh-version 4.1|2.2] [--largest-component] [--report FILE.json]
+                  [--no-remesh]
+      Remesh the surface by conformal maps and write it as Gmsh MSH, the
+      physical surface `wall` (the volume stage is not there yet, so
+      --surface-only is what mesh does for now; --no-remesh writes the
+      repaired input instead).
+      Size options (model units):
+        --size H                 uniform target edge length
+        --per-circumference N    h = 2 pi R(x) / N, R the local vessel radius
+                                 (the default, with N = 20)
+        --size-min H, --size-max H   clamps
+        --gradation G            h grows at most G per unit length
+        --curvature P            at least P edges per radian of curvature
   vesselmesh phantom OUT.stl [--kind bifurcation|tube|aneurysm|torus]
                   [--voxel V] [--noise A] [--seed N] [--scale S] [--closed]
       Write a synthetic segmentation-like vessel surface (binary STL).
@@ -181,19 +193,25 @@ int cmd_info(int argc, char** argv) {
 }
 
 int cmd_mesh(int argc, char** argv) {
-  Args a = parse(argc, argv, 2, {"-o", "--output", "--msh-version", "--report"},
-                 {"--largest-component", "--quiet"});
+  std::vector<std::string> valued = {"-o", "--output", "--report"};
+  for (std::string_view name : vm::job_option_names()) valued.push_back("--" + std::string(name));
+  Args a = parse(argc, argv, 2, valued,
+                 {"--largest-component", "--quiet", "--surface-only", "--no-remesh"});
   if (!a.error.empty()) return usage_error(a.error);
   if (a.positional.size() != 1) return usage_error("mesh needs exactly one FILE.stl");
   auto out = a.get("-o") ? a.get("-o") : a.get("--output");
   if (!out) return usage_error("mesh needs an output file: -o OUT.msh");
   vm::MeshJobOptions options;
-  if (auto v = a.get("--msh-version")) {
-    auto parsed = vm::parse_msh_version(*v);
-    if (!parsed.ok()) return usage_error(parsed.message());
-    options.msh_version = parsed.value();
+  for (const auto& [name, value] : a.options) {
+    if (name.rfind("--", 0) != 0) continue;
+    const std::string key = name.substr(2);
+    const auto& names = vm::job_option_names();
+    if (std::find(names.begin(), names.end(), key) == names.end()) continue;
+    vm::Status st = vm::set_job_option(options, key, value);
+    if (!st.ok()) return usage_error(st.message());
   }
   options.largest_component_only = a.has("--largest-component");
+  options.remesh = !a.has("--no-remesh");
   std::string err;
   auto bytes = read_file(a.positional[0], err);
   if (!bytes) return fail(err);
@@ -211,6 +229,14 @@ int cmd_mesh(int argc, char** argv) {
         "wrote %s: %zu vertices, %zu triangles (wall), gamma_k min %.4f mean %.4f, %.3f s\n",
         out->c_str(), res.output_surface.num_vertices(), res.output_surface.num_triangles(),
         res.output_quality_stats.min, res.output_quality_stats.mean, res.seconds_total);
+    if (res.remeshed) {
+      const vm::RemeshStats& st = res.remesh_stats;
+      std::printf(
+          "remeshed: %zu patches, %zu seam points, size %.4g..%.4g (median %.4g); "
+          "time: size %.2f s, partition %.2f s, meshing %.2f s, optimization %.2f s\n",
+          st.patches, st.seam_points, st.size_min, st.size_max, st.size_median, st.seconds_size,
+          st.seconds_partition, st.seconds_mesh, st.seconds_optimize);
+    }
   }
   return 0;
 }

@@ -13,41 +13,13 @@
 namespace vm {
 namespace {
 
+using detail::Circle;
 using detail::Triangulation;
-
-struct Circle {
-  double cx, cy, r2;
-};
-
-// Circumcircle of a (non-degenerate) triangle.
-Circle circumcircle(const double* a, const double* b, const double* c) {
-  double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
-  double d = 2 * (bx * cy - by * cx);
-  double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-  double ux = (cy * b2 - by * c2) / d, uy = (bx * c2 - cx * b2) / d;
-  return {a[0] + ux, a[1] + uy, ux * ux + uy * uy};
-}
 
 uint64_t triple_key(std::array<int32_t, 3> v) {
   std::sort(v.begin(), v.end());
   return (uint64_t(uint32_t(v[0])) * 0x9E3779B97F4A7C15ULL) ^
          (uint64_t(uint32_t(v[1])) * 0xC2B2AE3D27D4EB4FULL) ^ uint64_t(uint32_t(v[2]));
-}
-
-// Does q lie on or inside the diametral circle of a boundary edge of
-// triangle s or of its neighbors?
-bool encroaches(const Triangulation& tr, int32_t s, const double* q) {
-  int32_t around[4] = {s, tr.tri(s).n[0], tr.tri(s).n[1], tr.tri(s).n[2]};
-  for (int32_t t : around) {
-    if (t < 0) continue;
-    const auto& T = tr.tri(t);
-    for (int k = 0; k < 3; ++k) {
-      if (!T.c[k]) continue;
-      const double *a = tr.pt(T.v[(k + 1) % 3]), *b = tr.pt(T.v[(k + 2) % 3]);
-      if ((q[0] - a[0]) * (q[0] - b[0]) + (q[1] - a[1]) * (q[1] - b[1]) <= 0) return true;
-    }
-  }
-  return false;
 }
 
 }  // namespace
@@ -84,7 +56,7 @@ Result<Mesh2D> delaunay_refinement(const std::vector<double>& points,
         const double *p = tr.pt(T.v[(k + 1) % 3]), *q = tr.pt(T.v[(k + 2) % 3]);
         h = std::max(h, std::hypot(p[0] - q[0], p[1] - q[1]));
       }
-      Circle cc = circumcircle(a, b, c);
+      Circle cc = detail::circumcircle(a, b, c);
       const double e2[3] = {(a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]),
                             (b[0] - c[0]) * (b[0] - c[0]) + (b[1] - c[1]) * (b[1] - c[1]),
                             (c[0] - a[0]) * (c[0] - a[0]) + (c[1] - a[1]) * (c[1] - a[1])};
@@ -119,7 +91,7 @@ Result<Mesh2D> delaunay_refinement(const std::vector<double>& points,
       // diametral circle (Ruppert would split such an encroached edge; here
       // the point is rejected and the triangle accepted as it is).
       int32_t s = tr.find_triangle(q);
-      if (!tr.tri(s).in || encroaches(tr, s, q)) continue;
+      if (!tr.tri(s).in || detail::encroaches(tr, s, q)) continue;
       int32_t v = tr.add_point(q[0], q[1]);
       tr.insert(v);
       ++inserted_this_pass;
@@ -129,19 +101,7 @@ Result<Mesh2D> delaunay_refinement(const std::vector<double>& points,
     }
     if (inserted_this_pass == 0) break;
   }
-  // Output: the input points, then the inserted ones (which come after the
-  // enclosing triangle's three in tr.points()).
-  Mesh2D out;
-  out.points = points;
-  const size_t n_input = points.size() / 2;
-  std::vector<int32_t> remap(tr.num_points(), -1);
-  for (size_t i = 0; i < n_input; ++i) remap[i] = int32_t(i);
-  for (size_t i = n_input + 3; i < tr.num_points(); ++i) {
-    remap[i] = int32_t(out.points.size() / 2);
-    out.points.insert(out.points.end(), {tr.pt(int32_t(i))[0], tr.pt(int32_t(i))[1]});
-  }
-  for (int32_t v : tr.inside_triangles()) out.triangles.push_back(remap[v]);
-  return out;
+  return detail::extract_mesh(tr, points);
 }
 
 }  // namespace vm

@@ -20,6 +20,9 @@ struct RefinementOptions {
   /// A triangle is too poor when its smallest angle is below this (degrees)
   /// and its shortest edge is longer than half the local size.
   double min_angle_degrees = 28.0;
+  /// Frontal mesher: a triangle is accepted when its circumradius is at
+  /// most this times h / sqrt(3) (that of the equilateral triangle of side h).
+  double frontal_radius_tolerance = 1.25;
   /// Safety limit on the number of vertices inserted.
   size_t max_inserted = 20'000'000;
 };

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/geom/predicates.h"
+#include "core/mesh2d/constrained_delaunay.h"
 #include "core/util/result.h"
 
 namespace vm::detail {
@@ -196,6 +197,9 @@ class Triangulation {
 
   const std::vector<double>& points() const { return p_; }
 
+  /// While set, every triangle created or changed is appended to `log`.
+  void set_touched_log(std::vector<int32_t>* log) { touched_ = log; }
+
   std::vector<int32_t> all_real_triangles() const {
     std::vector<int32_t> out;
     for (const Tri& T : tris_)
@@ -206,6 +210,7 @@ class Triangulation {
 
  private:
   void set(int32_t t, const Tri& T) {
+    if (touched_) touched_->push_back(t);
     tris_[t] = T;
     for (int32_t v : T.v) vtri_[v] = t;
   }
@@ -446,6 +451,7 @@ class Triangulation {
   std::vector<Tri> tris_;
   std::vector<int32_t> vtri_;
   std::vector<std::pair<int32_t, int>> stack_;
+  std::vector<int32_t>* touched_ = nullptr;
   int32_t super_ = 0;
   int32_t last_ = -1;
   uint64_t state_ = 0x9E3779B97F4A7C15ULL;
@@ -456,6 +462,53 @@ class Triangulation {
     return state_;
   }
 };
+
+/// Circle through three points (center cx, cy; squared radius r2).
+struct Circle {
+  double cx, cy, r2;
+};
+
+/// Circumcircle of a non-degenerate triangle (infinite for a flat one).
+inline Circle circumcircle(const double* a, const double* b, const double* c) {
+  double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
+  double d = 2 * (bx * cy - by * cx);
+  double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  double ux = (cy * b2 - by * c2) / d, uy = (bx * c2 - cx * b2) / d;
+  return {a[0] + ux, a[1] + uy, ux * ux + uy * uy};
+}
+
+/// Does q lie on or inside the diametral circle of a constrained edge of
+/// triangle s or of its neighbors?
+inline bool encroaches(const Triangulation& tr, int32_t s, const double* q) {
+  int32_t around[4] = {s, tr.tri(s).n[0], tr.tri(s).n[1], tr.tri(s).n[2]};
+  for (int32_t t : around) {
+    if (t < 0) continue;
+    const auto& T = tr.tri(t);
+    for (int k = 0; k < 3; ++k) {
+      if (!T.c[k]) continue;
+      const double *a = tr.pt(T.v[(k + 1) % 3]), *b = tr.pt(T.v[(k + 2) % 3]);
+      if ((q[0] - a[0]) * (q[0] - b[0]) + (q[1] - a[1]) * (q[1] - b[1]) <= 0) return true;
+    }
+  }
+  return false;
+}
+
+/// The output of a mesher: the input points (same indices), then the
+/// inserted ones (which follow the enclosing triangle's three in `tr`), and
+/// the inside triangles.
+inline Mesh2D extract_mesh(const Triangulation& tr, const std::vector<double>& points) {
+  Mesh2D out;
+  out.points = points;
+  const size_t n_input = points.size() / 2;
+  std::vector<int32_t> remap(tr.num_points(), -1);
+  for (size_t i = 0; i < n_input; ++i) remap[i] = int32_t(i);
+  for (size_t i = n_input + 3; i < tr.num_points(); ++i) {
+    remap[i] = int32_t(out.points.size() / 2);
+    out.points.insert(out.points.end(), {tr.pt(int32_t(i))[0], tr.pt(int32_t(i))[1]});
+  }
+  for (int32_t v : tr.inside_triangles()) out.triangles.push_back(remap[v]);
+  return out;
+}
 
 /// Builds the constrained Delaunay triangulation of `points` and `segments`
 /// into `tr` and classifies its regions (constrained_delaunay.cpp). On

@@ -1,5 +1,5 @@
-// The whole job (DESIGN.md pipeline). Walking skeleton: stage 1 (prepare)
-// and stage 7 (write); the welded surface is written as the `wall` group.
+// The whole job (DESIGN.md pipeline): stage 1 (prepare), stages 2-3 (surface
+// remeshing) and stage 7 (write); the surface is written as the `wall` group.
 #include "core/pipeline/mesh_job.h"
 
 #include <chrono>
@@ -10,9 +10,9 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
                                    const MeshJobOptions& options, const ProgressFn& progress) {
   auto t0 = std::chrono::steady_clock::now();
   MeshJobResult r;
-  // Stage 1 takes the first half of the progress bar.
+  // Stage 1 takes the first fifth of the progress bar, remeshing most of the rest.
   ProgressFn sub = [&](double f, std::string_view stage) {
-    return report_progress(progress, 0.5 * f, stage);
+    return report_progress(progress, 0.2 * f, stage);
   };
   Result<PreparedSurface> prepared = prepare_surface(stl_bytes, options.prepare, sub);
   if (!prepared.ok()) return prepared.status();
@@ -30,12 +30,36 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
   } else {
     r.output_surface = r.surface.mesh;
   }
+  if (options.remesh) {
+    ProgressFn remesh_progress = [&](double f, std::string_view stage) {
+      return report_progress(progress, 0.2 + 0.7 * f, stage);
+    };
+    const TopologyReport in = analyze_topology(r.output_surface);
+    auto remeshed =
+        remesh_surface(r.output_surface, options.remesh_options, &r.remesh_stats, remesh_progress);
+    if (!remeshed.ok()) return remeshed.status();
+    r.output_surface = std::move(remeshed).value().mesh;
+    r.remeshed = true;
+    // Never write a surface whose topology differs from the input's.
+    r.output_topology = analyze_topology(r.output_surface);
+    const TopologyReport& out = r.output_topology;
+    if (out.components != in.components || out.genus != in.genus ||
+        out.openings.size() != in.openings.size() || out.nonmanifold_edges > 0 ||
+        out.nonmanifold_vertices > 0)
+      return Status::Error(
+          "the remeshed surface lost the input's topology (genus " + std::to_string(in.genus) +
+          " -> " + std::to_string(out.genus) + ", openings " + std::to_string(in.openings.size()) +
+          " -> " + std::to_string(out.openings.size()) + ", non-manifold edges " +
+          std::to_string(out.nonmanifold_edges) +
+          "): the size is too coarse for some feature; try a smaller --size or a larger "
+          "--per-circumference");
+  }
 
-  if (!report_progress(progress, 0.6, "quality")) return Status::Error(kCancelledMessage);
+  if (!report_progress(progress, 0.9, "quality")) return Status::Error(kCancelledMessage);
   r.output_quality = triangle_qualities(r.output_surface);
   r.output_quality_stats = quality_stats(r.output_quality, options.prepare.histogram_bins);
 
-  if (!report_progress(progress, 0.7, "write")) return Status::Error(kCancelledMessage);
+  if (!report_progress(progress, 0.95, "write")) return Status::Error(kCancelledMessage);
   MshModel model;
   model.points = r.output_surface.points;
   model.physicals.push_back({2, 1, "wall"});

@@ -1,6 +1,6 @@
 // The whole job: STL bytes + options in, MSH text + report out.
-// For now (walking skeleton) it writes the prepared surface as `wall`; later
-// stages (remeshing, caps, layers, volume) plug in here.
+// Stages so far: prepare, surface remeshing (conformal maps), write the
+// remeshed surface as `wall`; caps, layers and volume plug in here later.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +10,7 @@
 
 #include "core/io/msh_writer.h"
 #include "core/pipeline/prepare_surface.h"
+#include "core/surface/remesh_surface.h"
 #include "core/util/progress.h"
 #include "core/util/result.h"
 
@@ -21,6 +22,9 @@ struct MeshJobOptions {
   /// Keep only the largest connected component instead of refusing inputs
   /// with several components.
   bool largest_component_only = false;
+  /// Remesh the surface (else the repaired input surface is written).
+  bool remesh = true;
+  RemeshOptions remesh_options;
 };
 
 /// One physical group of the written file and its element count.
@@ -37,6 +41,9 @@ struct MeshJobResult {
   std::vector<float> output_quality;  ///< gamma_k per output triangle
   QualityStats output_quality_stats;
   std::vector<OutputGroup> groups;  ///< physical groups written
+  bool remeshed = false;
+  RemeshStats remesh_stats;        ///< when remeshed
+  TopologyReport output_topology;  ///< when remeshed (checked equal to the input's)
   std::vector<std::string> warnings;
   double seconds_total = 0;
 };

@@ -79,6 +79,28 @@ std::string mesh_report_json(const MeshJobResult& r) {
   j.key("triangles").value(r.output_surface.num_triangles());
   j.key("quality");
   write_quality(j, r.output_quality_stats);
+  if (r.remeshed) {
+    const RemeshStats& st = r.remesh_stats;
+    j.key("genus").value(r.output_topology.genus);
+    j.key("openings").value(r.output_topology.openings.size());
+    j.key("remesh").begin_object();
+    j.key("patches").value(st.patches);
+    j.key("seam_points").value(st.seam_points);
+    j.key("size").begin_object();
+    j.key("min").value(st.size_min);
+    j.key("median").value(st.size_median);
+    j.key("max").value(st.size_max);
+    j.end_object();
+    j.key("swaps").value(st.swaps);
+    j.key("moves").value(st.moves);
+    j.key("seconds").begin_object();
+    j.key("size").value(st.seconds_size);
+    j.key("partition").value(st.seconds_partition);
+    j.key("mesh").value(st.seconds_mesh);
+    j.key("optimize").value(st.seconds_optimize);
+    j.end_object();
+    j.end_object();
+  }
   j.key("groups").begin_array();
   for (const OutputGroup& g : r.groups) {
     j.begin_object();

@@ -51,6 +51,13 @@ check "mesh 2.2" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif22.msh"
 check "msh 4.1 header" [ "$(sed -n 2p "$T/bif41.msh")" = "4.1 0 8" ]
 check "msh 2.2 header" [ "$(sed -n 2p "$T/bif22.msh")" = "2.2 0 8" ]
 check "report groups" [ "$(json "$T/report.json" "d['output']['groups'][0]['name']")" = wall ]
+check "mesh bad size" expect_exit 2 "--size needs a positive length" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size -1
+check "mesh bad N" expect_exit 2 "--per-circumference needs" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --per-circumference 2
+check "mesh bad param" expect_exit 2 "lscm, harmonic or floater" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --param conformal
+check "mesh bad mesher" expect_exit 2 "frontal, delaunay or adapt" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --mesher2d quad
+check "mesh min > max" expect_exit 1 "at most --size-max" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size-min 2 --size-max 1
+check "mesh surface-only uniform" expect_exit 0 "remeshed:" "$VM" mesh "$T/bif.stl" -o "$T/u.msh" --surface-only --size 0.2 --param floater --mesher2d delaunay
+check "mesh no-remesh" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/n.msh" --no-remesh
 check "mesh unwritable output" expect_exit 1 "cannot write" "$VM" mesh "$T/bif.stl" -o "$T/no/such/dir/x.msh"
 
 # Two components: refused, then accepted with --largest-component.
@@ -76,7 +83,7 @@ check "largest component" expect_exit 0 "wrote" "$VM" mesh "$T/two.stl" -o "$T/t
 
 # Gmsh reads both versions with the same triangle count and a `wall` group.
 if /usr/bin/python3 -c "import gmsh" 2>/dev/null; then
-  ntri=$(json "$T/info.json" "d['triangles']")
+  ntri=$(json "$T/report.json" "d['output']['triangles']")
   for f in bif41 bif22; do
     got=$(/usr/bin/python3 - "$T/$f.msh" <<'PY'
 import sys, gmsh

@@ -1,0 +1,260 @@
+// Patch partition by recursive principal-axis bisection, checked by the map
+// itself (Marchandise et al., section 2.1). Phases per candidate piece:
+// connected components, disk test (Euler characteristic, boundary loops,
+// pinched vertices), map and crowding test, and if anything fails a
+// bisection with a straightened cut.
+#include "core/surface/partition.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "core/mesh/boundary_loops.h"
+
+namespace vm {
+namespace {
+
+struct Piece {
+  std::vector<int32_t> tris;  // input triangle ids
+  int depth = 0;
+};
+
+/// Copies the triangles `tris` of `m` with compact local vertex numbers.
+MappedPatch extract(const SurfaceMesh& m, const std::vector<int32_t>& tris,
+                    std::vector<int32_t>& local) {
+  MappedPatch p;
+  p.triangle_of = tris;
+  p.mesh.triangles.reserve(3 * tris.size());
+  for (int32_t t : tris)
+    for (int c = 0; c < 3; ++c) {
+      int32_t v = m.triangles[3 * size_t(t) + c];
+      if (local[size_t(v)] < 0) {
+        local[size_t(v)] = int32_t(p.vertex_of.size());
+        p.vertex_of.push_back(v);
+        p.mesh.points.insert(p.mesh.points.end(), &m.points[3 * size_t(v)],
+                             &m.points[3 * size_t(v)] + 3);
+      }
+      p.mesh.triangles.push_back(local[size_t(v)]);
+    }
+  for (int32_t v : p.vertex_of) local[size_t(v)] = -1;
+  return p;
+}
+
+/// True if `p` is a topological disk without pinched vertices.
+bool is_disk(const SurfaceMesh& p) {
+  TriangleAdjacency adj = build_adjacency(p);
+  if (adj.num_nonmanifold_edges > 0) return false;
+  std::vector<int> boundary_degree(p.num_vertices(), 0);
+  for (size_t h = 0; h < adj.opposite.size(); ++h)
+    if (adj.opposite[h] == TriangleAdjacency::kBoundary) {
+      if (++boundary_degree[size_t(half_edge_from(p, int32_t(h)))] > 2) return false;
+      if (++boundary_degree[size_t(half_edge_to(p, int32_t(h)))] > 2) return false;
+    }
+  const long chi = long(p.num_vertices()) - long(adj.num_edges) + long(p.num_triangles());
+  return chi == 1 && boundary_loops(p, adj).size() == 1;
+}
+
+/// Splits `tris` (all with owner[t] == id) in two by the principal-axis
+/// median plane, then moves teeth across the cut; marks side 1 in owner as
+/// id + 1.
+void bisect(const SurfaceMesh& m, const TriangleAdjacency& adj, const std::vector<int32_t>& tris,
+            std::vector<int32_t>& owner, int32_t id, std::vector<int32_t> out[2]) {
+  const size_t n = tris.size();
+  std::vector<double> c(3 * n), w(n);
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double total = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const int32_t* v = &m.triangles[3 * size_t(tris[i])];
+    Eigen::Vector3d p[3];
+    for (int k = 0; k < 3; ++k) p[k] = Eigen::Vector3d(&m.points[3 * size_t(v[k])]);
+    Eigen::Vector3d ctr = (p[0] + p[1] + p[2]) / 3;
+    w[i] = 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).norm() + 1e-300;
+    for (int k = 0; k < 3; ++k) c[3 * i + k] = ctr[k];
+    mean += w[i] * ctr;
+    total += w[i];
+  }
+  mean /= total;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (size_t i = 0; i < n; ++i) {
+    Eigen::Vector3d d = Eigen::Vector3d(&c[3 * i]) - mean;
+    cov += w[i] * d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  Eigen::Vector3d axis = eig.eigenvectors().col(2);
+  // Area-weighted median of the projections.
+  std::vector<std::pair<double, size_t>> proj(n);
+  for (size_t i = 0; i < n; ++i) proj[i] = {axis.dot(Eigen::Vector3d(&c[3 * i])), i};
+  std::sort(proj.begin(), proj.end());
+  double acc = 0;
+  std::vector<uint8_t> side(n, 0);
+  for (auto& [x, i] : proj) {
+    side[i] = acc >= 0.5 * total;
+    acc += w[i];
+  }
+  // Straighten: a triangle with at least two neighbors (in the piece) on
+  // the other side changes side; a few passes.
+  for (size_t i = 0; i < n; ++i) owner[size_t(tris[i])] = id + side[i];
+  for (int pass = 0; pass < 4; ++pass) {
+    bool changed = false;
+    for (size_t i = 0; i < n; ++i) {
+      const int32_t t = tris[i];
+      int other = 0;
+      for (int k = 0; k < 3; ++k) {
+        int32_t o = adj.opposite[3 * size_t(t) + k];
+        if (o < 0) continue;
+        int32_t s = owner[size_t(o / 3)];
+        if ((s == id || s == id + 1) && s != owner[size_t(t)]) ++other;
+      }
+      if (other >= 2) {
+        owner[size_t(t)] = owner[size_t(t)] == id ? id + 1 : id;
+        changed = true;
+      }
+    }
+    if (!changed) break;
+  }
+  // Fragments: a piece of one side cut off from that side's largest piece
+  // joins the other side (so no patch is a sliver left by the cut).
+  for (int side = 0; side < 2; ++side) {
+    const int32_t mine = id + side, other = id + 1 - side;
+    std::vector<uint8_t> seen(n, 0);
+    std::vector<std::vector<size_t>> pieces;
+    for (size_t i = 0; i < n; ++i) {
+      if (seen[i] || owner[size_t(tris[i])] != mine) continue;
+      pieces.push_back({i});
+      seen[i] = 1;
+      auto& piece = pieces.back();
+      for (size_t j = 0; j < piece.size(); ++j) {
+        const int32_t t = tris[piece[j]];
+        for (int k = 0; k < 3; ++k) {
+          int32_t o = adj.opposite[3 * size_t(t) + k];
+          if (o < 0 || owner[size_t(o / 3)] != mine) continue;
+          auto it = std::lower_bound(tris.begin(), tris.end(), o / 3);
+          const size_t idx = size_t(it - tris.begin());
+          if (!seen[idx]) {
+            seen[idx] = 1;
+            piece.push_back(idx);
+          }
+        }
+      }
+    }
+    if (pieces.size() < 2) continue;
+    size_t largest = 0;
+    for (size_t i = 1; i < pieces.size(); ++i)
+      if (pieces[i].size() > pieces[largest].size()) largest = i;
+    for (size_t i = 0; i < pieces.size(); ++i)
+      if (i != largest)
+        for (size_t idx : pieces[i]) owner[size_t(tris[idx])] = other;
+  }
+  for (int32_t t : tris) out[owner[size_t(t)] - id].push_back(t);
+}
+
+/// Edge-connected components of `tris` (all with owner[t] == id).
+std::vector<std::vector<int32_t>> components(const TriangleAdjacency& adj,
+                                             const std::vector<int32_t>& tris,
+                                             std::vector<int32_t>& owner, int32_t id,
+                                             int32_t& next_id) {
+  std::vector<std::vector<int32_t>> out;
+  for (int32_t seed : tris) {
+    if (owner[size_t(seed)] != id) continue;
+    std::vector<int32_t> comp = {seed};
+    int32_t cid = next_id++;
+    owner[size_t(seed)] = cid;
+    for (size_t i = 0; i < comp.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        int32_t o = adj.opposite[3 * size_t(comp[i]) + k];
+        if (o >= 0 && owner[size_t(o / 3)] == id) {
+          owner[size_t(o / 3)] = cid;
+          comp.push_back(o / 3);
+        }
+      }
+    out.push_back(std::move(comp));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> conformal_factors(const SurfaceMesh& m, const std::vector<double>& uv) {
+  std::vector<double> f(m.num_triangles());
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    const int32_t* v = &m.triangles[3 * t];
+    Eigen::Vector3d a(&m.points[3 * size_t(v[0])]), b(&m.points[3 * size_t(v[1])]),
+        c(&m.points[3 * size_t(v[2])]);
+    double a3 = (b - a).cross(c - a).norm();
+    const double *pa = &uv[2 * size_t(v[0])], *pb = &uv[2 * size_t(v[1])],
+                 *pc = &uv[2 * size_t(v[2])];
+    double a2 = (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pb[1] - pa[1]) * (pc[0] - pa[0]);
+    f[t] = a3 > 0 ? std::sqrt(std::max(a2, 0.0) / a3) : 0;
+  }
+  return f;
+}
+
+double conformal_factor_ratio(const SurfaceMesh& m, const std::vector<double>& uv) {
+  std::vector<double> f = conformal_factors(m, uv);
+  if (f.empty()) return 1;
+  size_t lo = f.size() * 2 / 100, hi = std::min(f.size() - 1, f.size() * 98 / 100);
+  std::nth_element(f.begin(), f.begin() + long(lo), f.end());
+  double flo = f[lo];
+  std::nth_element(f.begin(), f.begin() + long(hi), f.end());
+  double fhi = f[hi];
+  return flo > 0 ? fhi / flo : 1e300;
+}
+
+Result<std::vector<MappedPatch>> partition_for_maps(const SurfaceMesh& mesh,
+                                                    const TriangleAdjacency& adj,
+                                                    const PatchMapFn& map,
+                                                    const PartitionOptions& options,
+                                                    PartitionStats* stats) {
+  using R = Result<std::vector<MappedPatch>>;
+  const size_t nt = mesh.num_triangles();
+  std::vector<int32_t> owner(nt, 0), local(mesh.num_vertices(), -1);
+  int32_t next_id = 1;
+  std::vector<MappedPatch> done;
+  std::vector<Piece> todo;
+  {
+    Piece all;
+    all.tris.resize(nt);
+    for (size_t t = 0; t < nt; ++t) all.tris[t] = int32_t(t);
+    todo.push_back(std::move(all));
+  }
+  PartitionStats local_stats;
+  while (!todo.empty()) {
+    Piece piece = std::move(todo.back());
+    todo.pop_back();
+    const int32_t id = next_id++;
+    for (int32_t t : piece.tris) owner[size_t(t)] = id;
+    for (auto& comp : components(adj, piece.tris, owner, id, next_id)) {
+      bool accept = false;
+      MappedPatch p = extract(mesh, comp, local);
+      if (comp.size() <= options.max_patch_triangles && is_disk(p.mesh)) {
+        auto uv = map(p.mesh);
+        if (!uv.ok()) return uv.status();
+        p.map = std::move(uv).value();
+        p.factor_ratio = p.map.flipped_triangles ? 1e300 : conformal_factor_ratio(p.mesh, p.map.uv);
+        accept = p.factor_ratio <= options.max_factor_ratio || comp.size() < 8;
+        if (!accept) ++local_stats.rejected_maps;
+        if (!accept && p.map.flipped_triangles && comp.size() < 8)
+          return R::Error("the map folds a patch of " + std::to_string(comp.size()) +
+                          " triangles: the input surface is folded there");
+      }
+      if (accept) {
+        done.push_back(std::move(p));
+        continue;
+      }
+      if (piece.depth + 1 > options.max_depth)
+        return R::Error("could not split the surface into parametrizable patches (depth " +
+                        std::to_string(options.max_depth) + " reached)");
+      std::vector<int32_t> halves[2];
+      std::sort(comp.begin(), comp.end());
+      bisect(mesh, adj, comp, owner, next_id, halves);
+      next_id += 2;
+      ++local_stats.bisections;
+      for (auto& h : halves)
+        if (!h.empty()) todo.push_back({std::move(h), piece.depth + 1});
+    }
+  }
+  if (stats) *stats = local_stats;
+  return done;
+}
+
+}  // namespace vm

@@ -1,0 +1,266 @@
+// Whole-surface remeshing (Marchandise et al., sections 2.1 and 3) in
+// phases: size field; partition into mapped patches; seams (the patch
+// boundaries and the openings) cut into curves between corners and each
+// curve resampled once in 3D; every patch meshed in its plane against the
+// shared samples; assembly by sample ids; optimization on the input.
+#include "core/surface/remesh_surface.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <unordered_map>
+
+#include "core/mesh/boundary_loops.h"
+#include "core/param/fixed_boundary_map.h"
+#include "core/surface/resample_curve.h"
+
+namespace vm {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+uint64_t edge_key(int32_t a, int32_t b) {
+  if (a > b) std::swap(a, b);
+  return (uint64_t(uint32_t(a)) << 32) | uint32_t(b);
+}
+
+/// The shared discretization of every patch boundary.
+struct Seams {
+  std::vector<double> points;       ///< 3 per sample
+  std::vector<int32_t> home;        ///< an input triangle containing each sample
+  std::vector<uint8_t> on_opening;  ///< sample on an input boundary loop
+  std::vector<int32_t> at_vertex;   ///< input vertex -> sample there, or -1
+  /// Input edge (min, max) -> samples strictly inside it: (fraction from
+  /// the min vertex, sample id).
+  std::unordered_map<uint64_t, std::vector<std::pair<double, int32_t>>> on_edge;
+};
+
+/// Phase 3: curves between corners of the boundary graph, resampled.
+Seams discretize_seams(const SurfaceMesh& m, const TriangleAdjacency& adj,
+                       const std::vector<int32_t>& label, const std::vector<double>& h) {
+  const size_t nv = m.num_vertices();
+  // Boundary-graph edges: openings and edges between two patches.
+  struct Edge {
+    int32_t a, b, tri;
+    uint8_t opening;
+  };
+  std::vector<Edge> edges;
+  for (size_t he = 0; he < adj.opposite.size(); ++he) {
+    const int32_t o = adj.opposite[he], t = int32_t(he / 3);
+    const bool opening = o < 0;
+    if (!opening && (label[size_t(o / 3)] == label[size_t(t)] || o < int32_t(he))) continue;
+    edges.push_back(
+        {half_edge_from(m, int32_t(he)), half_edge_to(m, int32_t(he)), t, uint8_t(opening)});
+  }
+  std::vector<std::vector<int32_t>> at(nv);
+  std::vector<uint8_t> on_open(nv, 0), on_seam(nv, 0);
+  for (size_t e = 0; e < edges.size(); ++e) {
+    for (int32_t v : {edges[e].a, edges[e].b}) {
+      at[size_t(v)].push_back(int32_t(e));
+      (edges[e].opening ? on_open : on_seam)[size_t(v)] = 1;
+    }
+  }
+  Seams s;
+  s.at_vertex.assign(nv, -1);
+  auto add_sample = [&](const double* x, int32_t tri, uint8_t opening) {
+    s.points.insert(s.points.end(), x, x + 3);
+    s.home.push_back(tri);
+    s.on_opening.push_back(opening);
+    return int32_t(s.home.size() - 1);
+  };
+  std::vector<uint8_t> corner(nv, 0);
+  for (size_t v = 0; v < nv; ++v) {
+    corner[v] = !at[v].empty() && (at[v].size() != 2 || (on_open[v] && on_seam[v]));
+    if (corner[v])
+      s.at_vertex[v] = add_sample(&m.points[3 * v], edges[size_t(at[v][0])].tri, on_open[v]);
+  }
+  std::vector<uint8_t> used(edges.size(), 0);
+  // Walks a curve from vertex v along edge e, to a corner or back to start.
+  auto trace = [&](int32_t v, int32_t e) {
+    std::vector<int32_t> chain = {v}, chain_edges;
+    const int32_t start = v;
+    while (true) {
+      used[size_t(e)] = 1;
+      chain_edges.push_back(e);
+      v = edges[size_t(e)].a == v ? edges[size_t(e)].b : edges[size_t(e)].a;
+      if (v == start || corner[size_t(v)]) break;
+      chain.push_back(v);
+      int32_t next = -1;
+      for (int32_t f : at[size_t(v)])
+        if (!used[size_t(f)]) next = f;
+      if (next < 0) break;
+      e = next;
+    }
+    const bool closed = v == start && !corner[size_t(v)];
+    if (!closed) chain.push_back(v);
+    std::vector<double> pts, sizes;
+    for (int32_t c : chain) {
+      pts.insert(pts.end(), &m.points[3 * size_t(c)], &m.points[3 * size_t(c)] + 3);
+      sizes.push_back(h[size_t(c)]);
+    }
+    double length = 0;
+    for (size_t i = 0; i + 1 < chain.size(); ++i) {
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k) d2 += std::pow(pts[3 * i + 3 + k] - pts[3 * i + k], 2);
+      length += std::sqrt(d2);
+    }
+    const size_t min_segments = closed ? 3 : (length > 0.5 * sizes[0] ? 2 : 1);
+    const uint8_t opening = edges[size_t(chain_edges[0])].opening;
+    for (const CurveSample& cs : resample_curve(pts, sizes, closed, min_segments)) {
+      const size_t i = cs.segment, j = (i + 1) % chain.size();
+      const int32_t a = chain[i], b = chain[j];
+      if (cs.t == 0 || cs.t == 1) {
+        const int32_t at_v = cs.t == 0 ? a : b;
+        if (s.at_vertex[size_t(at_v)] < 0)
+          s.at_vertex[size_t(at_v)] =
+              add_sample(&m.points[3 * size_t(at_v)], edges[size_t(chain_edges[i])].tri, opening);
+        continue;
+      }
+      double x[3];
+      for (int k = 0; k < 3; ++k)
+        x[k] = (1 - cs.t) * m.points[3 * size_t(a) + k] + cs.t * m.points[3 * size_t(b) + k];
+      const int32_t id = add_sample(x, edges[size_t(chain_edges[i])].tri, opening);
+      s.on_edge[edge_key(a, b)].push_back({a < b ? cs.t : 1 - cs.t, id});
+    }
+  };
+  for (size_t v = 0; v < nv; ++v)
+    if (corner[v])
+      for (int32_t e : at[v])
+        if (!used[size_t(e)]) trace(int32_t(v), e);
+  for (size_t e = 0; e < edges.size(); ++e)
+    if (!used[e]) trace(edges[e].a, int32_t(e));
+  for (auto& [key, list] : s.on_edge) std::sort(list.begin(), list.end());
+  return s;
+}
+
+/// Phase 4 input: the boundary of a patch as shared samples, in loop order.
+Result<std::vector<PatchBoundaryPoint>> patch_boundary(const MappedPatch& p, const Seams& s,
+                                                       std::vector<int32_t>& ids) {
+  using R = Result<std::vector<PatchBoundaryPoint>>;
+  auto loops = boundary_loops(p.mesh, build_adjacency(p.mesh));
+  if (loops.size() != 1) return R::Error("a patch is not a disk");
+  const auto& loop = loops[0];
+  std::vector<PatchBoundaryPoint> out;
+  ids.clear();
+  for (size_t i = 0; i < loop.size(); ++i) {
+    const int32_t la = loop[i], lb = loop[(i + 1) % loop.size()];
+    const int32_t a = p.vertex_of[size_t(la)], b = p.vertex_of[size_t(lb)];
+    if (s.at_vertex[size_t(a)] >= 0) {
+      out.push_back({la, lb, 0});
+      ids.push_back(s.at_vertex[size_t(a)]);
+    }
+    auto it = s.on_edge.find(edge_key(a, b));
+    if (it == s.on_edge.end()) continue;
+    const auto& list = it->second;
+    for (size_t j = 0; j < list.size(); ++j) {
+      const auto& [f, id] = a < b ? list[j] : list[list.size() - 1 - j];
+      out.push_back({la, lb, a < b ? f : 1 - f});
+      ids.push_back(id);
+    }
+  }
+  if (out.size() < 3)
+    return R::Error("a patch boundary has fewer than 3 points at this size: use a smaller size");
+  return out;
+}
+
+}  // namespace
+
+Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOptions& options,
+                                       RemeshStats* stats_out, const ProgressFn& progress) {
+  using R = Result<RemeshedSurface>;
+  RemeshStats stats;
+  RemeshedSurface out;
+  auto t0 = std::chrono::steady_clock::now();
+  // Phase 1: size field.
+  auto sizes = vertex_sizes(input, options.size);
+  if (!sizes.ok()) return sizes.status();
+  out.input_sizes = std::move(sizes).value();
+  const std::vector<double>& h = out.input_sizes;
+  {
+    std::vector<double> sorted = h;
+    std::sort(sorted.begin(), sorted.end());
+    stats.size_min = sorted.front();
+    stats.size_max = sorted.back();
+    stats.size_median = sorted[sorted.size() / 2];
+  }
+  stats.seconds_size = seconds_since(t0);
+  if (!report_progress(progress, 0.1, "partitioning")) return R::Error(kCancelledMessage);
+
+  // Phase 2: partition into mapped patches.
+  t0 = std::chrono::steady_clock::now();
+  const TriangleAdjacency adj = build_adjacency(input);
+  PatchMapFn map = [&](const SurfaceMesh& patch) -> Result<Parametrization> {
+    switch (options.param) {
+      case ParamMethod::kHarmonic:
+        return map_to_disk(patch, DiskWeights::kHarmonic);
+      case ParamMethod::kFloater:
+        return map_to_disk(patch, DiskWeights::kMeanValue);
+      default:
+        return lscm(patch);
+    }
+  };
+  PartitionStats pstats;
+  auto patches = partition_for_maps(input, adj, map, options.partition, &pstats);
+  if (!patches.ok()) return patches.status();
+  stats.patches = patches.value().size();
+  stats.bisections = pstats.bisections;
+  stats.rejected_maps = pstats.rejected_maps;
+  std::vector<int32_t> label(input.num_triangles(), -1);
+  for (size_t i = 0; i < patches.value().size(); ++i)
+    for (int32_t t : patches.value()[i].triangle_of) label[size_t(t)] = int32_t(i);
+  stats.seconds_partition = seconds_since(t0);
+
+  // Phase 3: seams.
+  t0 = std::chrono::steady_clock::now();
+  Seams seams = discretize_seams(input, adj, label, h);
+  stats.seam_points = seams.home.size();
+  out.mesh.points = seams.points;
+  out.home = seams.home;
+  out.on_opening = seams.on_opening;
+
+  // Phase 4: each patch in its plane, assembled by the shared sample ids.
+  std::vector<int32_t> ids;
+  for (size_t i = 0; i < patches.value().size(); ++i) {
+    const MappedPatch& p = patches.value()[i];
+    if (!report_progress(progress, 0.2 + 0.6 * double(i) / double(stats.patches),
+                         "meshing patches"))
+      return R::Error(kCancelledMessage);
+    auto boundary = patch_boundary(p, seams, ids);
+    if (!boundary.ok()) return boundary.status();
+    std::vector<double> local_h(p.vertex_of.size());
+    for (size_t v = 0; v < local_h.size(); ++v) local_h[v] = h[size_t(p.vertex_of[v])];
+    auto pm = mesh_mapped_patch(p.mesh, p.map.uv, local_h, boundary.value(), options.patch);
+    if (!pm.ok()) return pm.status();
+    const PatchMesh& mesh = pm.value();
+    const size_t nb = ids.size();
+    std::vector<int32_t> global(mesh.mesh.num_vertices());
+    for (size_t v = 0; v < global.size(); ++v) {
+      if (v < nb) {
+        global[v] = ids[v];
+        continue;
+      }
+      global[v] = int32_t(out.home.size());
+      out.mesh.points.insert(out.mesh.points.end(), &mesh.mesh.points[3 * v],
+                             &mesh.mesh.points[3 * v] + 3);
+      out.home.push_back(p.triangle_of[size_t(mesh.home[v])]);
+      out.on_opening.push_back(0);
+    }
+    for (int32_t v : mesh.mesh.triangles) out.mesh.triangles.push_back(global[size_t(v)]);
+  }
+  stats.seconds_mesh = seconds_since(t0);
+  if (!report_progress(progress, 0.85, "optimizing")) return R::Error(kCancelledMessage);
+
+  // Phase 5: swaps and smoothing on the input surface.
+  t0 = std::chrono::steady_clock::now();
+  auto ostats =
+      optimize_on_surface(out.mesh, out.home, out.on_opening, input, adj, options.optimize);
+  stats.swaps = ostats.swaps;
+  stats.moves = ostats.moves;
+  stats.seconds_optimize = seconds_since(t0);
+  if (stats_out) *stats_out = stats;
+  return out;
+}
+
+}  // namespace vm

@@ -1,0 +1,66 @@
+// Whole-surface remeshing by conformal maps (Marchandise et al., sections
+// 2.1 and 3): size field, partition into parametrizable patches, seams
+// discretized once, each patch meshed in its parameter plane, assembly,
+// optimization on the input surface.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh/surface_mesh.h"
+#include "core/surface/optimize_surface.h"
+#include "core/surface/partition.h"
+#include "core/surface/remesh_patch.h"
+#include "core/surface/size_field.h"
+#include "core/util/progress.h"
+#include "core/util/result.h"
+
+namespace vm {
+
+/// The map of each patch to the plane (seed Fig. 6).
+enum class ParamMethod {
+  kLscm,      ///< finite-element least-squares conformal map (default)
+  kHarmonic,  ///< harmonic map onto the unit disk
+  kFloater,   ///< Floater's mean-value map onto the unit disk
+};
+
+struct RemeshOptions {
+  SizeOptions size;
+  ParamMethod param = ParamMethod::kLscm;
+  PatchMeshOptions patch;  ///< 2D mesher and its options
+  PartitionOptions partition;
+  SurfaceOptimizeOptions optimize;
+};
+
+struct RemeshStats {
+  size_t patches = 0;
+  size_t bisections = 0;
+  size_t rejected_maps = 0;  ///< maps refused (folded or crowded) before splitting
+  size_t seam_points = 0;    ///< points on seams and openings, shared by patches
+  size_t swaps = 0, moves = 0;
+  double size_min = 0, size_median = 0, size_max = 0;  ///< of the size field at input vertices
+  double seconds_size = 0, seconds_partition = 0, seconds_mesh = 0, seconds_optimize = 0;
+};
+
+/// The remeshed surface, with what ties it to the input.
+struct RemeshedSurface {
+  SurfaceMesh mesh;
+  /// Per output vertex: an input triangle that contains it.
+  std::vector<int32_t> home;
+  /// Per output vertex: it lies on an opening (boundary loop) of the input.
+  std::vector<uint8_t> on_opening;
+  /// The size field at the input vertices.
+  std::vector<double> input_sizes;
+};
+
+/// Remeshes `input` (one component, manifold, consistently oriented, as
+/// prepared by prepare_surface). The output has the same topology (genus,
+/// openings), every vertex on the input surface, openings resampled at the
+/// target size. Errors: invalid size options, an input that cannot be
+/// partitioned, a failing map or mesher, cancellation.
+Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOptions& options = {},
+                                       RemeshStats* stats = nullptr,
+                                       const ProgressFn& progress = {});
+
+}  // namespace vm

@@ -1,0 +1,39 @@
+// Target edge length at the input vertices: uniform, radius-adaptive
+// h = 2 pi R(x) / N (Marchandise et al., eq. 11), or curvature-adaptive,
+// clamped and graded.
+#pragma once
+
+#include <limits>
+#include <vector>
+
+#include "core/mesh/surface_mesh.h"
+#include "core/util/result.h"
+
+namespace vm {
+
+enum class SizeMode {
+  kUniform,           ///< h = size everywhere
+  kPerCircumference,  ///< h = 2 pi R(x) / per_circumference
+};
+
+struct SizeOptions {
+  SizeMode mode = SizeMode::kPerCircumference;
+  double size = 0;                ///< uniform h (model units), > 0 in that mode
+  double per_circumference = 20;  ///< N, > 0 in that mode
+  /// If > 0: h <= 2 pi / (curvature_points * kappa_max), kappa_max the
+  /// largest principal curvature estimated at the vertex (points per
+  /// radian of turning, 0 = off).
+  double curvature_points = 0;
+  double size_min = 0;                                        ///< clamp (0 = none)
+  double size_max = std::numeric_limits<double>::infinity();  ///< clamp
+  /// Gradation: h may grow by at most this per unit length along the
+  /// surface (|grad h| <= gradation; 0 = off).
+  double gradation = 0;
+};
+
+/// One size per input vertex (num_vertices values, > 0). The radius comes
+/// from vessel_radius (shrinking balls). Errors: non-positive or non-finite
+/// parameters, min > max, an empty mesh.
+Result<std::vector<double>> vertex_sizes(const SurfaceMesh& mesh, const SizeOptions& options);
+
+}  // namespace vm
