@@ -11,6 +11,7 @@
 
 #include "core/io/stl.h"
 #include "core/phantom/vessel_phantom.h"
+#include "core/pipeline/job_options.h"
 #include "core/pipeline/mesh_job.h"
 #include "core/pipeline/report_json.h"
 
@@ -70,12 +71,18 @@ val analyze(val stl, val progress) {
   return r;
 }
 
-val mesh(val stl, std::string msh_version, bool largest_component_only, val progress) {
+/// options: a plain object of option name -> text value (names of
+/// vm::set_job_option), plus booleans largestComponentOnly and remesh.
+val mesh(val stl, val opts, val progress) {
   vm::MeshJobOptions options;
-  auto version = vm::parse_msh_version(msh_version);
-  if (!version.ok()) return error(version.message());
-  options.msh_version = version.value();
-  options.largest_component_only = largest_component_only;
+  for (std::string_view name : vm::job_option_names()) {
+    val v = opts[std::string(name)];
+    if (v.isUndefined()) continue;
+    vm::Status st = vm::set_job_option(options, name, v.as<std::string>());
+    if (!st.ok()) return error(st.message());
+  }
+  options.largest_component_only = opts["largestComponentOnly"].as<bool>();
+  options.remesh = opts["remesh"].as<bool>();
   std::vector<uint8_t> bytes = bytes_from(stl);
   auto result = vm::run_mesh_job(bytes, options, progress_from(progress));
   if (!result.ok()) return error(result.message());

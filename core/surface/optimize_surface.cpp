@@ -125,21 +125,25 @@ class Optimizer {
   bool try_move(int32_t v) {
     const auto& star = vt_[size_t(v)];
     if (star.empty()) return false;
+    // Target: the mean of the apexes that would make each star triangle
+    // equilateral on its opposite edge, in its own plane.
     double target[3] = {0, 0, 0};
-    int count = 0;
     double before = 1, before_sum = 0;
     for (int32_t t : star) {
       const int32_t* T = tri(t);
       const double g = gamma(T[0], T[1], T[2]);
       before = std::min(before, g);
       before_sum += g;
-      for (int c = 0; c < 3; ++c)
-        if (T[c] != v) {
-          for (int k = 0; k < 3; ++k) target[k] += p(T[c])[k];
-          ++count;
-        }
+      int c = 0;
+      while (T[c] != v) ++c;
+      const double *b = p(T[(c + 1) % 3]), *e = p(T[(c + 2) % 3]);
+      const Vec n = normal(p(v), b, e);
+      const double d[3] = {e[0] - b[0], e[1] - b[1], e[2] - b[2]};
+      const double side[3] = {n.x[1] * d[2] - n.x[2] * d[1], n.x[2] * d[0] - n.x[0] * d[2],
+                              n.x[0] * d[1] - n.x[1] * d[0]};  // |side| = |d|, into the triangle
+      for (int k = 0; k < 3; ++k) target[k] += 0.5 * (b[k] + e[k]) + 0.8660254037844386 * side[k];
     }
-    for (double& x : target) x /= count;  // each neighbor counted twice
+    for (double& x : target) x /= double(star.size());
     double projected[3];
     const int32_t new_home = project_near(target, home_[size_t(v)], in_, in_adj_, projected);
     double* pv = &m_.points[3 * size_t(v)];

@@ -12,7 +12,7 @@
 namespace vm {
 
 struct SurfaceOptimizeOptions {
-  int passes = 4;  ///< swap + smoothing passes
+  int passes = 10;  ///< swap + smoothing passes
   /// A swap or a move is refused if it turns a triangle's normal by more
   /// than this (degrees), so the mesh cannot fold over sharp features.
   double max_normal_turn_degrees = 25;
@@ -25,7 +25,8 @@ struct SurfaceOptimizeStats {
 
 /// Improves `mesh` in place: swaps an interior edge when the smaller gamma_k
 /// of its two triangles increases, and moves each vertex not `fixed` to the
-/// centroid of its neighbors projected onto `input` (the closest point found
+/// mean of the apexes that would make its triangles equilateral, projected
+/// onto `input` (the closest point found
 /// by a walk from `home[v]`, an input triangle near v, which is updated)
 /// when the smallest gamma_k of its star increases, or stays and the star's
 /// mean increases. Vertices only move to

@@ -146,6 +146,23 @@ void bisect(const SurfaceMesh& m, const TriangleAdjacency& adj, const std::vecto
         for (size_t idx : pieces[i]) owner[size_t(tris[idx])] = other;
   }
   for (int32_t t : tris) out[owner[size_t(t)] - id].push_back(t);
+  if (!out[0].empty() && !out[1].empty()) return;
+  // Too few triangles for a plane to cut (a coarse input): the first half
+  // of a breadth-first order from the triangle lowest along the axis.
+  out[0].clear();
+  out[1].clear();
+  for (int32_t t : tris) owner[size_t(t)] = id + 1;
+  std::vector<int32_t> order = {tris[proj.front().second]};
+  owner[size_t(order[0])] = id;
+  for (size_t i = 0; i < order.size() && order.size() < n / 2; ++i)
+    for (int k = 0; k < 3 && order.size() < n / 2; ++k) {
+      const int32_t o = adj.opposite[3 * size_t(order[i]) + k];
+      if (o >= 0 && owner[size_t(o / 3)] == id + 1) {
+        owner[size_t(o / 3)] = id;
+        order.push_back(o / 3);
+      }
+    }
+  for (int32_t t : tris) out[owner[size_t(t)] - id].push_back(t);
 }
 
 /// Edge-connected components of `tris` (all with owner[t] == id).
@@ -226,7 +243,13 @@ Result<std::vector<MappedPatch>> partition_for_maps(const SurfaceMesh& mesh,
     for (auto& comp : components(adj, piece.tris, owner, id, next_id)) {
       bool accept = false;
       MappedPatch p = extract(mesh, comp, local);
-      if (comp.size() <= options.max_patch_triangles && is_disk(p.mesh)) {
+      bool small_enough = comp.size() <= options.max_patch_triangles;
+      if (!options.size_limit.empty())
+        for (int32_t t : comp)
+          if (options.size_limit[size_t(t)] > 0 &&
+              comp.size() >= size_t(options.size_limit[size_t(t)]))
+            small_enough = false;
+      if (small_enough && is_disk(p.mesh)) {
         auto uv = map(p.mesh);
         if (!uv.ok()) return uv.status();
         p.map = std::move(uv).value();

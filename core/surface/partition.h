@@ -27,6 +27,10 @@ struct PartitionOptions {
   double max_factor_ratio = 6.0;
   /// Bisection depth limit (an error beyond it).
   int max_depth = 48;
+  /// Optional, one per input triangle (or empty): a patch must have fewer
+  /// triangles than this at each of its triangles (0 = no limit). Used to
+  /// split again a patch whose planar meshing failed.
+  std::vector<int32_t> size_limit;
 };
 
 /// One patch with its parametrization.

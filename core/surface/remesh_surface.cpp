@@ -100,13 +100,8 @@ Seams discretize_seams(const SurfaceMesh& m, const TriangleAdjacency& adj,
       pts.insert(pts.end(), &m.points[3 * size_t(c)], &m.points[3 * size_t(c)] + 3);
       sizes.push_back(h[size_t(c)]);
     }
-    double length = 0;
-    for (size_t i = 0; i + 1 < chain.size(); ++i) {
-      double d2 = 0;
-      for (int k = 0; k < 3; ++k) d2 += std::pow(pts[3 * i + 3 + k] - pts[3 * i + k], 2);
-      length += std::sqrt(d2);
-    }
-    const size_t min_segments = closed ? 3 : (length > 0.5 * sizes[0] ? 2 : 1);
+    // At least 2 segments per curve, so every patch boundary has 3 points.
+    const size_t min_segments = closed ? 3 : 2;
     const uint8_t opening = edges[size_t(chain_edges[0])].opening;
     for (const CurveSample& cs : resample_curve(pts, sizes, closed, min_segments)) {
       const size_t i = cs.segment, j = (i + 1) % chain.size();
@@ -201,53 +196,75 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
         return lscm(patch);
     }
   };
-  PartitionStats pstats;
-  auto patches = partition_for_maps(input, adj, map, options.partition, &pstats);
-  if (!patches.ok()) return patches.status();
-  stats.patches = patches.value().size();
-  stats.bisections = pstats.bisections;
-  stats.rejected_maps = pstats.rejected_maps;
-  std::vector<int32_t> label(input.num_triangles(), -1);
-  for (size_t i = 0; i < patches.value().size(); ++i)
-    for (int32_t t : patches.value()[i].triangle_of) label[size_t(t)] = int32_t(i);
-  stats.seconds_partition = seconds_since(t0);
+  // Phases 2-4, again with the failing patch forced to split if its planar
+  // boundary crosses itself (a coarse resampling of a tortuous boundary).
+  PartitionOptions partition = options.partition;
+  for (int attempt = 0;; ++attempt) {
+    PartitionStats pstats;
+    auto patches = partition_for_maps(input, adj, map, partition, &pstats);
+    if (!patches.ok()) return patches.status();
+    stats.patches = patches.value().size();
+    stats.bisections = pstats.bisections;
+    stats.rejected_maps = pstats.rejected_maps;
+    std::vector<int32_t> label(input.num_triangles(), -1);
+    for (size_t i = 0; i < patches.value().size(); ++i)
+      for (int32_t t : patches.value()[i].triangle_of) label[size_t(t)] = int32_t(i);
+    stats.seconds_partition += seconds_since(t0);
 
-  // Phase 3: seams.
-  t0 = std::chrono::steady_clock::now();
-  Seams seams = discretize_seams(input, adj, label, h);
-  stats.seam_points = seams.home.size();
-  out.mesh.points = seams.points;
-  out.home = seams.home;
-  out.on_opening = seams.on_opening;
+    // Phase 3: seams.
+    t0 = std::chrono::steady_clock::now();
+    Seams seams = discretize_seams(input, adj, label, h);
+    stats.seam_points = seams.home.size();
+    out.mesh.points = seams.points;
+    out.mesh.triangles.clear();
+    out.home = seams.home;
+    out.on_opening = seams.on_opening;
 
-  // Phase 4: each patch in its plane, assembled by the shared sample ids.
-  std::vector<int32_t> ids;
-  for (size_t i = 0; i < patches.value().size(); ++i) {
-    const MappedPatch& p = patches.value()[i];
-    if (!report_progress(progress, 0.2 + 0.6 * double(i) / double(stats.patches),
-                         "meshing patches"))
-      return R::Error(kCancelledMessage);
-    auto boundary = patch_boundary(p, seams, ids);
-    if (!boundary.ok()) return boundary.status();
-    std::vector<double> local_h(p.vertex_of.size());
-    for (size_t v = 0; v < local_h.size(); ++v) local_h[v] = h[size_t(p.vertex_of[v])];
-    auto pm = mesh_mapped_patch(p.mesh, p.map.uv, local_h, boundary.value(), options.patch);
-    if (!pm.ok()) return pm.status();
-    const PatchMesh& mesh = pm.value();
-    const size_t nb = ids.size();
-    std::vector<int32_t> global(mesh.mesh.num_vertices());
-    for (size_t v = 0; v < global.size(); ++v) {
-      if (v < nb) {
-        global[v] = ids[v];
-        continue;
+    // Phase 4: each patch in its plane, assembled by the shared sample ids.
+    std::vector<int32_t> ids;
+    Status failed = Status::Ok();
+    size_t failed_patch = 0;
+    for (size_t i = 0; i < patches.value().size() && failed.ok(); ++i) {
+      const MappedPatch& p = patches.value()[i];
+      if (!report_progress(progress, 0.2 + 0.6 * double(i) / double(stats.patches),
+                           "meshing patches"))
+        return R::Error(kCancelledMessage);
+      auto boundary = patch_boundary(p, seams, ids);
+      std::vector<double> local_h(p.vertex_of.size());
+      for (size_t v = 0; v < local_h.size(); ++v) local_h[v] = h[size_t(p.vertex_of[v])];
+      auto pm = boundary.ok()
+                    ? mesh_mapped_patch(p.mesh, p.map.uv, local_h, boundary.value(), options.patch)
+                    : Result<PatchMesh>(boundary.status());
+      if (!pm.ok()) {
+        failed = pm.status();
+        failed_patch = i;
+        break;
       }
-      global[v] = int32_t(out.home.size());
-      out.mesh.points.insert(out.mesh.points.end(), &mesh.mesh.points[3 * v],
-                             &mesh.mesh.points[3 * v] + 3);
-      out.home.push_back(p.triangle_of[size_t(mesh.home[v])]);
-      out.on_opening.push_back(0);
+      const PatchMesh& mesh = pm.value();
+      const size_t nb = ids.size();
+      std::vector<int32_t> global(mesh.mesh.num_vertices());
+      for (size_t v = 0; v < global.size(); ++v) {
+        if (v < nb) {
+          global[v] = ids[v];
+          continue;
+        }
+        global[v] = int32_t(out.home.size());
+        out.mesh.points.insert(out.mesh.points.end(), &mesh.mesh.points[3 * v],
+                               &mesh.mesh.points[3 * v] + 3);
+        out.home.push_back(p.triangle_of[size_t(mesh.home[v])]);
+        out.on_opening.push_back(0);
+      }
+      for (int32_t v : mesh.mesh.triangles) out.mesh.triangles.push_back(global[size_t(v)]);
     }
-    for (int32_t v : mesh.mesh.triangles) out.mesh.triangles.push_back(global[size_t(v)]);
+    if (failed.ok()) break;
+    const auto& bad = patches.value()[failed_patch].triangle_of;
+    if (attempt >= 8 || bad.size() < 8)
+      return Status::Error("meshing a patch of " + std::to_string(bad.size()) +
+                           " input triangles failed: " + failed.message());
+    if (partition.size_limit.empty()) partition.size_limit.assign(input.num_triangles(), 0);
+    for (int32_t t : bad) partition.size_limit[size_t(t)] = int32_t(bad.size());
+    ++stats.retries;
+    t0 = std::chrono::steady_clock::now();
   }
   stats.seconds_mesh = seconds_since(t0);
   if (!report_progress(progress, 0.85, "optimizing")) return R::Error(kCancelledMessage);

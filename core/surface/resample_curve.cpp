@@ -11,7 +11,11 @@ std::vector<CurveSample> resample_curve(const std::vector<double>& points,
                                         size_t min_segments) {
   const size_t n = points.size() / 3;
   const size_t segs = closed ? n : (n > 0 ? n - 1 : 0);
-  std::vector<double> steps(segs + 1, 0.0);
+  std::vector<double> steps(segs + 1, 0.0), lengths(segs, 0.0);
+  auto graded = [&](size_t i) {
+    const double h0 = sizes[i], h1 = sizes[(i + 1) % n];
+    return std::abs(h1 - h0) > 1e-9 * h0;
+  };
   for (size_t i = 0; i < segs; ++i) {
     const size_t j = (i + 1) % n;
     double d2 = 0;
@@ -20,9 +24,10 @@ std::vector<CurveSample> resample_curve(const std::vector<double>& points,
       d2 += d * d;
     }
     // Exact integral of 1 / h for h linear along the segment.
-    const double h0 = sizes[i], h1 = sizes[j], len = std::sqrt(d2);
-    const double inv = std::abs(h1 - h0) > 1e-12 * h0 ? std::log(h1 / h0) / (h1 - h0) : 1 / h0;
-    steps[i + 1] = steps[i] + len * inv;
+    const double h0 = sizes[i], h1 = sizes[j];
+    lengths[i] = std::sqrt(d2);
+    const double inv = graded(i) ? std::log(h1 / h0) / (h1 - h0) : 1 / h0;
+    steps[i + 1] = steps[i] + lengths[i] * inv;
   }
   const size_t count = std::max(min_segments, size_t(std::lround(steps[segs])));
   std::vector<CurveSample> out;
@@ -30,7 +35,13 @@ std::vector<CurveSample> resample_curve(const std::vector<double>& points,
   for (size_t s = 0, i = 0; s < count; ++s) {
     const double target = steps[segs] * double(s) / double(count);
     while (i + 1 < segs && steps[i + 1] <= target) ++i;
-    const double f = steps[i + 1] > steps[i] ? (target - steps[i]) / (steps[i + 1] - steps[i]) : 0;
+    // Invert the integral within the segment: with h(f) = h0 + (h1 - h0) f,
+    // the integral up to f is L / (h1 - h0) ln(h(f) / h0).
+    const double part = target - steps[i], h0 = sizes[i], h1 = sizes[(i + 1) % n];
+    double f = 0;
+    if (steps[i + 1] > steps[i] && lengths[i] > 0)
+      f = graded(i) ? (h0 * std::exp(part * (h1 - h0) / lengths[i]) - h0) / (h1 - h0)
+                    : part * h0 / lengths[i];
     out.push_back({i, std::clamp(f, 0.0, 1.0)});
   }
   return out;

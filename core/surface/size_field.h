@@ -20,15 +20,16 @@ struct SizeOptions {
   SizeMode mode = SizeMode::kPerCircumference;
   double size = 0;                ///< uniform h (model units), > 0 in that mode
   double per_circumference = 20;  ///< N, > 0 in that mode
-  /// If > 0: h <= 2 pi / (curvature_points * kappa_max), kappa_max the
-  /// largest principal curvature estimated at the vertex (points per
-  /// radian of turning, 0 = off).
+  /// If > 0: h <= 2 pi / (curvature_points * kappa), kappa an estimate of
+  /// the largest principal curvature at the vertex (twice the mean normal
+  /// curvature along its edges: exact on a cylinder, twice too large on a
+  /// sphere). In points per radian of turning; 0 = off.
   double curvature_points = 0;
   double size_min = 0;                                        ///< clamp (0 = none)
   double size_max = std::numeric_limits<double>::infinity();  ///< clamp
   /// Gradation: h may grow by at most this per unit length along the
   /// surface (|grad h| <= gradation; 0 = off).
-  double gradation = 0;
+  double gradation = 0.2;
 };
 
 /// One size per input vertex (num_vertices values, > 0). The radius comes

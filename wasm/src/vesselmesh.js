@@ -37,6 +37,19 @@ async function loadWasmBinary() {
  *   wasmBinary (fs.readFileSync of wasm/dist/vesselmesh_core.wasm); in the
  *   browser it is fetched next to this module.
  */
+/** JS mesh option name -> core option name (vesselmesh CLI flag). */
+const MESH_OPTIONS = {
+  size: 'size',
+  perCircumference: 'per-circumference',
+  sizeMin: 'size-min',
+  sizeMax: 'size-max',
+  gradation: 'gradation',
+  curvature: 'curvature',
+  param: 'param',
+  mesher2d: 'mesher2d',
+};
+const JS_NAMES = Object.fromEntries(Object.entries(MESH_OPTIONS).map(([js, core]) => [core, js]));
+
 export async function createVesselmesh({ wasmBinary } = {}) {
   const binary = wasmBinary ?? (await loadWasmBinary());
   const core = await createVesselmeshCore({ wasmBinary: binary });
@@ -62,23 +75,49 @@ export async function createVesselmesh({ wasmBinary } = {}) {
     },
 
     /**
-     * Meshes an STL and returns the MSH file bytes and the report.
+     * Meshes an STL: remeshes the surface by conformal maps (unless
+     * remesh is false) and returns the MSH file bytes and the report.
+     * Size: `size` (uniform h) or `perCircumference` (h = 2 pi R / N, the
+     * default with N = 20), clamps `sizeMin` / `sizeMax`, `gradation`,
+     * `curvature`; advanced: `param` ('lscm' | 'harmonic' | 'floater'),
+     * `mesher2d` ('frontal' | 'delaunay' | 'adapt').
      * @returns {{ok: true, msh: Uint8Array, report: object, surface: object} |
      *   {ok: false, error: string}}
      */
-    mesh(stlBytes, { mshVersion = '4.1', largestComponentOnly = false, onProgress } = {}) {
+    mesh(
+      stlBytes,
+      { mshVersion = '4.1', largestComponentOnly = false, remesh = true, onProgress, ...rest } = {},
+    ) {
       const bytes = asBytes(stlBytes);
       if (!bytes) return fail('mesh: the input must be a Uint8Array or ArrayBuffer');
       if (!MSH_VERSIONS.includes(mshVersion)) {
         return fail(`mesh: unknown mshVersion '${mshVersion}' (use 4.1 or 2.2)`);
       }
-      if (typeof largestComponentOnly !== 'boolean') {
-        return fail('mesh: largestComponentOnly must be true or false');
+      for (const [name, value] of [
+        ['largestComponentOnly', largestComponentOnly],
+        ['remesh', remesh],
+      ]) {
+        if (typeof value !== 'boolean') return fail(`mesh: ${name} must be true or false`);
+      }
+      const options = { 'msh-version': mshVersion, largestComponentOnly, remesh };
+      for (const [name, value] of Object.entries(rest)) {
+        const coreName = MESH_OPTIONS[name];
+        if (!coreName) return fail(`mesh: unknown option '${name}'`);
+        if (value === undefined) continue;
+        const isText = typeof value === 'string';
+        if (!isText && (typeof value !== 'number' || !Number.isFinite(value))) {
+          return fail(`mesh: ${name} must be a finite number or a string`);
+        }
+        options[coreName] = String(value);
       }
       const progress = progressCallback(onProgress);
       if (progress === null) return fail('mesh: onProgress must be a function');
-      const raw = core.mesh(bytes, mshVersion, largestComponentOnly, progress);
-      if (!raw.ok) return { ok: false, error: raw.error, ...(raw.cancelled && { cancelled: true }) };
+      const raw = core.mesh(bytes, options, progress);
+      if (!raw.ok) {
+        // Core messages name CLI flags (--size); name the JS option instead.
+        const error = raw.error.replace(/--([a-z0-9-]+)/g, (m, flag) => JS_NAMES[flag] ?? m);
+        return { ok: false, error, ...(raw.cancelled && { cancelled: true }) };
+      }
       return withSurface(raw, { msh: raw.msh, report: JSON.parse(raw.reportJson) });
     },
 

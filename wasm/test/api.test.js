@@ -143,7 +143,7 @@ describe('mesh', () => {
 
   test('MSH 2.2 on request; bad version refused', () => {
     const stl = ascii(TETRA);
-    const r = api.mesh(stl, { mshVersion: '2.2' });
+    const r = api.mesh(stl, { mshVersion: '2.2', remesh: false });
     assert.equal(r.ok, true, r.error);
     assert.ok(text(r.msh).startsWith('$MeshFormat\n2.2 0 8\n'));
     assert.equal(countElements(r.msh)[0], '4');
@@ -171,9 +171,59 @@ describe('mesh', () => {
     const refused = api.mesh(both);
     assert.equal(refused.ok, false);
     assert.match(refused.error, /2 connected components/);
-    const kept = api.mesh(both, { largestComponentOnly: true });
+    const kept = api.mesh(both, { largestComponentOnly: true, remesh: false });
     assert.equal(kept.ok, true, kept.error);
     assert.equal(kept.report.output.triangles, n);
+  });
+});
+
+describe('mesh: surface remeshing', () => {
+  const stl = () => api.makePhantom({ kind: 'bifurcation', voxel: 0.1, noise: 0.3 }).stl;
+
+  test('uniform size keeps the topology and gives quality triangles of size h', () => {
+    const r = api.mesh(stl(), { size: 0.15 });
+    assert.equal(r.ok, true, r.error);
+    const out = r.report.output;
+    assert.ok(out.remesh.patches > 1);
+    assert.equal(out.genus, 0);
+    assert.equal(out.openings, 3);
+    assert.ok(out.quality.min > 0.3, `min ${out.quality.min}`);
+    assert.ok(out.quality.mean > 0.9, `mean ${out.quality.mean}`);
+    // Median edge length within 10% of h.
+    const { positions: p, triangles: t } = r.surface;
+    const lengths = [];
+    for (let i = 0; i < t.length; i += 3) {
+      for (let c = 0; c < 3; c++) {
+        const a = 3 * t[i + c], b = 3 * t[i + ((c + 1) % 3)];
+        lengths.push(Math.hypot(p[a] - p[b], p[a + 1] - p[b + 1], p[a + 2] - p[b + 2]));
+      }
+    }
+    lengths.sort((x, y) => x - y);
+    const median = lengths[lengths.length >> 1];
+    assert.ok(Math.abs(median / 0.15 - 1) < 0.1, `median edge ${median}`);
+  });
+
+  test('every parametrization and 2D mesher works; radius-adaptive is the default', () => {
+    for (const param of ['lscm', 'harmonic', 'floater']) {
+      for (const mesher2d of ['frontal', 'delaunay', 'adapt']) {
+        const r = api.mesh(stl(), { size: 0.2, param, mesher2d });
+        assert.equal(r.ok, true, `${param}/${mesher2d}: ${r.error}`);
+        assert.equal(r.report.output.openings, 3);
+      }
+    }
+    const adaptive = api.mesh(stl(), { perCircumference: 20 });
+    assert.equal(adaptive.ok, true, adaptive.error);
+    assert.ok(adaptive.report.output.remesh.size.max > adaptive.report.output.remesh.size.min);
+  });
+
+  test('bad options are refused with the JS option name', () => {
+    assert.match(api.mesh(stl(), { size: -1 }).error, /^size needs a positive length/);
+    assert.match(api.mesh(stl(), { perCircumference: 2 }).error, /^perCircumference needs/);
+    assert.match(api.mesh(stl(), { mesher2d: 'quad' }).error, /mesher2d needs frontal, delaunay or adapt/);
+    assert.match(api.mesh(stl(), { param: 'x' }).error, /param needs lscm, harmonic or floater/);
+    assert.match(api.mesh(stl(), { foo: 1 }).error, /unknown option 'foo'/);
+    assert.match(api.mesh(stl(), { size: NaN }).error, /size must be a finite number/);
+    assert.match(api.mesh(stl(), { remesh: 'yes' }).error, /remesh must be true or false/);
   });
 });
 

@@ -3,6 +3,7 @@
 // Worker behind VesselmeshClient, so the page stays responsive.
 import { VesselmeshClient } from '../../wasm/src/client.js';
 import { qualityGradientCss } from './colormap.js';
+import { drawHistogram } from './histogram.js';
 import { hideAnalysis, showAnalysis } from './panel.js';
 import { Viewer } from './viewer.js';
 
@@ -12,7 +13,8 @@ const MAX_FILE_BYTES = 1.5 * 2 ** 30;
 
 const client = new VesselmeshClient();
 const viewer = new Viewer($('viewer'));
-let current = null; // { name, bytes, analysis }
+let current = null; // { name, bytes, analysis, surface }
+let remeshed = null; // { key, result } of the last remeshing of `current`
 let busy = false;
 
 $('legend').querySelector('.ramp').style.background = qualityGradientCss();
@@ -32,7 +34,7 @@ function setBusy(on, stage = '') {
   $('progress').hidden = !on;
   $('progress-bar').value = 0;
   $('progress-stage').textContent = stage;
-  for (const id of ['load-sample', 'export-msh', 'file-input']) $(id).disabled = on;
+  for (const id of ['load-sample', 'export-msh', 'file-input', 'remesh']) $(id).disabled = on;
 }
 
 function onProgress(fraction, stage) {
@@ -57,7 +59,9 @@ async function loadBytes(name, bytes) {
     showError(result.cancelled ? 'Cancelled.' : `${name}: ${result.error}`);
     return;
   }
-  current = { name, bytes, analysis: result.analysis };
+  current = { name, bytes, analysis: result.analysis, surface: result.surface };
+  remeshed = null;
+  $('remesh-result').hidden = true;
   $('drop-hint').hidden = true;
   $('legend').hidden = false;
   viewer.setSurface(result.surface);
@@ -109,21 +113,69 @@ function download(name, bytes) {
   setTimeout(() => URL.revokeObjectURL(url), 10_000);
 }
 
-async function exportMsh() {
-  if (!current || busy) return;
-  const options = {
+/** The mesh options chosen in the panel (without progress). */
+function meshOptions() {
+  const mode = $('size-mode').value;
+  return {
     mshVersion: $('msh-version').value,
     largestComponentOnly: $('largest-only').checked,
-    onProgress,
+    [mode]: Number($('size-value').value),
+    param: $('param').value,
+    mesher2d: $('mesher2d').value,
   };
-  const result = await run('mesh', () => client.mesh(current.bytes, options));
-  if (!result.ok) {
-    showError(result.cancelled ? 'Cancelled.' : `${current.name}: ${result.error}`);
-    return;
-  }
-  download(current.name.replace(/\.stl$/i, '') + '.msh', result.msh);
 }
 
+function showSurface(which) {
+  const showOutput = which === 'output' && remeshed;
+  viewer.setSurface(showOutput ? remeshed.result.surface : current.surface);
+}
+
+/** Meshes `current` with the panel's options, reusing the last result. */
+async function meshCurrent() {
+  const options = meshOptions();
+  const key = JSON.stringify(options);
+  if (remeshed?.key === key) return remeshed.result;
+  const result = await run('mesh', () => client.mesh(current.bytes, { ...options, onProgress }));
+  if (!result.ok) {
+    showError(result.cancelled ? 'Cancelled.' : `${current.name}: ${result.error}`);
+    return null;
+  }
+  remeshed = { key, result };
+  const out = result.report.output;
+  $('out-triangles').textContent = out.triangles.toLocaleString('en');
+  $('out-patches').textContent = out.remesh ? out.remesh.patches : '-';
+  $('out-quality-min').textContent = out.quality.min.toFixed(3);
+  $('out-quality-mean').textContent = out.quality.mean.toFixed(3);
+  drawHistogram($('out-histogram'), out.quality.histogram);
+  $('remesh-result').hidden = false;
+  $('show').value = 'output';
+  showSurface('output');
+  return result;
+}
+
+async function remesh() {
+  if (!current || busy) return;
+  await meshCurrent();
+}
+
+async function exportMsh() {
+  if (!current || busy) return;
+  const result = await meshCurrent();
+  if (result) download(current.name.replace(/\.stl$/i, '') + '.msh', result.msh);
+}
+
+$('size-mode').addEventListener('change', (e) => {
+  const uniform = e.target.value === 'size';
+  $('size-label').textContent = uniform ? 'h' : 'N';
+  // A sensible start: 2 pi R / 20 of the median opening, or a 50th of the box.
+  const openings = current?.analysis.openings ?? [];
+  const radii = openings.map((o) => o.radius).sort((a, b) => a - b);
+  const diag = current?.analysis.bounding_box.diagonal ?? 1;
+  const h = radii.length ? (2 * Math.PI * radii[Math.floor(radii.length / 2)]) / 20 : diag / 50;
+  $('size-value').value = uniform ? Number(h.toPrecision(2)) : 20;
+});
+$('show').addEventListener('change', (e) => showSurface(e.target.value));
+$('remesh').addEventListener('click', remesh);
 $('file-input').addEventListener('change', (e) => {
   const file = e.target.files[0];
   e.target.value = '';

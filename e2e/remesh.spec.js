@@ -1,0 +1,60 @@
+import { expect, test } from '@playwright/test';
+
+import { openApp } from './helpers.js';
+
+const num = async (page, id) => Number((await page.getByTestId(id).textContent()).replace(/,/g, ''));
+
+test('remesh the sample: quality shown beside the input, both views, export', async ({ page }) => {
+  const foreign = await openApp(page);
+  await page.getByTestId('load-sample').click();
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  const inputMin = await num(page, 'quality-min');
+  const inputMean = await num(page, 'quality-mean');
+
+  // Uniform size, Floater map and Delaunay refinement from the advanced options.
+  await page.getByTestId('size-mode').selectOption('size');
+  await page.getByTestId('size-value').fill('0.2');
+  await page.locator('details summary').click();
+  await page.getByTestId('param').selectOption('floater');
+  await page.getByTestId('mesher2d').selectOption('delaunay');
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('remesh-result')).toBeVisible();
+  const min = await num(page, 'out-quality-min');
+  const mean = await num(page, 'out-quality-mean');
+  expect(min).toBeGreaterThan(inputMin);
+  expect(mean).toBeGreaterThan(inputMean);
+  expect(mean).toBeGreaterThan(0.9);
+  expect(await num(page, 'out-triangles')).toBeGreaterThan(500);
+  await expect(page.locator('#out-histogram rect')).toHaveCount(20);
+  // The input histogram is still there, and the view switches between both.
+  await expect(page.locator('#histogram rect')).toHaveCount(20);
+  await page.getByTestId('show').selectOption('input');
+  await page.getByTestId('show').selectOption('output');
+
+  // Export reuses the remeshed result: same triangle count in the file.
+  const [download] = await Promise.all([
+    page.waitForEvent('download'),
+    page.getByTestId('export-msh').click(),
+  ]);
+  const chunks = [];
+  for await (const chunk of await download.createReadStream()) chunks.push(chunk);
+  const text = Buffer.concat(chunks).toString();
+  const lines = text.split('\n');
+  const elements = Number(lines[lines.indexOf('$Elements') + 1].split(' ')[1]);
+  expect(elements).toBe(await num(page, 'out-triangles'));
+  expect(foreign).toEqual([]);
+});
+
+test('a bad size gives a readable error and the page keeps working', async ({ page }) => {
+  await openApp(page);
+  await page.getByTestId('load-sample').click();
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  await page.getByTestId('size-value').fill('1');
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('error')).toContainText('perCircumference needs');
+  await page.getByTestId('size-value').fill('16');
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('remesh-result')).toBeVisible();
+  await expect(page.getByTestId('error')).toBeHidden();
+  expect(await num(page, 'out-quality-min')).toBeGreaterThan(0.3);
+});

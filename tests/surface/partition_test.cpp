@@ -1,0 +1,251 @@
+#include "core/surface/partition.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/mesh/adjacency.h"
+#include "core/mesh/boundary_loops.h"
+#include "core/mesh/topology.h"
+#include "core/param/lscm.h"
+#include "core/phantom/vessel_phantom.h"
+#include "tests/param/param_test_meshes.h"
+#include "tests/support/test_meshes.h"
+
+namespace vm {
+namespace {
+
+const PatchMapFn kLscm = [](const SurfaceMesh& patch) { return lscm(patch); };
+
+SurfaceMesh phantom(PhantomKind kind, bool open_ends, double voxel, double noise = 0) {
+  PhantomOptions o;
+  o.kind = kind;
+  o.open_ends = open_ends;
+  o.voxel = voxel;
+  o.noise = noise;
+  auto r = make_vessel_phantom(o);
+  EXPECT_TRUE(r.ok()) << r.message();
+  return r.ok() ? r.value() : SurfaceMesh{};
+}
+
+// Checks every documented property of a partition of `in`.
+void check_partition(const SurfaceMesh& in, const std::vector<MappedPatch>& patches,
+                     const PartitionOptions& o, const std::string& name) {
+  SCOPED_TRACE(name);
+  // Every input triangle in exactly one patch.
+  std::vector<int> uses(in.num_triangles(), 0);
+  for (const MappedPatch& p : patches)
+    for (int32_t t : p.triangle_of) {
+      EXPECT_GE(t, 0);
+      EXPECT_LT(size_t(t), in.num_triangles());
+      if (t >= 0 && size_t(t) < in.num_triangles()) ++uses[size_t(t)];
+    }
+  size_t missing = 0, repeated = 0;
+  for (int u : uses) missing += u == 0, repeated += u > 1;
+  EXPECT_EQ(missing, 0u) << "input triangles in no patch";
+  EXPECT_EQ(repeated, 0u) << "input triangles in several patches";
+
+  for (size_t i = 0; i < patches.size(); ++i) {
+    const MappedPatch& p = patches[i];
+    SCOPED_TRACE("patch " + std::to_string(i) + " of " + std::to_string(patches.size()) + ", " +
+                 std::to_string(p.mesh.num_triangles()) + " triangles");
+    ASSERT_GT(p.mesh.num_triangles(), 0u);
+    ASSERT_EQ(p.triangle_of.size(), p.mesh.num_triangles());
+    ASSERT_EQ(p.vertex_of.size(), p.mesh.num_vertices());
+    EXPECT_LE(p.mesh.num_triangles(), o.max_patch_triangles);
+    // The local copy is the input: same points, same triangles, same
+    // orientation.
+    for (size_t v = 0; v < p.vertex_of.size(); ++v)
+      for (int k = 0; k < 3; ++k)
+        ASSERT_EQ(p.mesh.points[3 * v + k], in.points[3 * size_t(p.vertex_of[v]) + k]);
+    for (size_t t = 0; t < p.mesh.num_triangles(); ++t)
+      for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(p.vertex_of[size_t(p.mesh.triangles[3 * t + c])],
+                  in.triangles[3 * size_t(p.triangle_of[t]) + c]);
+    // A topological disk: V - E + F = 1, one boundary loop that holds every
+    // boundary edge (no pinched vertex), connected, manifold.
+    const TriangleAdjacency adj = build_adjacency(p.mesh);
+    EXPECT_EQ(adj.num_nonmanifold_edges, 0u);
+    const long chi =
+        long(p.mesh.num_vertices()) - long(adj.num_edges) + long(p.mesh.num_triangles());
+    EXPECT_EQ(chi, 1);
+    const auto loops = boundary_loops(p.mesh, adj);
+    EXPECT_EQ(loops.size(), 1u);
+    size_t boundary_half_edges = 0, loop_vertices = 0;
+    for (int32_t o2 : adj.opposite) boundary_half_edges += o2 == TriangleAdjacency::kBoundary;
+    for (const auto& l : loops) loop_vertices += l.size();
+    EXPECT_EQ(loop_vertices, boundary_half_edges);
+    const TopologyReport topo = analyze_topology(p.mesh, adj);
+    EXPECT_EQ(topo.components, 1);
+    EXPECT_EQ(topo.nonmanifold_vertices, 0u);
+    EXPECT_EQ(topo.genus, 0);
+    // The map: one finite uv per vertex, nothing folded, not crowded.
+    ASSERT_EQ(p.map.uv.size(), 2 * p.mesh.num_vertices());
+    for (double x : p.map.uv) ASSERT_TRUE(std::isfinite(x));
+    EXPECT_EQ(count_flipped(p.mesh, p.map.uv), 0u);
+    EXPECT_EQ(p.map.flipped_triangles, 0u);
+    const double ratio = conformal_factor_ratio(p.mesh, p.map.uv);
+    EXPECT_NEAR(p.factor_ratio, ratio, 1e-9 * ratio);
+    if (p.mesh.num_triangles() >= 8) {
+      EXPECT_LE(ratio, o.max_factor_ratio);
+    }
+  }
+}
+
+TEST(Partition, OpenTubeIsSplitIntoDisks) {
+  // Two openings: an annulus, not a disk, so it must be cut.
+  const SurfaceMesh tube = testing::open_tube(24, 16, 1.0, 4.0);
+  PartitionOptions o;
+  PartitionStats stats;
+  auto r = partition_for_maps(tube, build_adjacency(tube), kLscm, o, &stats);
+  ASSERT_TRUE(r.ok()) << r.message();
+  check_partition(tube, r.value(), o, "open tube");
+  EXPECT_GE(r.value().size(), 2u);
+  EXPECT_GE(stats.bisections, 1u);
+}
+
+TEST(Partition, ClosedPhantomWithoutBoundary) {
+  const SurfaceMesh m = phantom(PhantomKind::kTube, /*open_ends=*/false, 0.15);
+  ASSERT_GT(m.num_triangles(), 0u);
+  const TopologyReport topo = analyze_topology(m);
+  ASSERT_TRUE(topo.closed);
+  ASSERT_EQ(topo.genus, 0);
+  PartitionOptions o;
+  PartitionStats stats;
+  auto r = partition_for_maps(m, build_adjacency(m), kLscm, o, &stats);
+  ASSERT_TRUE(r.ok()) << r.message();
+  // A closed surface is not a disk (and LSCM needs a boundary): cut.
+  check_partition(m, r.value(), o, "closed tube phantom");
+  EXPECT_GE(r.value().size(), 2u);
+  EXPECT_GE(stats.bisections, 1u);
+  std::cout << "[ info ] closed tube: " << m.num_triangles() << " triangles -> " << r.value().size()
+            << " patches, " << stats.bisections << " bisections, " << stats.rejected_maps
+            << " rejected maps\n";
+}
+
+TEST(Partition, TorusPhantomOfGenusOne) {
+  const SurfaceMesh m = phantom(PhantomKind::kTorus, true, 0.15);
+  ASSERT_GT(m.num_triangles(), 0u);
+  const TopologyReport topo = analyze_topology(m);
+  ASSERT_EQ(topo.genus, 1);
+  ASSERT_TRUE(topo.closed);
+  PartitionOptions o;
+  PartitionStats stats;
+  auto r = partition_for_maps(m, build_adjacency(m), kLscm, o, &stats);
+  ASSERT_TRUE(r.ok()) << r.message();
+  check_partition(m, r.value(), o, "torus phantom");
+  EXPECT_GE(r.value().size(), 2u);
+  std::cout << "[ info ] torus: " << m.num_triangles() << " triangles -> " << r.value().size()
+            << " patches, " << stats.bisections << " bisections, " << stats.rejected_maps
+            << " rejected maps\n";
+}
+
+TEST(Partition, NoisyBifurcationPhantom) {
+  const SurfaceMesh m = phantom(PhantomKind::kBifurcation, true, 0.15, 0.3);
+  ASSERT_GT(m.num_triangles(), 0u);
+  PartitionOptions o;
+  auto r = partition_for_maps(m, build_adjacency(m), kLscm, o);
+  ASSERT_TRUE(r.ok()) << r.message();
+  check_partition(m, r.value(), o, "noisy bifurcation");
+  EXPECT_GE(r.value().size(), 3u);
+}
+
+TEST(Partition, TighterLimitsGiveMoreSmallerPatches) {
+  const SurfaceMesh m = phantom(PhantomKind::kTube, true, 0.15);
+  ASSERT_GT(m.num_triangles(), 0u);
+  const TriangleAdjacency adj = build_adjacency(m);
+  PartitionOptions loose;
+  auto a = partition_for_maps(m, adj, kLscm, loose);
+  ASSERT_TRUE(a.ok()) << a.message();
+  check_partition(m, a.value(), loose, "default limits");
+
+  // A tight crowding limit refuses maps the default accepts: the same
+  // bisections continue further.
+  PartitionOptions tight;
+  tight.max_factor_ratio = 1.1;
+  PartitionStats tight_stats;
+  auto b = partition_for_maps(m, adj, kLscm, tight, &tight_stats);
+  ASSERT_TRUE(b.ok()) << b.message();
+  check_partition(m, b.value(), tight, "factor ratio 1.1");
+  EXPECT_GT(tight_stats.rejected_maps, 0u);
+  EXPECT_GE(b.value().size(), a.value().size());
+
+  PartitionOptions small;
+  small.max_patch_triangles = m.num_triangles() / 10;
+  auto c = partition_for_maps(m, adj, kLscm, small);
+  ASSERT_TRUE(c.ok()) << c.message();
+  check_partition(m, c.value(), small, "max 1/10 of the triangles");
+  EXPECT_GE(c.value().size(), 10u);
+  std::cout << "[ info ] tube phantom: " << a.value().size() << " patches (default), "
+            << b.value().size() << " (factor ratio 1.1), " << c.value().size() << " (max "
+            << small.max_patch_triangles << " triangles)\n";
+}
+
+TEST(Partition, AFlatDiskIsOnePatch) {
+  const SurfaceMesh m = testing::disk(8, 6, 0.3, [](double x, double y) {
+    return std::array<double, 3>{x, y, 0.0};
+  });
+  PartitionOptions o;
+  PartitionStats stats;
+  auto r = partition_for_maps(m, build_adjacency(m), kLscm, o, &stats);
+  ASSERT_TRUE(r.ok()) << r.message();
+  check_partition(m, r.value(), o, "flat disk");
+  ASSERT_EQ(r.value().size(), 1u);
+  EXPECT_EQ(stats.bisections, 0u);
+  EXPECT_EQ(stats.rejected_maps, 0u);
+  // LSCM of a planar patch is a similarity: no crowding at all.
+  EXPECT_NEAR(r.value()[0].factor_ratio, 1.0, 1e-6);
+}
+
+TEST(Partition, ErrorsAreReported) {
+  const SurfaceMesh tube = testing::open_tube(16, 8);
+  const TriangleAdjacency adj = build_adjacency(tube);
+  // The tube needs at least one bisection: depth 0 is not enough.
+  PartitionOptions shallow;
+  shallow.max_depth = 0;
+  EXPECT_FALSE(partition_for_maps(tube, adj, kLscm, shallow).ok());
+  // A failing map is an error, not a silent patch.
+  PatchMapFn failing = [](const SurfaceMesh&) -> Result<Parametrization> {
+    return Result<Parametrization>::Error("no map today");
+  };
+  auto r = partition_for_maps(tube, adj, failing);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("no map today"), std::string::npos) << r.message();
+}
+
+TEST(ConformalFactor, SimilarityHasRatioOne) {
+  // A disk in a tilted plane (an isometric embedding of the planar disk).
+  const double ct = std::cos(1.0), st = std::sin(1.0);
+  const SurfaceMesh m = testing::disk(6, 6, 0.3, [&](double x, double y) {
+    return std::array<double, 3>{x, ct * y, st * y};
+  });
+  // uv = 2.5 * a rotation of the in-plane coordinates (x, y).
+  std::vector<double> uv(2 * m.num_vertices());
+  const double c = std::cos(0.4), s = std::sin(0.4);
+  for (size_t v = 0; v < m.num_vertices(); ++v) {
+    const double x = m.points[3 * v], y = m.points[3 * v + 1] / ct;
+    uv[2 * v] = 2.5 * (c * x - s * y);
+    uv[2 * v + 1] = 2.5 * (s * x + c * y);
+  }
+  const std::vector<double> f = conformal_factors(m, uv);
+  ASSERT_EQ(f.size(), m.num_triangles());
+  for (double x : f) EXPECT_NEAR(x, 2.5, 1e-9);
+  EXPECT_NEAR(conformal_factor_ratio(m, uv), 1.0, 1e-9);
+  // Pulling a ring vertex across the center folds its triangles: their
+  // factor is 0.
+  std::vector<double> folded = uv;
+  const size_t v1 = 1;  // first vertex of the first ring
+  folded[2 * v1] *= -3;
+  folded[2 * v1 + 1] *= -3;
+  const size_t flipped = count_flipped(m, folded);
+  EXPECT_GT(flipped, 0u);
+  size_t zero = 0;
+  for (double x : conformal_factors(m, folded)) zero += x == 0;
+  EXPECT_EQ(zero, flipped);
+}
+
+}  // namespace
+}  // namespace vm
