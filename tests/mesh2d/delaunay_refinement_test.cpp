@@ -10,6 +10,7 @@
 #include "core/geom/predicates.h"
 #include "core/quality/triangle_quality.h"
 #include "tests/mesh2d/mesh2d_test_shapes.h"
+#include "tests/support/test_meshes.h"
 
 namespace vm {
 namespace {
@@ -46,10 +47,7 @@ Stats stats_of(const Mesh2D& m) {
   return s;
 }
 
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
+using testing::median;
 
 // Square [0, L]^2 with its boundary split every `h`.
 void square(double L, double h, std::vector<double>& pts, std::vector<int32_t>& seg) {

@@ -15,6 +15,7 @@
 #include "core/mesh2d/adapt2d.h"
 #include "core/quality/triangle_quality.h"
 #include "tests/mesh2d/mesh2d_test_shapes.h"
+#include "tests/support/test_meshes.h"
 
 namespace vm {
 namespace {
@@ -39,10 +40,7 @@ struct NamedMesher {
 
 const NamedMesher kMeshers[] = {{"frontal", run_frontal, true}, {"adapt", run_adapt, false}};
 
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
+using testing::median;
 
 // Square [0, L]^2 with its boundary split in round(L / h) edges per side.
 void square(double L, double h, std::vector<double>& pts, std::vector<int32_t>& seg) {

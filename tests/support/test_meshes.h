@@ -1,6 +1,7 @@
 // Small generated surfaces for unit tests (no external data).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -79,6 +80,12 @@ inline std::vector<uint8_t> bytes_of(const std::string& s) {
 /// Reverses the orientation of triangle t.
 inline void flip_triangle(SurfaceMesh& m, size_t t) {
   std::swap(m.triangles[3 * t + 1], m.triangles[3 * t + 2]);
+}
+
+/// Median of `v` (upper median for an even count).
+inline double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+  return v[v.size() / 2];
 }
 
 }  // namespace vm::testing

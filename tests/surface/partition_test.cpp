@@ -13,6 +13,7 @@
 #include "core/param/lscm.h"
 #include "core/phantom/vessel_phantom.h"
 #include "tests/param/param_test_meshes.h"
+#include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -20,16 +21,7 @@ namespace {
 
 const PatchMapFn kLscm = [](const SurfaceMesh& patch) { return lscm(patch); };
 
-SurfaceMesh phantom(PhantomKind kind, bool open_ends, double voxel, double noise = 0) {
-  PhantomOptions o;
-  o.kind = kind;
-  o.open_ends = open_ends;
-  o.voxel = voxel;
-  o.noise = noise;
-  auto r = make_vessel_phantom(o);
-  EXPECT_TRUE(r.ok()) << r.message();
-  return r.ok() ? r.value() : SurfaceMesh{};
-}
+using testing::phantom;
 
 // Checks every documented property of a partition of `in`.
 void check_partition(const SurfaceMesh& in, const std::vector<MappedPatch>& patches,

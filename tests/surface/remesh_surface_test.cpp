@@ -19,6 +19,7 @@
 #include "core/quality/triangle_quality.h"
 #include "core/surface/optimize_surface.h"
 #include "core/surface/resample_curve.h"
+#include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -26,10 +27,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
+using testing::median;
 
 double dist(const double* a, const double* b) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
@@ -104,16 +102,7 @@ size_t inconsistent_edges(const SurfaceMesh& m) {
   return bad;
 }
 
-SurfaceMesh phantom(PhantomKind kind, bool open_ends, double voxel, double noise) {
-  PhantomOptions o;
-  o.kind = kind;
-  o.open_ends = open_ends;
-  o.voxel = voxel;
-  o.noise = noise;
-  auto r = make_vessel_phantom(o);
-  EXPECT_TRUE(r.ok()) << r.message();
-  return r.ok() ? r.value() : SurfaceMesh{};
-}
+using testing::phantom;
 
 RemeshOptions uniform(double h) {
   RemeshOptions o;

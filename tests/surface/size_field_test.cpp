@@ -10,6 +10,7 @@
 
 #include "core/mesh/topology.h"
 #include "core/phantom/vessel_phantom.h"
+#include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -17,10 +18,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
+using testing::median;
 
 double distance(const SurfaceMesh& m, int32_t a, int32_t b) {
   double d2 = 0;
@@ -98,13 +96,7 @@ TEST(SizeField, PerCircumferenceOnAPhantomMatchesTheTrueRadius) {
   const TopologyReport topo = analyze_topology(m);
   ASSERT_EQ(int(topo.openings.size()), truth.openings);
   for (const Opening& op : topo.openings) {
-    size_t best = 0;
-    double best_d = 1e300;
-    for (size_t i = 0; i < truth.opening_centers.size(); ++i) {
-      double d = 0;
-      for (int k = 0; k < 3; ++k) d += std::pow(op.centroid[k] - truth.opening_centers[i][k], 2);
-      if (d < best_d) best_d = d, best = i;
-    }
+    const size_t best = testing::nearest_truth_opening(truth, op.centroid.data());
     const double R = truth.opening_radii[best];
     // Vertices a little inside the vessel from the cut (the rim itself has
     // no closing ball).

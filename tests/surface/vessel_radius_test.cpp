@@ -7,15 +7,13 @@
 
 #include "core/mesh/topology.h"
 #include "core/phantom/vessel_phantom.h"
+#include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
 namespace {
 
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
+using testing::median;
 
 TEST(VesselRadius, ExactOnACylinder) {
   SurfaceMesh tube = testing::open_tube(48, 40, 1.5, 12.0);
@@ -45,14 +43,7 @@ TEST(VesselRadius, WithinTenPercentOnNoisySegmentationPhantoms) {
     TopologyReport topo = analyze_topology(m.value());
     ASSERT_EQ(int(topo.openings.size()), truth.openings);
     for (const Opening& op : topo.openings) {
-      // The truth entry with the nearest center.
-      size_t best = 0;
-      double best_d = 1e300;
-      for (size_t i = 0; i < truth.opening_centers.size(); ++i) {
-        double d = 0;
-        for (int k = 0; k < 3; ++k) d += std::pow(op.centroid[k] - truth.opening_centers[i][k], 2);
-        if (d < best_d) best_d = d, best = i;
-      }
+      const size_t best = testing::nearest_truth_opening(truth, op.centroid.data());
       // Vertices within one radius of the rim's centroid plane, away from
       // the cut itself.
       std::vector<double> near;
