@@ -32,23 +32,99 @@ double dot(const Vec& a, const Vec& b) {
   return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2];
 }
 
+/// A valence swap may lower the pair's worst gamma_k to this fraction.
+constexpr double kValenceSwapMinGamma = 0.6;
+/// A quality swap that makes valences less regular needs a triangle this poor.
+constexpr double kPoorGamma = 0.5;
+/// Smoothing may lower a star's worst gamma_k down to this when it raises
+/// the star's mean.
+constexpr double kSmoothingFloor = 0.8;
+/// A collapse may not create an edge longer than this times the size, and
+/// may lower the worst gamma_k of the changed triangles down to kCollapseFloor.
+constexpr double kMaxEdgeAfterCollapse = 1.4;
+constexpr double kCollapseFloor = 0.4;
+
 class Optimizer {
  public:
   Optimizer(SurfaceMesh& m, std::vector<int32_t>& home, const std::vector<uint8_t>& fixed,
-            const SurfaceMesh& input, const TriangleAdjacency& input_adj,
-            const SurfaceOptimizeOptions& o)
-      : m_(m), home_(home), fixed_(fixed), in_(input), in_adj_(input_adj) {
+            const std::vector<double>& size, const SurfaceMesh& input,
+            const TriangleAdjacency& input_adj, const SurfaceOptimizeOptions& o)
+      : m_(m), home_(home), fixed_(fixed), size_(size), in_(input), in_adj_(input_adj) {
+    collapse_ratio_ = o.collapse_ratio;
     cos_turn_ = std::cos(o.max_normal_turn_degrees * std::numbers::pi / 180);
     vt_.assign(m.num_vertices(), {});
     for (size_t t = 0; t < m.num_triangles(); ++t)
       for (int c = 0; c < 3; ++c) vt_[size_t(m.triangles[3 * t + c])].push_back(int32_t(t));
   }
 
+  /// Collapses the interior edges shorter than collapse_ratio times the
+  /// target size (see try_collapse). Needs sizes.
+  size_t collapse_pass() {
+    size_t collapses = 0;
+    if (size_.empty()) return 0;
+    for (int32_t t = 0; t < int32_t(m_.num_triangles()); ++t)
+      for (int k = 0; k < 3 && tri(t)[0] >= 0; ++k) {
+        const int32_t a = tri(t)[k], b = tri(t)[(k + 1) % 3];
+        const double* pa = p(a);
+        const double* pb = p(b);
+        const double len = std::sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) +
+                                     (pa[1] - pb[1]) * (pa[1] - pb[1]) +
+                                     (pa[2] - pb[2]) * (pa[2] - pb[2]));
+        if (len < collapse_ratio_ * std::min(size_[size_t(a)], size_[size_t(b)]) &&
+            try_collapse(a, b))
+          ++collapses;
+      }
+    return collapses;
+  }
+
+  /// Removes the collapsed vertices and triangles: renumbers mesh, home,
+  /// fixed and size. Returns the new number of each old vertex (-1: gone).
+  std::vector<int32_t> compact(std::vector<uint8_t>& fixed, std::vector<double>& size) {
+    std::vector<int32_t> renumber(m_.num_vertices(), -1);
+    int32_t n = 0;
+    for (size_t v = 0; v < renumber.size(); ++v) {
+      if (!dead_.empty() && dead_[v]) continue;
+      renumber[v] = n;
+      for (int k = 0; k < 3; ++k) m_.points[3 * size_t(n) + k] = m_.points[3 * v + k];
+      home_[size_t(n)] = home_[v];
+      fixed[size_t(n)] = fixed[v];
+      if (!size.empty()) size[size_t(n)] = size[v];
+      ++n;
+    }
+    m_.points.resize(3 * size_t(n));
+    home_.resize(size_t(n));
+    fixed.resize(size_t(n));
+    if (!size.empty()) size.resize(size_t(n));
+    size_t kept = 0;
+    for (size_t t = 0; t < m_.num_triangles(); ++t) {
+      if (m_.triangles[3 * t] < 0) continue;
+      for (int c = 0; c < 3; ++c)
+        m_.triangles[3 * kept + size_t(c)] = renumber[size_t(m_.triangles[3 * t + size_t(c)])];
+      ++kept;
+    }
+    m_.triangles.resize(3 * kept);
+    return renumber;
+  }
+
   size_t swap_pass() {
     size_t swaps = 0;
     for (int32_t t = 0; t < int32_t(m_.num_triangles()); ++t)
       for (int k = 0; k < 3; ++k)
-        if (try_swap(t, k)) {
+        if (try_swap(t, k, SwapGoal::kQuality)) {
+          ++swaps;
+          break;
+        }
+    return swaps;
+  }
+
+  /// Swaps edges that bring the valences of their four vertices closer to
+  /// the regular ones (6 inside, 4 on an opening), when neither new triangle
+  /// is poor; the smoothing that follows restores the shapes.
+  size_t valence_pass() {
+    size_t swaps = 0;
+    for (int32_t t = 0; t < int32_t(m_.num_triangles()); ++t)
+      for (int k = 0; k < 3; ++k)
+        if (try_swap(t, k, SwapGoal::kValence)) {
           ++swaps;
           break;
         }
@@ -94,9 +170,18 @@ class Optimizer {
     list.erase(std::find(list.begin(), list.end(), x));
   }
 
+  enum class SwapGoal { kQuality, kValence };
+
+  int valence_excess(int32_t v, int change) const {
+    // Neighbors: one per star triangle, plus one on an opening.
+    const int valence = int(vt_[size_t(v)].size()) + (fixed_[size_t(v)] ? 1 : 0) + change;
+    return std::abs(valence - (fixed_[size_t(v)] ? 4 : 6));
+  }
+
   // t = (a, b, c), u = (b, a, d) -> t = (a, d, c), u = (d, b, c).
-  bool try_swap(int32_t t, int k) {
+  bool try_swap(int32_t t, int k, SwapGoal goal) {
     int32_t* T = tri(t);
+    if (T[0] < 0) return false;  // collapsed
     const int32_t a = T[k], b = T[(k + 1) % 3], c = T[(k + 2) % 3];
     const int32_t u = across(t, a, b);
     if (u < 0) return false;
@@ -107,7 +192,17 @@ class Optimizer {
     if (d < 0 || d == c || has_edge(c, d)) return false;
     const double before = std::min(gamma(a, b, c), gamma(b, a, d));
     const double after = std::min(gamma(a, d, c), gamma(d, b, c));
-    if (!(after > before + 1e-9)) return false;
+    const int excess_before =
+        valence_excess(a, 0) + valence_excess(b, 0) + valence_excess(c, 0) + valence_excess(d, 0);
+    const int excess_after = valence_excess(a, -1) + valence_excess(b, -1) +
+                             valence_excess(c, 1) + valence_excess(d, 1);
+    if (goal == SwapGoal::kQuality) {
+      // Undoing a valence swap needs a poor triangle.
+      if (!(after > before + 1e-9)) return false;
+      if (excess_after > excess_before && before > kPoorGamma) return false;
+    } else {
+      if (excess_after >= excess_before || after < kValenceSwapMinGamma * before) return false;
+    }
     const Vec nt = normal(p(a), p(b), p(c)), nu = normal(p(b), p(a), p(d));
     const Vec n1 = normal(p(a), p(d), p(c)), n2 = normal(p(d), p(b), p(c));
     if (dot(nt, nu) < cos_turn_ || dot(n1, n2) < cos_turn_) return false;
@@ -119,6 +214,99 @@ class Optimizer {
     erase(vt_[size_t(b)], t);
     vt_[size_t(c)].push_back(u);
     vt_[size_t(d)].push_back(t);
+    return true;
+  }
+
+  /// The vertices sharing an edge with v.
+  void neighbors(int32_t v, std::vector<int32_t>& out) const {
+    out.clear();
+    for (int32_t t : vt_[size_t(v)])
+      for (int c = 0; c < 3; ++c) {
+        const int32_t w = m_.triangles[3 * size_t(t) + size_t(c)];
+        if (w != v && std::find(out.begin(), out.end(), w) == out.end()) out.push_back(w);
+      }
+  }
+
+  /// Collapses edge (a, b): into the vertex on an opening if one is (both:
+  /// refused), else into the midpoint projected onto the input. Refused
+  /// unless the link condition holds (the only common neighbors are the
+  /// apexes of the edge's two triangles, so the mesh stays manifold), no
+  /// triangle turns by more than the normal guard, no edge grows beyond
+  /// kMaxEdgeAfterCollapse times the size, and the worst gamma_k of the
+  /// changed triangles ends at least at min(its value before, kCollapseFloor).
+  bool try_collapse(int32_t a, int32_t b) {
+    if (fixed_[size_t(a)] && fixed_[size_t(b)]) return false;
+    if (fixed_[size_t(a)]) std::swap(a, b);  // a goes, b stays
+    neighbors(a, na_);
+    neighbors(b, nb_);
+    int common = 0;
+    for (int32_t w : na_)
+      if (std::find(nb_.begin(), nb_.end(), w) != nb_.end()) ++common;
+    int shared = 0;  // triangles with edge (a, b)
+    for (int32_t t : vt_[size_t(a)]) {
+      const int32_t* T = tri(t);
+      if (T[0] == b || T[1] == b || T[2] == b) ++shared;
+    }
+    if (shared != 2 || common != 2) return false;
+    double target[3];
+    int32_t target_home = home_[size_t(b)];
+    if (fixed_[size_t(b)]) {
+      std::copy(p(b), p(b) + 3, target);
+    } else {
+      const double mid[3] = {0.5 * (p(a)[0] + p(b)[0]), 0.5 * (p(a)[1] + p(b)[1]),
+                             0.5 * (p(a)[2] + p(b)[2])};
+      target_home = project_near(mid, home_[size_t(a)], in_, in_adj_, target);
+    }
+    // The changed triangles: every triangle of a or b but the two removed.
+    changed_.clear();
+    double before = 1;
+    for (int32_t v : {a, b})
+      for (int32_t t : vt_[size_t(v)]) {
+        const int32_t* T = tri(t);
+        before = std::min(before, gamma(T[0], T[1], T[2]));
+        const bool on_edge = (T[0] == a || T[1] == a || T[2] == a) &&
+                             (T[0] == b || T[1] == b || T[2] == b);
+        if (!on_edge && std::find(changed_.begin(), changed_.end(), t) == changed_.end())
+          changed_.push_back(t);
+      }
+    const double limit = kMaxEdgeAfterCollapse * size_[size_t(b)];
+    double after = 1;
+    for (int32_t t : changed_) {
+      const int32_t* T = tri(t);
+      const double* q[3];
+      for (int c = 0; c < 3; ++c) q[c] = T[c] == a || T[c] == b ? target : p(T[c]);
+      const Vec n_old = normal(p(T[0]), p(T[1]), p(T[2])), n_new = normal(q[0], q[1], q[2]);
+      if (dot(n_old, n_new) < cos_turn_) return false;
+      for (int c = 0; c < 3; ++c) {
+        const double* x = q[c];
+        const double* y = q[(c + 1) % 3];
+        const double l2 = (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+                          (x[2] - y[2]) * (x[2] - y[2]);
+        if (l2 > limit * limit) return false;
+      }
+      after = std::min(after, triangle_gamma(q[0], q[1], q[2]));
+    }
+    if (after < std::min(before, kCollapseFloor)) return false;
+    // Apply: drop the two triangles on the edge, hand a's others to b.
+    std::vector<int32_t> star_a = vt_[size_t(a)];
+    for (int32_t t : star_a) {
+      int32_t* T = tri(t);
+      const bool on_edge = T[0] == b || T[1] == b || T[2] == b;
+      if (on_edge) {
+        for (int c = 0; c < 3; ++c)
+          if (T[c] != a) erase(vt_[size_t(T[c])], t);
+        T[0] = T[1] = T[2] = -1;
+      } else {
+        for (int c = 0; c < 3; ++c)
+          if (T[c] == a) T[c] = b;
+        vt_[size_t(b)].push_back(t);
+      }
+    }
+    vt_[size_t(a)].clear();
+    if (dead_.empty()) dead_.assign(m_.num_vertices(), 0);
+    dead_[size_t(a)] = 1;
+    std::copy(target, target + 3, &m_.points[3 * size_t(b)]);
+    home_[size_t(b)] = target_home;
     return true;
   }
 
@@ -164,7 +352,8 @@ class Optimizer {
       ok = dot(normal(p(T[0]), p(T[1]), p(T[2])), old_normals_[i]) >= cos_turn_;
     }
     // Better worst triangle, or the same worst and a better mean.
-    const bool better = after > before + 1e-9 || (after >= before && after_sum > before_sum + 1e-9);
+    const bool better = after > before + 1e-9 ||
+                        (after >= std::min(before, kSmoothingFloor) && after_sum > before_sum + 1e-9);
     if (!ok || !better) {
       std::copy(old, old + 3, pv);
       return false;
@@ -176,11 +365,15 @@ class Optimizer {
   SurfaceMesh& m_;
   std::vector<int32_t>& home_;
   const std::vector<uint8_t>& fixed_;
+  const std::vector<double>& size_;
   const SurfaceMesh& in_;
   const TriangleAdjacency& in_adj_;
   double cos_turn_ = 0;
   std::vector<std::vector<int32_t>> vt_;
   std::vector<Vec> old_normals_;
+  double collapse_ratio_ = 0;
+  std::vector<uint8_t> dead_;  ///< collapsed vertices (empty until the first)
+  std::vector<int32_t> na_, nb_, changed_;
 };
 
 }  // namespace
@@ -222,19 +415,23 @@ int32_t project_near(const double* q, int32_t start, const SurfaceMesh& input,
 }
 
 SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>& home,
-                                         const std::vector<uint8_t>& fixed,
+                                         std::vector<uint8_t>& fixed, std::vector<double>& size,
                                          const SurfaceMesh& input,
                                          const TriangleAdjacency& input_adj,
                                          const SurfaceOptimizeOptions& options) {
   SurfaceOptimizeStats stats;
-  Optimizer opt(mesh, home, fixed, input, input_adj, options);
+  Optimizer opt(mesh, home, fixed, size, input, input_adj, options);
   for (int pass = 0; pass < options.passes; ++pass) {
-    size_t swaps = opt.swap_pass();
+    size_t collapses = pass < options.valence_passes ? opt.collapse_pass() : 0;
+    size_t swaps = pass < options.valence_passes ? opt.valence_pass() : 0;
+    swaps += opt.swap_pass();
     size_t moves = opt.smooth_pass();
+    stats.collapses += collapses;
     stats.swaps += swaps;
     stats.moves += moves;
-    if (swaps == 0 && moves == 0) break;
+    if (collapses == 0 && swaps == 0 && moves == 0) break;
   }
+  if (stats.collapses > 0) opt.compact(fixed, size);
   return stats;
 }
 

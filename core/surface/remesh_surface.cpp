@@ -271,8 +271,15 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
 
   // Phase 5: swaps and smoothing on the input surface.
   t0 = std::chrono::steady_clock::now();
-  auto ostats =
-      optimize_on_surface(out.mesh, out.home, out.on_opening, input, adj, options.optimize);
+  // The target size at each output vertex: the mean over its home triangle.
+  std::vector<double> out_size(out.home.size());
+  for (size_t v = 0; v < out_size.size(); ++v) {
+    const int32_t* T = &input.triangles[3 * size_t(out.home[v])];
+    out_size[v] = (h[size_t(T[0])] + h[size_t(T[1])] + h[size_t(T[2])]) / 3;
+  }
+  auto ostats = optimize_on_surface(out.mesh, out.home, out.on_opening, out_size, input, adj,
+                                    options.optimize);
+  stats.collapses = ostats.collapses;
   stats.swaps = ostats.swaps;
   stats.moves = ostats.moves;
   stats.seconds_optimize = seconds_since(t0);
