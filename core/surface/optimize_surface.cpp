@@ -39,6 +39,8 @@ constexpr double kPoorGamma = 0.5;
 /// Smoothing may lower a star's worst gamma_k down to this when it raises
 /// the star's mean.
 constexpr double kSmoothingFloor = 0.8;
+/// The smallest gain of the sum of a star's gamma_k worth a move.
+constexpr double kMinGain = 1e-3;
 /// A collapse may not create an edge longer than this times the size, and
 /// may lower the worst gamma_k of the changed triangles down to kCollapseFloor.
 constexpr double kMaxEdgeAfterCollapse = 1.4;
@@ -51,11 +53,21 @@ class Optimizer {
             const TriangleAdjacency& input_adj, const SurfaceOptimizeOptions& o)
       : m_(m), home_(home), fixed_(fixed), size_(size), in_(input), in_adj_(input_adj) {
     collapse_ratio_ = o.collapse_ratio;
+    recent_.assign(m.num_vertices(), 1);
+    q_.resize(m.num_triangles());
+    for (size_t t = 0; t < q_.size(); ++t) {
+      const int32_t* T = &m.triangles[3 * t];
+      q_[t] = gamma(T[0], T[1], T[2]);
+    }
     cos_turn_ = std::cos(o.max_normal_turn_degrees * std::numbers::pi / 180);
     vt_.assign(m.num_vertices(), {});
     for (size_t t = 0; t < m.num_triangles(); ++t)
       for (int c = 0; c < 3; ++c) vt_[size_t(m.triangles[3 * t + c])].push_back(int32_t(t));
   }
+
+  /// Starts the next pass: work is limited to what changed since the
+  /// previous pass started.
+  void next_pass() { ++pass_; }
 
   /// Collapses the interior edges shorter than collapse_ratio times the
   /// target size (see try_collapse). Needs sizes.
@@ -63,13 +75,13 @@ class Optimizer {
     size_t collapses = 0;
     if (size_.empty()) return 0;
     for (int32_t t = 0; t < int32_t(m_.num_triangles()); ++t)
-      for (int k = 0; k < 3 && tri(t)[0] >= 0; ++k) {
+      for (int k = 0; k < 3 && tri(t)[0] >= 0 && active(t); ++k) {
         const int32_t a = tri(t)[k], b = tri(t)[(k + 1) % 3];
         const double* pa = p(a);
         const double* pb = p(b);
-        const double len = std::sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) +
-                                     (pa[1] - pb[1]) * (pa[1] - pb[1]) +
-                                     (pa[2] - pb[2]) * (pa[2] - pb[2]));
+        const double len =
+            std::sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
+                      (pa[2] - pb[2]) * (pa[2] - pb[2]));
         if (len < collapse_ratio_ * std::min(size_[size_t(a)], size_[size_t(b)]) &&
             try_collapse(a, b))
           ++collapses;
@@ -109,7 +121,7 @@ class Optimizer {
   size_t swap_pass() {
     size_t swaps = 0;
     for (int32_t t = 0; t < int32_t(m_.num_triangles()); ++t)
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < 3 && active(t); ++k)
         if (try_swap(t, k, SwapGoal::kQuality)) {
           ++swaps;
           break;
@@ -123,7 +135,7 @@ class Optimizer {
   size_t valence_pass() {
     size_t swaps = 0;
     for (int32_t t = 0; t < int32_t(m_.num_triangles()); ++t)
-      for (int k = 0; k < 3; ++k)
+      for (int k = 0; k < 3 && active(t); ++k)
         if (try_swap(t, k, SwapGoal::kValence)) {
           ++swaps;
           break;
@@ -134,7 +146,7 @@ class Optimizer {
   size_t smooth_pass() {
     size_t moves = 0;
     for (size_t v = 0; v < m_.num_vertices(); ++v)
-      if (!fixed_[v] && try_move(int32_t(v))) ++moves;
+      if (!fixed_[v] && recent_[v] + 1 >= pass_ && try_move(int32_t(v))) ++moves;
     return moves;
   }
 
@@ -189,20 +201,22 @@ class Optimizer {
     int32_t d = -1;
     for (int j = 0; j < 3; ++j)
       if (U[j] != a && U[j] != b) d = U[j];
-    if (d < 0 || d == c || has_edge(c, d)) return false;
-    const double before = std::min(gamma(a, b, c), gamma(b, a, d));
-    const double after = std::min(gamma(a, d, c), gamma(d, b, c));
+    if (d < 0 || d == c) return false;
     const int excess_before =
         valence_excess(a, 0) + valence_excess(b, 0) + valence_excess(c, 0) + valence_excess(d, 0);
-    const int excess_after = valence_excess(a, -1) + valence_excess(b, -1) +
-                             valence_excess(c, 1) + valence_excess(d, 1);
-    if (goal == SwapGoal::kQuality) {
-      // Undoing a valence swap needs a poor triangle.
-      if (!(after > before + 1e-9)) return false;
-      if (excess_after > excess_before && before > kPoorGamma) return false;
-    } else {
-      if (excess_after >= excess_before || after < kValenceSwapMinGamma * before) return false;
-    }
+    const int excess_after =
+        valence_excess(a, -1) + valence_excess(b, -1) + valence_excess(c, 1) + valence_excess(d, 1);
+    const double before = std::min(q_[size_t(t)], q_[size_t(u)]);
+    // Undoing a valence swap needs a poor triangle.
+    if (goal == SwapGoal::kValence ? excess_after >= excess_before
+                                   : excess_after > excess_before && before > kPoorGamma)
+      return false;
+    const double g1 = gamma(a, d, c), g2 = gamma(d, b, c);
+    const double after = std::min(g1, g2);
+    if (goal == SwapGoal::kQuality ? !(after > before + 1e-9)
+                                   : after < kValenceSwapMinGamma * before)
+      return false;
+    if (has_edge(c, d)) return false;
     const Vec nt = normal(p(a), p(b), p(c)), nu = normal(p(b), p(a), p(d));
     const Vec n1 = normal(p(a), p(d), p(c)), n2 = normal(p(d), p(b), p(c));
     if (dot(nt, nu) < cos_turn_ || dot(n1, n2) < cos_turn_) return false;
@@ -214,7 +228,23 @@ class Optimizer {
     erase(vt_[size_t(b)], t);
     vt_[size_t(c)].push_back(u);
     vt_[size_t(d)].push_back(t);
+    q_[size_t(t)] = g1;
+    q_[size_t(u)] = g2;
+    for (int32_t v : {a, b, c, d}) recent_[size_t(v)] = pass_;
     return true;
+  }
+
+  /// A triangle with a vertex changed in this pass or the previous one.
+  bool active(int32_t t) const {
+    const int32_t* T = &m_.triangles[3 * size_t(t)];
+    return T[0] >= 0 && (recent_[size_t(T[0])] + 1 >= pass_ || recent_[size_t(T[1])] + 1 >= pass_ ||
+                         recent_[size_t(T[2])] + 1 >= pass_);
+  }
+
+  /// Records that v and the vertices of its star changed.
+  void mark_star(int32_t v) {
+    for (int32_t t : vt_[size_t(v)])
+      for (int c = 0; c < 3; ++c) recent_[size_t(m_.triangles[3 * size_t(t) + size_t(c)])] = pass_;
   }
 
   /// The vertices sharing an edge with v.
@@ -264,8 +294,8 @@ class Optimizer {
       for (int32_t t : vt_[size_t(v)]) {
         const int32_t* T = tri(t);
         before = std::min(before, gamma(T[0], T[1], T[2]));
-        const bool on_edge = (T[0] == a || T[1] == a || T[2] == a) &&
-                             (T[0] == b || T[1] == b || T[2] == b);
+        const bool on_edge =
+            (T[0] == a || T[1] == a || T[2] == a) && (T[0] == b || T[1] == b || T[2] == b);
         if (!on_edge && std::find(changed_.begin(), changed_.end(), t) == changed_.end())
           changed_.push_back(t);
       }
@@ -307,6 +337,11 @@ class Optimizer {
     dead_[size_t(a)] = 1;
     std::copy(target, target + 3, &m_.points[3 * size_t(b)]);
     home_[size_t(b)] = target_home;
+    for (int32_t t : changed_) {
+      const int32_t* T = tri(t);
+      q_[size_t(t)] = gamma(T[0], T[1], T[2]);
+    }
+    mark_star(b);
     return true;
   }
 
@@ -319,7 +354,7 @@ class Optimizer {
     double before = 1, before_sum = 0;
     for (int32_t t : star) {
       const int32_t* T = tri(t);
-      const double g = gamma(T[0], T[1], T[2]);
+      const double g = q_[size_t(t)];
       before = std::min(before, g);
       before_sum += g;
       int c = 0;
@@ -344,21 +379,25 @@ class Optimizer {
     std::copy(projected, projected + 3, pv);
     double after = 1, after_sum = 0;
     bool ok = true;
+    new_q_.clear();
     for (size_t i = 0; i < star.size() && ok; ++i) {
       const int32_t* T = tri(star[i]);
       const double g = gamma(T[0], T[1], T[2]);
+      new_q_.push_back(g);
       after = std::min(after, g);
       after_sum += g;
       ok = dot(normal(p(T[0]), p(T[1]), p(T[2])), old_normals_[i]) >= cos_turn_;
     }
     // Better worst triangle, or the same worst and a better mean.
-    const bool better = after > before + 1e-9 ||
-                        (after >= std::min(before, kSmoothingFloor) && after_sum > before_sum + 1e-9);
+    const bool better = after > before + 1e-9 || (after >= std::min(before, kSmoothingFloor) &&
+                                                  after_sum > before_sum + kMinGain);
     if (!ok || !better) {
       std::copy(old, old + 3, pv);
       return false;
     }
     home_[size_t(v)] = new_home;
+    for (size_t i = 0; i < star.size(); ++i) q_[size_t(star[i])] = new_q_[i];
+    mark_star(v);
     return true;
   }
 
@@ -374,6 +413,9 @@ class Optimizer {
   double collapse_ratio_ = 0;
   std::vector<uint8_t> dead_;  ///< collapsed vertices (empty until the first)
   std::vector<int32_t> na_, nb_, changed_;
+  int pass_ = 1;
+  std::vector<double> q_, new_q_;  ///< gamma_k per triangle; of a tried star
+  std::vector<int> recent_;        ///< per vertex: the last pass it changed in
 };
 
 }  // namespace
@@ -430,6 +472,7 @@ SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>
     stats.swaps += swaps;
     stats.moves += moves;
     if (collapses == 0 && swaps == 0 && moves == 0) break;
+    opt.next_pass();
   }
   if (stats.collapses > 0) opt.compact(fixed, size);
   return stats;

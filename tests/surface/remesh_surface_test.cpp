@@ -394,8 +394,7 @@ TEST(OptimizeSurface, CollapsesShortEdgesAndRegularizesValences) {
   for (size_t t = 0; t < split; t += 4) {
     const int32_t a = m.triangles[3 * t], b = m.triangles[3 * t + 1], c = m.triangles[3 * t + 2];
     const int32_t v = int32_t(m.num_vertices());
-    for (int k = 0; k < 3; ++k)
-      m.points.push_back((pt(m, a)[k] + pt(m, b)[k] + pt(m, c)[k]) / 3);
+    for (int k = 0; k < 3; ++k) m.points.push_back((pt(m, a)[k] + pt(m, b)[k] + pt(m, c)[k]) / 3);
     m.triangles[3 * t + 2] = v;
     m.triangles.insert(m.triangles.end(), {b, c, v, c, a, v});
   }
@@ -462,8 +461,7 @@ TEST(OptimizeSurface, CollapsesShortEdgesAndRegularizesValences) {
   }
   EXPECT_EQ(fixed_after, fixed_points);
   std::cout << "[ info ] collapse: gamma min " << qb.min << " -> " << qa.min << ", mean " << qb.mean
-            << " -> " << qa.mean << " (" << s.collapses << " collapses, " << s.swaps
-            << " swaps)\n";
+            << " -> " << qa.mean << " (" << s.collapses << " collapses, " << s.swaps << " swaps)\n";
 }
 
 TEST(OptimizeSurface, ProjectNearFindsTheClosestPoint) {
