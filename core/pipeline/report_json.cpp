@@ -91,8 +91,14 @@ std::string mesh_report_json(const MeshJobResult& r) {
     j.key("median").value(st.size_median);
     j.key("max").value(st.size_max);
     j.end_object();
+    j.key("edge_to_size").begin_object();
+    j.key("p10").value(st.edge_ratio_p10);
+    j.key("median").value(st.edge_ratio_median);
+    j.key("p90").value(st.edge_ratio_p90);
+    j.end_object();
     j.key("swaps").value(st.swaps);
     j.key("moves").value(st.moves);
+    j.key("collapses").value(st.collapses);
     j.key("seconds").begin_object();
     j.key("size").value(st.seconds_size);
     j.key("partition").value(st.seconds_partition);

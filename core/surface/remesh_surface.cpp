@@ -283,6 +283,34 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
   stats.swaps = ostats.swaps;
   stats.moves = ostats.moves;
   stats.seconds_optimize = seconds_since(t0);
+  // How well the edges follow the field: edge length / mean target size of
+  // its ends, each edge once.
+  {
+    std::vector<double> ratio;
+    ratio.reserve(out.mesh.triangles.size() / 2);
+    for (size_t t = 0; t < out.mesh.num_triangles(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int32_t a = out.mesh.triangles[3 * t + size_t(k)],
+                      b = out.mesh.triangles[3 * t + size_t((k + 1) % 3)];
+        if (a > b && !(out.on_opening[size_t(a)] && out.on_opening[size_t(b)])) continue;
+        const double* pa = &out.mesh.points[3 * size_t(a)];
+        const double* pb = &out.mesh.points[3 * size_t(b)];
+        const double len = std::sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) +
+                                     (pa[1] - pb[1]) * (pa[1] - pb[1]) +
+                                     (pa[2] - pb[2]) * (pa[2] - pb[2]));
+        ratio.push_back(len / (0.5 * (out_size[size_t(a)] + out_size[size_t(b)])));
+      }
+    if (!ratio.empty()) {
+      auto at = [&](double q) {
+        auto it = ratio.begin() + std::ptrdiff_t(q * double(ratio.size() - 1));
+        std::nth_element(ratio.begin(), it, ratio.end());
+        return *it;
+      };
+      stats.edge_ratio_p10 = at(0.1);
+      stats.edge_ratio_median = at(0.5);
+      stats.edge_ratio_p90 = at(0.9);
+    }
+  }
   if (stats_out) *stats_out = stats;
   return out;
 }

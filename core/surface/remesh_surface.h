@@ -41,6 +41,9 @@ struct RemeshStats {
   size_t retries = 0;        ///< partitions redone because a patch failed to mesh
   size_t swaps = 0, moves = 0, collapses = 0;
   double size_min = 0, size_median = 0, size_max = 0;  ///< of the size field at input vertices
+  /// Output edge length / target size (mean of its ends' sizes): median and
+  /// 10th / 90th percentiles over the edges (1 = the field followed exactly).
+  double edge_ratio_median = 0, edge_ratio_p10 = 0, edge_ratio_p90 = 0;
   double seconds_size = 0, seconds_partition = 0, seconds_mesh = 0, seconds_optimize = 0;
 };
 
