@@ -114,6 +114,12 @@ def check_remesh(fname, path, tmp, args, d, have_gmsh, mode, mesher="frontal"):
     check(fname, q["min"] >= row["min"] and q["mean"] >= row["mean"],
           f"remesh {tag}: {o['triangles']} triangles, gamma_k min {q['min']:.3f} >= {row['min']}, "
           f"mean {q['mean']:.4f} >= {row['mean']} (seed Table 1, {mesher})")
+    fid = o["remesh"]["fidelity"]
+    check(fname, fid["max_vertex_offset"] <= 1e-6 and fid["self_intersections"] == 0,
+          f"remesh {tag}: vertices on the input (offset {fid['max_vertex_offset']:.1e} of the "
+          f"diagonal), {fid['self_intersections']} self-intersections")
+    print(f"  remesh {tag}: input vertices to output: max {fid['max_input_gap']:.3f} h, "
+          f"{fid['input_gap_vertices']} beyond 0.1 h (issue target: none)")
     ratio = o["remesh"]["edge_to_size"]
     check(fname, abs(ratio["median"] - 1) <= 0.1,
           f"remesh {tag}: median edge / size {ratio['median']:.3f} within 10% of 1 "

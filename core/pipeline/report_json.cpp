@@ -96,6 +96,12 @@ std::string mesh_report_json(const MeshJobResult& r) {
     j.key("median").value(st.edge_ratio_median);
     j.key("p90").value(st.edge_ratio_p90);
     j.end_object();
+    j.key("fidelity").begin_object();
+    j.key("max_vertex_offset").value(r.fidelity.max_vertex_offset);
+    j.key("max_input_gap").value(r.fidelity.max_input_gap);
+    j.key("self_intersections").value(r.fidelity.self_intersections);
+    j.key("input_gap_vertices").value(r.fidelity.input_gap_vertices);
+    j.end_object();
     j.key("swaps").value(st.swaps);
     j.key("moves").value(st.moves);
     j.key("collapses").value(st.collapses);
