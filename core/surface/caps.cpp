@@ -4,8 +4,8 @@
 // coordinates, simple-polygon check, area; (3) order by area and names;
 // (4) rims moved onto their planes; (5) per cap, frontal-Delaunay mesh of the
 // rim polygon with the blended rim size, optimization, checks that the rim
-// is shared edge for edge, map back; (6) wall triangles flipped by the
-// projection.
+// is shared edge for edge, map back; (6) outward orientation of the result;
+// (7) wall triangles flipped by the projection.
 #include "core/surface/caps.h"
 
 #include <Eigen/Dense>
@@ -18,6 +18,7 @@
 #include "core/geom/predicates.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/mesh/enclosed_volume.h"
 #include "core/mesh2d/frontal_delaunay.h"
 #include "core/mesh2d/optimize2d.h"
 #include "core/quality/triangle_quality.h"
@@ -402,7 +403,14 @@ Result<CappedSurface> cap_openings(const SurfaceMesh& wall, const std::vector<do
     out.caps.push_back(std::move(info));
   }
 
-  // Phase 6: wall triangles at the rims that the projection turned over.
+  // Phase 6: the caps follow the wall's orientation, so an inward-facing
+  // wall gives an inward-facing closed surface.
+  if (!(enclosed_volume(out.mesh) > 0))
+    return R::Error(
+        "caps: the capped surface encloses a negative volume: the wall faces inward (orient it "
+        "outward first)");
+
+  // Phase 7: wall triangles at the rims that the projection turned over.
   std::vector<size_t> cap_of_opening(ops.size());
   for (size_t c = 0; c < tag_order.size(); ++c) cap_of_opening[tag_order[c]] = c;
   for (size_t i = 0; i < rim_triangles.size(); ++i) {

@@ -106,10 +106,11 @@ struct CappedSurface {
 /// use the rim edge lengths alone. A closed wall gives no cap (all tags 0).
 ///
 /// Errors: a size vector of the wrong length or a non-positive size, a non-
-/// manifold or inconsistently oriented wall, a vertex on two openings, a rim
-/// with fewer than 3 vertices, a rim whose projection onto its plane is not a
-/// simple polygon (self-intersecting, folded or degenerate), a mesher
-/// failure, inlet_index out of range.
+/// manifold or inconsistently oriented wall, an inward-facing wall (the
+/// capped surface would enclose a negative volume), a vertex on two
+/// openings, a rim with fewer than 3 vertices, a rim whose projection onto
+/// its plane is not a simple polygon (self-intersecting, folded or
+/// degenerate), a mesher failure, inlet_index out of range.
 Result<CappedSurface> cap_openings(const SurfaceMesh& wall, const std::vector<double>& vertex_size,
                                    const CapOptions& options = {});
 

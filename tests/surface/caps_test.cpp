@@ -417,6 +417,9 @@ TEST(Caps, ClearErrors) {
   SurfaceMesh flipped = wall;
   testing::flip_triangle(flipped, 5);
   expect_error(cap_openings(flipped, {}), "not consistently oriented");
+  SurfaceMesh inward = wall;
+  for (size_t t = 0; t < inward.num_triangles(); ++t) testing::flip_triangle(inward, t);
+  expect_error(cap_openings(inward, {}), "faces inward");
   // A rim that is a figure eight in its plane.
   Curve eight = [](double t) {
     return std::array<double, 3>{2 * std::sin(t), std::sin(2 * t), 3.0};
