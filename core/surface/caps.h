@@ -24,7 +24,7 @@ struct CapOptions {
   /// Options of the frontal-Delaunay mesher of each cap.
   RefinementOptions refinement;
   /// Passes of Delaunay flips and smoothing of each cap (mesh2d/optimize2d.h).
-  int optimize_passes = 8;
+  int optimize_passes = 5;
   /// Distance from the rim, in local rim edge lengths, over which the cap
   /// size blends from the rim edge lengths to the requested sizes (> 0).
   double blend_lengths = 3.0;
