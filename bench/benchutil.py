@@ -45,8 +45,8 @@ GNU_TIME = "/usr/bin/time"
 
 
 def run_measured(cmd, timeout=None, env=None, cwd=None):
-    """Runs cmd; returns dict(rc, seconds (wall), peak_rss_mb of that command
-    alone, stdout, stderr, timed_out).
+    """Runs cmd; returns dict(rc, seconds (wall), cpu_seconds (user + system),
+    peak_rss_mb of that command alone, stdout, stderr, timed_out).
 
     The peak RSS comes from GNU time (%M) when /usr/bin/time exists: a child
     forked by this Python process keeps the parent's pre-exec high-water
@@ -57,7 +57,7 @@ def run_measured(cmd, timeout=None, env=None, cwd=None):
     if os.access(GNU_TIME, os.X_OK):
         fd, rss_file = tempfile.mkstemp(prefix="bench-rss-")
         os.close(fd)
-        cmd = [GNU_TIME, "-f", "%M", "-o", rss_file] + list(cmd)
+        cmd = [GNU_TIME, "-f", "%M %U %S", "-o", rss_file] + list(cmd)
     with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
         t0 = time.perf_counter()
         p = subprocess.Popen(cmd, stdout=out, stderr=err, env=env, cwd=cwd)
@@ -80,7 +80,7 @@ def run_measured(cmd, timeout=None, env=None, cwd=None):
         out.seek(0)
         err.seek(0)
         res = dict(rc=p.returncode, seconds=dt, peak_rss_mb=ru.ru_maxrss / 1024.0,
-                   rss_source="wait4 (upper bound)",
+                   rss_source="wait4 (upper bound)", cpu_seconds=ru.ru_utime + ru.ru_stime,
                    stdout=out.read().decode(errors="replace"),
                    stderr=err.read().decode(errors="replace"), timed_out=bool(timed_out))
     if rss_file:
@@ -88,7 +88,9 @@ def run_measured(cmd, timeout=None, env=None, cwd=None):
             with open(rss_file) as f:
                 lines = [ln for ln in f.read().split("\n") if ln.strip()]
             # GNU time prints "Command exited with non-zero status N" first then.
-            res["peak_rss_mb"] = int(lines[-1]) / 1024.0
+            rss, user, system = lines[-1].split()
+            res["peak_rss_mb"] = int(rss) / 1024.0
+            res["cpu_seconds"] = float(user) + float(system)
             res["rss_source"] = "GNU time"
         except (OSError, ValueError, IndexError):
             pass

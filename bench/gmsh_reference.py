@@ -35,8 +35,21 @@ DEFAULT_ANGLE = 40.0
 DEFAULT_CURVE_ANGLE = 180.0
 
 
-def _now():
-    return time.perf_counter()
+class _Stage:
+    """Times one stage: wall clock into res['seconds'][name], CPU time of
+    the process into res['cpu_seconds'][name] (less sensitive to a loaded
+    machine than wall time; Gmsh runs one thread here)."""
+
+    def __init__(self, res, name):
+        self.res, self.name = res, name
+
+    def __enter__(self):
+        self.wall, self.cpu = time.perf_counter(), time.process_time()
+
+    def __exit__(self, *exc):
+        if exc[0] is None:
+            self.res["seconds"][self.name] = time.perf_counter() - self.wall
+            self.res["cpu_seconds"][self.name] = time.process_time() - self.cpu
 
 
 def _open_loops(gmsh, surfaces):
@@ -130,7 +143,7 @@ def run(path, h, volume=False, angle=DEFAULT_ANGLE, curve_angle=DEFAULT_CURVE_AN
     import gmsh
     import numpy as np
     res = dict(file=os.path.basename(path), h=h, volume=volume, angle=angle,
-               curve_angle=curve_angle, gmsh_version=None, ok=False, seconds={})
+               curve_angle=curve_angle, gmsh_version=None, ok=False, seconds={}, cpu_seconds={})
     sec = res["seconds"]
     gmsh.initialize(["gmsh", "-nopopup"], readConfigFiles=False)
     try:
@@ -141,43 +154,38 @@ def run(path, h, volume=False, angle=DEFAULT_ANGLE, curve_angle=DEFAULT_CURVE_AN
         for d in ("1D", "2D", "3D"):
             gmsh.option.setNumber(f"Mesh.MaxNumThreads{d}", 1)
         gmsh.model.add("ref")
-        t = _now()
-        gmsh.merge(path)
-        sec["merge"] = _now() - t
+        with _Stage(res, "merge"):
+            gmsh.merge(path)
 
-        t = _now()
-        gmsh.model.mesh.classifySurfaces(angle * math.pi / 180.0, True, True,
-                                         curve_angle * math.pi / 180.0)
-        sec["classify"] = _now() - t
+        with _Stage(res, "classify"):
+            gmsh.model.mesh.classifySurfaces(angle * math.pi / 180.0, True, True,
+                                             curve_angle * math.pi / 180.0)
 
-        t = _now()
-        gmsh.model.mesh.createGeometry()
-        sec["create_geometry"] = _now() - t
+        with _Stage(res, "create_geometry"):
+            gmsh.model.mesh.createGeometry()
         walls = [t for _, t in gmsh.model.getEntities(2)]
         res["patches"] = len(walls)
         res["curves"] = len(gmsh.model.getEntities(1))
 
         caps = []
         if volume:
-            t = _now()
-            loops = _open_loops(gmsh, walls)
-            res["openings"] = len(loops)
-            for lp in loops:
-                cl = gmsh.model.geo.addCurveLoop(_ordered_loop(gmsh, lp))
-                caps.append(gmsh.model.geo.addPlaneSurface([cl]))
-            sl = gmsh.model.geo.addSurfaceLoop(walls + caps)
-            gmsh.model.geo.addVolume([sl])
-            gmsh.model.geo.synchronize()
-            sec["caps_volume_entities"] = _now() - t
+            with _Stage(res, "caps_volume_entities"):
+                loops = _open_loops(gmsh, walls)
+                res["openings"] = len(loops)
+                for lp in loops:
+                    cl = gmsh.model.geo.addCurveLoop(_ordered_loop(gmsh, lp))
+                    caps.append(gmsh.model.geo.addPlaneSurface([cl]))
+                sl = gmsh.model.geo.addSurfaceLoop(walls + caps)
+                gmsh.model.geo.addVolume([sl])
+                gmsh.model.geo.synchronize()
 
         gmsh.option.setNumber("Mesh.MeshSizeMin", h)
         gmsh.option.setNumber("Mesh.MeshSizeMax", h)
         gmsh.option.setNumber("Mesh.Algorithm", 6)
         gmsh.option.setNumber("Mesh.Algorithm3D", 10)
 
-        t = _now()
-        gmsh.model.mesh.generate(2)
-        sec["surface_mesh"] = _now() - t
+        with _Stage(res, "surface_mesh"):
+            gmsh.model.mesh.generate(2)
 
         xyz, tri, tri_tags = _collect(gmsh, 2, walls)
         q = meshquality.gamma_k(xyz, tri)
@@ -193,9 +201,8 @@ def run(path, h, volume=False, angle=DEFAULT_ANGLE, curve_angle=DEFAULT_CURVE_AN
             res["cap_triangles"] = int(len(ctri))
 
         if volume:
-            t = _now()
-            gmsh.model.mesh.generate(3)
-            sec["volume_mesh"] = _now() - t
+            with _Stage(res, "volume_mesh"):
+                gmsh.model.mesh.generate(3)
             vols = [t for _, t in gmsh.model.getEntities(3)]
             xyz, tet, tet_tags = _collect(gmsh, 3, vols)
             res["tets"] = int(len(tet))
@@ -211,7 +218,8 @@ def run(path, h, volume=False, angle=DEFAULT_ANGLE, curve_angle=DEFAULT_CURVE_AN
                 raise RuntimeError("HXT produced no tetrahedra")
         else:
             res["nodes"] = int(len(gmsh.model.mesh.getNodes()[0]))
-        sec["total"] = sum(v for k, v in sec.items() if k != "total")
+        for d in (sec, res["cpu_seconds"]):
+            d["total"] = sum(v for k, v in d.items() if k != "total")
         if msh_out:
             gmsh.option.setNumber("Mesh.SaveAll", 1)
             gmsh.write(msh_out)

@@ -2,7 +2,8 @@
 // WebAssembly build under Node through the JS API, as a page would call it
 // (api.mesh(bytes, options), including the copies out of the wasm heap).
 // The module is loaded from wasm/dist/vesselmesh_core.wasm via wasmBinary.
-// Prints one JSON object: per-run seconds, median, the output's counts and
+// Prints one JSON object: per-run wall and CPU seconds (CPU includes Node's
+// own helper threads, e.g. the JIT compiler), medians, the output's counts and
 // quality, and the process's peak RSS (process.resourceUsage().maxRSS, which
 // includes Node itself: baseline_rss_mb is the RSS before the module loads).
 //
@@ -49,11 +50,15 @@ const instantiateSeconds = (performance.now() - t0) / 1000;
 const bytes = new Uint8Array(readFileSync(file));
 
 const seconds = [];
+const cpuSeconds = [];
 let last = null;
 for (let r = 0; r < runs; r++) {
+  const c = process.cpuUsage();
   const t = performance.now();
   const res = api.mesh(bytes, options);
   const dt = (performance.now() - t) / 1000;
+  const cu = process.cpuUsage(c);
+  cpuSeconds.push((cu.user + cu.system) / 1e6);
   if (!res.ok) {
     console.log(JSON.stringify({ ok: false, file: basename(file), options, error: res.error }));
     process.exit(1);
@@ -70,6 +75,8 @@ console.log(
     runs,
     seconds,
     median_seconds: median(seconds),
+    cpu_seconds: cpuSeconds,
+    median_cpu_seconds: median(cpuSeconds),
     core_seconds: last.report.seconds,
     stage_seconds: out.remesh?.seconds ?? null,
     instantiate_seconds: instantiateSeconds,
