@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <numbers>
 
 #include "core/geom/closest_point.h"
@@ -28,10 +29,30 @@ Vec normal(const double* a, const double* b, const double* c) {
   return n;
 }
 
+/// (b - a) x (c - a): the normal scaled by twice the area.
+Vec area_normal(const double* a, const double* b, const double* c) {
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+               w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  return Vec{{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]}};
+}
+
+/// The unit vector along the sum of `parts` (zero if the sum is zero).
+Vec normal_sum(std::initializer_list<Vec> parts) {
+  Vec n{{0, 0, 0}};
+  for (const Vec& v : parts)
+    for (int k = 0; k < 3; ++k) n.x[k] += v.x[k];
+  const double l = std::sqrt(n.x[0] * n.x[0] + n.x[1] * n.x[1] + n.x[2] * n.x[2]);
+  if (l > 0)
+    for (double& v : n.x) v /= l;
+  return n;
+}
+
 double dot(const Vec& a, const Vec& b) {
   return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2];
 }
 
+/// Below this gamma_k a triangle's normal is not trusted by the guards.
+constexpr double kFlatGamma = 0.2;
 /// A valence swap may lower the pair's worst gamma_k to this fraction.
 constexpr double kValenceSwapMinGamma = 0.6;
 /// A quality swap that makes valences less regular needs a triangle this poor.
@@ -45,14 +66,17 @@ constexpr double kMinGain = 1e-3;
 /// may lower the worst gamma_k of the changed triangles down to kCollapseFloor.
 constexpr double kMaxEdgeAfterCollapse = 1.4;
 constexpr double kCollapseFloor = 0.4;
+/// A split point may lie off its edge by at most this times the edge length.
+constexpr double kMaxSplitOffset = 0.2;
 
 class Optimizer {
  public:
-  Optimizer(SurfaceMesh& m, std::vector<int32_t>& home, const std::vector<uint8_t>& fixed,
-            const std::vector<double>& size, const SurfaceMesh& input,
-            const TriangleAdjacency& input_adj, const SurfaceOptimizeOptions& o)
+  Optimizer(SurfaceMesh& m, std::vector<int32_t>& home, std::vector<uint8_t>& fixed,
+            std::vector<double>& size, const SurfaceMesh& input, const TriangleAdjacency& input_adj,
+            const SurfaceOptimizeOptions& o)
       : m_(m), home_(home), fixed_(fixed), size_(size), in_(input), in_adj_(input_adj) {
     collapse_ratio_ = o.collapse_ratio;
+    split_ratio_ = o.split_ratio;
     recent_.assign(m.num_vertices(), 1);
     q_.resize(m.num_triangles());
     for (size_t t = 0; t < q_.size(); ++t) {
@@ -68,6 +92,22 @@ class Optimizer {
   /// Starts the next pass: work is limited to what changed since the
   /// previous pass started.
   void next_pass() { ++pass_; }
+
+  /// Splits the interior edges longer than split_ratio times the target
+  /// size at their midpoint projected onto the input (see try_split).
+  size_t split_pass() {
+    size_t splits = 0;
+    if (size_.empty() || !(split_ratio_ > 0)) return 0;
+    const int32_t count = int32_t(m_.num_triangles());
+    for (int32_t t = 0; t < count; ++t)
+      for (int k = 0; k < 3 && tri(t)[0] >= 0 && active(t); ++k) {
+        const int32_t a = tri(t)[k], b = tri(t)[(k + 1) % 3];
+        const double l2 = dist2(p(a), p(b));
+        const double limit = split_ratio_ * 0.5 * (size_[size_t(a)] + size_[size_t(b)]);
+        if (l2 > limit * limit && try_split(t, k)) ++splits;
+      }
+    return splits;
+  }
 
   /// Collapses the interior edges shorter than collapse_ratio times the
   /// target size (see try_collapse). Needs sizes.
@@ -186,8 +226,9 @@ class Optimizer {
 
   int valence_excess(int32_t v, int change) const {
     // Neighbors: one per star triangle, plus one on an opening.
-    const int valence = int(vt_[size_t(v)].size()) + (fixed_[size_t(v)] ? 1 : 0) + change;
-    return std::abs(valence - (fixed_[size_t(v)] ? 4 : 6));
+    const bool opening = fixed_[size_t(v)] == kOnOpening;
+    const int valence = int(vt_[size_t(v)].size()) + (opening ? 1 : 0) + change;
+    return std::abs(valence - (opening ? 4 : 6));
   }
 
   // t = (a, b, c), u = (b, a, d) -> t = (a, d, c), u = (d, b, c).
@@ -217,8 +258,12 @@ class Optimizer {
                                    : after < kValenceSwapMinGamma * before)
       return false;
     if (has_edge(c, d)) return false;
-    const Vec nt = normal(p(a), p(b), p(c)), nu = normal(p(b), p(a), p(d));
+    // The normal guard; a nearly flat triangle's normal means nothing, so
+    // next to one the pair's area-weighted normal stands for both.
+    Vec nt = normal(p(a), p(b), p(c)), nu = normal(p(b), p(a), p(d));
     const Vec n1 = normal(p(a), p(d), p(c)), n2 = normal(p(d), p(b), p(c));
+    if (q_[size_t(t)] < kFlatGamma || q_[size_t(u)] < kFlatGamma)
+      nt = nu = normal_sum({area_normal(p(a), p(b), p(c)), area_normal(p(b), p(a), p(d))});
     if (dot(nt, nu) < cos_turn_ || dot(n1, n2) < cos_turn_) return false;
     for (const Vec& n : {n1, n2})
       if (dot(n, nt) < cos_turn_ || dot(n, nu) < cos_turn_) return false;
@@ -245,6 +290,64 @@ class Optimizer {
   void mark_star(int32_t v) {
     for (int32_t t : vt_[size_t(v)])
       for (int c = 0; c < 3; ++c) recent_[size_t(m_.triangles[3 * size_t(t) + size_t(c)])] = pass_;
+  }
+
+  static double dist2(const double* x, const double* y) {
+    return (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+           (x[2] - y[2]) * (x[2] - y[2]);
+  }
+
+  /// Splits the edge (a, b) = corners k, k + 1 of t, shared with u = (b, a,
+  /// d), at its midpoint projected onto the input: t = (a, b, c) becomes
+  /// (a, n, c) + (n, b, c), u becomes (b, n, d) + (n, a, d). Refused on an
+  /// opening edge and where a new triangle would turn by more than the guard.
+  bool try_split(int32_t t, int k) {
+    int32_t* T = tri(t);
+    const int32_t a = T[k], b = T[(k + 1) % 3], c = T[(k + 2) % 3];
+    const int32_t u = across(t, a, b);
+    if (u < 0) return false;
+    int32_t d = -1;
+    for (int j = 0; j < 3; ++j)
+      if (tri(u)[j] != a && tri(u)[j] != b) d = tri(u)[j];
+    const double mid[3] = {0.5 * (p(a)[0] + p(b)[0]), 0.5 * (p(a)[1] + p(b)[1]),
+                           0.5 * (p(a)[2] + p(b)[2])};
+    double x[3];
+    const int32_t home = project_near(mid, home_[size_t(a)], in_, in_adj_, x);
+    // Far from the edge (a crease between a and b): leave it.
+    if (dist2(mid, x) > kMaxSplitOffset * kMaxSplitOffset * dist2(p(a), p(b))) return false;
+    Vec nt = normal(p(a), p(b), p(c)), nu = normal(p(b), p(a), p(d));
+    if (q_[size_t(t)] < kFlatGamma || q_[size_t(u)] < kFlatGamma)
+      nt = nu = normal_sum({area_normal(p(a), p(b), p(c)), area_normal(p(b), p(a), p(d))});
+    if (dot(normal(p(a), x, p(c)), nt) < cos_turn_ || dot(normal(x, p(b), p(c)), nt) < cos_turn_ ||
+        dot(normal(p(b), x, p(d)), nu) < cos_turn_ || dot(normal(x, p(a), p(d)), nu) < cos_turn_)
+      return false;
+    const int32_t n = int32_t(home_.size());
+    m_.points.insert(m_.points.end(), x, x + 3);
+    home_.push_back(home);
+    fixed_.push_back(kFree);
+    size_.push_back(0.5 * (size_[size_t(a)] + size_[size_t(b)]));
+    vt_.emplace_back();
+    recent_.push_back(pass_);
+    if (!dead_.empty()) dead_.push_back(0);
+    const int32_t t2 = int32_t(m_.num_triangles()), u2 = t2 + 1;
+    T[0] = a, T[1] = n, T[2] = c;
+    int32_t* U = tri(u);
+    U[0] = b, U[1] = n, U[2] = d;
+    m_.triangles.insert(m_.triangles.end(), {n, b, c, n, a, d});
+    erase(vt_[size_t(b)], t);
+    erase(vt_[size_t(a)], u);
+    vt_[size_t(b)].push_back(t2);
+    vt_[size_t(c)].push_back(t2);
+    vt_[size_t(a)].push_back(u2);
+    vt_[size_t(d)].push_back(u2);
+    vt_[size_t(n)] = {t, u, t2, u2};
+    for (int32_t w : {t, u, t2, u2}) {
+      const int32_t* W = tri(w);
+      if (size_t(w) >= q_.size()) q_.resize(size_t(w) + 1);
+      q_[size_t(w)] = gamma(W[0], W[1], W[2]);
+    }
+    for (int32_t v : {a, b, c, d, n}) recent_[size_t(v)] = pass_;
+    return true;
   }
 
   /// The vertices sharing an edge with v.
@@ -371,11 +474,19 @@ class Optimizer {
     const int32_t new_home = project_near(target, home_[size_t(v)], in_, in_adj_, projected);
     double* pv = &m_.points[3 * size_t(v)];
     const double old[3] = {pv[0], pv[1], pv[2]};
+    // The guard's reference normals: each triangle's own, or the star's
+    // area-weighted normal for a nearly flat one.
     old_normals_.clear();
+    Vec star_normal{{0, 0, 0}};
     for (int32_t t : star) {
       const int32_t* T = tri(t);
       old_normals_.push_back(normal(p(T[0]), p(T[1]), p(T[2])));
+      const Vec an = area_normal(p(T[0]), p(T[1]), p(T[2]));
+      for (int k = 0; k < 3; ++k) star_normal.x[k] += an.x[k];
     }
+    star_normal = normal_sum({star_normal});
+    for (size_t i = 0; i < star.size(); ++i)
+      if (q_[size_t(star[i])] < kFlatGamma) old_normals_[i] = star_normal;
     std::copy(projected, projected + 3, pv);
     double after = 1, after_sum = 0;
     bool ok = true;
@@ -403,14 +514,14 @@ class Optimizer {
 
   SurfaceMesh& m_;
   std::vector<int32_t>& home_;
-  const std::vector<uint8_t>& fixed_;
-  const std::vector<double>& size_;
+  std::vector<uint8_t>& fixed_;
+  std::vector<double>& size_;
   const SurfaceMesh& in_;
   const TriangleAdjacency& in_adj_;
   double cos_turn_ = 0;
   std::vector<std::vector<int32_t>> vt_;
   std::vector<Vec> old_normals_;
-  double collapse_ratio_ = 0;
+  double collapse_ratio_ = 0, split_ratio_ = 0;
   std::vector<uint8_t> dead_;  ///< collapsed vertices (empty until the first)
   std::vector<int32_t> na_, nb_, changed_;
   int pass_ = 1;
@@ -464,14 +575,16 @@ SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>
   SurfaceOptimizeStats stats;
   Optimizer opt(mesh, home, fixed, size, input, input_adj, options);
   for (int pass = 0; pass < options.passes; ++pass) {
+    size_t splits = pass < options.valence_passes ? opt.split_pass() : 0;
     size_t collapses = pass < options.valence_passes ? opt.collapse_pass() : 0;
     size_t swaps = pass < options.valence_passes ? opt.valence_pass() : 0;
     swaps += opt.swap_pass();
     size_t moves = opt.smooth_pass();
     stats.collapses += collapses;
+    stats.splits += splits;
     stats.swaps += swaps;
     stats.moves += moves;
-    if (collapses == 0 && swaps == 0 && moves == 0) break;
+    if (splits == 0 && collapses == 0 && swaps == 0 && moves == 0) break;
     opt.next_pass();
   }
   if (stats.collapses > 0) opt.compact(fixed, size);

@@ -21,15 +21,26 @@ struct SurfaceOptimizeOptions {
   /// Interior edges shorter than this times the target size are collapsed
   /// (when sizes are given).
   double collapse_ratio = 0.7;
+  /// Interior edges longer than this times the target size are split at
+  /// their midpoint projected onto the input (when sizes are given; 0 = no
+  /// split).
+  double split_ratio = 1.6;
 };
+
+/// Values of the `fixed` flags of optimize_on_surface.
+inline constexpr uint8_t kFree = 0;       ///< may move
+inline constexpr uint8_t kOnOpening = 1;  ///< on an opening: never moves
 
 struct SurfaceOptimizeStats {
   size_t swaps = 0;
   size_t moves = 0;
   size_t collapses = 0;
+  size_t splits = 0;
 };
 
-/// Improves `mesh` in place, in passes of four phases:
+/// Improves `mesh` in place, in passes of five phases:
+/// - splits of edges longer than `options.split_ratio` times the target size
+///   at their midpoints projected onto `input`;
 /// - collapses of edges shorter than `options.collapse_ratio` times the
 ///   target size `size` (one per vertex; empty: no collapse), keeping the
 ///   mesh manifold (link condition) and the opening vertices in place;
@@ -43,10 +54,10 @@ struct SurfaceOptimizeStats {
 ///   increases while the worst stays above min(before, 0.8).
 /// Vertices only move to points of the input surface; the boundary edges of
 /// `mesh` never change; no triangle turns by more than the normal guard.
-/// Collapsed vertices are removed: mesh, home, fixed and size are renumbered
-/// together. Preconditions: `mesh` is manifold and consistently oriented,
-/// home has one input triangle per vertex, fixed one flag per vertex (set on
-/// every boundary vertex), input_adj is build_adjacency(input).
+/// Split vertices are appended (free) and collapsed vertices removed: mesh,
+/// home, fixed and size are renumbered together. Preconditions: `mesh` is manifold and consistently
+/// oriented, home has one input triangle per vertex, fixed one flag per vertex (kOnOpening on every
+/// boundary vertex, else kFree), input_adj is build_adjacency(input).
 SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>& home,
                                          std::vector<uint8_t>& fixed, std::vector<double>& size,
                                          const SurfaceMesh& input,
