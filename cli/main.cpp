@@ -43,6 +43,8 @@ usage:
         --size-min H, --size-max H   clamps
         --gradation G            h grows at most G per unit length
         --curvature P            at least P edges per radian of curvature
+        --feature-angle A        keep creases sharper than A degrees (default 60;
+                                 180: none)
   vesselmesh phantom OUT.stl [--kind bifurcation|tube|aneurysm|torus]
                   [--voxel V] [--noise A] [--seed N] [--scale S] [--closed]
       Write a synthetic segmentation-like vessel surface (binary STL).

@@ -86,6 +86,7 @@ std::string mesh_report_json(const MeshJobResult& r) {
     j.key("remesh").begin_object();
     j.key("patches").value(st.patches);
     j.key("seam_points").value(st.seam_points);
+    j.key("feature_edges").value(st.feature_edges);
     j.key("size").begin_object();
     j.key("min").value(st.size_min);
     j.key("median").value(st.size_median);

@@ -242,7 +242,8 @@ class Optimizer {
     int32_t d = -1;
     for (int j = 0; j < 3; ++j)
       if (U[j] != a && U[j] != b) d = U[j];
-    if (d < 0 || d == c) return false;
+    // An edge between two fixed vertices may be a crease: it stays.
+    if (d < 0 || d == c || (fixed_[size_t(a)] && fixed_[size_t(b)])) return false;
     const int excess_before =
         valence_excess(a, 0) + valence_excess(b, 0) + valence_excess(c, 0) + valence_excess(d, 0);
     const int excess_after =
@@ -305,7 +306,7 @@ class Optimizer {
     int32_t* T = tri(t);
     const int32_t a = T[k], b = T[(k + 1) % 3], c = T[(k + 2) % 3];
     const int32_t u = across(t, a, b);
-    if (u < 0) return false;
+    if (u < 0 || (fixed_[size_t(a)] && fixed_[size_t(b)])) return false;  // an opening, a crease
     int32_t d = -1;
     for (int j = 0; j < 3; ++j)
       if (tri(u)[j] != a && tri(u)[j] != b) d = tri(u)[j];

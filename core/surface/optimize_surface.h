@@ -30,6 +30,7 @@ struct SurfaceOptimizeOptions {
 /// Values of the `fixed` flags of optimize_on_surface.
 inline constexpr uint8_t kFree = 0;       ///< may move
 inline constexpr uint8_t kOnOpening = 1;  ///< on an opening: never moves
+inline constexpr uint8_t kOnFeature = 2;  ///< on a sharp crease: never moves
 
 struct SurfaceOptimizeStats {
   size_t swaps = 0;

@@ -13,6 +13,7 @@
 #include "core/mesh/boundary_loops.h"
 #include "core/param/fixed_boundary_map.h"
 #include "core/surface/resample_curve.h"
+#include "core/surface/sharp_features.h"
 
 namespace vm {
 namespace {
@@ -28,53 +29,63 @@ uint64_t edge_key(int32_t a, int32_t b) {
 
 /// The shared discretization of every patch boundary.
 struct Seams {
-  std::vector<double> points;       ///< 3 per sample
-  std::vector<int32_t> home;        ///< an input triangle containing each sample
-  std::vector<uint8_t> on_opening;  ///< sample on an input boundary loop
-  std::vector<int32_t> at_vertex;   ///< input vertex -> sample there, or -1
+  std::vector<double> points;      ///< 3 per sample
+  std::vector<int32_t> home;       ///< an input triangle containing each sample
+  std::vector<uint8_t> kind;       ///< kOnOpening, kOnFeature or kFree (a plain seam)
+  std::vector<int32_t> at_vertex;  ///< input vertex -> sample there, or -1
   /// Input edge (min, max) -> samples strictly inside it: (fraction from
   /// the min vertex, sample id).
   std::unordered_map<uint64_t, std::vector<std::pair<double, int32_t>>> on_edge;
 };
 
-/// Phase 3: curves between corners of the boundary graph, resampled.
+/// Phase 3: curves between corners of the boundary graph, resampled. The
+/// graph's edges are the openings, and the edges between two patches: sharp
+/// features (flag `feature` per half-edge, may be empty) or plain seams.
 Seams discretize_seams(const SurfaceMesh& m, const TriangleAdjacency& adj,
-                       const std::vector<int32_t>& label, const std::vector<double>& h) {
+                       const std::vector<uint8_t>& feature, const std::vector<int32_t>& label,
+                       const std::vector<double>& h) {
   const size_t nv = m.num_vertices();
-  // Boundary-graph edges: openings and edges between two patches.
   struct Edge {
     int32_t a, b, tri;
-    uint8_t opening;
+    uint8_t kind;  // kFree (a seam), kOnOpening or kOnFeature
   };
   std::vector<Edge> edges;
   for (size_t he = 0; he < adj.opposite.size(); ++he) {
     const int32_t o = adj.opposite[he], t = int32_t(he / 3);
     const bool opening = o < 0;
     if (!opening && (label[size_t(o / 3)] == label[size_t(t)] || o < int32_t(he))) continue;
-    edges.push_back(
-        {half_edge_from(m, int32_t(he)), half_edge_to(m, int32_t(he)), t, uint8_t(opening)});
+    const uint8_t kind = opening                           ? kOnOpening
+                         : !feature.empty() && feature[he] ? kOnFeature
+                                                           : kFree;
+    edges.push_back({half_edge_from(m, int32_t(he)), half_edge_to(m, int32_t(he)), t, kind});
   }
   std::vector<std::vector<int32_t>> at(nv);
-  std::vector<uint8_t> on_open(nv, 0), on_seam(nv, 0);
+  std::vector<uint8_t> kinds(nv, 0);  // bit per kind of edge at the vertex
   for (size_t e = 0; e < edges.size(); ++e) {
     for (int32_t v : {edges[e].a, edges[e].b}) {
       at[size_t(v)].push_back(int32_t(e));
-      (edges[e].opening ? on_open : on_seam)[size_t(v)] = 1;
+      kinds[size_t(v)] |= uint8_t(1 << edges[e].kind);
     }
   }
   Seams s;
   s.at_vertex.assign(nv, -1);
-  auto add_sample = [&](const double* x, int32_t tri, uint8_t opening) {
+  auto add_sample = [&](const double* x, int32_t tri, uint8_t kind) {
     s.points.insert(s.points.end(), x, x + 3);
     s.home.push_back(tri);
-    s.on_opening.push_back(opening);
+    s.kind.push_back(kind);
     return int32_t(s.home.size() - 1);
   };
+  // Corners: ends of curves and vertices where curves of two kinds meet. A
+  // corner is fixed like the most constrained curve through it.
   std::vector<uint8_t> corner(nv, 0);
   for (size_t v = 0; v < nv; ++v) {
-    corner[v] = !at[v].empty() && (at[v].size() != 2 || (on_open[v] && on_seam[v]));
+    const uint8_t k = kinds[v];
+    corner[v] = !at[v].empty() && (at[v].size() != 2 || (k & (k - 1)) != 0);
     if (corner[v])
-      s.at_vertex[v] = add_sample(&m.points[3 * v], edges[size_t(at[v][0])].tri, on_open[v]);
+      s.at_vertex[v] = add_sample(&m.points[3 * v], edges[size_t(at[v][0])].tri,
+                                  (k & (1 << kOnOpening))   ? kOnOpening
+                                  : (k & (1 << kOnFeature)) ? kOnFeature
+                                                            : kFree);
   }
   std::vector<uint8_t> used(edges.size(), 0);
   // Walks a curve from vertex v along edge e, to a corner or back to start.
@@ -102,7 +113,7 @@ Seams discretize_seams(const SurfaceMesh& m, const TriangleAdjacency& adj,
     }
     // At least 2 segments per curve, so every patch boundary has 3 points.
     const size_t min_segments = closed ? 3 : 2;
-    const uint8_t opening = edges[size_t(chain_edges[0])].opening;
+    const uint8_t kind = edges[size_t(chain_edges[0])].kind;
     for (const CurveSample& cs : resample_curve(pts, sizes, closed, min_segments)) {
       const size_t i = cs.segment, j = (i + 1) % chain.size();
       const int32_t a = chain[i], b = chain[j];
@@ -110,13 +121,13 @@ Seams discretize_seams(const SurfaceMesh& m, const TriangleAdjacency& adj,
         const int32_t at_v = cs.t == 0 ? a : b;
         if (s.at_vertex[size_t(at_v)] < 0)
           s.at_vertex[size_t(at_v)] =
-              add_sample(&m.points[3 * size_t(at_v)], edges[size_t(chain_edges[i])].tri, opening);
+              add_sample(&m.points[3 * size_t(at_v)], edges[size_t(chain_edges[i])].tri, kind);
         continue;
       }
       double x[3];
       for (int k = 0; k < 3; ++k)
         x[k] = (1 - cs.t) * m.points[3 * size_t(a) + k] + cs.t * m.points[3 * size_t(b) + k];
-      const int32_t id = add_sample(x, edges[size_t(chain_edges[i])].tri, opening);
+      const int32_t id = add_sample(x, edges[size_t(chain_edges[i])].tri, kind);
       s.on_edge[edge_key(a, b)].push_back({a < b ? cs.t : 1 - cs.t, id});
     }
   };
@@ -160,6 +171,18 @@ Result<std::vector<PatchBoundaryPoint>> patch_boundary(const MappedPatch& p, con
   return out;
 }
 
+/// The target size at each output vertex: the mean of `h` (one per input
+/// vertex) over its home triangle.
+std::vector<double> output_sizes(const SurfaceMesh& input, const std::vector<int32_t>& home,
+                                 const std::vector<double>& h) {
+  std::vector<double> size(home.size());
+  for (size_t v = 0; v < size.size(); ++v) {
+    const int32_t* T = &input.triangles[3 * size_t(home[v])];
+    size[v] = (h[size_t(T[0])] + h[size_t(T[1])] + h[size_t(T[2])]) / 3;
+  }
+  return size;
+}
+
 }  // namespace
 
 Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOptions& options,
@@ -183,9 +206,16 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
   stats.seconds_size = seconds_since(t0);
   if (!report_progress(progress, 0.1, "partitioning")) return R::Error(kCancelledMessage);
 
-  // Phase 2: partition into mapped patches.
+  // Phase 2: sharp features, then the partition into mapped patches, which
+  // sees the features as cuts (so no patch crosses a crease).
   t0 = std::chrono::steady_clock::now();
-  const TriangleAdjacency adj = build_adjacency(input);
+  const TriangleAdjacency full_adj = build_adjacency(input);
+  const std::vector<uint8_t> feature =
+      sharp_feature_edges(input, full_adj, h, options.feature_angle_degrees);
+  TriangleAdjacency adj = full_adj;
+  for (size_t he = 0; he < feature.size(); ++he)
+    if (feature[he]) adj.opposite[he] = TriangleAdjacency::kBoundary, ++stats.feature_edges;
+  stats.feature_edges /= 2;
   PatchMapFn map = [&](const SurfaceMesh& patch) -> Result<Parametrization> {
     switch (options.param) {
       case ParamMethod::kHarmonic:
@@ -199,6 +229,7 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
   // Phases 2-4, again with the failing patch forced to split if its planar
   // boundary crosses itself (a coarse resampling of a tortuous boundary).
   PartitionOptions partition = options.partition;
+  std::vector<uint8_t> fixed;  // per output vertex: kFree, kOnOpening or kOnFeature
   for (int attempt = 0;; ++attempt) {
     PartitionStats pstats;
     auto patches = partition_for_maps(input, adj, map, partition, &pstats);
@@ -213,12 +244,12 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
 
     // Phase 3: seams.
     t0 = std::chrono::steady_clock::now();
-    Seams seams = discretize_seams(input, adj, label, h);
+    Seams seams = discretize_seams(input, full_adj, feature, label, h);
     stats.seam_points = seams.home.size();
     out.mesh.points = seams.points;
     out.mesh.triangles.clear();
     out.home = seams.home;
-    out.on_opening = seams.on_opening;
+    fixed = seams.kind;
 
     // Phase 4: each patch in its plane, assembled by the shared sample ids.
     std::vector<int32_t> ids;
@@ -252,7 +283,7 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
         out.mesh.points.insert(out.mesh.points.end(), &mesh.mesh.points[3 * v],
                                &mesh.mesh.points[3 * v] + 3);
         out.home.push_back(p.triangle_of[size_t(mesh.home[v])]);
-        out.on_opening.push_back(0);
+        fixed.push_back(kFree);
       }
       for (int32_t v : mesh.mesh.triangles) out.mesh.triangles.push_back(global[size_t(v)]);
     }
@@ -271,14 +302,15 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
 
   // Phase 5: swaps and smoothing on the input surface.
   t0 = std::chrono::steady_clock::now();
-  // The target size at each output vertex: the mean over its home triangle.
-  std::vector<double> out_size(out.home.size());
-  for (size_t v = 0; v < out_size.size(); ++v) {
-    const int32_t* T = &input.triangles[3 * size_t(out.home[v])];
-    out_size[v] = (h[size_t(T[0])] + h[size_t(T[1])] + h[size_t(T[2])]) / 3;
+  std::vector<double> out_size = output_sizes(input, out.home, h);
+  const auto ostats =
+      optimize_on_surface(out.mesh, out.home, fixed, out_size, input, adj, options.optimize);
+  out.on_opening.resize(fixed.size());
+  out.on_feature.resize(fixed.size());
+  for (size_t v = 0; v < fixed.size(); ++v) {
+    out.on_opening[v] = fixed[v] == kOnOpening;
+    out.on_feature[v] = fixed[v] == kOnFeature;
   }
-  auto ostats = optimize_on_surface(out.mesh, out.home, out.on_opening, out_size, input, adj,
-                                    options.optimize);
   stats.collapses = ostats.collapses;
   stats.swaps = ostats.swaps;
   stats.moves = ostats.moves;
@@ -295,9 +327,9 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
         if (a > b && !(out.on_opening[size_t(a)] && out.on_opening[size_t(b)])) continue;
         const double* pa = &out.mesh.points[3 * size_t(a)];
         const double* pb = &out.mesh.points[3 * size_t(b)];
-        const double len = std::sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) +
-                                     (pa[1] - pb[1]) * (pa[1] - pb[1]) +
-                                     (pa[2] - pb[2]) * (pa[2] - pb[2]));
+        const double len =
+            std::sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
+                      (pa[2] - pb[2]) * (pa[2] - pb[2]));
         ratio.push_back(len / (0.5 * (out_size[size_t(a)] + out_size[size_t(b)])));
       }
     if (!ratio.empty()) {

@@ -31,6 +31,10 @@ struct RemeshOptions {
   PatchMeshOptions patch;  ///< 2D mesher and its options
   PartitionOptions partition;
   SurfaceOptimizeOptions optimize;
+  /// Creases sharper than this (angle between the normals of two triangles,
+  /// degrees) that form closed or anchored chains are kept: patches end at
+  /// them and their vertices stay on them. 180 = off.
+  double feature_angle_degrees = 60;
 };
 
 struct RemeshStats {
@@ -38,6 +42,7 @@ struct RemeshStats {
   size_t bisections = 0;
   size_t rejected_maps = 0;  ///< maps refused (folded or crowded) before splitting
   size_t seam_points = 0;    ///< points on seams and openings, shared by patches
+  size_t feature_edges = 0;  ///< input edges kept as sharp features
   size_t retries = 0;        ///< partitions redone because a patch failed to mesh
   size_t swaps = 0, moves = 0, collapses = 0;
   double size_min = 0, size_median = 0, size_max = 0;  ///< of the size field at input vertices
@@ -54,6 +59,8 @@ struct RemeshedSurface {
   std::vector<int32_t> home;
   /// Per output vertex: it lies on an opening (boundary loop) of the input.
   std::vector<uint8_t> on_opening;
+  /// Per output vertex: it lies on a sharp feature of the input.
+  std::vector<uint8_t> on_feature;
   /// The size field at the input vertices.
   std::vector<double> input_sizes;
 };

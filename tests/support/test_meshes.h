@@ -39,6 +39,20 @@ inline SurfaceMesh open_tube(int n, int m, double r = 1.0, double len = 4.0) {
   return s;
 }
 
+/// open_tube(n, m, r, len) closed by two flat fans (centers appended last):
+/// a closed cylinder with sharp 90-degree rims, outward oriented.
+inline SurfaceMesh capped_tube(int n, int m, double r = 1.0, double len = 4.0) {
+  SurfaceMesh s = open_tube(n, m, r, len);
+  const int32_t bottom = int32_t(s.num_vertices()), top = bottom + 1;
+  s.points.insert(s.points.end(), {0, 0, 0, 0, 0, len});
+  for (int i = 0; i < n; ++i) {
+    const int32_t a = i, b = (i + 1) % n;
+    s.triangles.insert(s.triangles.end(), {b, a, bottom});
+    s.triangles.insert(s.triangles.end(), {m * n + a, m * n + b, top});
+  }
+  return s;
+}
+
 /// Torus with n x m quads split in two, outward oriented: genus 1, closed.
 inline SurfaceMesh torus(int n, int m, double R = 3.0, double r = 1.0) {
   SurfaceMesh s;

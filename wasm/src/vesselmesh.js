@@ -47,6 +47,7 @@ const MESH_OPTIONS = {
   curvature: 'curvature',
   param: 'param',
   mesher2d: 'mesher2d',
+  featureAngle: 'feature-angle',
 };
 const JS_NAMES = Object.fromEntries(Object.entries(MESH_OPTIONS).map(([js, core]) => [core, js]));
 
@@ -79,7 +80,8 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * remesh is false) and returns the MSH file bytes and the report.
      * Size: `size` (uniform h) or `perCircumference` (h = 2 pi R / N, the
      * default with N = 20), clamps `sizeMin` / `sizeMax`, `gradation`,
-     * `curvature`; advanced: `param` ('lscm' | 'harmonic' | 'floater'),
+     * `curvature`, `featureAngle` (degrees; sharper creases are kept, 180:
+     * none); advanced: `param` ('lscm' | 'harmonic' | 'floater'),
      * `mesher2d` ('frontal' | 'delaunay' | 'adapt').
      * @returns {{ok: true, msh: Uint8Array, report: object, surface: object} |
      *   {ok: false, error: string}}
