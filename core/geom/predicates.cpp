@@ -161,4 +161,37 @@ double insphere(const double* a, const double* b, const double* c, const double*
   return insphere_exact(a, b, c, d, e);
 }
 
+int insphere_sos(const double* a, const double* b, const double* c, const double* d,
+                 const double* e, int64_t ia, int64_t ib, int64_t ic, int64_t id, int64_t ie) {
+  double det = insphere(a, b, c, d, e);
+  if (det != 0) return det > 0 ? 1 : -1;
+  // insphere(a, b, c, d, e) is the 5x5 determinant with rows (p, |p|^2, 1),
+  // p = a..e. It is linear in the lift column, so raising row r's lift by
+  // eps_r adds eps_r * (-1)^(r + 4) * det[(q, 1) for the other rows q] =
+  // eps_r * (-1)^r * orient3d(others in order) (rows r = 1..5). The raises
+  // are ordered by index: the first nonzero coefficient, from the largest
+  // index down, decides.
+  const double* p[5] = {a, b, c, d, e};
+  int64_t idx[5] = {ia, ib, ic, id, ie};
+  int order[5] = {0, 1, 2, 3, 4};
+  for (int i = 1; i < 5; ++i)  // insertion sort, decreasing index
+    for (int j = i; j > 0 && idx[order[j]] > idx[order[j - 1]]; --j) {
+      int t = order[j];
+      order[j] = order[j - 1];
+      order[j - 1] = t;
+    }
+  for (int k = 0; k < 5; ++k) {
+    int r = order[k];  // 0-based row
+    const double* q[4];
+    for (int i = 0, n = 0; i < 5; ++i)
+      if (i != r) q[n++] = p[i];
+    double o = orient3d(q[0], q[1], q[2], q[3]);
+    if (o == 0) continue;
+    // (-1)^(r + 1) with 1-based row r + 1.
+    int s = (r % 2 == 0) ? -1 : 1;
+    return o > 0 ? s : -s;
+  }
+  return 0;
+}
+
 }  // namespace vm
