@@ -204,7 +204,9 @@ TEST(Predicates, InsphereSosMatchesPerturbedDeterminantOnDegenerateSets) {
       int s = insphere_sos(d[0], d[1], d[2], d[3], d[4], idx[0], idx[1], idx[2], idx[3], idx[4]);
       ASSERT_EQ(s, insphere_sos_ref(q, idx)) << it;
       double plain = insphere(d[0], d[1], d[2], d[3], d[4]);
-      if (plain != 0) ASSERT_EQ(s, sign(plain));
+      if (plain != 0) {
+        ASSERT_EQ(s, sign(plain));
+      }
       ties += plain == 0;
       // Zero only when all five are coplanar.
       i128 qi[5][3];
