@@ -3,7 +3,7 @@
 // cube, on a sphere, and on a cylinder surface plus its interior (a vessel-
 // like mix of surface and volume points).
 //
-// usage: delaunay_bench [--runs N] [--sizes 100000,1000000]
+// usage: delaunay_bench [--runs N] [--sizes 100000,1000000] [--kinds cube,sphere,cylinder]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -52,31 +52,38 @@ int main(int argc, char** argv) {
   vm::keep_freed_memory_for_reuse();
   int runs = 5;
   std::vector<int> sizes = {100000, 1000000};
+  std::vector<std::string> kinds = {"cube", "sphere", "cylinder"};
+  auto split = [](const std::string& s) {
+    std::vector<std::string> out;
+    for (size_t pos = 0; pos <= s.size();) {
+      size_t end = s.find(',', pos);
+      if (end == std::string::npos) end = s.size();
+      out.push_back(s.substr(pos, end - pos));
+      pos = end + 1;
+    }
+    return out;
+  };
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a == "--runs" && i + 1 < argc) {
       runs = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--sizes" && i + 1 < argc) {
       sizes.clear();
-      std::string s = argv[++i];
-      for (size_t pos = 0; pos < s.size();) {
-        size_t end = s.find(',', pos);
-        if (end == std::string::npos) end = s.size();
-        sizes.push_back(std::atoi(s.substr(pos, end - pos).c_str()));
-        pos = end + 1;
-      }
+      for (const auto& s : split(argv[++i])) sizes.push_back(std::atoi(s.c_str()));
+    } else if (a == "--kinds" && i + 1 < argc) {
+      kinds = split(argv[++i]);
     } else {
-      std::fprintf(stderr, "usage: delaunay_bench [--runs N] [--sizes N1,N2,...]\n");
+      std::fprintf(stderr, "usage: delaunay_bench [--runs N] [--sizes N1,...] [--kinds K1,...]\n");
       return 2;
     }
   }
-  std::printf("%-9s %9s %6s %12s %14s %10s %10s\n", "points", "n", "runs", "median_s",
-              "points_per_s", "tets/pt", "steps/pt");
-  for (const char* kind : {"cube", "sphere", "cylinder"}) {
+  std::printf("%-9s %9s %6s %10s %14s %8s %9s %9s %9s\n", "points", "n", "runs", "median_s",
+              "points_per_s", "tets/pt", "steps/pt", "cavity", "created");
+  for (const std::string& kind : kinds) {
     for (int n : sizes) {
       std::vector<double> times;
       size_t tets = 0;
-      int64_t steps = 0;
+      int64_t steps = 0, cavity = 0, created = 0;
       for (int r = 0; r < runs; ++r) {
         std::vector<double> pts = make_points(kind, n, uint32_t(r + 1));
         auto t0 = std::chrono::steady_clock::now();
@@ -89,10 +96,13 @@ int main(int argc, char** argv) {
         times.push_back(std::chrono::duration<double>(t1 - t0).count());
         tets = d.value().num_finite_tets();
         steps = d.value().stats().walk_steps;
+        cavity = d.value().stats().cavity_tets;
+        created = d.value().stats().boundary_faces;
       }
       double t = median(times);
-      std::printf("%-9s %9d %6d %12.4f %14.0f %10.2f %10.2f\n", kind, n, runs, t, n / t,
-                  double(tets) / n, double(steps) / n);
+      std::printf("%-9s %9d %6d %10.4f %14.0f %8.2f %9.2f %9.2f %9.2f\n", kind.c_str(), n, runs, t,
+                  n / t, double(tets) / n, double(steps) / n, double(cavity) / n,
+                  double(created) / n);
       std::fflush(stdout);
     }
   }

@@ -38,6 +38,17 @@ inline int slot_of(const int32_t* v, int32_t x) {
   return -1;
 }
 
+// Slot of x in v, branch-free; precondition: x is in v.
+inline int slot_present(const int32_t* v, int32_t x) {
+  return (v[1] == x) + 2 * (v[2] == x) + 3 * (v[3] == x);
+}
+
+// kOther[f][j]: the two slots other than f and j (f != j).
+constexpr int kOther[4][4][2] = {{{-1, -1}, {2, 3}, {1, 3}, {1, 2}},
+                                 {{2, 3}, {-1, -1}, {0, 3}, {0, 2}},
+                                 {{1, 3}, {0, 3}, {-1, -1}, {0, 1}},
+                                 {{1, 2}, {0, 2}, {0, 1}, {-1, -1}}};
+
 inline bool parity_even(int a, int b, int c, int d) {
   int p[4] = {a, b, c, d}, inv = 0;
   for (int i = 0; i < 4; ++i)
@@ -45,10 +56,59 @@ inline bool parity_even(int a, int b, int c, int d) {
   return inv % 2 == 0;
 }
 
-inline uint64_t edge_key(int32_t u, int32_t w) {
-  uint32_t a = uint32_t(u), b = uint32_t(w);
-  if (a > b) std::swap(a, b);
-  return (uint64_t(a) << 32) | b;
+// Semi-static filters for the hot paths: the fast-stage determinants of
+// predicates.cpp, accepted against a bound on Shewchuk's permanent from the
+// largest coordinate difference m (permanent <= 6 m^3 for orient3d, 72 m^5
+// for insphere), which costs a few max() instead of the permanent. When the
+// bound does not decide (or m is so small or large that the bound could
+// under- or overflow), the dynamically filtered exact predicate decides.
+constexpr double kEps = 0x1p-53;
+constexpr double kO3Static = (7.0 + 56.0 * kEps) * kEps * 6 * (1 + 1e-12);
+constexpr double kIsStatic = (16.0 + 224.0 * kEps) * kEps * 72 * (1 + 1e-12);
+
+inline double orient3d_fast(const double* a, const double* b, const double* c, const double* d) {
+  const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
+  const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
+  const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
+  const double det =
+      adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
+  const double m =
+      std::max({std::fabs(adx), std::fabs(ady), std::fabs(adz), std::fabs(bdx), std::fabs(bdy),
+                std::fabs(bdz), std::fabs(cdx), std::fabs(cdy), std::fabs(cdz)});
+  if (m > 1e-55 && m < 1e55) {
+    const double bound = kO3Static * m * m * m;
+    if (det > bound || -det > bound) return det;
+  }
+  return orient3d(a, b, c, d);
+}
+
+inline double insphere_fast(const double* a, const double* b, const double* c, const double* d,
+                            const double* e) {
+  const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
+  const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
+  const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
+  const double dex = d[0] - e[0], dey = d[1] - e[1], dez = d[2] - e[2];
+  const double ab = aex * bey - bex * aey, bc = bex * cey - cex * bey;
+  const double cd = cex * dey - dex * cey, da = dex * aey - aex * dey;
+  const double ac = aex * cey - cex * aey, bd = bex * dey - dex * bey;
+  const double abc = aez * bc - bez * ac + cez * ab;
+  const double bcd = bez * cd - cez * bd + dez * bc;
+  const double cda = cez * da + dez * ac + aez * cd;
+  const double dab = dez * ab + aez * bd + bez * da;
+  const double alift = aex * aex + aey * aey + aez * aez;
+  const double blift = bex * bex + bey * bey + bez * bez;
+  const double clift = cex * cex + cey * cey + cez * cez;
+  const double dlift = dex * dex + dey * dey + dez * dez;
+  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+  const double m = std::max({std::fabs(aex), std::fabs(aey), std::fabs(aez), std::fabs(bex),
+                             std::fabs(bey), std::fabs(bez), std::fabs(cex), std::fabs(cey),
+                             std::fabs(cez), std::fabs(dex), std::fabs(dey), std::fabs(dez)});
+  if (m > 1e-55 && m < 1e55) {
+    const double m2 = m * m;
+    const double bound = kIsStatic * m2 * m2 * m;
+    if (det > bound || -det > bound) return det;
+  }
+  return insphere(a, b, c, d, e);
 }
 
 bool collinear(const double* a, const double* b, const double* c) {
@@ -73,23 +133,28 @@ Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
   if (n > int64_t(INT32_MAX / 8))
     return Result<Delaunay3D>::Error("points: too many for 32-bit tetrahedron ids");
   Delaunay3D d;
-  d.pts_ = std::move(points);
+  // Vertices are numbered in insertion order while building, so that
+  // consecutive insertions touch nearby memory (the input order is
+  // arbitrary); Phase 3 restores the input numbering. Ties are broken by
+  // input index throughout (sos_id_), so the result does not depend on it.
+  std::vector<int32_t> order = brio_hilbert_order(points, sort_options);
+  d.pts_.resize(points.size());
+  for (int64_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k)
+      d.pts_[3 * size_t(i) + k] = points[3 * size_t(order[size_t(i)]) + k];
+  d.sos_id_ = order;
   d.dup_.assign(size_t(n), -1);
   d.vtet_.assign(size_t(n), -1);
-  std::vector<int32_t> order = brio_hilbert_order(d.pts_, sort_options);
 
   // Phase 1: the first tetrahedron from the first 4 affinely independent
   // points of the order.
-  int64_t ib = -1, ic = -1, id = -1;
-  for (int64_t i = 1; i < n && ib < 0; ++i)
-    if (!same_point(d.point(order[0]), d.point(order[size_t(i)]))) ib = i;
-  for (int64_t i = ib + 1; ib > 0 && i < n && ic < 0; ++i)
-    if (!collinear(d.point(order[0]), d.point(order[size_t(ib)]), d.point(order[size_t(i)])))
-      ic = i;
-  for (int64_t i = ic + 1; ic > 0 && i < n && id < 0; ++i)
-    if (orient3d(d.point(order[0]), d.point(order[size_t(ib)]), d.point(order[size_t(ic)]),
-                 d.point(order[size_t(i)])) != 0)
-      id = i;
+  int32_t ib = -1, ic = -1, id = -1;
+  for (int32_t i = 1; i < n && ib < 0; ++i)
+    if (!same_point(d.point(0), d.point(i))) ib = i;
+  for (int32_t i = ib + 1; ib > 0 && i < n && ic < 0; ++i)
+    if (!collinear(d.point(0), d.point(ib), d.point(i))) ic = i;
+  for (int32_t i = ic + 1; ic > 0 && i < n && id < 0; ++i)
+    if (orient3d(d.point(0), d.point(ib), d.point(ic), d.point(i)) != 0) id = i;
   if (id < 0)
     return Result<Delaunay3D>::Error(
         "points: fewer than 4 affinely independent points (all coplanar, collinear or equal)");
@@ -99,16 +164,29 @@ Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
   d.tc_.reserve(expect);
   d.tag_.reserve(expect);
   d.stamp_.reserve(expect);
-  d.init_first_tet(order[0], order[size_t(ib)], order[size_t(ic)], order[size_t(id)]);
+  d.init_first_tet(0, ib, ic, id);
 
   // Phase 2: the other points in order, each walk starting where the
   // previous insertion ended.
-  for (int64_t i = 1; i < n; ++i) {
-    if (i == ib || i == ic || i == id) continue;
-    int32_t v = order[size_t(i)];
+  for (int32_t v = 1; v < n; ++v) {
+    if (v == ib || v == ic || v == id) continue;
     InsertResult r = d.insert_vertex(v, -1, false);
     if (r.status == InsertStatus::kDuplicate) d.dup_[size_t(v)] = r.vertex;
   }
+
+  // Phase 3: back to input numbering.
+  for (int32_t& v : d.tv_)
+    if (v >= 0) v = order[size_t(v)];
+  std::vector<int32_t> vtet(static_cast<size_t>(n)), dup(static_cast<size_t>(n));
+  for (int64_t i = 0; i < n; ++i) {
+    vtet[size_t(order[size_t(i)])] = d.vtet_[size_t(i)];
+    const int32_t o = d.dup_[size_t(i)];
+    dup[size_t(order[size_t(i)])] = o >= 0 ? order[size_t(o)] : -1;
+  }
+  d.vtet_.swap(vtet);
+  d.dup_.swap(dup);
+  d.pts_.swap(points);
+  d.sos_id_.clear();
   return d;
 }
 
@@ -201,7 +279,7 @@ int32_t Delaunay3D::walk(const double* p, int32_t hint) const {
       const int32_t n = tn_[4 * size_t(t) + size_t(k)] >> 2;
       if (n == prev) continue;  // p is strictly inside that face
       const int* f = kFaceOut[k];
-      if (orient3d(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) < 0) {
+      if (orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) < 0) {
         next = n;
         break;
       }
@@ -264,9 +342,11 @@ bool Delaunay3D::finite_conflict(int32_t t, const double* p, int32_t pv) const {
   const double* c = point(v[2]);
   const double* d = point(v[3]);
   // Positive tetrahedra have orient3d < 0, so "inside" is insphere < 0.
-  double s = insphere(a, b, c, d, p);
+  double s = insphere_fast(a, b, c, d, p);
   if (s != 0) return s < 0;
-  return insphere_sos(a, b, c, d, p, v[0], v[1], v[2], v[3], pv) < 0;
+  if (sos_id_.empty()) return insphere_sos(a, b, c, d, p, v[0], v[1], v[2], v[3], pv) < 0;
+  const int32_t* id = sos_id_.data();
+  return insphere_sos(a, b, c, d, p, id[v[0]], id[v[1]], id[v[2]], id[v[3]], id[pv]) < 0;
 }
 
 bool Delaunay3D::conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const {
@@ -275,7 +355,7 @@ bool Delaunay3D::conflict(int32_t t, const double* p, int32_t pv, bool strict_hu
   if (g < 0) return finite_conflict(t, p, pv);
   const double* q[4];
   for (int k = 0; k < 4; ++k) q[k] = k == g ? p : point(v[k]);
-  double o = orient3d(q[0], q[1], q[2], q[3]);
+  double o = orient3d_fast(q[0], q[1], q[2], q[3]);
   if (o != 0) return o < 0;  // p strictly beyond the hull face
   if (strict_hull) return false;
   // p in the plane of the hull face: inside the ghost's "sphere" iff inside
@@ -380,81 +460,73 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
 }
 
 void Delaunay3D::star(int32_t pv) {
-  // Phase 3a: record the new tetrahedra (their slots reuse the cavity's).
-  star_.clear();
-  for (int32_t e : boundary_) {
+  // Phase 3a: one new tetrahedron per boundary face, on a fresh slot (the
+  // cavity stays intact until 3c). The boundary face's old link is
+  // overwritten with the new tetrahedron, which 3b reads.
+  const uint32_t in = gen_;
+  const size_t nb = boundary_.size();
+  new_.resize(nb);
+  for (size_t i = 0; i < nb; ++i) {
+    const int32_t e = boundary_[i];
     const int32_t t = e >> 2;
-    const int k = e & 3;
-    Star s;
-    std::copy(tet(t), tet(t) + 4, s.v);
-    s.v[k] = pv;
-    s.outer = tn_[size_t(e)];
-    s.tag = tag_[size_t(t)];
-    s.face = uint8_t(k);
-    s.constrained = uint8_t((tc_[size_t(t)] >> k) & 1);
-    star_.push_back(s);
+    const int f = e & 3;
+    const int32_t n = new_tet_id();
+    int32_t* nv = &tv_[4 * size_t(n)];
+    const int32_t* ov = &tv_[4 * size_t(t)];
+    nv[0] = ov[0], nv[1] = ov[1], nv[2] = ov[2], nv[3] = ov[3];
+    nv[f] = pv;
+    int32_t* nn = &tn_[4 * size_t(n)];
+    nn[0] = nn[1] = nn[2] = nn[3] = -1;
+    const int32_t outer = tn_[size_t(e)];
+    nn[f] = outer;
+    tn_[size_t(outer)] = 4 * n + f;
+    tn_[size_t(e)] = 4 * n + f;
+    tc_[size_t(n)] = uint8_t(tc_[size_t(t)] & (1u << f));
+    tag_[size_t(n)] = tag_[size_t(t)];
+    for (int k = 0; k < 4; ++k)
+      if (nv[k] >= 0) vtet_[size_t(nv[k])] = n;
+    new_[i] = n;
   }
-  const size_t nb = star_.size();
-  // Phase 3b: ids, vertices and the links across the cavity boundary.
-  if (cavity_.size() < nb) cavity_.reserve(nb);
-  for (size_t i = cavity_.size(); i < nb; ++i) cavity_.push_back(new_tet_id());
-  for (size_t i = nb; i < cavity_.size(); ++i) free_tet(cavity_[i]);
+  // Phase 3b: links between new tetrahedra. Face j of new tetrahedron n
+  // (built on face f of cavity tetrahedron t) holds p and the boundary edge
+  // (u, w) on t's two other slots; its neighbor is the new tetrahedron on
+  // the next boundary face around (u, w), found by turning around the edge
+  // through the old cavity.
   for (size_t i = 0; i < nb; ++i) {
-    const Star& s = star_[i];
-    const int32_t t = cavity_[i];
-    std::copy(s.v, s.v + 4, &tv_[4 * size_t(t)]);
-    tn_[4 * size_t(t) + s.face] = s.outer;
-    tn_[size_t(s.outer)] = 4 * t + s.face;
-    tc_[size_t(t)] = uint8_t(s.constrained << s.face);
-    tag_[size_t(t)] = s.tag;
-    for (int32_t v : s.v)
-      if (v >= 0) vtet_[size_t(v)] = t;
-  }
-  // Phase 3c: links between new tetrahedra. Face j != face of new tet t
-  // contains p and the boundary edge on the two remaining slots; each
-  // boundary edge is shared by exactly two new tetrahedra.
-  size_t size = 16;
-  while (size < 4 * nb) size <<= 1;
-  if (hkey_.size() < size) {
-    hkey_.assign(size, 0);
-    hval_.assign(size, 0);
-    hgen_.assign(size, 0);
-    hgen_now_ = 0;
-  }
-  if (++hgen_now_ == 0) {
-    std::fill(hgen_.begin(), hgen_.end(), 0);
-    hgen_now_ = 1;
-  }
-  const uint64_t mask = size - 1;
-  for (size_t i = 0; i < nb; ++i) {
-    const int32_t t = cavity_[i];
-    const int32_t* v = tet(t);
-    const int f = star_[i].face;
+    const int32_t n = new_[i];
+    const int32_t t = boundary_[i] >> 2;
+    const int f = boundary_[i] & 3;
     for (int j = 0; j < 4; ++j) {
-      if (j == f) continue;
-      int s1 = -1, s2 = -1;
-      for (int s = 0; s < 4; ++s)
-        if (s != j && s != f) (s1 < 0 ? s1 : s2) = s;
-      const uint64_t key = edge_key(v[s1], v[s2]);
-      uint64_t h = (key * 0x9e3779b97f4a7c15ull) >> 40;
-      for (;; ++h) {
-        h &= mask;
-        if (hgen_[h] != hgen_now_) {
-          hgen_[h] = hgen_now_;
-          hkey_[h] = key;
-          hval_[h] = 4 * t + j;
-          break;
+      if (j == f || tn_[4 * size_t(n) + size_t(j)] >= 0) continue;
+      const int s1 = kOther[f][j][0], s2 = kOther[f][j][1];
+      const int32_t u = tv_[4 * size_t(t) + size_t(s1)], w = tv_[4 * size_t(t) + size_t(s2)];
+      int32_t cur = t;
+      int sa = j;  // slot of the vertex opposite the face to cross
+      for (;;) {
+        const int32_t* cv = &tv_[4 * size_t(cur)];
+        const int su = slot_present(cv, u), sw = slot_present(cv, w);
+        const int sb = 6 - su - sw - sa;
+        const int32_t e2 = tn_[4 * size_t(cur) + size_t(sa)];
+        const int32_t nx = e2 >> 2;
+        if (stamp_[size_t(nx)] == in) {  // inside the cavity: keep turning
+          const int32_t b = cv[sb];
+          cur = nx;
+          sa = slot_present(&tv_[4 * size_t(nx)], b);
+          continue;
         }
-        if (hkey_[h] == key) {
-          const int32_t other = hval_[h];
-          tn_[4 * size_t(t) + size_t(j)] = other;
-          tn_[size_t(other)] = 4 * t + j;
-          break;
-        }
+        // Face sa of cur is a boundary face; nx was built on it with the
+        // same slots, and its face sb holds p, u, w.
+        tn_[4 * size_t(n) + size_t(j)] = 4 * nx + sb;
+        tn_[4 * size_t(nx) + size_t(sb)] = 4 * n + j;
+        break;
       }
     }
   }
-  last_ = cavity_[0];
+  // Phase 3c: release the cavity.
+  for (int32_t t : cavity_) free_tet(t);
+  stats_.cavity_tets += int64_t(cavity_.size());
+  stats_.boundary_faces += int64_t(nb);
+  last_ = new_[0];
 }
 
 Delaunay3D::InsertResult Delaunay3D::insert_vertex(int32_t v, int32_t hint,

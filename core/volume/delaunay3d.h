@@ -185,20 +185,14 @@ class Delaunay3D {
   /// Counters since construction.
   struct Stats {
     int64_t walk_steps = 0;
+    int64_t cavity_tets = 0;     ///< tetrahedra removed by insertions
+    int64_t boundary_faces = 0;  ///< tetrahedra created by insertions
     int64_t flips = 0;
   };
   const Stats& stats() const { return stats_; }
 
  private:
   static constexpr int32_t kFree = -2;
-
-  struct Star {  // one new tetrahedron of a cavity re-triangulation
-    int32_t v[4];
-    int32_t outer;  // encoded neighbor across face `face`
-    int32_t tag;
-    uint8_t face;
-    uint8_t constrained;
-  };
 
   InsertResult insert_vertex(int32_t v, int32_t hint, bool respect_constraints);
   int32_t walk(const double* p, int32_t hint) const;
@@ -212,13 +206,14 @@ class Delaunay3D {
   void init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d);
   int32_t visit_stamp() const;
 
-  std::vector<double> pts_;    // 3 per vertex
-  std::vector<int32_t> dup_;   // per vertex: coincident vertex or -1
-  std::vector<int32_t> vtet_;  // per vertex: an incident live tet or -1
-  std::vector<int32_t> tv_;    // 4 per tet: vertices (kFree at [0] if free)
-  std::vector<int32_t> tn_;    // 4 per tet: 4 * neighbor + face
-  std::vector<uint8_t> tc_;    // per tet: bit k = face k constrained
-  std::vector<int32_t> tag_;   // per tet
+  std::vector<double> pts_;      // 3 per vertex
+  std::vector<int32_t> sos_id_;  // while building: vertex -> input index
+  std::vector<int32_t> dup_;     // per vertex: coincident vertex or -1
+  std::vector<int32_t> vtet_;    // per vertex: an incident live tet or -1
+  std::vector<int32_t> tv_;      // 4 per tet: vertices (kFree at [0] if free)
+  std::vector<int32_t> tn_;      // 4 per tet: 4 * neighbor + face
+  std::vector<uint8_t> tc_;      // per tet: bit k = face k constrained
+  std::vector<int32_t> tag_;     // per tet
   std::vector<int32_t> free_;
   bool delaunay_ = true;
   mutable Stats stats_;
@@ -228,12 +223,8 @@ class Delaunay3D {
   mutable uint32_t gen_ = 0;
   mutable int32_t last_ = 0;
   mutable uint64_t rng_ = 0x2545f4914f6cdd1dull;
-  std::vector<int32_t> cavity_, boundary_;
-  std::vector<Star> star_;
-  std::vector<uint64_t> hkey_;
-  std::vector<int32_t> hval_;
-  std::vector<uint32_t> hgen_;
-  uint32_t hgen_now_ = 0;
+  std::vector<int32_t> cavity_, boundary_;  // tets; encoded faces
+  std::vector<int32_t> new_;
   mutable std::vector<int32_t> queue_;
 };
 
