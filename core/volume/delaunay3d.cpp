@@ -390,12 +390,40 @@ void Delaunay3D::find_cavity_fast(int32_t t0, const double* p, int32_t pv) {
 
 bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
                                      bool respect_constraints) {
+  // Phase 2a: the tetrahedra whose closure holds p (one; two if p is on a
+  // face; the ring if on an edge) are pinned: they are in conflict, and the
+  // faces through p are inside their union, so they never need to leave
+  // the cavity, unless a constrained face through p separates them.
+  pinned_.clear();
+  pinned_.push_back(t0);
+  if (!is_ghost(t0)) {
+    const int32_t* v = tet(t0);
+    int zero[4], nz = 0;
+    for (int k = 0; k < 4; ++k) {
+      const int* f = kFaceOut[k];
+      if (orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) == 0) zero[nz++] = k;
+    }
+    if (nz == 1) {
+      pinned_.push_back(tn_[4 * size_t(t0) + size_t(zero[0])] >> 2);
+    } else if (nz == 2) {
+      int32_t e[2], m = 0;
+      for (int s = 0; s < 4; ++s)
+        if (s != zero[0] && s != zero[1]) e[m++] = v[s];
+      edge_ring(t0, e[0], e[1], pinned_, ring_scratch_);
+    }
+  }
   const uint32_t in = uint32_t(visit_stamp()), out = in + 1;
   cavity_.clear();
-  cavity_.push_back(t0);
-  stamp_[size_t(t0)] = in;
-  // Phase 2a: conflict search, not crossing constrained faces; hull faces
-  // join only when strictly visible (no star from a point in their plane).
+  for (int32_t t : pinned_) {
+    cavity_.push_back(t);
+    stamp_[size_t(t)] = in;
+  }
+  if (respect_constraints)
+    for (int32_t t : pinned_)
+      for (int k = 0; k < 4; ++k)
+        if (is_constrained(t, k) && stamp_[size_t(tn_[4 * size_t(t) + size_t(k)] >> 2)] == in)
+          return false;  // p on a constrained face
+  // Phase 2b: conflict search, not crossing constrained faces.
   for (size_t i = 0; i < cavity_.size(); ++i) {
     const int32_t t = cavity_[i];
     for (int k = 0; k < 4; ++k) {
@@ -403,8 +431,7 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
       const uint32_t s = stamp_[size_t(n)];
       if (s == in || s == out) continue;
       if (respect_constraints && is_constrained(t, k)) continue;
-      if (respect_constraints && is_ghost(n)) continue;
-      if (conflict(n, p, pv, true)) {
+      if (conflict(n, p, pv, false)) {
         stamp_[size_t(n)] = in;
         cavity_.push_back(n);
       } else {
@@ -412,14 +439,20 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
       }
     }
   }
-  // Phase 2b: shrink until star-shaped: every boundary face strictly
+  // Phase 2c: shrink until star-shaped: every boundary face strictly
   // visible from p (its new tetrahedron positive) and no constrained face
   // inside the cavity.
   auto positive_with_p = [&](int32_t t, int k) {
     int32_t q[4];
     std::copy(tet(t), tet(t) + 4, q);
-    q[k] = -2;                          // p
-    if (inf_slot(q) >= 0) return true;  // a new ghost: hull horizon edge
+    q[k] = -2;  // p
+    const int g = inf_slot(q);
+    if (g >= 0) {  // a new ghost on a horizon edge: its hull face must not be flat
+      const double* e[2];
+      for (int s = 0, m = 0; s < 4; ++s)
+        if (s != g && s != k) e[m++] = point(q[s]);
+      return !collinear(e[0], e[1], p);
+    }
     const double* c[4];
     for (int s = 0; s < 4; ++s) c[s] = q[s] == -2 ? p : point(q[s]);
     return orient3d(c[0], c[1], c[2], c[3]) < 0;
@@ -441,7 +474,7 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
           drop = t;
         }
         if (drop < 0) continue;
-        if (drop == t0) return false;
+        if (std::find(pinned_.begin(), pinned_.end(), drop) != pinned_.end()) return false;
         stamp_[size_t(drop)] = out;
         changed = true;
         if (drop == t) break;
@@ -666,13 +699,39 @@ void Delaunay3D::edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>
 
 // ---------------------------------------------------------------- flips
 
+bool Delaunay3D::new_tet_valid(const std::array<int32_t, 4>& q,
+                               const std::vector<int32_t>& around) const {
+  const int g = inf_slot(q.data());
+  if (g < 0) return orient3d(point(q[0]), point(q[1]), point(q[2]), point(q[3])) < 0;
+  // A ghost: its hull face is a proper triangle and no vertex of the
+  // region is beyond it (the hull stays convex).
+  const double* f[3];
+  for (int s = 0, m = 0; s < 4; ++s)
+    if (s != g) f[m++] = point(q[size_t(s)]);
+  if (collinear(f[0], f[1], f[2])) return false;
+  const double* c[4];
+  for (int s = 0; s < 4; ++s) c[s] = s == g ? nullptr : point(q[size_t(s)]);
+  for (int32_t w : around) {
+    if (w == q[0] || w == q[1] || w == q[2] || w == q[3]) continue;
+    c[g] = point(w);
+    if (orient3d(c[0], c[1], c[2], c[3]) < 0) return false;
+  }
+  return true;
+}
+
 Result<std::vector<int32_t>> Delaunay3D::replace_tets(
     const std::vector<int32_t>& old_tets, const std::vector<std::array<int32_t, 4>>& new_tets) {
   using R = Result<std::vector<int32_t>>;
   if (old_tets.empty() || new_tets.empty()) return R::Error("replace_tets: empty set");
   for (int32_t t : old_tets)
-    if (t < 0 || size_t(t) >= tet_capacity() || !is_live(t) || is_ghost(t))
-      return R::Error("replace_tets: an old tetrahedron is not live and finite");
+    if (t < 0 || size_t(t) >= tet_capacity() || !is_live(t))
+      return R::Error("replace_tets: an old tetrahedron is not live");
+  std::vector<int32_t> old_vertices;
+  for (int32_t t : old_tets)
+    for (int s = 0; s < 4; ++s)
+      if (tet(t)[s] != kInfinite) old_vertices.push_back(tet(t)[s]);
+  std::sort(old_vertices.begin(), old_vertices.end());
+  old_vertices.erase(std::unique(old_vertices.begin(), old_vertices.end()), old_vertices.end());
   // Phase 1: the boundary faces of the old set.
   struct Face {
     std::array<int32_t, 3> key;
@@ -702,10 +761,16 @@ Result<std::vector<int32_t>> Delaunay3D::replace_tets(
     }
   // Phase 2: orientation and face matching of the new set.
   for (const auto& q : new_tets) {
-    for (int32_t x : q)
+    int infs = 0;
+    for (int32_t x : q) {
+      if (x == kInfinite) {
+        ++infs;
+        continue;
+      }
       if (x < 0 || size_t(x) >= num_vertices())
         return R::Error("replace_tets: a new tetrahedron has an invalid vertex");
-    if (orient3d(point(q[0]), point(q[1]), point(q[2]), point(q[3])) >= 0)
+    }
+    if (infs > 1 || !new_tet_valid(q, old_vertices))
       return R::Error("replace_tets: a new tetrahedron is not positive");
   }
   std::vector<int32_t> match(4 * new_tets.size(), -1);  // outer index or -2 - (4i+k)
@@ -734,8 +799,7 @@ Result<std::vector<int32_t>> Delaunay3D::replace_tets(
     if (!f.used) return R::Error("replace_tets: the new set leaves a boundary face uncovered");
   // Phase 3: commit.
   const int32_t tag = tag_[size_t(old_tets[0])];
-  for (int32_t t : old_tets)
-    for (int s = 0; s < 4; ++s) vtet_[size_t(tet(t)[s])] = -1;
+  for (int32_t v : old_vertices) vtet_[size_t(v)] = -1;
   std::vector<int32_t> ids(new_tets.size());
   for (size_t i = 0; i < ids.size(); ++i) ids[i] = i < old_tets.size() ? old_tets[i] : new_tet_id();
   for (size_t i = ids.size(); i < old_tets.size(); ++i) free_tet(old_tets[i]);
@@ -744,7 +808,8 @@ Result<std::vector<int32_t>> Delaunay3D::replace_tets(
     std::copy(new_tets[i].begin(), new_tets[i].end(), &tv_[4 * size_t(t)]);
     tag_[size_t(t)] = tag;
     tc_[size_t(t)] = 0;
-    for (int32_t x : new_tets[i]) vtet_[size_t(x)] = t;
+    for (int32_t x : new_tets[i])
+      if (x != kInfinite) vtet_[size_t(x)] = t;
   }
   for (size_t i = 0; i < ids.size(); ++i)
     for (int k = 0; k < 4; ++k) {
@@ -790,8 +855,10 @@ Result<std::vector<int32_t>> Delaunay3D::remove_edge(int32_t t, int32_t a, int32
     return R::Error("remove_edge: (a, b) is not an edge of t");
   std::vector<int32_t> ring_tets, ring;
   edge_ring(t, a, b, ring_tets, ring);
-  for (int32_t u : ring_tets)
-    if (is_ghost(u)) return R::Error("remove_edge: a hull edge");
+  if (a == kInfinite || b == kInfinite) return R::Error("remove_edge: an edge at infinity");
+  std::vector<int32_t> around = ring;
+  around.insert(around.end(), {a, b});
+  around.erase(std::remove(around.begin(), around.end(), kInfinite), around.end());
   const size_t n = ring.size();
   if (n < 3) return R::Error("remove_edge: fewer than 3 tetrahedra around the edge");
   // Fans from each ring vertex; ring order makes (a, b, r_i, r_i+1)
@@ -808,11 +875,12 @@ Result<std::vector<int32_t>> Delaunay3D::remove_edge(int32_t t, int32_t a, int32
       cand.push_back({y, x, z, a});
     }
     for (const auto& c : cand) {
-      const double* p[4] = {point(c[0]), point(c[1]), point(c[2]), point(c[3])};
-      if (orient3d(p[0], p[1], p[2], p[3]) >= 0) {
+      if (!new_tet_valid(c, around)) {
         q = -1;
         break;
       }
+      if (inf_slot(c.data()) >= 0) continue;  // ghosts: no shape
+      const double* p[4] = {point(c[0]), point(c[1]), point(c[2]), point(c[3])};
       double vol = -((p[1][0] - p[0][0]) * ((p[2][1] - p[0][1]) * (p[3][2] - p[0][2]) -
                                             (p[2][2] - p[0][2]) * (p[3][1] - p[0][1])) -
                      (p[1][1] - p[0][1]) * ((p[2][0] - p[0][0]) * (p[3][2] - p[0][2]) -
@@ -860,10 +928,9 @@ Result<std::array<int32_t, 4>> Delaunay3D::flip44(int32_t t, int32_t a, int32_t 
   std::vector<int32_t> ring_tets, ring;
   edge_ring(t, a, b, ring_tets, ring);
   if (ring.size() != 4) return R::Error("flip44: the edge is not in exactly 4 tetrahedra");
-  for (int32_t u : ring_tets)
-    if (is_ghost(u)) return R::Error("flip44: a hull edge");
   auto it = std::find(ring.begin(), ring.end(), c);
-  if (it == ring.end()) return R::Error("flip44: c is not on the ring of the edge");
+  if (it == ring.end() || c == kInfinite)
+    return R::Error("flip44: c is not a finite vertex on the ring of the edge");
   const size_t s = size_t(it - ring.begin());
   std::vector<std::array<int32_t, 4>> nt;
   for (size_t i = 1; i <= 2; ++i) {

@@ -143,13 +143,15 @@ class Delaunay3D {
   void edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>& ring_tets,
                  std::vector<int32_t>& ring_verts) const;
 
-  // ---- Flips. Each checks that every tetrahedron involved is finite, no
-  // constrained face is removed, and every new tetrahedron is strictly
-  // positive; otherwise it returns an error and changes nothing. On success
-  // the new tetrahedron ids are returned and the triangulation is marked
-  // non-Delaunay (is_delaunay() false).
-  /// 2-3: the face k of t and its neighbor become 3 tetrahedra around the
-  /// edge joining the two apexes.
+  // ---- Flips. Each checks that no constrained face is removed and that
+  // every new tetrahedron is strictly positive (a new ghost: its hull face
+  // is a proper triangle with no vertex of the region beyond it, so the
+  // hull stays convex; this allows flips of coplanar hull faces); otherwise
+  // it returns an error and changes nothing. On success the new tetrahedron
+  // ids are returned and the triangulation is marked non-Delaunay
+  // (is_delaunay() false).
+  /// 2-3: the face k of t and its neighbor (both finite) become 3
+  /// tetrahedra around the edge joining the two apexes.
   Result<std::array<int32_t, 3>> flip23(int32_t t, int k);
   /// 3-2: edge (a, b) of t, with exactly 3 tetrahedra around it, is removed.
   Result<std::array<int32_t, 2>> flip32(int32_t t, int32_t a, int32_t b);
@@ -163,8 +165,8 @@ class Delaunay3D {
   /// (normalized by its longest edge cubed) is chosen.
   Result<std::vector<int32_t>> remove_edge(int32_t t, int32_t a, int32_t b);
 
-  /// Replaces the live finite tetrahedra `old_tets` (a connected set) by
-  /// `new_tets` (4 vertex ids each) with the same boundary. Checks: every
+  /// Replaces the live tetrahedra `old_tets` (a connected set) by `new_tets`
+  /// (4 vertex ids each, kInfinite allowed once) with the same boundary. Checks: every
   /// new tetrahedron strictly positive, faces matched exactly (each boundary
   /// face of the old set once, inner faces twice), no constrained face inside
   /// the old set. Returns the new ids. The building block of the flips;
@@ -202,6 +204,7 @@ class Delaunay3D {
   bool find_cavity_checked(int32_t t0, const double* p, int32_t pv, bool respect_constraints);
   void star(int32_t pv);
   int32_t new_tet_id();
+  bool new_tet_valid(const std::array<int32_t, 4>& q, const std::vector<int32_t>& around) const;
   void free_tet(int32_t t);
   void init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d);
   int32_t visit_stamp() const;
@@ -224,7 +227,7 @@ class Delaunay3D {
   mutable int32_t last_ = 0;
   mutable uint64_t rng_ = 0x2545f4914f6cdd1dull;
   std::vector<int32_t> cavity_, boundary_;  // tets; encoded faces
-  std::vector<int32_t> new_;
+  std::vector<int32_t> new_, pinned_, ring_scratch_;
   mutable std::vector<int32_t> queue_;
 };
 
