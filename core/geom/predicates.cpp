@@ -6,6 +6,7 @@
 // sign.
 #include "core/geom/predicates.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/geom/expansion.h"
@@ -79,6 +80,200 @@ double insphere_exact(const double* a, const double* b, const double* c, const d
   return det.estimate();
 }
 
+// Exact evaluation from exactly representable differences, on fixed-size
+// arrays (no allocation). When every coordinate difference p - e is exact
+// in double precision (common for nearby points: Sterbenz's lemma), the
+// determinant of the rounded differences is the exact determinant, and it
+// is evaluated here in expansion arithmetic of bounded length (Shewchuk's
+// adaptive stage B). Otherwise the general path above is taken.
+namespace fixed {
+
+inline void two_sum(double a, double b, double& x, double& y) {
+  x = a + b;
+  double bv = x - a;
+  double av = x - bv;
+  y = (a - av) + (b - bv);
+}
+
+inline void split(double a, double& hi, double& lo) {
+  double c = 134217729.0 * a;  // 2^27 + 1
+  double big = c - a;
+  hi = c - big;
+  lo = a - hi;
+}
+
+inline void two_product(double a, double b, double& x, double& y) {
+  x = a * b;
+  double ahi, alo, bhi, blo;
+  split(a, ahi, alo);
+  split(b, bhi, blo);
+  y = alo * blo - (((x - ahi * bhi) - alo * bhi) - ahi * blo);
+}
+
+inline bool exact_diff(double a, double b, double& d) {
+  double y;
+  two_sum(a, -b, d, y);
+  return y == 0;
+}
+
+// h = e + f (Shewchuk's Theorem 13 with Two-Sum throughout, zero
+// elimination). e, f increasing magnitude, nonoverlapping; h may not alias.
+int sum(int elen, const double* e, int flen, const double* f, double* h) {
+  constexpr int kMax = 1200;
+  double g[kMax];
+  int i = 0, j = 0, n = 0;
+  while (i < elen && j < flen) g[n++] = std::fabs(e[i]) <= std::fabs(f[j]) ? e[i++] : f[j++];
+  while (i < elen) g[n++] = e[i++];
+  while (j < flen) g[n++] = f[j++];
+  if (n == 0) return 0;
+  int m = 0;
+  double q = g[0];
+  for (int k = 1; k < n; ++k) {
+    double qn, hh;
+    two_sum(q, g[k], qn, hh);
+    if (hh != 0) h[m++] = hh;
+    q = qn;
+  }
+  if (q != 0 || m == 0) h[m++] = q;
+  return m;
+}
+
+// h = b * e (scale-expansion with zero elimination).
+int scale(int elen, const double* e, double b, double* h) {
+  if (elen == 0 || b == 0) return 0;
+  int m = 0;
+  double q, hh;
+  two_product(e[0], b, q, hh);
+  if (hh != 0) h[m++] = hh;
+  for (int i = 1; i < elen; ++i) {
+    double p1, p0, s;
+    two_product(e[i], b, p1, p0);
+    two_sum(q, p0, s, hh);
+    if (hh != 0) h[m++] = hh;
+    two_sum(p1, s, q, hh);
+    if (hh != 0) h[m++] = hh;
+  }
+  if (q != 0 || m == 0) h[m++] = q;
+  return m;
+}
+
+// h = e * f.
+int product(int elen, const double* e, int flen, const double* f, double* h) {
+  double part[64], acc[1200], tmp[1200];
+  int alen = 0;
+  for (int i = 0; i < flen; ++i) {
+    int plen = scale(elen, e, f[i], part);
+    int n = sum(alen, acc, plen, part, tmp);
+    std::copy(tmp, tmp + n, acc);
+    alen = n;
+  }
+  std::copy(acc, acc + alen, h);
+  return alen;
+}
+
+// h = a * b - c * d for doubles.
+int det2(double a, double b, double c, double d, double* h) {
+  double x[2], y[2];
+  two_product(a, b, x[1], x[0]);
+  two_product(-c, d, y[1], y[0]);
+  double xs[2], ys[2];
+  int xl = 0, yl = 0;
+  for (double t : {x[0], x[1]})
+    if (t != 0) xs[xl++] = t;
+  for (double t : {y[0], y[1]})
+    if (t != 0) ys[yl++] = t;
+  return sum(xl, xs, yl, ys, h);
+}
+
+double estimate(int n, const double* e) {
+  double s = 0;
+  for (int i = 0; i < n; ++i) s += e[i];
+  return s;
+}
+
+// s1 * m1 + s2 * m2 + s3 * m3 for doubles s and 4-term expansions m.
+int combo3(double s1, int l1, const double* m1, double s2, int l2, const double* m2, double s3,
+           int l3, const double* m3, double* h) {
+  double p1[8], p2[8], p3[8], t[16];
+  int n1 = scale(l1, m1, s1, p1), n2 = scale(l2, m2, s2, p2), n3 = scale(l3, m3, s3, p3);
+  int nt = sum(n1, p1, n2, p2, t);
+  return sum(nt, t, n3, p3, h);
+}
+
+// orient3d from exact differences; false if a difference is inexact.
+bool orient3d(const double* a, const double* b, const double* c, const double* d, double& out) {
+  double ad[3], bd[3], cd[3];
+  for (int k = 0; k < 3; ++k)
+    if (!exact_diff(a[k], d[k], ad[k]) || !exact_diff(b[k], d[k], bd[k]) ||
+        !exact_diff(c[k], d[k], cd[k]))
+      return false;
+  double bc[4], ca[4], ab[4], det[24];
+  int nbc = det2(bd[0], cd[1], cd[0], bd[1], bc);
+  int nca = det2(cd[0], ad[1], ad[0], cd[1], ca);
+  int nab = det2(ad[0], bd[1], bd[0], ad[1], ab);
+  int n = combo3(ad[2], nbc, bc, bd[2], nca, ca, cd[2], nab, ab, det);
+  out = estimate(n, det);
+  return true;
+}
+
+// insphere from exact differences; false if a difference is inexact.
+bool insphere(const double* a, const double* b, const double* c, const double* d, const double* e,
+              double& out) {
+  double p[4][3];
+  const double* q[4] = {a, b, c, d};
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k)
+      if (!exact_diff(q[i][k], e[k], p[i][k])) return false;
+  const double *ae = p[0], *be = p[1], *ce = p[2], *de = p[3];
+  double ab[4], bc[4], cd[4], da[4], ac[4], bd[4];
+  int nab = det2(ae[0], be[1], be[0], ae[1], ab);
+  int nbc = det2(be[0], ce[1], ce[0], be[1], bc);
+  int ncd = det2(ce[0], de[1], de[0], ce[1], cd);
+  int nda = det2(de[0], ae[1], ae[0], de[1], da);
+  int nac = det2(ae[0], ce[1], ce[0], ae[1], ac);
+  int nbd = det2(be[0], de[1], de[0], be[1], bd);
+  // abc = aez bc - bez ac + cez ab, and so on (as in the fast stage).
+  double abc[24], bcd[24], cda[24], dab[24];
+  int nabc = combo3(ae[2], nbc, bc, -be[2], nac, ac, ce[2], nab, ab, abc);
+  int nbcd = combo3(be[2], ncd, cd, -ce[2], nbd, bd, de[2], nbc, bc, bcd);
+  int ncda = combo3(ce[2], nda, da, de[2], nac, ac, ae[2], ncd, cd, cda);
+  int ndab = combo3(de[2], nab, ab, ae[2], nbd, bd, be[2], nda, da, dab);
+  auto lift = [](const double* v, double* h) {
+    double s[2][2], t[4];
+    two_product(v[0], v[0], s[0][1], s[0][0]);
+    two_product(v[1], v[1], s[1][1], s[1][0]);
+    double x[2], y[2], z[2];
+    int xl = 0, yl = 0, zl = 0;
+    for (double w : {s[0][0], s[0][1]})
+      if (w != 0) x[xl++] = w;
+    for (double w : {s[1][0], s[1][1]})
+      if (w != 0) y[yl++] = w;
+    double z1, z0;
+    two_product(v[2], v[2], z1, z0);
+    for (double w : {z0, z1})
+      if (w != 0) z[zl++] = w;
+    int tl = sum(xl, x, yl, y, t);
+    return sum(tl, t, zl, z, h);
+  };
+  double la[6], lb[6], lc[6], ld[6];
+  int nla = lift(ae, la), nlb = lift(be, lb), nlc = lift(ce, lc), nld = lift(de, ld);
+  // det = (dlift abc - clift dab) + (blift cda - alift bcd)
+  for (int i = 0; i < nlc; ++i) lc[i] = -lc[i];
+  for (int i = 0; i < nla; ++i) la[i] = -la[i];
+  double t1[288], t2[288], t3[288], t4[288], s1[576], s2[576], det[1152];
+  int n1 = product(nld, ld, nabc, abc, t1);
+  int n2 = product(nlc, lc, ndab, dab, t2);
+  int n3 = product(nlb, lb, ncda, cda, t3);
+  int n4 = product(nla, la, nbcd, bcd, t4);
+  int m1 = sum(n1, t1, n2, t2, s1);
+  int m2 = sum(n3, t3, n4, t4, s2);
+  int n = sum(m1, s1, m2, s2, det);
+  out = estimate(n, det);
+  return true;
+}
+
+}  // namespace fixed
+
 }  // namespace
 
 double orient2d(const double* a, const double* b, const double* c) {
@@ -122,6 +317,8 @@ double orient3d(const double* a, const double* b, const double* c, const double*
                      (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
   double bound = kOrient3dBound * permanent;
   if (det > bound || -det > bound) return det;
+  double exact;
+  if (fixed::orient3d(a, b, c, d, exact)) return exact;
   return orient3d_exact(a, b, c, d);
 }
 
@@ -158,7 +355,42 @@ double insphere(const double* a, const double* b, const double* c, const double*
       (abp * dz + bdp * az + dap * bz) * clift + (bcp * az + acp * bz + abp * cz) * dlift;
   double bound = kInsphereBound * permanent;
   if (det > bound || -det > bound) return det;
+  double exact;
+  if (fixed::insphere(a, b, c, d, e, exact)) return exact;
   return insphere_exact(a, b, c, d, e);
+}
+
+int insphere_sos(const double* a, const double* b, const double* c, const double* d,
+                 const double* e, int64_t ia, int64_t ib, int64_t ic, int64_t id, int64_t ie) {
+  double det = insphere(a, b, c, d, e);
+  if (det != 0) return det > 0 ? 1 : -1;
+  // insphere(a, b, c, d, e) is the 5x5 determinant with rows (p, |p|^2, 1),
+  // p = a..e. It is linear in the lift column, so raising row r's lift by
+  // eps_r adds eps_r * (-1)^(r + 4) * det[(q, 1) for the other rows q] =
+  // eps_r * (-1)^r * orient3d(others in order) (rows r = 1..5). The raises
+  // are ordered by index: the first nonzero coefficient, from the largest
+  // index down, decides.
+  const double* p[5] = {a, b, c, d, e};
+  int64_t idx[5] = {ia, ib, ic, id, ie};
+  int order[5] = {0, 1, 2, 3, 4};
+  for (int i = 1; i < 5; ++i)  // insertion sort, decreasing index
+    for (int j = i; j > 0 && idx[order[j]] > idx[order[j - 1]]; --j) {
+      int t = order[j];
+      order[j] = order[j - 1];
+      order[j - 1] = t;
+    }
+  for (int k = 0; k < 5; ++k) {
+    int r = order[k];  // 0-based row
+    const double* q[4];
+    for (int i = 0, n = 0; i < 5; ++i)
+      if (i != r) q[n++] = p[i];
+    double o = orient3d(q[0], q[1], q[2], q[3]);
+    if (o == 0) continue;
+    // (-1)^(r + 1) with 1-based row r + 1.
+    int s = (r % 2 == 0) ? -1 : 1;
+    return o > 0 ? s : -s;
+  }
+  return 0;
 }
 
 }  // namespace vm

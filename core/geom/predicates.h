@@ -4,7 +4,17 @@
 // error bound, else an exact evaluation in expansion arithmetic. The sign is
 // always the sign of the exact determinant for the given doubles. Shared by
 // the 2D meshers (issue 3) and the 3D Delaunay stage (issue 4).
+//
+// insphere_sos adds symbolic perturbation (Edelsbrunner and Muecke,
+// "Simulation of Simplicity", ACM TOG 9, 1990; in the lifted form of
+// Devillers and Teillaud, "Perturbations for Delaunay and weighted Delaunay
+// 3D triangulations", CGTA 44, 2011): each point's lifted coordinate |p|^2 is
+// raised by an infinitesimal whose order is given by its vertex index, so
+// that cospherical ties are broken consistently and the 3D Delaunay kernel
+// builds one well-defined triangulation of any point set.
 #pragma once
+
+#include <cstdint>
 
 namespace vm {
 
@@ -24,5 +34,20 @@ double orient3d(const double* a, const double* b, const double* c, const double*
 /// d) > 0; 0 if cospherical.
 double insphere(const double* a, const double* b, const double* c, const double* d,
                 const double* e);
+
+/// The sign (+1, -1) of insphere(a, b, c, d, e) with the lifted coordinate of
+/// each point p raised by eps^(rank of its index), eps -> 0+, where the point
+/// with the largest index gets the largest (most significant) raise.
+/// Equals the sign of insphere() whenever that is nonzero. On a tie the sign
+/// of the first nonzero coefficient is returned; the coefficient of point
+/// p's raise is +-orient3d of the other four points, so the result is
+/// nonzero whenever the five points are not coplanar (in particular when
+/// a, b, c, d span a tetrahedron). Returns 0 only if all five are coplanar.
+/// Precondition: the indices are pairwise distinct (they name the points).
+/// Geometrically, raising a point's lift pushes it outside: among
+/// cospherical points, the one with the largest index is "outside" the
+/// sphere of the others.
+int insphere_sos(const double* a, const double* b, const double* c, const double* d,
+                 const double* e, int64_t ia, int64_t ib, int64_t ic, int64_t id, int64_t ie);
 
 }  // namespace vm

@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdlib>
 #include <random>
+#include <vector>
 
 namespace vm {
 namespace {
@@ -126,6 +130,125 @@ TEST(Predicates, CoplanarAndCollinearAreZero) {
   i128 qp[2] = {scaled(p[0]), scaled(p[1])}, qq[2] = {scaled(q[0]), scaled(q[1])},
        qr[2] = {scaled(r[0]), scaled(r[1])};
   EXPECT_EQ(sign(orient2d(p, q, r)), sign(orient2d_ref(qp, qq, qr)));
+}
+
+// Reference for insphere_sos: the 5x5 lifting determinant (rows x, y, z,
+// lift, 1) with concrete "infinitesimals": lift' = B^5 |p|^2 + B^rank, rank
+// 4 for the largest index down to 0. For coordinates in [-3, 3] every
+// coefficient is far below B, so the sign is that of the symbolic limit.
+// Evaluated as a plain permutation sum (independent of the cofactor
+// formula used by the implementation).
+int insphere_sos_ref(const int* const* p, const int64_t* idx) {
+  const i128 B = i128(1) << 16;
+  i128 m[5][5];
+  for (int r = 0; r < 5; ++r) {
+    int rank = 0;
+    for (int s = 0; s < 5; ++s) rank += idx[s] < idx[r];
+    i128 raise = 1;
+    for (int k = 0; k < rank; ++k) raise *= B;
+    i128 lift = i128(p[r][0]) * p[r][0] + i128(p[r][1]) * p[r][1] + i128(p[r][2]) * p[r][2];
+    m[r][0] = p[r][0], m[r][1] = p[r][1], m[r][2] = p[r][2];
+    m[r][3] = B * B * B * B * B * lift + raise;
+    m[r][4] = 1;
+  }
+  int perm[5] = {0, 1, 2, 3, 4};
+  i128 det = 0;
+  do {
+    int inversions = 0;
+    for (int i = 0; i < 5; ++i)
+      for (int j = i + 1; j < 5; ++j) inversions += perm[i] > perm[j];
+    i128 term = inversions % 2 ? -1 : 1;
+    for (int r = 0; r < 5; ++r) term *= m[r][perm[r]];
+    det += term;
+  } while (std::next_permutation(perm, perm + 5));
+  return sign(det);
+}
+
+// Degenerate sets: the 3x3x3 grid (cospherical and coplanar everywhere) and
+// the integer points of the sphere of radius 3.
+std::vector<std::array<int, 3>> degenerate_set(bool sphere) {
+  std::vector<std::array<int, 3>> pts;
+  for (int x = -3; x <= 3; ++x)
+    for (int y = -3; y <= 3; ++y)
+      for (int z = -3; z <= 3; ++z) {
+        bool keep = sphere ? x * x + y * y + z * z == 9
+                           : (std::abs(x) <= 1 && std::abs(y) <= 1 && std::abs(z) <= 1);
+        if (keep) pts.push_back({x, y, z});
+      }
+  return pts;
+}
+
+TEST(Predicates, InsphereSosMatchesPerturbedDeterminantOnDegenerateSets) {
+  std::mt19937 rng(11);
+  for (bool sphere : {false, true}) {
+    auto pts = degenerate_set(sphere);
+    int ties = 0, coplanar = 0;
+    for (int it = 0; it < 20000; ++it) {
+      int pick[5];
+      for (int i = 0; i < 5; ++i) {
+        bool fresh;
+        do {
+          pick[i] = int(rng() % pts.size());
+          fresh = true;
+          for (int j = 0; j < i; ++j) fresh = fresh && pick[j] != pick[i];
+        } while (!fresh);
+      }
+      double d[5][3];
+      const int* q[5];
+      int64_t idx[5];
+      for (int i = 0; i < 5; ++i) {
+        for (int k = 0; k < 3; ++k) d[i][k] = pts[pick[i]][k] + 0.5;  // off the origin
+        q[i] = pts[pick[i]].data();
+        idx[i] = pick[i];
+      }
+      int s = insphere_sos(d[0], d[1], d[2], d[3], d[4], idx[0], idx[1], idx[2], idx[3], idx[4]);
+      ASSERT_EQ(s, insphere_sos_ref(q, idx)) << it;
+      double plain = insphere(d[0], d[1], d[2], d[3], d[4]);
+      if (plain != 0) {
+        ASSERT_EQ(s, sign(plain));
+      }
+      ties += plain == 0;
+      // Zero only when all five are coplanar.
+      i128 qi[5][3];
+      for (int i = 0; i < 5; ++i)
+        for (int k = 0; k < 3; ++k) qi[i][k] = q[i][k];
+      bool flat = true;
+      for (int r = 0; r < 5 && flat; ++r) {
+        const i128* o[4];
+        for (int i = 0, n = 0; i < 5; ++i)
+          if (i != r) o[n++] = qi[i];
+        flat = orient3d_ref(o[0], o[1], o[2], o[3]) == 0;
+      }
+      coplanar += flat;
+      ASSERT_EQ(s == 0, flat) << it;
+    }
+    EXPECT_GT(ties, 1000) << "the set should be degenerate";
+    EXPECT_GT(coplanar, 0);
+  }
+}
+
+TEST(Predicates, InsphereSosIsAntisymmetric) {
+  // Swapping two points (with their indices) negates the perturbed
+  // determinant, as it does the exact one.
+  auto pts = degenerate_set(true);
+  std::mt19937 rng(5);
+  for (int it = 0; it < 5000; ++it) {
+    std::vector<int> pick(pts.size());
+    for (size_t i = 0; i < pick.size(); ++i) pick[i] = int(i);
+    std::shuffle(pick.begin(), pick.end(), rng);
+    double d[5][3];
+    int64_t idx[5];
+    for (int i = 0; i < 5; ++i) {
+      for (int k = 0; k < 3; ++k) d[i][k] = pts[pick[i]][k] * 0.25 + 7;
+      idx[i] = pick[i] * 3 + 100;
+    }
+    int s = insphere_sos(d[0], d[1], d[2], d[3], d[4], idx[0], idx[1], idx[2], idx[3], idx[4]);
+    int i = int(rng() % 5), j = int((i + 1 + rng() % 4) % 5);
+    std::swap(d[i], d[j]);
+    std::swap(idx[i], idx[j]);
+    int t = insphere_sos(d[0], d[1], d[2], d[3], d[4], idx[0], idx[1], idx[2], idx[3], idx[4]);
+    ASSERT_EQ(s, -t) << it;
+  }
 }
 
 }  // namespace

@@ -1,0 +1,110 @@
+// Benchmark: 3D Delaunay kernel throughput (points per second, including
+// the BRIO/Hilbert sort), median of several runs, for random points in a
+// cube, on a sphere, and on a cylinder surface plus its interior (a vessel-
+// like mix of surface and volume points).
+//
+// usage: delaunay_bench [--runs N] [--sizes 100000,1000000] [--kinds cube,sphere,cylinder]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/util/allocator_tuning.h"
+#include "core/volume/delaunay3d.h"
+
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::vector<double> make_points(const std::string& kind, int n, uint32_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> g;
+  std::vector<double> p;
+  p.reserve(3 * size_t(n));
+  for (int i = 0; i < n; ++i) {
+    if (kind == "cube") {
+      p.insert(p.end(), {u(rng), u(rng), u(rng)});
+    } else if (kind == "sphere") {
+      double v[3] = {g(rng), g(rng), g(rng)};
+      double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      p.insert(p.end(), {v[0] / l, v[1] / l, v[2] / l});
+    } else {  // cylinder radius 1, length 10: half the points on the wall
+      double a = 2 * M_PI * u(rng), z = 10 * u(rng);
+      double r = i % 2 ? 1.0 : std::sqrt(u(rng));
+      p.insert(p.end(), {r * std::cos(a), r * std::sin(a), z});
+    }
+  }
+  return p;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  vm::keep_freed_memory_for_reuse();
+  int runs = 5;
+  std::vector<int> sizes = {100000, 1000000};
+  std::vector<std::string> kinds = {"cube", "sphere", "cylinder"};
+  auto split = [](const std::string& s) {
+    std::vector<std::string> out;
+    for (size_t pos = 0; pos <= s.size();) {
+      size_t end = s.find(',', pos);
+      if (end == std::string::npos) end = s.size();
+      out.push_back(s.substr(pos, end - pos));
+      pos = end + 1;
+    }
+    return out;
+  };
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a == "--runs" && i + 1 < argc) {
+      runs = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "--sizes" && i + 1 < argc) {
+      sizes.clear();
+      for (const auto& s : split(argv[++i])) sizes.push_back(std::atoi(s.c_str()));
+    } else if (a == "--kinds" && i + 1 < argc) {
+      kinds = split(argv[++i]);
+    } else {
+      std::fprintf(stderr, "usage: delaunay_bench [--runs N] [--sizes N1,...] [--kinds K1,...]\n");
+      return 2;
+    }
+  }
+  std::printf("%-9s %9s %6s %10s %14s %8s %9s %9s %9s\n", "points", "n", "runs", "median_s",
+              "points_per_s", "tets/pt", "steps/pt", "cavity", "created");
+  for (const std::string& kind : kinds) {
+    for (int n : sizes) {
+      std::vector<double> times;
+      size_t tets = 0;
+      int64_t steps = 0, cavity = 0, created = 0;
+      for (int r = 0; r < runs; ++r) {
+        std::vector<double> pts = make_points(kind, n, uint32_t(r + 1));
+        auto t0 = std::chrono::steady_clock::now();
+        auto d = vm::Delaunay3D::build(std::move(pts));
+        auto t1 = std::chrono::steady_clock::now();
+        if (!d.ok()) {
+          std::fprintf(stderr, "%s\n", d.message().c_str());
+          return 1;
+        }
+        times.push_back(std::chrono::duration<double>(t1 - t0).count());
+        tets = d.value().num_finite_tets();
+        steps = d.value().stats().walk_steps;
+        cavity = d.value().stats().cavity_tets;
+        created = d.value().stats().boundary_faces;
+      }
+      double t = median(times);
+      std::printf("%-9s %9d %6d %10.4f %14.0f %8.2f %9.2f %9.2f %9.2f\n", kind.c_str(), n, runs, t,
+                  n / t, double(tets) / n, double(steps) / n, double(cavity) / n,
+                  double(created) / n);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,1004 @@
+// Bowyer-Watson 3D Delaunay (Bowyer 1981, Watson 1981) with BRIO/Hilbert
+// order (Amenta, Choi, Rote 2003), remembering stochastic visibility walk
+// (Devillers, Pion, Teillaud 2002), exact predicates with symbolic
+// perturbation (Shewchuk 1997; Edelsbrunner, Muecke 1990) and flips
+// (Shewchuk 2002). See delaunay3d.h for the data layout.
+//
+// Insertion phases: (1) walk to a tetrahedron containing the point, (2)
+// cavity search (breadth-first over conflicting tetrahedra; the "checked"
+// variant additionally stops at constrained faces and shrinks the cavity
+// until every boundary face is strictly visible from the point), (3) star:
+// one new tetrahedron per cavity boundary face, linked to the outside
+// through the old face and to each other through a small hash on the
+// boundary edges.
+#include "core/volume/delaunay3d.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/geom/predicates.h"
+
+namespace vm {
+namespace {
+
+// Face k of a positive tetrahedron, as slots ordered counterclockwise seen
+// from outside (so orient3d(face, q) < 0 iff q is strictly outside face k).
+constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+inline int inf_slot(const int32_t* v) {
+  for (int k = 0; k < 4; ++k)
+    if (v[k] == Delaunay3D::kInfinite) return k;
+  return -1;
+}
+
+inline int slot_of(const int32_t* v, int32_t x) {
+  for (int k = 0; k < 4; ++k)
+    if (v[k] == x) return k;
+  return -1;
+}
+
+// Slot of x in v, branch-free; precondition: x is in v.
+inline int slot_present(const int32_t* v, int32_t x) {
+  return (v[1] == x) + 2 * (v[2] == x) + 3 * (v[3] == x);
+}
+
+// kOther[f][j]: the two slots other than f and j (f != j).
+constexpr int kOther[4][4][2] = {{{-1, -1}, {2, 3}, {1, 3}, {1, 2}},
+                                 {{2, 3}, {-1, -1}, {0, 3}, {0, 2}},
+                                 {{1, 3}, {0, 3}, {-1, -1}, {0, 1}},
+                                 {{1, 2}, {0, 2}, {0, 1}, {-1, -1}}};
+
+inline bool parity_even(int a, int b, int c, int d) {
+  int p[4] = {a, b, c, d}, inv = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) inv += p[i] > p[j];
+  return inv % 2 == 0;
+}
+
+// Semi-static filters for the hot paths: the fast-stage determinants of
+// predicates.cpp, accepted against a bound on Shewchuk's permanent from the
+// largest coordinate difference m (permanent <= 6 m^3 for orient3d, 72 m^5
+// for insphere), which costs a few max() instead of the permanent. When the
+// bound does not decide (or m is so small or large that the bound could
+// under- or overflow), the dynamically filtered exact predicate decides.
+constexpr double kEps = 0x1p-53;
+constexpr double kO3Static = (7.0 + 56.0 * kEps) * kEps * 6 * (1 + 1e-12);
+constexpr double kIsStatic = (16.0 + 224.0 * kEps) * kEps * 72 * (1 + 1e-12);
+
+inline double orient3d_fast(const double* a, const double* b, const double* c, const double* d) {
+  const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
+  const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
+  const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
+  const double det =
+      adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
+  const double m =
+      std::max({std::fabs(adx), std::fabs(ady), std::fabs(adz), std::fabs(bdx), std::fabs(bdy),
+                std::fabs(bdz), std::fabs(cdx), std::fabs(cdy), std::fabs(cdz)});
+  if (m > 1e-55 && m < 1e55) {
+    const double bound = kO3Static * m * m * m;
+    if (det > bound || -det > bound) return det;
+  }
+  return orient3d(a, b, c, d);
+}
+
+inline double insphere_fast(const double* a, const double* b, const double* c, const double* d,
+                            const double* e) {
+  const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
+  const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
+  const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
+  const double dex = d[0] - e[0], dey = d[1] - e[1], dez = d[2] - e[2];
+  const double ab = aex * bey - bex * aey, bc = bex * cey - cex * bey;
+  const double cd = cex * dey - dex * cey, da = dex * aey - aex * dey;
+  const double ac = aex * cey - cex * aey, bd = bex * dey - dex * bey;
+  const double abc = aez * bc - bez * ac + cez * ab;
+  const double bcd = bez * cd - cez * bd + dez * bc;
+  const double cda = cez * da + dez * ac + aez * cd;
+  const double dab = dez * ab + aez * bd + bez * da;
+  const double alift = aex * aex + aey * aey + aez * aez;
+  const double blift = bex * bex + bey * bey + bez * bez;
+  const double clift = cex * cex + cey * cey + cez * cez;
+  const double dlift = dex * dex + dey * dey + dez * dez;
+  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+  const double m = std::max({std::fabs(aex), std::fabs(aey), std::fabs(aez), std::fabs(bex),
+                             std::fabs(bey), std::fabs(bez), std::fabs(cex), std::fabs(cey),
+                             std::fabs(cez), std::fabs(dex), std::fabs(dey), std::fabs(dez)});
+  if (m > 1e-55 && m < 1e55) {
+    const double m2 = m * m;
+    const double bound = kIsStatic * m2 * m2 * m;
+    if (det > bound || -det > bound) return det;
+  }
+  return insphere(a, b, c, d, e);
+}
+
+bool collinear(const double* a, const double* b, const double* c) {
+  double a2[2] = {a[2], a[0]}, b2[2] = {b[2], b[0]}, c2[2] = {c[2], c[0]};
+  return orient2d(a, b, c) == 0 && orient2d(a + 1, b + 1, c + 1) == 0 && orient2d(a2, b2, c2) == 0;
+}
+
+bool same_point(const double* a, const double* b) {
+  return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- building
+
+Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
+                                     const SpatialSortOptions& sort_options) {
+  if (points.size() % 3 != 0) return Result<Delaunay3D>::Error("points: size not a multiple of 3");
+  for (double x : points)
+    if (!std::isfinite(x)) return Result<Delaunay3D>::Error("points: non-finite coordinate");
+  const int64_t n = int64_t(points.size() / 3);
+  if (n > int64_t(INT32_MAX / 8))
+    return Result<Delaunay3D>::Error("points: too many for 32-bit tetrahedron ids");
+  Delaunay3D d;
+  // Vertices are numbered in insertion order while building, so that
+  // consecutive insertions touch nearby memory (the input order is
+  // arbitrary); Phase 3 restores the input numbering. Ties are broken by
+  // input index throughout (sos_id_), so the result does not depend on it.
+  std::vector<int32_t> order = brio_hilbert_order(points, sort_options);
+  d.pts_.resize(points.size());
+  for (int64_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k)
+      d.pts_[3 * size_t(i) + k] = points[3 * size_t(order[size_t(i)]) + k];
+  d.sos_id_ = order;
+  d.dup_.assign(size_t(n), -1);
+  d.vtet_.assign(size_t(n), -1);
+
+  // Phase 1: the first tetrahedron from the first 4 affinely independent
+  // points of the order.
+  int32_t ib = -1, ic = -1, id = -1;
+  for (int32_t i = 1; i < n && ib < 0; ++i)
+    if (!same_point(d.point(0), d.point(i))) ib = i;
+  for (int32_t i = ib + 1; ib > 0 && i < n && ic < 0; ++i)
+    if (!collinear(d.point(0), d.point(ib), d.point(i))) ic = i;
+  for (int32_t i = ic + 1; ic > 0 && i < n && id < 0; ++i)
+    if (orient3d(d.point(0), d.point(ib), d.point(ic), d.point(i)) != 0) id = i;
+  if (id < 0)
+    return Result<Delaunay3D>::Error(
+        "points: fewer than 4 affinely independent points (all coplanar, collinear or equal)");
+  size_t expect = size_t(n) * 7 + 16;
+  d.tv_.reserve(4 * expect);
+  d.tn_.reserve(4 * expect);
+  d.tc_.reserve(expect);
+  d.tag_.reserve(expect);
+  d.stamp_.reserve(expect);
+  d.init_first_tet(0, ib, ic, id);
+
+  // Phase 2: the other points in order, each walk starting where the
+  // previous insertion ended.
+  for (int32_t v = 1; v < n; ++v) {
+    if (v == ib || v == ic || v == id) continue;
+    InsertResult r = d.insert_vertex(v, -1, false);
+    if (r.status == InsertStatus::kDuplicate) d.dup_[size_t(v)] = r.vertex;
+  }
+
+  // Phase 3: back to input numbering.
+  for (int32_t& v : d.tv_)
+    if (v >= 0) v = order[size_t(v)];
+  std::vector<int32_t> vtet(static_cast<size_t>(n)), dup(static_cast<size_t>(n));
+  for (int64_t i = 0; i < n; ++i) {
+    vtet[size_t(order[size_t(i)])] = d.vtet_[size_t(i)];
+    const int32_t o = d.dup_[size_t(i)];
+    dup[size_t(order[size_t(i)])] = o >= 0 ? order[size_t(o)] : -1;
+  }
+  d.vtet_.swap(vtet);
+  d.dup_.swap(dup);
+  d.pts_.swap(points);
+  d.sos_id_.clear();
+  return d;
+}
+
+void Delaunay3D::init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d) {
+  if (orient3d(point(a), point(b), point(c), point(d)) > 0) std::swap(a, b);
+  const int32_t base[4] = {a, b, c, d};
+  int32_t ids[5];
+  for (int32_t& t : ids) t = new_tet_id();
+  std::copy(base, base + 4, &tv_[4 * size_t(ids[0])]);
+  for (int k = 0; k < 4; ++k) {
+    int32_t* g = &tv_[4 * size_t(ids[k + 1])];
+    std::copy(base, base + 4, g);
+    g[k] = kInfinite;
+    // Replacing a vertex by a point on the other side of its face flips
+    // the orientation: swap two finite slots to restore it.
+    int i = (k + 1) % 4, j = (k + 2) % 4;
+    std::swap(g[i], g[j]);
+  }
+  // Link every pair of faces with the same vertex set.
+  for (int x = 0; x < 5; ++x)
+    for (int kx = 0; kx < 4; ++kx) {
+      const int32_t* vx = &tv_[4 * size_t(ids[x])];
+      for (int y = x + 1; y < 5; ++y)
+        for (int ky = 0; ky < 4; ++ky) {
+          const int32_t* vy = &tv_[4 * size_t(ids[y])];
+          int shared = 0;
+          for (int s = 0; s < 4; ++s)
+            if (s != kx && slot_of(vy, vx[s]) >= 0 && slot_of(vy, vx[s]) != ky) ++shared;
+          if (shared == 3) {
+            tn_[4 * size_t(ids[x]) + kx] = 4 * ids[y] + ky;
+            tn_[4 * size_t(ids[y]) + ky] = 4 * ids[x] + kx;
+          }
+        }
+    }
+  for (int32_t v : base) vtet_[size_t(v)] = ids[0];
+  last_ = ids[0];
+}
+
+int32_t Delaunay3D::new_tet_id() {
+  if (!free_.empty()) {
+    int32_t t = free_.back();
+    free_.pop_back();
+    return t;
+  }
+  int32_t t = int32_t(tag_.size());
+  tv_.insert(tv_.end(), {kFree, kFree, kFree, kFree});
+  tn_.insert(tn_.end(), {-1, -1, -1, -1});
+  tc_.push_back(0);
+  tag_.push_back(0);
+  stamp_.push_back(0);
+  return t;
+}
+
+void Delaunay3D::free_tet(int32_t t) {
+  tv_[4 * size_t(t)] = kFree;
+  tc_[size_t(t)] = 0;
+  free_.push_back(t);
+}
+
+int32_t Delaunay3D::visit_stamp() const {
+  if (gen_ > 0xfffffff0u) {
+    std::fill(stamp_.begin(), stamp_.end(), 0);
+    gen_ = 0;
+  }
+  gen_ += 2;
+  return int32_t(gen_);
+}
+
+// ---------------------------------------------------------------- location
+
+int32_t Delaunay3D::walk(const double* p, int32_t hint) const {
+  int32_t t = hint >= 0 && size_t(hint) < tet_capacity() && is_live(hint) ? hint : last_;
+  if (!is_live(t)) {
+    t = 0;
+    while (!is_live(t)) ++t;
+  }
+  if (is_ghost(t)) t = tn_[4 * size_t(t) + size_t(inf_slot(tet(t)))] >> 2;
+  int32_t prev = -1;
+  const int64_t max_steps = int64_t(tet_capacity()) * 4 + 64;
+  for (int64_t step = 0; step < max_steps; ++step) {
+    if (is_ghost(t)) return t;  // entered across a hull face p is beyond
+    const int32_t* v = tet(t);
+    rng_ ^= rng_ << 13;
+    rng_ ^= rng_ >> 7;
+    rng_ ^= rng_ << 17;
+    const int start = int(rng_ & 3);
+    int32_t next = -1;
+    for (int j = 0; j < 4; ++j) {
+      const int k = (start + j) & 3;
+      const int32_t n = tn_[4 * size_t(t) + size_t(k)] >> 2;
+      if (n == prev) continue;  // p is strictly inside that face
+      const int* f = kFaceOut[k];
+      if (orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) < 0) {
+        next = n;
+        break;
+      }
+    }
+    if (next < 0) return t;
+    prev = t;
+    t = next;
+    ++stats_.walk_steps;
+  }
+  // Not expected (the stochastic walk terminates with probability 1): scan.
+  for (int32_t s = 0; s < int32_t(tet_capacity()); ++s) {
+    if (!is_live(s) || is_ghost(s)) continue;
+    const int32_t* v = tet(s);
+    bool inside = true;
+    for (int k = 0; k < 4 && inside; ++k) {
+      const int* f = kFaceOut[k];
+      inside = orient3d(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) >= 0;
+    }
+    if (inside) return s;
+  }
+  for (int32_t s = 0; s < int32_t(tet_capacity()); ++s) {
+    if (!is_live(s) || !is_ghost(s)) continue;
+    const int32_t* v = tet(s);
+    const int g = inf_slot(v);
+    const double* q[4];
+    for (int k = 0; k < 4; ++k) q[k] = k == g ? p : point(v[k]);
+    if (orient3d(q[0], q[1], q[2], q[3]) < 0) return s;
+  }
+  return t;
+}
+
+Delaunay3D::Location Delaunay3D::locate(const double* p, int32_t hint) const {
+  Location loc;
+  if (tv_.empty()) return loc;
+  loc.tet = walk(p, hint);
+  if (is_ghost(loc.tet)) return loc;
+  const int32_t* v = tet(loc.tet);
+  int zeros = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (same_point(point(v[k]), p)) {
+      loc.type = LocationType::kOnVertex;
+      loc.vertex = v[k];
+      return loc;
+    }
+    const int* f = kFaceOut[k];
+    zeros += orient3d(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) == 0;
+  }
+  loc.type = zeros == 0   ? LocationType::kInside
+             : zeros == 1 ? LocationType::kOnFace
+                          : LocationType::kOnEdge;
+  return loc;
+}
+
+// ---------------------------------------------------------------- insertion
+
+bool Delaunay3D::finite_conflict(int32_t t, const double* p, int32_t pv) const {
+  const int32_t* v = tet(t);
+  const double* a = point(v[0]);
+  const double* b = point(v[1]);
+  const double* c = point(v[2]);
+  const double* d = point(v[3]);
+  // Positive tetrahedra have orient3d < 0, so "inside" is insphere < 0.
+  double s = insphere_fast(a, b, c, d, p);
+  if (s != 0) return s < 0;
+  if (sos_id_.empty()) return insphere_sos(a, b, c, d, p, v[0], v[1], v[2], v[3], pv) < 0;
+  const int32_t* id = sos_id_.data();
+  return insphere_sos(a, b, c, d, p, id[v[0]], id[v[1]], id[v[2]], id[v[3]], id[pv]) < 0;
+}
+
+bool Delaunay3D::conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const {
+  const int32_t* v = tet(t);
+  const int g = inf_slot(v);
+  if (g < 0) return finite_conflict(t, p, pv);
+  const double* q[4];
+  for (int k = 0; k < 4; ++k) q[k] = k == g ? p : point(v[k]);
+  double o = orient3d_fast(q[0], q[1], q[2], q[3]);
+  if (o != 0) return o < 0;  // p strictly beyond the hull face
+  if (strict_hull) return false;
+  // p in the plane of the hull face: inside the ghost's "sphere" iff inside
+  // the circumcircle of the face, which every sphere through the face
+  // shares; the finite neighbor decides (with the same perturbation).
+  return finite_conflict(tn_[4 * size_t(t) + size_t(g)] >> 2, p, pv);
+}
+
+void Delaunay3D::find_cavity_fast(int32_t t0, const double* p, int32_t pv) {
+  const uint32_t in = uint32_t(visit_stamp()), out = in + 1;
+  cavity_.clear();
+  boundary_.clear();
+  cavity_.push_back(t0);
+  stamp_[size_t(t0)] = in;
+  for (size_t i = 0; i < cavity_.size(); ++i) {
+    const int32_t t = cavity_[i];
+    for (int k = 0; k < 4; ++k) {
+      const int32_t e = 4 * t + k;
+      const int32_t n = tn_[size_t(e)] >> 2;
+      const uint32_t s = stamp_[size_t(n)];
+      if (s == in) continue;
+      if (s != out && conflict(n, p, pv, false)) {
+        stamp_[size_t(n)] = in;
+        cavity_.push_back(n);
+      } else {
+        stamp_[size_t(n)] = out;
+        boundary_.push_back(e);
+      }
+    }
+  }
+}
+
+bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
+                                     bool respect_constraints) {
+  // Phase 2a: the tetrahedra whose closure holds p (one; two if p is on a
+  // face; the ring if on an edge) are pinned: they are in conflict, and the
+  // faces through p are inside their union, so they never need to leave
+  // the cavity, unless a constrained face through p separates them.
+  pinned_.clear();
+  pinned_.push_back(t0);
+  if (!is_ghost(t0)) {
+    const int32_t* v = tet(t0);
+    int zero[4], nz = 0;
+    for (int k = 0; k < 4; ++k) {
+      const int* f = kFaceOut[k];
+      if (orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) == 0) zero[nz++] = k;
+    }
+    if (nz == 1) {
+      pinned_.push_back(tn_[4 * size_t(t0) + size_t(zero[0])] >> 2);
+    } else if (nz == 2) {
+      int32_t e[2], m = 0;
+      for (int s = 0; s < 4; ++s)
+        if (s != zero[0] && s != zero[1]) e[m++] = v[s];
+      edge_ring(t0, e[0], e[1], pinned_, ring_scratch_);
+    }
+  }
+  const uint32_t in = uint32_t(visit_stamp()), out = in + 1;
+  cavity_.clear();
+  for (int32_t t : pinned_) {
+    cavity_.push_back(t);
+    stamp_[size_t(t)] = in;
+  }
+  if (respect_constraints)
+    for (int32_t t : pinned_)
+      for (int k = 0; k < 4; ++k)
+        if (is_constrained(t, k) && stamp_[size_t(tn_[4 * size_t(t) + size_t(k)] >> 2)] == in)
+          return false;  // p on a constrained face
+  // Phase 2b: conflict search, not crossing constrained faces.
+  for (size_t i = 0; i < cavity_.size(); ++i) {
+    const int32_t t = cavity_[i];
+    for (int k = 0; k < 4; ++k) {
+      const int32_t n = tn_[4 * size_t(t) + size_t(k)] >> 2;
+      const uint32_t s = stamp_[size_t(n)];
+      if (s == in || s == out) continue;
+      if (respect_constraints && is_constrained(t, k)) continue;
+      if (conflict(n, p, pv, false)) {
+        stamp_[size_t(n)] = in;
+        cavity_.push_back(n);
+      } else {
+        stamp_[size_t(n)] = out;
+      }
+    }
+  }
+  // Phase 2c: shrink until star-shaped: every boundary face strictly
+  // visible from p (its new tetrahedron positive) and no constrained face
+  // inside the cavity.
+  auto positive_with_p = [&](int32_t t, int k) {
+    int32_t q[4];
+    std::copy(tet(t), tet(t) + 4, q);
+    q[k] = -2;  // p
+    const int g = inf_slot(q);
+    if (g >= 0) {  // a new ghost on a horizon edge: its hull face must not be flat
+      const double* e[2];
+      for (int s = 0, m = 0; s < 4; ++s)
+        if (s != g && s != k) e[m++] = point(q[s]);
+      return !collinear(e[0], e[1], p);
+    }
+    const double* c[4];
+    for (int s = 0; s < 4; ++s) c[s] = q[s] == -2 ? p : point(q[s]);
+    return orient3d(c[0], c[1], c[2], c[3]) < 0;
+  };
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (size_t i = 0; i < cavity_.size(); ++i) {
+      const int32_t t = cavity_[i];
+      if (stamp_[size_t(t)] != in) continue;
+      for (int k = 0; k < 4; ++k) {
+        const int32_t n = tn_[4 * size_t(t) + size_t(k)] >> 2;
+        int32_t drop = -1;
+        if (stamp_[size_t(n)] == in) {
+          if (!(respect_constraints && is_constrained(t, k))) continue;
+          // A constrained face inside: keep the side p is on.
+          drop = positive_with_p(t, k) ? n : t;
+        } else if (!positive_with_p(t, k)) {
+          drop = t;
+        }
+        if (drop < 0) continue;
+        if (std::find(pinned_.begin(), pinned_.end(), drop) != pinned_.end()) return false;
+        stamp_[size_t(drop)] = out;
+        changed = true;
+        if (drop == t) break;
+      }
+    }
+  }
+  size_t m = 0;
+  for (int32_t t : cavity_)
+    if (stamp_[size_t(t)] == in) cavity_[m++] = t;
+  cavity_.resize(m);
+  boundary_.clear();
+  for (int32_t t : cavity_)
+    for (int k = 0; k < 4; ++k)
+      if (stamp_[size_t(tn_[4 * size_t(t) + size_t(k)] >> 2)] != in) boundary_.push_back(4 * t + k);
+  return true;
+}
+
+void Delaunay3D::star(int32_t pv) {
+  // Phase 3a: one new tetrahedron per boundary face, on a fresh slot (the
+  // cavity stays intact until 3c). The boundary face's old link is
+  // overwritten with the new tetrahedron, which 3b reads.
+  const uint32_t in = gen_;
+  const size_t nb = boundary_.size();
+  new_.resize(nb);
+  for (size_t i = 0; i < nb; ++i) {
+    const int32_t e = boundary_[i];
+    const int32_t t = e >> 2;
+    const int f = e & 3;
+    const int32_t n = new_tet_id();
+    int32_t* nv = &tv_[4 * size_t(n)];
+    const int32_t* ov = &tv_[4 * size_t(t)];
+    nv[0] = ov[0], nv[1] = ov[1], nv[2] = ov[2], nv[3] = ov[3];
+    nv[f] = pv;
+    int32_t* nn = &tn_[4 * size_t(n)];
+    nn[0] = nn[1] = nn[2] = nn[3] = -1;
+    const int32_t outer = tn_[size_t(e)];
+    nn[f] = outer;
+    tn_[size_t(outer)] = 4 * n + f;
+    tn_[size_t(e)] = 4 * n + f;
+    tc_[size_t(n)] = uint8_t(tc_[size_t(t)] & (1u << f));
+    tag_[size_t(n)] = tag_[size_t(t)];
+    for (int k = 0; k < 4; ++k)
+      if (nv[k] >= 0) vtet_[size_t(nv[k])] = n;
+    new_[i] = n;
+  }
+  // Phase 3b: links between new tetrahedra. Face j of new tetrahedron n
+  // (built on face f of cavity tetrahedron t) holds p and the boundary edge
+  // (u, w) on t's two other slots; its neighbor is the new tetrahedron on
+  // the next boundary face around (u, w), found by turning around the edge
+  // through the old cavity.
+  for (size_t i = 0; i < nb; ++i) {
+    const int32_t n = new_[i];
+    const int32_t t = boundary_[i] >> 2;
+    const int f = boundary_[i] & 3;
+    for (int j = 0; j < 4; ++j) {
+      if (j == f || tn_[4 * size_t(n) + size_t(j)] >= 0) continue;
+      const int s1 = kOther[f][j][0], s2 = kOther[f][j][1];
+      const int32_t u = tv_[4 * size_t(t) + size_t(s1)], w = tv_[4 * size_t(t) + size_t(s2)];
+      int32_t cur = t;
+      int sa = j;  // slot of the vertex opposite the face to cross
+      for (;;) {
+        const int32_t* cv = &tv_[4 * size_t(cur)];
+        const int su = slot_present(cv, u), sw = slot_present(cv, w);
+        const int sb = 6 - su - sw - sa;
+        const int32_t e2 = tn_[4 * size_t(cur) + size_t(sa)];
+        const int32_t nx = e2 >> 2;
+        if (stamp_[size_t(nx)] == in) {  // inside the cavity: keep turning
+          const int32_t b = cv[sb];
+          cur = nx;
+          sa = slot_present(&tv_[4 * size_t(nx)], b);
+          continue;
+        }
+        // Face sa of cur is a boundary face; nx was built on it with the
+        // same slots, and its face sb holds p, u, w.
+        tn_[4 * size_t(n) + size_t(j)] = 4 * nx + sb;
+        tn_[4 * size_t(nx) + size_t(sb)] = 4 * n + j;
+        break;
+      }
+    }
+  }
+  // Phase 3c: release the cavity.
+  for (int32_t t : cavity_) free_tet(t);
+  stats_.cavity_tets += int64_t(cavity_.size());
+  stats_.boundary_faces += int64_t(nb);
+  last_ = new_[0];
+}
+
+Delaunay3D::InsertResult Delaunay3D::insert_vertex(int32_t v, int32_t hint,
+                                                   bool respect_constraints) {
+  const double* p = point(v);
+  const int32_t t = walk(p, hint);
+  if (!is_ghost(t)) {
+    const int32_t* w = tet(t);
+    for (int k = 0; k < 4; ++k)
+      if (same_point(point(w[k]), p)) return {InsertStatus::kDuplicate, w[k]};
+  } else if (respect_constraints) {
+    return {InsertStatus::kOutsideHull, -1};
+  }
+  if (delaunay_ && !respect_constraints) {
+    find_cavity_fast(t, p, v);
+  } else if (!find_cavity_checked(t, p, v, respect_constraints)) {
+    return {InsertStatus::kBlocked, -1};
+  }
+  star(v);
+  return {InsertStatus::kInserted, v};
+}
+
+Delaunay3D::InsertResult Delaunay3D::insert(const double* p, int32_t hint,
+                                            bool respect_constraints) {
+  if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]) || tv_.empty())
+    return {InsertStatus::kInvalid, -1};
+  const int32_t v = int32_t(num_vertices());
+  pts_.insert(pts_.end(), {p[0], p[1], p[2]});
+  dup_.push_back(-1);
+  vtet_.push_back(-1);
+  InsertResult r = insert_vertex(v, hint, respect_constraints);
+  if (r.status != InsertStatus::kInserted) {
+    pts_.resize(pts_.size() - 3);
+    dup_.pop_back();
+    vtet_.pop_back();
+  }
+  return r;
+}
+
+// ---------------------------------------------------------------- queries
+
+size_t Delaunay3D::num_finite_tets() const {
+  size_t n = 0;
+  for_each_finite_tet([&](int32_t) { ++n; });
+  return n;
+}
+
+std::vector<int32_t> Delaunay3D::finite_tets() const {
+  std::vector<int32_t> out;
+  out.reserve(4 * num_finite_tets());
+  for_each_finite_tet([&](int32_t t) { out.insert(out.end(), tet(t), tet(t) + 4); });
+  return out;
+}
+
+void Delaunay3D::set_constrained(int32_t t, int k, bool on) {
+  const int32_t e = tn_[4 * size_t(t) + size_t(k)];
+  const int32_t u = e >> 2, j = e & 3;
+  if (on) {
+    tc_[size_t(t)] |= uint8_t(1u << k);
+    tc_[size_t(u)] |= uint8_t(1u << j);
+  } else {
+    tc_[size_t(t)] &= uint8_t(~(1u << k));
+    tc_[size_t(u)] &= uint8_t(~(1u << j));
+  }
+}
+
+void Delaunay3D::tets_around_vertex(int32_t v, std::vector<int32_t>& out) const {
+  out.clear();
+  const int32_t t0 = vtet_[size_t(v)];
+  if (t0 < 0) return;
+  const uint32_t mark = uint32_t(visit_stamp());
+  out.push_back(t0);
+  stamp_[size_t(t0)] = mark;
+  for (size_t i = 0; i < out.size(); ++i) {
+    const int32_t t = out[i];
+    const int s = slot_of(tet(t), v);
+    for (int k = 0; k < 4; ++k) {
+      if (k == s) continue;
+      const int32_t n = tn_[4 * size_t(t) + size_t(k)] >> 2;
+      if (stamp_[size_t(n)] == mark) continue;
+      stamp_[size_t(n)] = mark;
+      out.push_back(n);
+    }
+  }
+}
+
+int32_t Delaunay3D::find_edge(int32_t a, int32_t b) const {
+  if (a < 0 || size_t(a) >= num_vertices()) return -1;
+  tets_around_vertex(a, queue_);
+  for (int32_t t : queue_)
+    if (slot_of(tet(t), b) >= 0) return t;
+  return -1;
+}
+
+int32_t Delaunay3D::find_face(int32_t a, int32_t b, int32_t c, int* k) const {
+  if (a < 0 || size_t(a) >= num_vertices()) return -1;
+  tets_around_vertex(a, queue_);
+  for (int32_t t : queue_) {
+    const int32_t* v = tet(t);
+    if (slot_of(v, b) < 0 || slot_of(v, c) < 0) continue;
+    for (int s = 0; s < 4; ++s)
+      if (v[s] != a && v[s] != b && v[s] != c) {
+        if (k) *k = s;
+        return t;
+      }
+  }
+  return -1;
+}
+
+void Delaunay3D::edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>& ring_tets,
+                           std::vector<int32_t>& ring_verts) const {
+  ring_tets.clear();
+  ring_verts.clear();
+  const int32_t* v = tet(t);
+  const int sa = slot_of(v, a), sb = slot_of(v, b);
+  int sc = -1, sd = -1;
+  for (int s = 0; s < 4; ++s)
+    if (s != sa && s != sb) (sc < 0 ? sc : sd) = s;
+  if (!parity_even(sa, sb, sc, sd)) std::swap(sc, sd);
+  int32_t c = v[sc], d = v[sd];
+  int32_t cur = t;
+  for (size_t guard = 0; guard <= tet_capacity(); ++guard) {
+    ring_tets.push_back(cur);
+    ring_verts.push_back(c);
+    // Next: across the face (a, b, d), i.e. opposite c.
+    const int32_t e = tn_[4 * size_t(cur) + size_t(slot_of(tet(cur), c))];
+    cur = e >> 2;
+    if (cur == t) return;
+    const int32_t* w = tet(cur);
+    int32_t next_d = -1;
+    for (int s = 0; s < 4; ++s)
+      if (w[s] != a && w[s] != b && w[s] != d) next_d = w[s];
+    c = d;
+    d = next_d;
+  }
+}
+
+// ---------------------------------------------------------------- flips
+
+bool Delaunay3D::new_tet_valid(const std::array<int32_t, 4>& q,
+                               const std::vector<int32_t>& around) const {
+  const int g = inf_slot(q.data());
+  if (g < 0) return orient3d(point(q[0]), point(q[1]), point(q[2]), point(q[3])) < 0;
+  // A ghost: its hull face is a proper triangle and no vertex of the
+  // region is beyond it (the hull stays convex).
+  const double* f[3];
+  for (int s = 0, m = 0; s < 4; ++s)
+    if (s != g) f[m++] = point(q[size_t(s)]);
+  if (collinear(f[0], f[1], f[2])) return false;
+  const double* c[4];
+  for (int s = 0; s < 4; ++s) c[s] = s == g ? nullptr : point(q[size_t(s)]);
+  for (int32_t w : around) {
+    if (w == q[0] || w == q[1] || w == q[2] || w == q[3]) continue;
+    c[g] = point(w);
+    if (orient3d(c[0], c[1], c[2], c[3]) < 0) return false;
+  }
+  return true;
+}
+
+Result<std::vector<int32_t>> Delaunay3D::replace_tets(
+    const std::vector<int32_t>& old_tets, const std::vector<std::array<int32_t, 4>>& new_tets) {
+  using R = Result<std::vector<int32_t>>;
+  if (old_tets.empty() || new_tets.empty()) return R::Error("replace_tets: empty set");
+  for (int32_t t : old_tets)
+    if (t < 0 || size_t(t) >= tet_capacity() || !is_live(t))
+      return R::Error("replace_tets: an old tetrahedron is not live");
+  std::vector<int32_t> old_vertices;
+  for (int32_t t : old_tets)
+    for (int s = 0; s < 4; ++s)
+      if (tet(t)[s] != kInfinite) old_vertices.push_back(tet(t)[s]);
+  std::sort(old_vertices.begin(), old_vertices.end());
+  old_vertices.erase(std::unique(old_vertices.begin(), old_vertices.end()), old_vertices.end());
+  // Phase 1: the boundary faces of the old set.
+  struct Face {
+    std::array<int32_t, 3> key;
+    int32_t link;  // old: encoded outer neighbor; new: encoded (index, face)
+    uint8_t constrained;
+    bool used;
+  };
+  auto sorted_face = [](const int32_t* v, int k) {
+    std::array<int32_t, 3> f;
+    for (int s = 0, n = 0; s < 4; ++s)
+      if (s != k) f[size_t(n++)] = v[s];
+    std::sort(f.begin(), f.end());
+    return f;
+  };
+  auto in_old = [&](int32_t u) {
+    return std::find(old_tets.begin(), old_tets.end(), u) != old_tets.end();
+  };
+  std::vector<Face> outer;
+  for (int32_t t : old_tets)
+    for (int k = 0; k < 4; ++k) {
+      const int32_t e = tn_[4 * size_t(t) + size_t(k)];
+      if (in_old(e >> 2)) {
+        if (is_constrained(t, k)) return R::Error("replace_tets: would remove a constrained face");
+        continue;
+      }
+      outer.push_back({sorted_face(tet(t), k), e, uint8_t(is_constrained(t, k)), false});
+    }
+  // Phase 2: orientation and face matching of the new set.
+  for (const auto& q : new_tets) {
+    int infs = 0;
+    for (int32_t x : q) {
+      if (x == kInfinite) {
+        ++infs;
+        continue;
+      }
+      if (x < 0 || size_t(x) >= num_vertices())
+        return R::Error("replace_tets: a new tetrahedron has an invalid vertex");
+    }
+    if (infs > 1 || !new_tet_valid(q, old_vertices))
+      return R::Error("replace_tets: a new tetrahedron is not positive");
+  }
+  std::vector<int32_t> match(4 * new_tets.size(), -1);  // outer index or -2 - (4i+k)
+  for (size_t i = 0; i < new_tets.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      if (match[4 * i + size_t(k)] != -1) continue;
+      const auto key = sorted_face(new_tets[i].data(), k);
+      int32_t found = -1;
+      for (size_t o = 0; o < outer.size() && found < 0; ++o)
+        if (!outer[o].used && outer[o].key == key) found = int32_t(o);
+      if (found >= 0) {
+        outer[size_t(found)].used = true;
+        match[4 * i + size_t(k)] = found;
+        continue;
+      }
+      for (size_t j = i + 1; j < new_tets.size() && found < 0; ++j)
+        for (int l = 0; l < 4 && found < 0; ++l)
+          if (match[4 * j + size_t(l)] == -1 && sorted_face(new_tets[j].data(), l) == key) {
+            found = int32_t(4 * j + size_t(l));
+            match[size_t(found)] = -2 - int32_t(4 * i + size_t(k));
+            match[4 * i + size_t(k)] = -2 - found;
+          }
+      if (found < 0) return R::Error("replace_tets: the new set does not fill the old one");
+    }
+  for (const Face& f : outer)
+    if (!f.used) return R::Error("replace_tets: the new set leaves a boundary face uncovered");
+  // Phase 3: commit.
+  const int32_t tag = tag_[size_t(old_tets[0])];
+  for (int32_t v : old_vertices) vtet_[size_t(v)] = -1;
+  std::vector<int32_t> ids(new_tets.size());
+  for (size_t i = 0; i < ids.size(); ++i) ids[i] = i < old_tets.size() ? old_tets[i] : new_tet_id();
+  for (size_t i = ids.size(); i < old_tets.size(); ++i) free_tet(old_tets[i]);
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const int32_t t = ids[i];
+    std::copy(new_tets[i].begin(), new_tets[i].end(), &tv_[4 * size_t(t)]);
+    tag_[size_t(t)] = tag;
+    tc_[size_t(t)] = 0;
+    for (int32_t x : new_tets[i])
+      if (x != kInfinite) vtet_[size_t(x)] = t;
+  }
+  for (size_t i = 0; i < ids.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      const int32_t m = match[4 * i + size_t(k)];
+      const int32_t e = 4 * ids[i] + k;
+      if (m >= 0) {
+        const Face& f = outer[size_t(m)];
+        tn_[size_t(e)] = f.link;
+        tn_[size_t(f.link)] = e;
+        tc_[size_t(ids[i])] |= uint8_t(f.constrained << k);
+      } else {
+        const int32_t other = -2 - m;
+        tn_[size_t(e)] = 4 * ids[size_t(other / 4)] + other % 4;
+      }
+    }
+  last_ = ids[0];
+  delaunay_ = false;
+  ++stats_.flips;
+  return ids;
+}
+
+Result<std::array<int32_t, 3>> Delaunay3D::flip23(int32_t t, int k) {
+  using R = Result<std::array<int32_t, 3>>;
+  if (t < 0 || size_t(t) >= tet_capacity() || !is_live(t) || k < 0 || k > 3)
+    return R::Error("flip23: invalid face");
+  const int32_t u = tn_[4 * size_t(t) + size_t(k)] >> 2;
+  if (is_ghost(t) || is_ghost(u)) return R::Error("flip23: a hull face");
+  const int32_t* v = tet(t);
+  const int32_t x = v[k], y = tet(u)[tn_[4 * size_t(t) + size_t(k)] & 3];
+  const int* f = kFaceOut[k];
+  const int32_t r[3] = {v[f[0]], v[f[1]], v[f[2]]};  // clockwise seen from x
+  std::vector<std::array<int32_t, 4>> nt;
+  for (int i = 0; i < 3; ++i) nt.push_back({x, y, r[i], r[(i + 1) % 3]});
+  auto res = replace_tets({t, u}, nt);
+  if (!res.ok()) return R::Error("flip23: " + res.message());
+  return std::array<int32_t, 3>{res.value()[0], res.value()[1], res.value()[2]};
+}
+
+Result<std::vector<int32_t>> Delaunay3D::remove_edge(int32_t t, int32_t a, int32_t b) {
+  using R = Result<std::vector<int32_t>>;
+  if (t < 0 || size_t(t) >= tet_capacity() || !is_live(t) || slot_of(tet(t), a) < 0 ||
+      slot_of(tet(t), b) < 0 || a == b)
+    return R::Error("remove_edge: (a, b) is not an edge of t");
+  std::vector<int32_t> ring_tets, ring;
+  edge_ring(t, a, b, ring_tets, ring);
+  if (a == kInfinite || b == kInfinite) return R::Error("remove_edge: an edge at infinity");
+  std::vector<int32_t> around = ring;
+  around.insert(around.end(), {a, b});
+  around.erase(std::remove(around.begin(), around.end(), kInfinite), around.end());
+  const size_t n = ring.size();
+  if (n < 3) return R::Error("remove_edge: fewer than 3 tetrahedra around the edge");
+  // Fans from each ring vertex; ring order makes (a, b, r_i, r_i+1)
+  // positive, hence (r_x, r_y, r_z, b) and (r_y, r_x, r_z, a) for a
+  // triangle (x, y, z) in ring order.
+  std::vector<std::array<int32_t, 4>> best, cand;
+  double best_q = 0;
+  for (size_t s = 0; s < (n == 3 ? 1 : n); ++s) {
+    cand.clear();
+    double q = 1e300;
+    for (size_t i = 1; i + 1 < n; ++i) {
+      const int32_t x = ring[s], y = ring[(s + i) % n], z = ring[(s + i + 1) % n];
+      cand.push_back({x, y, z, b});
+      cand.push_back({y, x, z, a});
+    }
+    for (const auto& c : cand) {
+      if (!new_tet_valid(c, around)) {
+        q = -1;
+        break;
+      }
+      if (inf_slot(c.data()) >= 0) continue;  // ghosts: no shape
+      const double* p[4] = {point(c[0]), point(c[1]), point(c[2]), point(c[3])};
+      double vol = -((p[1][0] - p[0][0]) * ((p[2][1] - p[0][1]) * (p[3][2] - p[0][2]) -
+                                            (p[2][2] - p[0][2]) * (p[3][1] - p[0][1])) -
+                     (p[1][1] - p[0][1]) * ((p[2][0] - p[0][0]) * (p[3][2] - p[0][2]) -
+                                            (p[2][2] - p[0][2]) * (p[3][0] - p[0][0])) +
+                     (p[1][2] - p[0][2]) * ((p[2][0] - p[0][0]) * (p[3][1] - p[0][1]) -
+                                            (p[2][1] - p[0][1]) * (p[3][0] - p[0][0])));
+      double longest = 0;
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+          double d2 = 0;
+          for (int m = 0; m < 3; ++m) d2 += (p[i][m] - p[j][m]) * (p[i][m] - p[j][m]);
+          longest = std::max(longest, d2);
+        }
+      q = std::min(q, std::fabs(vol) / (longest * std::sqrt(longest)));
+    }
+    if (q > best_q || (best.empty() && q >= 0)) {
+      best_q = q;
+      best = cand;
+    }
+  }
+  if (best.empty()) return R::Error("remove_edge: no fan of the ring gives positive tetrahedra");
+  auto res = replace_tets(ring_tets, best);
+  if (!res.ok()) return R::Error("remove_edge: " + res.message());
+  return res;
+}
+
+Result<std::array<int32_t, 2>> Delaunay3D::flip32(int32_t t, int32_t a, int32_t b) {
+  using R = Result<std::array<int32_t, 2>>;
+  if (t < 0 || size_t(t) >= tet_capacity() || !is_live(t) || slot_of(tet(t), a) < 0 ||
+      slot_of(tet(t), b) < 0 || a == b)
+    return R::Error("flip32: (a, b) is not an edge of t");
+  std::vector<int32_t> ring_tets, ring;
+  edge_ring(t, a, b, ring_tets, ring);
+  if (ring.size() != 3) return R::Error("flip32: the edge is not in exactly 3 tetrahedra");
+  auto res = remove_edge(t, a, b);
+  if (!res.ok()) return R::Error(res.message());
+  return std::array<int32_t, 2>{res.value()[0], res.value()[1]};
+}
+
+Result<std::array<int32_t, 4>> Delaunay3D::flip44(int32_t t, int32_t a, int32_t b, int32_t c) {
+  using R = Result<std::array<int32_t, 4>>;
+  if (t < 0 || size_t(t) >= tet_capacity() || !is_live(t) || slot_of(tet(t), a) < 0 ||
+      slot_of(tet(t), b) < 0 || a == b)
+    return R::Error("flip44: (a, b) is not an edge of t");
+  std::vector<int32_t> ring_tets, ring;
+  edge_ring(t, a, b, ring_tets, ring);
+  if (ring.size() != 4) return R::Error("flip44: the edge is not in exactly 4 tetrahedra");
+  auto it = std::find(ring.begin(), ring.end(), c);
+  if (it == ring.end() || c == kInfinite)
+    return R::Error("flip44: c is not a finite vertex on the ring of the edge");
+  const size_t s = size_t(it - ring.begin());
+  std::vector<std::array<int32_t, 4>> nt;
+  for (size_t i = 1; i <= 2; ++i) {
+    const int32_t x = ring[s], y = ring[(s + i) % 4], z = ring[(s + i + 1) % 4];
+    nt.push_back({x, y, z, b});
+    nt.push_back({y, x, z, a});
+  }
+  auto res = replace_tets(ring_tets, nt);
+  if (!res.ok()) return R::Error("flip44: " + res.message());
+  const auto& ids = res.value();
+  return std::array<int32_t, 4>{ids[0], ids[1], ids[2], ids[3]};
+}
+
+// ---------------------------------------------------------------- checks
+
+Status Delaunay3D::check(bool delaunay) const {
+  auto fail = [](const std::string& what, int32_t t) {
+    return Status::Error(what + " (tetrahedron " + std::to_string(t) + ")");
+  };
+  for (int32_t t = 0; t < int32_t(tet_capacity()); ++t) {
+    if (!is_live(t)) continue;
+    const int32_t* v = tet(t);
+    int infs = 0;
+    for (int k = 0; k < 4; ++k) {
+      if (v[k] == kInfinite) {
+        ++infs;
+        continue;
+      }
+      if (v[k] < 0 || size_t(v[k]) >= num_vertices()) return fail("invalid vertex id", t);
+      if (dup_[size_t(v[k])] >= 0) return fail("a duplicate point is a vertex", t);
+      const int32_t w = vtet_[size_t(v[k])];
+      if (w < 0 || !is_live(w) || slot_of(tet(w), v[k]) < 0)
+        return fail("vertex_tet of a vertex does not contain it", t);
+      for (int j = k + 1; j < 4; ++j)
+        if (v[j] == v[k]) return fail("repeated vertex", t);
+    }
+    if (infs > 1) return fail("more than one infinite vertex", t);
+    if (infs == 0 && orient3d(point(v[0]), point(v[1]), point(v[2]), point(v[3])) >= 0)
+      return fail("finite tetrahedron not positive", t);
+    for (int k = 0; k < 4; ++k) {
+      const int32_t e = tn_[4 * size_t(t) + size_t(k)];
+      const int32_t u = e >> 2, j = e & 3;
+      if (e < 0 || size_t(u) >= tet_capacity() || !is_live(u)) return fail("dead neighbor", t);
+      if (tn_[size_t(e)] != 4 * t + k) return fail("neighbor links not symmetric", t);
+      if (is_constrained(u, j) != is_constrained(t, k))
+        return fail("constraint flags not symmetric", t);
+      const int32_t* w = tet(u);
+      for (int s = 0; s < 4; ++s)
+        if (s != k && (slot_of(w, v[s]) < 0 || slot_of(w, v[s]) == j))
+          return fail("neighbors do not share the face", t);
+      if (v[k] == w[j]) return fail("two tetrahedra with the same vertices", t);
+      if (infs == 1 && v[k] == kInfinite) {
+        // The finite neighbor's apex is on the inner side of the hull face.
+        int32_t q[4];
+        std::copy(v, v + 4, q);
+        q[k] = w[j];
+        if (orient3d(point(q[0]), point(q[1]), point(q[2]), point(q[3])) <= 0)
+          return fail("ghost tetrahedron wrongly oriented", t);
+      }
+      if (delaunay && infs == 0 && w[j] != kInfinite && !is_constrained(t, k) &&
+          finite_conflict(t, point(w[j]), w[j]))
+        return fail("face not locally Delaunay", t);
+      if (delaunay && infs == 1 && v[k] != kInfinite && w[j] != kInfinite &&
+          conflict(t, point(w[j]), w[j], true))
+        return fail("convex hull not convex", t);
+    }
+  }
+  return Status::Ok();
+}
+
+}  // namespace vm

@@ -1,0 +1,234 @@
+// Incremental 3D Delaunay triangulation over flat arrays (the kernel of the
+// volume stage, DESIGN.md pipeline step 6).
+//
+// - Insertion: Bowyer ("Computing Dirichlet tessellations", Comput. J. 24,
+//   1981) and Watson ("Computing the n-dimensional Delaunay tessellation with
+//   application to Voronoi polytopes", Comput. J. 24, 1981): the cavity of
+//   tetrahedra whose circumsphere contains the new point is found by a
+//   breadth-first search and re-triangulated by starring its boundary from
+//   the point.
+// - Order: BRIO rounds along a Hilbert curve (Amenta, Choi, Rote, SoCG 2003;
+//   core/volume/spatial_sort.h).
+// - Location: visibility walk, remembering and stochastic (Devillers, Pion,
+//   Teillaud, "Walking in a triangulation", IJFCS 13, 2002).
+// - Predicates: Shewchuk's filtered exact orient3d/insphere (DCG 18, 1997);
+//   cospherical ties broken by insphere_sos (symbolic perturbation of the
+//   lifted coordinates by vertex index), so every point set, grids included,
+//   gets one well-defined triangulation and no flat tetrahedron.
+// - Convex hull: an infinite vertex (kInfinite) and ghost tetrahedra on the
+//   hull faces, so the triangulation is a closed 3-manifold and insertion
+//   outside the hull is the same algorithm.
+// - Flips 2-3, 3-2, 4-4 and edge removal (Shewchuk, "Two discrete
+//   optimization algorithms for the topological improvement of tetrahedral
+//   meshes", 2002) for boundary recovery and later sliver removal.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/util/result.h"
+#include "core/volume/spatial_sort.h"
+
+namespace vm {
+
+class Delaunay3D {
+ public:
+  /// The vertex at infinity of the ghost tetrahedra.
+  static constexpr int32_t kInfinite = -1;
+
+  enum class InsertStatus {
+    kInserted,     ///< the point is the new vertex `vertex`
+    kDuplicate,    ///< the point coincides with vertex `vertex`; nothing changed
+    kOutsideHull,  ///< constrained mode: the point is outside the convex hull
+    kBlocked,      ///< constrained / non-Delaunay mode: no star-shaped cavity
+                   ///< around the point (e.g. it lies on a constrained face)
+    kInvalid,      ///< a coordinate is not finite
+  };
+  struct InsertResult {
+    InsertStatus status = InsertStatus::kInvalid;
+    int32_t vertex = -1;
+  };
+
+  enum class LocationType { kInside, kOnFace, kOnEdge, kOnVertex, kOutside };
+  /// `tet` contains the point in its closure (a ghost tetrahedron when
+  /// kOutside); `vertex` is set for kOnVertex.
+  struct Location {
+    int32_t tet = -1;
+    LocationType type = LocationType::kOutside;
+    int32_t vertex = -1;
+  };
+
+  Delaunay3D() = default;
+
+  /// Delaunay tetrahedralization of `points` (3 doubles per point, finite),
+  /// inserted in BRIO/Hilbert order. Vertex i is point i. Points that
+  /// coincide with an earlier-inserted one are not vertices
+  /// (duplicate_of(i) names the vertex). Errors: non-finite coordinates,
+  /// fewer than 4 non-coplanar points.
+  static Result<Delaunay3D> build(std::vector<double> points,
+                                  const SpatialSortOptions& sort_options = {});
+
+  /// Inserts point p (3 doubles) as a new vertex (id num_vertices() before
+  /// the call), starting the walk at tetrahedron `hint` (any live id, or -1
+  /// for the last one touched). With respect_constraints the cavity never
+  /// crosses a constrained face, and the point must lie inside the hull.
+  /// When the triangulation is no longer Delaunay (after flips) or
+  /// constraints are respected, the cavity is shrunk until it is star-shaped
+  /// from p (kBlocked if the tetrahedron containing p must go). On any status
+  /// other than kInserted nothing is changed.
+  InsertResult insert(const double* p, int32_t hint = -1, bool respect_constraints = false);
+
+  /// Locates p (3 doubles) by walking from `hint` (-1: the last tetrahedron
+  /// touched).
+  Location locate(const double* p, int32_t hint = -1) const;
+
+  // ---- Vertices.
+  size_t num_vertices() const { return pts_.size() / 3; }
+  const double* point(int32_t v) const { return &pts_[3 * size_t(v)]; }
+  /// 3 doubles per vertex (input points first, then inserted ones).
+  const std::vector<double>& points() const { return pts_; }
+  /// The vertex point v coincides with, or -1 if v is itself a vertex.
+  int32_t duplicate_of(int32_t v) const { return dup_[size_t(v)]; }
+  /// A live tetrahedron incident to vertex v (-1 for duplicates).
+  int32_t vertex_tet(int32_t v) const { return vtet_[size_t(v)]; }
+
+  // ---- Tetrahedra. Ids index flat arrays of capacity tet_capacity(); a
+  // slot is live or free (reused by later insertions). Vertex k of tet t is
+  // tet(t)[k]; face k is the face opposite vertex k. Finite tetrahedra are
+  // positive: tet_volume6 > 0 (orient3d < 0). A ghost has one vertex
+  // kInfinite; its finite face is a convex hull face, and replacing
+  // kInfinite by a point beyond that face gives a positive tetrahedron.
+  size_t tet_capacity() const { return tv_.size() / 4; }
+  bool is_live(int32_t t) const { return tv_[4 * size_t(t)] != kFree; }
+  bool is_ghost(int32_t t) const {
+    const int32_t* v = &tv_[4 * size_t(t)];
+    return v[0] == kInfinite || v[1] == kInfinite || v[2] == kInfinite || v[3] == kInfinite;
+  }
+  const int32_t* tet(int32_t t) const { return &tv_[4 * size_t(t)]; }
+  /// 4 * u + j: the tetrahedron u across face k of t, and the index j of
+  /// that face in u (so neighbor(u, j) == 4 * t + k).
+  int32_t neighbor(int32_t t, int k) const { return tn_[4 * size_t(t) + size_t(k)]; }
+  size_t num_finite_tets() const;
+  /// 4 vertex ids per finite tetrahedron (positive), live slots in id order.
+  std::vector<int32_t> finite_tets() const;
+  /// Calls f(t) for every live finite tetrahedron id.
+  template <class F>
+  void for_each_finite_tet(F&& f) const {
+    for (int32_t t = 0; t < int32_t(tet_capacity()); ++t)
+      if (is_live(t) && !is_ghost(t)) f(t);
+  }
+
+  /// Region tag per tetrahedron (0 by default); tetrahedra created by an
+  /// insertion or a flip take the tag of the one they replace.
+  int32_t tag(int32_t t) const { return tag_[size_t(t)]; }
+  void set_tag(int32_t t, int32_t tag) { tag_[size_t(t)] = tag; }
+
+  // ---- Constrained faces (flags on both sides of the face).
+  bool is_constrained(int32_t t, int k) const { return (tc_[size_t(t)] >> k) & 1; }
+  void set_constrained(int32_t t, int k, bool on);
+
+  // ---- Topology queries.
+  /// Live tetrahedra incident to vertex v (ghosts included), into `out`.
+  void tets_around_vertex(int32_t v, std::vector<int32_t>& out) const;
+  /// A tetrahedron with edge (a, b), or -1.
+  int32_t find_edge(int32_t a, int32_t b) const;
+  /// A tetrahedron t with face (a, b, c) as face k (any orientation), or -1.
+  int32_t find_face(int32_t a, int32_t b, int32_t c, int* k) const;
+  /// The n tetrahedra around edge (a, b) of tetrahedron t, in cyclic order,
+  /// and the n ring vertices: ring_tets[i] is (a, b, ring_verts[i],
+  /// ring_verts[(i + 1) % n]) up to an even permutation (so that tetrahedron
+  /// is positive); kInfinite may appear. Precondition: t live with vertices
+  /// a and b.
+  void edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>& ring_tets,
+                 std::vector<int32_t>& ring_verts) const;
+
+  // ---- Flips. Each checks that no constrained face is removed and that
+  // every new tetrahedron is strictly positive (a new ghost: its hull face
+  // is a proper triangle with no vertex of the region beyond it, so the
+  // hull stays convex; this allows flips of coplanar hull faces); otherwise
+  // it returns an error and changes nothing. On success the new tetrahedron
+  // ids are returned and the triangulation is marked non-Delaunay
+  // (is_delaunay() false).
+  /// 2-3: the face k of t and its neighbor (both finite) become 3
+  /// tetrahedra around the edge joining the two apexes.
+  Result<std::array<int32_t, 3>> flip23(int32_t t, int k);
+  /// 3-2: edge (a, b) of t, with exactly 3 tetrahedra around it, is removed.
+  Result<std::array<int32_t, 2>> flip32(int32_t t, int32_t a, int32_t b);
+  /// 4-4: edge (a, b) of t with 4 tetrahedra around it whose ring is planar
+  /// (or any ring that admits it) is replaced by the ring diagonal starting
+  /// at ring vertex c.
+  Result<std::array<int32_t, 4>> flip44(int32_t t, int32_t a, int32_t b, int32_t c);
+  /// Edge removal: edge (a, b) of t with n >= 3 tetrahedra around it is
+  /// replaced by 2(n-2) tetrahedra over a fan triangulation of its ring;
+  /// among the valid fans, the one maximizing the smallest volume
+  /// (normalized by its longest edge cubed) is chosen.
+  Result<std::vector<int32_t>> remove_edge(int32_t t, int32_t a, int32_t b);
+
+  /// Replaces the live tetrahedra `old_tets` (a connected set) by `new_tets`
+  /// (4 vertex ids each, kInfinite allowed once) with the same boundary. Checks: every
+  /// new tetrahedron strictly positive, faces matched exactly (each boundary
+  /// face of the old set once, inner faces twice), no constrained face inside
+  /// the old set. Returns the new ids. The building block of the flips;
+  /// public for recovery and optimization stages.
+  Result<std::vector<int32_t>> replace_tets(const std::vector<int32_t>& old_tets,
+                                            const std::vector<std::array<int32_t, 4>>& new_tets);
+
+  /// True until the first flip: insertions then use the fast cavity.
+  bool is_delaunay() const { return delaunay_; }
+
+  /// Checks the invariants: neighbor symmetry with matching shared faces,
+  /// finite tetrahedra strictly positive, one kInfinite per ghost, vertex
+  /// incidences, symmetric constraint flags; with `delaunay`, also that
+  /// every finite face is locally Delaunay (insphere_sos), which implies the
+  /// empty-circumsphere property. Returns the first violation.
+  Status check(bool delaunay) const;
+
+  /// Counters since construction.
+  struct Stats {
+    int64_t walk_steps = 0;
+    int64_t cavity_tets = 0;     ///< tetrahedra removed by insertions
+    int64_t boundary_faces = 0;  ///< tetrahedra created by insertions
+    int64_t flips = 0;
+  };
+  const Stats& stats() const { return stats_; }
+
+ private:
+  static constexpr int32_t kFree = -2;
+
+  InsertResult insert_vertex(int32_t v, int32_t hint, bool respect_constraints);
+  int32_t walk(const double* p, int32_t hint) const;
+  bool conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const;
+  bool finite_conflict(int32_t t, const double* p, int32_t pv) const;
+  void find_cavity_fast(int32_t t0, const double* p, int32_t pv);
+  bool find_cavity_checked(int32_t t0, const double* p, int32_t pv, bool respect_constraints);
+  void star(int32_t pv);
+  int32_t new_tet_id();
+  bool new_tet_valid(const std::array<int32_t, 4>& q, const std::vector<int32_t>& around) const;
+  void free_tet(int32_t t);
+  void init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d);
+  int32_t visit_stamp() const;
+
+  std::vector<double> pts_;      // 3 per vertex
+  std::vector<int32_t> sos_id_;  // while building: vertex -> input index
+  std::vector<int32_t> dup_;     // per vertex: coincident vertex or -1
+  std::vector<int32_t> vtet_;    // per vertex: an incident live tet or -1
+  std::vector<int32_t> tv_;      // 4 per tet: vertices (kFree at [0] if free)
+  std::vector<int32_t> tn_;      // 4 per tet: 4 * neighbor + face
+  std::vector<uint8_t> tc_;      // per tet: bit k = face k constrained
+  std::vector<int32_t> tag_;     // per tet
+  std::vector<int32_t> free_;
+  bool delaunay_ = true;
+  mutable Stats stats_;
+
+  // Scratch (mutable: queries reuse them too; the class is not thread-safe).
+  mutable std::vector<uint32_t> stamp_;  // per tet
+  mutable uint32_t gen_ = 0;
+  mutable int32_t last_ = 0;
+  mutable uint64_t rng_ = 0x2545f4914f6cdd1dull;
+  std::vector<int32_t> cavity_, boundary_;  // tets; encoded faces
+  std::vector<int32_t> new_, pinned_, ring_scratch_;
+  mutable std::vector<int32_t> queue_;
+};
+
+}  // namespace vm

@@ -1,0 +1,408 @@
+#include "core/volume/delaunay3d.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "core/geom/predicates.h"
+#include "core/mesh/volume_mesh.h"
+
+namespace vm {
+namespace {
+
+using D = Delaunay3D;
+
+std::vector<double> random_cube(int n, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<double> p(3 * size_t(n));
+  for (double& x : p) x = u(rng);
+  return p;
+}
+
+std::vector<double> grid(int n, double spacing = 1) {
+  std::vector<double> p;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) p.insert(p.end(), {i * spacing, j * spacing, k * spacing});
+  return p;
+}
+
+// Counting identities of a triangulated convex ball: V - E + F - T = 1
+// over the finite complex, and the hull (ghosts) a triangulated sphere with
+// H = 2 Vh - 4 faces; 4 T = 2 F_inner + H.
+void expect_counting_identities(const D& d) {
+  std::set<std::array<int32_t, 2>> edges;
+  std::set<std::array<int32_t, 3>> faces;
+  std::set<int32_t> verts, hull_verts;
+  int64_t tets = 0, ghosts = 0;
+  for (int32_t t = 0; t < int32_t(d.tet_capacity()); ++t) {
+    if (!d.is_live(t)) continue;
+    const int32_t* v = d.tet(t);
+    if (d.is_ghost(t)) {
+      ++ghosts;
+      for (int k = 0; k < 4; ++k)
+        if (v[k] != D::kInfinite) hull_verts.insert(v[k]);
+      continue;
+    }
+    ++tets;
+    for (int i = 0; i < 4; ++i) {
+      verts.insert(v[i]);
+      for (int j = i + 1; j < 4; ++j) edges.insert({std::min(v[i], v[j]), std::max(v[i], v[j])});
+      std::array<int32_t, 3> f;
+      for (int s = 0, m = 0; s < 4; ++s)
+        if (s != i) f[m++] = v[s];
+      std::sort(f.begin(), f.end());
+      faces.insert(f);
+    }
+  }
+  EXPECT_EQ(int64_t(verts.size()) - int64_t(edges.size()) + int64_t(faces.size()) - tets, 1);
+  EXPECT_EQ(ghosts, 2 * int64_t(hull_verts.size()) - 4);
+  EXPECT_EQ(4 * tets, 2 * (int64_t(faces.size()) - ghosts) + ghosts);
+}
+
+double total_volume(const D& d) {
+  double vol = 0;
+  d.for_each_finite_tet([&](int32_t t) {
+    const int32_t* v = d.tet(t);
+    vol += tet_volume6(d.point(v[0]), d.point(v[1]), d.point(v[2]), d.point(v[3])) / 6;
+  });
+  return vol;
+}
+
+// Brute force: no vertex strictly inside any circumsphere; every finite
+// tetrahedron positive.
+void expect_empty_spheres(const D& d) {
+  int64_t violations = 0;
+  d.for_each_finite_tet([&](int32_t t) {
+    const int32_t* v = d.tet(t);
+    const double* a = d.point(v[0]);
+    const double* b = d.point(v[1]);
+    const double* c = d.point(v[2]);
+    const double* e = d.point(v[3]);
+    EXPECT_GT(tet_volume6(a, b, c, e), 0);
+    for (int32_t w = 0; w < int32_t(d.num_vertices()); ++w) {
+      if (d.duplicate_of(w) >= 0) continue;
+      violations += insphere(a, b, c, e, d.point(w)) < 0;
+    }
+  });
+  EXPECT_EQ(violations, 0);
+}
+
+TEST(Delaunay3D, RandomPointsSatisfyAllInvariants) {
+  for (int n : {4, 5, 10, 100, 400}) {
+    auto r = D::build(random_cube(n, uint32_t(n)));
+    ASSERT_TRUE(r.ok()) << r.message();
+    const D& d = r.value();
+    ASSERT_TRUE(d.check(true).ok()) << d.check(true).message();
+    expect_empty_spheres(d);
+    expect_counting_identities(d);
+    for (int32_t v = 0; v < n; ++v) EXPECT_GE(d.vertex_tet(v), 0);
+  }
+}
+
+TEST(Delaunay3D, LargerRandomSetIsLocallyDelaunay) {
+  auto r = D::build(random_cube(30000, 1));
+  ASSERT_TRUE(r.ok());
+  EXPECT_TRUE(r.value().check(true).ok()) << r.value().check(true).message();
+  expect_counting_identities(r.value());
+  // About 6.5 tetrahedra per point for uniform points.
+  double per_point = double(r.value().num_finite_tets()) / 30000;
+  EXPECT_GT(per_point, 6.0);
+  EXPECT_LT(per_point, 7.0);
+}
+
+TEST(Delaunay3D, GridIsCosphericalEverywhere) {
+  for (int n : {2, 3, 6}) {
+    auto r = D::build(grid(n, 0.5));
+    ASSERT_TRUE(r.ok()) << r.message();
+    const D& d = r.value();
+    ASSERT_TRUE(d.check(true).ok()) << d.check(true).message();
+    expect_empty_spheres(d);
+    expect_counting_identities(d);
+    const double side = (n - 1) * 0.5;
+    EXPECT_NEAR(total_volume(d), side * side * side, 1e-12);
+  }
+}
+
+TEST(Delaunay3D, PointsOnASphere) {
+  // Exactly cospherical integer points (x^2 + y^2 + z^2 = 50) and random
+  // points rounded onto the unit sphere: all on the hull.
+  std::vector<double> p;
+  for (int x = -7; x <= 7; ++x)
+    for (int y = -7; y <= 7; ++y)
+      for (int z = -7; z <= 7; ++z)
+        if (x * x + y * y + z * z == 50) p.insert(p.end(), {double(x), double(y), double(z)});
+  ASSERT_GT(p.size(), 3u * 50);
+  auto r = D::build(p);
+  ASSERT_TRUE(r.ok()) << r.message();
+  ASSERT_TRUE(r.value().check(true).ok()) << r.value().check(true).message();
+  expect_empty_spheres(r.value());
+  expect_counting_identities(r.value());
+
+  std::mt19937 rng(4);
+  std::normal_distribution<double> g;
+  std::vector<double> s;
+  for (int i = 0; i < 2000; ++i) {
+    double v[3] = {g(rng), g(rng), g(rng)};
+    double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    s.insert(s.end(), {v[0] / l, v[1] / l, v[2] / l});
+  }
+  auto q = D::build(s);
+  ASSERT_TRUE(q.ok());
+  EXPECT_TRUE(q.value().check(true).ok()) << q.value().check(true).message();
+  expect_counting_identities(q.value());
+}
+
+TEST(Delaunay3D, DuplicatePointsAreReported) {
+  auto p = random_cube(200, 9);
+  auto g = grid(3);
+  p.insert(p.end(), g.begin(), g.end());
+  // Copies of points 5 and 7 and of a grid point.
+  for (int src : {5, 7, 200 + 4, 5})
+    for (int k = 0; k < 3; ++k) p.push_back(p[3 * size_t(src) + k]);
+  const int n = int(p.size() / 3);
+  auto r = D::build(p);
+  ASSERT_TRUE(r.ok());
+  const D& d = r.value();
+  ASSERT_TRUE(d.check(true).ok()) << d.check(true).message();
+  int dups = 0;
+  for (int v = 0; v < n; ++v) {
+    int32_t o = d.duplicate_of(v);
+    if (o < 0) continue;
+    ++dups;
+    EXPECT_EQ(d.point(o)[0], d.point(v)[0]);
+    EXPECT_EQ(d.point(o)[1], d.point(v)[1]);
+    EXPECT_EQ(d.point(o)[2], d.point(v)[2]);
+    EXPECT_LT(d.duplicate_of(o), 0);
+  }
+  EXPECT_EQ(dups, 4);
+  expect_empty_spheres(d);
+}
+
+TEST(Delaunay3D, DegenerateInputsAreClearErrors) {
+  EXPECT_FALSE(D::build({}).ok());
+  EXPECT_FALSE(D::build({0, 0, 0, 1, 0, 0, 0, 1, 0}).ok());
+  // Coplanar: a planar grid.
+  std::vector<double> plane;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j) plane.insert(plane.end(), {double(i), double(j), 0.0});
+  auto r = D::build(plane);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("coplanar"), std::string::npos);
+  // Collinear and all-equal.
+  std::vector<double> line, same;
+  for (int i = 0; i < 10; ++i) line.insert(line.end(), {double(i), 2.0 * i, -1.0 * i});
+  for (int i = 0; i < 10; ++i) same.insert(same.end(), {1.0, 2.0, 3.0});
+  EXPECT_FALSE(D::build(line).ok());
+  EXPECT_FALSE(D::build(same).ok());
+  std::vector<double> nan = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, std::nan("")};
+  EXPECT_FALSE(D::build(nan).ok());
+  // The planar grid plus one apex: a valid pyramid of flat-bottomed tets.
+  plane.insert(plane.end(), {2.0, 2.0, 3.0});
+  auto q = D::build(plane);
+  ASSERT_TRUE(q.ok()) << q.message();
+  EXPECT_TRUE(q.value().check(true).ok()) << q.value().check(true).message();
+  EXPECT_DOUBLE_EQ(total_volume(q.value()), 16.0 * 3 / 3);
+  expect_empty_spheres(q.value());
+}
+
+TEST(Delaunay3D, InsertAfterBuildInsideOutsideAndDuplicate) {
+  auto r = D::build(random_cube(300, 2));
+  ASSERT_TRUE(r.ok());
+  D d = std::move(r.value());
+  auto more = random_cube(300, 3);
+  for (double& x : more) x *= 1.5;  // some outside the hull
+  for (size_t i = 0; i < more.size(); i += 3) {
+    auto ins = d.insert(&more[i]);
+    ASSERT_EQ(ins.status, D::InsertStatus::kInserted);
+    EXPECT_EQ(ins.vertex, int32_t(d.num_vertices()) - 1);
+  }
+  ASSERT_TRUE(d.check(true).ok()) << d.check(true).message();
+  expect_empty_spheres(d);
+  const size_t nv = d.num_vertices();
+  auto dup = d.insert(d.point(17));
+  EXPECT_EQ(dup.status, D::InsertStatus::kDuplicate);
+  EXPECT_EQ(dup.vertex, 17);
+  EXPECT_EQ(d.num_vertices(), nv);
+  const double inf[3] = {0, INFINITY, 0};
+  EXPECT_EQ(d.insert(inf).status, D::InsertStatus::kInvalid);
+}
+
+TEST(Delaunay3D, LocateClassifiesThePosition) {
+  auto r = D::build(grid(3));
+  ASSERT_TRUE(r.ok());
+  const D& d = r.value();
+  const double vertex[3] = {1, 1, 1}, inside[3] = {0.3, 0.4, 0.45}, out[3] = {5, 0, 0};
+  auto l = d.locate(vertex);
+  EXPECT_EQ(l.type, D::LocationType::kOnVertex);
+  EXPECT_EQ(l.vertex, 13);
+  EXPECT_EQ(d.locate(out).type, D::LocationType::kOutside);
+  EXPECT_TRUE(d.is_ghost(d.locate(out).tet));
+  auto li = d.locate(inside);
+  EXPECT_NE(li.type, D::LocationType::kOutside);
+  EXPECT_FALSE(d.is_ghost(li.tet));
+  // An edge midpoint of the grid is on an edge (or a face diagonal).
+  const double mid[3] = {0.5, 0, 0};
+  EXPECT_EQ(d.locate(mid).type, D::LocationType::kOnEdge);
+}
+
+TEST(Delaunay3D, Flip23Then32RestoresTheTetrahedra) {
+  auto r = D::build(random_cube(60, 21));
+  ASSERT_TRUE(r.ok());
+  D d = std::move(r.value());
+  auto before = d.finite_tets();
+  std::set<std::set<int32_t>> before_set;
+  for (size_t i = 0; i < before.size(); i += 4)
+    before_set.insert({before[i], before[i + 1], before[i + 2], before[i + 3]});
+  // Find an interior face whose 2-3 flip is valid.
+  bool flipped = false;
+  for (int32_t t = 0; t < int32_t(d.tet_capacity()) && !flipped; ++t) {
+    if (!d.is_live(t) || d.is_ghost(t)) continue;
+    for (int k = 0; k < 4 && !flipped; ++k) {
+      auto f = d.flip23(t, k);
+      if (!f.ok()) {
+        ASSERT_TRUE(d.check(false).ok()) << "a refused flip changed something";
+        continue;
+      }
+      flipped = true;
+      ASSERT_TRUE(d.check(false).ok()) << d.check(false).message();
+      EXPECT_FALSE(d.is_delaunay());
+      // The three new tetrahedra share the new edge; flip it back.
+      const int32_t* v = d.tet(f.value()[0]);
+      const int32_t* w = d.tet(f.value()[1]);
+      std::vector<int32_t> common;
+      for (int i = 0; i < 4; ++i)
+        if (std::find(w, w + 4, v[i]) != w + 4 &&
+            std::find(d.tet(f.value()[2]), d.tet(f.value()[2]) + 4, v[i]) !=
+                d.tet(f.value()[2]) + 4)
+          common.push_back(v[i]);
+      ASSERT_EQ(common.size(), 2u);
+      auto back = d.flip32(f.value()[0], common[0], common[1]);
+      ASSERT_TRUE(back.ok()) << back.message();
+      ASSERT_TRUE(d.check(true).ok()) << d.check(true).message();
+    }
+  }
+  ASSERT_TRUE(flipped);
+  auto after = d.finite_tets();
+  std::set<std::set<int32_t>> after_set;
+  for (size_t i = 0; i < after.size(); i += 4)
+    after_set.insert({after[i], after[i + 1], after[i + 2], after[i + 3]});
+  EXPECT_EQ(before_set, after_set);
+}
+
+TEST(Delaunay3D, Flip44OnAnOctahedron) {
+  // The regular octahedron (cospherical): 4 tetrahedra around one axis,
+  // chosen by the perturbation, with a planar ring.
+  std::vector<double> p = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
+  auto r = D::build(p);
+  ASSERT_TRUE(r.ok());
+  D d = std::move(r.value());
+  ASSERT_TRUE(d.check(true).ok());
+  EXPECT_EQ(d.num_finite_tets(), 4u);
+  int32_t a = -1, t = -1;
+  for (int32_t axis = 0; axis < 6 && t < 0; axis += 2)
+    if ((t = d.find_edge(axis, axis + 1)) >= 0) a = axis;
+  ASSERT_GE(t, 0);
+  std::vector<int32_t> ring_tets, ring;
+  d.edge_ring(t, a, a + 1, ring_tets, ring);
+  ASSERT_EQ(ring.size(), 4u);
+  auto f = d.flip44(t, a, a + 1, ring[0]);
+  ASSERT_TRUE(f.ok()) << f.message();
+  ASSERT_TRUE(d.check(false).ok()) << d.check(false).message();
+  EXPECT_LT(d.find_edge(a, a + 1), 0);
+  int32_t e = d.find_edge(ring[0], ring[2]);
+  EXPECT_GE(e, 0);
+  EXPECT_DOUBLE_EQ(total_volume(d), 4.0 / 3);
+  // The new edge is on the hull: no 3-2 flip there; a refused flip changes
+  // nothing.
+  EXPECT_FALSE(d.flip32(e, ring[0], ring[2]).ok());
+  EXPECT_TRUE(d.check(false).ok());
+}
+
+TEST(Delaunay3D, RemoveEdgeWithManyTetrahedra) {
+  // A ring of 7 points around the segment (0,0,-1)-(0,0,1): its edge has 7
+  // tetrahedra; removing it leaves 2 * 5 = 10.
+  std::vector<double> p = {0, 0, -1, 0, 0, 1};
+  for (int i = 0; i < 7; ++i)
+    p.insert(p.end(), {3 * std::cos(2 * M_PI * i / 7), 3 * std::sin(2 * M_PI * i / 7), 0.01 * i});
+  auto r = D::build(p);
+  ASSERT_TRUE(r.ok());
+  D d = std::move(r.value());
+  int32_t t = d.find_edge(0, 1);
+  ASSERT_GE(t, 0);
+  std::vector<int32_t> ring_tets, ring;
+  d.edge_ring(t, 0, 1, ring_tets, ring);
+  ASSERT_EQ(ring.size(), 7u);
+  double vol = total_volume(d);
+  auto res = d.remove_edge(t, 0, 1);
+  ASSERT_TRUE(res.ok()) << res.message();
+  EXPECT_EQ(res.value().size(), 10u);
+  ASSERT_TRUE(d.check(false).ok()) << d.check(false).message();
+  EXPECT_LT(d.find_edge(0, 1), 0);
+  EXPECT_NEAR(total_volume(d), vol, 1e-12 * vol);
+  // Insertion still works (checked cavity) after flips.
+  for (double z : {0.1, -0.2, 0.3}) {
+    const double q[3] = {0.2, -0.1, z};
+    ASSERT_EQ(d.insert(q).status, D::InsertStatus::kInserted);
+    ASSERT_TRUE(d.check(false).ok()) << d.check(false).message();
+  }
+}
+
+TEST(Delaunay3D, ConstrainedFaceSurvivesInsertion) {
+  auto r = D::build(grid(4));
+  ASSERT_TRUE(r.ok());
+  D d = std::move(r.value());
+  // Constrain every face in the plane x = 1.
+  int constrained = 0;
+  for (int32_t t = 0; t < int32_t(d.tet_capacity()); ++t) {
+    if (!d.is_live(t) || d.is_ghost(t)) continue;
+    for (int k = 0; k < 4; ++k) {
+      bool on = true;
+      for (int s = 0; s < 4; ++s)
+        if (s != k) on = on && d.point(d.tet(t)[s])[0] == 1;
+      if (on && !d.is_constrained(t, k)) {
+        d.set_constrained(t, k, true);
+        ++constrained;
+      }
+    }
+  }
+  EXPECT_EQ(constrained, 2 * 9);
+  // Points just beside the plane: their circumspheres cross it.
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(0.05, 2.95);
+  for (int i = 0; i < 200; ++i) {
+    const double q[3] = {i % 2 ? 0.999 : 1.001, u(rng), u(rng)};
+    auto ins = d.insert(q, -1, true);
+    ASSERT_TRUE(ins.status == D::InsertStatus::kInserted ||
+                ins.status == D::InsertStatus::kBlocked);
+    ASSERT_TRUE(d.check(false).ok()) << d.check(false).message();
+  }
+  // Still 18 constrained faces, all in the plane, and no tetrahedron
+  // crosses it.
+  int count = 0;
+  for (int32_t t = 0; t < int32_t(d.tet_capacity()); ++t) {
+    if (!d.is_live(t) || d.is_ghost(t)) continue;
+    bool left = false, right = false;
+    for (int s = 0; s < 4; ++s) {
+      left = left || d.point(d.tet(t)[s])[0] < 1;
+      right = right || d.point(d.tet(t)[s])[0] > 1;
+    }
+    EXPECT_FALSE(left && right);
+    for (int k = 0; k < 4; ++k) count += d.is_constrained(t, k);
+  }
+  EXPECT_EQ(count, 2 * 18);
+  // A point on a constrained face is refused, outside the hull too.
+  const double on_face[3] = {1, 1.2, 1.3}, outside[3] = {9, 9, 9};
+  EXPECT_EQ(d.insert(on_face, -1, true).status, D::InsertStatus::kBlocked);
+  EXPECT_EQ(d.insert(outside, -1, true).status, D::InsertStatus::kOutsideHull);
+  EXPECT_TRUE(d.check(false).ok());
+}
+
+}  // namespace
+}  // namespace vm
