@@ -28,14 +28,17 @@ usage:
   vesselmesh info FILE.stl [--json]
       Read, weld and analyze a lumen surface: counts, openings, genus,
       non-manifold edges, triangle quality gamma_k.
-  vesselmesh mesh FILE.stl -o OUT.msh --surface-only [size options]
+  vesselmesh mesh FILE.stl -o OUT.msh [--surface-only] [size options]
+                  [--inlet K] [--core-size H]
                   [--param lscm|harmonic|floater] [--mesher2d frontal|delaunay|adapt]
                   [--msh-version 4.1|2.2] [--largest-component] [--report FILE.json]
                   [--no-remesh]
-      Remesh the surface by conformal maps and write it as Gmsh MSH, the
-      physical surface `wall` (the volume stage is not there yet, so
-      --surface-only is what mesh does for now; --no-remesh writes the
-      repaired input instead).
+      Remesh the surface by conformal maps, cap each opening with a planar
+      triangulation, fill the lumen with tetrahedra and write Gmsh MSH:
+      surfaces `wall`, `inlet`, `outlet_1..k`, volume `lumen`.
+      --surface-only writes the remeshed wall alone; --no-remesh uses the
+      repaired input surface as it is. --inlet K names opening K (as
+      `info` lists them, largest first) `inlet` instead of the largest.
       Size options (model units):
         --size H                 uniform target edge length
         --per-circumference N    h = 2 pi R(x) / N, R the local vessel radius
@@ -45,6 +48,8 @@ usage:
         --curvature P            at least P edges per radian of curvature
         --feature-angle A        keep creases sharper than A degrees (default 60;
                                  180: none)
+        --core-size H            target size in the core of the lumen (default:
+                                 grown from the wall size by the gradation)
   vesselmesh phantom OUT.stl [--kind bifurcation|tube|aneurysm|torus]
                   [--voxel V] [--noise A] [--seed N] [--scale S] [--closed]
       Write a synthetic segmentation-like vessel surface (binary STL).
@@ -214,6 +219,7 @@ int cmd_mesh(int argc, char** argv) {
   }
   options.largest_component_only = a.has("--largest-component");
   options.remesh = !a.has("--no-remesh");
+  options.volume = !a.has("--surface-only");
   std::string err;
   auto bytes = read_file(a.positional[0], err);
   if (!bytes) return fail(err);
@@ -227,10 +233,21 @@ int cmd_mesh(int argc, char** argv) {
   }
   if (!a.has("--quiet")) {
     for (const std::string& w : res.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-    std::printf(
-        "wrote %s: %zu vertices, %zu triangles (wall), gamma_k min %.4f mean %.4f, %.3f s\n",
-        out->c_str(), res.output_surface.num_vertices(), res.output_surface.num_triangles(),
-        res.output_quality_stats.min, res.output_quality_stats.mean, res.seconds_total);
+    std::printf("wrote %s in %.3f s:", out->c_str(), res.seconds_total);
+    for (const vm::OutputGroup& g : res.groups)
+      std::printf(" %s %zu%s", g.name.c_str(), g.elements, &g == &res.groups.back() ? "\n" : ",");
+    std::printf("wall: %zu vertices, %zu triangles, gamma_k min %.4f mean %.4f\n",
+                res.output_surface.num_vertices(), res.output_surface.num_triangles(),
+                res.output_quality_stats.min, res.output_quality_stats.mean);
+    if (!res.volume.tets.empty()) {
+      const vm::VolumeStats& vs = res.volume_stats;
+      std::printf(
+          "volume: %zu vertices, %zu tetrahedra, gamma_t min %.4f mean %.4f; %zu Steiner points; "
+          "time: caps %.2f s, recovery %.2f s, refinement %.2f s, check %.2f s\n",
+          res.volume.num_vertices(), res.volume.num_tets(), res.tet_quality_stats.min,
+          res.tet_quality_stats.mean, vs.steiner_points, vs.seconds_caps, vs.seconds_recovery,
+          vs.seconds_refinement, vs.seconds_check);
+    }
     if (res.remeshed) {
       const vm::RemeshStats& st = res.remesh_stats;
       std::printf(

@@ -24,8 +24,8 @@ Status need(std::string_view name, std::string_view what) {
 
 const std::vector<std::string_view>& job_option_names() {
   static const std::vector<std::string_view> names = {
-      "size",  "per-circumference", "size-min",    "size-max",     "gradation", "curvature",
-      "param", "mesher2d",          "msh-version", "feature-angle"};
+      "size",  "per-circumference", "size-min",    "size-max",      "gradation", "curvature",
+      "param", "mesher2d",          "msh-version", "feature-angle", "inlet",     "core-size"};
   return names;
 }
 
@@ -53,6 +53,13 @@ Status set_job_option(MeshJobOptions& o, std::string_view name, std::string_view
   } else if (name == "curvature") {
     if (!number || x < 0) return need(name, "a number of points per radian >= 0");
     size.curvature_points = x;
+  } else if (name == "inlet") {
+    if (!number || x < 1 || x != std::floor(x))
+      return need(name, "an opening number >= 1 (as `vesselmesh info` lists them)");
+    o.inlet = int(x) - 1;
+  } else if (name == "core-size") {
+    if (!number || x < 0) return need(name, "a length >= 0 (0: grow from the wall size)");
+    o.core_size = x;
   } else if (name == "feature-angle") {
     if (!number || x <= 0 || x > 180)
       return need(name, "an angle in degrees in (0, 180] (180: no sharp features)");

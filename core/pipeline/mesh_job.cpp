@@ -4,11 +4,125 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/surface_distance.h"
+#include "core/mesh/volume_check.h"
+#include "core/quality/tet_quality.h"
+#include "core/volume/boundary_recovery.h"
 
 namespace vm {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// Mean length of the edges at each vertex of m (a size for vertices that
+/// have no target size, e.g. of an input used as it is).
+std::vector<double> mean_edge_lengths(const SurfaceMesh& m) {
+  std::vector<double> sum(m.num_vertices(), 0.0), count(m.num_vertices(), 0.0);
+  for (size_t t = 0; t < m.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int32_t a = m.triangles[3 * t + size_t(k)],
+                    b = m.triangles[3 * t + size_t((k + 1) % 3)];
+      const double* pa = &m.points[3 * size_t(a)];
+      const double* pb = &m.points[3 * size_t(b)];
+      const double l =
+          std::sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
+                    (pa[2] - pb[2]) * (pa[2] - pb[2]));
+      for (int32_t v : {a, b}) sum[size_t(v)] += l, count[size_t(v)] += 1;
+    }
+  for (size_t v = 0; v < sum.size(); ++v) sum[v] = count[v] > 0 ? sum[v] / count[v] : 0;
+  return sum;
+}
+
+/// The cap that becomes the inlet: the output opening nearest to the
+/// input's opening `inlet` (input openings are listed largest first, like
+/// the caps).
+Result<int> inlet_cap(const MeshJobResult& r, int inlet) {
+  const auto& in = r.surface.topology.openings;
+  const TopologyReport out = analyze_topology(r.output_surface);
+  if (out.openings.empty()) return 0;
+  if (inlet < 0 || size_t(inlet) >= in.size())
+    return Result<int>::Error("--inlet must be between 1 and the number of openings (" +
+                              std::to_string(in.size()) + ")");
+  const auto& c = in[size_t(inlet)].centroid;
+  int best = 0;
+  double best_d2 = 1e300;
+  for (size_t i = 0; i < out.openings.size(); ++i) {
+    const auto& o = out.openings[i].centroid;
+    const double d2 = (o[0] - c[0]) * (o[0] - c[0]) + (o[1] - c[1]) * (o[1] - c[1]) +
+                      (o[2] - c[2]) * (o[2] - c[2]);
+    if (d2 < best_d2) best_d2 = d2, best = int(i);
+  }
+  return best;
+}
+
+/// Stages 4 and 6: caps on the openings, then the tetrahedra of the lumen;
+/// checks the result before anything is written.
+Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
+                   const std::vector<double>& wall_sizes, const ProgressFn& progress) {
+  VolumeStats& st = r.volume_stats;
+  auto t0 = std::chrono::steady_clock::now();
+  if (!report_progress(progress, 0.9, "caps")) return Status::Error(kCancelledMessage);
+  auto inlet = inlet_cap(r, options.inlet);
+  if (!inlet.ok()) return inlet.status();
+  CapOptions co;
+  co.inlet_index = inlet.value();
+  auto capped = cap_openings(r.output_surface, wall_sizes, co);
+  if (!capped.ok()) return capped.status();
+  r.capped = std::move(capped).value();
+  r.surface_names = {"wall"};
+  for (const CapInfo& c : r.capped.caps) {
+    r.surface_names.push_back(c.name);
+    if (c.max_projection_distance > 0.2 * r.capped.caps.front().perimeter / 6.283)
+      r.warnings.push_back("opening " + c.name + " is far from planar: its rim moved up to " +
+                           std::to_string(c.max_projection_distance) + " onto the cap plane");
+  }
+  st.seconds_caps = seconds_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  if (!report_progress(progress, 0.92, "tetrahedra")) return Status::Error(kCancelledMessage);
+  auto recovered =
+      recover_boundary(r.capped.mesh.points, r.capped.mesh.triangles, r.capped.triangle_tag);
+  if (!recovered.ok()) return Status::Error("volume meshing failed: " + recovered.message());
+  st.steiner_points = size_t(recovered.value().steiner_points);
+  r.volume = std::move(recovered.value().mesh);
+  st.seconds_recovery = seconds_since(t0);
+
+  // Never write a wrong volume: positive, conforming, bounded by the surface.
+  t0 = std::chrono::steady_clock::now();
+  auto check = check_volume_mesh(r.volume);
+  if (!check.ok())
+    return Status::Error("internal error, the volume mesh is invalid: " + check.message());
+  st.seconds_check = seconds_since(t0);
+  r.tet_quality = tet_qualities(r.volume);
+  r.tet_quality_stats = quality_stats(r.tet_quality, options.prepare.histogram_bins);
+  return Status::Ok();
+}
+
+/// The MSH model of a meshed volume: one physical surface per triangle tag
+/// (wall, inlet, outlet_k), the physical volume `lumen`.
+MshModel volume_model(const MeshJobResult& r) {
+  MshModel model;
+  model.points = r.volume.points;
+  for (size_t tag = 0; tag < r.surface_names.size(); ++tag) {
+    MshBlock b{MshElementType::kTriangle, int(tag) + 1, int(tag) + 1, {}};
+    for (size_t t = 0; t < r.volume.num_triangles(); ++t)
+      if (r.volume.triangle_tag[t] == int32_t(tag))
+        b.nodes.insert(b.nodes.end(), &r.volume.triangles[3 * t], &r.volume.triangles[3 * t] + 3);
+    model.physicals.push_back({2, int(tag) + 1, r.surface_names[tag]});
+    model.blocks.push_back(std::move(b));
+  }
+  model.physicals.push_back({3, 1, "lumen"});
+  model.blocks.push_back({MshElementType::kTetrahedron, 1, 1, r.volume.tets});
+  return model;
+}
+
+}  // namespace
 
 Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
                                    const MeshJobOptions& options, const ProgressFn& progress) {
@@ -34,6 +148,7 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
   } else {
     r.output_surface = r.surface.mesh;
   }
+  std::vector<double> wall_sizes;  // target size per wall vertex
   if (options.remesh) {
     ProgressFn remesh_progress = [&](double f, std::string_view stage) {
       return report_progress(progress, 0.2 + 0.7 * f, stage);
@@ -42,6 +157,7 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
     auto remeshed =
         remesh_surface(r.output_surface, options.remesh_options, &r.remesh_stats, remesh_progress);
     if (!remeshed.ok()) return remeshed.status();
+    wall_sizes = remeshed.value().sizes;
     const SurfaceMesh input = std::move(r.output_surface);
     r.output_surface = std::move(remeshed.value().mesh);
     r.remeshed = true;
@@ -74,20 +190,22 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
                            " pairs of triangles): try a smaller size");
   }
 
+  if (wall_sizes.empty()) wall_sizes = mean_edge_lengths(r.output_surface);
   if (!report_progress(progress, 0.9, "quality")) return Status::Error(kCancelledMessage);
   r.output_quality = triangle_qualities(r.output_surface);
   r.output_quality_stats = quality_stats(r.output_quality, options.prepare.histogram_bins);
 
-  if (!report_progress(progress, 0.95, "write")) return Status::Error(kCancelledMessage);
   MshModel model;
-  model.points = r.output_surface.points;
-  model.physicals.push_back({2, 1, "wall"});
-  MshBlock wall;
-  wall.type = MshElementType::kTriangle;
-  wall.entity_tag = 1;
-  wall.physical_tag = 1;
-  wall.nodes = r.output_surface.triangles;
-  model.blocks.push_back(std::move(wall));
+  if (options.volume) {
+    Status st = mesh_volume(r, options, wall_sizes, progress);
+    if (!st.ok()) return st;
+    model = volume_model(r);
+  } else {
+    model.points = r.output_surface.points;
+    model.physicals.push_back({2, 1, "wall"});
+    model.blocks.push_back({MshElementType::kTriangle, 1, 1, r.output_surface.triangles});
+  }
+  if (!report_progress(progress, 0.95, "write")) return Status::Error(kCancelledMessage);
   for (const MshPhysical& ph : model.physicals) {
     OutputGroup g{ph.dim, ph.name, 0};
     for (const MshBlock& b : model.blocks)

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "core/io/msh_writer.h"
+#include "core/mesh/volume_mesh.h"
 #include "core/pipeline/prepare_surface.h"
+#include "core/surface/caps.h"
 #include "core/surface/remesh_surface.h"
 #include "core/util/progress.h"
 #include "core/util/result.h"
@@ -22,9 +24,25 @@ struct MeshJobOptions {
   /// Keep only the largest connected component instead of refusing inputs
   /// with several components.
   bool largest_component_only = false;
-  /// Remesh the surface (else the repaired input surface is written).
+  /// Remesh the surface (else the repaired input surface is used).
   bool remesh = true;
   RemeshOptions remesh_options;
+  /// Mesh the volume: caps on the openings and tetrahedra inside (else only
+  /// the wall surface is written).
+  bool volume = true;
+  /// Which opening becomes `inlet`: an index into the input's openings as
+  /// `vesselmesh info` lists them (largest first); 0 = the largest.
+  int inlet = 0;
+  /// Target edge length in the core of the lumen (0: grow from the wall
+  /// size with the gradation, no cap).
+  double core_size = 0;
+};
+
+/// Counts and timings of the volume stages.
+struct VolumeStats {
+  size_t steiner_points = 0;   ///< added on the surface by boundary recovery
+  size_t inserted_points = 0;  ///< added inside by refinement
+  double seconds_caps = 0, seconds_recovery = 0, seconds_refinement = 0, seconds_check = 0;
 };
 
 /// How faithful the remeshed surface is to its input (issue 3's checks).
@@ -59,6 +77,15 @@ struct MeshJobResult {
   RemeshStats remesh_stats;        ///< when remeshed
   TopologyReport output_topology;  ///< when remeshed (checked equal to the input's)
   SurfaceFidelity fidelity;        ///< when remeshed
+  /// When the volume was meshed: the closed surface (wall + caps) and the
+  /// volume mesh (tets, region 0 = lumen; its triangles are the surface as
+  /// written, with one tag per triangle: 0 wall, i inlet/outlets as caps).
+  CappedSurface capped;
+  VolumeMesh volume;
+  std::vector<std::string> surface_names;  ///< per triangle tag
+  std::vector<float> tet_quality;          ///< gamma_t per tetrahedron
+  QualityStats tet_quality_stats;
+  VolumeStats volume_stats;
   std::vector<std::string> warnings;
   double seconds_total = 0;
 };

@@ -114,6 +114,41 @@ std::string mesh_report_json(const MeshJobResult& r) {
     j.end_object();
     j.end_object();
   }
+  if (!r.volume.tets.empty()) {
+    j.key("caps").begin_array();
+    for (const CapInfo& c : r.capped.caps) {
+      j.begin_object();
+      j.key("name").value(c.name);
+      j.key("area").value(c.area);
+      j.key("perimeter").value(c.perimeter);
+      j.key("centroid").array(std::vector<double>(c.centroid.begin(), c.centroid.end()));
+      j.key("normal").array(std::vector<double>(c.normal.begin(), c.normal.end()));
+      j.key("triangles").value(c.triangles);
+      j.key("max_projection_distance").value(c.max_projection_distance);
+      j.key("quality").begin_object();
+      j.key("min").value(c.quality_min);
+      j.key("mean").value(c.quality_mean);
+      j.end_object();
+      j.end_object();
+    }
+    j.end_array();
+    const VolumeStats& vs = r.volume_stats;
+    j.key("volume").begin_object();
+    j.key("vertices").value(r.volume.num_vertices());
+    j.key("tetrahedra").value(r.volume.num_tets());
+    j.key("boundary_triangles").value(r.volume.num_triangles());
+    j.key("steiner_points").value(vs.steiner_points);
+    j.key("inserted_points").value(vs.inserted_points);
+    j.key("quality");
+    write_quality(j, r.tet_quality_stats);
+    j.key("seconds").begin_object();
+    j.key("caps").value(vs.seconds_caps);
+    j.key("recovery").value(vs.seconds_recovery);
+    j.key("refinement").value(vs.seconds_refinement);
+    j.key("check").value(vs.seconds_check);
+    j.end_object();
+    j.end_object();
+  }
   j.key("groups").begin_array();
   for (const OutputGroup& g : r.groups) {
     j.begin_object();

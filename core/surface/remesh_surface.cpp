@@ -305,6 +305,7 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
   std::vector<double> out_size = output_sizes(input, out.home, h);
   const auto ostats =
       optimize_on_surface(out.mesh, out.home, fixed, out_size, input, adj, options.optimize);
+  out.sizes = out_size;
   out.on_opening.resize(fixed.size());
   out.on_feature.resize(fixed.size());
   for (size_t v = 0; v < fixed.size(); ++v) {

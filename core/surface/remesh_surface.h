@@ -63,6 +63,8 @@ struct RemeshedSurface {
   std::vector<uint8_t> on_feature;
   /// The size field at the input vertices.
   std::vector<double> input_sizes;
+  /// The target size at each output vertex (from its home triangle).
+  std::vector<double> sizes;
 };
 
 /// Remeshes `input` (one component, manifold, consistently oriented, as

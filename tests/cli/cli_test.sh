@@ -50,13 +50,14 @@ check "mesh 4.1" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif41.msh"
 check "mesh 2.2" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif22.msh" --msh-version 2.2
 check "msh 4.1 header" [ "$(sed -n 2p "$T/bif41.msh")" = "4.1 0 8" ]
 check "msh 2.2 header" [ "$(sed -n 2p "$T/bif22.msh")" = "2.2 0 8" ]
-check "report groups" [ "$(json "$T/report.json" "d['output']['groups'][0]['name']")" = wall ]
 check "mesh bad size" expect_exit 2 "--size needs a positive length" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size -1
 check "mesh bad N" expect_exit 2 "--per-circumference needs" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --per-circumference 2
 check "mesh bad param" expect_exit 2 "lscm, harmonic or floater" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --param conformal
 check "mesh bad mesher" expect_exit 2 "frontal, delaunay or adapt" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --mesher2d quad
 check "mesh min > max" expect_exit 1 "at most --size-max" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size-min 2 --size-max 1
-check "mesh surface-only uniform" expect_exit 0 "remeshed:" "$VM" mesh "$T/bif.stl" -o "$T/u.msh" --surface-only --size 0.2 --param floater --mesher2d delaunay
+check "mesh surface-only uniform" expect_exit 0 "remeshed:" "$VM" mesh "$T/bif.stl" -o "$T/u.msh" --surface-only --size 0.2 --param floater --mesher2d delaunay --report "$T/u.json"
+check "mesh bad inlet" expect_exit 1 "--inlet must be between 1 and the number of openings (3)" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --inlet 7
+check "mesh inlet not a number" expect_exit 2 "--inlet needs an opening number" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --inlet first
 check "mesh no-remesh" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/n.msh" --no-remesh
 check "mesh unwritable output" expect_exit 1 "cannot write" "$VM" mesh "$T/bif.stl" -o "$T/no/such/dir/x.msh"
 
@@ -81,24 +82,40 @@ PY
 check "two components refused" expect_exit 1 "2 connected components" "$VM" mesh "$T/two.stl" -o "$T/two.msh"
 check "largest component" expect_exit 0 "wrote" "$VM" mesh "$T/two.stl" -o "$T/two.msh" --largest-component
 
-# Gmsh reads both versions with the same triangle count and a `wall` group.
+# Gmsh reads both versions: the named groups, the element counts of the
+# report, and no inverted tetrahedron (signed volumes from the nodes).
+check "report volume groups" [ "$(json "$T/report.json" "','.join(g['name'] for g in d['output']['groups'])")" = "wall,inlet,outlet_1,outlet_2,lumen" ]
+check "mesh surface-only writes the wall" [ "$(json "$T/u.json" "[g['name'] for g in d['output']['groups']]")" = "['wall']" ]
 if /usr/bin/python3 -c "import gmsh" 2>/dev/null; then
-  ntri=$(json "$T/report.json" "d['output']['triangles']")
+  want=$(json "$T/report.json" "'%d %d' % (d['output']['volume']['boundary_triangles'], d['output']['volume']['tetrahedra'])")
   for f in bif41 bif22; do
     got=$(/usr/bin/python3 - "$T/$f.msh" <<'PY'
-import sys, gmsh
+import sys, gmsh, numpy as np
 gmsh.initialize()
 gmsh.option.setNumber("General.Verbosity", 0)
 gmsh.open(sys.argv[1])
 names = [gmsh.model.getPhysicalName(d, t) for d, t in gmsh.model.getPhysicalGroups()]
-types, tags, _ = gmsh.model.mesh.getElements(2)
-n = sum(len(t) for ty, t in zip(types, tags) if ty == 2)
-print(n, ",".join(names))
+tags, coords, _ = gmsh.model.mesh.getNodes()
+xyz = np.zeros((int(tags.max()) + 1, 3))
+xyz[tags.astype(int)] = coords.reshape(-1, 3)
+ntri = ntet = 0
+vmin = 1.0
+for dim in (2, 3):
+    for ty, _, nodes in zip(*gmsh.model.mesh.getElements(dim)):
+        if ty == 2:
+            ntri += len(nodes) // 3
+        if ty == 4:
+            t = nodes.astype(int).reshape(-1, 4)
+            a, b, c, e = (xyz[t[:, k]] for k in range(4))
+            v = np.einsum("ij,ij->i", np.cross(b - a, c - a), e - a)
+            ntet += len(t)
+            vmin = min(vmin, v.min())
+print(ntri, ntet, ",".join(names), "positive" if vmin > 0 else "INVERTED")
 gmsh.finalize()
 PY
 )
     got=$(printf '%s\n' "$got" | tail -n 1)
-    check "gmsh reads $f" [ "$got" = "$ntri wall" ]
+    check "gmsh reads $f" [ "$got" = "$want wall,inlet,outlet_1,outlet_2,lumen positive" ]
   done
 else
   echo "note: gmsh Python API not installed; Gmsh read check skipped"

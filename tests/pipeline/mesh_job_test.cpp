@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "core/mesh/enclosed_volume.h"
+#include "core/mesh/volume_check.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/job_options.h"
 #include "core/pipeline/report_json.h"
@@ -58,6 +60,7 @@ TEST(MeshJob, WithoutRemeshingWritesTheInputAsTheWallGroup) {
   for (auto version : {MshVersion::k41, MshVersion::k22}) {
     MeshJobOptions o;
     o.remesh = false;
+    o.volume = false;
     o.msh_version = version;
     auto r = run_mesh_job(write_stl_binary(tube), o);
     ASSERT_TRUE(r.ok()) << r.message();
@@ -98,6 +101,7 @@ TEST(MeshJob, RemeshesKeepingTopologyAndWritesEveryTriangleAsWall) {
   ASSERT_TRUE(phantom.ok()) << phantom.message();
   MeshJobOptions o;
   ASSERT_TRUE(set_job_option(o, "size", "0.15").ok());
+  o.volume = false;
   auto r = run_mesh_job(write_stl_binary(phantom.value()), o);
   ASSERT_TRUE(r.ok()) << r.message();
   const MeshJobResult& res = r.value();
@@ -116,6 +120,61 @@ TEST(MeshJob, RemeshesKeepingTopologyAndWritesEveryTriangleAsWall) {
   EXPECT_EQ(res.fidelity.self_intersections, 0u);
   EXPECT_GT(res.fidelity.max_input_gap, 0.0);
   EXPECT_LT(res.fidelity.max_input_gap, 0.5);
+}
+
+TEST(MeshJob, MeshesTheLumenWithNamedPlanarCaps) {
+  // The bifurcation phantom: 3 openings, so inlet, outlet_1, outlet_2; the
+  // volume is checked (positive, conforming, bounded by wall + caps) and
+  // fills exactly the capped surface.
+  PhantomOptions po;
+  po.kind = PhantomKind::kBifurcation;
+  po.noise = 0.3;
+  auto phantom = make_vessel_phantom(po);
+  ASSERT_TRUE(phantom.ok()) << phantom.message();
+  MeshJobOptions o;
+  ASSERT_TRUE(set_job_option(o, "size", "0.2").ok());
+  auto r = run_mesh_job(write_stl_binary(phantom.value()), o);
+  ASSERT_TRUE(r.ok()) << r.message();
+  const MeshJobResult& res = r.value();
+  std::vector<std::string> names;
+  for (const OutputGroup& g : res.groups) {
+    names.push_back(g.name);
+    EXPECT_GT(g.elements, 0u) << g.name;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"wall", "inlet", "outlet_1", "outlet_2", "lumen"}));
+  auto check = check_volume_mesh(res.volume);
+  ASSERT_TRUE(check.ok()) << check.message();
+  EXPECT_NEAR(check.value().volume, enclosed_volume(res.capped.mesh),
+              1e-9 * enclosed_volume(res.capped.mesh));
+  EXPECT_GT(res.tet_quality_stats.min, 0.0);
+  // The inlet is the largest opening; caps are planar.
+  ASSERT_EQ(res.capped.caps.size(), 3u);
+  EXPECT_GE(res.capped.caps[0].area, res.capped.caps[1].area);
+  const double tol = 1e-9 * bounding_box(res.capped.mesh.points).diagonal();
+  for (size_t t = 0; t < res.volume.num_triangles(); ++t) {
+    const int32_t tag = res.volume.triangle_tag[t];
+    if (tag == 0) continue;
+    const CapInfo& cap = res.capped.caps[size_t(tag - 1)];
+    for (int k = 0; k < 3; ++k) {
+      const double* x = &res.volume.points[3 * size_t(res.volume.triangles[3 * t + size_t(k)])];
+      double d = 0;
+      for (int c = 0; c < 3; ++c) d += (x[c] - cap.centroid[size_t(c)]) * cap.normal[size_t(c)];
+      ASSERT_LE(std::abs(d), tol) << cap.name;
+    }
+  }
+  // --inlet picks another opening: the inlet is then at that opening.
+  ASSERT_TRUE(set_job_option(o, "inlet", "3").ok());
+  auto r3 = run_mesh_job(write_stl_binary(phantom.value()), o);
+  ASSERT_TRUE(r3.ok()) << r3.message();
+  const auto& in3 = r3.value().surface.topology.openings[2].centroid;
+  const auto& inlet3 = r3.value().capped.caps[0].centroid;
+  EXPECT_EQ(r3.value().capped.caps[0].name, "inlet");
+  EXPECT_LT(std::hypot(in3[0] - inlet3[0], in3[1] - inlet3[1], in3[2] - inlet3[2]),
+            0.5 * r3.value().surface.topology.openings[2].radius);
+  ASSERT_TRUE(set_job_option(o, "inlet", "4").ok());
+  auto r4 = run_mesh_job(write_stl_binary(phantom.value()), o);
+  ASSERT_FALSE(r4.ok());
+  EXPECT_NE(r4.message().find("--inlet"), std::string::npos) << r4.message();
 }
 
 TEST(MeshJob, NonManifoldIsRefusedWithALocation) {
@@ -156,10 +215,10 @@ TEST(ReportJson, HasTheDocumentedKeys) {
     EXPECT_NE(a.find(key), std::string::npos) << key << " in " << a;
   EXPECT_EQ(count(a, "\"radius\":"), 2u);
   std::string m = mesh_report_json(r.value());
-  const std::string groups = "\"groups\":[{\"dim\":2,\"name\":\"wall\",\"elements\":" +
-                             std::to_string(r.value().output_surface.num_triangles()) + "}]";
-  EXPECT_NE(m.find(groups), std::string::npos) << m;
-  for (const char* key : {"\"remesh\":{\"patches\":", "\"seam_points\":", "\"genus\":0"})
+  for (const char* key :
+       {"\"remesh\":{\"patches\":", "\"seam_points\":", "\"genus\":0",
+        "\"caps\":[{\"name\":\"inlet\"", "\"volume\":{\"vertices\":", "\"tetrahedra\":",
+        "\"groups\":[{\"dim\":2,\"name\":\"wall\",\"elements\":", "{\"dim\":3,\"name\":\"lumen\""})
     EXPECT_NE(m.find(key), std::string::npos) << key << " in " << m;
 }
 
