@@ -60,6 +60,30 @@ void set_surface(val& r, const vm::SurfaceMesh& m, const std::vector<float>& qua
   r.set("surface", s);
 }
 
+/// The volume mesh for display: positions, tets and their gamma_t and
+/// region, the boundary triangles with their surface tag, and the names of
+/// the tags.
+void set_volume(val& r, const vm::MeshJobResult& res) {
+  const vm::VolumeMesh& m = res.volume;
+  std::vector<float> positions(m.points.begin(), m.points.end());
+  val v = val::object();
+  v.set("positions", copy_out(positions.data(), positions.size(), "Float32Array"));
+  v.set("tets",
+        copy_out(reinterpret_cast<const uint32_t*>(m.tets.data()), m.tets.size(), "Uint32Array"));
+  v.set("tetQuality", copy_out(res.tet_quality.data(), res.tet_quality.size(), "Float32Array"));
+  v.set("tetRegion", copy_out(m.tet_region.data(), m.tet_region.size(), "Int32Array"));
+  v.set("triangles", copy_out(reinterpret_cast<const uint32_t*>(m.triangles.data()),
+                              m.triangles.size(), "Uint32Array"));
+  v.set("triangleTag", copy_out(m.triangle_tag.data(), m.triangle_tag.size(), "Int32Array"));
+  val names = val::array();
+  for (const std::string& n : res.surface_names) names.call<void>("push", n);
+  v.set("surfaceNames", names);
+  val regions = val::array();
+  regions.call<void>("push", std::string("lumen"));
+  v.set("regionNames", regions);
+  r.set("volume", v);
+}
+
 val analyze(val stl, val progress) {
   std::vector<uint8_t> bytes = bytes_from(stl);
   auto prepared = vm::prepare_surface(bytes, {}, progress_from(progress));
@@ -94,6 +118,7 @@ val mesh(val stl, val opts, val progress) {
         copy_out(reinterpret_cast<const uint8_t*>(res.msh.data()), res.msh.size(), "Uint8Array"));
   r.set("reportJson", vm::mesh_report_json(res));
   set_surface(r, res.output_surface, res.output_quality);
+  if (!res.volume.tets.empty()) set_volume(r, res);
   return r;
 }
 

@@ -48,6 +48,8 @@ const MESH_OPTIONS = {
   param: 'param',
   mesher2d: 'mesher2d',
   featureAngle: 'feature-angle',
+  inlet: 'inlet',
+  coreSize: 'core-size',
 };
 const JS_NAMES = Object.fromEntries(Object.entries(MESH_OPTIONS).map(([js, core]) => [core, js]));
 
@@ -77,7 +79,13 @@ export async function createVesselmesh({ wasmBinary } = {}) {
 
     /**
      * Meshes an STL: remeshes the surface by conformal maps (unless
-     * remesh is false) and returns the MSH file bytes and the report.
+     * remesh is false), caps the openings and fills the lumen with
+     * tetrahedra (unless surfaceOnly), and returns the MSH file bytes, the
+     * report, the wall surface and the volume: { positions, tets,
+     * tetQuality (gamma_t), tetRegion, triangles, triangleTag, surfaceNames
+     * (per tag: 'wall', 'inlet', 'outlet_1'...), regionNames }. `inlet`
+     * (1-based, the analysis' opening order) picks the inlet; `coreSize`
+     * caps the size in the core.
      * Size: `size` (uniform h) or `perCircumference` (h = 2 pi R / N, the
      * default with N = 20), clamps `sizeMin` / `sizeMax`, `gradation`,
      * `curvature`, `featureAngle` (degrees; sharper creases are kept, 180:
@@ -88,7 +96,14 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      */
     mesh(
       stlBytes,
-      { mshVersion = '4.1', largestComponentOnly = false, remesh = true, onProgress, ...rest } = {},
+      {
+        mshVersion = '4.1',
+        largestComponentOnly = false,
+        remesh = true,
+        surfaceOnly = false,
+        onProgress,
+        ...rest
+      } = {},
     ) {
       const bytes = asBytes(stlBytes);
       if (!bytes) return fail('mesh: the input must be a Uint8Array or ArrayBuffer');
@@ -98,10 +113,11 @@ export async function createVesselmesh({ wasmBinary } = {}) {
       for (const [name, value] of [
         ['largestComponentOnly', largestComponentOnly],
         ['remesh', remesh],
+        ['surfaceOnly', surfaceOnly],
       ]) {
         if (typeof value !== 'boolean') return fail(`mesh: ${name} must be true or false`);
       }
-      const options = { 'msh-version': mshVersion, largestComponentOnly, remesh };
+      const options = { 'msh-version': mshVersion, largestComponentOnly, remesh, surfaceOnly };
       for (const [name, value] of Object.entries(rest)) {
         const coreName = MESH_OPTIONS[name];
         if (!coreName) return fail(`mesh: unknown option '${name}'`);
@@ -120,7 +136,11 @@ export async function createVesselmesh({ wasmBinary } = {}) {
         const error = raw.error.replace(/--([a-z0-9-]+)/g, (m, flag) => JS_NAMES[flag] ?? m);
         return { ok: false, error, ...(raw.cancelled && { cancelled: true }) };
       }
-      return withSurface(raw, { msh: raw.msh, report: JSON.parse(raw.reportJson) });
+      return withSurface(raw, {
+        msh: raw.msh,
+        report: JSON.parse(raw.reportJson),
+        ...(raw.volume && { volume: raw.volume }),
+      });
     },
 
     /**
