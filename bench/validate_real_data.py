@@ -134,6 +134,102 @@ def check_remesh(fname, path, tmp, args, d, have_gmsh, mode, mesher="frontal"):
             check(fname, abs(med / h - 1) <= 0.1, f"remesh {tag}: median edge {med:.4g} within 10% of h {h} (Gmsh)")
 
 
+# Issue 4's volume quality target (gamma_t), reported until required.
+TET_TARGET = dict(min=0.2, mean=0.67)
+
+
+def gmsh_volume(path):
+    """What Gmsh reads from a volume MSH file: physical names, the triangles
+    per physical surface, the tetrahedra, and checks computed from the
+    nodes: smallest signed tet volume, total tet volume, volume enclosed by
+    the triangles, boundary faces of the tets not matched by a triangle (and
+    triangles not on the boundary), and the largest distance of a cap node
+    to its cap's best-fit plane."""
+    import gmsh
+    import numpy as np
+    gmsh.initialize()
+    gmsh.option.setNumber("General.Verbosity", 0)
+    try:
+        gmsh.open(path)
+        tags, coords, _ = gmsh.model.mesh.getNodes()
+        xyz = np.zeros((int(tags.max()) + 1, 3))
+        xyz[tags.astype(int)] = coords.reshape(-1, 3)
+        groups, tris, tets = {}, [], []
+        orphans = 0
+        for dim, ptag in gmsh.model.getPhysicalGroups():
+            name = gmsh.model.getPhysicalName(dim, ptag)
+            for ent in gmsh.model.getEntitiesForPhysicalGroup(dim, ptag):
+                for ty, _, nodes in zip(*gmsh.model.mesh.getElements(dim, ent)):
+                    n = {2: 3, 4: 4}[ty]
+                    arr = nodes.astype(int).reshape(-1, n)
+                    groups.setdefault(name, []).append(arr)
+                    (tris if n == 3 else tets).append(arr)
+        for dim in (2, 3):
+            for _, ent in gmsh.model.getEntities(dim):
+                if not gmsh.model.getPhysicalGroupsForEntity(dim, ent):
+                    orphans += sum(len(t) for t in gmsh.model.mesh.getElements(dim, ent)[1])
+        tri = np.concatenate(tris)
+        tet = np.concatenate(tets)
+        a, b, c, e = (xyz[tet[:, k]] for k in range(4))
+        v6 = np.einsum("ij,ij->i", np.cross(b - a, c - a), e - a)
+        p, q, r = (xyz[tri[:, k]] for k in range(3))
+        enclosed = np.einsum("ij,ij->i", np.cross(p, q), r).sum() / 6
+        faces = np.concatenate([tet[:, [1, 2, 3]], tet[:, [0, 3, 2]], tet[:, [0, 1, 3]], tet[:, [0, 2, 1]]])
+        faces = np.sort(faces, axis=1)
+        uniq, counts = np.unique(faces, axis=0, return_counts=True)
+        boundary = {tuple(f) for f in uniq[counts == 1]}
+        surface = {tuple(f) for f in np.sort(tri, axis=1)}
+        planar = 0.0
+        for name, arrs in groups.items():
+            if name == "wall" or name == "lumen":
+                continue
+            pts = xyz[np.unique(np.concatenate(arrs))]
+            ctr = pts.mean(axis=0)
+            normal = np.linalg.svd(pts - ctr)[2][2]
+            planar = max(planar, float(np.abs((pts - ctr) @ normal).max()))
+        diag = float(np.linalg.norm(xyz[1:].max(axis=0) - xyz[1:].min(axis=0)))
+        return dict(names=[gmsh.model.getPhysicalName(d, t) for d, t in gmsh.model.getPhysicalGroups()],
+                    triangles=len(tri), tets=len(tet), orphans=orphans,
+                    min_v6=float(v6.min()), volume=float(v6.sum() / 6), enclosed=float(enclosed),
+                    unmatched=len(boundary ^ surface), planar=planar / diag)
+    finally:
+        gmsh.finalize()
+
+
+def check_volume(fname, path, tmp, args, d, have_gmsh):
+    """Meshes the volume at the data README size and checks it with Gmsh."""
+    out, rep = os.path.join(tmp, f"{fname}.volume.msh"), os.path.join(tmp, f"{fname}.volume.json")
+    r = subprocess.run([args.vesselmesh, "mesh", path, "-o", out, "--report", rep, "--quiet",
+                        "--size", str(SIZES[fname])], capture_output=True, text=True)
+    check(fname, r.returncode == 0, f"volume exit 0 {r.stderr.strip()}")
+    if r.returncode != 0:
+        return
+    o = json.load(open(rep))["output"]
+    v = o["volume"]
+    q = v["quality"]
+    want = ["wall"] + (["inlet"] + [f"outlet_{k}" for k in range(1, len(d["openings"]))]
+                       if d["openings"] else [])
+    names = [g["name"] for g in o["groups"]]
+    check(fname, names == want + ["lumen"], f"volume groups {names}")
+    met = q["min"] >= TET_TARGET["min"] and q["mean"] >= TET_TARGET["mean"]
+    print(f"  volume: {v['tetrahedra']} tetrahedra, gamma_t min {q['min']:.3f} mean {q['mean']:.3f}, "
+          f"{v['steiner_points']} Steiner points; issue target (min {TET_TARGET['min']}, mean "
+          f"{TET_TARGET['mean']}) {'met' if met else 'NOT met'}")
+    if not have_gmsh:
+        return
+    g = gmsh_volume(out)
+    check(fname, g["names"] == want + ["lumen"] and g["orphans"] == 0,
+          f"volume: Gmsh finds the groups {g['names']}, no element outside them")
+    check(fname, g["tets"] == v["tetrahedra"] and g["triangles"] == v["boundary_triangles"],
+          f"volume: Gmsh reads {g['tets']} tetrahedra and {g['triangles']} triangles as reported")
+    check(fname, g["min_v6"] > 0, f"volume: no inverted or flat tetrahedron (min 6V {g['min_v6']:.3g})")
+    check(fname, g["unmatched"] == 0,
+          "volume: the boundary faces of the tetrahedra are exactly the surface triangles")
+    check(fname, abs(g["volume"] - g["enclosed"]) <= 1e-9 * abs(g["enclosed"]),
+          f"volume: tetrahedra fill the enclosed volume ({g['volume']:.6g} vs {g['enclosed']:.6g})")
+    check(fname, g["planar"] <= 1e-9, f"volume: caps planar ({g['planar']:.1e} of the diagonal)")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--data", required=True)
@@ -179,10 +275,11 @@ def main():
                 check_remesh(fname, path, tmp, args, d, have_gmsh, mode)
             for mesher in ("delaunay", "adapt"):
                 check_remesh(fname, path, tmp, args, d, have_gmsh, "uniform", mesher)
+            check_volume(fname, path, tmp, args, d, have_gmsh)
             for version in ("4.1", "2.2"):
                 out = os.path.join(tmp, f"{fname}.{version}.msh")
                 r = subprocess.run([args.vesselmesh, "mesh", path, "-o", out, "--no-remesh",
-                                    "--msh-version", version, "--quiet"],
+                                    "--surface-only", "--msh-version", version, "--quiet"],
                                    capture_output=True, text=True)
                 check(fname, r.returncode == 0, f"mesh --msh-version {version} exit 0 {r.stderr.strip()}")
                 if r.returncode != 0 or not have_gmsh:
