@@ -200,7 +200,7 @@ def check_volume(fname, path, tmp, args, d, have_gmsh):
     """Meshes the volume at the data README size and checks it with Gmsh."""
     out, rep = os.path.join(tmp, f"{fname}.volume.msh"), os.path.join(tmp, f"{fname}.volume.json")
     r = subprocess.run([args.vesselmesh, "mesh", path, "-o", out, "--report", rep, "--quiet",
-                        "--size", str(SIZES[fname])], capture_output=True, text=True)
+                        "--verify", "--size", str(SIZES[fname])], capture_output=True, text=True)
     check(fname, r.returncode == 0, f"volume exit 0 {r.stderr.strip()}")
     if r.returncode != 0:
         return

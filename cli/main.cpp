@@ -32,13 +32,15 @@ usage:
                   [--inlet K] [--core-size H]
                   [--param lscm|harmonic|floater] [--mesher2d frontal|delaunay|adapt]
                   [--msh-version 4.1|2.2] [--largest-component] [--report FILE.json]
-                  [--no-remesh]
+                  [--no-remesh] [--verify]
       Remesh the surface by conformal maps, cap each opening with a planar
       triangulation, fill the lumen with tetrahedra and write Gmsh MSH:
       surfaces `wall`, `inlet`, `outlet_1..k`, volume `lumen`.
       --surface-only writes the remeshed wall alone; --no-remesh uses the
       repaired input surface as it is. --inlet K names opening K (as
       `info` lists them, largest first) `inlet` instead of the largest.
+      --verify checks the volume fully before writing it (conformity, the
+      boundary faces are the surface triangles); no element is ever inverted.
       Size options (model units):
         --size H                 uniform target edge length
         --per-circumference N    h = 2 pi R(x) / N, R the local vessel radius
@@ -203,7 +205,7 @@ int cmd_mesh(int argc, char** argv) {
   std::vector<std::string> valued = {"-o", "--output", "--report"};
   for (std::string_view name : vm::job_option_names()) valued.push_back("--" + std::string(name));
   Args a = parse(argc, argv, 2, valued,
-                 {"--largest-component", "--quiet", "--surface-only", "--no-remesh"});
+                 {"--largest-component", "--quiet", "--surface-only", "--no-remesh", "--verify"});
   if (!a.error.empty()) return usage_error(a.error);
   if (a.positional.size() != 1) return usage_error("mesh needs exactly one FILE.stl");
   auto out = a.get("-o") ? a.get("-o") : a.get("--output");
@@ -220,6 +222,7 @@ int cmd_mesh(int argc, char** argv) {
   options.largest_component_only = a.has("--largest-component");
   options.remesh = !a.has("--no-remesh");
   options.volume = !a.has("--surface-only");
+  options.verify = a.has("--verify");
   std::string err;
   auto bytes = read_file(a.positional[0], err);
   if (!bytes) return fail(err);

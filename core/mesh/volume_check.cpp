@@ -40,6 +40,12 @@ FaceUse make_use(const int32_t* f, int n, int32_t region, int64_t owner) {
   return u;
 }
 
+bool indices_in_range(const int32_t* v, int n, const VolumeMesh& m) {
+  for (int k = 0; k < n; ++k)
+    if (v[k] < 0 || size_t(v[k]) >= m.num_vertices()) return false;
+  return true;
+}
+
 std::string where(const VolumeMesh& m, int32_t v) {
   const double* p = &m.points[3 * size_t(v)];
   char text[96];
@@ -49,15 +55,10 @@ std::string where(const VolumeMesh& m, int32_t v) {
 
 }  // namespace
 
-Result<VolumeCheck> check_volume_mesh(const VolumeMesh& m) {
+Result<VolumeCheck> check_volume_orientation(const VolumeMesh& m) {
   using R = Result<VolumeCheck>;
   VolumeCheck c;
-  const int32_t nv = int32_t(m.num_vertices());
-  auto in_range = [&](const int32_t* v, int n) {
-    for (int k = 0; k < n; ++k)
-      if (v[k] < 0 || v[k] >= nv) return false;
-    return true;
-  };
+  auto in_range = [&](const int32_t* v, int n) { return indices_in_range(v, n, m); };
   // Phase 1: positivity (prisms by their split).
   c.min_volume6 = 1e300;
   auto positive = [&](const int32_t* t) {
@@ -86,6 +87,16 @@ Result<VolumeCheck> check_volume_mesh(const VolumeMesh& m) {
                         " is inverted or flat");
   }
   if (m.num_tets() + m.num_prisms() == 0) c.min_volume6 = 0;
+  return c;
+}
+
+Result<VolumeCheck> check_volume_mesh(const VolumeMesh& m) {
+  using R = Result<VolumeCheck>;
+  // Phase 1: positivity and indices.
+  auto oriented = check_volume_orientation(m);
+  if (!oriented.ok()) return oriented;
+  VolumeCheck c = oriented.value();
+  auto in_range = [&](const int32_t* v, int n) { return indices_in_range(v, n, m); };
 
   // Phase 2: every face use, outward orientation.
   std::vector<FaceUse> uses;

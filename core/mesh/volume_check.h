@@ -26,4 +26,9 @@ struct VolumeCheck {
 /// (an interface). Errors name the first violation and where.
 Result<VolumeCheck> check_volume_mesh(const VolumeMesh& m);
 
+/// The cheap part of check_volume_mesh: every element strictly positive
+/// (exact orient3d; prisms by their split) and every index in range; fills
+/// volume and min_volume6 only.
+Result<VolumeCheck> check_volume_orientation(const VolumeMesh& m);
+
 }  // namespace vm

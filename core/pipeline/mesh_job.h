@@ -36,6 +36,9 @@ struct MeshJobOptions {
   /// Target edge length in the core of the lumen (0: grow from the wall
   /// size with the gradation, no cap).
   double core_size = 0;
+  /// Check the volume mesh fully before writing it (conformity, boundary =
+  /// surface triangles), not only that no element is inverted.
+  bool verify = false;
 };
 
 /// Counts and timings of the volume stages.

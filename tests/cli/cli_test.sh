@@ -46,7 +46,7 @@ check "info text" expect_exit 0 "openings:    3" "$VM" info "$T/bif.stl"
 
 check "mesh needs -o" expect_exit 2 "-o OUT.msh" "$VM" mesh "$T/bif.stl"
 check "mesh bad version" expect_exit 2 "use 4.1 or 2.2" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --msh-version 3
-check "mesh 4.1" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif41.msh" --report "$T/report.json"
+check "mesh 4.1" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif41.msh" --report "$T/report.json" --verify
 check "mesh 2.2" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif22.msh" --msh-version 2.2
 check "msh 4.1 header" [ "$(sed -n 2p "$T/bif41.msh")" = "4.1 0 8" ]
 check "msh 2.2 header" [ "$(sed -n 2p "$T/bif22.msh")" = "2.2 0 8" ]

@@ -133,6 +133,7 @@ TEST(MeshJob, MeshesTheLumenWithNamedPlanarCaps) {
   ASSERT_TRUE(phantom.ok()) << phantom.message();
   MeshJobOptions o;
   ASSERT_TRUE(set_job_option(o, "size", "0.2").ok());
+  o.verify = true;
   auto r = run_mesh_job(write_stl_binary(phantom.value()), o);
   ASSERT_TRUE(r.ok()) << r.message();
   const MeshJobResult& res = r.value();
