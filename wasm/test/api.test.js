@@ -4,6 +4,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { before, describe, test } from 'node:test';
 
+import { transferables } from '../src/transfer.js';
 import { createVesselmesh } from '../src/vesselmesh.js';
 
 let api;
@@ -378,6 +379,24 @@ describe('mesh: volume', () => {
     assert.equal(stages.at(-1), 'done');
     const c = api.mesh(small, { onProgress: (f, stage) => stage !== 'tetrahedra' });
     assert.deepEqual([c.ok, c.cancelled], [false, true]);
+  });
+
+  test('the worker moves every typed array of the result, each buffer once', () => {
+    const m = api.mesh(stl, { size: 0.3 });
+    assert.equal(m.ok, true, m.error);
+    const list = transferables(m);
+    const arrays = [m.msh, ...Object.values(m.surface), ...Object.values(m.volume)].filter((a) =>
+      ArrayBuffer.isView(a),
+    );
+    assert.equal(arrays.length, 10);
+    assert.equal(new Set(list).size, list.length);
+    for (const a of arrays) assert.ok(list.includes(a.buffer));
+    const tets = m.volume.tets.length;
+    const moved = structuredClone(m, { transfer: list });
+    assert.ok(arrays.every((a) => a.length === 0)); // detached: moved, not copied
+    assert.deepEqual(moved.volume.surfaceNames, ['wall', 'inlet', 'outlet_1', 'outlet_2']);
+    assert.equal(moved.volume.tets.length, tets);
+    assert.deepEqual(transferables({ ok: false, error: 'x' }), []);
   });
 
   test('bad volume options are refused with the JS option name', () => {
