@@ -19,11 +19,11 @@ export const UNKNOWN_TAG = 0x7fff;
 
 /**
  * The face adjacency of a conforming tetrahedral mesh, matched on sorted
- * vertex triples: each face (the 4 of every tet and the tagged boundary
+ * vertex triples: each face (the 4 of every tet, then the tagged boundary
  * triangles) goes into the bucket of its smallest vertex (a counting sort),
- * and a bucket's faces are sorted by their two other vertices, so equal
- * triples end up side by side. O(faces) with sequential passes; no string or
- * object keys.
+ * and within a bucket equal pairs of other vertices meet in a small hash
+ * table. O(faces) in typed arrays; no string or object keys. Needs
+ * vertexCount < 2^26 (keys exact in doubles).
  * @param {Uint32Array} tets 4 vertex indices per tetrahedron
  * @param {number} vertexCount
  * @param {Uint32Array} [triangles] boundary triangles, 3 indices each
@@ -35,17 +35,16 @@ export const UNKNOWN_TAG = 0x7fff;
 export function faceAdjacency(tets, vertexCount, triangles = new Uint32Array(0), triangleTag) {
   const tetFaces = tets.length; // 4 per tet
   const total = tetFaces + triangles.length / 3;
-  // Sorted corners (lo < mid < hi) of face i.
+  // Face i: its smallest vertex, and its two others as one exact number.
   const lo = new Uint32Array(total);
-  const mid = new Uint32Array(total);
-  const hi = new Uint32Array(total);
+  const rest = new Float64Array(total); // mid * vertexCount + hi < 2^53
   const put = (i, a, b, c) => {
-    if (a > b) [a, b] = [b, a];
-    if (b > c) [b, c] = [c, b];
-    if (a > b) [a, b] = [b, a];
+    let t;
+    if (a > b) (t = a), (a = b), (b = t);
+    if (b > c) (t = b), (b = c), (c = t);
+    if (a > b) (t = a), (a = b), (b = t);
     lo[i] = a;
-    mid[i] = b;
-    hi[i] = c;
+    rest[i] = b * vertexCount + c;
   };
   for (let t = 0; t < tetFaces; t += 4) {
     const a = tets[t];
@@ -60,55 +59,55 @@ export function faceAdjacency(tets, vertexCount, triangles = new Uint32Array(0),
   for (let i = tetFaces, k = 0; i < total; i++, k += 3) {
     put(i, triangles[k], triangles[k + 1], triangles[k + 2]);
   }
-  // Counting sort by the smallest vertex.
+  // Counting sort by the smallest vertex; each bucket keeps its faces' keys
+  // next to their ids, so matching a bucket reads contiguous memory.
   const start = new Uint32Array(vertexCount + 1);
   for (let i = 0; i < total; i++) start[lo[i] + 1]++;
   for (let v = 0; v < vertexCount; v++) start[v + 1] += start[v];
   const order = new Uint32Array(total);
+  const keys = new Float64Array(total);
   const fill = start.slice(0, vertexCount);
-  for (let i = 0; i < total; i++) order[fill[lo[i]]++] = i;
+  for (let i = 0; i < total; i++) {
+    const j = fill[lo[i]]++;
+    order[j] = i;
+    keys[j] = rest[i];
+  }
 
+  // Match equal triples in each bucket with a small open-addressing table
+  // (cleared for free: a slot counts only if stamped with the bucket's v).
+  let maxBucket = 1;
+  for (let v = 0; v < vertexCount; v++) maxBucket = Math.max(maxBucket, start[v + 1] - start[v]);
+  const bits = 32 - Math.clz32(2 * maxBucket - 1);
+  const mask = (1 << bits) - 1;
+  const shift = 32 - bits;
+  const slotFace = new Uint32Array(mask + 1);
+  const slotKey = new Float64Array(mask + 1);
+  const slotStamp = new Uint32Array(mask + 1);
   const across = new Int32Array(tetFaces).fill(-1 - UNKNOWN_TAG);
-  const key = (i) => mid[i] * vertexCount + hi[i]; // exact below 2^53
   for (let v = 0; v < vertexCount; v++) {
-    const s = start[v];
-    const e = start[v + 1];
-    // Insertion sort of the bucket by (mid, hi): buckets hold ~20 faces.
-    for (let j = s + 1; j < e; j++) {
+    const stamp = v + 1;
+    // A bucket lists its tet faces before its boundary triangles (the
+    // scatter is stable), so a triangle always meets its tet face here.
+    for (let j = start[v], e = start[v + 1]; j < e; j++) {
       const f = order[j];
-      const k = key(f);
-      let m = j - 1;
-      while (m >= s && key(order[m]) > k) {
-        order[m + 1] = order[m];
-        m--;
+      const k = keys[j];
+      let h = Math.imul((k >>> 0) ^ Math.imul((k / 4294967296) | 0, 0x85ebca6b), 0x9e3779b1) >>> shift;
+      while (slotStamp[h] === stamp && slotKey[h] !== k) h = (h + 1) & mask;
+      if (slotStamp[h] !== stamp) {
+        slotStamp[h] = stamp;
+        slotKey[h] = k;
+        slotFace[h] = f;
+        continue;
       }
-      order[m + 1] = f;
-    }
-    // Runs of equal triples: two tet faces are neighbors; a tet face and a
-    // boundary triangle give the face its tag.
-    for (let j = s; j < e; ) {
-      const k = key(order[j]);
-      let r = j + 1;
-      while (r < e && key(order[r]) === k) r++;
-      let first = -1;
-      let tag = UNKNOWN_TAG;
-      for (let m = j; m < r; m++) {
-        const f = order[m];
-        if (f >= tetFaces) tag = triangleTag ? triangleTag[f - tetFaces] : 0;
+      const g = slotFace[h]; // the first face with this triple
+      if (g >= tetFaces) continue; // a triangle that is no tet's face
+      if (f >= tetFaces) {
+        // A boundary triangle: its tag goes to its (unpaired) tet face.
+        if (across[g] < 0) across[g] = -1 - (triangleTag ? triangleTag[f - tetFaces] : 0);
+      } else if (across[g] === -1 - UNKNOWN_TAG) {
+        across[g] = f >> 2; // two tets share the face
+        across[f] = g >> 2;
       }
-      for (let m = j; m < r; m++) {
-        const f = order[m];
-        if (f >= tetFaces) continue;
-        if (first < 0) {
-          first = f;
-          across[f] = -1 - tag;
-        } else {
-          across[first] = f >> 2;
-          across[f] = first >> 2;
-          first = -1;
-        }
-      }
-      j = r;
     }
   }
   return across;
