@@ -20,13 +20,19 @@ function prepare(volume) {
   const { positions, tets, tetQuality, triangles, triangleTag, surfaceNames } = volume;
   const nt = tets.length / 4;
   const across = faceAdjacency(tets, positions.length / 3, triangles, triangleTag);
-  const tetColors = new Uint8Array(3 * nt);
+  // gamma_t colors through a 256-entry table of the colormap.
+  const table = new Uint8Array(3 * 256);
   const rgb = [0, 0, 0];
+  for (let i = 0; i < 256; i++) {
+    qualityColor(i / 255, rgb);
+    for (let k = 0; k < 3; k++) table[3 * i + k] = byte(rgb[k]);
+  }
+  const tetColors = new Uint8Array(3 * nt);
   for (let t = 0; t < nt; t++) {
-    qualityColor(tetQuality[t], rgb);
-    tetColors[3 * t] = byte(rgb[0]);
-    tetColors[3 * t + 1] = byte(rgb[1]);
-    tetColors[3 * t + 2] = byte(rgb[2]);
+    const i = 3 * Math.round(255 * Math.min(1, Math.max(0, tetQuality[t])));
+    tetColors[3 * t] = table[i];
+    tetColors[3 * t + 1] = table[i + 1];
+    tetColors[3 * t + 2] = table[i + 2];
   }
   // One color per surface tag, then one for faces without a tag.
   const tagColors = Uint8Array.from([...surfaceNames, ''].flatMap((n) => groupColor(n).map(byte)));
