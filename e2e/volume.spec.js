@@ -25,6 +25,8 @@ async function downloadText(page) {
 }
 
 test('mesh the sample with its volume: clipped view, gamma_t histogram, groups, export', async ({ page }) => {
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
   const foreign = await meshSample(page);
   const view = page.getByTestId('volume-view');
   await expect(view).toBeVisible();
@@ -89,6 +91,7 @@ test('mesh the sample with its volume: clipped view, gamma_t histogram, groups, 
   const elements = Number(lines[lines.indexOf('$Elements') + 1].split(' ')[1]);
   expect(elements).toBe(Number(await page.getByTestId('remesh-result').getAttribute('data-elements')));
   expect(foreign).toEqual([]);
+  expect(errors).toEqual([]);
 });
 
 test('the inlet chosen in the openings list is capped as the inlet', async ({ page }) => {
@@ -133,4 +136,23 @@ test('surface only: no volume view; a bad core size is refused and the page keep
   await expect(page.getByTestId('volume-view')).toBeVisible({ timeout: 60_000 });
   await expect(error).toBeHidden();
   await expect(page.getByTestId('core-size')).toHaveAttribute('aria-invalid', 'false');
+});
+
+test('a volume mesh can be cancelled; the next one works', async ({ page }) => {
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  await openApp(page);
+  await page.getByTestId('load-sample').click();
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  await page.getByTestId('size-value').fill('40'); // a few seconds of work
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('progress')).toBeVisible();
+  await page.getByRole('button', { name: 'Cancel' }).click();
+  await expect(page.getByTestId('error')).toHaveText('Cancelled.');
+  await expect(page.getByTestId('remesh-result')).toBeHidden();
+  await page.getByTestId('size-value').fill('16');
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('volume-view')).toHaveAttribute('data-triangles', /^[1-9]\d*$/, { timeout: 60_000 });
+  await expect(page.getByTestId('error')).toBeHidden();
+  expect(errors).toEqual([]);
 });

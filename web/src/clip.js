@@ -91,7 +91,8 @@ export function faceAdjacency(tets, vertexCount, triangles = new Uint32Array(0),
     for (let j = start[v], e = start[v + 1]; j < e; j++) {
       const f = order[j];
       const k = keys[j];
-      let h = Math.imul((k >>> 0) ^ Math.imul((k / 4294967296) | 0, 0x85ebca6b), 0x9e3779b1) >>> shift;
+      const high = Math.imul((k / 4294967296) | 0, 0x85ebca6b);
+      let h = Math.imul((k >>> 0) ^ high, 0x9e3779b1) >>> shift;
       while (slotStamp[h] === stamp && slotKey[h] !== k) h = (h + 1) & mask;
       if (slotStamp[h] !== stamp) {
         slotStamp[h] = stamp;

@@ -76,7 +76,8 @@ async function loadBytes(name, bytes) {
   $('remesh-result').hidden = true;
   $('drop-hint').hidden = true;
   $('legend').hidden = false;
-  showAnalysis(name, result.analysis, (loop) => viewer.highlightLoop(loop, current.surface.positions));
+  const hover = (loop) => viewer.highlightLoop(loop, current.surface.positions);
+  showAnalysis(name, result.analysis, hover);
   show('input');
   if (result.analysis.components > 1) {
     showError(

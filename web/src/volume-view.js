@@ -79,7 +79,14 @@ export class VolumeView {
   constructor(viewer, onDraw) {
     this.viewer = viewer;
     this.onDraw = onDraw;
-    this.options = { axis: 'z', position: 0.5, flip: false, color: 'quality', boundary: true, edges: true };
+    this.options = {
+      axis: 'z',
+      position: 0.5,
+      flip: false,
+      color: 'quality',
+      boundary: true,
+      edges: true,
+    };
     this.volume = null;
     this.group = null;
     this.frame = 0;
