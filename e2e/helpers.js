@@ -2,13 +2,15 @@
 // its origin recorded, and generate STL inputs in the test itself.
 import { expect } from '@playwright/test';
 
+import { HOST } from './port.js';
+
 /** Opens the app; returns the list of requests made to any other origin. */
 export async function openApp(page) {
   const foreign = [];
   page.on('request', (request) => {
     const url = new URL(request.url());
     if (!['http:', 'https:', 'ws:', 'wss:'].includes(url.protocol)) return; // data:, blob:
-    if (url.host !== '127.0.0.1:4173') foreign.push(request.url());
+    if (url.host !== HOST) foreign.push(request.url());
   });
   await page.goto('/');
   await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');

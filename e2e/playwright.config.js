@@ -1,8 +1,9 @@
-// Playwright runs the built app (web/dist, served by vite preview) in
-// Debian's Chromium: browsers cannot be downloaded here.
+// Playwright runs the built app (web/dist of this checkout, served by vite
+// preview on VM_E2E_PORT, default 4173) in Debian's Chromium: browsers cannot
+// be downloaded here.
 import { defineConfig } from '@playwright/test';
 
-const PORT = 4173;
+import { HOST, PORT } from './port.js';
 
 export default defineConfig({
   testDir: '.',
@@ -12,7 +13,7 @@ export default defineConfig({
   retries: 0,
   reporter: [['list']],
   use: {
-    baseURL: `http://127.0.0.1:${PORT}/`,
+    baseURL: `http://${HOST}/`,
     acceptDownloads: true,
     launchOptions: {
       executablePath: process.env.CHROMIUM_PATH || '/usr/bin/chromium',
@@ -30,7 +31,7 @@ export default defineConfig({
   webServer: {
     command: `npx vite preview --config web/vite.config.js --host 127.0.0.1 --port ${PORT} --strictPort`,
     cwd: '..',
-    url: `http://127.0.0.1:${PORT}/`,
+    url: `http://${HOST}/`,
     reuseExistingServer: !process.env.CI,
     timeout: 60_000,
   },

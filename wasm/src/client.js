@@ -69,7 +69,10 @@ export class VesselmeshClient {
     return this._call('analyze', [bytes, {}], onProgress);
   }
 
-  /** Meshes STL bytes; options as in the API's mesh(). */
+  /**
+   * Meshes STL bytes; options as in the API's mesh(). The result's typed
+   * arrays (msh, surface, volume) arrive moved from the worker, not copied.
+   */
   mesh(bytes, { onProgress, ...options } = {}) {
     return this._call('mesh', [bytes, options], onProgress);
   }

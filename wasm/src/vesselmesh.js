@@ -31,12 +31,6 @@ async function loadWasmBinary() {
   return response.arrayBuffer();
 }
 
-/**
- * Loads the WebAssembly module and returns the API.
- * @param {{ wasmBinary?: ArrayBuffer|Uint8Array }} [options] In Node pass
- *   wasmBinary (fs.readFileSync of wasm/dist/vesselmesh_core.wasm); in the
- *   browser it is fetched next to this module.
- */
 /** JS mesh option name -> core option name (vesselmesh CLI flag). */
 const MESH_OPTIONS = {
   size: 'size',
@@ -51,8 +45,26 @@ const MESH_OPTIONS = {
   inlet: 'inlet',
   coreSize: 'core-size',
 };
-const JS_NAMES = Object.fromEntries(Object.entries(MESH_OPTIONS).map(([js, core]) => [core, js]));
+/** Core flag -> JS option, for error messages (the core speaks CLI). */
+const JS_NAMES = {
+  ...Object.fromEntries(Object.entries(MESH_OPTIONS).map(([js, core]) => [core, js])),
+  'msh-version': 'mshVersion',
+  'largest-component': 'largestComponentOnly',
+  'surface-only': 'surfaceOnly',
+};
 
+/** A core error message in the JS API's words. */
+const jsMessage = (message) =>
+  message
+    .replace(/--([a-z0-9-]+)/g, (m, flag) => JS_NAMES[flag] ?? m)
+    .replace(/`vesselmesh info`/g, 'analysis.openings');
+
+/**
+ * Loads the WebAssembly module and returns the API.
+ * @param {{ wasmBinary?: ArrayBuffer|Uint8Array }} [options] In Node pass
+ *   wasmBinary (fs.readFileSync of wasm/dist/vesselmesh_core.wasm); in the
+ *   browser it is fetched next to this module.
+ */
 export async function createVesselmesh({ wasmBinary } = {}) {
   const binary = wasmBinary ?? (await loadWasmBinary());
   const core = await createVesselmeshCore({ wasmBinary: binary });
@@ -91,8 +103,9 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * `curvature`, `featureAngle` (degrees; sharper creases are kept, 180:
      * none); advanced: `param` ('lscm' | 'harmonic' | 'floater'),
      * `mesher2d` ('frontal' | 'delaunay' | 'adapt').
-     * @returns {{ok: true, msh: Uint8Array, report: object, surface: object} |
-     *   {ok: false, error: string}}
+     * @returns {{ok: true, msh: Uint8Array, report: object, surface: object,
+     *   volume?: object} | {ok: false, error: string}} (no volume when
+     *   surfaceOnly)
      */
     mesh(
       stlBytes,
@@ -133,8 +146,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
       const raw = core.mesh(bytes, options, progress);
       if (!raw.ok) {
         // Core messages name CLI flags (--size); name the JS option instead.
-        const error = raw.error.replace(/--([a-z0-9-]+)/g, (m, flag) => JS_NAMES[flag] ?? m);
-        return { ok: false, error, ...(raw.cancelled && { cancelled: true }) };
+        return { ok: false, error: jsMessage(raw.error), ...(raw.cancelled && { cancelled: true }) };
       }
       return withSurface(raw, {
         msh: raw.msh,

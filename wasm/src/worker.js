@@ -3,7 +3,9 @@
 //   out: { type: 'ready', version } | { type: 'error', error } once at start;
 //        { id, type: 'progress', fraction, stage } during a job (at most one
 //        every 50 ms); { id, type: 'result', result } at the end, with the
-//        result's typed-array buffers transferred.
+//        result's typed-array buffers (msh, stl, surface.*, volume.*)
+//        transferred, not copied.
+import { transferables } from './transfer.js';
 import { createVesselmesh } from './vesselmesh.js';
 
 const apiPromise = createVesselmesh().then(
@@ -16,17 +18,6 @@ const apiPromise = createVesselmesh().then(
     return null;
   },
 );
-
-function transferables(result) {
-  const list = [];
-  const add = (a) => a && ArrayBuffer.isView(a) && list.push(a.buffer);
-  if (result && result.ok) {
-    add(result.msh);
-    add(result.stl);
-    if (result.surface) Object.values(result.surface).forEach(add);
-  }
-  return list;
-}
 
 self.onmessage = async (event) => {
   const { id, op, args = [] } = event.data;

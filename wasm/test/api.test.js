@@ -4,6 +4,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { before, describe, test } from 'node:test';
 
+import { transferables } from '../src/transfer.js';
 import { createVesselmesh } from '../src/vesselmesh.js';
 
 let api;
@@ -128,16 +129,20 @@ describe('mesh', () => {
     return lines[i + 1].split(' ');
   };
 
-  test('MSH 4.1 by default with the wall group and every triangle', () => {
+  const groupNames = (r) => r.report.output.groups.map((g) => `${g.dim} ${g.name}`);
+  const groupTotal = (r) => r.report.output.groups.reduce((n, g) => n + g.elements, 0);
+
+  test('MSH 4.1 by default: wall, caps and lumen groups, every element', () => {
     const stl = api.makePhantom({ kind: 'tube', voxel: 0.15 }).stl;
     const r = api.mesh(stl);
     assert.equal(r.ok, true, r.error);
     const t = text(r.msh);
     assert.ok(t.startsWith('$MeshFormat\n4.1 0 8\n'));
     assert.ok(t.includes('2 1 "wall"'));
+    assert.deepEqual(groupNames(r), ['2 wall', '2 inlet', '2 outlet_1', '3 lumen']);
     const triangles = r.report.output.triangles;
-    assert.equal(Number(countElements(r.msh)[1]), triangles);
-    assert.deepEqual(r.report.output.groups, [{ dim: 2, name: 'wall', elements: triangles }]);
+    assert.equal(r.report.output.groups[0].elements, triangles);
+    assert.equal(Number(countElements(r.msh)[1]), groupTotal(r));
     assert.equal(r.surface.triangles.length, 3 * triangles);
   });
 
@@ -146,7 +151,10 @@ describe('mesh', () => {
     const r = api.mesh(stl, { mshVersion: '2.2', remesh: false });
     assert.equal(r.ok, true, r.error);
     assert.ok(text(r.msh).startsWith('$MeshFormat\n2.2 0 8\n'));
-    assert.equal(countElements(r.msh)[0], '4');
+    // A closed surface has no caps: the 4 wall triangles and the lumen.
+    assert.deepEqual(groupNames(r), ['2 wall', '3 lumen']);
+    assert.equal(countElements(r.msh)[0], String(groupTotal(r)));
+    assert.equal(r.volume.tets.length / 4, r.report.output.volume.tetrahedra);
     assert.match(api.mesh(stl, { mshVersion: '3' }).error, /unknown mshVersion '3'/);
   });
 
@@ -224,6 +232,188 @@ describe('mesh: surface remeshing', () => {
     assert.match(api.mesh(stl(), { foo: 1 }).error, /unknown option 'foo'/);
     assert.match(api.mesh(stl(), { size: NaN }).error, /size must be a finite number/);
     assert.match(api.mesh(stl(), { remesh: 'yes' }).error, /remesh must be true or false/);
+  });
+});
+
+describe('mesh: volume', () => {
+  let stl;
+  let openings;
+  let r; // the default mesh of the bifurcation phantom
+  before(() => {
+    stl = api.makePhantom({ kind: 'bifurcation', voxel: 0.1, noise: 0.3 }).stl;
+    openings = api.analyze(stl).analysis.openings;
+    r = api.mesh(stl);
+  });
+
+  const point = (p, i) => [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
+  const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  const distance = (a, b) => Math.hypot(...sub(a, b));
+  /** Centroid of the boundary triangles tagged `name`. */
+  const tagCentroid = (v, name) => {
+    const tag = v.surfaceNames.indexOf(name);
+    const c = [0, 0, 0];
+    let n = 0;
+    v.triangleTag.forEach((g, t) => {
+      if (g !== tag) return;
+      for (let k = 0; k < 3; k++) point(v.positions, v.triangles[3 * t + k]).forEach((x, d) => (c[d] += x / 3));
+      n++;
+    });
+    return c.map((x) => x / n);
+  };
+
+  test('default: groups wall, inlet, outlet_1, outlet_2, lumen in the report and the MSH', () => {
+    assert.equal(r.ok, true, r.error);
+    const out = r.report.output;
+    assert.deepEqual(
+      out.groups.map((g) => [g.dim, g.name]),
+      [[2, 'wall'], [2, 'inlet'], [2, 'outlet_1'], [2, 'outlet_2'], [3, 'lumen']],
+    );
+    assert.deepEqual(out.caps.map((c) => c.name), ['inlet', 'outlet_1', 'outlet_2']);
+    for (const c of out.caps) assert.equal(out.groups.find((g) => g.name === c.name).elements, c.triangles);
+    assert.equal(out.groups.at(-1).elements, out.volume.tetrahedra);
+    const t = text(r.msh);
+    for (const g of out.groups) assert.match(t, new RegExp(`^${g.dim} \\d+ "${g.name}"$`, 'm'));
+    const lines = t.split('\n');
+    const total = out.groups.reduce((n, g) => n + g.elements, 0);
+    assert.equal(Number(lines[lines.indexOf('$Elements') + 1].split(' ')[1]), total);
+    // The wall surface is still returned, and is the wall group.
+    assert.equal(r.surface.triangles.length, 3 * out.groups[0].elements);
+  });
+
+  test('default: volume arrays consistent, every tetrahedron positive', () => {
+    const v = r.volume;
+    const out = r.report.output.volume;
+    const nv = v.positions.length / 3;
+    const nt = v.tets.length / 4;
+    assert.ok(v.positions instanceof Float32Array && v.tets instanceof Uint32Array);
+    assert.equal(nv, out.vertices);
+    assert.equal(nt, out.tetrahedra);
+    assert.ok(nt > 1000);
+    assert.ok(v.tets.every((i) => i < nv));
+    assert.equal(v.tetQuality.length, nt);
+    assert.ok(v.tetQuality.every((q) => q > 0 && q <= 1));
+    assert.equal(v.tetRegion.length, nt);
+    assert.deepEqual(v.regionNames, ['lumen']);
+    assert.ok(v.tetRegion.every((g) => v.regionNames[g] !== undefined));
+    assert.ok(out.quality.min > 0 && out.quality.min <= out.quality.mean);
+    assert.equal(out.quality.histogram.length, 20);
+    assert.equal(out.quality.histogram.reduce((x, y) => x + y, 0), nt);
+    // Signed volumes ((b-a)x(c-a)).(d-a) > 0, and their sum is the volume
+    // enclosed by the boundary triangles (divergence theorem: outward).
+    let volume = 0;
+    for (let t = 0; t < nt; t++) {
+      const [a, b, c, d] = [0, 1, 2, 3].map((k) => point(v.positions, v.tets[4 * t + k]));
+      const six = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
+      assert.ok(six > 0, `tetrahedron ${t}: signed volume ${six / 6}`);
+      volume += six / 6;
+    }
+    const nb = v.triangleTag.length;
+    assert.equal(v.triangles.length, 3 * nb);
+    assert.equal(nb, out.boundary_triangles);
+    assert.ok(v.triangles.every((i) => i < nv));
+    let enclosed = 0;
+    for (let t = 0; t < nb; t++) {
+      const [a, b, c] = [0, 1, 2].map((k) => point(v.positions, v.triangles[3 * t + k]));
+      enclosed += dot(a, cross(b, c)) / 6;
+    }
+    assert.ok(Math.abs(enclosed / volume - 1) < 1e-4, `tets ${volume}, boundary ${enclosed}`);
+    // Every boundary triangle is a face of a tetrahedron and names a group.
+    const faces = new Set();
+    const key = (x, y, z) => [x, y, z].sort((p, q) => p - q).join(' ');
+    for (let t = 0; t < nt; t++) {
+      const [a, b, c, d] = v.tets.subarray(4 * t, 4 * t + 4);
+      for (const f of [[a, b, c], [a, b, d], [a, c, d], [b, c, d]]) faces.add(key(...f));
+    }
+    const counts = new Map();
+    for (let t = 0; t < nb; t++) {
+      assert.ok(faces.has(key(...v.triangles.subarray(3 * t, 3 * t + 3))), `boundary triangle ${t}`);
+      const name = v.surfaceNames[v.triangleTag[t]];
+      assert.ok(name !== undefined, `boundary triangle ${t}: tag ${v.triangleTag[t]}`);
+      counts.set(name, (counts.get(name) ?? 0) + 1);
+    }
+    assert.deepEqual(v.surfaceNames, ['wall', 'inlet', 'outlet_1', 'outlet_2']);
+    for (const g of r.report.output.groups.filter((g) => g.dim === 2)) {
+      assert.equal(counts.get(g.name), g.elements, g.name);
+    }
+    // The default inlet is the largest opening.
+    const caps = r.report.output.caps;
+    assert.ok(distance(caps[0].centroid, openings[0].centroid) < 0.5 * openings[0].radius);
+    assert.ok(distance(tagCentroid(v, 'inlet'), openings[0].centroid) < 0.5 * openings[0].radius);
+  });
+
+  test('surfaceOnly: the wall alone, no volume', () => {
+    const s = api.mesh(stl, { surfaceOnly: true });
+    assert.equal(s.ok, true, s.error);
+    assert.equal(s.volume, undefined);
+    assert.deepEqual(s.report.output.groups, [
+      { dim: 2, name: 'wall', elements: s.report.output.triangles },
+    ]);
+    assert.ok(!s.report.output.caps?.length);
+    assert.ok(!s.report.output.volume);
+    const t = text(s.msh);
+    assert.ok(t.includes('"wall"'));
+    assert.ok(!t.includes('"inlet"') && !t.includes('"lumen"'));
+  });
+
+  test('inlet: 2 caps the second opening as the inlet', () => {
+    const m = api.mesh(stl, { inlet: 2, coreSize: 0.5 });
+    assert.equal(m.ok, true, m.error);
+    const caps = m.report.output.caps;
+    assert.equal(caps[0].name, 'inlet');
+    assert.ok(distance(caps[0].centroid, openings[1].centroid) < 0.5 * openings[1].radius);
+    assert.ok(distance(tagCentroid(m.volume, 'inlet'), openings[1].centroid) < 0.5 * openings[1].radius);
+    // The default inlet (the largest opening) is now an outlet.
+    const was = caps.find((c) => distance(c.centroid, openings[0].centroid) < 0.5 * openings[0].radius);
+    assert.match(was.name, /^outlet_\d$/);
+    assert.deepEqual(m.report.output.groups.map((g) => g.name), ['wall', 'inlet', 'outlet_1', 'outlet_2', 'lumen']);
+  });
+
+  test('progress goes through the volume stages; returning false there cancels', () => {
+    const small = api.makePhantom({ kind: 'tube', voxel: 0.2 }).stl;
+    const stages = [];
+    const m = api.mesh(small, { onProgress: (f, stage) => void stages.push(stage) });
+    assert.equal(m.ok, true, m.error);
+    assert.ok(stages.includes('caps') && stages.includes('tetrahedra'), stages.join(','));
+    assert.equal(stages.at(-1), 'done');
+    const c = api.mesh(small, { onProgress: (f, stage) => stage !== 'tetrahedra' });
+    assert.deepEqual([c.ok, c.cancelled], [false, true]);
+  });
+
+  test('the worker moves every typed array of the result, each buffer once', () => {
+    const m = api.mesh(stl, { size: 0.3 });
+    assert.equal(m.ok, true, m.error);
+    const list = transferables(m);
+    const arrays = [m.msh, ...Object.values(m.surface), ...Object.values(m.volume)].filter((a) =>
+      ArrayBuffer.isView(a),
+    );
+    assert.equal(arrays.length, 10);
+    assert.equal(new Set(list).size, list.length);
+    for (const a of arrays) assert.ok(list.includes(a.buffer));
+    const tets = m.volume.tets.length;
+    const moved = structuredClone(m, { transfer: list });
+    assert.ok(arrays.every((a) => a.length === 0)); // detached: moved, not copied
+    assert.deepEqual(moved.volume.surfaceNames, ['wall', 'inlet', 'outlet_1', 'outlet_2']);
+    assert.equal(moved.volume.tets.length, tets);
+    assert.deepEqual(transferables({ ok: false, error: 'x' }), []);
+  });
+
+  test('bad volume options are refused with the JS option name', () => {
+    const cases = [
+      [{ inlet: 0 }, /^inlet needs an opening number >= 1 \(as analysis\.openings lists them\)$/],
+      [{ inlet: 1.5 }, /^inlet needs an opening number >= 1/],
+      [{ inlet: 9 }, /^inlet must be between 1 and the number of openings \(3\)$/],
+      [{ coreSize: -1 }, /^coreSize needs a length >= 0/],
+      [{ coreSize: 'big' }, /^coreSize needs a length >= 0/],
+      [{ surfaceOnly: 'yes' }, /^mesh: surfaceOnly must be true or false$/],
+    ];
+    for (const [options, pattern] of cases) {
+      const m = api.mesh(stl, options);
+      assert.equal(m.ok, false, JSON.stringify(options));
+      assert.match(m.error, pattern);
+      assert.doesNotMatch(m.error, /--|vesselmesh/);
+    }
   });
 });
 

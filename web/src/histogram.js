@@ -7,8 +7,8 @@ function el(name, attrs) {
   return node;
 }
 
-/** Draws `counts` (equal bins over [0, 1]) into the <svg> element. */
-export function drawHistogram(svg, counts) {
+/** Draws `counts` (equal bins over [0, 1]) of `unit` into the <svg> element. */
+export function drawHistogram(svg, counts, unit = 'triangles') {
   svg.replaceChildren();
   const width = 320;
   const height = 110;
@@ -23,7 +23,7 @@ export function drawHistogram(svg, counts) {
     const lo = (i / counts.length).toFixed(2);
     const hi = ((i + 1) / counts.length).toFixed(2);
     const title = el('title', {});
-    title.textContent = `${lo}–${hi}: ${c.toLocaleString()} triangles`;
+    title.textContent = `${lo}–${hi}: ${c.toLocaleString('en')} ${unit}`;
     bar.append(title);
     svg.append(bar);
   });

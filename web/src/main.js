@@ -1,11 +1,14 @@
 // The vesselmesh page: load an STL (drop, file picker or generated sample),
-// analyze it in the worker, show it, export MSH. All work happens in the Web
-// Worker behind VesselmeshClient, so the page stays responsive.
+// analyze it in the worker, show it, mesh it (surface, caps, tetrahedra),
+// inspect the volume with a clipping plane, export MSH. All meshing happens
+// in the Web Worker behind VesselmeshClient, so the page stays responsive.
 import { VesselmeshClient } from '../../wasm/src/client.js';
 import { qualityGradientCss } from './colormap.js';
+import { drawGroupLegend } from './groups.js';
 import { drawHistogram } from './histogram.js';
-import { hideAnalysis, showAnalysis } from './panel.js';
+import { chosenInlet, hideAnalysis, showAnalysis, showCaps } from './panel.js';
 import { Viewer } from './viewer.js';
+import { VolumeView } from './volume-view.js';
 
 const $ = (id) => document.getElementById(id);
 // Above this the browser tab would run out of memory (the wasm heap is 4 GB).
@@ -13,6 +16,15 @@ const MAX_FILE_BYTES = 1.5 * 2 ** 30;
 
 const client = new VesselmeshClient();
 const viewer = new Viewer($('viewer'));
+const volumeView = new VolumeView(viewer, ({ triangles, cut, ms }) => {
+  const box = $('volume-view');
+  box.dataset.triangles = String(triangles);
+  box.dataset.cut = String(cut);
+  $('clip-info').textContent =
+    `${triangles.toLocaleString('en')} triangles drawn ` +
+    `(${cut.toLocaleString('en')} cut faces) in ${ms.toFixed(1)} ms`;
+});
+const volumeOption = $('show').querySelector('option[value=volume]');
 let current = null; // { name, bytes, analysis, surface }
 let remeshed = null; // { key, result } of the last remeshing of `current`
 let busy = false;
@@ -64,8 +76,9 @@ async function loadBytes(name, bytes) {
   $('remesh-result').hidden = true;
   $('drop-hint').hidden = true;
   $('legend').hidden = false;
-  viewer.setSurface(result.surface);
-  showAnalysis(name, result.analysis, (loop) => viewer.highlightLoop(loop));
+  const hover = (loop) => viewer.highlightLoop(loop, current.surface.positions);
+  showAnalysis(name, result.analysis, hover);
+  show('input');
   if (result.analysis.components > 1) {
     showError(
       `${name} has ${result.analysis.components} connected components. ` +
@@ -113,25 +126,109 @@ function download(name, bytes) {
   setTimeout(() => URL.revokeObjectURL(url), 10_000);
 }
 
+/** Why the core size field is unusable, or null (blank is the default). */
+function coreSizeProblem() {
+  const input = $('core-size');
+  const value = input.value.trim();
+  const bad = input.validity.badInput || (value !== '' && !(Number(value) >= 0));
+  input.setAttribute('aria-invalid', String(bad));
+  return bad ? 'Core size must be a length ≥ 0 in model units, or blank for the default.' : null;
+}
+
 /** The mesh options chosen in the panel (without progress). */
 function meshOptions() {
   const mode = $('size-mode').value;
-  return {
+  const options = {
     mshVersion: $('msh-version').value,
     largestComponentOnly: $('largest-only').checked,
     [mode]: Number($('size-value').value),
     param: $('param').value,
     mesher2d: $('mesher2d').value,
+    surfaceOnly: $('surface-only').checked,
+  };
+  const coreSize = $('core-size').value.trim();
+  if (coreSize !== '') options.coreSize = Number(coreSize);
+  const inlet = chosenInlet();
+  if (inlet !== undefined) options.inlet = inlet;
+  return options;
+}
+
+/** The clipping options chosen in the panel. */
+function volumeOptions() {
+  return {
+    axis: $('clip-axis').value,
+    position: Number($('clip-position').value),
+    flip: $('clip-flip').checked,
+    color: $('volume-color').value,
+    boundary: $('show-boundary').checked,
+    edges: $('show-edges').checked,
   };
 }
 
-function showSurface(which) {
-  const showOutput = which === 'output' && remeshed;
-  viewer.setSurface(showOutput ? remeshed.result.surface : current.surface);
+function drawLegend(volume) {
+  const names = [...volume.surfaceNames];
+  if ($('volume-color').value === 'group') names.push('lumen');
+  drawGroupLegend($('group-legend'), names);
+}
+
+/** Shows 'input', 'output' (the remeshed wall) or 'volume' (clipped). */
+function show(which) {
+  const volume = which === 'volume' ? remeshed?.result.volume : null;
+  $('volume-view').hidden = !volume;
+  $('group-legend').hidden = !volume;
+  if (volume) {
+    try {
+      volumeView.set(volumeOptions());
+      volumeView.show(volume);
+      drawLegend(volume);
+      return;
+    } catch (e) {
+      showError(`Cannot show the volume: ${e.message}`);
+      $('volume-view').hidden = $('group-legend').hidden = true;
+      which = 'output';
+      $('show').value = which;
+    }
+  }
+  volumeView.hide();
+  viewer.setSurface(which === 'output' && remeshed ? remeshed.result.surface : current.surface);
+}
+
+/** Fills the result part of the panel with a mesh result. */
+function showMeshResult(result) {
+  const out = result.report.output;
+  $('out-triangles').textContent = out.triangles.toLocaleString('en');
+  $('out-patches').textContent = out.remesh ? out.remesh.patches : '-';
+  $('out-quality-min').textContent = out.quality.min.toFixed(3);
+  $('out-quality-mean').textContent = out.quality.mean.toFixed(3);
+  drawHistogram($('out-histogram'), out.quality.histogram);
+  const elements = out.groups.reduce((n, g) => n + g.elements, 0);
+  $('remesh-result').dataset.elements = String(elements);
+  const volume = out.volume && result.volume;
+  $('volume-result').hidden = !volume;
+  if (volume) {
+    $('out-tets').textContent = out.volume.tetrahedra.toLocaleString('en');
+    $('out-volume-vertices').textContent = out.volume.vertices.toLocaleString('en');
+    $('out-caps').textContent = out.caps.map((c) => c.name).join(', ') || 'none';
+    $('out-tet-min').textContent = out.volume.quality.min.toFixed(3);
+    $('out-tet-mean').textContent = out.volume.quality.mean.toFixed(3);
+    drawHistogram($('tet-histogram'), out.volume.quality.histogram, 'tetrahedra');
+    $('show').prepend(volumeOption);
+  } else {
+    volumeOption.remove();
+  }
+  showCaps(current.analysis.openings, out.caps);
+  $('remesh-result').hidden = false;
+  $('show').value = volume ? 'volume' : 'output';
+  show($('show').value);
 }
 
 /** Meshes `current` with the panel's options, reusing the last result. */
 async function meshCurrent() {
+  const problem = coreSizeProblem();
+  if (problem) {
+    showError(problem);
+    return null;
+  }
   const options = meshOptions();
   const key = JSON.stringify(options);
   if (remeshed?.key === key) return remeshed.result;
@@ -141,15 +238,7 @@ async function meshCurrent() {
     return null;
   }
   remeshed = { key, result };
-  const out = result.report.output;
-  $('out-triangles').textContent = out.triangles.toLocaleString('en');
-  $('out-patches').textContent = out.remesh ? out.remesh.patches : '-';
-  $('out-quality-min').textContent = out.quality.min.toFixed(3);
-  $('out-quality-mean').textContent = out.quality.mean.toFixed(3);
-  drawHistogram($('out-histogram'), out.quality.histogram);
-  $('remesh-result').hidden = false;
-  $('show').value = 'output';
-  showSurface('output');
+  showMeshResult(result);
   return result;
 }
 
@@ -174,7 +263,22 @@ $('size-mode').addEventListener('change', (e) => {
   const h = radii.length ? (2 * Math.PI * radii[Math.floor(radii.length / 2)]) / 20 : diag / 50;
   $('size-value').value = uniform ? Number(h.toPrecision(2)) : 20;
 });
-$('show').addEventListener('change', (e) => showSurface(e.target.value));
+$('show').addEventListener('change', (e) => show(e.target.value));
+$('clip-axis').addEventListener('change', (e) => {
+  // A new normal keeps the side away from the camera: the cut faces you.
+  const axis = e.target.value;
+  $('clip-flip').checked = volumeView.flipFacingCamera(axis);
+  volumeView.set({ axis, flip: $('clip-flip').checked });
+});
+$('clip-position').addEventListener('input', (e) => volumeView.set({ position: Number(e.target.value) }));
+$('clip-flip').addEventListener('change', (e) => volumeView.set({ flip: e.target.checked }));
+$('volume-color').addEventListener('change', (e) => {
+  volumeView.set({ color: e.target.value });
+  if (remeshed?.result.volume) drawLegend(remeshed.result.volume);
+});
+$('show-boundary').addEventListener('change', (e) => volumeView.set({ boundary: e.target.checked }));
+$('show-edges').addEventListener('change', (e) => volumeView.set({ edges: e.target.checked }));
+$('core-size').addEventListener('input', () => $('core-size').setAttribute('aria-invalid', 'false'));
 $('remesh').addEventListener('click', remesh);
 $('file-input').addEventListener('change', (e) => {
   const file = e.target.files[0];

@@ -1,5 +1,7 @@
 // The side panel: the analysis of the loaded surface as text, the openings
-// list (hover highlights a loop in the view) and the quality histogram.
+// list (hover highlights a loop in the view; a radio button picks the inlet;
+// after meshing, each opening shows the name of its cap) and the quality
+// histogram.
 import { drawHistogram } from './histogram.js';
 
 const $ = (id) => document.getElementById(id);
@@ -32,10 +34,25 @@ export function showAnalysis(name, analysis, onHoverOpening) {
   list.replaceChildren();
   a.openings.forEach((o, i) => {
     const li = document.createElement('li');
-    li.dataset.testid = 'opening-item';
     li.setAttribute('data-testid', 'opening-item');
     li.tabIndex = 0;
-    li.textContent = `perimeter ${length(o.perimeter)}, radius ${length(o.radius)}, at ${point(o.centroid)}`;
+    // The inlet choice (the mesh option `inlet`, 1-based); the largest first.
+    const choice = document.createElement('label');
+    choice.className = 'inlet-choice';
+    choice.title = 'Cap this opening as the inlet';
+    const radio = document.createElement('input');
+    radio.type = 'radio';
+    radio.name = 'inlet';
+    radio.value = String(i + 1);
+    radio.checked = i === 0;
+    radio.setAttribute('data-testid', 'inlet-choice');
+    choice.append(radio, ' inlet');
+    const text = document.createElement('span');
+    text.textContent = `perimeter ${length(o.perimeter)}, radius ${length(o.radius)}, at ${point(o.centroid)}`;
+    const cap = document.createElement('span');
+    cap.className = 'cap-name';
+    cap.setAttribute('data-testid', 'opening-cap');
+    li.append(choice, ' ', text, ' ', cap);
     li.title = `Opening ${i + 1}: ${o.vertices.length} rim vertices`;
     const on = () => {
       li.classList.add('active');
@@ -65,6 +82,33 @@ export function showAnalysis(name, analysis, onHoverOpening) {
     }),
   );
   $('largest-only').checked = false;
+}
+
+/** The chosen inlet (1-based into analysis.openings), or undefined. */
+export function chosenInlet() {
+  const radio = $('openings').querySelector('input[name=inlet]:checked');
+  return radio ? Number(radio.value) : undefined;
+}
+
+/**
+ * Names each opening after the cap of the mesh that covers it (the nearest
+ * cap centroid): data-cap and a label "→ inlet". No caps: names cleared.
+ * @param {{name: string, centroid: number[]}[]} caps report.output.caps
+ */
+export function showCaps(openings, caps = []) {
+  const items = $('openings').querySelectorAll('[data-testid=opening-item]');
+  items.forEach((li, i) => {
+    const c = openings[i].centroid;
+    let best = null;
+    let bestD = Infinity;
+    for (const cap of caps) {
+      const d = Math.hypot(...cap.centroid.map((x, k) => x - c[k]));
+      if (d < bestD) [best, bestD] = [cap, d];
+    }
+    const name = best ? best.name : '';
+    li.dataset.cap = name;
+    li.querySelector('.cap-name').textContent = name ? `→ ${name}` : '';
+  });
 }
 
 export function hideAnalysis() {

@@ -1,5 +1,6 @@
-// three.js view of a triangle surface colored per triangle by quality, with
-// orbit controls, fit-to-view, a wireframe overlay and highlighted loops.
+// three.js view: one content at a time (a triangle surface colored per
+// triangle by quality, or the clipped volume of volume-view.js), orbit
+// controls, fit-to-view, a wireframe overlay and highlighted loops.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 
@@ -12,6 +13,7 @@ export class Viewer {
     this.renderer = new THREE.WebGLRenderer({ antialias: true });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
     this.renderer.setClearColor(0xe9edf1);
+    this.renderer.localClippingEnabled = true; // the volume's context surface
     container.prepend(this.renderer.domElement);
 
     this.scene = new THREE.Scene();
@@ -23,10 +25,10 @@ export class Viewer {
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.addEventListener('change', () => this.render());
 
-    this.solid = null;
-    this.wire = null;
+    this.content = null; // a THREE.Object3D
+    this.sphere = null; // bounding sphere of the content
+    this.wire = null; // the surface's wireframe overlay
     this.loop = null;
-    this.positions = null;
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
   }
@@ -47,8 +49,6 @@ export class Viewer {
 
   /** Shows a surface: positions (3V floats), triangles (3T indices), quality (T). */
   setSurface({ positions, triangles, quality }) {
-    this.clear();
-    this.positions = positions;
     const nt = triangles.length / 3;
     const pos = new Float32Array(9 * nt);
     const col = new Float32Array(9 * nt);
@@ -64,7 +64,7 @@ export class Viewer {
     geometry.setAttribute('color', new THREE.BufferAttribute(col, 3));
     geometry.computeVertexNormals(); // non-indexed: flat per triangle
     geometry.computeBoundingSphere();
-    this.solid = new THREE.Mesh(
+    const solid = new THREE.Mesh(
       geometry,
       new THREE.MeshLambertMaterial({
         vertexColors: true,
@@ -74,60 +74,78 @@ export class Viewer {
         polygonOffsetUnits: 1,
       }),
     );
-    this.wire = new THREE.Mesh(
+    const wire = new THREE.Mesh(
       geometry,
       new THREE.MeshBasicMaterial({ color: 0x1d2733, wireframe: true, transparent: true, opacity: 0.35 }),
     );
-    this.wire.visible = this.wireframe ?? false;
-    this.scene.add(this.solid, this.wire);
-    this.fitView();
+    wire.visible = this.wireframe ?? false;
+    const group = new THREE.Group();
+    group.add(solid, wire);
+    this.setContent(group, geometry.boundingSphere);
+    this.wire = wire;
+  }
+
+  /**
+   * Replaces the shown content (the previous one is disposed) and fits the
+   * view to `sphere` (a THREE.Sphere) unless fit is false.
+   */
+  setContent(object, sphere, { fit = true } = {}) {
+    this.clear();
+    this.content = object;
+    this.sphere = sphere;
+    this.scene.add(object);
+    if (fit) this.fitView();
+    else this.render();
   }
 
   clear() {
-    for (const obj of [this.solid, this.wire, this.loop]) {
-      if (!obj) continue;
-      this.scene.remove(obj);
-      obj.material.dispose();
+    if (this.content) {
+      this.scene.remove(this.content);
+      this.content.traverse((obj) => {
+        obj.geometry?.dispose();
+        obj.material?.dispose();
+      });
     }
-    this.solid?.geometry.dispose();
-    this.loop?.geometry.dispose();
-    this.solid = this.wire = this.loop = null;
-    this.positions = null;
-    this.render();
+    this.content = this.sphere = this.wire = null;
+    this.highlightLoop(null);
   }
 
+  /** Shows the surface's wireframe (the volume view draws its own edges). */
   setWireframe(on) {
     this.wireframe = on;
     if (this.wire) this.wire.visible = on;
     this.render();
   }
 
-  /** Highlights a closed loop of vertex indices (or removes it with null). */
-  highlightLoop(vertices) {
+  /**
+   * Highlights a closed loop of vertex indices into `positions` (3 floats a
+   * vertex), or removes it with null.
+   */
+  highlightLoop(vertices, positions) {
     if (this.loop) {
       this.scene.remove(this.loop);
       this.loop.geometry.dispose();
       this.loop.material.dispose();
       this.loop = null;
     }
-    if (vertices && this.positions) {
+    if (vertices && positions) {
       const pts = new Float32Array(3 * vertices.length);
-      vertices.forEach((v, i) => pts.set(this.positions.subarray(3 * v, 3 * v + 3), 3 * i));
+      vertices.forEach((v, i) => pts.set(positions.subarray(3 * v, 3 * v + 3), 3 * i));
       const geometry = new THREE.BufferGeometry();
       geometry.setAttribute('position', new THREE.BufferAttribute(pts, 3));
       this.loop = new THREE.LineLoop(
         geometry,
         new THREE.LineBasicMaterial({ color: 0xd0104c, depthTest: false }),
       );
-      this.loop.renderOrder = 1;
+      this.loop.renderOrder = 2;
       this.scene.add(this.loop);
     }
     this.render();
   }
 
   fitView() {
-    if (!this.solid) return;
-    const sphere = this.solid.geometry.boundingSphere;
+    if (!this.sphere) return;
+    const sphere = this.sphere;
     const distance = sphere.radius / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2));
     const direction = new THREE.Vector3(0.6, -0.9, 0.5).normalize();
     this.camera.near = distance / 100;
