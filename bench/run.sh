@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Runs the benchmarks (native and wasm) on the reference surfaces when present
+# (read + analysis throughput, then the remeshing speed of bench/remesh_speed.py)
 # and on a generated ~2M-triangle phantom. Build first (scripts/setup.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,3 +12,11 @@ echo "== native: read + weld + repair + analysis"
 echo
 echo "== wasm (node): read + weld + repair + analysis"
 node bench/wasm_bench.mjs "${files[@]}"
+
+if [[ -f $data/aortic-arch.stl ]]; then
+  echo
+  echo "== remesh speed: aortic-arch.stl at h = 0.06 (native, wasm, Gmsh when installed)"
+  py=python3
+  [[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
+  "$py" bench/remesh_speed.py --data "$data" --json out/speed/surface.json
+fi

@@ -5,7 +5,7 @@
 #include "core/mesh2d/optimize2d.h"
 
 #include <algorithm>
-#include <map>
+#include <cstdint>
 
 #include "core/geom/predicates.h"
 #include "core/quality/triangle_quality.h"
@@ -18,41 +18,62 @@ double gamma2d(const double* a, const double* b, const double* c) {
   return triangle_gamma(p, q, r);
 }
 
-// Edge (min, max) -> up to two (triangle, local index of the opposite corner).
-using EdgeMap = std::map<std::pair<int32_t, int32_t>, std::vector<std::pair<int32_t, int>>>;
+// One use of an edge by a triangle: the edge's key (min << 32 | max), the
+// triangle and the local index of the corner opposite the edge.
+struct EdgeUse {
+  uint64_t key;
+  int32_t t;
+  int k;
+};
 
-EdgeMap edge_map(const Mesh2D& m) {
-  EdgeMap e;
+// Every use of every edge, sorted by key, so the uses of an edge are
+// consecutive.
+std::vector<EdgeUse> edge_uses(const Mesh2D& m) {
+  std::vector<EdgeUse> e;
+  e.reserve(m.triangles.size());
   for (int32_t t = 0; t < int32_t(m.num_triangles()); ++t)
     for (int k = 0; k < 3; ++k) {
-      int32_t a = m.triangles[3 * t + (k + 1) % 3], b = m.triangles[3 * t + (k + 2) % 3];
-      e[std::minmax(a, b)].push_back({t, k});
+      auto [a, b] = std::minmax(m.triangles[3 * size_t(t) + size_t((k + 1) % 3)],
+                                m.triangles[3 * size_t(t) + size_t((k + 2) % 3)]);
+      e.push_back({(uint64_t(uint32_t(a)) << 32) | uint32_t(b), t, k});
     }
+  std::sort(e.begin(), e.end(), [](const EdgeUse& x, const EdgeUse& y) { return x.key < y.key; });
   return e;
+}
+
+// Calls f(first use, number of uses) for each edge.
+template <class F>
+void for_each_edge(const std::vector<EdgeUse>& uses, F&& f) {
+  for (size_t i = 0; i < uses.size();) {
+    size_t j = i + 1;
+    while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+    f(&uses[i], j - i);
+    i = j;
+  }
 }
 
 size_t flip_pass(Mesh2D& m) {
   size_t flips = 0;
-  EdgeMap edges = edge_map(m);
+  const std::vector<EdgeUse> uses = edge_uses(m);
   std::vector<uint8_t> touched(m.num_triangles(), 0);
   auto P = [&](int32_t v) { return &m.points[2 * size_t(v)]; };
-  for (auto& [e, uses] : edges) {
-    if (uses.size() != 2) continue;
-    auto [t, k] = uses[0];
-    auto [u, j] = uses[1];
-    if (touched[t] || touched[u]) continue;  // stale: handled next pass
+  for_each_edge(uses, [&](const EdgeUse* use, size_t count) {
+    if (count != 2) return;
+    const int32_t t = use[0].t, u = use[1].t;
+    const int k = use[0].k, j = use[1].k;
+    if (touched[size_t(t)] || touched[size_t(u)]) return;  // stale: handled next pass
     int32_t* T = &m.triangles[3 * size_t(t)];
     int32_t* U = &m.triangles[3 * size_t(u)];
     int32_t p = T[k], a = T[(k + 1) % 3], b = T[(k + 2) % 3], q = U[j];
-    if (incircle(P(p), P(a), P(b), P(q)) <= 0) continue;
+    if (incircle(P(p), P(a), P(b), P(q)) <= 0) return;
     // q inside the circumcircle of (p, a, b): the quad is convex; flip a-b
     // to p-q keeping both triangles counterclockwise.
-    if (orient2d(P(p), P(a), P(q)) <= 0 || orient2d(P(q), P(b), P(p)) <= 0) continue;
+    if (orient2d(P(p), P(a), P(q)) <= 0 || orient2d(P(q), P(b), P(p)) <= 0) return;
     T[0] = p, T[1] = a, T[2] = q;
     U[0] = q, U[1] = b, U[2] = p;
-    touched[t] = touched[u] = 1;
+    touched[size_t(t)] = touched[size_t(u)] = 1;
     ++flips;
-  }
+  });
   return flips;
 }
 
@@ -68,14 +89,14 @@ Optimize2DStats optimize_mesh2d(Mesh2D& m, int passes) {
       if (f == 0) break;
     }
     // Boundary vertices: on an edge used by a single triangle.
-    EdgeMap edges = edge_map(m);
     std::vector<uint8_t> fixed(nv, 0);
     std::vector<std::vector<int32_t>> neighbors(nv), star(nv);
-    for (auto& [e, uses] : edges) {
-      if (uses.size() == 1) fixed[e.first] = fixed[e.second] = 1;
-      neighbors[e.first].push_back(e.second);
-      neighbors[e.second].push_back(e.first);
-    }
+    for_each_edge(edge_uses(m), [&](const EdgeUse* use, size_t count) {
+      const int32_t a = int32_t(use->key >> 32), b = int32_t(use->key & 0xffffffffu);
+      if (count == 1) fixed[size_t(a)] = fixed[size_t(b)] = 1;
+      neighbors[size_t(a)].push_back(b);
+      neighbors[size_t(b)].push_back(a);
+    });
     for (int32_t t = 0; t < int32_t(m.num_triangles()); ++t)
       for (int k = 0; k < 3; ++k) star[m.triangles[3 * size_t(t) + k]].push_back(t);
     auto worst = [&](int32_t v) {

@@ -2,7 +2,11 @@
 // remeshing) and stage 7 (write); the surface is written as the `wall` group.
 #include "core/pipeline/mesh_job.h"
 
+#include <algorithm>
 #include <chrono>
+
+#include "core/mesh/self_intersection.h"
+#include "core/mesh/surface_distance.h"
 
 namespace vm {
 
@@ -38,8 +42,18 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
     auto remeshed =
         remesh_surface(r.output_surface, options.remesh_options, &r.remesh_stats, remesh_progress);
     if (!remeshed.ok()) return remeshed.status();
-    r.output_surface = std::move(remeshed).value().mesh;
+    const SurfaceMesh input = std::move(r.output_surface);
+    r.output_surface = std::move(remeshed.value().mesh);
     r.remeshed = true;
+    // Fidelity: output vertices on the input, input vertices near the output.
+    r.fidelity.max_vertex_offset = distances_to_surface(input, r.output_surface.points).max /
+                                   bounding_box(input.points).diagonal();
+    const DistanceReport gaps = distances_to_surface(r.output_surface, input.points, true);
+    for (size_t v = 0; v < gaps.per_point.size(); ++v) {
+      const double rel = gaps.per_point[v] / remeshed.value().input_sizes[v];
+      r.fidelity.max_input_gap = std::max(r.fidelity.max_input_gap, rel);
+      r.fidelity.input_gap_vertices += rel > 0.1;
+    }
     // Never write a surface whose topology differs from the input's.
     r.output_topology = analyze_topology(r.output_surface);
     const TopologyReport& out = r.output_topology;
@@ -53,6 +67,11 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
           std::to_string(out.nonmanifold_edges) +
           "): the size is too coarse for some feature; try a smaller --size or a larger "
           "--per-circumference");
+    r.fidelity.self_intersections = find_self_intersections(r.output_surface, 0).pairs;
+    if (r.fidelity.self_intersections > 0)
+      r.warnings.push_back("the remeshed surface intersects itself (" +
+                           std::to_string(r.fidelity.self_intersections) +
+                           " pairs of triangles): try a smaller size");
   }
 
   if (!report_progress(progress, 0.9, "quality")) return Status::Error(kCancelledMessage);

@@ -27,6 +27,20 @@ struct MeshJobOptions {
   RemeshOptions remesh_options;
 };
 
+/// How faithful the remeshed surface is to its input (issue 3's checks).
+struct SurfaceFidelity {
+  /// Largest distance of an output vertex to the input surface, relative to
+  /// the input's bounding-box diagonal (0 up to rounding: vertices lie on it).
+  double max_vertex_offset = 0;
+  /// Largest distance of an input vertex to the output surface, relative to
+  /// the target size h at that vertex (how much detail the size discards).
+  double max_input_gap = 0;
+  /// Input vertices farther than 0.1 h from the output surface.
+  size_t input_gap_vertices = 0;
+  /// Pairs of output triangles that intersect (0 for a valid surface).
+  size_t self_intersections = 0;
+};
+
 /// One physical group of the written file and its element count.
 struct OutputGroup {
   int dim = 2;
@@ -44,6 +58,7 @@ struct MeshJobResult {
   bool remeshed = false;
   RemeshStats remesh_stats;        ///< when remeshed
   TopologyReport output_topology;  ///< when remeshed (checked equal to the input's)
+  SurfaceFidelity fidelity;        ///< when remeshed
   std::vector<std::string> warnings;
   double seconds_total = 0;
 };

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <numbers>
 
 #include "core/geom/closest_point.h"
@@ -28,27 +29,154 @@ Vec normal(const double* a, const double* b, const double* c) {
   return n;
 }
 
+/// (b - a) x (c - a): the normal scaled by twice the area.
+Vec area_normal(const double* a, const double* b, const double* c) {
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+               w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  return Vec{{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]}};
+}
+
+/// The unit vector along the sum of `parts` (zero if the sum is zero).
+Vec normal_sum(std::initializer_list<Vec> parts) {
+  Vec n{{0, 0, 0}};
+  for (const Vec& v : parts)
+    for (int k = 0; k < 3; ++k) n.x[k] += v.x[k];
+  const double l = std::sqrt(n.x[0] * n.x[0] + n.x[1] * n.x[1] + n.x[2] * n.x[2]);
+  if (l > 0)
+    for (double& v : n.x) v /= l;
+  return n;
+}
+
 double dot(const Vec& a, const Vec& b) {
   return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2];
 }
 
+/// Below this gamma_k a triangle's normal is not trusted by the guards.
+constexpr double kFlatGamma = 0.2;
+/// A valence swap may lower the pair's worst gamma_k to this fraction.
+constexpr double kValenceSwapMinGamma = 0.6;
+/// A quality swap that makes valences less regular needs a triangle this poor.
+constexpr double kPoorGamma = 0.5;
+/// Smoothing may lower a star's worst gamma_k down to this when it raises
+/// the star's mean.
+constexpr double kSmoothingFloor = 0.8;
+/// The smallest gain of the sum of a star's gamma_k worth a move.
+constexpr double kMinGain = 1e-3;
+/// A collapse may not create an edge longer than this times the size, and
+/// may lower the worst gamma_k of the changed triangles down to kCollapseFloor.
+constexpr double kMaxEdgeAfterCollapse = 1.4;
+constexpr double kCollapseFloor = 0.4;
+/// A split point may lie off its edge by at most this times the edge length.
+constexpr double kMaxSplitOffset = 0.2;
+
 class Optimizer {
  public:
-  Optimizer(SurfaceMesh& m, std::vector<int32_t>& home, const std::vector<uint8_t>& fixed,
-            const SurfaceMesh& input, const TriangleAdjacency& input_adj,
+  Optimizer(SurfaceMesh& m, std::vector<int32_t>& home, std::vector<uint8_t>& fixed,
+            std::vector<double>& size, const SurfaceMesh& input, const TriangleAdjacency& input_adj,
             const SurfaceOptimizeOptions& o)
-      : m_(m), home_(home), fixed_(fixed), in_(input), in_adj_(input_adj) {
+      : m_(m), home_(home), fixed_(fixed), size_(size), in_(input), in_adj_(input_adj) {
+    collapse_ratio_ = o.collapse_ratio;
+    split_ratio_ = o.split_ratio;
+    recent_.assign(m.num_vertices(), 1);
+    q_.resize(m.num_triangles());
+    for (size_t t = 0; t < q_.size(); ++t) {
+      const int32_t* T = &m.triangles[3 * t];
+      q_[t] = gamma(T[0], T[1], T[2]);
+    }
     cos_turn_ = std::cos(o.max_normal_turn_degrees * std::numbers::pi / 180);
     vt_.assign(m.num_vertices(), {});
     for (size_t t = 0; t < m.num_triangles(); ++t)
       for (int c = 0; c < 3; ++c) vt_[size_t(m.triangles[3 * t + c])].push_back(int32_t(t));
   }
 
+  /// Starts the next pass: work is limited to what changed since the
+  /// previous pass started.
+  void next_pass() { ++pass_; }
+
+  /// Splits the interior edges longer than split_ratio times the target
+  /// size at their midpoint projected onto the input (see try_split).
+  size_t split_pass() {
+    size_t splits = 0;
+    if (size_.empty() || !(split_ratio_ > 0)) return 0;
+    const int32_t count = int32_t(m_.num_triangles());
+    for (int32_t t = 0; t < count; ++t)
+      for (int k = 0; k < 3 && tri(t)[0] >= 0 && active(t); ++k) {
+        const int32_t a = tri(t)[k], b = tri(t)[(k + 1) % 3];
+        const double l2 = dist2(p(a), p(b));
+        const double limit = split_ratio_ * 0.5 * (size_[size_t(a)] + size_[size_t(b)]);
+        if (l2 > limit * limit && try_split(t, k)) ++splits;
+      }
+    return splits;
+  }
+
+  /// Collapses the interior edges shorter than collapse_ratio times the
+  /// target size (see try_collapse). Needs sizes.
+  size_t collapse_pass() {
+    size_t collapses = 0;
+    if (size_.empty()) return 0;
+    for (int32_t t = 0; t < int32_t(m_.num_triangles()); ++t)
+      for (int k = 0; k < 3 && tri(t)[0] >= 0 && active(t); ++k) {
+        const int32_t a = tri(t)[k], b = tri(t)[(k + 1) % 3];
+        const double* pa = p(a);
+        const double* pb = p(b);
+        const double len =
+            std::sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
+                      (pa[2] - pb[2]) * (pa[2] - pb[2]));
+        if (len < collapse_ratio_ * std::min(size_[size_t(a)], size_[size_t(b)]) &&
+            try_collapse(a, b))
+          ++collapses;
+      }
+    return collapses;
+  }
+
+  /// Removes the collapsed vertices and triangles: renumbers mesh, home,
+  /// fixed and size. Returns the new number of each old vertex (-1: gone).
+  std::vector<int32_t> compact(std::vector<uint8_t>& fixed, std::vector<double>& size) {
+    std::vector<int32_t> renumber(m_.num_vertices(), -1);
+    int32_t n = 0;
+    for (size_t v = 0; v < renumber.size(); ++v) {
+      if (!dead_.empty() && dead_[v]) continue;
+      renumber[v] = n;
+      for (int k = 0; k < 3; ++k) m_.points[3 * size_t(n) + k] = m_.points[3 * v + k];
+      home_[size_t(n)] = home_[v];
+      fixed[size_t(n)] = fixed[v];
+      if (!size.empty()) size[size_t(n)] = size[v];
+      ++n;
+    }
+    m_.points.resize(3 * size_t(n));
+    home_.resize(size_t(n));
+    fixed.resize(size_t(n));
+    if (!size.empty()) size.resize(size_t(n));
+    size_t kept = 0;
+    for (size_t t = 0; t < m_.num_triangles(); ++t) {
+      if (m_.triangles[3 * t] < 0) continue;
+      for (int c = 0; c < 3; ++c)
+        m_.triangles[3 * kept + size_t(c)] = renumber[size_t(m_.triangles[3 * t + size_t(c)])];
+      ++kept;
+    }
+    m_.triangles.resize(3 * kept);
+    return renumber;
+  }
+
   size_t swap_pass() {
     size_t swaps = 0;
     for (int32_t t = 0; t < int32_t(m_.num_triangles()); ++t)
-      for (int k = 0; k < 3; ++k)
-        if (try_swap(t, k)) {
+      for (int k = 0; k < 3 && active(t); ++k)
+        if (try_swap(t, k, SwapGoal::kQuality)) {
+          ++swaps;
+          break;
+        }
+    return swaps;
+  }
+
+  /// Swaps edges that bring the valences of their four vertices closer to
+  /// the regular ones (6 inside, 4 on an opening), when neither new triangle
+  /// is poor; the smoothing that follows restores the shapes.
+  size_t valence_pass() {
+    size_t swaps = 0;
+    for (int32_t t = 0; t < int32_t(m_.num_triangles()); ++t)
+      for (int k = 0; k < 3 && active(t); ++k)
+        if (try_swap(t, k, SwapGoal::kValence)) {
           ++swaps;
           break;
         }
@@ -58,7 +186,7 @@ class Optimizer {
   size_t smooth_pass() {
     size_t moves = 0;
     for (size_t v = 0; v < m_.num_vertices(); ++v)
-      if (!fixed_[v] && try_move(int32_t(v))) ++moves;
+      if (!fixed_[v] && recent_[v] + 1 >= pass_ && try_move(int32_t(v))) ++moves;
     return moves;
   }
 
@@ -94,9 +222,19 @@ class Optimizer {
     list.erase(std::find(list.begin(), list.end(), x));
   }
 
+  enum class SwapGoal { kQuality, kValence };
+
+  int valence_excess(int32_t v, int change) const {
+    // Neighbors: one per star triangle, plus one on an opening.
+    const bool opening = fixed_[size_t(v)] == kOnOpening;
+    const int valence = int(vt_[size_t(v)].size()) + (opening ? 1 : 0) + change;
+    return std::abs(valence - (opening ? 4 : 6));
+  }
+
   // t = (a, b, c), u = (b, a, d) -> t = (a, d, c), u = (d, b, c).
-  bool try_swap(int32_t t, int k) {
+  bool try_swap(int32_t t, int k, SwapGoal goal) {
     int32_t* T = tri(t);
+    if (T[0] < 0) return false;  // collapsed
     const int32_t a = T[k], b = T[(k + 1) % 3], c = T[(k + 2) % 3];
     const int32_t u = across(t, a, b);
     if (u < 0) return false;
@@ -104,12 +242,28 @@ class Optimizer {
     int32_t d = -1;
     for (int j = 0; j < 3; ++j)
       if (U[j] != a && U[j] != b) d = U[j];
-    if (d < 0 || d == c || has_edge(c, d)) return false;
-    const double before = std::min(gamma(a, b, c), gamma(b, a, d));
-    const double after = std::min(gamma(a, d, c), gamma(d, b, c));
-    if (!(after > before + 1e-9)) return false;
-    const Vec nt = normal(p(a), p(b), p(c)), nu = normal(p(b), p(a), p(d));
+    if (d < 0 || d == c) return false;
+    const int excess_before =
+        valence_excess(a, 0) + valence_excess(b, 0) + valence_excess(c, 0) + valence_excess(d, 0);
+    const int excess_after =
+        valence_excess(a, -1) + valence_excess(b, -1) + valence_excess(c, 1) + valence_excess(d, 1);
+    const double before = std::min(q_[size_t(t)], q_[size_t(u)]);
+    // Undoing a valence swap needs a poor triangle.
+    if (goal == SwapGoal::kValence ? excess_after >= excess_before
+                                   : excess_after > excess_before && before > kPoorGamma)
+      return false;
+    const double g1 = gamma(a, d, c), g2 = gamma(d, b, c);
+    const double after = std::min(g1, g2);
+    if (goal == SwapGoal::kQuality ? !(after > before + 1e-9)
+                                   : after < kValenceSwapMinGamma * before)
+      return false;
+    if (has_edge(c, d)) return false;
+    // The normal guard; a nearly flat triangle's normal means nothing, so
+    // next to one the pair's area-weighted normal stands for both.
+    Vec nt = normal(p(a), p(b), p(c)), nu = normal(p(b), p(a), p(d));
     const Vec n1 = normal(p(a), p(d), p(c)), n2 = normal(p(d), p(b), p(c));
+    if (q_[size_t(t)] < kFlatGamma || q_[size_t(u)] < kFlatGamma)
+      nt = nu = normal_sum({area_normal(p(a), p(b), p(c)), area_normal(p(b), p(a), p(d))});
     if (dot(nt, nu) < cos_turn_ || dot(n1, n2) < cos_turn_) return false;
     for (const Vec& n : {n1, n2})
       if (dot(n, nt) < cos_turn_ || dot(n, nu) < cos_turn_) return false;
@@ -119,6 +273,178 @@ class Optimizer {
     erase(vt_[size_t(b)], t);
     vt_[size_t(c)].push_back(u);
     vt_[size_t(d)].push_back(t);
+    q_[size_t(t)] = g1;
+    q_[size_t(u)] = g2;
+    for (int32_t v : {a, b, c, d}) recent_[size_t(v)] = pass_;
+    return true;
+  }
+
+  /// A triangle with a vertex changed in this pass or the previous one.
+  bool active(int32_t t) const {
+    const int32_t* T = &m_.triangles[3 * size_t(t)];
+    return T[0] >= 0 && (recent_[size_t(T[0])] + 1 >= pass_ || recent_[size_t(T[1])] + 1 >= pass_ ||
+                         recent_[size_t(T[2])] + 1 >= pass_);
+  }
+
+  /// Records that v and the vertices of its star changed.
+  void mark_star(int32_t v) {
+    for (int32_t t : vt_[size_t(v)])
+      for (int c = 0; c < 3; ++c) recent_[size_t(m_.triangles[3 * size_t(t) + size_t(c)])] = pass_;
+  }
+
+  static double dist2(const double* x, const double* y) {
+    return (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+           (x[2] - y[2]) * (x[2] - y[2]);
+  }
+
+  /// Splits the edge (a, b) = corners k, k + 1 of t, shared with u = (b, a,
+  /// d), at its midpoint projected onto the input: t = (a, b, c) becomes
+  /// (a, n, c) + (n, b, c), u becomes (b, n, d) + (n, a, d). Refused on an
+  /// opening edge and where a new triangle would turn by more than the guard.
+  bool try_split(int32_t t, int k) {
+    int32_t* T = tri(t);
+    const int32_t a = T[k], b = T[(k + 1) % 3], c = T[(k + 2) % 3];
+    const int32_t u = across(t, a, b);
+    if (u < 0) return false;
+    int32_t d = -1;
+    for (int j = 0; j < 3; ++j)
+      if (tri(u)[j] != a && tri(u)[j] != b) d = tri(u)[j];
+    const double mid[3] = {0.5 * (p(a)[0] + p(b)[0]), 0.5 * (p(a)[1] + p(b)[1]),
+                           0.5 * (p(a)[2] + p(b)[2])};
+    double x[3];
+    const int32_t home = project_near(mid, home_[size_t(a)], in_, in_adj_, x);
+    // Far from the edge (a crease between a and b): leave it.
+    if (dist2(mid, x) > kMaxSplitOffset * kMaxSplitOffset * dist2(p(a), p(b))) return false;
+    Vec nt = normal(p(a), p(b), p(c)), nu = normal(p(b), p(a), p(d));
+    if (q_[size_t(t)] < kFlatGamma || q_[size_t(u)] < kFlatGamma)
+      nt = nu = normal_sum({area_normal(p(a), p(b), p(c)), area_normal(p(b), p(a), p(d))});
+    if (dot(normal(p(a), x, p(c)), nt) < cos_turn_ || dot(normal(x, p(b), p(c)), nt) < cos_turn_ ||
+        dot(normal(p(b), x, p(d)), nu) < cos_turn_ || dot(normal(x, p(a), p(d)), nu) < cos_turn_)
+      return false;
+    const int32_t n = int32_t(home_.size());
+    m_.points.insert(m_.points.end(), x, x + 3);
+    home_.push_back(home);
+    fixed_.push_back(kFree);
+    size_.push_back(0.5 * (size_[size_t(a)] + size_[size_t(b)]));
+    vt_.emplace_back();
+    recent_.push_back(pass_);
+    if (!dead_.empty()) dead_.push_back(0);
+    const int32_t t2 = int32_t(m_.num_triangles()), u2 = t2 + 1;
+    T[0] = a, T[1] = n, T[2] = c;
+    int32_t* U = tri(u);
+    U[0] = b, U[1] = n, U[2] = d;
+    m_.triangles.insert(m_.triangles.end(), {n, b, c, n, a, d});
+    erase(vt_[size_t(b)], t);
+    erase(vt_[size_t(a)], u);
+    vt_[size_t(b)].push_back(t2);
+    vt_[size_t(c)].push_back(t2);
+    vt_[size_t(a)].push_back(u2);
+    vt_[size_t(d)].push_back(u2);
+    vt_[size_t(n)] = {t, u, t2, u2};
+    for (int32_t w : {t, u, t2, u2}) {
+      const int32_t* W = tri(w);
+      if (size_t(w) >= q_.size()) q_.resize(size_t(w) + 1);
+      q_[size_t(w)] = gamma(W[0], W[1], W[2]);
+    }
+    for (int32_t v : {a, b, c, d, n}) recent_[size_t(v)] = pass_;
+    return true;
+  }
+
+  /// The vertices sharing an edge with v.
+  void neighbors(int32_t v, std::vector<int32_t>& out) const {
+    out.clear();
+    for (int32_t t : vt_[size_t(v)])
+      for (int c = 0; c < 3; ++c) {
+        const int32_t w = m_.triangles[3 * size_t(t) + size_t(c)];
+        if (w != v && std::find(out.begin(), out.end(), w) == out.end()) out.push_back(w);
+      }
+  }
+
+  /// Collapses edge (a, b): into the vertex on an opening if one is (both:
+  /// refused), else into the midpoint projected onto the input. Refused
+  /// unless the link condition holds (the only common neighbors are the
+  /// apexes of the edge's two triangles, so the mesh stays manifold), no
+  /// triangle turns by more than the normal guard, no edge grows beyond
+  /// kMaxEdgeAfterCollapse times the size, and the worst gamma_k of the
+  /// changed triangles ends at least at min(its value before, kCollapseFloor).
+  bool try_collapse(int32_t a, int32_t b) {
+    if (fixed_[size_t(a)] && fixed_[size_t(b)]) return false;
+    if (fixed_[size_t(a)]) std::swap(a, b);  // a goes, b stays
+    neighbors(a, na_);
+    neighbors(b, nb_);
+    int common = 0;
+    for (int32_t w : na_)
+      if (std::find(nb_.begin(), nb_.end(), w) != nb_.end()) ++common;
+    int shared = 0;  // triangles with edge (a, b)
+    for (int32_t t : vt_[size_t(a)]) {
+      const int32_t* T = tri(t);
+      if (T[0] == b || T[1] == b || T[2] == b) ++shared;
+    }
+    if (shared != 2 || common != 2) return false;
+    double target[3];
+    int32_t target_home = home_[size_t(b)];
+    if (fixed_[size_t(b)]) {
+      std::copy(p(b), p(b) + 3, target);
+    } else {
+      const double mid[3] = {0.5 * (p(a)[0] + p(b)[0]), 0.5 * (p(a)[1] + p(b)[1]),
+                             0.5 * (p(a)[2] + p(b)[2])};
+      target_home = project_near(mid, home_[size_t(a)], in_, in_adj_, target);
+    }
+    // The changed triangles: every triangle of a or b but the two removed.
+    changed_.clear();
+    double before = 1;
+    for (int32_t v : {a, b})
+      for (int32_t t : vt_[size_t(v)]) {
+        const int32_t* T = tri(t);
+        before = std::min(before, gamma(T[0], T[1], T[2]));
+        const bool on_edge =
+            (T[0] == a || T[1] == a || T[2] == a) && (T[0] == b || T[1] == b || T[2] == b);
+        if (!on_edge && std::find(changed_.begin(), changed_.end(), t) == changed_.end())
+          changed_.push_back(t);
+      }
+    const double limit = kMaxEdgeAfterCollapse * size_[size_t(b)];
+    double after = 1;
+    for (int32_t t : changed_) {
+      const int32_t* T = tri(t);
+      const double* q[3];
+      for (int c = 0; c < 3; ++c) q[c] = T[c] == a || T[c] == b ? target : p(T[c]);
+      const Vec n_old = normal(p(T[0]), p(T[1]), p(T[2])), n_new = normal(q[0], q[1], q[2]);
+      if (dot(n_old, n_new) < cos_turn_) return false;
+      for (int c = 0; c < 3; ++c) {
+        const double* x = q[c];
+        const double* y = q[(c + 1) % 3];
+        const double l2 = (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+                          (x[2] - y[2]) * (x[2] - y[2]);
+        if (l2 > limit * limit) return false;
+      }
+      after = std::min(after, triangle_gamma(q[0], q[1], q[2]));
+    }
+    if (after < std::min(before, kCollapseFloor)) return false;
+    // Apply: drop the two triangles on the edge, hand a's others to b.
+    std::vector<int32_t> star_a = vt_[size_t(a)];
+    for (int32_t t : star_a) {
+      int32_t* T = tri(t);
+      const bool on_edge = T[0] == b || T[1] == b || T[2] == b;
+      if (on_edge) {
+        for (int c = 0; c < 3; ++c)
+          if (T[c] != a) erase(vt_[size_t(T[c])], t);
+        T[0] = T[1] = T[2] = -1;
+      } else {
+        for (int c = 0; c < 3; ++c)
+          if (T[c] == a) T[c] = b;
+        vt_[size_t(b)].push_back(t);
+      }
+    }
+    vt_[size_t(a)].clear();
+    if (dead_.empty()) dead_.assign(m_.num_vertices(), 0);
+    dead_[size_t(a)] = 1;
+    std::copy(target, target + 3, &m_.points[3 * size_t(b)]);
+    home_[size_t(b)] = target_home;
+    for (int32_t t : changed_) {
+      const int32_t* T = tri(t);
+      q_[size_t(t)] = gamma(T[0], T[1], T[2]);
+    }
+    mark_star(b);
     return true;
   }
 
@@ -131,7 +457,7 @@ class Optimizer {
     double before = 1, before_sum = 0;
     for (int32_t t : star) {
       const int32_t* T = tri(t);
-      const double g = gamma(T[0], T[1], T[2]);
+      const double g = q_[size_t(t)];
       before = std::min(before, g);
       before_sum += g;
       int c = 0;
@@ -148,39 +474,59 @@ class Optimizer {
     const int32_t new_home = project_near(target, home_[size_t(v)], in_, in_adj_, projected);
     double* pv = &m_.points[3 * size_t(v)];
     const double old[3] = {pv[0], pv[1], pv[2]};
+    // The guard's reference normals: each triangle's own, or the star's
+    // area-weighted normal for a nearly flat one.
     old_normals_.clear();
+    Vec star_normal{{0, 0, 0}};
     for (int32_t t : star) {
       const int32_t* T = tri(t);
       old_normals_.push_back(normal(p(T[0]), p(T[1]), p(T[2])));
+      const Vec an = area_normal(p(T[0]), p(T[1]), p(T[2]));
+      for (int k = 0; k < 3; ++k) star_normal.x[k] += an.x[k];
     }
+    star_normal = normal_sum({star_normal});
+    for (size_t i = 0; i < star.size(); ++i)
+      if (q_[size_t(star[i])] < kFlatGamma) old_normals_[i] = star_normal;
     std::copy(projected, projected + 3, pv);
     double after = 1, after_sum = 0;
     bool ok = true;
+    new_q_.clear();
     for (size_t i = 0; i < star.size() && ok; ++i) {
       const int32_t* T = tri(star[i]);
       const double g = gamma(T[0], T[1], T[2]);
+      new_q_.push_back(g);
       after = std::min(after, g);
       after_sum += g;
       ok = dot(normal(p(T[0]), p(T[1]), p(T[2])), old_normals_[i]) >= cos_turn_;
     }
     // Better worst triangle, or the same worst and a better mean.
-    const bool better = after > before + 1e-9 || (after >= before && after_sum > before_sum + 1e-9);
+    const bool better = after > before + 1e-9 || (after >= std::min(before, kSmoothingFloor) &&
+                                                  after_sum > before_sum + kMinGain);
     if (!ok || !better) {
       std::copy(old, old + 3, pv);
       return false;
     }
     home_[size_t(v)] = new_home;
+    for (size_t i = 0; i < star.size(); ++i) q_[size_t(star[i])] = new_q_[i];
+    mark_star(v);
     return true;
   }
 
   SurfaceMesh& m_;
   std::vector<int32_t>& home_;
-  const std::vector<uint8_t>& fixed_;
+  std::vector<uint8_t>& fixed_;
+  std::vector<double>& size_;
   const SurfaceMesh& in_;
   const TriangleAdjacency& in_adj_;
   double cos_turn_ = 0;
   std::vector<std::vector<int32_t>> vt_;
   std::vector<Vec> old_normals_;
+  double collapse_ratio_ = 0, split_ratio_ = 0;
+  std::vector<uint8_t> dead_;  ///< collapsed vertices (empty until the first)
+  std::vector<int32_t> na_, nb_, changed_;
+  int pass_ = 1;
+  std::vector<double> q_, new_q_;  ///< gamma_k per triangle; of a tried star
+  std::vector<int> recent_;        ///< per vertex: the last pass it changed in
 };
 
 }  // namespace
@@ -222,19 +568,26 @@ int32_t project_near(const double* q, int32_t start, const SurfaceMesh& input,
 }
 
 SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>& home,
-                                         const std::vector<uint8_t>& fixed,
+                                         std::vector<uint8_t>& fixed, std::vector<double>& size,
                                          const SurfaceMesh& input,
                                          const TriangleAdjacency& input_adj,
                                          const SurfaceOptimizeOptions& options) {
   SurfaceOptimizeStats stats;
-  Optimizer opt(mesh, home, fixed, input, input_adj, options);
+  Optimizer opt(mesh, home, fixed, size, input, input_adj, options);
   for (int pass = 0; pass < options.passes; ++pass) {
-    size_t swaps = opt.swap_pass();
+    size_t splits = pass < options.valence_passes ? opt.split_pass() : 0;
+    size_t collapses = pass < options.valence_passes ? opt.collapse_pass() : 0;
+    size_t swaps = pass < options.valence_passes ? opt.valence_pass() : 0;
+    swaps += opt.swap_pass();
     size_t moves = opt.smooth_pass();
+    stats.collapses += collapses;
+    stats.splits += splits;
     stats.swaps += swaps;
     stats.moves += moves;
-    if (swaps == 0 && moves == 0) break;
+    if (splits == 0 && collapses == 0 && swaps == 0 && moves == 0) break;
+    opt.next_pass();
   }
+  if (stats.collapses > 0) opt.compact(fixed, size);
   return stats;
 }
 

@@ -13,29 +13,53 @@ namespace vm {
 
 struct SurfaceOptimizeOptions {
   int passes = 10;  ///< swap + smoothing passes
+  /// The first passes also swap edges towards regular valences.
+  int valence_passes = 10;
   /// A swap or a move is refused if it turns a triangle's normal by more
   /// than this (degrees), so the mesh cannot fold over sharp features.
-  double max_normal_turn_degrees = 25;
+  double max_normal_turn_degrees = 40;
+  /// Interior edges shorter than this times the target size are collapsed
+  /// (when sizes are given).
+  double collapse_ratio = 0.7;
+  /// Interior edges longer than this times the target size are split at
+  /// their midpoint projected onto the input (when sizes are given; 0 = no
+  /// split).
+  double split_ratio = 1.6;
 };
+
+/// Values of the `fixed` flags of optimize_on_surface.
+inline constexpr uint8_t kFree = 0;       ///< may move
+inline constexpr uint8_t kOnOpening = 1;  ///< on an opening: never moves
 
 struct SurfaceOptimizeStats {
   size_t swaps = 0;
   size_t moves = 0;
+  size_t collapses = 0;
+  size_t splits = 0;
 };
 
-/// Improves `mesh` in place: swaps an interior edge when the smaller gamma_k
-/// of its two triangles increases, and moves each vertex not `fixed` to the
-/// mean of the apexes that would make its triangles equilateral, projected
-/// onto `input` (the closest point found
-/// by a walk from `home[v]`, an input triangle near v, which is updated)
-/// when the smallest gamma_k of its star increases, or stays and the star's
-/// mean increases. Vertices only move to
-/// points of the input surface; the boundary edges of `mesh` never change.
-/// Preconditions: `mesh` is manifold and consistently oriented, home has
-/// one input triangle per vertex, fixed one flag per vertex, input_adj is
-/// build_adjacency(input).
+/// Improves `mesh` in place, in passes of five phases:
+/// - splits of edges longer than `options.split_ratio` times the target size
+///   at their midpoints projected onto `input`;
+/// - collapses of edges shorter than `options.collapse_ratio` times the
+///   target size `size` (one per vertex; empty: no collapse), keeping the
+///   mesh manifold (link condition) and the opening vertices in place;
+/// - swaps of interior edges towards regular valences (6 inside, 4 on an
+///   opening) that keep the pair's worst gamma_k above a fraction of itself;
+/// - swaps that raise the smaller gamma_k of an edge's two triangles;
+/// - moves of each vertex not `fixed` to the mean of the apexes that would
+///   make its triangles equilateral, projected onto `input` (the closest
+///   point found by a walk from `home[v]`, an input triangle near v, which is
+///   updated), when the star's worst gamma_k increases, or its mean
+///   increases while the worst stays above min(before, 0.8).
+/// Vertices only move to points of the input surface; the boundary edges of
+/// `mesh` never change; no triangle turns by more than the normal guard.
+/// Split vertices are appended (free) and collapsed vertices removed: mesh,
+/// home, fixed and size are renumbered together. Preconditions: `mesh` is manifold and consistently
+/// oriented, home has one input triangle per vertex, fixed one flag per vertex (kOnOpening on every
+/// boundary vertex, else kFree), input_adj is build_adjacency(input).
 SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>& home,
-                                         const std::vector<uint8_t>& fixed,
+                                         std::vector<uint8_t>& fixed, std::vector<double>& size,
                                          const SurfaceMesh& input,
                                          const TriangleAdjacency& input_adj,
                                          const SurfaceOptimizeOptions& options = {});

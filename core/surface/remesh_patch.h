@@ -27,7 +27,7 @@ enum class Mesher2D { kFrontal, kDelaunay, kAdapt };
 struct PatchMeshOptions {
   Mesher2D mesher = Mesher2D::kFrontal;
   RefinementOptions refinement;
-  int optimize_passes = 5;  ///< flips + smoothing passes in the plane
+  int optimize_passes = 3;  ///< flips + smoothing passes in the plane
 };
 
 /// A point of a patch boundary: on the patch edge from local vertex a to b at

@@ -271,11 +271,46 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
 
   // Phase 5: swaps and smoothing on the input surface.
   t0 = std::chrono::steady_clock::now();
-  auto ostats =
-      optimize_on_surface(out.mesh, out.home, out.on_opening, input, adj, options.optimize);
+  // The target size at each output vertex: the mean over its home triangle.
+  std::vector<double> out_size(out.home.size());
+  for (size_t v = 0; v < out_size.size(); ++v) {
+    const int32_t* T = &input.triangles[3 * size_t(out.home[v])];
+    out_size[v] = (h[size_t(T[0])] + h[size_t(T[1])] + h[size_t(T[2])]) / 3;
+  }
+  auto ostats = optimize_on_surface(out.mesh, out.home, out.on_opening, out_size, input, adj,
+                                    options.optimize);
+  stats.collapses = ostats.collapses;
   stats.swaps = ostats.swaps;
   stats.moves = ostats.moves;
   stats.seconds_optimize = seconds_since(t0);
+  // How well the edges follow the field: edge length / mean target size of
+  // its ends, each edge once.
+  {
+    std::vector<double> ratio;
+    ratio.reserve(out.mesh.triangles.size() / 2);
+    for (size_t t = 0; t < out.mesh.num_triangles(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const int32_t a = out.mesh.triangles[3 * t + size_t(k)],
+                      b = out.mesh.triangles[3 * t + size_t((k + 1) % 3)];
+        if (a > b && !(out.on_opening[size_t(a)] && out.on_opening[size_t(b)])) continue;
+        const double* pa = &out.mesh.points[3 * size_t(a)];
+        const double* pb = &out.mesh.points[3 * size_t(b)];
+        const double len = std::sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) +
+                                     (pa[1] - pb[1]) * (pa[1] - pb[1]) +
+                                     (pa[2] - pb[2]) * (pa[2] - pb[2]));
+        ratio.push_back(len / (0.5 * (out_size[size_t(a)] + out_size[size_t(b)])));
+      }
+    if (!ratio.empty()) {
+      auto at = [&](double q) {
+        auto it = ratio.begin() + std::ptrdiff_t(q * double(ratio.size() - 1));
+        std::nth_element(ratio.begin(), it, ratio.end());
+        return *it;
+      };
+      stats.edge_ratio_p10 = at(0.1);
+      stats.edge_ratio_median = at(0.5);
+      stats.edge_ratio_p90 = at(0.9);
+    }
+  }
   if (stats_out) *stats_out = stats;
   return out;
 }

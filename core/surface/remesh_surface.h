@@ -39,8 +39,11 @@ struct RemeshStats {
   size_t rejected_maps = 0;  ///< maps refused (folded or crowded) before splitting
   size_t seam_points = 0;    ///< points on seams and openings, shared by patches
   size_t retries = 0;        ///< partitions redone because a patch failed to mesh
-  size_t swaps = 0, moves = 0;
+  size_t swaps = 0, moves = 0, collapses = 0;
   double size_min = 0, size_median = 0, size_max = 0;  ///< of the size field at input vertices
+  /// Output edge length / target size (mean of its ends' sizes): median and
+  /// 10th / 90th percentiles over the edges (1 = the field followed exactly).
+  double edge_ratio_median = 0, edge_ratio_p10 = 0, edge_ratio_p90 = 0;
   double seconds_size = 0, seconds_partition = 0, seconds_mesh = 0, seconds_optimize = 0;
 };
 

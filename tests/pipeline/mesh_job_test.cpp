@@ -108,8 +108,14 @@ TEST(MeshJob, RemeshesKeepingTopologyAndWritesEveryTriangleAsWall) {
   EXPECT_EQ(res.output_topology.nonmanifold_edges, 0u);
   ASSERT_EQ(res.groups.size(), 1u);
   EXPECT_EQ(res.groups[0].elements, res.output_surface.num_triangles());
-  EXPECT_GT(res.output_quality_stats.min, 0.3);
-  EXPECT_GT(res.output_quality_stats.mean, 0.9);
+  EXPECT_GT(res.output_quality_stats.min, 0.55);
+  EXPECT_GT(res.output_quality_stats.mean, 0.97);
+  // Fidelity: output vertices on the input, no self-intersection, and the
+  // input within a fraction of h of the output (a smooth phantom).
+  EXPECT_LE(res.fidelity.max_vertex_offset, 1e-9);
+  EXPECT_EQ(res.fidelity.self_intersections, 0u);
+  EXPECT_GT(res.fidelity.max_input_gap, 0.0);
+  EXPECT_LT(res.fidelity.max_input_gap, 0.5);
 }
 
 TEST(MeshJob, NonManifoldIsRefusedWithALocation) {

@@ -347,7 +347,8 @@ TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
           std::minmax(half_edge_from(m, int32_t(he)), half_edge_to(m, int32_t(he))));
   std::sort(boundary_before.begin(), boundary_before.end());
 
-  SurfaceOptimizeStats s = optimize_on_surface(m, home, fixed, in, in_adj);
+  std::vector<double> no_sizes;  // no collapse: the vertex count stays
+  SurfaceOptimizeStats s = optimize_on_surface(m, home, fixed, no_sizes, in, in_adj);
   const QualityStats qa = quality_stats(triangle_qualities(m));
   EXPECT_GT(s.moves + s.swaps, 0u);
   EXPECT_GE(qa.min, qb.min);
@@ -378,6 +379,89 @@ TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
   EXPECT_EQ(inconsistent_edges(m), 0u);
   std::cout << "[ info ] optimize: gamma min " << qb.min << " -> " << qa.min << ", mean " << qb.mean
             << " -> " << qa.mean << " (" << s.moves << " moves, " << s.swaps << " swaps)\n";
+}
+
+TEST(OptimizeSurface, CollapsesShortEdgesAndRegularizesValences) {
+  // Input: a fine cylinder. Mesh: a coarse regular one (valence 6) where
+  // every fourth triangle is split at its centroid, which makes valence-3
+  // vertices, short edges and poor triangles.
+  const double R = 1.0, L = 4.0;
+  const SurfaceMesh in = testing::open_tube(64, 32, R, L);
+  const TriangleAdjacency in_adj = build_adjacency(in);
+  SurfaceMesh m = testing::open_tube(16, 12, R, L);
+  const double regular_mean = quality_stats(triangle_qualities(m)).mean;
+  const size_t split = m.num_triangles();
+  for (size_t t = 0; t < split; t += 4) {
+    const int32_t a = m.triangles[3 * t], b = m.triangles[3 * t + 1], c = m.triangles[3 * t + 2];
+    const int32_t v = int32_t(m.num_vertices());
+    for (int k = 0; k < 3; ++k) m.points.push_back((pt(m, a)[k] + pt(m, b)[k] + pt(m, c)[k]) / 3);
+    m.triangles[3 * t + 2] = v;
+    m.triangles.insert(m.triangles.end(), {b, c, v, c, a, v});
+  }
+  std::vector<uint8_t> fixed(m.num_vertices(), 0);
+  std::vector<int32_t> home(m.num_vertices(), 0);
+  for (size_t v = 0; v < m.num_vertices(); ++v) {
+    const double* x = pt(m, int32_t(v));
+    fixed[v] = x[2] == 0 || x[2] == L;
+    double best = 1e300;
+    for (size_t t = 0; t < in.num_triangles(); ++t) {
+      const double d = distance_to_triangle(in, t, x);
+      if (d < best) best = d, home[v] = int32_t(t);
+    }
+  }
+  const double h = 2 * kPi * R / 16;
+  std::vector<double> size(m.num_vertices(), h);
+  auto short_edges = [&](const SurfaceMesh& s) {
+    size_t n = 0;
+    for (size_t t = 0; t < s.num_triangles(); ++t)
+      for (int k = 0; k < 3; ++k)
+        n += dist(pt(s, s.triangles[3 * t + k]), pt(s, s.triangles[3 * t + (k + 1) % 3])) < 0.7 * h;
+    return n;
+  };
+  auto valence3 = [](const SurfaceMesh& s, const std::vector<uint8_t>& boundary) {
+    std::vector<int> valence(s.num_vertices(), 0);
+    for (int32_t v : s.triangles) ++valence[size_t(v)];
+    size_t n = 0;
+    for (size_t v = 0; v < valence.size(); ++v) n += !boundary[v] && valence[v] == 3;
+    return n;
+  };
+  const QualityStats qb = quality_stats(triangle_qualities(m));
+  const size_t short_before = short_edges(m);
+  ASSERT_GT(short_before, 0u);
+  ASSERT_GT(valence3(m, fixed), 0u);
+  std::vector<double> fixed_points;
+  for (size_t v = 0; v < m.num_vertices(); ++v)
+    if (fixed[v]) fixed_points.insert(fixed_points.end(), pt(m, int32_t(v)), pt(m, int32_t(v)) + 3);
+
+  SurfaceOptimizeStats s = optimize_on_surface(m, home, fixed, size, in, in_adj);
+  EXPECT_GT(s.collapses, 0u);
+  ASSERT_EQ(home.size(), m.num_vertices());
+  ASSERT_EQ(fixed.size(), m.num_vertices());
+  ASSERT_EQ(size.size(), m.num_vertices());
+  const QualityStats qa = quality_stats(triangle_qualities(m));
+  EXPECT_GT(qa.min, qb.min);
+  EXPECT_GT(qa.mean, regular_mean - 0.01);  // the unsplit grid's triangles
+  EXPECT_LT(short_edges(m), short_before / 4);
+  EXPECT_EQ(valence3(m, fixed), 0u);  // no interior vertex of valence 3 left
+  // Same topology, consistently oriented, every vertex used and on the
+  // input, the opening vertices where they were.
+  const TopologyReport t = analyze_topology(m);
+  EXPECT_EQ(t.nonmanifold_edges, 0u);
+  EXPECT_EQ(t.openings.size(), 2u);
+  EXPECT_EQ(t.genus, 0);
+  EXPECT_EQ(inconsistent_edges(m), 0u);
+  std::vector<uint8_t> used(m.num_vertices(), 0);
+  for (int32_t v : m.triangles) used[size_t(v)] = 1;
+  EXPECT_EQ(size_t(std::count(used.begin(), used.end(), 1)), m.num_vertices());
+  const double tol = 1e-6 * bounding_box(in.points).diagonal();
+  std::vector<double> fixed_after;
+  for (size_t v = 0; v < m.num_vertices(); ++v) {
+    EXPECT_LE(distance_to_triangle(in, size_t(home[v]), pt(m, int32_t(v))), tol) << "vertex " << v;
+    if (fixed[v]) fixed_after.insert(fixed_after.end(), pt(m, int32_t(v)), pt(m, int32_t(v)) + 3);
+  }
+  EXPECT_EQ(fixed_after, fixed_points);
+  std::cout << "[ info ] collapse: gamma min " << qb.min << " -> " << qa.min << ", mean " << qb.mean
+            << " -> " << qa.mean << " (" << s.collapses << " collapses, " << s.swaps << " swaps)\n";
 }
 
 TEST(OptimizeSurface, ProjectNearFindsTheClosestPoint) {

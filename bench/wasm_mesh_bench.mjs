@@ -1,0 +1,91 @@
+// Benchmark: the mesh job (read, repair, analyze, remesh, write MSH) of the
+// WebAssembly build under Node through the JS API, as a page would call it
+// (api.mesh(bytes, options), including the copies out of the wasm heap).
+// The module is loaded from wasm/dist/vesselmesh_core.wasm via wasmBinary.
+// Prints one JSON object: per-run wall and CPU seconds (CPU includes Node's
+// own helper threads, e.g. the JIT compiler), medians, the output's counts and
+// quality, and the process's peak RSS (process.resourceUsage().maxRSS, which
+// includes Node itself: baseline_rss_mb is the RSS before the module loads).
+//
+// usage: node bench/wasm_mesh_bench.mjs FILE.stl [--size H | --per-circumference N]
+//          [--param lscm|harmonic|floater] [--mesher2d frontal|delaunay|adapt] [--runs N]
+import { readFileSync } from 'node:fs';
+import { basename } from 'node:path';
+import { performance } from 'node:perf_hooks';
+
+const baselineRss = process.memoryUsage().rss;
+const { createVesselmesh } = await import('../wasm/src/vesselmesh.js');
+
+const args = process.argv.slice(2);
+let runs = 5;
+const options = {};
+let file = null;
+for (let i = 0; i < args.length; i++) {
+  const a = args[i];
+  if (a === '--runs') runs = Math.max(1, Number(args[++i]));
+  else if (a === '--size') options.size = Number(args[++i]);
+  else if (a === '--per-circumference') options.perCircumference = Number(args[++i]);
+  else if (a === '--param') options.param = args[++i];
+  else if (a === '--mesher2d') options.mesher2d = args[++i];
+  else if (a.startsWith('--')) {
+    console.error(`unknown option ${a}`);
+    process.exit(2);
+  } else file = a;
+}
+if (!file) {
+  console.error('usage: node bench/wasm_mesh_bench.mjs FILE.stl [--size H] [--runs N]');
+  process.exit(2);
+}
+
+const median = (v) => {
+  const s = [...v].sort((a, b) => a - b);
+  const n = s.length;
+  return n % 2 ? s[(n - 1) / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
+};
+
+const t0 = performance.now();
+const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
+const api = await createVesselmesh({ wasmBinary });
+const instantiateSeconds = (performance.now() - t0) / 1000;
+const bytes = new Uint8Array(readFileSync(file));
+
+const seconds = [];
+const cpuSeconds = [];
+let last = null;
+for (let r = 0; r < runs; r++) {
+  const c = process.cpuUsage();
+  const t = performance.now();
+  const res = api.mesh(bytes, options);
+  const dt = (performance.now() - t) / 1000;
+  const cu = process.cpuUsage(c);
+  cpuSeconds.push((cu.user + cu.system) / 1e6);
+  if (!res.ok) {
+    console.log(JSON.stringify({ ok: false, file: basename(file), options, error: res.error }));
+    process.exit(1);
+  }
+  seconds.push(dt);
+  last = res;
+}
+const out = last.report.output;
+console.log(
+  JSON.stringify({
+    ok: true,
+    file: basename(file),
+    options,
+    runs,
+    seconds,
+    median_seconds: median(seconds),
+    cpu_seconds: cpuSeconds,
+    median_cpu_seconds: median(cpuSeconds),
+    core_seconds: last.report.seconds,
+    stage_seconds: out.remesh?.seconds ?? null,
+    instantiate_seconds: instantiateSeconds,
+    triangles: out.triangles,
+    vertices: out.vertices,
+    quality: { min: out.quality.min, mean: out.quality.mean },
+    msh_bytes: last.msh.length,
+    peak_rss_mb: process.resourceUsage().maxRSS / 1024,
+    baseline_rss_mb: baselineRss / 2 ** 20,
+    node: process.version,
+  }),
+);

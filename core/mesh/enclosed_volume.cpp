@@ -1,0 +1,43 @@
+// Divergence theorem on a closed triangulated surface: the volume is the sum
+// of the signed volumes of the tetrahedra joining a fixed point to every
+// triangle (see enclosed_volume.h).
+#include "core/mesh/enclosed_volume.h"
+
+#include <cmath>
+
+namespace vm {
+
+double enclosed_volume(const SurfaceMesh& mesh) {
+  if (mesh.num_triangles() == 0) return 0.0;
+  const BoundingBox box = bounding_box(mesh.points);
+  const double o[3] = {0.5 * (box.min[0] + box.max[0]), 0.5 * (box.min[1] + box.max[1]),
+                       0.5 * (box.min[2] + box.max[2])};
+  double sum = 0;
+  for (size_t t = 0; t < mesh.num_triangles(); ++t) {
+    double p[3][3];
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d)
+        p[k][d] = mesh.points[3 * size_t(mesh.triangles[3 * t + k]) + d] - o[d];
+    sum += p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) +
+           p[0][1] * (p[1][2] * p[2][0] - p[1][0] * p[2][2]) +
+           p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0]);
+  }
+  return sum / 6.0;
+}
+
+double surface_area(const SurfaceMesh& mesh) {
+  double sum = 0;
+  for (size_t t = 0; t < mesh.num_triangles(); ++t) {
+    const double* a = &mesh.points[3 * size_t(mesh.triangles[3 * t])];
+    const double* b = &mesh.points[3 * size_t(mesh.triangles[3 * t + 1])];
+    const double* c = &mesh.points[3 * size_t(mesh.triangles[3 * t + 2])];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                         u[0] * v[1] - u[1] * v[0]};
+    sum += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  }
+  return sum;
+}
+
+}  // namespace vm
