@@ -91,9 +91,35 @@ inline std::vector<double> cube_surface_points(int n, double side = 1.0) {
   return p;
 }
 
-/// Vertices of the icosphere of `levels` subdivisions (radius r).
+namespace detail {
+
+// Deterministic relative jitter in [-amount, amount] of each radius (about
+// the origin, or the torus's core circle when R > 0): exactly cospherical
+// or cocircular inputs send every predicate of the kernel to exact
+// arithmetic, which is slow (and slower under sanitizers); a 1e-7 jitter
+// keeps the geometry and lets the floating-point filters decide.
+inline void jitter(std::vector<double>& p, double amount, double R = 0) {
+  uint64_t s = 0x9e3779b97f4a7c15ull;
+  for (size_t i = 0; i < p.size(); i += 3) {
+    s = s * 6364136223846793005ull + 1442695040888963407ull;
+    const double f = 1 + amount * (double(s >> 11) * 0x1p-53 * 2 - 1);
+    double c[3] = {0, 0, 0};
+    if (R > 0) {
+      const double l = std::sqrt(p[i] * p[i] + p[i + 1] * p[i + 1]);
+      c[0] = R * p[i] / l, c[1] = R * p[i + 1] / l;
+    }
+    for (int k = 0; k < 3; ++k) p[i + size_t(k)] = c[k] + f * (p[i + size_t(k)] - c[k]);
+  }
+}
+
+}  // namespace detail
+
+/// Vertices of the icosphere of `levels` subdivisions (radius r, radii
+/// jittered by 1e-7 relative).
 inline std::vector<double> sphere_points(int levels, double r = 1.0) {
-  return icosphere(levels, r).points;
+  std::vector<double> p = icosphere(levels, r).points;
+  detail::jitter(p, 1e-7);
+  return p;
 }
 
 /// Points of a closed cylinder (radius R, axis z from 0 to len) at spacing
@@ -126,7 +152,8 @@ inline std::vector<double> capped_cylinder_points(double R, double len, double h
   return p;
 }
 
-/// Torus (major radius R, minor r) sampled on a staggered nu x nv grid;
+/// Torus (major radius R, minor r) sampled on a staggered nu x nv grid
+/// (minor radii jittered by 1e-7 relative);
 /// the region inside it when every surface triangle is a face of the
 /// Delaunay tetrahedralization of the points (then constrained); false if
 /// one is missing (not recoverable without flips).
@@ -139,6 +166,7 @@ inline bool torus_input(int nu, int nv, double R, double r, VolumeInput* out) {
       pts.insert(pts.end(), {(R + r * std::cos(v)) * std::cos(u),
                              (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
     }
+  detail::jitter(pts, 1e-7, R);
   std::vector<int32_t> tris;
   for (int j = 0; j < nv; ++j)
     for (int i = 0; i < nu; ++i) {
