@@ -5,8 +5,9 @@
 //
 // Phases of build: (1) validation, (2) a balanced implicit tree by median
 // splits along the longest box axis (leaves of at most kLeaf points),
-// (3) node boxes and minimum sizes, rounded outward to float so that the
-// lower bound min_h + g dist(x, box) never exceeds the true one.
+// (3) node boxes (rounded outward to float) and exact minimum sizes, so that
+// the lower bound min_h + g dist(x, box) never exceeds the true one and a
+// node that can at best tie the current value is skipped.
 #include "core/volume/size_field3d.h"
 
 #include <algorithm>
@@ -118,7 +119,7 @@ Result<SizeField3D> SizeField3D::build(const std::vector<double>& points,
         nd.lo[k] = nd.begin < nd.end ? round_down(lo[k]) : 0;
         nd.hi[k] = nd.begin < nd.end ? round_up(hi[k]) : 0;
       }
-      nd.min_h = nd.begin < nd.end ? round_down(mh) : INFINITY;
+      nd.min_h = nd.begin < nd.end ? mh : INFINITY;
     } else {
       const Node& a = f.nodes_[2 * size_t(node) + 1];
       const Node& b = f.nodes_[2 * size_t(node) + 2];
@@ -145,7 +146,7 @@ double SizeField3D::eval(const double* x, double upper_bound) const {
       const double e = x[k] < lo ? lo - x[k] : x[k] > hi ? x[k] - hi : 0.0;
       d2 += e * e;
     }
-    return double(nd.min_h) + g_ * std::sqrt(d2);
+    return nd.min_h + g_ * std::sqrt(d2);
   };
   // Depth-first, nearer (smaller bound) child first; the stack holds at
   // most one pending sibling per level.

@@ -63,8 +63,9 @@ class SizeField3D {
  private:
   struct Node {
     float lo[3], hi[3];  // bounding box, rounded outward
-    float min_h;         // smallest size in the subtree, rounded down
     int32_t begin, end;  // point range (leaves), else children at 2i+1, 2i+2
+    double min_h;        // smallest size in the subtree (exact, so that a
+                         // node can be pruned when it can only tie)
   };
   void build_node(int32_t node, int32_t begin, int32_t end);
 
