@@ -78,6 +78,20 @@ inline bool circumcenter(const double* a, const double* b, const double* c, cons
   return std::isfinite(o[0]) && std::isfinite(o[1]) && std::isfinite(o[2]);
 }
 
+// A read-only view of tetrahedron ids.
+class Span {
+ public:
+  Span(const int32_t* p, size_t n) : p_(p), n_(n) {}
+  explicit Span(const std::vector<int32_t>& v) : p_(v.data()), n_(v.size()) {}
+  const int32_t* begin() const { return p_; }
+  const int32_t* end() const { return p_ + n_; }
+  size_t size() const { return n_; }
+
+ private:
+  const int32_t* p_;
+  size_t n_;
+};
+
 class Optimizer {
  public:
   Optimizer(TetMesh& mesh, const std::vector<double>& h, const OptimizeOptions& options,
@@ -259,8 +273,8 @@ class Optimizer {
 
   // Min and sum of 1/q over the star S of v with v at p; false if a
   // tetrahedron falls below kGuard (or min_required).
-  bool eval_star(int32_t v, const std::vector<int32_t>& S, const double* p, double min_required,
-                 double* qmin, double* inv_sum) {
+  bool eval_star(int32_t v, Span S, const double* p, double min_required, double* qmin,
+                 double* inv_sum) {
     double mn = 1e300, sum = 0;
     for (int32_t t : S) {
       const int32_t* tv = m_.tet(t);
@@ -276,7 +290,7 @@ class Optimizer {
     return true;
   }
 
-  bool exact_star_ok(int32_t v, const std::vector<int32_t>& S, const double* p) {
+  bool exact_star_ok(int32_t v, Span S, const double* p) {
     for (int32_t t : S) {
       const int32_t* tv = m_.tet(t);
       const double* c[4];
@@ -286,7 +300,7 @@ class Optimizer {
     return true;
   }
 
-  void move(int32_t v, const std::vector<int32_t>& S, const double* p) {
+  void move(int32_t v, Span S, const double* p) {
     m_.set_point(v, p);
     for (int32_t t : S) q_[size_t(t)] = quality(t);
   }
@@ -297,9 +311,13 @@ class Optimizer {
   bool smooth_vertex(int32_t v) {
     if (m_.is_fixed(v)) return false;
     m_.star(v, star_);
-    if (star_.empty()) return false;
+    return smooth_vertex(v, Span(star_));
+  }
+
+  bool smooth_vertex(int32_t v, Span star) {
+    if (m_.is_fixed(v) || star.size() == 0) return false;
     double old_min = 1e300, old_sum = 0;
-    for (int32_t t : star_) {
+    for (int32_t t : star) {
       old_min = std::min(old_min, cached(t));
       old_sum += 1 / std::max(cached(t), 1e-12);
     }
@@ -307,7 +325,7 @@ class Optimizer {
     const double* x = m_.point(v);
     double odt[3] = {0, 0, 0}, wsum = 0, lap[3] = {0, 0, 0};
     int nlap = 0;
-    for (int32_t t : star_) {
+    for (int32_t t : star) {
       const int32_t* tv = m_.tet(t);
       const double* c[4] = {m_.point(tv[0]), m_.point(tv[1]), m_.point(tv[2]), m_.point(tv[3])};
       double cc[3];
@@ -343,9 +361,9 @@ class Optimizer {
                              x[1] + step * (targets[i][1] - x[1]),
                              x[2] + step * (targets[i][2] - x[2])};
         double mn, sum;
-        if (!eval_star(v, star_, p, floor, &mn, &sum)) continue;
-        if (sum < old_sum * (1 - 1e-6) && exact_star_ok(v, star_, p)) {
-          move(v, star_, p);
+        if (!eval_star(v, star, p, floor, &mn, &sum)) continue;
+        if (sum < old_sum * (1 - 1e-6) && exact_star_ok(v, star, p)) {
+          move(v, star, p);
           ++st_.smoothing_moves;
           return true;
         }
@@ -354,8 +372,24 @@ class Optimizer {
     return false;
   }
 
+  // One smoothing sweep over the vertices in index order. The topology
+  // does not change during the sweep, so the stars come from one
+  // vertex-to-tetrahedra incidence table (CSR) instead of a search each.
   void smooth_pass() {
-    for (int32_t v = 0; v < int32_t(m_.num_vertices()); ++v) smooth_vertex(v);
+    const size_t nv = m_.num_vertices();
+    inc_off_.assign(nv + 1, 0);
+    for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
+      if (m_.is_live(t))
+        for (int k = 0; k < 4; ++k) ++inc_off_[size_t(m_.tet(t)[k]) + 1];
+    for (size_t v = 0; v < nv; ++v) inc_off_[v + 1] += inc_off_[v];
+    inc_.resize(size_t(inc_off_[nv]));
+    fill_.assign(inc_off_.begin(), inc_off_.end() - 1);
+    for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
+      if (m_.is_live(t))
+        for (int k = 0; k < 4; ++k) inc_[size_t(fill_[size_t(m_.tet(t)[k])]++)] = t;
+    for (int32_t v = 0; v < int32_t(nv); ++v)
+      smooth_vertex(v, Span(inc_.data() + inc_off_[size_t(v)],
+                            size_t(inc_off_[size_t(v) + 1] - inc_off_[size_t(v)])));
   }
 
   // ---------------------------------------------------------------- slivers
@@ -397,9 +431,9 @@ class Optimizer {
           const double p[3] = {x[0] + step * grad[0] / gn, x[1] + step * grad[1] / gn,
                                x[2] + step * grad[2] / gn};
           double mn, sum;
-          if (!eval_star(v, star_, p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum)) continue;
-          if (exact_star_ok(v, star_, p)) {
-            move(v, star_, p);
+          if (!eval_star(v, Span(star_), p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum)) continue;
+          if (exact_star_ok(v, Span(star_), p)) {
+            move(v, Span(star_), p);
             old_min = mn;
             moved = true;
             ++st_.sliver_moves;
@@ -416,9 +450,9 @@ class Optimizer {
       const double* xv = m_.point(v);
       const double p[3] = {xv[0] + mag * d[0], xv[1] + mag * d[1], xv[2] + mag * d[2]};
       double mn, sum;
-      if (!eval_star(v, star_, p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum)) continue;
-      if (exact_star_ok(v, star_, p)) {
-        move(v, star_, p);
+      if (!eval_star(v, Span(star_), p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum)) continue;
+      if (exact_star_ok(v, Span(star_), p)) {
+        move(v, Span(star_), p);
         old_min = mn;
         moved = true;
         ++st_.sliver_moves;
@@ -606,6 +640,7 @@ class Optimizer {
   uint64_t rng_;
   std::vector<double> q_;
   std::vector<int32_t> ring_tets_, ring_, ids_, work_, created_, star_;
+  std::vector<int32_t> inc_off_, inc_, fill_;  // smoothing: vertex -> tetrahedra
   std::vector<std::array<int, 3>> tris_;
   std::vector<int32_t> cav_;
   std::vector<std::array<int32_t, 4>> nt_;
