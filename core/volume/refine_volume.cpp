@@ -138,7 +138,7 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
     // the region (constrained faces are never removed, so the triples stay
     // valid while points are inserted).
     std::vector<int32_t> faces;
-    std::vector<double> centroids;
+    std::vector<double> centroids;  // of the faces
     for (int32_t t = 0; t < cap; ++t) {
       if (!kernel.is_live(t) || kernel.is_ghost(t) || kernel.tag(t) != tag) continue;
       for (int k = 0; k < 4; ++k) {
@@ -152,16 +152,11 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
         }
       }
     }
-    std::vector<int32_t> order(faces.size() / 3);
-    for (size_t i = 0; i < order.size(); ++i) order[i] = int32_t(i);
-    hilbert_sort(centroids, order.data(), int64_t(order.size()));
     const double height = std::sqrt(2.0 / 3.0);
-    for (size_t oi = 0; oi < order.size() && options.first_layer; ++oi) {
-      if ((oi & 4095) == 0 && !report_progress(progress, 0.0, "refine volume"))
-        return Status::Error(kCancelledMessage);
-      const int32_t i = order[oi];
-      const int32_t a = faces[3 * size_t(i)], b = faces[3 * size_t(i) + 1],
-                    c = faces[3 * size_t(i) + 2];
+    std::vector<double> apex, apex_h;
+    std::vector<int32_t> apex_vertex;
+    for (size_t i = 0; i < faces.size() / 3 && options.first_layer; ++i) {
+      const int32_t a = faces[3 * i], b = faces[3 * i + 1], c = faces[3 * i + 2];
       const double *pa = kernel.point(a), *pb = kernel.point(b), *pc = kernel.point(c);
       double u[3], w[3];
       for (int j = 0; j < 3; ++j) u[j] = pb[j] - pa[j], w[j] = pc[j] - pa[j];
@@ -171,18 +166,31 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
       const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       if (!(len > 0)) continue;
       const double hf = (vertex_h[size_t(a)] + vertex_h[size_t(b)] + vertex_h[size_t(c)]) / 3;
-      double p[3];
       for (int j = 0; j < 3; ++j)
-        p[j] = centroids[3 * size_t(i) + size_t(j)] - height * hf * n[j] / len;
-      const int32_t t = kernel.vertex_tet(a);
+        apex.push_back(centroids[3 * i + size_t(j)] - height * hf * n[j] / len);
+      apex_h.push_back(hf);
+      apex_vertex.push_back(a);
+    }
+    // BRIO order: the first points are spread over the whole surface and
+    // break the long tetrahedra of the boundary-only triangulation
+    // everywhere at once; points inserted along a curve would keep
+    // re-creating long tetrahedra to the far side (cavities 3x larger).
+    const std::vector<int32_t> order = brio_hilbert_order(apex);
+    for (size_t oi = 0; oi < order.size(); ++oi) {
+      if ((oi & 4095) == 0 && !report_progress(progress, 0.0, "refine volume"))
+        return Status::Error(kCancelledMessage);
+      const size_t i = size_t(order[oi]);
+      const double* p = &apex[3 * i];
+      const double hf = apex_h[i];
       ++st.candidates;
       const double hp = field.eval(p, hf + g * hf);
-      const int32_t v = try_insert(p, hp, std::min(hp, hf), t);
+      const int32_t v = try_insert(p, hp, std::min(hp, hf), kernel.vertex_tet(apex_vertex[i]));
       if (v >= 0) {
         queue.push_back(v);
         generation.push_back(1);
       }
     }
+    hilbert_sort(kernel.points(), queue.data(), int64_t(queue.size()));
   }
   st.first_layer = st.inserted;
 
