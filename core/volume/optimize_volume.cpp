@@ -102,6 +102,7 @@ class Optimizer {
 
   void compute_all_qualities() {
     q_.assign(m_.capacity(), 2.0);
+    dirty_.assign(m_.capacity(), 1);
     for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
       if (m_.is_live(t)) q_[size_t(t)] = quality(t);
   }
@@ -142,15 +143,25 @@ class Optimizer {
         best_arg = k;
       }
     }
-    // Removal of each edge.
+    // Removal of each edge, longest first (the diagonals of a sliver), the
+    // dynamic program only looking for more than the best gain so far.
+    int edges[6];
+    double len2[6];
     for (int e = 0; e < 6; ++e) {
+      edges[e] = e;
+      double d[3];
+      sub(m_.point(v[kEdges[e][0]]), m_.point(v[kEdges[e][1]]), d);
+      len2[e] = dot(d, d);
+    }
+    std::sort(edges, edges + 6, [&](int x, int y) { return len2[x] > len2[y]; });
+    for (int e : edges) {
       const int32_t a = v[kEdges[e][0]], b = v[kEdges[e][1]];
       if (!m_.edge_ring(t, a, b, ring_tets_, ring_)) continue;
       const int n = int(ring_.size());
       if (n < 3 || n > kMaxRing) continue;
       double old_min = 1e300;
       for (int32_t u : ring_tets_) old_min = std::min(old_min, cached(u));
-      const double new_min = best_ring_triangulation(a, b, old_min, nullptr);
+      const double new_min = best_ring_triangulation(a, b, old_min + best_gain, nullptr);
       if (new_min - old_min > best_gain) {
         best_gain = new_min - old_min;
         best_kind = 2;
@@ -241,20 +252,24 @@ class Optimizer {
                    m_.point(nt[i][3])) >= 0)
         return false;
     if (!m_.replace(old, n_old, nt, n_new, &ids_)) return false;
-    if (q_.size() < m_.capacity()) q_.resize(m_.capacity(), 2.0);
+    if (q_.size() < m_.capacity()) q_.resize(m_.capacity(), 2.0), dirty_.resize(m_.capacity(), 1);
     for (int i = n_new; i < n_old; ++i) q_[size_t(old[i])] = 2.0;
     for (int32_t id : ids_) {
       q_[size_t(id)] = quality(id);
+      dirty_[size_t(id)] = 1;
       created.push_back(id);
     }
     return true;
   }
 
-  // Flips on every tetrahedron below threshold until none improves.
+  // Flips on every tetrahedron below threshold until none improves. Only
+  // tetrahedra created or moved since the last pass are tried (dirty):
+  // the others already failed with the same neighbors, nearly always.
   void flip_pass(double threshold) {
     work_.clear();
     for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
-      if (m_.is_live(t) && cached(t) < threshold) work_.push_back(t);
+      if (m_.is_live(t) && cached(t) < threshold && dirty_[size_t(t)]) work_.push_back(t);
+    std::fill(dirty_.begin(), dirty_.end(), 0);
     std::sort(work_.begin(), work_.end(), [&](int32_t a, int32_t b) {
       return cached(a) < cached(b) || (cached(a) == cached(b) && a < b);
     });
@@ -302,7 +317,7 @@ class Optimizer {
 
   void move(int32_t v, Span S, const double* p) {
     m_.set_point(v, p);
-    for (int32_t t : S) q_[size_t(t)] = quality(t);
+    for (int32_t t : S) q_[size_t(t)] = quality(t), dirty_[size_t(t)] = 1;
   }
 
   // Smart smoothing of v toward its ODT-like position (circumcenters of the
@@ -639,6 +654,7 @@ class Optimizer {
   OptimizeStats& st_;
   uint64_t rng_;
   std::vector<double> q_;
+  std::vector<uint8_t> dirty_;  // per slot: created or moved since the last flip pass
   std::vector<int32_t> ring_tets_, ring_, ids_, work_, created_, star_;
   std::vector<int32_t> inc_off_, inc_, fill_;  // smoothing: vertex -> tetrahedra
   std::vector<std::array<int, 3>> tris_;

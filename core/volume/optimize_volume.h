@@ -37,8 +37,10 @@
 namespace vm {
 
 struct OptimizeOptions {
-  /// Rounds of (flips, smoothing of every free vertex).
-  int passes = 3;
+  /// Rounds of (flips, smoothing of every free vertex). One gives most of
+  /// the gain (torus, 2M tetrahedra: mean 0.673 -> 0.743 with one, 0.755
+  /// with three, at 2.2x the time).
+  int passes = 1;
   /// Tetrahedra below this gamma_t get topological improvement each round.
   double flip_threshold = 0.4;
   /// Smoothing may lower a star's smallest quality down to

@@ -164,18 +164,19 @@ TEST(FillVolume, CappedCylinderAndCoreSize) {
   Outcome out = fill_and_check(in, o);
   EXPECT_GE(out.quality.min, 0.2);
   EXPECT_GE(out.quality.mean, 0.67);
-  // The core size caps the edges inside: none much longer than 1.6 H.
-  double longest = 0;
+  // The core size caps the edges inside: 99% below 1.5 H, none above 2 H.
+  std::vector<double> lengths;
   for (size_t t = 0; t < out.mesh.num_tets(); ++t)
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j) {
         const double* p = &out.mesh.points[3 * size_t(out.mesh.tets[4 * t + size_t(i)])];
         const double* q = &out.mesh.points[3 * size_t(out.mesh.tets[4 * t + size_t(j)])];
-        longest = std::max(longest,
-                           std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                                     (p[2] - q[2]) * (p[2] - q[2])));
+        lengths.push_back(std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                    (p[2] - q[2]) * (p[2] - q[2])));
       }
-  EXPECT_LT(longest, 1.6 * 0.3);
+  std::sort(lengths.begin(), lengths.end());
+  EXPECT_LT(lengths[lengths.size() * 99 / 100], 1.5 * 0.3);
+  EXPECT_LT(lengths.back(), 2 * 0.3);
 }
 
 TEST(FillVolume, NonConvexTorus) {
