@@ -1,0 +1,717 @@
+// Tetrahedral mesh improvement: flips and edge removal maximizing the
+// smallest gamma_t (Shewchuk 2002; Klingner and Shewchuk 2007; ring
+// triangulations by Klincsek 1980), smart smoothing toward an ODT-like
+// position (Freitag and Ollivier-Gooch 1997; Chen and Xu 2004; Alliez,
+// Cohen-Steiner, Yvinec and Desbrun 2005) and a sliver phase climbing the
+// worst quality; see optimize_volume.h.
+//
+// Phases: (1) qualities of every tetrahedron (cached per slot); (2) `passes`
+// rounds of flips on the tetrahedra below flip_threshold, then smoothing of
+// every free vertex; (3) the sliver phase; (4) statistics.
+#include "core/volume/optimize_volume.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "core/geom/predicates.h"
+#include "core/quality/tet_quality.h"
+
+namespace vm {
+namespace {
+
+constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+constexpr int kMaxRing = 8;
+constexpr int kMaxCavity = 24;
+// Smallest quality a smoothing move may create (below it the exact
+// orientation test decides anyway; this keeps the search off flat shapes).
+constexpr double kGuard = 1e-3;
+
+inline void sub(const double* a, const double* b, double* o) {
+  o[0] = a[0] - b[0], o[1] = a[1] - b[1], o[2] = a[2] - b[2];
+}
+inline void cross(const double* u, const double* v, double* o) {
+  o[0] = u[1] * v[2] - u[2] * v[1];
+  o[1] = u[2] * v[0] - u[0] * v[2];
+  o[2] = u[0] * v[1] - u[1] * v[0];
+}
+inline double dot(const double* u, const double* v) {
+  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+
+// gamma_t = sqrt(6) vol6 / (sum of face areas * longest edge), signed
+// (the formula of quality/tet_quality.cpp, inlined for the hot loops).
+inline double gamma_fast(const double* a, const double* b, const double* c, const double* d) {
+  double ab[3], ac[3], ad[3], bc[3], bd[3], cd[3];
+  sub(b, a, ab), sub(c, a, ac), sub(d, a, ad), sub(c, b, bc), sub(d, b, bd), sub(d, c, cd);
+  double n1[3], n2[3], n3[3], n4[3];
+  cross(ab, ac, n1), cross(ab, ad, n2), cross(ac, ad, n3), cross(bc, bd, n4);
+  const double vol6 = dot(n1, ad);
+  const double s = 0.5 * (std::sqrt(dot(n1, n1)) + std::sqrt(dot(n2, n2)) + std::sqrt(dot(n3, n3)) +
+                          std::sqrt(dot(n4, n4)));
+  const double l2 =
+      std::max({dot(ab, ab), dot(ac, ac), dot(ad, ad), dot(bc, bc), dot(bd, bd), dot(cd, cd)});
+  const double den = s * std::sqrt(l2);
+  if (!(den > 0)) return 0;
+  return 2.449489742783178 * vol6 / den;
+}
+
+inline double tet_vol6(const double* a, const double* b, const double* c, const double* d) {
+  return tet_volume6(a, b, c, d);
+}
+
+// Circumcenter of a tetrahedron; false when (nearly) flat.
+inline bool circumcenter(const double* a, const double* b, const double* c, const double* d,
+                         double* o) {
+  double u[3], v[3], w[3];
+  sub(b, a, u), sub(c, a, v), sub(d, a, w);
+  double vw[3], wu[3], uv[3];
+  cross(v, w, vw), cross(w, u, wu), cross(u, v, uv);
+  const double det = 2 * dot(u, vw);
+  if (det == 0) return false;
+  const double uu = dot(u, u), vv = dot(v, v), ww = dot(w, w);
+  for (int k = 0; k < 3; ++k) o[k] = a[k] + (uu * vw[k] + vv * wu[k] + ww * uv[k]) / det;
+  return std::isfinite(o[0]) && std::isfinite(o[1]) && std::isfinite(o[2]);
+}
+
+// A read-only view of tetrahedron ids.
+class Span {
+ public:
+  Span(const int32_t* p, size_t n) : p_(p), n_(n) {}
+  explicit Span(const std::vector<int32_t>& v) : p_(v.data()), n_(v.size()) {}
+  const int32_t* begin() const { return p_; }
+  const int32_t* end() const { return p_ + n_; }
+  size_t size() const { return n_; }
+
+ private:
+  const int32_t* p_;
+  size_t n_;
+};
+
+class Optimizer {
+ public:
+  Optimizer(TetMesh& mesh, const std::vector<double>& h, const OptimizeOptions& options,
+            OptimizeStats& stats)
+      : m_(mesh), h_(h), opt_(options), st_(stats), rng_(options.seed) {}
+
+  const std::vector<double>& sizes() const { return h_; }
+
+  void compute_all_qualities() {
+    q_.assign(m_.capacity(), 2.0);
+    dirty_.assign(m_.capacity(), 1);
+    for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
+      if (m_.is_live(t)) q_[size_t(t)] = quality(t);
+  }
+
+  double quality(int32_t t) const {
+    const int32_t* v = m_.tet(t);
+    return gamma_fast(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]));
+  }
+  double cached(int32_t t) const { return q_[size_t(t)]; }
+
+  // ---------------------------------------------------------------- flips
+
+  // Best topological change around tetrahedron t (2-3 on one of its faces
+  // or removal of one of its edges) that raises the smallest quality of the
+  // tetrahedra it replaces; applied if found. New ids into `created`.
+  bool improve_topology(int32_t t, std::vector<int32_t>& created) {
+    ++st_.topology_attempts;
+    double best_gain = 0;
+    int best_kind = 0;  // 1: face removal, 2: edge removal
+    int best_arg = -1;
+    const int32_t* v = m_.tet(t);
+    // 2-3 on each interior face.
+    for (int k = 0; k < 4; ++k) {
+      if (m_.is_constrained(t, k)) continue;
+      const int32_t e = m_.neighbor(t, k);
+      const int32_t u = e >> 2;
+      const int32_t x = v[k], y = m_.tet(u)[e & 3];
+      const int* f = kFaceOut[k];
+      const int32_t r[3] = {v[f[0]], v[f[1]], v[f[2]]};
+      const double old_min = std::min(cached(t), cached(u));
+      double new_min = 1e300;
+      for (int i = 0; i < 3 && new_min > old_min; ++i)
+        new_min = std::min(new_min, gamma_fast(m_.point(x), m_.point(y), m_.point(r[i]),
+                                               m_.point(r[(i + 1) % 3])));
+      if (new_min - old_min > best_gain) {
+        best_gain = new_min - old_min;
+        best_kind = 1;
+        best_arg = k;
+      }
+    }
+    // Removal of each edge, longest first (the diagonals of a sliver), the
+    // dynamic program only looking for more than the best gain so far.
+    int edges[6];
+    double len2[6];
+    for (int e = 0; e < 6; ++e) {
+      edges[e] = e;
+      double d[3];
+      sub(m_.point(v[kEdges[e][0]]), m_.point(v[kEdges[e][1]]), d);
+      len2[e] = dot(d, d);
+    }
+    std::sort(edges, edges + 6, [&](int x, int y) { return len2[x] > len2[y]; });
+    for (int e : edges) {
+      const int32_t a = v[kEdges[e][0]], b = v[kEdges[e][1]];
+      if (!m_.edge_ring(t, a, b, ring_tets_, ring_)) continue;
+      const int n = int(ring_.size());
+      if (n < 3 || n > kMaxRing) continue;
+      double old_min = 1e300;
+      for (int32_t u : ring_tets_) old_min = std::min(old_min, cached(u));
+      const double new_min = best_ring_triangulation(a, b, old_min + best_gain, nullptr);
+      if (new_min - old_min > best_gain) {
+        best_gain = new_min - old_min;
+        best_kind = 2;
+        best_arg = e;
+      }
+    }
+    if (best_kind == 0 || best_gain < 1e-9) return false;
+    std::array<int32_t, 4> nt[2 * kMaxRing];
+    int n_new = 0;
+    if (best_kind == 1) {
+      const int k = best_arg;
+      const int32_t e = m_.neighbor(t, k);
+      const int32_t u = e >> 2;
+      const int32_t x = v[k], y = m_.tet(u)[e & 3];
+      const int* f = kFaceOut[k];
+      const int32_t r[3] = {v[f[0]], v[f[1]], v[f[2]]};
+      for (int i = 0; i < 3; ++i) nt[n_new++] = {x, y, r[i], r[(i + 1) % 3]};
+      old_[0] = t, old_[1] = u;
+      if (!commit(old_, 2, nt, n_new, created)) return false;
+      ++st_.flips23;
+      return true;
+    }
+    const int32_t a = v[kEdges[best_arg][0]], b = v[kEdges[best_arg][1]];
+    m_.edge_ring(t, a, b, ring_tets_, ring_);
+    best_ring_triangulation(a, b, 0, &tris_);
+    for (const auto& tri : tris_) {
+      const int32_t x = ring_[size_t(tri[0])], y = ring_[size_t(tri[1])], z = ring_[size_t(tri[2])];
+      nt[n_new++] = {x, y, z, b};
+      nt[n_new++] = {y, x, z, a};
+    }
+    for (size_t i = 0; i < ring_tets_.size(); ++i) old_[i] = ring_tets_[i];
+    if (!commit(old_, int(ring_tets_.size()), nt, n_new, created)) return false;
+    ++st_.edge_removals;
+    return true;
+  }
+
+  // Klincsek's dynamic program over the ring polygon (ring_): the
+  // triangulation maximizing the smallest quality of its tetrahedra pairs
+  // (x, y, z, b), (y, x, z, a). Returns that quality (stops early, returning
+  // something <= floor, when it cannot beat floor); triangles into tris.
+  double best_ring_triangulation(int32_t a, int32_t b, double floor,
+                                 std::vector<std::array<int, 3>>* tris) {
+    const int n = int(ring_.size());
+    double best[kMaxRing][kMaxRing];
+    int arg[kMaxRing][kMaxRing];
+    for (int len = 1; len < n; ++len)
+      for (int i = 0; i + len < n; ++i) {
+        const int j = i + len;
+        best[i][j] = len == 1 ? 1e300 : -1e300;
+        arg[i][j] = -1;
+        for (int k = i + 1; k < j; ++k) {
+          const double sub_q = std::min(best[i][k], best[k][j]);
+          if (sub_q <= best[i][j]) continue;
+          const double* px = m_.point(ring_[size_t(i)]);
+          const double* py = m_.point(ring_[size_t(k)]);
+          const double* pz = m_.point(ring_[size_t(j)]);
+          double q = gamma_fast(px, py, pz, m_.point(b));
+          if (q > best[i][j] && q > floor) q = std::min(q, gamma_fast(py, px, pz, m_.point(a)));
+          q = std::min(q, sub_q);
+          if (q > best[i][j]) {
+            best[i][j] = q;
+            arg[i][j] = k;
+          }
+        }
+      }
+    if (tris) {
+      tris->clear();
+      int stack[2 * kMaxRing][2], top = 0;
+      stack[top][0] = 0, stack[top][1] = n - 1, ++top;
+      while (top > 0) {
+        --top;
+        const int i = stack[top][0], j = stack[top][1];
+        if (j - i < 2) continue;
+        const int k = arg[i][j];
+        tris->push_back({i, k, j});
+        stack[top][0] = i, stack[top][1] = k, ++top;
+        stack[top][0] = k, stack[top][1] = j, ++top;
+      }
+    }
+    return best[0][n - 1];
+  }
+
+  // Exact orientation of the new set, then the replacement and the cache.
+  bool commit(const int32_t* old, int n_old, const std::array<int32_t, 4>* nt, int n_new,
+              std::vector<int32_t>& created) {
+    for (int i = 0; i < n_new; ++i)
+      if (orient3d(m_.point(nt[i][0]), m_.point(nt[i][1]), m_.point(nt[i][2]),
+                   m_.point(nt[i][3])) >= 0)
+        return false;
+    if (!m_.replace(old, n_old, nt, n_new, &ids_)) return false;
+    if (q_.size() < m_.capacity()) q_.resize(m_.capacity(), 2.0), dirty_.resize(m_.capacity(), 1);
+    for (int i = n_new; i < n_old; ++i) q_[size_t(old[i])] = 2.0;
+    for (int32_t id : ids_) {
+      q_[size_t(id)] = quality(id);
+      dirty_[size_t(id)] = 1;
+      created.push_back(id);
+    }
+    return true;
+  }
+
+  // Flips on every tetrahedron below threshold until none improves. Only
+  // tetrahedra created or moved since the last pass are tried (dirty):
+  // the others already failed with the same neighbors, nearly always.
+  void flip_pass(double threshold) {
+    work_.clear();
+    for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
+      if (m_.is_live(t) && cached(t) < threshold && dirty_[size_t(t)]) work_.push_back(t);
+    std::fill(dirty_.begin(), dirty_.end(), 0);
+    std::sort(work_.begin(), work_.end(), [&](int32_t a, int32_t b) {
+      return cached(a) < cached(b) || (cached(a) == cached(b) && a < b);
+    });
+    const size_t limit = 20 * work_.size() + 1000;
+    for (size_t i = 0; i < work_.size() && i < limit; ++i) {
+      const int32_t t = work_[i];
+      if (!m_.is_live(t) || cached(t) >= threshold) continue;
+      created_.clear();
+      if (!improve_topology(t, created_)) continue;
+      for (int32_t u : created_)
+        if (cached(u) < threshold) work_.push_back(u);
+    }
+  }
+
+  // ---------------------------------------------------------------- smoothing
+
+  // Min and sum of 1/q over the star S of v with v at p; false if a
+  // tetrahedron falls below kGuard (or min_required).
+  bool eval_star(int32_t v, Span S, const double* p, double min_required, double* qmin,
+                 double* inv_sum) {
+    double mn = 1e300, sum = 0;
+    for (int32_t t : S) {
+      const int32_t* tv = m_.tet(t);
+      const double* c[4];
+      for (int k = 0; k < 4; ++k) c[k] = tv[k] == v ? p : m_.point(tv[k]);
+      const double q = gamma_fast(c[0], c[1], c[2], c[3]);
+      if (q < kGuard || q < min_required) return false;
+      mn = std::min(mn, q);
+      sum += 1 / q;
+    }
+    *qmin = mn;
+    *inv_sum = sum;
+    return true;
+  }
+
+  bool exact_star_ok(int32_t v, Span S, const double* p) {
+    for (int32_t t : S) {
+      const int32_t* tv = m_.tet(t);
+      const double* c[4];
+      for (int k = 0; k < 4; ++k) c[k] = tv[k] == v ? p : m_.point(tv[k]);
+      if (orient3d(c[0], c[1], c[2], c[3]) >= 0) return false;
+    }
+    return true;
+  }
+
+  void move(int32_t v, Span S, const double* p) {
+    m_.set_point(v, p);
+    for (int32_t t : S) q_[size_t(t)] = quality(t), dirty_[size_t(t)] = 1;
+  }
+
+  // Smart smoothing of v toward its ODT-like position (circumcenters of the
+  // star weighted by volume / h^3), falling back to the centroid of its
+  // neighbors; halved steps. Returns whether v moved.
+  bool smooth_vertex(int32_t v) {
+    if (m_.is_fixed(v)) return false;
+    m_.star(v, star_);
+    return smooth_vertex(v, Span(star_));
+  }
+
+  bool smooth_vertex(int32_t v, Span star) {
+    if (m_.is_fixed(v) || star.size() == 0) return false;
+    double old_min = 1e300, old_sum = 0;
+    for (int32_t t : star) {
+      old_min = std::min(old_min, cached(t));
+      old_sum += 1 / std::max(cached(t), 1e-12);
+    }
+    if (old_min >= opt_.smooth_below) return false;
+    const double* x = m_.point(v);
+    double odt[3] = {0, 0, 0}, wsum = 0, lap[3] = {0, 0, 0};
+    int nlap = 0;
+    for (int32_t t : star) {
+      const int32_t* tv = m_.tet(t);
+      const double* c[4] = {m_.point(tv[0]), m_.point(tv[1]), m_.point(tv[2]), m_.point(tv[3])};
+      double cc[3];
+      const double vol = tet_vol6(c[0], c[1], c[2], c[3]);
+      const double ht =
+          0.25 * (h_[size_t(tv[0])] + h_[size_t(tv[1])] + h_[size_t(tv[2])] + h_[size_t(tv[3])]);
+      const double w = vol / (ht * ht * ht);
+      if (vol > 0 && circumcenter(c[0], c[1], c[2], c[3], cc)) {
+        for (int k = 0; k < 3; ++k) odt[k] += w * cc[k];
+        wsum += w;
+      }
+      for (int s = 0; s < 4; ++s)
+        if (tv[s] != v) {
+          for (int k = 0; k < 3; ++k) lap[k] += c[s][k];
+          ++nlap;
+        }
+    }
+    const double floor = std::min(old_min, opt_.smooth_floor);
+    double targets[2][3];
+    int nt = 0;
+    if (wsum > 0) {
+      for (int k = 0; k < 3; ++k) targets[nt][k] = odt[k] / wsum;
+      ++nt;
+    }
+    if (nlap > 0) {
+      for (int k = 0; k < 3; ++k) targets[nt][k] = lap[k] / nlap;
+      ++nt;
+    }
+    for (int i = 0; i < nt; ++i) {
+      double step = 1.0;
+      for (int attempt = 0; attempt < 3; ++attempt, step *= 0.5) {
+        const double p[3] = {x[0] + step * (targets[i][0] - x[0]),
+                             x[1] + step * (targets[i][1] - x[1]),
+                             x[2] + step * (targets[i][2] - x[2])};
+        double mn, sum;
+        if (!eval_star(v, star, p, floor, &mn, &sum)) continue;
+        if (sum < old_sum * (1 - 1e-6) && exact_star_ok(v, star, p)) {
+          move(v, star, p);
+          ++st_.smoothing_moves;
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
+  // One smoothing sweep over the vertices in index order. The topology
+  // does not change during the sweep, so the stars come from one
+  // vertex-to-tetrahedra incidence table (CSR) instead of a search each.
+  void smooth_pass() {
+    const size_t nv = m_.num_vertices();
+    inc_off_.assign(nv + 1, 0);
+    for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
+      if (m_.is_live(t))
+        for (int k = 0; k < 4; ++k) ++inc_off_[size_t(m_.tet(t)[k]) + 1];
+    for (size_t v = 0; v < nv; ++v) inc_off_[v + 1] += inc_off_[v];
+    inc_.resize(size_t(inc_off_[nv]));
+    fill_.assign(inc_off_.begin(), inc_off_.end() - 1);
+    for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
+      if (m_.is_live(t))
+        for (int k = 0; k < 4; ++k) inc_[size_t(fill_[size_t(m_.tet(t)[k])]++)] = t;
+    for (int32_t v = 0; v < int32_t(nv); ++v)
+      smooth_vertex(v, Span(inc_.data() + inc_off_[size_t(v)],
+                            size_t(inc_off_[size_t(v) + 1] - inc_off_[size_t(v)])));
+  }
+
+  // ---------------------------------------------------------------- slivers
+
+  // Raises the smallest quality of v's star: gradient of the worst
+  // tetrahedron's quality, then deterministic random perturbations.
+  bool climb_vertex(int32_t v) {
+    if (m_.is_fixed(v)) return false;
+    m_.star(v, star_);
+    if (star_.empty()) return false;
+    double old_min = 1e300;
+    int32_t worst = -1;
+    for (int32_t t : star_)
+      if (cached(t) < old_min) old_min = cached(t), worst = t;
+    const double* x = m_.point(v);
+    const double hv = h_[size_t(v)];
+    bool moved = false;
+    // Gradient of the worst quality by central differences.
+    {
+      const int32_t* tv = m_.tet(worst);
+      double grad[3];
+      const double eps = 1e-4 * hv;
+      for (int k = 0; k < 3; ++k) {
+        double pp[3] = {x[0], x[1], x[2]}, pm[3] = {x[0], x[1], x[2]};
+        pp[k] += eps, pm[k] -= eps;
+        const double* c1[4];
+        const double* c2[4];
+        for (int s = 0; s < 4; ++s) {
+          c1[s] = tv[s] == v ? pp : m_.point(tv[s]);
+          c2[s] = tv[s] == v ? pm : m_.point(tv[s]);
+        }
+        grad[k] =
+            (gamma_fast(c1[0], c1[1], c1[2], c1[3]) - gamma_fast(c2[0], c2[1], c2[2], c2[3])) /
+            (2 * eps);
+      }
+      const double gn = std::sqrt(dot(grad, grad));
+      if (gn > 0) {
+        for (double step = 0.2 * hv; step > 0.005 * hv; step *= 0.5) {
+          const double p[3] = {x[0] + step * grad[0] / gn, x[1] + step * grad[1] / gn,
+                               x[2] + step * grad[2] / gn};
+          double mn, sum;
+          if (!eval_star(v, Span(star_), p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum)) continue;
+          if (exact_star_ok(v, Span(star_), p)) {
+            move(v, Span(star_), p);
+            old_min = mn;
+            moved = true;
+            ++st_.sliver_moves;
+            break;
+          }
+        }
+      }
+    }
+    // Random perturbations.
+    for (int attempt = 0; attempt < 12; ++attempt) {
+      const double mag = hv * (attempt < 6 ? 0.1 : 0.03);
+      double d[3];
+      for (double& c : d) c = 2 * uniform() - 1;
+      const double* xv = m_.point(v);
+      const double p[3] = {xv[0] + mag * d[0], xv[1] + mag * d[1], xv[2] + mag * d[2]};
+      double mn, sum;
+      if (!eval_star(v, Span(star_), p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum)) continue;
+      if (exact_star_ok(v, Span(star_), p)) {
+        move(v, Span(star_), p);
+        old_min = mn;
+        moved = true;
+        ++st_.sliver_moves;
+      }
+    }
+    return moved;
+  }
+
+  // ---------------------------------------------------------------- insertion
+
+  // Grows cav (seeded with t) until every boundary face sees p (the
+  // tetrahedron of the face and p positive); false if that needs crossing
+  // a constrained face or more than kMaxCavity tetrahedra.
+  bool grow_cavity(int32_t t, const double* p, std::vector<int32_t>& cav) {
+    cav.assign(1, t);
+    for (int iter = 0; iter < 4 * kMaxCavity; ++iter) {
+      int32_t add = -1;
+      for (size_t i = 0; i < cav.size() && add < 0; ++i) {
+        const int32_t c = cav[i];
+        for (int k = 0; k < 4 && add < 0; ++k) {
+          const int32_t e = m_.neighbor(c, k);
+          if (e >= 0 && std::find(cav.begin(), cav.end(), e >> 2) != cav.end()) continue;
+          const int32_t* tv = m_.tet(c);
+          const double* q[4] = {m_.point(tv[0]), m_.point(tv[1]), m_.point(tv[2]), m_.point(tv[3])};
+          q[k] = p;
+          if (orient3d(q[0], q[1], q[2], q[3]) < 0) continue;  // visible
+          if (m_.is_constrained(c, k)) return false;
+          add = e >> 2;
+        }
+      }
+      if (add < 0) return true;
+      if (int(cav.size()) >= kMaxCavity) return false;
+      cav.push_back(add);
+    }
+    return false;
+  }
+
+  // New tetrahedra of the star of p (vertex id pv) over the boundary of cav
+  // and their smallest quality.
+  double star_tets(const std::vector<int32_t>& cav, const double* p, int32_t pv,
+                   std::vector<std::array<int32_t, 4>>& nt) {
+    nt.clear();
+    double mn = 1e300;
+    for (int32_t c : cav)
+      for (int k = 0; k < 4; ++k) {
+        const int32_t e = m_.neighbor(c, k);
+        if (e >= 0 && std::find(cav.begin(), cav.end(), e >> 2) != cav.end()) continue;
+        const int32_t* tv = m_.tet(c);
+        std::array<int32_t, 4> q = {tv[0], tv[1], tv[2], tv[3]};
+        const double* x[4] = {m_.point(tv[0]), m_.point(tv[1]), m_.point(tv[2]), m_.point(tv[3])};
+        x[k] = p;
+        q[size_t(k)] = pv;
+        mn = std::min(mn, gamma_fast(x[0], x[1], x[2], x[3]));
+        nt.push_back(q);
+      }
+    return mn;
+  }
+
+  // Inserts a vertex near tetrahedron t (its centroid, or off its
+  // constrained faces) when the star of the new vertex over a star-shaped
+  // cavity raises the smallest quality there.
+  bool insert_near(int32_t t) {
+    const int32_t* tv = m_.tet(t);
+    const double* x[4] = {m_.point(tv[0]), m_.point(tv[1]), m_.point(tv[2]), m_.point(tv[3])};
+    double ht = 0, cen[3] = {0, 0, 0};
+    for (int s = 0; s < 4; ++s) {
+      ht += 0.25 * h_[size_t(tv[s])];
+      for (int k = 0; k < 3; ++k) cen[k] += 0.25 * x[s][k];
+    }
+    // Candidates: the centroid, and for constrained faces points inward
+    // from the face centroid (for two, from their common edge) at depths
+    // 0.4, 0.6 and 0.8 h.
+    std::vector<std::array<double, 3>> cand = {{cen[0], cen[1], cen[2]}};
+    double dir[3] = {0, 0, 0}, base[3] = {0, 0, 0};
+    int ncons = 0;
+    const double depths[3] = {0.4, 0.6, 0.8};
+    for (int k = 0; k < 4; ++k) {
+      if (!m_.is_constrained(t, k)) continue;
+      const int* f = kFaceOut[k];
+      double u[3], w[3], n[3];
+      sub(x[f[1]], x[f[0]], u), sub(x[f[2]], x[f[0]], w), cross(u, w, n);
+      const double len = std::sqrt(dot(n, n));
+      if (!(len > 0)) continue;
+      // kFaceOut is counterclockwise seen from outside: n points out of t.
+      double fc[3];
+      for (int c = 0; c < 3; ++c) {
+        fc[c] = (x[f[0]][c] + x[f[1]][c] + x[f[2]][c]) / 3;
+        dir[c] -= n[c] / len;
+        base[c] += fc[c];
+      }
+      ++ncons;
+      for (double dep : depths)
+        cand.push_back({fc[0] - dep * ht * n[0] / len, fc[1] - dep * ht * n[1] / len,
+                        fc[2] - dep * ht * n[2] / len});
+    }
+    if (ncons >= 2) {
+      const double len = std::sqrt(dot(dir, dir));
+      if (len > 0)
+        for (double dep : depths)
+          cand.push_back({base[0] / ncons + dep * ht * dir[0] / len,
+                          base[1] / ncons + dep * ht * dir[1] / len,
+                          base[2] / ncons + dep * ht * dir[2] / len});
+    }
+    // The best candidate (smallest quality of its star), then a random
+    // search around it with a shrinking radius.
+    const int32_t pv = int32_t(m_.num_vertices());
+    double best_q = -1e300;
+    std::array<double, 3> best_p{};
+    auto try_point = [&](const std::array<double, 3>& p) {
+      if (!grow_cavity(t, p.data(), cav_)) return;
+      const double nm = star_tets(cav_, p.data(), pv, nt_);
+      if (nm > best_q) {
+        best_q = nm;
+        best_p = p;
+      }
+    };
+    for (const auto& p : cand) try_point(p);
+    if (best_q <= -1e300) return false;
+    for (int it = 0; it < 24; ++it) {
+      const double r = 0.25 * ht * (1 - it / 24.0);
+      std::array<double, 3> p = best_p;
+      for (double& c : p) c += r * (2 * uniform() - 1);
+      try_point(p);
+    }
+    if (!grow_cavity(t, best_p.data(), cav_)) return false;
+    double old_min = 1e300;
+    for (int32_t c : cav_) old_min = std::min(old_min, cached(c));
+    if (!(best_q > old_min + 1e-9)) return false;
+    const std::vector<int32_t> best_cav = cav_;
+    const double* cand_best = best_p.data();
+    const int32_t v = m_.add_vertex(cand_best);
+    h_.push_back(ht);
+    star_tets(best_cav, cand_best, v, nt_);
+    created_.clear();
+    if (!commit(best_cav.data(), int(best_cav.size()), nt_.data(), int(nt_.size()), created_)) {
+      // Not expected (the cavity is star-shaped): the vertex stays unused.
+      return false;
+    }
+    ++st_.insertions;
+    smooth_vertex(v);
+    climb_vertex(v);
+    return true;
+  }
+
+  void sliver_phase() {
+    for (int round = 0; round < opt_.sliver_rounds; ++round) {
+      std::vector<int32_t> bad;
+      for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
+        if (m_.is_live(t) && cached(t) < opt_.sliver_threshold) bad.push_back(t);
+      if (bad.empty()) break;
+      std::sort(bad.begin(), bad.end(), [&](int32_t a, int32_t b) {
+        return cached(a) < cached(b) || (cached(a) == cached(b) && a < b);
+      });
+      bool changed = false;
+      for (int32_t t : bad) {
+        if (!m_.is_live(t) || cached(t) >= opt_.sliver_threshold) continue;
+        created_.clear();
+        if (improve_topology(t, created_)) {
+          changed = true;
+          continue;
+        }
+        const int32_t tv[4] = {m_.tet(t)[0], m_.tet(t)[1], m_.tet(t)[2], m_.tet(t)[3]};
+        for (int32_t v : tv) changed = climb_vertex(v) || changed;
+        if (m_.is_live(t) && cached(t) < opt_.sliver_threshold && insert_near(t)) changed = true;
+      }
+      flip_pass(opt_.sliver_threshold);
+      if (!changed) break;
+    }
+  }
+
+  double uniform() {
+    rng_ += 0x9e3779b97f4a7c15ull;
+    uint64_t z = rng_;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    z ^= z >> 31;
+    return double(z >> 11) * 0x1p-53;
+  }
+
+ private:
+  TetMesh& m_;
+  std::vector<double> h_;  // per vertex (grows with inserted vertices)
+  const OptimizeOptions& opt_;
+  OptimizeStats& st_;
+  uint64_t rng_;
+  std::vector<double> q_;
+  std::vector<uint8_t> dirty_;  // per slot: created or moved since the last flip pass
+  std::vector<int32_t> ring_tets_, ring_, ids_, work_, created_, star_;
+  std::vector<int32_t> inc_off_, inc_, fill_;  // smoothing: vertex -> tetrahedra
+  std::vector<std::array<int, 3>> tris_;
+  std::vector<int32_t> cav_;
+  std::vector<std::array<int32_t, 4>> nt_;
+  int32_t old_[64];
+};
+
+QualityStats mesh_quality(const TetMesh& m) {
+  return quality_stats(tet_qualities(m.points(), m.tets()), 20);
+}
+
+}  // namespace
+
+Status optimize_volume(TetMesh& mesh, const std::vector<double>& vertex_h,
+                       const OptimizeOptions& options, OptimizeStats* stats,
+                       const ProgressFn& progress) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  if (vertex_h.size() != mesh.num_vertices())
+    return Status::Error("optimize: one size per vertex expected");
+  for (double h : vertex_h)
+    if (!(h > 0) || !std::isfinite(h))
+      return Status::Error("optimize: sizes must be finite and > 0");
+  OptimizeStats st;
+  st.before = mesh_quality(mesh);
+  Optimizer opt(mesh, vertex_h, options, st);
+  opt.compute_all_qualities();
+  auto seconds_since = [](clock::time_point a) {
+    return std::chrono::duration<double>(clock::now() - a).count();
+  };
+  const int steps = 2 * options.passes + 1;
+  int step = 0;
+  for (int pass = 0; pass < options.passes; ++pass) {
+    if (!report_progress(progress, double(step++) / steps, "optimize volume"))
+      return Status::Error(kCancelledMessage);
+    auto t = clock::now();
+    opt.flip_pass(options.flip_threshold);
+    st.flip_seconds += seconds_since(t);
+    if (!report_progress(progress, double(step++) / steps, "optimize volume"))
+      return Status::Error(kCancelledMessage);
+    t = clock::now();
+    opt.smooth_pass();
+    st.smooth_seconds += seconds_since(t);
+  }
+  if (!report_progress(progress, double(step++) / steps, "optimize volume"))
+    return Status::Error(kCancelledMessage);
+  auto t = clock::now();
+  opt.flip_pass(options.flip_threshold);
+  st.flip_seconds += seconds_since(t);
+  t = clock::now();
+  opt.sliver_phase();
+  st.sliver_seconds += seconds_since(t);
+  st.after = mesh_quality(mesh);
+  st.seconds = seconds_since(t0);
+  if (stats) *stats = st;
+  return Status::Ok();
+}
+
+}  // namespace vm

@@ -1,0 +1,75 @@
+// Volume refinement to a size field (DESIGN.md pipeline step 6, issue 4):
+// points are inserted inside the tagged region of a constrained Delaunay
+// kernel until its edges are no longer than about h(x), the boundary (its
+// constrained faces and their vertices) staying exactly as it is.
+//
+// Point creation along edges, as in HXT (Marot, Pellerin and Remacle, "One
+// machine, one minute, three billion tetrahedra", IJNME 117, 2019, section
+// 4): an edge longer than split_length in units of h gets a point one unit
+// of h from its end (or its midpoint when it is short), accepted only if no
+// vertex is closer than min_spacing * h. The edges are those of each vertex
+// in turn, new vertices queued after the old ones, so the volume fills like
+// an advancing front from the surface inward (layers about h apart), which
+// gives well-spaced points (Frey, Borouchaki and George, "3D Delaunay mesh
+// generation coupled with an advancing-front approach", CMAME 157, 1998).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/util/progress.h"
+#include "core/util/result.h"
+#include "core/volume/delaunay3d.h"
+#include "core/volume/size_field3d.h"
+
+namespace vm {
+
+struct RefineOptions {
+  /// Tag of the region to refine (Delaunay3D::tag).
+  int32_t region_tag = 1;
+  /// Edges longer than this, in units of h (metric length), get a point.
+  double split_length = 1.45;
+  /// Candidates closer than this * h to a vertex are rejected.
+  double min_spacing = 0.72;
+  /// Candidates closer than this * h to a constrained face are rejected
+  /// (the boundary is final: no new point hugs it).
+  double boundary_spacing = 0.45;
+  /// Seed a first layer: the apex of the regular tetrahedron over each
+  /// boundary face (then filtered like every candidate).
+  bool first_layer = true;
+  /// Upper bound on inserted points (the refinement stops there; reported).
+  int64_t max_points = int64_t(1) << 28;
+};
+
+struct RefineStats {
+  int64_t vertices_processed = 0;  ///< vertices whose edges were examined
+  int64_t candidates = 0;          ///< points proposed on long edges
+  int64_t inserted = 0;
+  int64_t first_layer = 0;        ///< of which first-layer points
+  int64_t rejected_spacing = 0;   ///< too close to a vertex
+  int64_t rejected_boundary = 0;  ///< too close to a constrained face
+  int64_t rejected_outside = 0;   ///< located outside the region
+  int64_t rejected_kernel = 0;    ///< the kernel refused (blocked, duplicate, hull)
+  int generations = 0;            ///< depth of the front (layers of new vertices)
+  bool hit_max_points = false;
+  double seconds = 0;
+};
+
+/// Refines the region tagged options.region_tag of `kernel`.
+///
+/// Preconditions (checked when cheap): the region is closed by constrained
+/// faces (every face between a region tetrahedron and another tetrahedron
+/// or a ghost is constrained), so insert(p, hint, true) never leaves it;
+/// `vertex_h` holds h at every kernel vertex (one double per vertex, > 0,
+/// model units; e.g. field(x_i) for the boundary vertices). On return the
+/// kernel holds the new vertices (ids from num_vertices() before the call,
+/// in insertion order) and vertex_h their h (exact field values).
+/// Boundary vertices and constrained faces are never touched: every point
+/// is inserted with respect_constraints and at least
+/// boundary_spacing * h from constrained faces of the tetrahedra around it.
+/// Errors: vertex_h size mismatch or bad options; cancelled by progress.
+Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<double>& vertex_h,
+                     const RefineOptions& options, RefineStats* stats,
+                     const ProgressFn& progress = {});
+
+}  // namespace vm

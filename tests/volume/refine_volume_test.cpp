@@ -1,0 +1,162 @@
+#include "core/volume/refine_volume.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/mesh/volume_mesh.h"
+#include "tests/support/volume_inputs.h"
+
+namespace vm {
+namespace {
+
+struct Prepared {
+  testing::VolumeInput in;
+  SizeField3D field;
+  std::vector<double> vertex_h;
+};
+
+void prepare(Prepared& p, double gradation) {
+  std::vector<double> pts, sizes;
+  for (size_t v = 0; v < p.in.kernel.num_vertices(); ++v) {
+    pts.insert(pts.end(), p.in.kernel.point(int32_t(v)), p.in.kernel.point(int32_t(v)) + 3);
+    sizes.push_back(p.in.sizes[v]);
+  }
+  SizeField3DOptions o;
+  o.gradation = gradation;
+  auto f = SizeField3D::build(pts, sizes, o);
+  ASSERT_TRUE(f.ok()) << f.message();
+  p.field = f.value();
+  for (size_t v = 0; v < p.in.kernel.num_vertices(); ++v)
+    p.vertex_h.push_back(p.field(p.in.kernel.point(int32_t(v))));
+}
+
+double region_volume(const Delaunay3D& d) {
+  double v = 0;
+  d.for_each_finite_tet([&](int32_t t) {
+    if (d.tag(t) != 1) return;
+    const int32_t* q = d.tet(t);
+    v += tet_volume6(d.point(q[0]), d.point(q[1]), d.point(q[2]), d.point(q[3])) / 6;
+  });
+  return v;
+}
+
+TEST(RefineVolume, CubeInteriorPointsOnlyAndSurfaceKept) {
+  Prepared p;
+  ASSERT_TRUE(testing::convex_input(testing::cube_surface_points(8), &p.in));
+  prepare(p, 0.25);
+  const size_t n0 = p.in.kernel.num_vertices();
+  RefineStats st;
+  ASSERT_TRUE(refine_volume(p.in.kernel, p.field, p.vertex_h, RefineOptions{}, &st).ok());
+  const Delaunay3D& d = p.in.kernel;
+  ASSERT_TRUE(d.check(false).ok()) << d.check(false).message();
+  EXPECT_GT(st.inserted, 50);
+  EXPECT_GT(st.first_layer, 0);
+  EXPECT_EQ(size_t(st.inserted), d.num_vertices() - n0);
+  EXPECT_EQ(p.vertex_h.size(), d.num_vertices());
+  // Every surface triangle is still a constrained face, no other face is.
+  size_t constrained = 0;
+  d.for_each_finite_tet([&](int32_t t) {
+    for (int k = 0; k < 4; ++k) constrained += d.is_constrained(t, k);
+  });
+  EXPECT_EQ(constrained, p.in.surface.num_triangles());
+  for (size_t i = 0; i < p.in.surface.triangles.size(); i += 3) {
+    int k = -1;
+    const int32_t t = d.find_face(p.in.surface.triangles[i], p.in.surface.triangles[i + 1],
+                                  p.in.surface.triangles[i + 2], &k);
+    ASSERT_GE(t, 0);
+    EXPECT_TRUE(d.is_constrained(t, k));
+  }
+  // New points strictly inside, away from the faces; sizes exact.
+  for (size_t v = n0; v < d.num_vertices(); ++v) {
+    const double* x = d.point(int32_t(v));
+    const double h = p.field(x);
+    EXPECT_EQ(p.vertex_h[v], h);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_GT(x[c], 0.3 * h);
+      EXPECT_LT(x[c], 1 - 0.3 * h);
+    }
+  }
+  // Boundary vertices did not move.
+  EXPECT_NEAR(region_volume(d), 1.0, 1e-12);
+}
+
+TEST(RefineVolume, SpacingRespectedNearSurfaceAndFront) {
+  Prepared p;
+  ASSERT_TRUE(testing::convex_input(testing::sphere_points(3), &p.in));
+  prepare(p, 0.2);
+  const size_t n0 = p.in.kernel.num_vertices();
+  RefineOptions o;
+  RefineStats st;
+  ASSERT_TRUE(refine_volume(p.in.kernel, p.field, p.vertex_h, o, &st).ok());
+  const Delaunay3D& d = p.in.kernel;
+  // Nearest-neighbor distances of the new points, in units of h: the
+  // filter checks the neighborhood only, so allow a few exceptions.
+  size_t too_close = 0;
+  for (size_t v = n0; v < d.num_vertices(); ++v) {
+    double best = 1e300;
+    for (size_t w = 0; w < d.num_vertices(); ++w) {
+      if (w == v) continue;
+      const double* a = d.point(int32_t(v));
+      const double* b = d.point(int32_t(w));
+      best =
+          std::min(best, std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                   (a[2] - b[2]) * (a[2] - b[2])));
+    }
+    too_close += best < 0.5 * p.vertex_h[v];
+  }
+  EXPECT_LE(too_close, (d.num_vertices() - n0) / 100);
+  EXPECT_GT(st.generations, 1);
+}
+
+TEST(RefineVolume, DeterministicAndCancellable) {
+  auto run = [](std::vector<double>* pts) {
+    Prepared p;
+    ASSERT_TRUE(testing::convex_input(testing::capped_cylinder_points(1, 3, 0.3), &p.in));
+    prepare(p, 0.25);
+    ASSERT_TRUE(refine_volume(p.in.kernel, p.field, p.vertex_h, RefineOptions{}, nullptr).ok());
+    *pts = p.in.kernel.points();
+  };
+  std::vector<double> a, b;
+  run(&a);
+  run(&b);
+  EXPECT_EQ(a, b);
+
+  Prepared p;
+  ASSERT_TRUE(testing::convex_input(testing::capped_cylinder_points(1, 3, 0.3), &p.in));
+  prepare(p, 0.25);
+  Status s = refine_volume(p.in.kernel, p.field, p.vertex_h, RefineOptions{}, nullptr,
+                           [](double, std::string_view) { return false; });
+  EXPECT_FALSE(s.ok());
+  EXPECT_EQ(s.message(), kCancelledMessage);
+}
+
+TEST(RefineVolume, Errors) {
+  Prepared p;
+  ASSERT_TRUE(testing::convex_input(testing::cube_surface_points(3), &p.in));
+  prepare(p, 0.25);
+  std::vector<double> wrong(3, 0.1);
+  EXPECT_FALSE(refine_volume(p.in.kernel, p.field, wrong, RefineOptions{}, nullptr).ok());
+  RefineOptions bad;
+  bad.min_spacing = 2;
+  EXPECT_FALSE(refine_volume(p.in.kernel, p.field, p.vertex_h, bad, nullptr).ok());
+  // A hull face not constrained: the region is open.
+  Delaunay3D& d = p.in.kernel;
+  bool opened = false;
+  d.for_each_finite_tet([&](int32_t t) {
+    for (int k = 0; k < 4 && !opened; ++k)
+      if (d.is_constrained(t, k)) {
+        d.set_constrained(t, k, false);
+        opened = true;
+      }
+  });
+  Status s = refine_volume(d, p.field, p.vertex_h, RefineOptions{}, nullptr);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("not closed"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vm

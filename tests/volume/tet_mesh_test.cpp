@@ -1,0 +1,111 @@
+#include "core/volume/tet_mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include "core/mesh/volume_mesh.h"
+#include "tests/support/volume_inputs.h"
+
+namespace vm {
+namespace {
+
+double total_volume(const TetMesh& m) {
+  double v = 0;
+  const auto t = m.tets();
+  for (size_t i = 0; i < t.size(); i += 4)
+    v += tet_volume6(m.point(t[i]), m.point(t[i + 1]), m.point(t[i + 2]), m.point(t[i + 3])) / 6;
+  return v;
+}
+
+// The octahedron around the edge (0, 1) as 4 tetrahedra, plus a pyramid.
+TetMesh octahedron() {
+  std::vector<double> p = {0, 0, -1, 0, 0, 1, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0};
+  std::vector<int32_t> t;
+  for (int i = 0; i < 4; ++i) {
+    const int32_t c = 2 + i, d = 2 + (i + 1) % 4;
+    std::array<int32_t, 4> q = {0, 1, c, d};
+    if (tet_volume6(&p[3 * q[0]], &p[3 * q[1]], &p[3 * q[2]], &p[3 * q[3]]) < 0)
+      std::swap(q[2], q[3]);
+    t.insert(t.end(), q.begin(), q.end());
+  }
+  std::vector<uint8_t> fixed(6, 1);
+  auto r = TetMesh::from_arrays(p, t, fixed);
+  EXPECT_TRUE(r.ok()) << r.message();
+  return std::move(r.value());
+}
+
+TEST(TetMesh, FromArraysAdjacencyAndRing) {
+  TetMesh m = octahedron();
+  ASSERT_TRUE(m.check().ok()) << m.check().message();
+  EXPECT_EQ(m.num_tets(), 4u);
+  int boundary = 0;
+  for (int32_t t = 0; t < 4; ++t)
+    for (int k = 0; k < 4; ++k) boundary += m.neighbor(t, k) == TetMesh::kBoundary;
+  EXPECT_EQ(boundary, 8);
+  std::vector<int32_t> ring_tets, ring;
+  ASSERT_TRUE(m.edge_ring(0, 0, 1, ring_tets, ring));
+  EXPECT_EQ(ring.size(), 4u);
+  // Boundary edges cannot be removed.
+  const int32_t* v = m.tet(0);
+  int32_t other = -1;
+  for (int s = 0; s < 4; ++s)
+    if (v[s] != 0 && v[s] != 1) other = v[s];
+  EXPECT_FALSE(m.edge_ring(0, 0, other, ring_tets, ring));
+  std::vector<int32_t> star;
+  m.star(0, star);
+  EXPECT_EQ(star.size(), 4u);
+}
+
+TEST(TetMesh, ReplaceKeepsBoundaryAndRejectsMismatch) {
+  TetMesh m = octahedron();
+  const double vol = total_volume(m);
+  std::vector<int32_t> ring_tets, ring;
+  ASSERT_TRUE(m.edge_ring(0, 0, 1, ring_tets, ring));
+  // The 4-4 flip: diagonal ring[0]-ring[2].
+  std::vector<std::array<int32_t, 4>> nt;
+  for (int i = 1; i <= 2; ++i) {
+    const int32_t x = ring[0], y = ring[size_t(i)], z = ring[size_t(i + 1) % 4];
+    nt.push_back({x, y, z, 1});
+    nt.push_back({y, x, z, 0});
+  }
+  // A wrong set (one tetrahedron missing) is refused, nothing changes.
+  EXPECT_FALSE(m.replace(ring_tets.data(), 4, nt.data(), 3, nullptr));
+  ASSERT_TRUE(m.check().ok());
+  std::vector<int32_t> ids;
+  ASSERT_TRUE(m.replace(ring_tets.data(), 4, nt.data(), 4, &ids));
+  ASSERT_TRUE(m.check().ok()) << m.check().message();
+  EXPECT_EQ(ids.size(), 4u);
+  EXPECT_NEAR(total_volume(m), vol, 1e-12);
+  int boundary = 0;
+  for (int32_t t : ids)
+    for (int k = 0; k < 4; ++k) boundary += m.neighbor(t, k) == TetMesh::kBoundary;
+  EXPECT_EQ(boundary, 8);
+}
+
+TEST(TetMesh, FromKernelKeepsRegionAndConstraints) {
+  testing::VolumeInput in;
+  ASSERT_TRUE(testing::convex_input(testing::cube_surface_points(3), &in));
+  const Delaunay3D& d = in.kernel;
+  std::vector<int32_t> vmap(d.num_vertices());
+  for (size_t v = 0; v < vmap.size(); ++v) vmap[v] = int32_t(v);
+  auto r =
+      TetMesh::from_kernel(d, 1, vmap, int32_t(vmap.size()), std::vector<uint8_t>(vmap.size(), 1));
+  ASSERT_TRUE(r.ok()) << r.message();
+  const TetMesh& m = r.value();
+  ASSERT_TRUE(m.check().ok()) << m.check().message();
+  EXPECT_EQ(m.num_tets(), d.num_finite_tets());
+  size_t boundary = 0;
+  for (int32_t t = 0; t < int32_t(m.capacity()); ++t)
+    for (int k = 0; k < 4; ++k) boundary += m.neighbor(t, k) == TetMesh::kBoundary;
+  EXPECT_EQ(boundary, in.surface.num_triangles());
+  EXPECT_NEAR(total_volume(m), 1.0, 1e-12);
+  // Errors: wrong sizes.
+  EXPECT_FALSE(TetMesh::from_kernel(d, 1, {}, 0, {}).ok());
+  EXPECT_FALSE(TetMesh::from_arrays({0, 0, 0}, {0, 0, 0, 1}, {0}).ok());
+}
+
+}  // namespace
+}  // namespace vm
