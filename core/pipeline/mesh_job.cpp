@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/surface_distance.h"
 #include "core/mesh/volume_check.h"
 #include "core/quality/tet_quality.h"
 #include "core/volume/boundary_recovery.h"
+#include "core/volume/tetrahedralize.h"
 
 namespace vm {
 
@@ -78,7 +80,7 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   r.surface_names = {"wall"};
   for (const CapInfo& c : r.capped.caps) {
     r.surface_names.push_back(c.name);
-    if (c.max_projection_distance > 0.2 * r.capped.caps.front().perimeter / 6.283)
+    if (c.max_projection_distance > 0.2 * c.perimeter / (2 * std::numbers::pi))
       r.warnings.push_back("opening " + c.name + " is far from planar: its rim moved up to " +
                            std::to_string(c.max_projection_distance) + " onto the cap plane");
   }
@@ -89,9 +91,48 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   auto recovered =
       recover_boundary(r.capped.mesh.points, r.capped.mesh.triangles, r.capped.triangle_tag);
   if (!recovered.ok()) return Status::Error("volume meshing failed: " + recovered.message());
-  st.steiner_points = size_t(recovered.value().steiner_points);
-  r.volume = std::move(recovered.value().mesh);
+  RecoveredVolume& rec = recovered.value();
+  st.steiner_points = size_t(rec.steiner_points);
   st.seconds_recovery = seconds_since(t0);
+
+  // Refinement and optimization inside, towards the sizes of the surface
+  // vertices (wall: the remeshing's; caps: their edge lengths; Steiner
+  // points: those of the triangle they split) graded into the core.
+  t0 = std::chrono::steady_clock::now();
+  std::vector<double> size = mean_edge_lengths(r.capped.mesh);
+  std::copy(wall_sizes.begin(), wall_sizes.end(), size.begin());
+  const size_t surface_vertices = size.size();
+  size.resize(rec.mesh.num_vertices(), 0.0);
+  for (size_t t = 0; t < rec.mesh.num_triangles(); ++t) {
+    const int32_t* parent = &r.capped.mesh.triangles[3 * size_t(rec.triangle_parent[t])];
+    for (int k = 0; k < 3; ++k) {
+      const size_t v = size_t(rec.mesh.triangles[3 * t + size_t(k)]);
+      if (v >= surface_vertices && size[v] == 0)
+        size[v] = (size[size_t(parent[0])] + size[size_t(parent[1])] + size[size_t(parent[2])]) / 3;
+    }
+  }
+  FillOptions fo;
+  // The field's default in the core: a uniform size stays uniform, a
+  // radius-based one grows from the wall by the gradation.
+  const SizeOptions& so = options.remesh_options.size;
+  fo.core_size = options.core_size > 0                             ? options.core_size
+                 : options.remesh && so.mode == SizeMode::kUniform ? so.size
+                                                                   : 0;
+  FillStats fs;
+  ProgressFn fill_progress = [&](double f, std::string_view stage) {
+    return report_progress(progress, 0.92 + 0.06 * f, stage);
+  };
+  auto filled = fill_volume(rec.kernel, size, fo, &fs, fill_progress);
+  if (!filled.ok()) return Status::Error("volume meshing failed: " + filled.message());
+  if (fs.unused_vertices != 0)
+    return Status::Error("internal error: a surface vertex is not in the volume");
+  st.inserted_points = fs.inserted_vertices;
+  r.volume = std::move(filled).value();
+  r.volume.triangles = std::move(rec.mesh.triangles);
+  r.volume.triangle_tag = std::move(rec.mesh.triangle_tag);
+  st.seconds_refinement = seconds_since(t0);
+  st.seconds_fill_refine = fs.refine_seconds;
+  st.seconds_fill_optimize = fs.optimize_seconds;
 
   // Never write an inverted element; with verify, also check conformity and
   // the boundary (correct by construction, and slower).
@@ -206,7 +247,7 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
     model.physicals.push_back({2, 1, "wall"});
     model.blocks.push_back({MshElementType::kTriangle, 1, 1, r.output_surface.triangles});
   }
-  if (!report_progress(progress, 0.95, "write")) return Status::Error(kCancelledMessage);
+  if (!report_progress(progress, 0.99, "write")) return Status::Error(kCancelledMessage);
   for (const MshPhysical& ph : model.physicals) {
     OutputGroup g{ph.dim, ph.name, 0};
     for (const MshBlock& b : model.blocks)

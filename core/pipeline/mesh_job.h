@@ -33,8 +33,9 @@ struct MeshJobOptions {
   /// Which opening becomes `inlet`: an index into the input's openings as
   /// `vesselmesh info` lists them (largest first); 0 = the largest.
   int inlet = 0;
-  /// Target edge length in the core of the lumen (0: grow from the wall
-  /// size with the gradation, no cap).
+  /// Target edge length in the core of the lumen; 0: the field's own, i.e.
+  /// the uniform size in uniform mode, else grown from the wall's size by
+  /// the gradation.
   double core_size = 0;
   /// Check the volume mesh fully before writing it (conformity, boundary =
   /// surface triangles), not only that no element is inverted.
@@ -46,6 +47,8 @@ struct VolumeStats {
   size_t steiner_points = 0;   ///< added on the surface by boundary recovery
   size_t inserted_points = 0;  ///< added inside by refinement
   double seconds_caps = 0, seconds_recovery = 0, seconds_refinement = 0, seconds_check = 0;
+  /// Parts of seconds_refinement: point insertion, and the optimization.
+  double seconds_fill_refine = 0, seconds_fill_optimize = 0;
 };
 
 /// How faithful the remeshed surface is to its input (issue 3's checks).

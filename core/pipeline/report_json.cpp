@@ -145,6 +145,8 @@ std::string mesh_report_json(const MeshJobResult& r) {
     j.key("caps").value(vs.seconds_caps);
     j.key("recovery").value(vs.seconds_recovery);
     j.key("refinement").value(vs.seconds_refinement);
+    j.key("insertion").value(vs.seconds_fill_refine);
+    j.key("optimization").value(vs.seconds_fill_optimize);
     j.key("check").value(vs.seconds_check);
     j.end_object();
     j.end_object();

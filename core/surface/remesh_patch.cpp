@@ -195,7 +195,7 @@ Result<PatchMesh> mesh_mapped_patch(const SurfaceMesh& m, const std::vector<doub
   return out;
 }
 
-Result<SurfaceMesh> remesh_disk_patch(const SurfaceMesh& m, const SizeField3D& size,
+Result<SurfaceMesh> remesh_disk_patch(const SurfaceMesh& m, const PointSizeFn& size,
                                       PatchRemeshStats* stats, const PatchMeshOptions& options) {
   TriangleAdjacency adj = build_adjacency(m);
   auto loops = boundary_loops(m, adj);

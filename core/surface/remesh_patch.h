@@ -13,7 +13,7 @@
 namespace vm {
 
 /// Target edge length at a 3D point (3 doubles); must be > 0.
-using SizeField3D = std::function<double(const double* x)>;
+using PointSizeFn = std::function<double(const double* x)>;
 
 struct PatchRemeshStats {
   size_t flipped_in_map = 0;   ///< parametric triangles folded by the map
@@ -68,7 +68,7 @@ Result<PatchMesh> mesh_mapped_patch(const SurfaceMesh& patch, const std::vector<
 /// in the parametric triangle containing it: every output vertex lies on the
 /// input surface. Output triangles are oriented like the input.
 /// Errors: not exactly one boundary loop, a folded map, a meshing failure.
-Result<SurfaceMesh> remesh_disk_patch(const SurfaceMesh& patch, const SizeField3D& size,
+Result<SurfaceMesh> remesh_disk_patch(const SurfaceMesh& patch, const PointSizeFn& size,
                                       PatchRemeshStats* stats = nullptr,
                                       const PatchMeshOptions& options = {});
 

@@ -170,17 +170,18 @@ TEST(SelfIntersection, MatchesAllPairsOnASmallMesh) {
   EXPECT_EQ(find_self_intersections(m).pairs, brute);
 }
 
-TEST(SelfIntersection, TimingOnALargeSurface) {
-  const SurfaceMesh m = testing::torus(500, 200, 3.0, 1.0);  // 200k triangles
+TEST(SelfIntersection, LargeCleanSurfaceTestsFewPairs) {
+  // 200k triangles: none intersect, and the box hierarchy keeps the exact
+  // tests to the neighbors (a few per triangle), not all pairs. Timing is
+  // printed for information only (speed is measured in bench/).
+  const SurfaceMesh m = testing::torus(500, 200, 3.0, 1.0);
   const auto t0 = std::chrono::steady_clock::now();
   const SelfIntersectionReport r = find_self_intersections(m);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(r.pairs, 0u);
+  EXPECT_LT(r.tested_pairs, 20 * m.num_triangles());
   std::cout << "[ info ] self-intersection check of " << m.num_triangles() << " triangles: " << s
             << " s (" << r.tested_pairs << " pairs with overlapping boxes)\n";
-#if defined(NDEBUG) && !defined(__SANITIZE_ADDRESS__)
-  EXPECT_LT(s, 1.0);
-#endif
 }
 
 }  // namespace
