@@ -156,38 +156,46 @@ class Recovery {
   Status run() {
     const int64_t max_rounds = 4 * max_steiner_ + 64;
     for (int64_t round = 0; round < max_rounds; ++round) {
+      // Only the triangles not known to be constrained faces are looked at:
+      // flips and constrained insertions never remove a constrained face;
+      // a split makes its pieces pending; an unconstrained insertion
+      // (rescan_) makes every triangle pending again.
+      if (rescan_) {
+        done_.assign(s_.tri.size(), 0);
+        rescan_ = false;
+      }
+      done_.resize(s_.tri.size(), 0);
+      std::vector<int32_t> pending;
+      for (int32_t t = 0; t < int32_t(s_.tri.size()); ++t)
+        if (!done_[size_t(t)]) pending.push_back(t);
       // 2a: edges by flips.
       std::vector<std::pair<int32_t, int32_t>> missing_edges;
-      for (const auto& [key, tris] : s_.edges) {
-        const int32_t a = int32_t(key >> 32), b = int32_t(uint32_t(key));
-        if (d_.find_edge(a, b) < 0) missing_edges.push_back({a, b});
-      }
-      std::sort(missing_edges.begin(), missing_edges.end());
+      collect_missing_edges(pending, missing_edges);
       if (flips_)
         for (auto [a, b] : missing_edges) recover_edge_by_flips(a, b);
       // 2b: faces by flips; present faces constrained.
       std::vector<int32_t> missing_faces;
-      for (int32_t t = 0; t < int32_t(s_.tri.size()); ++t)
-        if (!constrain_face(t)) missing_faces.push_back(t);
+      for (int32_t t : pending)
+        if (constrain_face(t))
+          done_[size_t(t)] = 1;
+        else
+          missing_faces.push_back(t);
       if (flips_) {
         std::vector<int32_t> still;
         for (int32_t t : missing_faces)
-          if (!(edges_present(t) && recover_face_by_flips(t) && constrain_face(t)))
+          if (edges_present(t) && recover_face_by_flips(t) && constrain_face(t))
+            done_[size_t(t)] = 1;
+          else
             still.push_back(t);
         missing_faces.swap(still);
       }
-      if (missing_faces.empty()) return Status::Ok();
+      if (missing_faces.empty()) {
+        if (rescan_) continue;  // a last unconstrained insertion: check all
+        return Status::Ok();
+      }
       // 2c: Steiner points: missing edges at their midpoints, then faces
       // whose edges are all present at the midpoint of their longest edge.
-      missing_edges.clear();
-      for (int32_t t : missing_faces)
-        for (int k = 0; k < 3; ++k) {
-          const int32_t a = s_.tri[size_t(t)][size_t(k)], b = s_.tri[size_t(t)][(k + 1) % 3];
-          if (d_.find_edge(a, b) < 0) missing_edges.push_back({std::min(a, b), std::max(a, b)});
-        }
-      std::sort(missing_edges.begin(), missing_edges.end());
-      missing_edges.erase(std::unique(missing_edges.begin(), missing_edges.end()),
-                          missing_edges.end());
+      collect_missing_edges(missing_faces, missing_edges);
       if (missing_edges.empty()) {
         for (int32_t t : missing_faces) {
           const Tri& v = s_.tri[size_t(t)];
@@ -212,6 +220,24 @@ class Recovery {
 
  private:
   const double* P(int32_t v) const { return d_.point(v); }
+
+  // The edges of triangles `tris` that are not edges of the mesh, sorted,
+  // each once.
+  void collect_missing_edges(const std::vector<int32_t>& tris,
+                             std::vector<std::pair<int32_t, int32_t>>& out) const {
+    out.clear();
+    for (int32_t t : tris)
+      for (int k = 0; k < 3; ++k) {
+        int32_t a = s_.tri[size_t(t)][size_t(k)], b = s_.tri[size_t(t)][(k + 1) % 3];
+        if (a > b) std::swap(a, b);
+        out.push_back({a, b});
+      }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    out.erase(std::remove_if(out.begin(), out.end(),
+                             [&](const auto& e) { return d_.find_edge(e.first, e.second) >= 0; }),
+              out.end());
+  }
 
   bool edges_present(int32_t t) const {
     const Tri& v = s_.tri[size_t(t)];
@@ -358,8 +384,11 @@ class Recovery {
     // the hull (the midpoint of a hull edge, rounded): insert ignoring the
     // constraints; the faces it removes are recovered again.
     if (r.status == Delaunay3D::InsertStatus::kBlocked ||
-        r.status == Delaunay3D::InsertStatus::kOutsideHull)
+        r.status == Delaunay3D::InsertStatus::kOutsideHull) {
       r = d_.insert(m, hint, false);
+      rescan_ = true;
+    }
+    if (!flips_) rescan_ = true;  // Delaunay insertions ignore the constraints
     if (r.status == Delaunay3D::InsertStatus::kDuplicate)
       return Status::Error("boundary recovery: vertex " + std::to_string(r.vertex) +
                            " lies on surface edge (" + std::to_string(a) + ", " +
@@ -368,7 +397,10 @@ class Recovery {
       return Status::Error("boundary recovery: cannot insert a Steiner point on edge (" +
                            std::to_string(a) + ", " + std::to_string(b) + ") (status " +
                            std::to_string(int(r.status)) + ")");
+    auto on = s_.edges.find(edge_key(a, b))->second;
     s_.split_edge(a, b, r.vertex);
+    for (int32_t t : on)
+      if (t >= 0 && size_t(t) < done_.size()) done_[size_t(t)] = 0;  // new pieces are appended
     ++steiner_;
     return Status::Ok();
   }
@@ -379,6 +411,8 @@ class Recovery {
   bool flips_;
   int64_t max_steiner_;
   int64_t steiner_ = 0;
+  std::vector<uint8_t> done_;  // per surface triangle: a constrained face
+  bool rescan_ = false;
   std::vector<int32_t> around_, ring_tets_, ring_;
 };
 
