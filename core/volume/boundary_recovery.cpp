@@ -5,8 +5,9 @@
 //   2. rounds of: missing edges by flips (walk from an endpoint, flip the
 //      first crossed face (2-3) or remove the first crossed edge), missing
 //      faces by flips (remove the edges piercing the triangle), present
-//      faces constrained; then Steiner points at the midpoints of the edges
-//      still missing (and of the longest edge of faces still missing), the
+//      faces constrained; then Steiner points on the edges still missing
+//      (and on the longest edge of faces still missing) at their midpoints
+//      or on concentric shells around input vertices (Ruppert 1995), the
 //      surface triangles on a split edge being split in two, inserted
 //      without crossing the faces already recovered;
 //   3. if the rounds stall, the same with Steiner points only in a fresh
@@ -150,7 +151,12 @@ struct Crossing {
 class Recovery {
  public:
   Recovery(Delaunay3D d, Surface s, const RecoveryOptions& o, bool flips, int64_t max_steiner)
-      : d_(std::move(d)), s_(std::move(s)), o_(o), flips_(flips), max_steiner_(max_steiner) {}
+      : d_(std::move(d)),
+        s_(std::move(s)),
+        o_(o),
+        flips_(flips),
+        max_steiner_(max_steiner),
+        num_input_(int32_t(d_.num_vertices())) {}
 
   /// Phase 2 (or 3 without flips). Error when stalled or degenerate.
   Status run() {
@@ -365,7 +371,29 @@ class Recovery {
     return s1 != 0 && s1 == s2 && s2 == s3;
   }
 
-  // Steiner point at the midpoint of surface edge (a, b).
+  // Where to split surface edge (a, b): the midpoint, except when exactly
+  // one endpoint is an input vertex: then at the power-of-two distance from
+  // it nearest to half the length (Ruppert's concentric shells, "A Delaunay
+  // refinement algorithm for quality 2-dimensional mesh generation", J.
+  // Algorithms 18, 1995), so that two edges meeting at a small angle are
+  // split at the same distances and do not keep encroaching each other.
+  void split_point(int32_t a, int32_t b, double* m) const {
+    const bool ia = a < num_input_, ib = b < num_input_;
+    double t = 0.5;
+    if (ia != ib) {
+      double l2 = 0;
+      for (int k = 0; k < 3; ++k) l2 += (P(b)[k] - P(a)[k]) * (P(b)[k] - P(a)[k]);
+      const double len = std::sqrt(l2);
+      const double shell = std::exp2(std::round(std::log2(0.5 * len)));
+      t = ia ? shell / len : 1 - shell / len;
+      if (!(t > 0.25 && t < 0.75)) t = 0.5;
+    }
+    for (int k = 0; k < 3; ++k) m[k] = P(a)[k] + t * (P(b)[k] - P(a)[k]);
+    if (t == 0.5)
+      for (int k = 0; k < 3; ++k) m[k] = 0.5 * (P(a)[k] + P(b)[k]);
+  }
+
+  // Steiner point on surface edge (a, b).
   Status split(int32_t a, int32_t b) {
     if (steiner_ >= max_steiner_)
       return Status::Error("boundary recovery: Steiner point limit (" +
@@ -373,8 +401,8 @@ class Recovery {
     auto it = s_.edges.find(edge_key(a, b));
     for (int32_t t : it->second)
       if (t >= 0) unconstrain_face(s_.tri[size_t(t)]);
-    const double m[3] = {0.5 * (P(a)[0] + P(b)[0]), 0.5 * (P(a)[1] + P(b)[1]),
-                         0.5 * (P(a)[2] + P(b)[2])};
+    double m[3];
+    split_point(a, b, m);
     int32_t hint = d_.find_edge(a, b);
     if (hint < 0) hint = d_.vertex_tet(a);
     // With flips, the faces recovered so far are kept (the cavity stops at
@@ -410,6 +438,7 @@ class Recovery {
   RecoveryOptions o_;
   bool flips_;
   int64_t max_steiner_;
+  int32_t num_input_;
   int64_t steiner_ = 0;
   std::vector<uint8_t> done_;  // per surface triangle: a constrained face
   bool rescan_ = false;
@@ -487,7 +516,7 @@ Result<RecoveredVolume> recover_boundary(const std::vector<double>& points,
   if (Status st = validate(points, triangles, tags); !st.ok()) return R(st);
   const size_t nt = triangles.size() / 3;
   const int64_t max_steiner =
-      options.max_steiner_points >= 0 ? options.max_steiner_points : 20 * int64_t(nt) + 1000;
+      options.max_steiner_points >= 0 ? options.max_steiner_points : int64_t(nt) + 1000;
   std::vector<int32_t> parents(nt);
   for (size_t t = 0; t < nt; ++t) parents[t] = int32_t(t);
 
@@ -503,6 +532,7 @@ Result<RecoveredVolume> recover_boundary(const std::vector<double>& points,
     out.used_fallback = true;
     out.fallback_reason = st.message();
     st = attempt.value().run();
+    if (!st.ok()) st = Status::Error(st.message() + " (with flips: " + out.fallback_reason + ")");
   }
   if (!st.ok()) return R(st);
   Recovery& rec = attempt.value();
