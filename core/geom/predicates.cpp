@@ -80,12 +80,13 @@ double insphere_exact(const double* a, const double* b, const double* c, const d
   return det.estimate();
 }
 
-// Exact evaluation from exactly representable differences, on fixed-size
-// arrays (no allocation). When every coordinate difference p - e is exact
-// in double precision (common for nearby points: Sterbenz's lemma), the
-// determinant of the rounded differences is the exact determinant, and it
-// is evaluated here in expansion arithmetic of bounded length (Shewchuk's
-// adaptive stage B). Otherwise the general path above is taken.
+// Shewchuk's adaptive stage B on fixed-size arrays (no allocation): the
+// determinant of the rounded coordinate differences, evaluated exactly in
+// expansion arithmetic of bounded length. When every difference is exact
+// (common for nearby points: Sterbenz's lemma) it is the exact determinant;
+// otherwise it differs from it by at most errboundB * permanent (Shewchuk
+// 1997, o3derrboundB, isperrboundB), which decides most of the remaining
+// cases. What stage B cannot decide goes to the general exact path above.
 namespace fixed {
 
 inline void two_sum(double a, double b, double& x, double& y) {
@@ -200,30 +201,38 @@ int combo3(double s1, int l1, const double* m1, double s2, int l2, const double*
   return sum(nt, t, n3, p3, h);
 }
 
-// orient3d from exact differences; false if a difference is inexact.
-bool orient3d(const double* a, const double* b, const double* c, const double* d, double& out) {
+constexpr double kEpsB = 0x1p-53;
+constexpr double kOrient3dBoundB = (3.0 + 28.0 * kEpsB) * kEpsB;
+constexpr double kInsphereBoundB = (5.0 + 72.0 * kEpsB) * kEpsB;
+
+// orient3d by stage B; false if undecided.
+bool orient3d(const double* a, const double* b, const double* c, const double* d, double permanent,
+              double& out) {
   double ad[3], bd[3], cd[3];
-  for (int k = 0; k < 3; ++k)
-    if (!exact_diff(a[k], d[k], ad[k]) || !exact_diff(b[k], d[k], bd[k]) ||
-        !exact_diff(c[k], d[k], cd[k]))
-      return false;
+  bool exact = true;
+  for (int k = 0; k < 3; ++k) {
+    exact = exact_diff(a[k], d[k], ad[k]) && exact;
+    exact = exact_diff(b[k], d[k], bd[k]) && exact;
+    exact = exact_diff(c[k], d[k], cd[k]) && exact;
+  }
   double bc[4], ca[4], ab[4], det[24];
   int nbc = det2(bd[0], cd[1], cd[0], bd[1], bc);
   int nca = det2(cd[0], ad[1], ad[0], cd[1], ca);
   int nab = det2(ad[0], bd[1], bd[0], ad[1], ab);
   int n = combo3(ad[2], nbc, bc, bd[2], nca, ca, cd[2], nab, ab, det);
   out = estimate(n, det);
-  return true;
+  const double bound = kOrient3dBoundB * permanent;
+  return exact || out > bound || -out > bound;
 }
 
-// insphere from exact differences; false if a difference is inexact.
+// insphere by stage B; false if undecided.
 bool insphere(const double* a, const double* b, const double* c, const double* d, const double* e,
-              double& out) {
+              double permanent, double& out) {
   double p[4][3];
   const double* q[4] = {a, b, c, d};
+  bool exact = true;
   for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k)
-      if (!exact_diff(q[i][k], e[k], p[i][k])) return false;
+    for (int k = 0; k < 3; ++k) exact = exact_diff(q[i][k], e[k], p[i][k]) && exact;
   const double *ae = p[0], *be = p[1], *ce = p[2], *de = p[3];
   double ab[4], bc[4], cd[4], da[4], ac[4], bd[4];
   int nab = det2(ae[0], be[1], be[0], ae[1], ab);
@@ -269,7 +278,8 @@ bool insphere(const double* a, const double* b, const double* c, const double* d
   int m2 = sum(n3, t3, n4, t4, s2);
   int n = sum(m1, s1, m2, s2, det);
   out = estimate(n, det);
-  return true;
+  const double bound = kInsphereBoundB * permanent;
+  return exact || out > bound || -out > bound;
 }
 
 }  // namespace fixed
@@ -318,7 +328,7 @@ double orient3d(const double* a, const double* b, const double* c, const double*
   double bound = kOrient3dBound * permanent;
   if (det > bound || -det > bound) return det;
   double exact;
-  if (fixed::orient3d(a, b, c, d, exact)) return exact;
+  if (fixed::orient3d(a, b, c, d, permanent, exact)) return exact;
   return orient3d_exact(a, b, c, d);
 }
 
@@ -356,7 +366,7 @@ double insphere(const double* a, const double* b, const double* c, const double*
   double bound = kInsphereBound * permanent;
   if (det > bound || -det > bound) return det;
   double exact;
-  if (fixed::insphere(a, b, c, d, e, exact)) return exact;
+  if (fixed::insphere(a, b, c, d, e, permanent, exact)) return exact;
   return insphere_exact(a, b, c, d, e);
 }
 

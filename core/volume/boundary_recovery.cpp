@@ -5,8 +5,9 @@
 //   2. rounds of: missing edges by flips (walk from an endpoint, flip the
 //      first crossed face (2-3) or remove the first crossed edge), missing
 //      faces by flips (remove the edges piercing the triangle), present
-//      faces constrained; then Steiner points at the midpoints of the edges
-//      still missing (and of the longest edge of faces still missing), the
+//      faces constrained; then Steiner points on the edges still missing
+//      (and on the longest edge of faces still missing) at their midpoints
+//      or on concentric shells around input vertices (Ruppert 1995), the
 //      surface triangles on a split edge being split in two, inserted
 //      without crossing the faces already recovered;
 //   3. if the rounds stall, the same with Steiner points only in a fresh
@@ -150,44 +151,57 @@ struct Crossing {
 class Recovery {
  public:
   Recovery(Delaunay3D d, Surface s, const RecoveryOptions& o, bool flips, int64_t max_steiner)
-      : d_(std::move(d)), s_(std::move(s)), o_(o), flips_(flips), max_steiner_(max_steiner) {}
+      : d_(std::move(d)),
+        s_(std::move(s)),
+        o_(o),
+        flips_(flips),
+        max_steiner_(max_steiner),
+        num_input_(int32_t(d_.num_vertices())) {}
 
   /// Phase 2 (or 3 without flips). Error when stalled or degenerate.
   Status run() {
     const int64_t max_rounds = 4 * max_steiner_ + 64;
     for (int64_t round = 0; round < max_rounds; ++round) {
+      // Only the triangles not known to be constrained faces are looked at:
+      // flips and constrained insertions never remove a constrained face;
+      // a split makes its pieces pending; an unconstrained insertion
+      // (rescan_) makes every triangle pending again.
+      if (rescan_) {
+        done_.assign(s_.tri.size(), 0);
+        rescan_ = false;
+      }
+      done_.resize(s_.tri.size(), 0);
+      std::vector<int32_t> pending;
+      for (int32_t t = 0; t < int32_t(s_.tri.size()); ++t)
+        if (!done_[size_t(t)]) pending.push_back(t);
       // 2a: edges by flips.
       std::vector<std::pair<int32_t, int32_t>> missing_edges;
-      for (const auto& [key, tris] : s_.edges) {
-        const int32_t a = int32_t(key >> 32), b = int32_t(uint32_t(key));
-        if (d_.find_edge(a, b) < 0) missing_edges.push_back({a, b});
-      }
-      std::sort(missing_edges.begin(), missing_edges.end());
+      collect_missing_edges(pending, missing_edges);
       if (flips_)
         for (auto [a, b] : missing_edges) recover_edge_by_flips(a, b);
       // 2b: faces by flips; present faces constrained.
       std::vector<int32_t> missing_faces;
-      for (int32_t t = 0; t < int32_t(s_.tri.size()); ++t)
-        if (!constrain_face(t)) missing_faces.push_back(t);
+      for (int32_t t : pending)
+        if (constrain_face(t))
+          done_[size_t(t)] = 1;
+        else
+          missing_faces.push_back(t);
       if (flips_) {
         std::vector<int32_t> still;
         for (int32_t t : missing_faces)
-          if (!(edges_present(t) && recover_face_by_flips(t) && constrain_face(t)))
+          if (edges_present(t) && recover_face_by_flips(t) && constrain_face(t))
+            done_[size_t(t)] = 1;
+          else
             still.push_back(t);
         missing_faces.swap(still);
       }
-      if (missing_faces.empty()) return Status::Ok();
+      if (missing_faces.empty()) {
+        if (rescan_) continue;  // a last unconstrained insertion: check all
+        return Status::Ok();
+      }
       // 2c: Steiner points: missing edges at their midpoints, then faces
       // whose edges are all present at the midpoint of their longest edge.
-      missing_edges.clear();
-      for (int32_t t : missing_faces)
-        for (int k = 0; k < 3; ++k) {
-          const int32_t a = s_.tri[size_t(t)][size_t(k)], b = s_.tri[size_t(t)][(k + 1) % 3];
-          if (d_.find_edge(a, b) < 0) missing_edges.push_back({std::min(a, b), std::max(a, b)});
-        }
-      std::sort(missing_edges.begin(), missing_edges.end());
-      missing_edges.erase(std::unique(missing_edges.begin(), missing_edges.end()),
-                          missing_edges.end());
+      collect_missing_edges(missing_faces, missing_edges);
       if (missing_edges.empty()) {
         for (int32_t t : missing_faces) {
           const Tri& v = s_.tri[size_t(t)];
@@ -212,6 +226,24 @@ class Recovery {
 
  private:
   const double* P(int32_t v) const { return d_.point(v); }
+
+  // The edges of triangles `tris` that are not edges of the mesh, sorted,
+  // each once.
+  void collect_missing_edges(const std::vector<int32_t>& tris,
+                             std::vector<std::pair<int32_t, int32_t>>& out) const {
+    out.clear();
+    for (int32_t t : tris)
+      for (int k = 0; k < 3; ++k) {
+        int32_t a = s_.tri[size_t(t)][size_t(k)], b = s_.tri[size_t(t)][(k + 1) % 3];
+        if (a > b) std::swap(a, b);
+        out.push_back({a, b});
+      }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    out.erase(std::remove_if(out.begin(), out.end(),
+                             [&](const auto& e) { return d_.find_edge(e.first, e.second) >= 0; }),
+              out.end());
+  }
 
   bool edges_present(int32_t t) const {
     const Tri& v = s_.tri[size_t(t)];
@@ -339,7 +371,29 @@ class Recovery {
     return s1 != 0 && s1 == s2 && s2 == s3;
   }
 
-  // Steiner point at the midpoint of surface edge (a, b).
+  // Where to split surface edge (a, b): the midpoint, except when exactly
+  // one endpoint is an input vertex: then at the power-of-two distance from
+  // it nearest to half the length (Ruppert's concentric shells, "A Delaunay
+  // refinement algorithm for quality 2-dimensional mesh generation", J.
+  // Algorithms 18, 1995), so that two edges meeting at a small angle are
+  // split at the same distances and do not keep encroaching each other.
+  void split_point(int32_t a, int32_t b, double* m) const {
+    const bool ia = a < num_input_, ib = b < num_input_;
+    double t = 0.5;
+    if (ia != ib) {
+      double l2 = 0;
+      for (int k = 0; k < 3; ++k) l2 += (P(b)[k] - P(a)[k]) * (P(b)[k] - P(a)[k]);
+      const double len = std::sqrt(l2);
+      const double shell = std::exp2(std::round(std::log2(0.5 * len)));
+      t = ia ? shell / len : 1 - shell / len;
+      if (!(t > 0.25 && t < 0.75)) t = 0.5;
+    }
+    for (int k = 0; k < 3; ++k) m[k] = P(a)[k] + t * (P(b)[k] - P(a)[k]);
+    if (t == 0.5)
+      for (int k = 0; k < 3; ++k) m[k] = 0.5 * (P(a)[k] + P(b)[k]);
+  }
+
+  // Steiner point on surface edge (a, b).
   Status split(int32_t a, int32_t b) {
     if (steiner_ >= max_steiner_)
       return Status::Error("boundary recovery: Steiner point limit (" +
@@ -347,8 +401,8 @@ class Recovery {
     auto it = s_.edges.find(edge_key(a, b));
     for (int32_t t : it->second)
       if (t >= 0) unconstrain_face(s_.tri[size_t(t)]);
-    const double m[3] = {0.5 * (P(a)[0] + P(b)[0]), 0.5 * (P(a)[1] + P(b)[1]),
-                         0.5 * (P(a)[2] + P(b)[2])};
+    double m[3];
+    split_point(a, b, m);
     int32_t hint = d_.find_edge(a, b);
     if (hint < 0) hint = d_.vertex_tet(a);
     // With flips, the faces recovered so far are kept (the cavity stops at
@@ -358,8 +412,11 @@ class Recovery {
     // the hull (the midpoint of a hull edge, rounded): insert ignoring the
     // constraints; the faces it removes are recovered again.
     if (r.status == Delaunay3D::InsertStatus::kBlocked ||
-        r.status == Delaunay3D::InsertStatus::kOutsideHull)
+        r.status == Delaunay3D::InsertStatus::kOutsideHull) {
       r = d_.insert(m, hint, false);
+      rescan_ = true;
+    }
+    if (!flips_) rescan_ = true;  // Delaunay insertions ignore the constraints
     if (r.status == Delaunay3D::InsertStatus::kDuplicate)
       return Status::Error("boundary recovery: vertex " + std::to_string(r.vertex) +
                            " lies on surface edge (" + std::to_string(a) + ", " +
@@ -368,7 +425,10 @@ class Recovery {
       return Status::Error("boundary recovery: cannot insert a Steiner point on edge (" +
                            std::to_string(a) + ", " + std::to_string(b) + ") (status " +
                            std::to_string(int(r.status)) + ")");
+    auto on = s_.edges.find(edge_key(a, b))->second;
     s_.split_edge(a, b, r.vertex);
+    for (int32_t t : on)
+      if (t >= 0 && size_t(t) < done_.size()) done_[size_t(t)] = 0;  // new pieces are appended
     ++steiner_;
     return Status::Ok();
   }
@@ -378,7 +438,10 @@ class Recovery {
   RecoveryOptions o_;
   bool flips_;
   int64_t max_steiner_;
+  int32_t num_input_;
   int64_t steiner_ = 0;
+  std::vector<uint8_t> done_;  // per surface triangle: a constrained face
+  bool rescan_ = false;
   std::vector<int32_t> around_, ring_tets_, ring_;
 };
 
@@ -453,7 +516,7 @@ Result<RecoveredVolume> recover_boundary(const std::vector<double>& points,
   if (Status st = validate(points, triangles, tags); !st.ok()) return R(st);
   const size_t nt = triangles.size() / 3;
   const int64_t max_steiner =
-      options.max_steiner_points >= 0 ? options.max_steiner_points : 20 * int64_t(nt) + 1000;
+      options.max_steiner_points >= 0 ? options.max_steiner_points : int64_t(nt) + 1000;
   std::vector<int32_t> parents(nt);
   for (size_t t = 0; t < nt; ++t) parents[t] = int32_t(t);
 
@@ -469,6 +532,7 @@ Result<RecoveredVolume> recover_boundary(const std::vector<double>& points,
     out.used_fallback = true;
     out.fallback_reason = st.message();
     st = attempt.value().run();
+    if (!st.ok()) st = Status::Error(st.message() + " (with flips: " + out.fallback_reason + ")");
   }
   if (!st.ok()) return R(st);
   Recovery& rec = attempt.value();

@@ -8,9 +8,10 @@
 // tetrahedralization of the surface vertices (core/volume/delaunay3d.h);
 // missing edges, then missing faces, recovered by flips (2-3, 3-2/edge
 // removal); what flips cannot recover is split by Steiner points on the
-// surface (edge midpoints), the surface triangles being split with it so the
-// surface stays conforming; then the tetrahedra outside are removed by a
-// flood fill from the convex hull that stops at the surface.
+// surface edges (midpoints, or concentric shells around input vertices), the
+// surface triangles being split with them so the surface stays conforming;
+// then the tetrahedra outside are removed by a flood fill from the convex
+// hull that stops at the surface.
 #pragma once
 
 #include <cstdint>
@@ -24,7 +25,7 @@
 namespace vm {
 
 struct RecoveryOptions {
-  /// Upper bound on Steiner points; -1: 20 per input triangle + 1000.
+  /// Upper bound on Steiner points; -1: one per input triangle + 1000.
   int64_t max_steiner_points = -1;
   /// Flips tried per missing edge or face before a Steiner point.
   int max_flips_per_item = 32;

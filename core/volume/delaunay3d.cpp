@@ -423,25 +423,10 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
       for (int k = 0; k < 4; ++k)
         if (is_constrained(t, k) && stamp_[size_t(tn_[4 * size_t(t) + size_t(k)] >> 2)] == in)
           return false;  // p on a constrained face
-  // Phase 2b: conflict search, not crossing constrained faces.
-  for (size_t i = 0; i < cavity_.size(); ++i) {
-    const int32_t t = cavity_[i];
-    for (int k = 0; k < 4; ++k) {
-      const int32_t n = tn_[4 * size_t(t) + size_t(k)] >> 2;
-      const uint32_t s = stamp_[size_t(n)];
-      if (s == in || s == out) continue;
-      if (respect_constraints && is_constrained(t, k)) continue;
-      if (conflict(n, p, pv, false)) {
-        stamp_[size_t(n)] = in;
-        cavity_.push_back(n);
-      } else {
-        stamp_[size_t(n)] = out;
-      }
-    }
-  }
-  // Phase 2c: shrink until star-shaped: every boundary face strictly
-  // visible from p (its new tetrahedron positive) and no constrained face
-  // inside the cavity.
+  // Phase 2b: conflict search, not crossing constrained faces, only
+  // outward (across faces that p sees from inside: the triangulation need
+  // not be Delaunay, and flat tetrahedra have huge circumspheres), and
+  // bounded in size so that an insertion stays local.
   auto positive_with_p = [&](int32_t t, int k) {
     int32_t q[4];
     std::copy(tet(t), tet(t) + 4, q);
@@ -457,6 +442,26 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
     for (int s = 0; s < 4; ++s) c[s] = q[s] == -2 ? p : point(q[s]);
     return orient3d(c[0], c[1], c[2], c[3]) < 0;
   };
+  constexpr size_t kMaxCavity = 512;
+  for (size_t i = 0; i < cavity_.size() && cavity_.size() < kMaxCavity; ++i) {
+    const int32_t t = cavity_[i];
+    for (int k = 0; k < 4; ++k) {
+      const int32_t n = tn_[4 * size_t(t) + size_t(k)] >> 2;
+      const uint32_t s = stamp_[size_t(n)];
+      if (s == in || s == out) continue;
+      if (respect_constraints && is_constrained(t, k)) continue;
+      if (!positive_with_p(t, k)) continue;
+      if (conflict(n, p, pv, false)) {
+        stamp_[size_t(n)] = in;
+        cavity_.push_back(n);
+      } else {
+        stamp_[size_t(n)] = out;
+      }
+    }
+  }
+  // Phase 2c: shrink until star-shaped: every boundary face strictly
+  // visible from p (its new tetrahedron positive) and no constrained face
+  // inside the cavity.
   bool changed = true;
   while (changed) {
     changed = false;

@@ -72,11 +72,15 @@ class Delaunay3D {
   /// Inserts point p (3 doubles) as a new vertex (id num_vertices() before
   /// the call), starting the walk at tetrahedron `hint` (any live id, or -1
   /// for the last one touched). With respect_constraints the cavity never
-  /// crosses a constrained face, and the point must lie inside the hull.
-  /// When the triangulation is no longer Delaunay (after flips) or
-  /// constraints are respected, the cavity is shrunk until it is star-shaped
-  /// from p (kBlocked if the tetrahedron containing p must go). On any status
-  /// other than kInserted nothing is changed.
+  /// crosses a constrained face, and the point must not lie outside the
+  /// convex hull (kOutsideHull). When the triangulation is no longer
+  /// Delaunay (after flips) or constraints are respected, the cavity is the
+  /// conflict region grown only across faces seen from p, at most 512
+  /// tetrahedra, and shrunk until it is star-shaped from p; the tetrahedra
+  /// whose closure holds p always stay (kBlocked if they cannot, e.g. p on a
+  /// constrained face). The result is then valid but not necessarily
+  /// (constrained) Delaunay. On any status other than kInserted nothing is
+  /// changed.
   InsertResult insert(const double* p, int32_t hint = -1, bool respect_constraints = false);
 
   /// Locates p (3 doubles) by walking from `hint` (-1: the last tetrahedron

@@ -385,21 +385,29 @@ TEST(BoundaryRecovery, SteinerOnlyModeAlsoRecovers) {
   EXPECT_EQ(out.flips, 0);
 }
 
-TEST(BoundaryRecovery, ClosedPhantomSurface) {
-  PhantomOptions o;
-  o.kind = PhantomKind::kTorus;
-  o.open_ends = false;
-  o.voxel = 0.25;
-  auto ph = make_vessel_phantom(o);
-  ASSERT_TRUE(ph.ok()) << ph.message();
-  Surf s;
-  s.points = ph.value().points;
-  s.tris = ph.value().triangles;
-  s.tags.assign(s.tris.size() / 3, 0);
-  auto out = recover_and_check(s);
-  std::printf("torus phantom: %zu triangles in, %lld Steiner points, %lld flips%s\n", s.tags.size(),
-              (long long)out.steiner_points, (long long)out.flips,
-              out.used_fallback ? (" (fallback: " + out.fallback_reason + ")").c_str() : "");
+TEST(BoundaryRecovery, ClosedPhantomSurfaces) {
+  // Marching-cubes surfaces (staircase, needle triangles with angles down to
+  // 0.01 degree), clean and noisy.
+  for (PhantomKind kind : {PhantomKind::kTorus, PhantomKind::kBifurcation}) {
+    for (double noise : {0.0, 0.3}) {
+      PhantomOptions o;
+      o.kind = kind;
+      o.open_ends = false;
+      o.voxel = 0.25;
+      o.noise = noise;
+      auto ph = make_vessel_phantom(o);
+      ASSERT_TRUE(ph.ok()) << ph.message();
+      Surf s;
+      s.points = ph.value().points;
+      s.tris = ph.value().triangles;
+      s.tags.assign(s.tris.size() / 3, 0);
+      auto out = recover_and_check(s);
+      std::printf("phantom %d noise %.1f: %zu triangles in, %lld Steiner points, %lld flips%s\n",
+                  int(kind), noise, s.tags.size(), (long long)out.steiner_points,
+                  (long long)out.flips, out.used_fallback ? " (fallback)" : "");
+      EXPECT_FALSE(out.used_fallback);
+    }
+  }
 }
 
 TEST(BoundaryRecovery, KernelAcceptsMorePointsInside) {

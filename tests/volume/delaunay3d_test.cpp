@@ -404,5 +404,63 @@ TEST(Delaunay3D, ConstrainedFaceSurvivesInsertion) {
   EXPECT_TRUE(d.check(false).ok());
 }
 
+// Every hull face has all vertices on its inner side or in its plane.
+bool hull_is_convex(const D& d) {
+  for (int32_t t = 0; t < int32_t(d.tet_capacity()); ++t) {
+    if (!d.is_live(t) || !d.is_ghost(t)) continue;
+    const int32_t* v = d.tet(t);
+    for (int32_t w = 0; w < int32_t(d.num_vertices()); ++w) {
+      const double* q[4];
+      for (int k = 0; k < 4; ++k) q[k] = v[k] == D::kInfinite ? d.point(w) : d.point(v[k]);
+      if (orient3d(q[0], q[1], q[2], q[3]) < 0) return false;
+    }
+  }
+  return true;
+}
+
+TEST(Delaunay3D, HullFlipsKeepTheHullConvex) {
+  // Cube corners: the diagonal of a square hull face can be flipped (the
+  // two hull triangles are coplanar) when 4 tetrahedra surround it.
+  std::vector<double> cube = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0,
+                              0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1};
+  auto r = D::build(cube);
+  ASSERT_TRUE(r.ok());
+  D d = std::move(r.value());
+  int flipped = 0;
+  const int diag[12][2] = {{0, 3}, {1, 2}, {4, 7}, {5, 6}, {0, 5}, {1, 4},
+                           {2, 7}, {3, 6}, {0, 6}, {2, 4}, {1, 7}, {3, 5}};
+  for (auto& e : diag) {
+    const int32_t t = d.find_edge(e[0], e[1]);
+    if (t < 0) continue;
+    std::vector<int32_t> ring_tets, ring;
+    d.edge_ring(t, e[0], e[1], ring_tets, ring);
+    if (ring.size() != 4) continue;
+    auto f = d.remove_edge(t, e[0], e[1]);
+    ASSERT_TRUE(f.ok()) << f.message();
+    ++flipped;
+    ASSERT_TRUE(d.check(false).ok()) << d.check(false).message();
+    EXPECT_TRUE(hull_is_convex(d));
+    EXPECT_LT(d.find_edge(e[0], e[1]), 0);
+  }
+  EXPECT_GT(flipped, 0);
+  EXPECT_DOUBLE_EQ(total_volume(d), 1.0);
+  // Random points: hull edges join non-coplanar hull faces; removing one
+  // would dent the hull and is refused.
+  auto q = D::build(random_cube(100, 6));
+  ASSERT_TRUE(q.ok());
+  D e = std::move(q.value());
+  int refused = 0;
+  for (int32_t t = 0; t < int32_t(e.tet_capacity()) && refused < 20; ++t) {
+    if (!e.is_live(t) || !e.is_ghost(t)) continue;
+    const int32_t* v = e.tet(t);
+    int32_t a = -1, b = -1;
+    for (int k = 0; k < 4; ++k)
+      if (v[k] != D::kInfinite) (a < 0 ? a : b) = v[k];
+    EXPECT_FALSE(e.remove_edge(t, a, b).ok());
+    ++refused;
+  }
+  EXPECT_TRUE(e.check(true).ok()) << e.check(true).message();
+}
+
 }  // namespace
 }  // namespace vm
