@@ -1,0 +1,110 @@
+// Shrinking empty balls (Ma, Bai and Kim 2012) in one radius query: the
+// balls tangent at p with centers along n are nested (the ball through p and
+// q has radius r_q = |q - p|^2 / (2 n . (q - p))), so the largest one empty
+// of counted vertices has the smallest r_q over the counted vertices inside
+// the ball of the needed radius. A vertex q counts when the angle p-c_q-q at
+// the center c_q of its ball, cos = 1 - |q - p|^2 / (2 r_q^2), is at least
+// the separation angle (Ma et al.'s denoising: smaller angles are noise or
+// gentle curvature next to p).
+#include "core/layers/layer_gap.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <nanoflann.hpp>
+#include <numbers>
+#include <utility>
+
+#include "core/layers/layer_geometry.h"
+
+namespace vm {
+namespace {
+
+struct Cloud {
+  const std::vector<double>& pts;
+  size_t kdtree_get_point_count() const { return pts.size() / 3; }
+  double kdtree_get_pt(size_t i, size_t d) const { return pts[3 * i + d]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>,
+                                                   Cloud, 3, uint32_t>;
+
+}  // namespace
+
+std::vector<double> empty_ball_radius(const SurfaceMesh& wall, const std::vector<double>& normal,
+                                      const std::vector<double>& needed,
+                                      double separation_degrees) {
+  const size_t nv = wall.num_vertices();
+  std::vector<double> radius(needed);
+  if (nv == 0) return radius;
+  const double cos_sep = std::cos(separation_degrees * std::numbers::pi / 180);
+  Cloud cloud{wall.points};
+  KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  std::vector<std::pair<uint32_t, double>> found;
+  const nanoflann::SearchParams unsorted(32, 0, false);
+  for (size_t p = 0; p < nv; ++p) {
+    double r = needed[p];
+    if (!(r > 0)) continue;
+    const double* x = &wall.points[3 * p];
+    const double* n = &normal[3 * p];
+    const double c[3] = {x[0] + r * n[0], x[1] + r * n[1], x[2] + r * n[2]};
+    tree.radiusSearch(c, r * r * (1 - 1e-12), found, unsorted);
+    for (const auto& [q, d2] : found) {
+      if (q == p) continue;
+      const double* y = &wall.points[3 * size_t(q)];
+      const double pq[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
+      const double along = pq[0] * n[0] + pq[1] * n[1] + pq[2] * n[2];
+      const double len2 = pq[0] * pq[0] + pq[1] * pq[1] + pq[2] * pq[2];
+      if (!(along > 0)) continue;  // not inside any of the balls
+      const double rq = len2 / (2 * along);
+      if (!(rq < r)) continue;
+      if (1 - len2 / (2 * rq * rq) > cos_sep) continue;  // next to p: not across
+      r = rq;
+    }
+    radius[p] = r;
+  }
+  return radius;
+}
+
+std::vector<double> inscribed_radius(const SurfaceMesh& wall) {
+  using namespace layers;  // NOLINT: the layer stage's own vector helpers
+  const size_t nv = wall.num_vertices();
+  std::vector<double> normal(3 * nv, 0.0);
+  for (size_t t = 0; t < wall.num_triangles(); ++t) {
+    const int32_t* v = &wall.triangles[3 * t];
+    const Vec3 p[3] = {at(wall.points, v[0]), at(wall.points, v[1]), at(wall.points, v[2])};
+    const Vec3 nt = normalized(cross(p[1] - p[0], p[2] - p[0]));
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 a = normalized(p[(k + 1) % 3] - p[k]), b = normalized(p[(k + 2) % 3] - p[k]);
+      const double angle = std::acos(std::clamp(dot(a, b), -1.0, 1.0));
+      for (int d = 0; d < 3; ++d) normal[3 * size_t(v[k]) + size_t(d)] -= angle * nt[d];
+    }
+  }
+  for (size_t v = 0; v < nv; ++v) put(normal, int32_t(v), normalized(at(normal, int32_t(v))));
+  const double r_max = 0.5 * bounding_box(wall.points).diagonal();
+  std::vector<double> radius = empty_ball_radius(wall, normal, std::vector<double>(nv, r_max));
+  // Two passes of a 1-ring median.
+  std::vector<std::vector<int32_t>> ring(nv);
+  for (size_t t = 0; t < wall.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int32_t a = wall.triangles[3 * t + size_t(k)];
+      const int32_t b = wall.triangles[3 * t + size_t(k + 1) % 3];
+      ring[size_t(a)].push_back(b);
+    }
+  std::vector<double> next(nv), values;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (size_t v = 0; v < nv; ++v) {
+      values.assign(1, radius[v]);
+      for (int32_t u : ring[v]) values.push_back(radius[size_t(u)]);
+      std::nth_element(values.begin(), values.begin() + long(values.size() / 2), values.end());
+      next[v] = values[values.size() / 2];
+    }
+    radius.swap(next);
+  }
+  return radius;
+}
+
+}  // namespace vm
