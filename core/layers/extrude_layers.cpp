@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <sstream>
 
+#include "core/geom/predicates.h"
 #include "core/layers/layer_directions.h"
 #include "core/layers/layer_gap.h"
 #include "core/layers/layer_geometry.h"
@@ -18,6 +19,7 @@
 #include "core/mesh/boundary_loops.h"
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/surface_distance.h"
+#include "core/mesh/triangle_bvh.h"
 #include "core/quality/triangle_quality.h"
 #include "core/surface/caps.h"
 
@@ -136,8 +138,33 @@ class Columns {
 // its intersections involve.
 struct Verification {
   std::vector<int32_t> involved;  // wall vertex ids whose columns must shrink
-  size_t wall_pairs = 0;          // pairs within the wall itself
 };
+
+// Exact shortcut for neighbors (most of the pairs a smooth front has):
+// triangles sharing an edge meet beyond it only if coplanar; triangles
+// sharing one vertex, only if the plane of one does not have the other's
+// two other corners strictly on one side. True when that proves them
+// disjoint beyond what they share (triangles_intersect decides the rest).
+bool separated_neighbors(const SurfaceMesh& m, size_t s, size_t t) {
+  const int32_t* a = &m.triangles[3 * s];
+  const int32_t* b = &m.triangles[3 * t];
+  int ia[3], ib[3], shared = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (a[i] == b[j]) ia[shared] = i, ib[shared] = j, ++shared;
+  auto p = [&](int32_t v) { return &m.points[3 * size_t(v)]; };
+  if (shared == 2) {
+    const int c = 3 - ia[0] - ia[1], d = 3 - ib[0] - ib[1];
+    return orient3d(p(a[ia[0]]), p(a[ia[1]]), p(a[c]), p(b[d])) != 0;
+  }
+  if (shared != 1) return false;
+  auto one_side = [&](const int32_t* x, const int32_t* y, int iy) {
+    const double s1 = orient3d(p(x[0]), p(x[1]), p(x[2]), p(y[(iy + 1) % 3]));
+    const double s2 = orient3d(p(x[0]), p(x[1]), p(x[2]), p(y[(iy + 2) % 3]));
+    return (s1 > 0 && s2 > 0) || (s1 < 0 && s2 < 0);
+  };
+  return one_side(a, b, ib[0]) || one_side(b, a, ia[0]);
+}
 
 Verification verify_shell(const SurfaceMesh& wall, const Columns& cols,
                           const std::vector<double>& factor, int layers,
@@ -193,23 +220,95 @@ Verification verify_shell(const SurfaceMesh& wall, const Columns& cols,
       ring_other.push_back(n_w > 1 ? w[1] : w[0]);
     }
   }
-  const SelfIntersectionReport rep =
-      find_self_intersections(shell, std::max<size_t>(shell.num_triangles(), 1));
+  // Every pair with a front or ring triangle, exactly (pairs within the
+  // wall are the input's business): one box query per such triangle.
+  const size_t n_shell = shell.num_triangles();
+  std::vector<double> box(6 * n_shell);
+  for (size_t t = 0; t < n_shell; ++t)
+    for (int d = 0; d < 3; ++d) {
+      const double a = shell.points[3 * size_t(shell.triangles[3 * t]) + size_t(d)];
+      const double b = shell.points[3 * size_t(shell.triangles[3 * t + 1]) + size_t(d)];
+      const double c = shell.points[3 * size_t(shell.triangles[3 * t + 2]) + size_t(d)];
+      box[6 * t + size_t(d)] = std::min({a, b, c});
+      box[6 * t + 3 + size_t(d)] = std::max({a, b, c});
+    }
   Verification out;
-  for (const auto& pair : rep.examples) {
-    const bool wall1 = size_t(pair[0]) < nt, wall2 = size_t(pair[1]) < nt;
-    if (wall1 && wall2) {
-      ++out.wall_pairs;
+  auto involve = [&](size_t t) {
+    if (t < 2 * nt) {
+      for (int k = 0; k < 3; ++k) out.involved.push_back(wall.triangles[3 * (t - nt) + size_t(k)]);
+    } else {
+      out.involved.push_back(ring_vertex[t - 2 * nt]);
+      out.involved.push_back(ring_other[t - 2 * nt]);
+    }
+  };
+  auto test = [&](size_t s, size_t t) {
+    if (!boxes_overlap(&box[6 * s], &box[6 * s + 3], &box[6 * t], &box[6 * t + 3])) return;
+    if (separated_neighbors(shell, s, t)) return;
+    if (!triangles_intersect(shell, int32_t(s), int32_t(t))) return;
+    if (s >= nt) involve(s);
+    if (t >= nt) involve(t);
+  };
+  // A hierarchy over the front and rings only (pairs within the wall are
+  // the input's business): their pairs by a self-traversal, as in
+  // find_self_intersections; the wall's triangles by one query each.
+  SurfaceMesh layer_part;
+  layer_part.points = shell.points;
+  layer_part.triangles.assign(shell.triangles.begin() + std::ptrdiff_t(3 * nt),
+                              shell.triangles.end());
+  const TriangleBvh bvh = build_triangle_bvh(layer_part, 8);
+  auto id = [&](int32_t i) { return nt + size_t(bvh.order[size_t(i)]); };
+  struct Job {
+    int32_t a, b;
+  };
+  std::vector<Job> stack = {{0, 0}};
+  while (!stack.empty()) {
+    const Job job = stack.back();
+    stack.pop_back();
+    const TriangleBvh::Node& A = bvh.nodes[size_t(job.a)];
+    const TriangleBvh::Node& B = bvh.nodes[size_t(job.b)];
+    if (job.a == job.b) {
+      if (TriangleBvh::is_leaf(A)) {
+        for (int32_t i = A.first; i < A.first + A.count; ++i)
+          for (int32_t j = i + 1; j < A.first + A.count; ++j) test(id(i), id(j));
+      } else {
+        stack.push_back({A.first, A.first});
+        stack.push_back({A.first + 1, A.first + 1});
+        stack.push_back({A.first, A.first + 1});
+      }
       continue;
     }
-    for (int32_t t : pair) {
-      if (size_t(t) < nt) continue;
-      if (size_t(t) < 2 * nt) {
-        for (int k = 0; k < 3; ++k)
-          out.involved.push_back(wall.triangles[3 * (size_t(t) - nt) + size_t(k)]);
+    if (!boxes_overlap(A.lo, A.hi, B.lo, B.hi)) continue;
+    const bool la = TriangleBvh::is_leaf(A), lb = TriangleBvh::is_leaf(B);
+    if (la && lb) {
+      for (int32_t i = A.first; i < A.first + A.count; ++i)
+        for (int32_t j = B.first; j < B.first + B.count; ++j) test(id(i), id(j));
+      continue;
+    }
+    auto extent = [](const TriangleBvh::Node& n) {
+      return std::max({n.hi[0] - n.lo[0], n.hi[1] - n.lo[1], n.hi[2] - n.lo[2]});
+    };
+    if (lb || (!la && extent(A) >= extent(B))) {
+      stack.push_back({A.first, job.b});
+      stack.push_back({A.first + 1, job.b});
+    } else {
+      stack.push_back({job.a, B.first});
+      stack.push_back({job.a, B.first + 1});
+    }
+  }
+  std::vector<int32_t> nodes;
+  for (size_t w = 0; w < nt; ++w) {
+    const double* lo = &box[6 * w];
+    const double* hi = lo + 3;
+    nodes.assign(1, 0);
+    while (!nodes.empty()) {
+      const TriangleBvh::Node& n = bvh.nodes[size_t(nodes.back())];
+      nodes.pop_back();
+      if (!boxes_overlap(n.lo, n.hi, lo, hi)) continue;
+      if (TriangleBvh::is_leaf(n)) {
+        for (int32_t i = n.first; i < n.first + n.count; ++i) test(w, id(i));
       } else {
-        out.involved.push_back(ring_vertex[size_t(t) - 2 * nt]);
-        out.involved.push_back(ring_other[size_t(t) - 2 * nt]);
+        nodes.push_back(n.first);
+        nodes.push_back(n.first + 1);
       }
     }
   }
@@ -314,12 +413,12 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
                                spec.min_front_quality_ratio);
   const Columns cols(wall, dirs.direction, requested, fraction, planes, openings, dirs.opening_of);
   std::vector<uint8_t> by_validity(nv, 0), by_intersection(nv, 0);
-  bool valid = false, verified_once = false;
+  bool valid = false;
   size_t failing = 0, crossing = 0;
   for (int round = 1; round <= spec.max_rounds && !valid; ++round) {
     stats.rounds = round;
     t0 = Clock::now();
-    failing = validity.shrink_invalid(factor, by_validity);
+    failing = validity.shrink_invalid(factor, by_validity, &stats.min_volume_ratio);
     if (failing > 0) grade_reduction(wall, rings, requested, spec.gradation, kMinFactor, factor);
     stats.seconds_validity += seconds_since(t0);
     if (failing > 0) continue;
@@ -330,8 +429,6 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
     t0 = Clock::now();
     const Verification ver = verify_shell(wall, cols, factor, spec.layers, openings, spec.outward);
     stats.seconds_verify += seconds_since(t0);
-    if (!verified_once) stats.wall_self_intersections = ver.wall_pairs;
-    verified_once = true;
     crossing = ver.involved.size();
     if (ver.involved.empty()) {
       valid = true;
@@ -412,7 +509,6 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
   stats.front_quality_min = qmin;
   stats.front_quality_mean = qsum / double(nt);
   stats.wall_quality_min = wmin;
-  stats.min_volume_ratio = validity.min_volume_ratio(factor);
   double fsum = 0, reduced_fsum = 0, within = 0;
   stats.min_factor = 1;
   for (size_t v = 0; v < nv; ++v) {

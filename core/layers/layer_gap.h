@@ -25,9 +25,13 @@ namespace vm {
 /// radius[v] = needed[v]. k-d tree (nanoflann); O(n log n) for needed
 /// radii of a few edge lengths. Twice the radius is the local gap between
 /// facing walls, or between the two sides of a fold of the front.
+/// exact = false: when the 64 nearest vertices to a ball's center are all
+/// inside it and next to v, the ball is kept as it is instead of settling
+/// it by a radius query (Ma et al.'s own stopping rule; cheaper for balls
+/// of many edge lengths, may overestimate on noisy walls).
 std::vector<double> empty_ball_radius(const SurfaceMesh& wall, const std::vector<double>& normal,
                                       const std::vector<double>& needed,
-                                      double separation_degrees = 60);
+                                      double separation_degrees = 60, bool exact = true);
 
 /// The local vessel radius R per vertex as the inscribed ball of
 /// empty_ball_radius (inward angle-weighted normals, no cap beyond half the

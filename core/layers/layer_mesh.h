@@ -47,9 +47,11 @@ struct LayerSpec {
   /// Exact check that wall, front and rings do not intersect (with all
   /// prisms positive this proves the layer is embedded, see extrude_layers.h).
   bool verify_intersections = true;
-  /// Measure heights as distances of the layer points to the wall surface
-  /// (stats only; costs a closest-point query per vertex and layer checked).
-  bool measure = true;
+  /// Also measure the heights as distances of the first layer's and the
+  /// front's points to the wall surface (LayerStats::measured_*; two
+  /// closest-point queries per vertex, about a third of the stage's time,
+  /// so off by default).
+  bool measure = false;
 };
 
 /// One opening (boundary loop of the wall) and its column of layer points.
@@ -132,8 +134,7 @@ struct LayerStats {
   double min_volume_ratio = 0;
   /// Smallest direction . triangle normal over every wall triangle corner.
   double min_visibility = 0;
-  int rounds = 0;                      ///< shrink/verify rounds used
-  size_t wall_self_intersections = 0;  ///< pairs within the input wall (not fixable here)
+  int rounds = 0;  ///< shrink/verify rounds used
   double seconds_directions = 0, seconds_gap = 0, seconds_validity = 0, seconds_verify = 0,
          seconds_measure = 0, seconds_total = 0;
 };

@@ -102,14 +102,18 @@ double LayerValidity::score(size_t t, const double f[3], double* volume_ratio) c
   return worst;
 }
 
-size_t LayerValidity::shrink_invalid(std::vector<double>& factor,
-                                     std::vector<uint8_t>& lowered) const {
+size_t LayerValidity::shrink_invalid(std::vector<double>& factor, std::vector<uint8_t>& lowered,
+                                     double* min_ratio) const {
   const size_t nt = wall_.num_triangles();
   std::vector<double> next = factor;
   size_t failing = 0;
+  double smallest = 1e300;
   for (size_t t = 0; t < nt; ++t) {
     const auto f = corner_factors(t, factor);
-    if (score(t, f.data()) >= 1) continue;
+    double ratio = 0;
+    const double sc = score(t, f.data(), &ratio);
+    smallest = std::min(smallest, ratio);
+    if (sc >= 1) continue;
     ++failing;
     double lo = 0, hi = 1;
     for (int iter = 0; iter < 16; ++iter) {
@@ -124,6 +128,7 @@ size_t LayerValidity::shrink_invalid(std::vector<double>& factor,
     }
   }
   factor.swap(next);
+  if (min_ratio) *min_ratio = smallest;
   return failing;
 }
 

@@ -49,8 +49,11 @@ class LayerValidity {
   /// s in (0, 1] for which its corners' factors times s make it valid, and
   /// lowers those corners' factors to it (the smallest over the failing
   /// triangles at a vertex). Marks lowered vertices in `lowered` (one flag
-  /// per wall vertex). Returns the number of failing triangles.
-  size_t shrink_invalid(std::vector<double>& factor, std::vector<uint8_t>& lowered) const;
+  /// per wall vertex). Returns the number of failing triangles; when
+  /// `min_ratio` is given it receives the smallest 6V / (2 A h) over all
+  /// prisms with the factors as they were on entry.
+  size_t shrink_invalid(std::vector<double>& factor, std::vector<uint8_t>& lowered,
+                        double* min_ratio = nullptr) const;
 
   /// Smallest 6V / (2 A h) over all prisms, with the given factors.
   double min_volume_ratio(const std::vector<double>& factor) const;

@@ -196,6 +196,7 @@ TEST(Layers, StraightTubeInwardUniform) {
   const SurfaceMesh wall = testing::open_tube(n, 30, 1.0, 4.0);
   const std::vector<double> radius(wall.num_vertices(), 1.0);
   LayerSpec spec;  // 4 layers, 0.2 R
+  spec.measure = true;
   LayerStats st;
   auto r = extrude_layers(wall, radius, spec, &st);
   ASSERT_TRUE(r.ok()) << r.message();
@@ -420,6 +421,7 @@ TEST(Layers, BifurcationPhantomInwardAndOutward) {
     LayerSpec spec;
     spec.outward = outward;
     spec.thickness_fraction = outward ? 0.1 : 0.2;
+    spec.measure = true;
     LayerStats st;
     auto r = extrude_layers(wall, radius, spec, &st);
     ASSERT_TRUE(r.ok()) << r.message();
