@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "core/layers/chord_radius.h"
 #include "core/layers/extrude_layers.h"
-#include "core/layers/layer_gap.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/surface/caps.h"
 #include "core/surface/remesh_surface.h"
@@ -87,8 +87,8 @@ int main(int argc, char** argv) {
   std::printf("remesh: %.3f s wall, %.3f s CPU\n", remesh_wall, remesh_cpu);
 
   Timer t_radius;
-  const std::vector<double> radius = vm::inscribed_radius(wall);
-  std::printf("inscribed_radius: %.3f s wall, %.3f s CPU\n", t_radius.wall(), t_radius.cpu());
+  const std::vector<double> radius = vm::chord_radius(wall);
+  std::printf("chord_radius: %.3f s wall, %.3f s CPU\n", t_radius.wall(), t_radius.cpu());
 
   double layer_total = 0;
   vm::LayerMesh inward;

@@ -15,8 +15,6 @@
 #include <numbers>
 #include <utility>
 
-#include "core/layers/layer_geometry.h"
-
 namespace vm {
 namespace {
 
@@ -130,45 +128,6 @@ std::vector<double> empty_ball_radius(const SurfaceMesh& wall, const std::vector
       r = std::min(2 * r, needed[p]);
     }
     radius[p] = r;
-  }
-  return radius;
-}
-
-std::vector<double> inscribed_radius(const SurfaceMesh& wall) {
-  using namespace layers;  // NOLINT: the layer stage's own vector helpers
-  const size_t nv = wall.num_vertices();
-  std::vector<double> normal(3 * nv, 0.0);
-  for (size_t t = 0; t < wall.num_triangles(); ++t) {
-    const int32_t* v = &wall.triangles[3 * t];
-    const Vec3 p[3] = {at(wall.points, v[0]), at(wall.points, v[1]), at(wall.points, v[2])};
-    const Vec3 nt = normalized(cross(p[1] - p[0], p[2] - p[0]));
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 a = normalized(p[(k + 1) % 3] - p[k]), b = normalized(p[(k + 2) % 3] - p[k]);
-      const double angle = std::acos(std::clamp(dot(a, b), -1.0, 1.0));
-      for (int d = 0; d < 3; ++d) normal[3 * size_t(v[k]) + size_t(d)] -= angle * nt[d];
-    }
-  }
-  for (size_t v = 0; v < nv; ++v) put(normal, int32_t(v), normalized(at(normal, int32_t(v))));
-  const double r_max = 0.5 * bounding_box(wall.points).diagonal();
-  std::vector<double> radius =
-      empty_ball_radius(wall, normal, std::vector<double>(nv, r_max), 60, /*exact=*/false);
-  // Two passes of a 1-ring median.
-  std::vector<std::vector<int32_t>> ring(nv);
-  for (size_t t = 0; t < wall.num_triangles(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int32_t a = wall.triangles[3 * t + size_t(k)];
-      const int32_t b = wall.triangles[3 * t + size_t(k + 1) % 3];
-      ring[size_t(a)].push_back(b);
-    }
-  std::vector<double> next(nv), values;
-  for (int pass = 0; pass < 2; ++pass) {
-    for (size_t v = 0; v < nv; ++v) {
-      values.assign(1, radius[v]);
-      for (int32_t u : ring[v]) values.push_back(radius[size_t(u)]);
-      std::nth_element(values.begin(), values.begin() + long(values.size() / 2), values.end());
-      next[v] = values[values.size() / 2];
-    }
-    radius.swap(next);
   }
   return radius;
 }

@@ -33,13 +33,4 @@ std::vector<double> empty_ball_radius(const SurfaceMesh& wall, const std::vector
                                       const std::vector<double>& needed,
                                       double separation_degrees = 60, bool exact = true);
 
-/// The local vessel radius R per vertex as the inscribed ball of
-/// empty_ball_radius (inward angle-weighted normals, no cap beyond half the
-/// bounding-box diagonal) followed by two passes of a 1-ring median: a
-/// robust R for LayerSpec::thickness_fraction. (surface/vessel_radius.h
-/// stops some shrinking balls at their initial radius on curved branches;
-/// see the layer stage's notes.) Preconditions: manifold, outward oriented,
-/// every vertex in a triangle.
-std::vector<double> inscribed_radius(const SurfaceMesh& wall);
-
 }  // namespace vm

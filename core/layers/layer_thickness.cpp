@@ -54,30 +54,30 @@ void grade_reduction(const SurfaceMesh& wall, const layers::VertexRings& rings,
                      const std::vector<double>& requested, double gradation, double min_factor,
                      std::vector<double>& factor) {
   const size_t nv = wall.num_vertices();
-  std::vector<double> depth(nv);
+  // Achieved thickness, relaxed from the reduced vertices outward (Dijkstra
+  // by increasing thickness): a(v) <= a(u) + g |uv| for every reduced u.
+  std::vector<double> achieved(nv);
   using Item = std::pair<double, int32_t>;
-  std::priority_queue<Item> heap;  // deepest first
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;  // thinnest first
   for (size_t v = 0; v < nv; ++v) {
-    depth[v] = requested[v] * (1 - factor[v]);
-    if (depth[v] > 0) heap.push({depth[v], int32_t(v)});
+    factor[v] = std::max(factor[v], min_factor);
+    achieved[v] = factor[v] * requested[v];
+    if (factor[v] < 1) heap.push({achieved[v], int32_t(v)});
   }
   while (!heap.empty()) {
-    const auto [d, u] = heap.top();
+    const auto [a, u] = heap.top();
     heap.pop();
-    if (d < depth[size_t(u)]) continue;  // stale
+    if (a > achieved[size_t(u)]) continue;  // stale
     const Vec3 pu = at(wall.points, u);
     for (int32_t i = rings.offsets[size_t(u)]; i < rings.offsets[size_t(u) + 1]; ++i) {
       const int32_t v = rings.ids[size_t(i)];
-      const double cand = d - gradation * norm(at(wall.points, v) - pu);
-      if (cand > depth[size_t(v)]) {
-        depth[size_t(v)] = cand;
+      const double cand = a + gradation * norm(at(wall.points, v) - pu);
+      if (cand < achieved[size_t(v)]) {
+        achieved[size_t(v)] = cand;
+        factor[size_t(v)] = std::max(cand / requested[size_t(v)], min_factor);
         heap.push({cand, v});
       }
     }
-  }
-  for (size_t v = 0; v < nv; ++v) {
-    const double f = requested[v] > 0 ? 1 - depth[v] / requested[v] : 1;
-    factor[v] = std::max(std::min(factor[v], f), min_factor);
   }
 }
 

@@ -26,11 +26,13 @@ Result<std::vector<double>> requested_thickness(const LayerSpec& spec,
 /// fraction[k] = (growth^k - 1) / (growth^N - 1), k / N for growth 1.
 std::vector<double> layer_fractions(const LayerSpec& spec);
 
-/// Makes the reduction depth D(v) = requested[v] (1 - factor[v]) Lipschitz
-/// along the wall's edges with constant `gradation` (D(v) >= D(u) - g |uv|
-/// for every edge uv), only ever raising D, by a Dijkstra-like sweep from
-/// the deepest vertices; then factor = max(1 - D / requested, min_factor).
-/// Factors only decrease.
+/// Makes the reduction gradual: the achieved thickness a(v) = factor[v] *
+/// requested[v] of a vertex next to a reduced vertex u is lowered to at most
+/// a(u) + gradation |uv|, and so on outward from every reduced vertex (a
+/// Dijkstra sweep by increasing thickness), so a reduction ramps in with
+/// slope <= gradation while vertices far from any reduction keep their
+/// requested thickness whatever their neighbors request. Factors only
+/// decrease (and are at least min_factor).
 void grade_reduction(const SurfaceMesh& wall, const layers::VertexRings& rings,
                      const std::vector<double>& requested, double gradation, double min_factor,
                      std::vector<double>& factor);

@@ -115,16 +115,20 @@ size_t LayerValidity::shrink_invalid(std::vector<double>& factor, std::vector<ui
     smallest = std::min(smallest, ratio);
     if (sc >= 1) continue;
     ++failing;
-    double lo = 0, hi = 1;
+    // Cap the corners' factors at a level c (the tallest columns come down
+    // first, so a corner already lowered is not lowered again merely for
+    // standing next to taller ones): the largest valid c by bisection.
+    double lo = 0, hi = std::max({f[0], f[1], f[2]});
     for (int iter = 0; iter < 16; ++iter) {
       const double mid = 0.5 * (lo + hi);
-      const double g[3] = {mid * f[0], mid * f[1], mid * f[2]};
+      const double g[3] = {std::min(f[0], mid), std::min(f[1], mid), std::min(f[2], mid)};
       (score(t, g) >= 1 ? lo : hi) = mid;
     }
-    const double s = std::max(lo, 1.0 / 65536);
+    const double cap = std::max(lo, hi / 65536);
     for (int k = 0; k < 3; ++k) {
       const size_t v = size_t(wall_.triangles[3 * t + size_t(k)]);
-      if (s * f[size_t(k)] < next[v]) next[v] = s * f[size_t(k)], lowered[v] = 1;
+      const double g = std::min(f[size_t(k)], cap);
+      if (g < next[v]) next[v] = g, lowered[v] = 1;
     }
   }
   factor.swap(next);

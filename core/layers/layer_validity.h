@@ -46,8 +46,11 @@ class LayerValidity {
   }
 
   /// For every triangle whose score is < 1, finds by bisection the largest
-  /// s in (0, 1] for which its corners' factors times s make it valid, and
-  /// lowers those corners' factors to it (the smallest over the failing
+  /// level c for which capping its corners' factors at c makes it valid
+  /// (the tallest columns come down first; a corner already below c keeps
+  /// its factor, so repeated rounds do not push lowered corners down again
+  /// just for standing next to taller ones), and lowers those corners to it
+  /// (the smallest over the failing
   /// triangles at a vertex). Marks lowered vertices in `lowered` (one flag
   /// per wall vertex). Returns the number of failing triangles; when
   /// `min_ratio` is given it receives the smallest 6V / (2 A h) over all

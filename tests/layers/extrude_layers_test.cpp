@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/layers/layer_gap.h"
+#include "core/layers/chord_radius.h"
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/surface_distance.h"
 #include "core/mesh/volume_check.h"
@@ -291,7 +291,7 @@ TEST(Layers, RimsMovedExactlyAsCapsMoveThem) {
   // fitted plane; the layer's wall points must be cap_openings's, bitwise,
   // for both directions, and the columns stay in the plane.
   const SurfaceMesh wall = cut_tube(36, 24, 1.0, 3.0, 0.6, 0.02);
-  const std::vector<double> radius = inscribed_radius(wall);
+  const std::vector<double> radius = chord_radius(wall);
   auto capped = cap_openings(wall, {});
   ASSERT_TRUE(capped.ok()) << capped.message();
   for (bool outward : {false, true}) {
@@ -416,7 +416,7 @@ const SurfaceMesh& remeshed_bifurcation() {
 TEST(Layers, BifurcationPhantomInwardAndOutward) {
   const SurfaceMesh& wall = remeshed_bifurcation();
   ASSERT_GT(wall.num_triangles(), 0u);
-  const std::vector<double> radius = inscribed_radius(wall);
+  const std::vector<double> radius = chord_radius(wall);
   for (bool outward : {false, true}) {
     LayerSpec spec;
     spec.outward = outward;

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "core/layers/chord_radius.h"
 #include "core/layers/extrude_layers.h"
-#include "core/layers/layer_gap.h"
 #include "core/layers/refine_layers.h"
 #include "core/mesh/enclosed_volume.h"
 #include "core/mesh/volume_check.h"
@@ -263,7 +263,7 @@ TEST(LayerAssembly, BifurcationPhantomLumenAndVesselWall) {
   auto remeshed = remesh_surface(raw.value(), ro);
   ASSERT_TRUE(remeshed.ok()) << remeshed.message();
   const SurfaceMesh& wall = remeshed.value().mesh;
-  const std::vector<double> radius = inscribed_radius(wall);
+  const std::vector<double> radius = chord_radius(wall);
   LayerSpec in_spec, out_spec;
   out_spec.outward = true;
   out_spec.thickness_fraction = 0.1;
