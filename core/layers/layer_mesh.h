@@ -39,8 +39,9 @@ struct LayerSpec {
   /// The front triangle's gamma_k must stay >= this fraction of its wall
   /// triangle's (the front is the core mesher's boundary).
   double min_front_quality_ratio = 0.5;
-  /// Largest slope of the thickness reduction (reduction per unit length
-  /// along the wall): the shrink ramps in over reduction / gradation.
+  /// Largest slope of the thickness next to a reduced vertex (thickness per
+  /// unit length along the wall): a reduction ramps in over (requested -
+  /// achieved) / gradation, and leaves the rest untouched.
   double gradation = 0.5;
   /// Rounds of shrink-and-verify before giving up.
   int max_rounds = 16;

@@ -136,15 +136,4 @@ size_t LayerValidity::shrink_invalid(std::vector<double>& factor, std::vector<ui
   return failing;
 }
 
-double LayerValidity::min_volume_ratio(const std::vector<double>& factor) const {
-  double m = 1e300;
-  for (size_t t = 0; t < wall_.num_triangles(); ++t) {
-    double r = 0;
-    const auto f = corner_factors(t, factor);
-    score(t, f.data(), &r);
-    m = std::min(m, r);
-  }
-  return m;
-}
-
 }  // namespace vm

@@ -58,9 +58,6 @@ class LayerValidity {
   size_t shrink_invalid(std::vector<double>& factor, std::vector<uint8_t>& lowered,
                         double* min_ratio = nullptr) const;
 
-  /// Smallest 6V / (2 A h) over all prisms, with the given factors.
-  double min_volume_ratio(const std::vector<double>& factor) const;
-
  private:
   const SurfaceMesh& wall_;
   const LayerDirections& dirs_;

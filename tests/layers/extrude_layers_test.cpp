@@ -469,6 +469,32 @@ TEST(Layers, NarrowBranchFrontsWouldCollide) {
   EXPECT_EQ(close, 0u);
 }
 
+TEST(Layers, BifurcationCrotchOutward) {
+  // A vessel wall of 0.6 R grown outward: between the branches (the crotch)
+  // the two fronts would cross; they shrink there, and only there.
+  const SurfaceMesh& wall = remeshed_bifurcation();
+  ASSERT_GT(wall.num_triangles(), 0u);
+  LayerSpec spec;
+  spec.outward = true;
+  spec.thickness_fraction = 0.6;
+  LayerStats st;
+  auto r = extrude_layers(wall, chord_radius(wall), spec, &st);
+  ASSERT_TRUE(r.ok()) << r.message();
+  check_layers(wall, r.value(), spec, "crotch");
+  print_stats("bifurcation outward 0.6R", st);
+  EXPECT_GT(st.reduced_area_fraction, 0.005);
+  EXPECT_GT(st.limited_by_gap, 0u);
+  // The most reduced vertices lie between the branches: above the
+  // bifurcation (z > 0.5), near the plane between them (|x| < 1.2).
+  const LayerMesh& m = r.value();
+  size_t worst = 0;
+  for (size_t v = 0; v < wall.num_vertices(); ++v)
+    if (m.factor[v] < m.factor[worst]) worst = v;
+  const double* p = pt(wall.points, int32_t(worst));
+  EXPECT_GT(p[2], 0.5);
+  EXPECT_LT(std::abs(p[0]), 1.2);
+}
+
 TEST(Layers, KeptPrismsAndHelpers) {
   const SurfaceMesh wall = testing::open_tube(24, 12, 1.0, 2.0);
   LayerSpec spec;
