@@ -26,18 +26,22 @@ namespace vm {
 ///     cap_openings, so caps built later on the same wall agree bitwise;
 ///  2. directions (layer_directions.h): smoothed Gouraud normals, rim
 ///     directions in their cap plane (into the cap for inward layers, away
-///     from it outward), every direction seeing its incident triangles;
+///     from it outward), columns near an opening kept from reaching its cap
+///     plane, every direction seeing its incident triangles;
 ///  3. thickness (layer_thickness.h): requested T(v) = F R(v) or the
 ///     H1 / growth series; gap limit T <= 2 gap_fraction r(v) cos(d, n) with
 ///     r the empty-ball radius on the layer side (layer_gap.h);
 ///  4. local validity (layer_validity.h): per-vertex factors lowered by
 ///     bisection until every sub-tetrahedron of every prism has the volume
 ///     margin and every front triangle keeps its shape; the reduction is
-///     graded (slope <= spec.gradation) after every change;
-///  5. verification: exact self-intersection test (mesh/self_intersection.h)
-///     of the layer's closed boundary, wall + front + rings; columns of
-///     intersecting front or ring triangles are shrunk (x 0.7) and phases
-///     4-5 repeat (at most spec.max_rounds rounds);
+///     graded (thickness slope <= spec.gradation next to reduced vertices,
+///     layer_thickness.h) after every change;
+///  5. verification: exact intersection tests (triangles_intersect,
+///     mesh/self_intersection.h) of every pair of the layer's closed
+///     boundary that involves a front or ring triangle (wall + front + the
+///     rings split as the prisms are; pairs within the wall are the
+///     input's); columns of intersecting front or ring triangles are shrunk
+///     (x 0.7) and phases 4-5 repeat (at most spec.max_rounds rounds);
 ///  6. construction of the points, prisms, front and rim columns (rim
 ///     columns computed in their plane coordinates, so they stay in the
 ///     plane to rounding), and the statistics.
@@ -54,8 +58,8 @@ namespace vm {
 /// (open: its boundary loops are the openings, simple loops not sharing
 /// vertices; or closed), every vertex used, no degenerate triangle;
 /// `radius` the local vessel radius R per wall vertex (model units, e.g.
-/// vessel_radius(wall)), may be empty when spec.first_height > 0; `stats`
-/// optional.
+/// chord_radius(wall), or vessel_radius(wall), or their minimum), may be
+/// empty when spec.first_height > 0; `stats` optional.
 /// Errors: invalid spec or sizes, a non-manifold, inconsistently oriented or
 /// inward-facing wall, isolated vertices, openings sharing a vertex or with
 /// fewer than 3 vertices, a degenerate rim, a vertex no direction can
