@@ -60,67 +60,17 @@ struct Opening {
   double max_projection = 0;
 };
 
-// Phase 2a: least-squares plane through the rim, weighted by each vertex's
-// share of the loop length; normal oriented against the loop's vector area
-// (out of the lumen). Fails on a degenerate rim.
+// Phase 2a: the rim plane (fit_opening_plane, public below).
 Status fit_plane(const std::vector<double>& pts, Opening& op) {
-  const size_t n = op.loop.size();
-  std::vector<double> w(n);
-  double total = 0;
-  Vec3 vector_area{0, 0, 0};
-  const Vec3 p0 = point(pts, op.loop[0]);
-  for (size_t i = 0; i < n; ++i) {
-    const Vec3 a = point(pts, op.loop[i]), b = point(pts, op.loop[(i + 1) % n]);
-    const double len = norm(sub(b, a));
-    w[i] += 0.5 * len;
-    w[(i + 1) % n] += 0.5 * len;
-    total += len;
-    const Vec3 c = cross(sub(a, p0), sub(b, p0));
-    for (int k = 0; k < 3; ++k) vector_area[k] += 0.5 * c[k];
-  }
-  if (!(total > 0)) return Status::Error(describe(p0, n) + " has a rim of zero length");
-  Vec3 c{0, 0, 0};
-  for (size_t i = 0; i < n; ++i) {
-    const Vec3 p = point(pts, op.loop[i]);
-    for (int k = 0; k < 3; ++k) c[k] += w[i] / total * p[k];
-  }
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (size_t i = 0; i < n; ++i) {
-    const Vec3 d = sub(point(pts, op.loop[i]), c);
-    const Eigen::Vector3d e(d[0], d[1], d[2]);
-    cov += (w[i] / total) * e * e.transpose();
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);  // ascending eigenvalues
-  const Eigen::Vector3d ev = eig.eigenvectors().col(0);
-  // A rim spread along a line has no plane.
-  if (!(eig.eigenvalues()(1) > 1e-24 * eig.eigenvalues()(2)) || !(eig.eigenvalues()(2) > 0))
-    return Status::Error(describe(c, n) + " has collinear rim vertices: no cap plane");
-  Vec3 normal{ev(0), ev(1), ev(2)};
-  const double nn = norm(normal);
-  for (double& x : normal) x /= nn;
-  // The wall's boundary half-edges wind clockwise seen from outside.
-  if (dot(normal, vector_area) > 0)
-    for (double& x : normal) x = -x;
-  // Frame: e1 toward the first rim vertex (any in-plane direction will do).
-  Vec3 e1{0, 0, 0};
-  for (size_t i = 0; i < n && norm(e1) == 0; ++i) {
-    const Vec3 d = sub(point(pts, op.loop[i]), c);
-    const double h = dot(d, normal);
-    e1 = {d[0] - h * normal[0], d[1] - h * normal[1], d[2] - h * normal[2]};
-  }
-  const double l1 = norm(e1);
-  for (double& x : e1) x /= l1;
-  op.origin = c;
-  op.normal = normal;
-  op.e1 = e1;
-  op.e2 = cross(normal, e1);  // e1 x e2 = normal: ccw in the plane faces out
-  op.uv.resize(2 * n);
-  for (size_t i = 0; i < n; ++i) {
-    const Vec3 d = sub(point(pts, op.loop[i]), c);
-    op.max_projection = std::max(op.max_projection, std::abs(dot(d, normal)));
-    op.uv[2 * i] = dot(d, op.e1);
-    op.uv[2 * i + 1] = dot(d, op.e2);
-  }
+  Result<OpeningPlane> plane = fit_opening_plane(pts, op.loop);
+  if (!plane.ok()) return plane.status();
+  OpeningPlane& p = plane.value();
+  op.origin = p.origin;
+  op.normal = p.normal;
+  op.e1 = p.e1;
+  op.e2 = p.e2;
+  op.uv = std::move(p.uv);
+  op.max_projection = p.max_projection;
   return Status::Ok();
 }
 
@@ -222,6 +172,74 @@ class CapSize {
 
 }  // namespace
 
+// Least-squares plane through the rim, weighted by each vertex's share of the
+// loop length; normal oriented against the loop's vector area (out of the
+// lumen). Fails on a degenerate rim.
+Result<OpeningPlane> fit_opening_plane(const std::vector<double>& pts,
+                                       const std::vector<int32_t>& loop) {
+  using R = Result<OpeningPlane>;
+  OpeningPlane op;
+  const size_t n = loop.size();
+  if (n == 0) return R::Error("an opening has an empty rim");
+  std::vector<double> w(n);
+  double total = 0;
+  Vec3 vector_area{0, 0, 0};
+  const Vec3 p0 = point(pts, loop[0]);
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 a = point(pts, loop[i]), b = point(pts, loop[(i + 1) % n]);
+    const double len = norm(sub(b, a));
+    w[i] += 0.5 * len;
+    w[(i + 1) % n] += 0.5 * len;
+    total += len;
+    const Vec3 c = cross(sub(a, p0), sub(b, p0));
+    for (int k = 0; k < 3; ++k) vector_area[k] += 0.5 * c[k];
+  }
+  if (!(total > 0)) return R::Error(describe(p0, n) + " has a rim of zero length");
+  Vec3 c{0, 0, 0};
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 p = point(pts, loop[i]);
+    for (int k = 0; k < 3; ++k) c[k] += w[i] / total * p[k];
+  }
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 d = sub(point(pts, loop[i]), c);
+    const Eigen::Vector3d e(d[0], d[1], d[2]);
+    cov += (w[i] / total) * e * e.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);  // ascending eigenvalues
+  const Eigen::Vector3d ev = eig.eigenvectors().col(0);
+  // A rim spread along a line has no plane.
+  if (!(eig.eigenvalues()(1) > 1e-24 * eig.eigenvalues()(2)) || !(eig.eigenvalues()(2) > 0))
+    return R::Error(describe(c, n) + " has collinear rim vertices: no cap plane");
+  Vec3 normal{ev(0), ev(1), ev(2)};
+  const double nn = norm(normal);
+  for (double& x : normal) x /= nn;
+  // The wall's boundary half-edges wind clockwise seen from outside.
+  if (dot(normal, vector_area) > 0)
+    for (double& x : normal) x = -x;
+  // Frame: e1 toward the first rim vertex (any in-plane direction will do).
+  Vec3 e1{0, 0, 0};
+  for (size_t i = 0; i < n && norm(e1) == 0; ++i) {
+    const Vec3 d = sub(point(pts, loop[i]), c);
+    const double h = dot(d, normal);
+    e1 = {d[0] - h * normal[0], d[1] - h * normal[1], d[2] - h * normal[2]};
+  }
+  const double l1 = norm(e1);
+  for (double& x : e1) x /= l1;
+  op.origin = c;
+  op.normal = normal;
+  op.e1 = e1;
+  op.e2 = cross(normal, e1);  // e1 x e2 = normal: ccw in the plane faces out
+  op.uv.resize(2 * n);
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 d = sub(point(pts, loop[i]), c);
+    op.max_projection = std::max(op.max_projection, std::abs(dot(d, normal)));
+    op.uv[2 * i] = dot(d, op.e1);
+    op.uv[2 * i + 1] = dot(d, op.e2);
+  }
+  return op;
+}
+
 Result<CappedSurface> cap_openings(const SurfaceMesh& wall, const std::vector<double>& vertex_size,
                                    const CapOptions& options) {
   using R = Result<CappedSurface>;
@@ -316,11 +334,16 @@ Result<CappedSurface> cap_openings(const SurfaceMesh& wall, const std::vector<do
         normal_before.push_back(triangle_normal(wall.points, &wall.triangles[3 * t]));
         break;
       }
-  for (const Opening& op : ops)
-    for (size_t i = 0; i < op.loop.size(); ++i)
-      for (int k = 0; k < 3; ++k)
-        out.mesh.points[3 * size_t(op.loop[i]) + size_t(k)] =
-            op.origin[k] + op.uv[2 * i] * op.e1[k] + op.uv[2 * i + 1] * op.e2[k];
+  for (const Opening& op : ops) {
+    OpeningPlane plane;
+    plane.origin = op.origin;
+    plane.e1 = op.e1;
+    plane.e2 = op.e2;
+    for (size_t i = 0; i < op.loop.size(); ++i) {
+      const Vec3 p = plane.at(op.uv[2 * i], op.uv[2 * i + 1]);
+      for (int k = 0; k < 3; ++k) out.mesh.points[3 * size_t(op.loop[i]) + size_t(k)] = p[k];
+    }
+  }
 
   // Phase 5: mesh each cap in tag order.
   for (size_t c = 0; c < tag_order.size(); ++c) {

@@ -58,6 +58,41 @@ struct CapInfo {
   double quality_min = 0, quality_mean = 0;  ///< gamma_k of the cap's triangles
 };
 
+/// The least-squares plane of one opening (the rim-plane fit cap_openings
+/// uses, exported so the boundary layers place their rim columns in the same
+/// planes).
+struct OpeningPlane {
+  std::array<double, 3> origin{};  ///< weighted centroid of the rim polyline
+  std::array<double, 3> normal{};  ///< unit, out of the lumen
+  /// Unit in-plane frame, e1 x e2 = normal (counterclockwise in (u, v) faces
+  /// out of the lumen); e1 points toward the first rim vertex.
+  std::array<double, 3> e1{}, e2{};
+  /// The rim in plane coordinates: 2 per loop vertex (u, v), loop order.
+  std::vector<double> uv;
+  /// Largest distance of a rim vertex from the plane (before projection).
+  double max_projection = 0;
+
+  /// The plane point with coordinates (u, v): origin + u e1 + v e2. This is
+  /// the exact arithmetic cap_openings uses to move rim vertex i onto the
+  /// plane (u, v = uv[2i], uv[2i + 1]), so a caller using it gets the same
+  /// doubles.
+  std::array<double, 3> at(double u, double v) const {
+    std::array<double, 3> p;
+    for (int k = 0; k < 3; ++k) p[k] = origin[k] + u * e1[k] + v * e2[k];
+    return p;
+  }
+};
+
+/// Fits the plane of the opening whose rim is `loop` (vertex indices into
+/// `points`, 3 doubles per vertex, in the order of the wall's boundary
+/// half-edges as mesh/boundary_loops.h lists them, >= 3 vertices): the
+/// least-squares plane through the loop points weighted by their share of
+/// the loop length, normal oriented out of the lumen (against the loop's
+/// vector area, the wall being outward oriented). Errors: a rim of zero
+/// length, collinear rim vertices. The rim is not checked for simplicity.
+Result<OpeningPlane> fit_opening_plane(const std::vector<double>& points,
+                                       const std::vector<int32_t>& loop);
+
 /// The wall closed by its caps.
 struct CappedSurface {
   /// Points: the wall's (rim vertices moved onto their planes, all others
