@@ -74,6 +74,11 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
     }
   }
 
+  // h at a candidate given an upper bound (see RefineOptions::size_tolerance).
+  auto size_at = [&](const double* p, double ub) {
+    return field.eval(p, ub, options.size_tolerance);
+  };
+
   // The test and insertion of a candidate p with exact size hp, located
   // from tetrahedron hint; r2 / b2: squared spacing to vertices / faces.
   // Returns the new vertex or -1.
@@ -183,7 +188,7 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
       const double* p = &apex[3 * i];
       const double hf = apex_h[i];
       ++st.candidates;
-      const double hp = field.eval(p, hf + g * hf);
+      const double hp = size_at(p, hf + g * hf);
       const int32_t v = try_insert(p, hp, std::min(hp, hf), kernel.vertex_tet(apex_vertex[i]));
       if (v >= 0) {
         queue.push_back(v);
@@ -273,8 +278,12 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
         ++st.rejected_spacing;
         continue;
       }
-      // h is g-Lipschitz and vertex_h holds its values: valid upper bounds.
-      const double hp = field.eval(p, std::min(hv + g * d, hw + g * (L - d)));
+      // h is g-Lipschitz and vertex_h holds its values (or upper bounds of
+      // them): every neighbor gives an upper bound.
+      double ub = std::min(hv + g * d, hw + g * (L - d));
+      for (size_t j = 0; j < nbs.size(); ++j)
+        ub = std::min(ub, vertex_h[size_t(nbs[j])] + g * std::sqrt(dist2(p, kernel.point(nbs[j]))));
+      const double hp = size_at(p, ub);
       const double r2 = options.min_spacing * options.min_spacing * hp * hp;
       for (size_t j = 0; j < nbs.size() && !close; ++j) close = dist2(p, kernel.point(nbs[j])) < r2;
       if (close) {

@@ -34,6 +34,11 @@ struct RefineOptions {
   /// Candidates closer than this * h to a constrained face are rejected
   /// (the boundary is final: no new point hugs it).
   double boundary_spacing = 0.45;
+  /// Relative tolerance of the size evaluations (SizeField3D::eval): 0
+  /// gives exact sizes; t > 0 sizes at most 1 / (1 - t) times too large,
+  /// faster inside tubes whose wall sizes vary (the exact minimum visits
+  /// the whole wall around the point).
+  double size_tolerance = 0;
   /// Seed a first layer: the apex of the regular tetrahedron over each
   /// boundary face (then filtered like every candidate).
   bool first_layer = true;
@@ -64,6 +69,9 @@ struct RefineStats {
 /// model units; e.g. field(x_i) for the boundary vertices). On return the
 /// kernel holds the new vertices (ids from num_vertices() before the call,
 /// in insertion order) and vertex_h their h (exact field values).
+/// h at a candidate: the field's value (SizeField3D::eval, within
+/// size_tolerance), searched below the upper bounds that the sizes of the
+/// vertices around it give (h is g-Lipschitz).
 /// Boundary vertices and constrained faces are never touched: every point
 /// is inserted with respect_constraints and at least
 /// boundary_spacing * h from constrained faces of the tetrahedra around it.

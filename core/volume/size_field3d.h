@@ -49,8 +49,12 @@ class SizeField3D {
 
   /// h(x) given any upper_bound >= h(x) (a looser one is fine; infinity
   /// means none). Returns min(upper_bound, h(x)) exactly, i.e. h(x) when the
-  /// bound is valid.
-  double eval(const double* x, double upper_bound) const;
+  /// bound is valid. With rel_tol > 0 (< 1) the search skips what cannot
+  /// beat (1 - rel_tol) times the best value found, and the result r
+  /// satisfies h(x) <= r <= h(x) / (1 - rel_tol) (when the bound is valid):
+  /// inside a tube all the wall is at about the same distance from the
+  /// axis, and the exact minimum must visit all of it.
+  double eval(const double* x, double upper_bound, double rel_tol = 0) const;
 
   double core_size() const { return core_; }
   double gradation() const { return g_; }

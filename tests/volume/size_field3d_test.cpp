@@ -64,6 +64,24 @@ TEST(SizeField3D, MatchesBruteForceExactly) {
   }
 }
 
+TEST(SizeField3D, ToleranceBoundsTheError) {
+  const Sample s = random_sample(3000, 21);
+  SizeField3DOptions o;
+  o.gradation = 0.1;
+  auto f = SizeField3D::build(s.pts, s.h, o);
+  ASSERT_TRUE(f.ok());
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  for (double tol : {0.01, 0.1, 0.3})
+    for (int q = 0; q < 300; ++q) {
+      const double x[3] = {u(rng), u(rng), u(rng)};
+      const double exact = f.value()(x);
+      const double r = f.value().eval(x, SizeField3D::kNoBound, tol);
+      EXPECT_GE(r, exact);
+      EXPECT_LE(r, exact / (1 - tol) * (1 + 1e-12));
+    }
+}
+
 TEST(SizeField3D, AtBoundaryPointsAndLipschitz) {
   const Sample s = random_sample(500, 3);
   SizeField3DOptions o;
