@@ -246,3 +246,69 @@ TEST(FillVolume, ProgressCancelAndErrors) {
 
 }  // namespace
 }  // namespace vm
+
+namespace vm {
+namespace {
+
+// Degenerate inputs: no crash, no hang, a valid mesh (or a clear error).
+TEST(FillVolume, DegenerateInputs) {
+  // A single tetrahedron: nothing to insert.
+  {
+    testing::VolumeInput in;
+    ASSERT_TRUE(testing::convex_input({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}, &in));
+    FillStats st;
+    auto r = fill_volume(in.kernel, in.sizes, FillOptions{}, &st);
+    ASSERT_TRUE(r.ok()) << r.message();
+    EXPECT_EQ(r.value().num_tets(), 1u);
+    EXPECT_EQ(r.value().num_vertices(), 4u);
+  }
+  // A thin slab (thickness 1/50 of its surface size): no room for points,
+  // the tetrahedra stay flat but valid.
+  {
+    std::vector<double> pts;
+    for (int i = 0; i <= 10; ++i)
+      for (int j = 0; j <= 10; ++j)
+        for (double z : {0.0, 0.002}) pts.insert(pts.end(), {0.1 * i, 0.1 * j, z});
+    testing::VolumeInput in;
+    ASSERT_TRUE(testing::convex_input(pts, &in));
+    auto r = fill_volume(in.kernel, in.sizes, FillOptions{}, nullptr);
+    ASSERT_TRUE(r.ok()) << r.message();
+    const auto q = tet_qualities(r.value());
+    EXPECT_GT(*std::min_element(q.begin(), q.end()), 0.0f);
+  }
+  // A size far larger than the domain: nothing inserted; far smaller with
+  // a cap on the points: stops at the cap.
+  {
+    testing::VolumeInput in;
+    ASSERT_TRUE(testing::convex_input(testing::cube_surface_points(3), &in));
+    std::vector<double> big(in.sizes.size(), 100.0);
+    FillStats st;
+    ASSERT_TRUE(fill_volume(in.kernel, big, FillOptions{}, &st).ok());
+    EXPECT_EQ(st.inserted_vertices, 0u);
+  }
+  {
+    testing::VolumeInput in;
+    ASSERT_TRUE(testing::convex_input(testing::cube_surface_points(3), &in));
+    std::vector<double> tiny(in.sizes.size(), 1e-3);
+    FillOptions o;
+    o.refine.max_points = 500;
+    FillStats st;
+    auto r = fill_volume(in.kernel, tiny, o, &st);
+    ASSERT_TRUE(r.ok()) << r.message();
+    EXPECT_TRUE(st.refine.hit_max_points);
+    EXPECT_LE(st.refine.inserted, 500 + 64);
+    const auto q = tet_qualities(r.value());
+    EXPECT_GT(*std::min_element(q.begin(), q.end()), 0.0f);
+  }
+  // Non-finite size.
+  {
+    testing::VolumeInput in;
+    ASSERT_TRUE(testing::convex_input(testing::cube_surface_points(3), &in));
+    std::vector<double> bad = in.sizes;
+    bad[3] = NAN;
+    EXPECT_FALSE(fill_volume(in.kernel, bad, FillOptions{}, nullptr).ok());
+  }
+}
+
+}  // namespace
+}  // namespace vm
