@@ -76,6 +76,7 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
 
   // h at a candidate given an upper bound (see RefineOptions::size_tolerance).
   auto size_at = [&](const double* p, double ub) {
+    ++st.size_evaluations;
     return field.eval(p, ub, options.size_tolerance);
   };
 

@@ -48,7 +48,8 @@ struct RefineOptions {
 
 struct RefineStats {
   int64_t vertices_processed = 0;  ///< vertices whose edges were examined
-  int64_t candidates = 0;          ///< points proposed on long edges
+  int64_t candidates = 0;          ///< points proposed (first layer and long edges)
+  int64_t size_evaluations = 0;    ///< size field queries
   int64_t inserted = 0;
   int64_t first_layer = 0;        ///< of which first-layer points
   int64_t rejected_spacing = 0;   ///< too close to a vertex
