@@ -3,15 +3,18 @@
 // refine_volume.h.
 //
 // Phases: (1) checks: sizes, options, the region closed by constrained
-// faces; (2) the queue: the region's vertices along a Hilbert curve; (3) for
-// each queued vertex v, its edges (v, w) in the current mesh: an edge of
-// metric length >= split_length gets one candidate (the metric midpoint when
-// shorter than kFarLength, else one unit of h from v), which is rejected
-// when it lies outside the region, closer than min_spacing * h to a vertex
-// of v's star, of the tetrahedron containing it or of that tetrahedron's
-// neighbors, or closer than boundary_spacing * h to a constrained face of
-// those tetrahedra; else it is inserted at once (constrained cavity) and
-// queued. Metric lengths use h linear along the edge between its ends.
+// faces; (2) the first layer: over each boundary face the apex of the
+// regular tetrahedron of its size, in BRIO order, each candidate tested
+// as below; (3) the queue: the first layer, then the region's vertices,
+// each part along a Hilbert curve; (4) for each queued vertex v, its edges
+// (v, w) in the current mesh: an edge of metric length >= split_length gets
+// one candidate (the metric midpoint when shorter than kFarLength, else one
+// unit of h from v). A candidate is rejected when it lies outside the
+// region, closer than min_spacing * h to a vertex of v's star, of the
+// tetrahedron containing it or of that tetrahedron's neighbors, or closer
+// than boundary_spacing * h to a constrained face of those tetrahedra;
+// else it is inserted at once (constrained cavity) and queued. Metric
+// lengths use h linear along the edge between its ends.
 #include "core/volume/refine_volume.h"
 
 #include <algorithm>
@@ -199,6 +202,8 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
     hilbert_sort(kernel.points(), queue.data(), int64_t(queue.size()));
   }
   st.first_layer = st.inserted;
+  st.first_layer_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   // Phase 3: the queue: the first layer, then the region's vertices along a
   // Hilbert curve, then every new vertex.

@@ -12,6 +12,10 @@
 // an advancing front from the surface inward (layers about h apart), which
 // gives well-spaced points (Frey, Borouchaki and George, "3D Delaunay mesh
 // generation coupled with an advancing-front approach", CMAME 157, 1998).
+// The front starts from a first layer: the apex of the regular tetrahedron
+// over each boundary face (the points a frontal mesher would place first),
+// filtered like every candidate; without it the tetrahedra on the boundary
+// faces get their apex from whatever edge point lands nearby.
 #pragma once
 
 #include <cstdint>
@@ -58,6 +62,7 @@ struct RefineStats {
   int64_t rejected_kernel = 0;    ///< the kernel refused (blocked, duplicate, hull)
   int generations = 0;            ///< depth of the front (layers of new vertices)
   bool hit_max_points = false;
+  double first_layer_seconds = 0;  ///< checks and first layer (part of seconds)
   double seconds = 0;
 };
 
