@@ -48,8 +48,9 @@ constexpr int kFaceVerts[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 }  // namespace
 
-Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<double>& vertex_h,
-                     const RefineOptions& options, RefineStats* stats, const ProgressFn& progress) {
+Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
+                     std::vector<double>& vertex_h, const RefineOptions& options,
+                     RefineStats* stats, const ProgressFn& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   RefineStats st;
   // Phase 1: checks.

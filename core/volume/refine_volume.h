@@ -38,7 +38,7 @@ struct RefineOptions {
   /// Candidates closer than this * h to a constrained face are rejected
   /// (the boundary is final: no new point hugs it).
   double boundary_spacing = 0.45;
-  /// Relative tolerance of the size evaluations (SizeField3D::eval): 0
+  /// Relative tolerance of the size evaluations (VolumeSizeField::eval): 0
   /// gives exact sizes; t > 0 sizes at most 1 / (1 - t) times too large,
   /// faster inside tubes whose wall sizes vary (the exact minimum visits
   /// the whole wall around the point).
@@ -75,15 +75,15 @@ struct RefineStats {
 /// model units; e.g. field(x_i) for the boundary vertices). On return the
 /// kernel holds the new vertices (ids from num_vertices() before the call,
 /// in insertion order) and vertex_h their h (exact field values).
-/// h at a candidate: the field's value (SizeField3D::eval, within
+/// h at a candidate: the field's value (VolumeSizeField::eval, within
 /// size_tolerance), searched below the upper bounds that the sizes of the
 /// vertices around it give (h is g-Lipschitz).
 /// Boundary vertices and constrained faces are never touched: every point
 /// is inserted with respect_constraints and at least
 /// boundary_spacing * h from constrained faces of the tetrahedra around it.
 /// Errors: vertex_h size mismatch or bad options; cancelled by progress.
-Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<double>& vertex_h,
-                     const RefineOptions& options, RefineStats* stats,
-                     const ProgressFn& progress = {});
+Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
+                     std::vector<double>& vertex_h, const RefineOptions& options,
+                     RefineStats* stats, const ProgressFn& progress = {});
 
 }  // namespace vm

@@ -25,24 +25,24 @@
 
 namespace vm {
 
-struct SizeField3DOptions {
+struct VolumeSizeOptions {
   /// Core size H (model units): the cap of h. 0: no cap (pure gradation).
   double core_size = 0;
   /// Gradation g >= 0 (dimensionless): growth of h per unit distance.
   double gradation = 0.25;
 };
 
-class SizeField3D {
+class VolumeSizeField {
  public:
-  SizeField3D() = default;
+  VolumeSizeField() = default;
 
   /// points: 3 doubles per boundary vertex; sizes: one per vertex, finite and
   /// > 0 (model units). Errors: size mismatch, no point, non-finite
   /// coordinate, non-positive or non-finite size, negative or non-finite
   /// core size or gradation.
-  static Result<SizeField3D> build(const std::vector<double>& points,
-                                   const std::vector<double>& sizes,
-                                   const SizeField3DOptions& options = {});
+  static Result<VolumeSizeField> build(const std::vector<double>& points,
+                                       const std::vector<double>& sizes,
+                                       const VolumeSizeOptions& options = {});
 
   /// h(x), x 3 doubles.
   double operator()(const double* x) const { return eval(x, kNoBound); }

@@ -12,6 +12,9 @@
 
 #include "core/mesh/enclosed_volume.h"
 #include "core/quality/tet_quality.h"
+// The pipeline includes the surface stage with the volume stage: their
+// names must not clash (remesh_patch.h has a SizeField3D alias).
+#include "core/surface/remesh_patch.h"
 #include "core/volume/size_field3d.h"
 #include "tests/support/volume_inputs.h"
 
@@ -105,9 +108,9 @@ double median_edge_ratio(const VolumeMesh& m, const testing::VolumeInput& in, si
     pts.insert(pts.end(), &m.points[3 * v], &m.points[3 * v] + 3);
     sizes.push_back(in.sizes[v]);
   }
-  SizeField3DOptions o;
+  VolumeSizeOptions o;
   o.gradation = gradation;
-  auto f = SizeField3D::build(pts, sizes, o);
+  auto f = VolumeSizeField::build(pts, sizes, o);
   EXPECT_TRUE(f.ok());
   std::set<std::pair<int32_t, int32_t>> edges;
   for (size_t t = 0; t < m.num_tets(); ++t)
