@@ -84,6 +84,8 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
     return field.eval(p, ub, options.size_tolerance);
   };
 
+  std::vector<int32_t> around;  // scratch of try_insert
+
   // The test and insertion of a candidate p with exact size hp, located
   // from tetrahedron hint; r2 / b2: squared spacing to vertices / faces.
   // Returns the new vertex or -1.
@@ -102,10 +104,16 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
     // The tetrahedron containing p and its neighbors: their vertices and
     // constrained faces.
     bool close = false, near_boundary = false;
+    int32_t nearest = -1;
+    double nearest_d2 = 1e300;
     auto check_tet = [&](int32_t t) {
       const int32_t* tv = kernel.tet(t);
       for (int k = 0; k < 4; ++k) {
-        if (tv[k] != Delaunay3D::kInfinite && dist2(p, kernel.point(tv[k])) < r2) close = true;
+        if (tv[k] != Delaunay3D::kInfinite) {
+          const double d2 = dist2(p, kernel.point(tv[k]));
+          if (d2 < r2) close = true;
+          if (d2 < nearest_d2) nearest_d2 = d2, nearest = tv[k];
+        }
         if (!kernel.is_constrained(t, k)) continue;
         const int* f = kFaceVerts[k];
         if (tv[f[0]] < 0 || tv[f[1]] < 0 || tv[f[2]] < 0) continue;
@@ -119,6 +127,19 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
     for (int k = 0; k < 4; ++k) {
       const int32_t u = kernel.neighbor(loc.tet, k) >> 2;
       if (!kernel.is_ghost(u)) check_tet(u);
+    }
+    // One step of greedy nearest-vertex search: the neighbors of the
+    // nearest vertex seen (in a Delaunay triangulation a vertex with no
+    // closer neighbor is the nearest; after flips or clipped cavities the
+    // triangulation is not Delaunay and the tetrahedra around p miss some).
+    if (!close && nearest >= 0) {
+      kernel.tets_around_vertex(nearest, around);
+      for (int32_t t : around) {
+        if (close) break;
+        const int32_t* tv = kernel.tet(t);
+        for (int k = 0; k < 4; ++k)
+          if (tv[k] != Delaunay3D::kInfinite && dist2(p, kernel.point(tv[k])) < r2) close = true;
+      }
     }
     if (close) {
       ++st.rejected_spacing;
