@@ -420,7 +420,16 @@ class Optimizer {
     for (int32_t t : star_)
       if (cached(t) < old_min) old_min = cached(t), worst = t;
     const double* x = m_.point(v);
-    const double hv = h_[size_t(v)];
+    // The scale of the moves: the mean distance from v to the worst
+    // tetrahedron's other corners (the geometry's, whatever h says).
+    double hv = 0;
+    for (int s = 0; s < 4; ++s) {
+      const int32_t w = m_.tet(worst)[s];
+      if (w == v) continue;
+      double d[3];
+      sub(m_.point(w), x, d);
+      hv += std::sqrt(dot(d, d)) / 3;
+    }
     bool moved = false;
     // Gradient of the worst quality by central differences.
     {
@@ -482,27 +491,23 @@ class Optimizer {
   // tetrahedron of the face and p positive); false if that needs crossing
   // a constrained face or more than kMaxCavity tetrahedra.
   bool grow_cavity(int32_t t, const double* p, std::vector<int32_t>& cav) {
+    // Each tetrahedron's faces are checked once, when it joins: a face
+    // found visible stays visible, and one hidden brings its neighbor in.
     cav.assign(1, t);
-    for (int iter = 0; iter < 4 * kMaxCavity; ++iter) {
-      int32_t add = -1;
-      for (size_t i = 0; i < cav.size() && add < 0; ++i) {
-        const int32_t c = cav[i];
-        for (int k = 0; k < 4 && add < 0; ++k) {
-          const int32_t e = m_.neighbor(c, k);
-          if (e >= 0 && std::find(cav.begin(), cav.end(), e >> 2) != cav.end()) continue;
-          const int32_t* tv = m_.tet(c);
-          const double* q[4] = {m_.point(tv[0]), m_.point(tv[1]), m_.point(tv[2]), m_.point(tv[3])};
-          q[k] = p;
-          if (orient3d(q[0], q[1], q[2], q[3]) < 0) continue;  // visible
-          if (m_.is_constrained(c, k)) return false;
-          add = e >> 2;
-        }
+    for (size_t i = 0; i < cav.size(); ++i) {
+      const int32_t c = cav[i];
+      const int32_t* tv = m_.tet(c);
+      for (int k = 0; k < 4; ++k) {
+        const int32_t e = m_.neighbor(c, k);
+        if (e >= 0 && std::find(cav.begin(), cav.end(), e >> 2) != cav.end()) continue;
+        const double* q[4] = {m_.point(tv[0]), m_.point(tv[1]), m_.point(tv[2]), m_.point(tv[3])};
+        q[k] = p;
+        if (orient3d(q[0], q[1], q[2], q[3]) < 0) continue;  // visible
+        if (m_.is_constrained(c, k) || int(cav.size()) >= kMaxCavity) return false;
+        cav.push_back(e >> 2);
       }
-      if (add < 0) return true;
-      if (int(cav.size()) >= kMaxCavity) return false;
-      cav.push_back(add);
     }
-    return false;
+    return true;
   }
 
   // New tetrahedra of the star of p (vertex id pv) over the boundary of cav
@@ -532,10 +537,17 @@ class Optimizer {
   bool insert_near(int32_t t) {
     const int32_t* tv = m_.tet(t);
     const double* x[4] = {m_.point(tv[0]), m_.point(tv[1]), m_.point(tv[2]), m_.point(tv[3])};
-    double ht = 0, cen[3] = {0, 0, 0};
+    // Scale: the mean edge length of t (the geometry's, whatever h says);
+    // the new vertex's size: the mean of its corners'.
+    double ht = 0, hnew = 0, cen[3] = {0, 0, 0};
     for (int s = 0; s < 4; ++s) {
-      ht += 0.25 * h_[size_t(tv[s])];
+      hnew += 0.25 * h_[size_t(tv[s])];
       for (int k = 0; k < 3; ++k) cen[k] += 0.25 * x[s][k];
+    }
+    for (const auto& e : kEdges) {
+      double d[3];
+      sub(x[e[0]], x[e[1]], d);
+      ht += std::sqrt(dot(d, d)) / 6;
     }
     // Candidates: the centroid, and for constrained faces points inward
     // from the face centroid (for two, from their common edge) at depths
@@ -599,7 +611,7 @@ class Optimizer {
     const std::vector<int32_t> best_cav = cav_;
     const double* cand_best = best_p.data();
     const int32_t v = m_.add_vertex(cand_best);
-    h_.push_back(ht);
+    h_.push_back(hnew);
     star_tets(best_cav, cand_best, v, nt_);
     created_.clear();
     if (!commit(best_cav.data(), int(best_cav.size()), nt_.data(), int(nt_.size()), created_)) {
@@ -613,17 +625,22 @@ class Optimizer {
   }
 
   void sliver_phase() {
+    // Work bound: tetrahedra treated, over all rounds, at most 4 times the
+    // first round's count (plus a constant), whatever the rounds create.
+    int64_t budget = -1;
     for (int round = 0; round < opt_.sliver_rounds; ++round) {
       std::vector<int32_t> bad;
       for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
         if (m_.is_live(t) && cached(t) < opt_.sliver_threshold) bad.push_back(t);
       if (bad.empty()) break;
+      if (budget < 0) budget = 4 * int64_t(bad.size()) + 256;
       std::sort(bad.begin(), bad.end(), [&](int32_t a, int32_t b) {
         return cached(a) < cached(b) || (cached(a) == cached(b) && a < b);
       });
       bool changed = false;
       for (int32_t t : bad) {
         if (!m_.is_live(t) || cached(t) >= opt_.sliver_threshold) continue;
+        if (--budget < 0) return;
         created_.clear();
         if (improve_topology(t, created_)) {
           changed = true;

@@ -3,15 +3,18 @@
 // refine_volume.h.
 //
 // Phases: (1) checks: sizes, options, the region closed by constrained
-// faces; (2) the queue: the region's vertices along a Hilbert curve; (3) for
-// each queued vertex v, its edges (v, w) in the current mesh: an edge of
-// metric length >= split_length gets one candidate (the metric midpoint when
-// shorter than kFarLength, else one unit of h from v), which is rejected
-// when it lies outside the region, closer than min_spacing * h to a vertex
-// of v's star, of the tetrahedron containing it or of that tetrahedron's
-// neighbors, or closer than boundary_spacing * h to a constrained face of
-// those tetrahedra; else it is inserted at once (constrained cavity) and
-// queued. Metric lengths use h linear along the edge between its ends.
+// faces; (2) the first layer: over each boundary face the apex of the
+// regular tetrahedron of its size, in BRIO order, each candidate tested
+// as below; (3) the queue: the first layer, then the region's vertices,
+// each part along a Hilbert curve; (4) for each queued vertex v, its edges
+// (v, w) in the current mesh: an edge of metric length >= split_length gets
+// one candidate (the metric midpoint when shorter than kFarLength, else one
+// unit of h from v). A candidate is rejected when it lies outside the
+// region, closer than min_spacing * h to a vertex of v's star, of the
+// tetrahedron containing it or of that tetrahedron's neighbors, or closer
+// than boundary_spacing * h to a constrained face of those tetrahedra;
+// else it is inserted at once (constrained cavity) and queued. Metric
+// lengths use h linear along the edge between its ends.
 #include "core/volume/refine_volume.h"
 
 #include <algorithm>
@@ -45,8 +48,9 @@ constexpr int kFaceVerts[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 }  // namespace
 
-Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<double>& vertex_h,
-                     const RefineOptions& options, RefineStats* stats, const ProgressFn& progress) {
+Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
+                     std::vector<double>& vertex_h, const RefineOptions& options,
+                     RefineStats* stats, const ProgressFn& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   RefineStats st;
   // Phase 1: checks.
@@ -74,6 +78,14 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
     }
   }
 
+  // h at a candidate given an upper bound (see RefineOptions::size_tolerance).
+  auto size_at = [&](const double* p, double ub) {
+    ++st.size_evaluations;
+    return field.eval(p, ub, options.size_tolerance);
+  };
+
+  std::vector<int32_t> around;  // scratch of try_insert
+
   // The test and insertion of a candidate p with exact size hp, located
   // from tetrahedron hint; r2 / b2: squared spacing to vertices / faces.
   // Returns the new vertex or -1.
@@ -92,10 +104,16 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
     // The tetrahedron containing p and its neighbors: their vertices and
     // constrained faces.
     bool close = false, near_boundary = false;
+    int32_t nearest = -1;
+    double nearest_d2 = 1e300;
     auto check_tet = [&](int32_t t) {
       const int32_t* tv = kernel.tet(t);
       for (int k = 0; k < 4; ++k) {
-        if (tv[k] != Delaunay3D::kInfinite && dist2(p, kernel.point(tv[k])) < r2) close = true;
+        if (tv[k] != Delaunay3D::kInfinite) {
+          const double d2 = dist2(p, kernel.point(tv[k]));
+          if (d2 < r2) close = true;
+          if (d2 < nearest_d2) nearest_d2 = d2, nearest = tv[k];
+        }
         if (!kernel.is_constrained(t, k)) continue;
         const int* f = kFaceVerts[k];
         if (tv[f[0]] < 0 || tv[f[1]] < 0 || tv[f[2]] < 0) continue;
@@ -109,6 +127,19 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
     for (int k = 0; k < 4; ++k) {
       const int32_t u = kernel.neighbor(loc.tet, k) >> 2;
       if (!kernel.is_ghost(u)) check_tet(u);
+    }
+    // One step of greedy nearest-vertex search: the neighbors of the
+    // nearest vertex seen (in a Delaunay triangulation a vertex with no
+    // closer neighbor is the nearest; after flips or clipped cavities the
+    // triangulation is not Delaunay and the tetrahedra around p miss some).
+    if (!close && nearest >= 0) {
+      kernel.tets_around_vertex(nearest, around);
+      for (int32_t t : around) {
+        if (close) break;
+        const int32_t* tv = kernel.tet(t);
+        for (int k = 0; k < 4; ++k)
+          if (tv[k] != Delaunay3D::kInfinite && dist2(p, kernel.point(tv[k])) < r2) close = true;
+      }
     }
     if (close) {
       ++st.rejected_spacing;
@@ -183,7 +214,7 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
       const double* p = &apex[3 * i];
       const double hf = apex_h[i];
       ++st.candidates;
-      const double hp = field.eval(p, hf + g * hf);
+      const double hp = size_at(p, hf + g * hf);
       const int32_t v = try_insert(p, hp, std::min(hp, hf), kernel.vertex_tet(apex_vertex[i]));
       if (v >= 0) {
         queue.push_back(v);
@@ -193,6 +224,8 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
     hilbert_sort(kernel.points(), queue.data(), int64_t(queue.size()));
   }
   st.first_layer = st.inserted;
+  st.first_layer_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   // Phase 3: the queue: the first layer, then the region's vertices along a
   // Hilbert curve, then every new vertex.
@@ -273,8 +306,12 @@ Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<d
         ++st.rejected_spacing;
         continue;
       }
-      // h is g-Lipschitz and vertex_h holds its values: valid upper bounds.
-      const double hp = field.eval(p, std::min(hv + g * d, hw + g * (L - d)));
+      // h is g-Lipschitz and vertex_h holds its values (or upper bounds of
+      // them): every neighbor gives an upper bound.
+      double ub = std::min(hv + g * d, hw + g * (L - d));
+      for (size_t j = 0; j < nbs.size(); ++j)
+        ub = std::min(ub, vertex_h[size_t(nbs[j])] + g * std::sqrt(dist2(p, kernel.point(nbs[j]))));
+      const double hp = size_at(p, ub);
       const double r2 = options.min_spacing * options.min_spacing * hp * hp;
       for (size_t j = 0; j < nbs.size() && !close; ++j) close = dist2(p, kernel.point(nbs[j])) < r2;
       if (close) {

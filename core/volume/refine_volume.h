@@ -12,6 +12,10 @@
 // an advancing front from the surface inward (layers about h apart), which
 // gives well-spaced points (Frey, Borouchaki and George, "3D Delaunay mesh
 // generation coupled with an advancing-front approach", CMAME 157, 1998).
+// The front starts from a first layer: the apex of the regular tetrahedron
+// over each boundary face (the points a frontal mesher would place first),
+// filtered like every candidate; without it the tetrahedra on the boundary
+// faces get their apex from whatever edge point lands nearby.
 #pragma once
 
 #include <cstdint>
@@ -34,6 +38,11 @@ struct RefineOptions {
   /// Candidates closer than this * h to a constrained face are rejected
   /// (the boundary is final: no new point hugs it).
   double boundary_spacing = 0.45;
+  /// Relative tolerance of the size evaluations (VolumeSizeField::eval): 0
+  /// gives exact sizes; t > 0 sizes at most 1 / (1 - t) times too large,
+  /// faster inside tubes whose wall sizes vary (the exact minimum visits
+  /// the whole wall around the point).
+  double size_tolerance = 0;
   /// Seed a first layer: the apex of the regular tetrahedron over each
   /// boundary face (then filtered like every candidate).
   bool first_layer = true;
@@ -43,7 +52,8 @@ struct RefineOptions {
 
 struct RefineStats {
   int64_t vertices_processed = 0;  ///< vertices whose edges were examined
-  int64_t candidates = 0;          ///< points proposed on long edges
+  int64_t candidates = 0;          ///< points proposed (first layer and long edges)
+  int64_t size_evaluations = 0;    ///< size field queries
   int64_t inserted = 0;
   int64_t first_layer = 0;        ///< of which first-layer points
   int64_t rejected_spacing = 0;   ///< too close to a vertex
@@ -52,6 +62,7 @@ struct RefineStats {
   int64_t rejected_kernel = 0;    ///< the kernel refused (blocked, duplicate, hull)
   int generations = 0;            ///< depth of the front (layers of new vertices)
   bool hit_max_points = false;
+  double first_layer_seconds = 0;  ///< checks and first layer (part of seconds)
   double seconds = 0;
 };
 
@@ -64,12 +75,15 @@ struct RefineStats {
 /// model units; e.g. field(x_i) for the boundary vertices). On return the
 /// kernel holds the new vertices (ids from num_vertices() before the call,
 /// in insertion order) and vertex_h their h (exact field values).
+/// h at a candidate: the field's value (VolumeSizeField::eval, within
+/// size_tolerance), searched below the upper bounds that the sizes of the
+/// vertices around it give (h is g-Lipschitz).
 /// Boundary vertices and constrained faces are never touched: every point
 /// is inserted with respect_constraints and at least
 /// boundary_spacing * h from constrained faces of the tetrahedra around it.
 /// Errors: vertex_h size mismatch or bad options; cancelled by progress.
-Status refine_volume(Delaunay3D& kernel, const SizeField3D& field, std::vector<double>& vertex_h,
-                     const RefineOptions& options, RefineStats* stats,
-                     const ProgressFn& progress = {});
+Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
+                     std::vector<double>& vertex_h, const RefineOptions& options,
+                     RefineStats* stats, const ProgressFn& progress = {});
 
 }  // namespace vm

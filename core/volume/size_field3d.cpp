@@ -31,10 +31,10 @@ float round_up(double x) {
 
 }  // namespace
 
-Result<SizeField3D> SizeField3D::build(const std::vector<double>& points,
-                                       const std::vector<double>& sizes,
-                                       const SizeField3DOptions& options) {
-  using R = Result<SizeField3D>;
+Result<VolumeSizeField> VolumeSizeField::build(const std::vector<double>& points,
+                                               const std::vector<double>& sizes,
+                                               const VolumeSizeOptions& options) {
+  using R = Result<VolumeSizeField>;
   // Phase 1: validation.
   if (points.size() % 3 != 0) return R::Error("size field: points not a multiple of 3");
   const size_t n = points.size() / 3;
@@ -50,7 +50,7 @@ Result<SizeField3D> SizeField3D::build(const std::vector<double>& points,
   if (!(options.gradation >= 0) || !std::isfinite(options.gradation))
     return R::Error("size field: gradation must be finite and >= 0");
 
-  SizeField3D f;
+  VolumeSizeField f;
   f.core_ = options.core_size;
   f.g_ = options.gradation;
   f.min_size_ = *std::min_element(sizes.begin(), sizes.end());
@@ -134,8 +134,9 @@ Result<SizeField3D> SizeField3D::build(const std::vector<double>& points,
   return f;
 }
 
-double SizeField3D::eval(const double* x, double upper_bound) const {
+double VolumeSizeField::eval(const double* x, double upper_bound, double rel_tol) const {
   double best = upper_bound;
+  const double keep = 1 - rel_tol;  // nodes that cannot beat keep * best are skipped
   if (core_ > 0) best = std::min(best, core_);
   if (nodes_.empty()) return best;
   const int32_t first_leaf = int32_t(nodes_.size() / 2);
@@ -159,7 +160,7 @@ double SizeField3D::eval(const double* x, double upper_bound) const {
   stack[top++] = {0, lower_bound(nodes_[0])};
   while (top > 0) {
     const Item it = stack[--top];
-    if (it.bound >= best) continue;
+    if (it.bound >= keep * best) continue;
     const Node& nd = nodes_[size_t(it.node)];
     if (it.node >= first_leaf) {
       for (int32_t i = nd.begin; i < nd.end; ++i) {
@@ -177,11 +178,11 @@ double SizeField3D::eval(const double* x, double upper_bound) const {
     const double lb = eb ? INFINITY : lower_bound(nodes_[size_t(b)]);
     // Push the farther first so the nearer is popped next.
     if (la <= lb) {
-      if (lb < best) stack[top++] = {b, lb};
-      if (la < best) stack[top++] = {a, la};
+      if (lb < keep * best) stack[top++] = {b, lb};
+      if (la < keep * best) stack[top++] = {a, la};
     } else {
-      if (la < best) stack[top++] = {a, la};
-      if (lb < best) stack[top++] = {b, lb};
+      if (la < keep * best) stack[top++] = {a, la};
+      if (lb < keep * best) stack[top++] = {b, lb};
     }
   }
   return best;

@@ -25,32 +25,36 @@
 
 namespace vm {
 
-struct SizeField3DOptions {
+struct VolumeSizeOptions {
   /// Core size H (model units): the cap of h. 0: no cap (pure gradation).
   double core_size = 0;
   /// Gradation g >= 0 (dimensionless): growth of h per unit distance.
   double gradation = 0.25;
 };
 
-class SizeField3D {
+class VolumeSizeField {
  public:
-  SizeField3D() = default;
+  VolumeSizeField() = default;
 
   /// points: 3 doubles per boundary vertex; sizes: one per vertex, finite and
   /// > 0 (model units). Errors: size mismatch, no point, non-finite
   /// coordinate, non-positive or non-finite size, negative or non-finite
   /// core size or gradation.
-  static Result<SizeField3D> build(const std::vector<double>& points,
-                                   const std::vector<double>& sizes,
-                                   const SizeField3DOptions& options = {});
+  static Result<VolumeSizeField> build(const std::vector<double>& points,
+                                       const std::vector<double>& sizes,
+                                       const VolumeSizeOptions& options = {});
 
   /// h(x), x 3 doubles.
   double operator()(const double* x) const { return eval(x, kNoBound); }
 
   /// h(x) given any upper_bound >= h(x) (a looser one is fine; infinity
   /// means none). Returns min(upper_bound, h(x)) exactly, i.e. h(x) when the
-  /// bound is valid.
-  double eval(const double* x, double upper_bound) const;
+  /// bound is valid. With rel_tol > 0 (< 1) the search skips what cannot
+  /// beat (1 - rel_tol) times the best value found, and the result r
+  /// satisfies h(x) <= r <= h(x) / (1 - rel_tol) (when the bound is valid):
+  /// inside a tube all the wall is at about the same distance from the
+  /// axis, and the exact minimum must visit all of it.
+  double eval(const double* x, double upper_bound, double rel_tol = 0) const;
 
   double core_size() const { return core_; }
   double gradation() const { return g_; }

@@ -56,10 +56,10 @@ Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& ve
 
   // Phase 2: size field; h at every kernel vertex.
   auto t = clock::now();
-  SizeField3DOptions fo;
+  VolumeSizeOptions fo;
   fo.core_size = options.core_size;
   fo.gradation = options.gradation;
-  auto field = SizeField3D::build(bpts, bsize, fo);
+  auto field = VolumeSizeField::build(bpts, bsize, fo);
   if (!field.ok()) return R::Error("fill volume: " + field.message());
   std::vector<double> vertex_h(n0);
   for (size_t v = 0; v < n0; ++v) vertex_h[v] = field.value()(kernel.point(int32_t(v)));

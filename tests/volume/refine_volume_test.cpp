@@ -15,7 +15,7 @@ namespace {
 
 struct Prepared {
   testing::VolumeInput in;
-  SizeField3D field;
+  VolumeSizeField field;
   std::vector<double> vertex_h;
 };
 
@@ -25,9 +25,9 @@ void prepare(Prepared& p, double gradation) {
     pts.insert(pts.end(), p.in.kernel.point(int32_t(v)), p.in.kernel.point(int32_t(v)) + 3);
     sizes.push_back(p.in.sizes[v]);
   }
-  SizeField3DOptions o;
+  VolumeSizeOptions o;
   o.gradation = gradation;
-  auto f = SizeField3D::build(pts, sizes, o);
+  auto f = VolumeSizeField::build(pts, sizes, o);
   ASSERT_TRUE(f.ok()) << f.message();
   p.field = f.value();
   for (size_t v = 0; v < p.in.kernel.num_vertices(); ++v)

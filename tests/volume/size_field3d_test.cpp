@@ -37,15 +37,15 @@ Sample random_sample(int n, uint32_t seed) {
   return out;
 }
 
-TEST(SizeField3D, MatchesBruteForceExactly) {
+TEST(VolumeSizeField, MatchesBruteForceExactly) {
   for (int n : {1, 7, 9, 100, 2000}) {
     const Sample s = random_sample(n, 11u + uint32_t(n));
     for (double H : {0.0, 0.05, 0.3})
       for (double g : {0.0, 0.1, 0.25, 1.0}) {
-        SizeField3DOptions o;
+        VolumeSizeOptions o;
         o.core_size = H;
         o.gradation = g;
-        auto f = SizeField3D::build(s.pts, s.h, o);
+        auto f = VolumeSizeField::build(s.pts, s.h, o);
         ASSERT_TRUE(f.ok()) << f.message();
         std::mt19937 rng(5);
         std::uniform_real_distribution<double> u(-2, 2);
@@ -64,11 +64,29 @@ TEST(SizeField3D, MatchesBruteForceExactly) {
   }
 }
 
-TEST(SizeField3D, AtBoundaryPointsAndLipschitz) {
+TEST(VolumeSizeField, ToleranceBoundsTheError) {
+  const Sample s = random_sample(3000, 21);
+  VolumeSizeOptions o;
+  o.gradation = 0.1;
+  auto f = VolumeSizeField::build(s.pts, s.h, o);
+  ASSERT_TRUE(f.ok());
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  for (double tol : {0.01, 0.1, 0.3})
+    for (int q = 0; q < 300; ++q) {
+      const double x[3] = {u(rng), u(rng), u(rng)};
+      const double exact = f.value()(x);
+      const double r = f.value().eval(x, VolumeSizeField::kNoBound, tol);
+      EXPECT_GE(r, exact);
+      EXPECT_LE(r, exact / (1 - tol) * (1 + 1e-12));
+    }
+}
+
+TEST(VolumeSizeField, AtBoundaryPointsAndLipschitz) {
   const Sample s = random_sample(500, 3);
-  SizeField3DOptions o;
+  VolumeSizeOptions o;
   o.gradation = 0.2;
-  auto f = SizeField3D::build(s.pts, s.h, o);
+  auto f = VolumeSizeField::build(s.pts, s.h, o);
   ASSERT_TRUE(f.ok());
   for (size_t i = 0; i < s.h.size(); ++i) EXPECT_LE(f.value()(&s.pts[3 * i]), s.h[i]);
   std::mt19937 rng(9);
@@ -80,7 +98,7 @@ TEST(SizeField3D, AtBoundaryPointsAndLipschitz) {
   EXPECT_DOUBLE_EQ(f.value().min_size(), *std::min_element(s.h.begin(), s.h.end()));
 }
 
-TEST(SizeField3D, UniformBoundaryGrowsLinearlyAndIsCapped) {
+TEST(VolumeSizeField, UniformBoundaryGrowsLinearlyAndIsCapped) {
   // Points on the unit sphere, all of size 0.1: inside, h = 0.1 + g (1 -
   // |x|) up to the distance to the nearest sample, capped by H.
   std::vector<double> pts, h;
@@ -89,34 +107,34 @@ TEST(SizeField3D, UniformBoundaryGrowsLinearlyAndIsCapped) {
     pts.insert(pts.end(), {r * std::cos(a), r * std::sin(a), z});
     h.push_back(0.1);
   }
-  SizeField3DOptions o;
+  VolumeSizeOptions o;
   o.gradation = 0.3;
-  auto f = SizeField3D::build(pts, h, o);
+  auto f = VolumeSizeField::build(pts, h, o);
   ASSERT_TRUE(f.ok());
   const double c[3] = {0, 0, 0};
   EXPECT_DOUBLE_EQ(f.value()(c), 0.1 + 0.3 * 1.0);
   o.core_size = 0.25;
-  auto capped = SizeField3D::build(pts, h, o);
+  auto capped = VolumeSizeField::build(pts, h, o);
   ASSERT_TRUE(capped.ok());
   EXPECT_DOUBLE_EQ(capped.value()(c), 0.25);
 }
 
-TEST(SizeField3D, Errors) {
-  SizeField3DOptions o;
-  EXPECT_FALSE(SizeField3D::build({}, {}, o).ok());
-  EXPECT_FALSE(SizeField3D::build({0, 0}, {1}, o).ok());
-  EXPECT_FALSE(SizeField3D::build({0, 0, 0}, {1, 2}, o).ok());
-  EXPECT_FALSE(SizeField3D::build({0, 0, 0}, {0}, o).ok());
-  EXPECT_FALSE(SizeField3D::build({0, 0, 0}, {-1}, o).ok());
-  EXPECT_FALSE(SizeField3D::build({0, NAN, 0}, {1}, o).ok());
-  EXPECT_FALSE(SizeField3D::build({0, 0, 0}, {INFINITY}, o).ok());
+TEST(VolumeSizeField, Errors) {
+  VolumeSizeOptions o;
+  EXPECT_FALSE(VolumeSizeField::build({}, {}, o).ok());
+  EXPECT_FALSE(VolumeSizeField::build({0, 0}, {1}, o).ok());
+  EXPECT_FALSE(VolumeSizeField::build({0, 0, 0}, {1, 2}, o).ok());
+  EXPECT_FALSE(VolumeSizeField::build({0, 0, 0}, {0}, o).ok());
+  EXPECT_FALSE(VolumeSizeField::build({0, 0, 0}, {-1}, o).ok());
+  EXPECT_FALSE(VolumeSizeField::build({0, NAN, 0}, {1}, o).ok());
+  EXPECT_FALSE(VolumeSizeField::build({0, 0, 0}, {INFINITY}, o).ok());
   o.gradation = -0.1;
-  EXPECT_FALSE(SizeField3D::build({0, 0, 0}, {1}, o).ok());
+  EXPECT_FALSE(VolumeSizeField::build({0, 0, 0}, {1}, o).ok());
   o.gradation = 0.2;
   o.core_size = -1;
-  EXPECT_FALSE(SizeField3D::build({0, 0, 0}, {1}, o).ok());
+  EXPECT_FALSE(VolumeSizeField::build({0, 0, 0}, {1}, o).ok());
   o.core_size = NAN;
-  EXPECT_FALSE(SizeField3D::build({0, 0, 0}, {1}, o).ok());
+  EXPECT_FALSE(VolumeSizeField::build({0, 0, 0}, {1}, o).ok());
 }
 
 }  // namespace

@@ -12,6 +12,9 @@
 
 #include "core/mesh/enclosed_volume.h"
 #include "core/quality/tet_quality.h"
+// The pipeline includes the surface stage with the volume stage: their
+// names must not clash (remesh_patch.h has a SizeField3D alias).
+#include "core/surface/remesh_patch.h"
 #include "core/volume/size_field3d.h"
 #include "tests/support/volume_inputs.h"
 
@@ -105,9 +108,9 @@ double median_edge_ratio(const VolumeMesh& m, const testing::VolumeInput& in, si
     pts.insert(pts.end(), &m.points[3 * v], &m.points[3 * v] + 3);
     sizes.push_back(in.sizes[v]);
   }
-  SizeField3DOptions o;
+  VolumeSizeOptions o;
   o.gradation = gradation;
-  auto f = SizeField3D::build(pts, sizes, o);
+  auto f = VolumeSizeField::build(pts, sizes, o);
   EXPECT_TRUE(f.ok());
   std::set<std::pair<int32_t, int32_t>> edges;
   for (size_t t = 0; t < m.num_tets(); ++t)
@@ -242,6 +245,72 @@ TEST(FillVolume, ProgressCancelAndErrors) {
   FillOptions bad_field;
   bad_field.gradation = -1;
   EXPECT_FALSE(fill_volume(e.kernel, e.sizes, bad_field, nullptr).ok());
+}
+
+}  // namespace
+}  // namespace vm
+
+namespace vm {
+namespace {
+
+// Degenerate inputs: no crash, no hang, a valid mesh (or a clear error).
+TEST(FillVolume, DegenerateInputs) {
+  // A single tetrahedron: nothing to insert.
+  {
+    testing::VolumeInput in;
+    ASSERT_TRUE(testing::convex_input({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}, &in));
+    FillStats st;
+    auto r = fill_volume(in.kernel, in.sizes, FillOptions{}, &st);
+    ASSERT_TRUE(r.ok()) << r.message();
+    EXPECT_EQ(r.value().num_tets(), 1u);
+    EXPECT_EQ(r.value().num_vertices(), 4u);
+  }
+  // A thin slab (thickness 1/50 of its surface size): no room for points,
+  // the tetrahedra stay flat but valid.
+  {
+    std::vector<double> pts;
+    for (int i = 0; i <= 10; ++i)
+      for (int j = 0; j <= 10; ++j)
+        for (double z : {0.0, 0.002}) pts.insert(pts.end(), {0.1 * i, 0.1 * j, z});
+    testing::VolumeInput in;
+    ASSERT_TRUE(testing::convex_input(pts, &in));
+    auto r = fill_volume(in.kernel, in.sizes, FillOptions{}, nullptr);
+    ASSERT_TRUE(r.ok()) << r.message();
+    const auto q = tet_qualities(r.value());
+    EXPECT_GT(*std::min_element(q.begin(), q.end()), 0.0f);
+  }
+  // A size far larger than the domain: nothing inserted; far smaller with
+  // a cap on the points: stops at the cap.
+  {
+    testing::VolumeInput in;
+    ASSERT_TRUE(testing::convex_input(testing::cube_surface_points(3), &in));
+    std::vector<double> big(in.sizes.size(), 100.0);
+    FillStats st;
+    ASSERT_TRUE(fill_volume(in.kernel, big, FillOptions{}, &st).ok());
+    EXPECT_EQ(st.inserted_vertices, 0u);
+  }
+  {
+    testing::VolumeInput in;
+    ASSERT_TRUE(testing::convex_input(testing::cube_surface_points(3), &in));
+    std::vector<double> tiny(in.sizes.size(), 1e-3);
+    FillOptions o;
+    o.refine.max_points = 500;
+    FillStats st;
+    auto r = fill_volume(in.kernel, tiny, o, &st);
+    ASSERT_TRUE(r.ok()) << r.message();
+    EXPECT_TRUE(st.refine.hit_max_points);
+    EXPECT_LE(st.refine.inserted, 500 + 64);
+    const auto q = tet_qualities(r.value());
+    EXPECT_GT(*std::min_element(q.begin(), q.end()), 0.0f);
+  }
+  // Non-finite size.
+  {
+    testing::VolumeInput in;
+    ASSERT_TRUE(testing::convex_input(testing::cube_surface_points(3), &in));
+    std::vector<double> bad = in.sizes;
+    bad[3] = NAN;
+    EXPECT_FALSE(fill_volume(in.kernel, bad, FillOptions{}, nullptr).ok());
+  }
 }
 
 }  // namespace
