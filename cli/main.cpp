@@ -8,6 +8,7 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/io/stl.h"
@@ -205,7 +206,8 @@ int cmd_mesh(int argc, char** argv) {
   std::vector<std::string> valued = {"-o", "--output", "--report"};
   for (std::string_view name : vm::job_option_names()) valued.push_back("--" + std::string(name));
   Args a = parse(argc, argv, 2, valued,
-                 {"--largest-component", "--quiet", "--surface-only", "--no-remesh", "--verify"});
+                 {"--largest-component", "--quiet", "--surface-only", "--no-remesh", "--verify",
+                  "--tag-layer"});
   if (!a.error.empty()) return usage_error(a.error);
   if (a.positional.size() != 1) return usage_error("mesh needs exactly one FILE.stl");
   auto out = a.get("-o") ? a.get("-o") : a.get("--output");
@@ -223,6 +225,7 @@ int cmd_mesh(int argc, char** argv) {
   options.remesh = !a.has("--no-remesh");
   options.volume = !a.has("--surface-only");
   options.verify = a.has("--verify");
+  options.tag_layer = a.has("--tag-layer");
   std::string err;
   auto bytes = read_file(a.positional[0], err);
   if (!bytes) return fail(err);
@@ -245,11 +248,21 @@ int cmd_mesh(int argc, char** argv) {
     if (!res.volume.tets.empty()) {
       const vm::VolumeStats& vs = res.volume_stats;
       std::printf(
-          "volume: %zu vertices, %zu tetrahedra, gamma_t min %.4f mean %.4f; %zu Steiner points; "
-          "time: caps %.2f s, recovery %.2f s, refinement %.2f s, check %.2f s\n",
-          res.volume.num_vertices(), res.volume.num_tets(), res.tet_quality_stats.min,
-          res.tet_quality_stats.mean, vs.steiner_points, vs.seconds_caps, vs.seconds_recovery,
-          vs.seconds_refinement, vs.seconds_check);
+          "volume: %zu vertices, %zu tetrahedra, core gamma_t min %.4f mean %.4f; %zu Steiner "
+          "points; time: layers %.2f s, caps %.2f s, recovery %.2f s, refinement %.2f s, check "
+          "%.2f s\n",
+          res.volume.num_vertices(), res.volume.num_tets(), res.core_quality_stats.min,
+          res.core_quality_stats.mean, vs.steiner_points, vs.seconds_layers, vs.seconds_caps,
+          vs.seconds_recovery, vs.seconds_refinement, vs.seconds_check);
+      for (const auto& [name, ls, layers] :
+           {std::tuple{"boundary layer", &vs.boundary_layer, vs.viscous_layers},
+            std::tuple{"vessel wall", &vs.vessel_wall, vs.wall_layers}})
+        if (layers > 0)
+          std::printf(
+              "%s: %d layers, thickness reduced on %.1f%% of the wall (min factor %.2f), "
+              "within 10%% of the request on %.1f%%\n",
+              name, layers, 100 * ls->reduced_area_fraction, ls->min_factor,
+              100 * ls->thickness_within_10pct);
     }
     if (res.remeshed) {
       const vm::RemeshStats& st = res.remesh_stats;

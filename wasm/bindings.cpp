@@ -108,6 +108,7 @@ val mesh(val stl, val opts, val progress) {
   options.largest_component_only = opts["largestComponentOnly"].as<bool>();
   options.remesh = opts["remesh"].as<bool>();
   options.volume = !opts["surfaceOnly"].as<bool>();
+  options.tag_layer = opts["tagLayer"].as<bool>();
   std::vector<uint8_t> bytes = bytes_from(stl);
   auto result = vm::run_mesh_job(bytes, options, progress_from(progress));
   if (!result.ok()) return error(result.message());

@@ -24,8 +24,11 @@ Status need(std::string_view name, std::string_view what) {
 
 const std::vector<std::string_view>& job_option_names() {
   static const std::vector<std::string_view> names = {
-      "size",  "per-circumference", "size-min",    "size-max",      "gradation", "curvature",
-      "param", "mesher2d",          "msh-version", "feature-angle", "inlet",     "core-size"};
+      "size",           "per-circumference", "size-min",    "size-max",
+      "gradation",      "curvature",         "param",       "mesher2d",
+      "msh-version",    "feature-angle",     "inlet",       "core-size",
+      "layers",         "layer-thickness",   "first-layer", "growth",
+      "wall-thickness", "wall-layers"};
   return names;
 }
 
@@ -60,6 +63,22 @@ Status set_job_option(MeshJobOptions& o, std::string_view name, std::string_view
   } else if (name == "core-size") {
     if (!number || x < 0) return need(name, "a length >= 0 (0: grow from the wall size)");
     o.core_size = x;
+  } else if (name == "layers" || name == "wall-layers") {
+    if (!number || x < 0 || x > 100 || x != std::floor(x))
+      return need(name, "a number of layers from 0 (none) to 100");
+    (name == "layers" ? o.viscous : o.vessel).layers = int(x);
+  } else if (name == "layer-thickness" || name == "wall-thickness") {
+    if (!number || x <= 0 || x >= 1)
+      return need(name, "a fraction of the local vessel radius in (0, 1)");
+    LayerSpec& spec = name == "layer-thickness" ? o.viscous : o.vessel;
+    spec.thickness_fraction = x;
+    if (name == "wall-thickness" && spec.layers == 0) spec.layers = 4;
+  } else if (name == "first-layer") {
+    if (!number || x <= 0) return need(name, "a positive height (model units)");
+    o.viscous.first_height = x;
+  } else if (name == "growth") {
+    if (!number || x < 1 || x > 3) return need(name, "a growth ratio from 1 to 3");
+    o.viscous.growth = x;
   } else if (name == "feature-angle") {
     if (!number || x <= 0 || x > 180)
       return need(name, "an angle in degrees in (0, 180] (180: no sharp features)");

@@ -6,7 +6,11 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
+#include "core/layers/chord_radius.h"
+#include "core/layers/extrude_layers.h"
+#include "core/layers/layered_volume.h"
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/surface_distance.h"
 #include "core/mesh/volume_check.h"
@@ -41,26 +45,31 @@ std::vector<double> mean_edge_lengths(const SurfaceMesh& m) {
   return sum;
 }
 
-/// The cap that becomes the inlet: the output opening nearest to the
-/// input's opening `inlet` (input openings are listed largest first, like
-/// the caps).
-Result<int> inlet_cap(const MeshJobResult& r, int inlet) {
+/// Caps on the openings of `surface` with the inlet at the input's opening
+/// `inlet` (input openings are listed largest first): capped once with the
+/// largest as inlet, then again naming the cap nearest that opening.
+Result<CappedSurface> cap_with_inlet(const MeshJobResult& r, const SurfaceMesh& surface,
+                                     const std::vector<double>& sizes, int inlet) {
+  using R = Result<CappedSurface>;
+  auto capped = cap_openings(surface, sizes);
+  if (!capped.ok() || capped.value().caps.empty()) return capped;
   const auto& in = r.surface.topology.openings;
-  const TopologyReport out = analyze_topology(r.output_surface);
-  if (out.openings.empty()) return 0;
   if (inlet < 0 || size_t(inlet) >= in.size())
-    return Result<int>::Error("--inlet must be between 1 and the number of openings (" +
-                              std::to_string(in.size()) + ")");
+    return R::Error("--inlet must be between 1 and the number of openings (" +
+                    std::to_string(in.size()) + ")");
   const auto& c = in[size_t(inlet)].centroid;
   int best = 0;
   double best_d2 = 1e300;
-  for (size_t i = 0; i < out.openings.size(); ++i) {
-    const auto& o = out.openings[i].centroid;
+  for (size_t i = 0; i < capped.value().caps.size(); ++i) {
+    const auto& o = capped.value().caps[i].centroid;
     const double d2 = (o[0] - c[0]) * (o[0] - c[0]) + (o[1] - c[1]) * (o[1] - c[1]) +
                       (o[2] - c[2]) * (o[2] - c[2]);
     if (d2 < best_d2) best_d2 = d2, best = int(i);
   }
-  return best;
+  if (best == 0) return capped;
+  CapOptions co;
+  co.inlet_index = best;
+  return cap_openings(surface, sizes, co);
 }
 
 /// Stages 4 and 6: caps on the openings, then the tetrahedra of the lumen;
@@ -69,21 +78,44 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
                    const std::vector<double>& wall_sizes, const ProgressFn& progress) {
   VolumeStats& st = r.volume_stats;
   auto t0 = std::chrono::steady_clock::now();
-  if (!report_progress(progress, 0.9, "caps")) return Status::Error(kCancelledMessage);
-  auto inlet = inlet_cap(r, options.inlet);
-  if (!inlet.ok()) return inlet.status();
-  CapOptions co;
-  co.inlet_index = inlet.value();
-  auto capped = cap_openings(r.output_surface, wall_sizes, co);
+  // Stage 5: boundary layers, inward (viscous) and outward (vessel wall),
+  // thickness relative to the local radius (half the lumen chord).
+  std::optional<LayerMesh> inner, outer;
+  if (options.viscous.layers > 0 || options.vessel.layers > 0) {
+    if (!report_progress(progress, 0.9, "boundary layers")) return Status::Error(kCancelledMessage);
+    const std::vector<double> radius = chord_radius(r.output_surface);
+    for (bool out : {false, true}) {
+      LayerSpec spec = out ? options.vessel : options.viscous;
+      if (spec.layers <= 0) continue;
+      spec.outward = out;
+      LayerStats ls;
+      auto layer = extrude_layers(r.output_surface, radius, spec, &ls);
+      if (!layer.ok())
+        return Status::Error(std::string(out ? "vessel wall" : "boundary layer") + ": " +
+                             layer.message() + " (a wall too irregular for layers: remesh it, or " +
+                             (out ? "drop --wall-thickness)" : "use --layers 0)"));
+      (out ? outer : inner) = std::move(layer).value();
+      (out ? st.vessel_wall : st.boundary_layer) = ls;
+      (out ? st.wall_layers : st.viscous_layers) = spec.layers;
+    }
+  }
+  st.seconds_layers = seconds_since(t0);
+
+  // Stage 4: caps on the core's boundary (the viscous layer's front, else
+  // the wall with its rims on their planes).
+  t0 = std::chrono::steady_clock::now();
+  if (!report_progress(progress, 0.91, "caps")) return Status::Error(kCancelledMessage);
+  SurfaceMesh core_surface = inner ? front_surface(*inner) : r.output_surface;
+  if (!inner && outer)
+    std::copy(outer->points.begin(), outer->points.begin() + long(core_surface.points.size()),
+              core_surface.points.begin());
+  auto capped = cap_with_inlet(r, core_surface, wall_sizes, options.inlet);
   if (!capped.ok()) return capped.status();
   r.capped = std::move(capped).value();
-  r.surface_names = {"wall"};
-  for (const CapInfo& c : r.capped.caps) {
-    r.surface_names.push_back(c.name);
+  for (const CapInfo& c : r.capped.caps)
     if (c.max_projection_distance > 0.2 * c.perimeter / (2 * std::numbers::pi))
       r.warnings.push_back("opening " + c.name + " is far from planar: its rim moved up to " +
                            std::to_string(c.max_projection_distance) + " onto the cap plane");
-  }
   st.seconds_caps = seconds_since(t0);
 
   t0 = std::chrono::steady_clock::now();
@@ -127,12 +159,22 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   if (fs.unused_vertices != 0)
     return Status::Error("internal error: a surface vertex is not in the volume");
   st.inserted_points = fs.inserted_vertices;
-  r.volume = std::move(filled).value();
-  r.volume.triangles = std::move(rec.mesh.triangles);
-  r.volume.triangle_tag = std::move(rec.mesh.triangle_tag);
   st.seconds_refinement = seconds_since(t0);
   st.seconds_fill_refine = fs.refine_seconds;
   st.seconds_fill_optimize = fs.optimize_seconds;
+
+  // The layers and the core in one mesh, named.
+  t0 = std::chrono::steady_clock::now();
+  auto assembled = assemble_layered_volume(inner ? &*inner : nullptr, outer ? &*outer : nullptr,
+                                           r.capped, rec, filled.value(), options.tag_layer);
+  if (!assembled.ok()) return Status::Error("volume meshing failed: " + assembled.message());
+  r.volume = std::move(assembled.value().mesh);
+  r.surface_names = std::move(assembled.value().surface_names);
+  r.region_names = std::move(assembled.value().region_names);
+  st.front_steiner_points = assembled.value().front_steiner_points;
+  const size_t core_first = assembled.value().core_first;
+  const size_t core_count = assembled.value().core_count;
+  st.seconds_assembly = seconds_since(t0);
 
   // Never write an inverted element; with verify, also check conformity and
   // the boundary (correct by construction, and slower).
@@ -143,6 +185,10 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   st.seconds_check = seconds_since(t0);
   r.tet_quality = tet_qualities(r.volume);
   r.tet_quality_stats = quality_stats(r.tet_quality, options.prepare.histogram_bins);
+  r.core_quality_stats =
+      quality_stats(std::vector<float>(r.tet_quality.begin() + long(core_first),
+                                       r.tet_quality.begin() + long(core_first + core_count)),
+                    options.prepare.histogram_bins);
   return Status::Ok();
 }
 
@@ -152,6 +198,7 @@ MshModel volume_model(const MeshJobResult& r) {
   MshModel model;
   model.points = r.volume.points;
   for (size_t tag = 0; tag < r.surface_names.size(); ++tag) {
+    if (r.surface_names[tag].empty()) continue;
     MshBlock b{MshElementType::kTriangle, int(tag) + 1, int(tag) + 1, {}};
     for (size_t t = 0; t < r.volume.num_triangles(); ++t)
       if (r.volume.triangle_tag[t] == int32_t(tag))
@@ -159,8 +206,15 @@ MshModel volume_model(const MeshJobResult& r) {
     model.physicals.push_back({2, int(tag) + 1, r.surface_names[tag]});
     model.blocks.push_back(std::move(b));
   }
-  model.physicals.push_back({3, 1, "lumen"});
-  model.blocks.push_back({MshElementType::kTetrahedron, 1, 1, r.volume.tets});
+  for (size_t region = 0; region < r.region_names.size(); ++region) {
+    if (r.region_names[region].empty()) continue;
+    MshBlock b{MshElementType::kTetrahedron, int(region) + 1, int(region) + 1, {}};
+    for (size_t t = 0; t < r.volume.num_tets(); ++t)
+      if (r.volume.tet_region[t] == int32_t(region))
+        b.nodes.insert(b.nodes.end(), &r.volume.tets[4 * t], &r.volume.tets[4 * t] + 4);
+    model.physicals.push_back({3, int(region) + 1, r.region_names[region]});
+    model.blocks.push_back(std::move(b));
+  }
   return model;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/io/msh_writer.h"
+#include "core/layers/layer_mesh.h"
 #include "core/mesh/volume_mesh.h"
 #include "core/pipeline/prepare_surface.h"
 #include "core/surface/caps.h"
@@ -17,6 +18,15 @@
 #include "core/util/result.h"
 
 namespace vm {
+
+/// The vessel wall's default spec: 0.1 R in 4 layers, off (layers = 0)
+/// until a thickness is asked for.
+inline LayerSpec no_vessel_wall() {
+  LayerSpec s;
+  s.layers = 0;
+  s.thickness_fraction = 0.1;
+  return s;
+}
 
 struct MeshJobOptions {
   PrepareOptions prepare;
@@ -37,6 +47,14 @@ struct MeshJobOptions {
   /// the uniform size in uniform mode, else grown from the wall's size by
   /// the gradation.
   double core_size = 0;
+  /// Boundary layers (seed 2.2): the viscous layer grown inward from the
+  /// wall (layers = 0: none) and the vessel wall grown outward (layers = 0,
+  /// the default: none); `outward` is set by the job. Defaults: 4 layers of
+  /// 0.2 R in all inward; for the wall, 4 layers of 0.1 R when asked.
+  LayerSpec viscous;
+  LayerSpec vessel = no_vessel_wall();
+  /// The viscous layer as its own volume `boundary_layer` (else in `lumen`).
+  bool tag_layer = false;
   /// Check the volume mesh fully before writing it (conformity, boundary =
   /// surface triangles), not only that no element is inverted.
   bool verify = false;
@@ -44,9 +62,13 @@ struct MeshJobOptions {
 
 /// Counts and timings of the volume stages.
 struct VolumeStats {
-  size_t steiner_points = 0;   ///< added on the surface by boundary recovery
-  size_t inserted_points = 0;  ///< added inside by refinement
-  double seconds_caps = 0, seconds_recovery = 0, seconds_refinement = 0, seconds_check = 0;
+  LayerStats boundary_layer, vessel_wall;   ///< when grown
+  int viscous_layers = 0, wall_layers = 0;  ///< layers grown (0: none)
+  size_t front_steiner_points = 0;          ///< recovery's points on the layer front
+  size_t steiner_points = 0;                ///< added on the surface by boundary recovery
+  size_t inserted_points = 0;               ///< added inside by refinement
+  double seconds_layers = 0, seconds_caps = 0, seconds_recovery = 0, seconds_refinement = 0,
+         seconds_assembly = 0, seconds_check = 0;
   /// Parts of seconds_refinement: point insertion, and the optimization.
   double seconds_fill_refine = 0, seconds_fill_optimize = 0;
 };
@@ -88,9 +110,13 @@ struct MeshJobResult {
   /// written, with one tag per triangle: 0 wall, i inlet/outlets as caps).
   CappedSurface capped;
   VolumeMesh volume;
-  std::vector<std::string> surface_names;  ///< per triangle tag
+  std::vector<std::string> surface_names;  ///< per triangle tag ("" = unused tag)
+  std::vector<std::string> region_names;   ///< per tet region ("" = unused region)
   std::vector<float> tet_quality;          ///< gamma_t per tetrahedron
-  QualityStats tet_quality_stats;
+  QualityStats tet_quality_stats;          ///< of all the tetrahedra
+  /// Of the core's tetrahedra only (the isotropic part; layer elements are
+  /// flat by design).
+  QualityStats core_quality_stats;
   VolumeStats volume_stats;
   std::vector<std::string> warnings;
   double seconds_total = 0;

@@ -1,5 +1,7 @@
 #include "core/pipeline/report_json.h"
 
+#include <tuple>
+
 #include "core/util/json_writer.h"
 
 namespace vm {
@@ -141,12 +143,30 @@ std::string mesh_report_json(const MeshJobResult& r) {
     j.key("inserted_points").value(vs.inserted_points);
     j.key("quality");
     write_quality(j, r.tet_quality_stats);
+    j.key("core_quality");
+    write_quality(j, r.core_quality_stats);
+    for (const auto& [name, ls, layers] :
+         {std::tuple{"boundary_layer", &vs.boundary_layer, vs.viscous_layers},
+          std::tuple{"vessel_wall", &vs.vessel_wall, vs.wall_layers}}) {
+      if (layers <= 0) continue;
+      j.key(name).begin_object();
+      j.key("layers").value(layers);
+      j.key("reduced_area_fraction").value(ls->reduced_area_fraction);
+      j.key("min_factor").value(ls->min_factor);
+      j.key("mean_factor").value(ls->mean_factor);
+      j.key("thickness_within_10pct").value(ls->thickness_within_10pct);
+      j.key("front_quality_min").value(ls->front_quality_min);
+      j.key("seconds").value(ls->seconds_total);
+      j.end_object();
+    }
     j.key("seconds").begin_object();
+    j.key("layers").value(vs.seconds_layers);
     j.key("caps").value(vs.seconds_caps);
     j.key("recovery").value(vs.seconds_recovery);
     j.key("refinement").value(vs.seconds_refinement);
     j.key("insertion").value(vs.seconds_fill_refine);
     j.key("optimization").value(vs.seconds_fill_optimize);
+    j.key("assembly").value(vs.seconds_assembly);
     j.key("check").value(vs.seconds_check);
     j.end_object();
     j.end_object();

@@ -58,7 +58,7 @@ check "mesh min > max" expect_exit 1 "at most --size-max" "$VM" mesh "$T/bif.stl
 check "mesh surface-only uniform" expect_exit 0 "remeshed:" "$VM" mesh "$T/bif.stl" -o "$T/u.msh" --surface-only --size 0.2 --param floater --mesher2d delaunay --report "$T/u.json"
 check "mesh bad inlet" expect_exit 1 "--inlet must be between 1 and the number of openings (3)" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --inlet 7
 check "mesh inlet not a number" expect_exit 2 "--inlet needs an opening number" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --inlet first
-check "mesh no-remesh" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/n.msh" --no-remesh
+check "mesh no-remesh" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/n.msh" --no-remesh --layers 0
 check "mesh unwritable output" expect_exit 1 "cannot write" "$VM" mesh "$T/bif.stl" -o "$T/no/such/dir/x.msh"
 
 # Two components: refused, then accepted with --largest-component.

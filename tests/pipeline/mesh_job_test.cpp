@@ -145,8 +145,11 @@ TEST(MeshJob, MeshesTheLumenWithNamedPlanarCaps) {
   EXPECT_EQ(names, (std::vector<std::string>{"wall", "inlet", "outlet_1", "outlet_2", "lumen"}));
   auto check = check_volume_mesh(res.volume);
   ASSERT_TRUE(check.ok()) << check.message();
-  EXPECT_NEAR(check.value().volume, enclosed_volume(res.capped.mesh),
-              1e-9 * enclosed_volume(res.capped.mesh));
+  // The lumen (layer + core) fills the wall closed by planar caps.
+  auto lumen = cap_openings(res.output_surface, {});
+  ASSERT_TRUE(lumen.ok()) << lumen.message();
+  const double expected = enclosed_volume(lumen.value().mesh);
+  EXPECT_NEAR(check.value().volume, expected, 1e-9 * expected);
   EXPECT_GT(res.tet_quality_stats.min, 0.0);
   // The inlet is the largest opening; caps are planar.
   ASSERT_EQ(res.capped.caps.size(), 3u);
