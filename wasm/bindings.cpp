@@ -72,6 +72,7 @@ void set_volume(val& r, const vm::MeshJobResult& res) {
         copy_out(reinterpret_cast<const uint32_t*>(m.tets.data()), m.tets.size(), "Uint32Array"));
   v.set("tetQuality", copy_out(res.tet_quality.data(), res.tet_quality.size(), "Float32Array"));
   v.set("tetRegion", copy_out(m.tet_region.data(), m.tet_region.size(), "Int32Array"));
+  v.set("tetPart", copy_out(res.tet_part.data(), res.tet_part.size(), "Uint8Array"));
   v.set("triangles", copy_out(reinterpret_cast<const uint32_t*>(m.triangles.data()),
                               m.triangles.size(), "Uint32Array"));
   v.set("triangleTag", copy_out(m.triangle_tag.data(), m.triangle_tag.size(), "Int32Array"));
@@ -79,7 +80,7 @@ void set_volume(val& r, const vm::MeshJobResult& res) {
   for (const std::string& n : res.surface_names) names.call<void>("push", n);
   v.set("surfaceNames", names);
   val regions = val::array();
-  regions.call<void>("push", std::string("lumen"));
+  for (const std::string& n : res.region_names) regions.call<void>("push", n);
   v.set("regionNames", regions);
   r.set("volume", v);
 }

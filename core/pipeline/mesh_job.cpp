@@ -174,6 +174,10 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   st.front_steiner_points = assembled.value().front_steiner_points;
   const size_t core_first = assembled.value().core_first;
   const size_t core_count = assembled.value().core_count;
+  // Layer tets come before the core's, the vessel wall's after.
+  r.tet_part.assign(r.volume.num_tets(), 0);
+  std::fill(r.tet_part.begin(), r.tet_part.begin() + long(core_first), uint8_t(1));
+  std::fill(r.tet_part.begin() + long(core_first + core_count), r.tet_part.end(), uint8_t(2));
   st.seconds_assembly = seconds_since(t0);
 
   // Never write an inverted element; with verify, also check conformity and

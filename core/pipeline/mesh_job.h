@@ -117,6 +117,9 @@ struct MeshJobResult {
   /// Of the core's tetrahedra only (the isotropic part; layer elements are
   /// flat by design).
   QualityStats core_quality_stats;
+  /// Per tetrahedron, the part it belongs to whatever the groups: 0 the
+  /// core, 1 the viscous layer, 2 the vessel wall.
+  std::vector<uint8_t> tet_part;
   VolumeStats volume_stats;
   std::vector<std::string> warnings;
   double seconds_total = 0;

@@ -44,6 +44,12 @@ const MESH_OPTIONS = {
   featureAngle: 'feature-angle',
   inlet: 'inlet',
   coreSize: 'core-size',
+  layers: 'layers',
+  layerThickness: 'layer-thickness',
+  firstLayer: 'first-layer',
+  growth: 'growth',
+  wallThickness: 'wall-thickness',
+  wallLayers: 'wall-layers',
 };
 /** Core flag -> JS option, for error messages (the core speaks CLI). */
 const JS_NAMES = {
@@ -51,6 +57,7 @@ const JS_NAMES = {
   'msh-version': 'mshVersion',
   'largest-component': 'largestComponentOnly',
   'surface-only': 'surfaceOnly',
+  'tag-layer': 'tagLayer',
 };
 
 /** A core error message in the JS API's words. */
@@ -97,7 +104,12 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * tetQuality (gamma_t), tetRegion, triangles, triangleTag, surfaceNames
      * (per tag: 'wall', 'inlet', 'outlet_1'...), regionNames }. `inlet`
      * (1-based, the analysis' opening order) picks the inlet; `coreSize`
-     * caps the size in the core.
+     * caps the size in the core. Boundary layers: `layers` (default 4, 0:
+     * none), `layerThickness` (fraction of the local radius, default 0.2)
+     * or `firstLayer` (height) with `growth`; the vessel wall:
+     * `wallThickness` (fraction of R, e.g. 0.1), `wallLayers` (default 4);
+     * `tagLayer` makes the viscous layer its own region `boundary_layer`.
+     * volume.tetPart tells each tet's part: 0 core, 1 viscous layer, 2 wall.
      * Size: `size` (uniform h) or `perCircumference` (h = 2 pi R / N, the
      * default with N = 20), clamps `sizeMin` / `sizeMax`, `gradation`,
      * `curvature`, `featureAngle` (degrees; sharper creases are kept, 180:
@@ -114,6 +126,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
         largestComponentOnly = false,
         remesh = true,
         surfaceOnly = false,
+        tagLayer = false,
         onProgress,
         ...rest
       } = {},
@@ -127,10 +140,17 @@ export async function createVesselmesh({ wasmBinary } = {}) {
         ['largestComponentOnly', largestComponentOnly],
         ['remesh', remesh],
         ['surfaceOnly', surfaceOnly],
+        ['tagLayer', tagLayer],
       ]) {
         if (typeof value !== 'boolean') return fail(`mesh: ${name} must be true or false`);
       }
-      const options = { 'msh-version': mshVersion, largestComponentOnly, remesh, surfaceOnly };
+      const options = {
+        'msh-version': mshVersion,
+        largestComponentOnly,
+        remesh,
+        surfaceOnly,
+        tagLayer,
+      };
       for (const [name, value] of Object.entries(rest)) {
         const coreName = MESH_OPTIONS[name];
         if (!coreName) return fail(`mesh: unknown option '${name}'`);
