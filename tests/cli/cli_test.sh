@@ -59,6 +59,10 @@ check "mesh surface-only uniform" expect_exit 0 "remeshed:" "$VM" mesh "$T/bif.s
 check "mesh bad inlet" expect_exit 1 "--inlet must be between 1 and the number of openings (3)" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --inlet 7
 check "mesh inlet not a number" expect_exit 2 "--inlet needs an opening number" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --inlet first
 check "mesh no-remesh" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/n.msh" --no-remesh --layers 0
+check "mesh with vessel wall" expect_exit 0 "vessel wall: 4 layers" "$VM" mesh "$T/bif.stl" -o "$T/w.msh" --size 0.25 --wall-thickness 0.1 --tag-layer --report "$T/w.json"
+check "vessel wall groups" [ "$(json "$T/w.json" "','.join(g['name'] for g in d['output']['groups'])")" = "wall,inlet,outlet_1,outlet_2,outer_wall,wall_inlet,wall_outlet_1,wall_outlet_2,lumen,boundary_layer,vessel_wall" ]
+check "mesh bad layers" expect_exit 2 "--layers needs a number of layers" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --layers -2
+check "mesh bad wall thickness" expect_exit 2 "--wall-thickness needs a fraction" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --wall-thickness 1.5
 check "mesh unwritable output" expect_exit 1 "cannot write" "$VM" mesh "$T/bif.stl" -o "$T/no/such/dir/x.msh"
 
 # Two components: refused, then accepted with --largest-component.

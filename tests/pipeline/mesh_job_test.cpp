@@ -181,6 +181,74 @@ TEST(MeshJob, MeshesTheLumenWithNamedPlanarCaps) {
   EXPECT_NE(r4.message().find("--inlet"), std::string::npos) << r4.message();
 }
 
+TEST(MeshJob, GrowsTheViscousLayerAndTheVesselWall) {
+  // The bifurcation phantom with 4 viscous layers (default) and a vessel
+  // wall of 0.1 R in 2 layers: named groups, a conforming mesh whose lumen
+  // fills the capped wall, every layer present, ring caps in the cap planes.
+  PhantomOptions po;
+  po.kind = PhantomKind::kBifurcation;
+  auto phantom = make_vessel_phantom(po);
+  ASSERT_TRUE(phantom.ok()) << phantom.message();
+  MeshJobOptions o;
+  ASSERT_TRUE(set_job_option(o, "size", "0.2").ok());
+  ASSERT_TRUE(set_job_option(o, "wall-thickness", "0.1").ok());
+  ASSERT_TRUE(set_job_option(o, "wall-layers", "2").ok());
+  o.tag_layer = true;
+  o.verify = true;
+  auto r = run_mesh_job(write_stl_binary(phantom.value()), o);
+  ASSERT_TRUE(r.ok()) << r.message();
+  const MeshJobResult& res = r.value();
+  std::vector<std::string> names;
+  for (const OutputGroup& g : res.groups) {
+    names.push_back(g.name);
+    EXPECT_GT(g.elements, 0u) << g.name;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"wall", "inlet", "outlet_1", "outlet_2", "outer_wall",
+                                             "wall_inlet", "wall_outlet_1", "wall_outlet_2",
+                                             "lumen", "boundary_layer", "vessel_wall"}));
+  // Layer tets: 3 per prism, 4 viscous and 2 wall layers over every wall
+  // triangle (the front may have a few more triangles from Steiner points).
+  const size_t nt = res.output_surface.num_triangles();
+  size_t part[3] = {0, 0, 0};
+  for (uint8_t p : res.tet_part) ++part[p];
+  EXPECT_GE(part[1], 3 * 4 * nt);
+  EXPECT_GE(part[2], 3 * 2 * nt);
+  EXPECT_GT(part[0], 0u);
+  EXPECT_GE(res.volume_stats.boundary_layer.thickness_within_10pct, 0.95);
+  EXPECT_GE(res.volume_stats.vessel_wall.thickness_within_10pct, 0.95);
+  EXPECT_GE(res.core_quality_stats.min, 0.2);
+  // Volumes: lumen + layer = the capped wall's; the vessel wall outside it.
+  double lumen = 0, shell = 0;
+  for (size_t t = 0; t < res.volume.num_tets(); ++t) {
+    const int32_t* v = &res.volume.tets[4 * t];
+    const double v6 = tet_volume6(&res.volume.points[3 * size_t(v[0])],
+                                  &res.volume.points[3 * size_t(v[1])],
+                                  &res.volume.points[3 * size_t(v[2])],
+                                  &res.volume.points[3 * size_t(v[3])]);
+    (res.tet_part[t] == 2 ? shell : lumen) += v6 / 6;
+  }
+  auto capped = cap_openings(res.output_surface, {});
+  ASSERT_TRUE(capped.ok());
+  const double expected = enclosed_volume(capped.value().mesh);
+  EXPECT_NEAR(lumen, expected, 1e-9 * expected);
+  EXPECT_GT(shell, 0.1 * expected);  // a wall of 0.1 R around a tube of R: ~21% of the lumen
+  EXPECT_LT(shell, 0.4 * expected);
+  // Without layers: no layer part, and --layers 0 is accepted.
+  ASSERT_TRUE(set_job_option(o, "layers", "0").ok());
+  ASSERT_TRUE(set_job_option(o, "wall-layers", "0").ok());
+  auto plain = run_mesh_job(write_stl_binary(phantom.value()), o);
+  ASSERT_TRUE(plain.ok()) << plain.message();
+  for (uint8_t p : plain.value().tet_part) ASSERT_EQ(p, 0);
+  // Bad values are refused with the option's name.
+  for (const auto& [name, value] : std::vector<std::pair<std::string, std::string>>{
+           {"layers", "-1"}, {"layers", "1.5"}, {"layer-thickness", "1"}, {"growth", "0.5"},
+           {"wall-thickness", "0"}, {"first-layer", "-0.1"}}) {
+    const Status st = set_job_option(o, name, value);
+    EXPECT_FALSE(st.ok()) << name << " " << value;
+    EXPECT_NE(st.message().find("--" + name), std::string::npos) << st.message();
+  }
+}
+
 TEST(MeshJob, NonManifoldIsRefusedWithALocation) {
   SurfaceMesh m = testing::tetrahedron();
   m.points.insert(m.points.end(), {0.5, -1, 0.5});
