@@ -30,13 +30,15 @@ usage:
       Read, weld and analyze a lumen surface: counts, openings, genus,
       non-manifold edges, triangle quality gamma_k.
   vesselmesh mesh FILE.stl -o OUT.msh [--surface-only] [size options]
-                  [--inlet K] [--core-size H]
+                  [--inlet K] [--core-size H] [layer options]
                   [--param lscm|harmonic|floater] [--mesher2d frontal|delaunay|adapt]
                   [--msh-version 4.1|2.2] [--largest-component] [--report FILE.json]
                   [--no-remesh] [--verify]
-      Remesh the surface by conformal maps, cap each opening with a planar
-      triangulation, fill the lumen with tetrahedra and write Gmsh MSH:
-      surfaces `wall`, `inlet`, `outlet_1..k`, volume `lumen`.
+      Remesh the surface by conformal maps, grow a boundary layer inward,
+      cap each opening with a planar triangulation, fill the lumen with
+      tetrahedra and write Gmsh MSH: surfaces `wall`, `inlet`, `outlet_1..k`,
+      volume `lumen` (and with a vessel wall: `outer_wall`, `wall_inlet`,
+      `wall_outlet_k`, volume `vessel_wall`).
       --surface-only writes the remeshed wall alone; --no-remesh uses the
       repaired input surface as it is. --inlet K names opening K (as
       `info` lists them, largest first) `inlet` instead of the largest.
@@ -52,7 +54,17 @@ usage:
         --feature-angle A        keep creases sharper than A degrees (default 60;
                                  180: none)
         --core-size H            target size in the core of the lumen (default:
-                                 grown from the wall size by the gradation)
+                                 the uniform size, or grown from the wall's)
+      Layer options (R = the local vessel radius):
+        --layers N               viscous layers grown inward (default 4; 0: none)
+        --layer-thickness F      their total thickness F R (default 0.2)
+        --first-layer H1         or: first layer height H1, then x --growth G
+        --growth G               height ratio of consecutive layers (default 1)
+        --wall-thickness F       grow the vessel wall outward, F R thick (e.g. 0.1)
+        --wall-layers N          its layers (default 4 with --wall-thickness)
+        --tag-layer              the viscous layer as its own volume boundary_layer
+        --prisms                 keep the layers' prisms (MSH type 6, quads at the
+                                 openings) instead of 3 tetrahedra each
   vesselmesh phantom OUT.stl [--kind bifurcation|tube|aneurysm|torus]
                   [--voxel V] [--noise A] [--seed N] [--scale S] [--closed]
       Write a synthetic segmentation-like vessel surface (binary STL).
@@ -207,7 +219,7 @@ int cmd_mesh(int argc, char** argv) {
   for (std::string_view name : vm::job_option_names()) valued.push_back("--" + std::string(name));
   Args a = parse(argc, argv, 2, valued,
                  {"--largest-component", "--quiet", "--surface-only", "--no-remesh", "--verify",
-                  "--tag-layer"});
+                  "--tag-layer", "--prisms"});
   if (!a.error.empty()) return usage_error(a.error);
   if (a.positional.size() != 1) return usage_error("mesh needs exactly one FILE.stl");
   auto out = a.get("-o") ? a.get("-o") : a.get("--output");
@@ -226,6 +238,7 @@ int cmd_mesh(int argc, char** argv) {
   options.volume = !a.has("--surface-only");
   options.verify = a.has("--verify");
   options.tag_layer = a.has("--tag-layer");
+  options.keep_prisms = a.has("--prisms");
   std::string err;
   auto bytes = read_file(a.positional[0], err);
   if (!bytes) return fail(err);

@@ -110,6 +110,7 @@ val mesh(val stl, val opts, val progress) {
   options.remesh = opts["remesh"].as<bool>();
   options.volume = !opts["surfaceOnly"].as<bool>();
   options.tag_layer = opts["tagLayer"].as<bool>();
+  options.keep_prisms = opts["prisms"].as<bool>();
   std::vector<uint8_t> bytes = bytes_from(stl);
   auto result = vm::run_mesh_job(bytes, options, progress_from(progress));
   if (!result.ok()) return error(result.message());

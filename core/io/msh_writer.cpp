@@ -257,6 +257,8 @@ int nodes_per_element(MshElementType type) {
   switch (type) {
     case MshElementType::kTriangle:
       return 3;
+    case MshElementType::kQuad:
+      return 4;
     case MshElementType::kTetrahedron:
       return 4;
     case MshElementType::kPrism:
@@ -265,7 +267,9 @@ int nodes_per_element(MshElementType type) {
   return 0;
 }
 
-int element_dimension(MshElementType type) { return type == MshElementType::kTriangle ? 2 : 3; }
+int element_dimension(MshElementType type) {
+  return type == MshElementType::kTriangle || type == MshElementType::kQuad ? 2 : 3;
+}
 
 Result<std::string> write_msh(const MshModel& model, MshVersion version) {
   Status s = validate(model);

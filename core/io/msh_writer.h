@@ -13,7 +13,7 @@ namespace vm {
 enum class MshVersion { k41, k22 };
 
 /// Gmsh element type codes used by vesselmesh.
-enum class MshElementType : int { kTriangle = 2, kTetrahedron = 4, kPrism = 6 };
+enum class MshElementType : int { kTriangle = 2, kQuad = 3, kTetrahedron = 4, kPrism = 6 };
 
 /// A named physical group. Tags are positive and unique per dimension.
 struct MshPhysical {

@@ -25,7 +25,8 @@ int32_t cap_tag_of(const CappedSurface& caps, const LayerOpening& op) {
 Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const LayerMesh* outer,
                                               const CappedSurface& caps,
                                               const RecoveredVolume& recovered,
-                                              const VolumeMesh& core, bool tag_layer) {
+                                              const VolumeMesh& core, bool tag_layer,
+                                              bool keep_prisms) {
   using R = Result<LayeredVolume>;
   LayeredVolume out;
   const VolumeMesh& rec = recovered.mesh;
@@ -101,9 +102,13 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
   }
 
   // Phase 3: elements and regions.
-  if (inner) {
+  const int32_t inner_region = tag_layer ? kRegionBoundaryLayer : kRegionLumen;
+  if (inner && keep_prisms) {
+    m.prisms = in.prisms;
+    m.prism_region.assign(m.num_prisms(), inner_region);
+  } else if (inner) {
     m.tets = prisms_to_tets(in.prisms);
-    m.tet_region.assign(m.num_tets(), tag_layer ? kRegionBoundaryLayer : kRegionLumen);
+    m.tet_region.assign(m.num_tets(), inner_region);
   }
   out.core_first = m.num_tets();
   out.core_count = core.num_tets();
@@ -112,9 +117,14 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
   if (outer) {
     std::vector<int32_t> prisms = ou.prisms;
     for (int32_t& v : prisms) v = outer_id(v);
-    const std::vector<int32_t> tets = prisms_to_tets(prisms);
-    m.tets.insert(m.tets.end(), tets.begin(), tets.end());
-    m.tet_region.resize(m.num_tets(), kRegionVesselWall);
+    if (keep_prisms) {
+      m.prisms.insert(m.prisms.end(), prisms.begin(), prisms.end());
+      m.prism_region.resize(m.num_prisms(), kRegionVesselWall);
+    } else {
+      const std::vector<int32_t> tets = prisms_to_tets(prisms);
+      m.tets.insert(m.tets.end(), tets.begin(), tets.end());
+      m.tet_region.resize(m.num_tets(), kRegionVesselWall);
+    }
   }
   out.region_names = {"lumen", tag_layer && inner ? "boundary_layer" : "",
                       outer ? "vessel_wall" : ""};
@@ -146,12 +156,17 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
     for (size_t o = 0; o < layer->openings.size(); ++o) {
       const int32_t cap = cap_tag_of(caps, layer->openings[o]);
       if (cap < 0) return R::Error("internal error: a layer opening has no cap");
-      std::vector<int32_t> ring = ring_triangles(*layer, o);
+      std::vector<int32_t> ring = keep_prisms ? ring_quads(*layer, o) : ring_triangles(*layer, o);
       if (side == 1)
         for (int32_t& v : ring) v = outer_id(v);
-      m.triangles.insert(m.triangles.end(), ring.begin(), ring.end());
-      m.triangle_tag.insert(m.triangle_tag.end(), ring.size() / 3,
-                            side == 0 ? cap : outer_wall + cap);
+      const int32_t tag = side == 0 ? cap : outer_wall + cap;
+      if (keep_prisms) {
+        m.quads.insert(m.quads.end(), ring.begin(), ring.end());
+        m.quad_tag.insert(m.quad_tag.end(), ring.size() / 4, tag);
+      } else {
+        m.triangles.insert(m.triangles.end(), ring.begin(), ring.end());
+        m.triangle_tag.insert(m.triangle_tag.end(), ring.size() / 3, tag);
+      }
     }
   }
   if (outer) {

@@ -48,11 +48,13 @@ struct LayeredVolume {
 /// there), `outer_wall`, and `wall_<cap>` (the vessel wall's ring at each
 /// opening). Regions: lumen (core + viscous layer), boundary_layer (the
 /// viscous layer alone, when tag_layer), vessel_wall. Prisms are split into
-/// tetrahedra by the smallest-index rule.
+/// tetrahedra by the smallest-index rule, or kept (keep_prisms: mesh.prisms,
+/// and the rings as quads in mesh.quads).
 /// Errors: those of refine_layer_columns, a layer opening without its cap.
 Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const LayerMesh* outer,
                                               const CappedSurface& caps,
                                               const RecoveredVolume& recovered,
-                                              const VolumeMesh& core, bool tag_layer);
+                                              const VolumeMesh& core, bool tag_layer,
+                                              bool keep_prisms = false);
 
 }  // namespace vm

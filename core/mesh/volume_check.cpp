@@ -100,7 +100,7 @@ Result<VolumeCheck> check_volume_mesh(const VolumeMesh& m) {
 
   // Phase 2: every face use, outward orientation.
   std::vector<FaceUse> uses;
-  uses.reserve(4 * m.num_tets() + 5 * m.num_prisms() + m.num_triangles());
+  uses.reserve(4 * m.num_tets() + 5 * m.num_prisms() + m.num_triangles() + m.num_quads());
   static constexpr int kTetFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
   for (size_t e = 0; e < m.num_tets(); ++e) {
     const int32_t* t = &m.tets[4 * e];
@@ -126,6 +126,11 @@ Result<VolumeCheck> check_volume_mesh(const VolumeMesh& m) {
     if (!in_range(f, 3))
       return R::Error("surface triangle " + std::to_string(t) + " has a bad vertex");
     uses.push_back(make_use(f, 3, -1, -1 - int64_t(t)));
+  }
+  for (size_t q = 0; q < m.num_quads(); ++q) {
+    const int32_t* f = &m.quads[4 * q];
+    if (!in_range(f, 4)) return R::Error("surface quad " + std::to_string(q) + " has a bad vertex");
+    uses.push_back(make_use(f, 4, -1, -1 - int64_t(m.num_triangles() + q)));
   }
   std::sort(uses.begin(), uses.end(), [](const FaceUse& a, const FaceUse& b) {
     return a.key != b.key ? a.key < b.key : a.owner > b.owner;  // elements first

@@ -31,6 +31,8 @@ inline double tet_volume6(const double* a, const double* b, const double* c, con
 ///   physical volume the element belongs to.
 /// - triangles: 3 per boundary or interface triangle, oriented outward of the
 ///   region they bound; triangle_tag: one surface tag per triangle (>= 0).
+/// - quads: 4 per boundary or interface quadrilateral (the side faces of
+///   kept prisms), a cycle oriented like the triangles; quad_tag likewise.
 struct VolumeMesh {
   std::vector<double> points;
   std::vector<int32_t> tets;
@@ -39,11 +41,14 @@ struct VolumeMesh {
   std::vector<int32_t> prism_region;
   std::vector<int32_t> triangles;
   std::vector<int32_t> triangle_tag;
+  std::vector<int32_t> quads;
+  std::vector<int32_t> quad_tag;
 
   size_t num_vertices() const { return points.size() / 3; }
   size_t num_tets() const { return tets.size() / 4; }
   size_t num_prisms() const { return prisms.size() / 6; }
   size_t num_triangles() const { return triangles.size() / 3; }
+  size_t num_quads() const { return quads.size() / 4; }
 };
 
 }  // namespace vm

@@ -165,8 +165,9 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
 
   // The layers and the core in one mesh, named.
   t0 = std::chrono::steady_clock::now();
-  auto assembled = assemble_layered_volume(inner ? &*inner : nullptr, outer ? &*outer : nullptr,
-                                           r.capped, rec, filled.value(), options.tag_layer);
+  auto assembled =
+      assemble_layered_volume(inner ? &*inner : nullptr, outer ? &*outer : nullptr, r.capped, rec,
+                              filled.value(), options.tag_layer, options.keep_prisms);
   if (!assembled.ok()) return Status::Error("volume meshing failed: " + assembled.message());
   r.volume = std::move(assembled.value().mesh);
   r.surface_names = std::move(assembled.value().surface_names);
@@ -201,23 +202,33 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
 MshModel volume_model(const MeshJobResult& r) {
   MshModel model;
   model.points = r.volume.points;
+  // One entity per (group, element type); entity tags count up per dimension.
+  int entity[4] = {0, 0, 0, 0};
+  auto add_block = [&](MshElementType type, int physical, const std::vector<int32_t>& nodes,
+                       const std::vector<int32_t>& tags, int32_t tag) {
+    const size_t n = size_t(nodes_per_element(type));
+    MshBlock b{type, ++entity[element_dimension(type)], physical, {}};
+    for (size_t e = 0; e < tags.size(); ++e)
+      if (tags[e] == tag) b.nodes.insert(b.nodes.end(), &nodes[n * e], &nodes[n * e] + n);
+    if (b.nodes.empty())
+      --entity[element_dimension(type)];
+    else
+      model.blocks.push_back(std::move(b));
+  };
   for (size_t tag = 0; tag < r.surface_names.size(); ++tag) {
     if (r.surface_names[tag].empty()) continue;
-    MshBlock b{MshElementType::kTriangle, int(tag) + 1, int(tag) + 1, {}};
-    for (size_t t = 0; t < r.volume.num_triangles(); ++t)
-      if (r.volume.triangle_tag[t] == int32_t(tag))
-        b.nodes.insert(b.nodes.end(), &r.volume.triangles[3 * t], &r.volume.triangles[3 * t] + 3);
     model.physicals.push_back({2, int(tag) + 1, r.surface_names[tag]});
-    model.blocks.push_back(std::move(b));
+    add_block(MshElementType::kTriangle, int(tag) + 1, r.volume.triangles, r.volume.triangle_tag,
+              int32_t(tag));
+    add_block(MshElementType::kQuad, int(tag) + 1, r.volume.quads, r.volume.quad_tag, int32_t(tag));
   }
   for (size_t region = 0; region < r.region_names.size(); ++region) {
     if (r.region_names[region].empty()) continue;
-    MshBlock b{MshElementType::kTetrahedron, int(region) + 1, int(region) + 1, {}};
-    for (size_t t = 0; t < r.volume.num_tets(); ++t)
-      if (r.volume.tet_region[t] == int32_t(region))
-        b.nodes.insert(b.nodes.end(), &r.volume.tets[4 * t], &r.volume.tets[4 * t] + 4);
     model.physicals.push_back({3, int(region) + 1, r.region_names[region]});
-    model.blocks.push_back(std::move(b));
+    add_block(MshElementType::kTetrahedron, int(region) + 1, r.volume.tets, r.volume.tet_region,
+              int32_t(region));
+    add_block(MshElementType::kPrism, int(region) + 1, r.volume.prisms, r.volume.prism_region,
+              int32_t(region));
   }
   return model;
 }

@@ -55,6 +55,9 @@ struct MeshJobOptions {
   LayerSpec vessel = no_vessel_wall();
   /// The viscous layer as its own volume `boundary_layer` (else in `lumen`).
   bool tag_layer = false;
+  /// Keep the layers' prisms (MSH type 6; their faces at the openings as
+  /// quads, type 3) instead of splitting them into tetrahedra.
+  bool keep_prisms = false;
   /// Check the volume mesh fully before writing it (conformity, boundary =
   /// surface triangles), not only that no element is inverted.
   bool verify = false;

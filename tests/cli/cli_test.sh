@@ -61,6 +61,32 @@ check "mesh inlet not a number" expect_exit 2 "--inlet needs an opening number" 
 check "mesh no-remesh" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/n.msh" --no-remesh --layers 0
 check "mesh with vessel wall" expect_exit 0 "vessel wall: 4 layers" "$VM" mesh "$T/bif.stl" -o "$T/w.msh" --size 0.25 --wall-thickness 0.1 --tag-layer --report "$T/w.json"
 check "vessel wall groups" [ "$(json "$T/w.json" "','.join(g['name'] for g in d['output']['groups'])")" = "wall,inlet,outlet_1,outlet_2,outer_wall,wall_inlet,wall_outlet_1,wall_outlet_2,lumen,boundary_layer,vessel_wall" ]
+check "mesh with prisms" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/p.msh" --size 0.25 --prisms --verify --report "$T/p.json"
+if /usr/bin/python3 -c "import gmsh" 2>/dev/null; then
+  got=$(/usr/bin/python3 - "$T/p.msh" <<'PY'
+import sys, gmsh, numpy as np
+gmsh.initialize()
+gmsh.option.setNumber("General.Verbosity", 0)
+gmsh.open(sys.argv[1])
+tags, coords, _ = gmsh.model.mesh.getNodes()
+xyz = np.zeros((int(tags.max()) + 1, 3))
+xyz[tags.astype(int)] = coords.reshape(-1, 3)
+types = set()
+worst = 1.0
+for dim in (2, 3):
+    for ty, _, nodes in zip(*gmsh.model.mesh.getElements(dim)):
+        types.add(int(ty))
+        if ty == 6:  # corner Jacobians of every prism
+            p = nodes.astype(int).reshape(-1, 6)
+            for a, b, c, d in [(0, 1, 2, 3), (1, 2, 0, 4), (2, 0, 1, 5), (3, 5, 4, 0), (4, 3, 5, 1), (5, 4, 3, 2)]:
+                A, B, C, D = (xyz[p[:, k]] for k in (a, b, c, d))
+                worst = min(worst, np.einsum("ij,ij->i", np.cross(B - A, C - A), D - A).min())
+print(sorted(types), "valid" if worst > 0 else "INVERTED")
+gmsh.finalize()
+PY
+)
+  check "gmsh reads prisms and quads, none inverted" [ "$(printf '%s\n' "$got" | tail -n 1)" = "[2, 3, 4, 6] valid" ]
+fi
 check "mesh bad layers" expect_exit 2 "--layers needs a number of layers" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --layers -2
 check "mesh bad wall thickness" expect_exit 2 "--wall-thickness needs a fraction" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --wall-thickness 1.5
 check "mesh unwritable output" expect_exit 1 "cannot write" "$VM" mesh "$T/bif.stl" -o "$T/no/such/dir/x.msh"

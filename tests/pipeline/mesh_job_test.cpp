@@ -221,10 +221,9 @@ TEST(MeshJob, GrowsTheViscousLayerAndTheVesselWall) {
   double lumen = 0, shell = 0;
   for (size_t t = 0; t < res.volume.num_tets(); ++t) {
     const int32_t* v = &res.volume.tets[4 * t];
-    const double v6 = tet_volume6(&res.volume.points[3 * size_t(v[0])],
-                                  &res.volume.points[3 * size_t(v[1])],
-                                  &res.volume.points[3 * size_t(v[2])],
-                                  &res.volume.points[3 * size_t(v[3])]);
+    const double v6 =
+        tet_volume6(&res.volume.points[3 * size_t(v[0])], &res.volume.points[3 * size_t(v[1])],
+                    &res.volume.points[3 * size_t(v[2])], &res.volume.points[3 * size_t(v[3])]);
     (res.tet_part[t] == 2 ? shell : lumen) += v6 / 6;
   }
   auto capped = cap_openings(res.output_surface, {});
@@ -233,6 +232,21 @@ TEST(MeshJob, GrowsTheViscousLayerAndTheVesselWall) {
   EXPECT_NEAR(lumen, expected, 1e-9 * expected);
   EXPECT_GT(shell, 0.1 * expected);  // a wall of 0.1 R around a tube of R: ~21% of the lumen
   EXPECT_LT(shell, 0.4 * expected);
+  // Prisms kept: the same lumen, prisms and ring quads instead of split tets.
+  o.keep_prisms = true;
+  auto kept = run_mesh_job(write_stl_binary(phantom.value()), o);
+  ASSERT_TRUE(kept.ok()) << kept.message();
+  const VolumeMesh& km = kept.value().volume;
+  EXPECT_GE(km.num_prisms(), 6 * nt);  // 4 + 2 layers over every wall triangle
+  EXPECT_GT(km.num_quads(), 0u);
+  auto kept_check = check_volume_mesh(km);
+  ASSERT_TRUE(kept_check.ok()) << kept_check.message();
+  EXPECT_NEAR(kept_check.value().volume, lumen + shell, 1e-9 * (lumen + shell));
+  // The groups written count the prisms and quads.
+  size_t written = 0;
+  for (const OutputGroup& g : kept.value().groups) written += g.elements;
+  EXPECT_EQ(written, km.num_tets() + km.num_prisms() + km.num_triangles() + km.num_quads());
+  o.keep_prisms = false;
   // Without layers: no layer part, and --layers 0 is accepted.
   ASSERT_TRUE(set_job_option(o, "layers", "0").ok());
   ASSERT_TRUE(set_job_option(o, "wall-layers", "0").ok());
@@ -240,9 +254,13 @@ TEST(MeshJob, GrowsTheViscousLayerAndTheVesselWall) {
   ASSERT_TRUE(plain.ok()) << plain.message();
   for (uint8_t p : plain.value().tet_part) ASSERT_EQ(p, 0);
   // Bad values are refused with the option's name.
-  for (const auto& [name, value] : std::vector<std::pair<std::string, std::string>>{
-           {"layers", "-1"}, {"layers", "1.5"}, {"layer-thickness", "1"}, {"growth", "0.5"},
-           {"wall-thickness", "0"}, {"first-layer", "-0.1"}}) {
+  for (const auto& [name, value] :
+       std::vector<std::pair<std::string, std::string>>{{"layers", "-1"},
+                                                        {"layers", "1.5"},
+                                                        {"layer-thickness", "1"},
+                                                        {"growth", "0.5"},
+                                                        {"wall-thickness", "0"},
+                                                        {"first-layer", "-0.1"}}) {
     const Status st = set_job_option(o, name, value);
     EXPECT_FALSE(st.ok()) << name << " " << value;
     EXPECT_NE(st.message().find("--" + name), std::string::npos) << st.message();
