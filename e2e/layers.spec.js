@@ -143,9 +143,8 @@ test('the vessel wall and a separate boundary_layer group', async ({ page }) => 
   ]);
 
   const text = await downloadText(page);
-  for (const group of ['"lumen"', '"boundary_layer"', '"vessel_wall"', '"outer_wall"', '"wall_inlet"', '"wall_outlet_1"']) {
-    expect(text).toContain(group);
-  }
+  const groups = ['lumen', 'boundary_layer', 'vessel_wall', 'outer_wall', 'wall_inlet', 'wall_outlet_1'];
+  for (const group of groups) expect(text).toContain(`"${group}"`);
   expect(elementCount(text)).toBe(Number(await page.getByTestId('remesh-result').getAttribute('data-elements')));
   expect(errors).toEqual([]);
 });
@@ -179,7 +178,9 @@ test('layers 0: no layer part; bad layer and wall input give readable errors and
   await page.getByTestId('wall-on').check();
   await page.getByTestId('wall-thickness').fill('1.5');
   await page.getByTestId('remesh').click();
-  await expect(error).toContainText('Vessel wall: the thickness must be a fraction of the local vessel radius R between 0 and 1');
+  await expect(error).toContainText(
+    'Vessel wall: the thickness must be a fraction of the local vessel radius R between 0 and 1',
+  );
   await expect(page.getByTestId('wall-thickness')).toHaveAttribute('aria-invalid', 'true');
   await page.getByTestId('wall-thickness').fill('0.1');
   await mesh(page);

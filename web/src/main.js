@@ -153,47 +153,55 @@ function coreSizeProblem() {
   return check(input, !bad, 'Core size must be a length ≥ 0 in model units, or blank for the default.');
 }
 
+const LAYER_FIELDS = ['layers', 'layer-thickness', 'first-layer', 'growth', 'wall-thickness', 'wall-layers'];
+const isFraction = (x) => x > 0 && x < 1;
+
 /** Why the boundary layer or vessel wall fields are unusable: every field
- * is marked, the first problem returned (null when all are fine). */
+ * that applies is marked, the first problem returned (null when all are
+ * fine). */
 function layerProblems() {
-  const problems = [];
-  const fields = ['layers', 'layer-thickness', 'first-layer', 'growth', 'wall-thickness', 'wall-layers'];
-  for (const id of fields) $(id).setAttribute('aria-invalid', 'false');
+  for (const id of LAYER_FIELDS) $(id).setAttribute('aria-invalid', 'false');
   if ($('surface-only').checked) return null; // no volume: the fields are unused
-  const layers = numberIn('layers');
-  problems.push(
-    check($('layers'), isCount(layers, 0), 'Boundary layer: the number of layers must be a whole number from 0 (none) to 100.'),
-  );
-  if (layers > 0) {
-    if ($('layer-mode').value === 'first') {
-      const h = numberIn('first-layer');
-      problems.push(
-        check($('first-layer'), h > 0, 'Boundary layer: the first-layer height must be a positive length in model units.'),
-      );
-    } else {
-      const f = numberIn('layer-thickness');
-      problems.push(
-        check(
-          $('layer-thickness'),
-          f > 0 && f < 1,
-          'Boundary layer: the total thickness must be a fraction of the local vessel radius R between 0 and 1 (e.g. 0.2).',
-        ),
-      );
-    }
-    const g = numberIn('growth');
-    problems.push(check($('growth'), g >= 1 && g <= 3, 'Boundary layer: the growth ratio must be from 1 to 3.'));
-  }
-  if ($('wall-on').checked) {
-    const f = numberIn('wall-thickness');
-    problems.push(
-      check(
-        $('wall-thickness'),
-        f > 0 && f < 1,
-        'Vessel wall: the thickness must be a fraction of the local vessel radius R between 0 and 1 (e.g. 0.1).',
-      ),
-      check($('wall-layers'), isCount(numberIn('wall-layers'), 1), 'Vessel wall: the number of layers must be a whole number from 1 to 100.'),
-    );
-  }
+  const layers = numberIn('layers') > 0;
+  const first = $('layer-mode').value === 'first';
+  const wall = $('wall-on').checked;
+  // [field, applies, valid(value), message]
+  const rules = [
+    [
+      'layers',
+      true,
+      (x) => isCount(x, 0),
+      'Boundary layer: the number of layers must be a whole number from 0 (none) to 100.',
+    ],
+    [
+      'layer-thickness',
+      layers && !first,
+      isFraction,
+      'Boundary layer: the total thickness must be a fraction of the local vessel radius R between 0 and 1 (e.g. 0.2).',
+    ],
+    [
+      'first-layer',
+      layers && first,
+      (x) => x > 0,
+      'Boundary layer: the first-layer height must be a positive length in model units.',
+    ],
+    ['growth', layers, (x) => x >= 1 && x <= 3, 'Boundary layer: the growth ratio must be from 1 to 3.'],
+    [
+      'wall-thickness',
+      wall,
+      isFraction,
+      'Vessel wall: the thickness must be a fraction of the local vessel radius R between 0 and 1 (e.g. 0.1).',
+    ],
+    [
+      'wall-layers',
+      wall,
+      (x) => isCount(x, 1),
+      'Vessel wall: the number of layers must be a whole number from 1 to 100.',
+    ],
+  ];
+  const problems = rules
+    .filter(([, applies]) => applies)
+    .map(([id, , valid, message]) => check($(id), valid(numberIn(id)), message));
   return problems.find(Boolean) ?? null;
 }
 
@@ -231,7 +239,9 @@ function meshOptions() {
 /** Enables the layer fields that apply (none with 0 layers or surface only). */
 function syncLayerFields() {
   const none = numberIn('layers') === 0;
-  for (const id of ['layer-mode', 'layer-thickness', 'first-layer', 'growth', 'tag-layer']) $(id).disabled = none;
+  for (const id of ['layer-mode', 'layer-thickness', 'first-layer', 'growth', 'tag-layer']) {
+    $(id).disabled = none;
+  }
   const first = $('layer-mode').value === 'first';
   $('layer-thickness-field').hidden = first;
   $('first-layer-field').hidden = !first;
@@ -240,9 +250,10 @@ function syncLayerFields() {
 }
 
 /**
- * A first-layer height to start from: the layers of the current total
- * thickness fraction (0.2 if unusable) of the median opening's radius, with
- * the current growth ratio; '' without openings.
+ * A first-layer height to start from: the first of the current number of
+ * layers, growing by the current ratio, that add up to the current total
+ * thickness fraction (0.2 if unusable) of the median opening's radius;
+ * '' without openings.
  */
 function suggestedFirstLayer() {
   const radii = (current?.analysis.openings ?? []).map((o) => o.radius).sort((a, b) => a - b);
@@ -467,7 +478,7 @@ $('volume-color').addEventListener('change', (e) => {
 });
 $('show-boundary').addEventListener('change', (e) => volumeView.set({ boundary: e.target.checked }));
 $('show-edges').addEventListener('change', (e) => volumeView.set({ edges: e.target.checked }));
-for (const id of ['core-size', 'layers', 'layer-thickness', 'first-layer', 'growth', 'wall-thickness', 'wall-layers']) {
+for (const id of ['core-size', ...LAYER_FIELDS]) {
   $(id).addEventListener('input', () => $(id).setAttribute('aria-invalid', 'false'));
 }
 $('layers').addEventListener('input', syncLayerFields);
