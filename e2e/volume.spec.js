@@ -34,7 +34,8 @@ test('mesh the sample with its volume: clipped view, gamma_t histogram, groups, 
   await expect(view).toHaveAttribute('data-triangles', /^[1-9]\d*$/);
   await expect(view).toHaveAttribute('data-cut', /^[1-9]\d*$/);
 
-  // gamma_t beside gamma_k: 20 bins each, min <= mean in (0, 1].
+  // gamma_t (of the core: the layer's tetrahedra are apart) beside gamma_k:
+  // 20 bins each, min <= mean in (0, 1].
   await expect(page.getByTestId('volume-result')).toBeVisible();
   await expect(page.locator('#tet-histogram rect')).toHaveCount(20);
   await expect(page.locator('#out-histogram rect')).toHaveCount(20);
@@ -113,6 +114,9 @@ test('surface only: no volume view; a bad core size is refused and the page keep
   await page.getByTestId('load-sample').click();
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
   await page.getByTestId('surface-only').check();
+  // No volume: the layer and wall settings do not apply.
+  await expect(page.getByTestId('layers')).toBeDisabled();
+  await expect(page.getByTestId('wall-on')).toBeDisabled();
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('remesh-result')).toBeVisible({ timeout: 60_000 });
   await expect(page.getByTestId('show')).toHaveValue('output');
@@ -126,6 +130,7 @@ test('surface only: no volume view; a bad core size is refused and the page keep
   expect(surface.text).not.toContain('"lumen"');
 
   await page.getByTestId('surface-only').uncheck();
+  await expect(page.getByTestId('layers')).toBeEnabled();
   await page.getByTestId('core-size').fill('-1');
   await page.getByTestId('remesh').click();
   const error = page.getByTestId('error');

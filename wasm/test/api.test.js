@@ -16,6 +16,109 @@ before(async () => {
 const text = (bytes) => new TextDecoder().decode(bytes);
 const ascii = (s) => new TextEncoder().encode(s);
 
+const point = (p, i) => [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
+const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const distance = (a, b) => Math.hypot(...sub(a, b));
+
+/** Sorted vertex triple of a face, as a Map key. */
+const faceKey = (f) => Array.from(f).sort((p, q) => p - q).join(' ');
+const byFace = new WeakMap();
+/** face key -> the tetrahedra having that face (one or two). */
+const tetsByFace = (v) => {
+  if (byFace.has(v)) return byFace.get(v);
+  const faces = new Map();
+  for (let t = 0; t < v.tets.length / 4; t++) {
+    const [a, b, c, d] = v.tets.subarray(4 * t, 4 * t + 4);
+    for (const f of [[a, b, c], [a, b, d], [a, c, d], [b, c, d]]) {
+      const k = faceKey(f);
+      const list = faces.get(k);
+      if (list) list.push(t);
+      else faces.set(k, [t]);
+    }
+  }
+  byFace.set(v, faces);
+  return faces;
+};
+/** Tetrahedra per part: [core, viscous layer, vessel wall]. */
+const partCounts = (v) => {
+  const n = [0, 0, 0];
+  for (const p of v.tetPart) n[p]++;
+  return n;
+};
+/** Edges of a triangle surface used by one triangle (the openings' rims). */
+const rimEdges = (triangles) => {
+  const uses = new Map();
+  for (let i = 0; i < triangles.length; i += 3) {
+    for (let c = 0; c < 3; c++) {
+      const k = faceKey([triangles[i + c], triangles[i + ((c + 1) % 3)]]);
+      uses.set(k, (uses.get(k) ?? 0) + 1);
+    }
+  }
+  return [...uses.values()].filter((n) => n === 1).length;
+};
+/**
+ * Invariants of any volume result: every tetrahedron positive
+ * (((b-a)x(c-a)).(d-a) > 0); each face bounds one or two tetrahedra; the
+ * faces of one tetrahedron are exactly the tagged triangles that are not
+ * interfaces (`wall` between the layer and the vessel wall), and enclose
+ * the tets' volume outward (divergence theorem); per tag, as many
+ * triangles as the report's group.
+ */
+const checkVolume = (v, report) => {
+  const nv = v.positions.length / 3;
+  const nt = v.tets.length / 4;
+  let volume = 0;
+  for (let t = 0; t < nt; t++) {
+    const [a, b, c, d] = [0, 1, 2, 3].map((k) => point(v.positions, v.tets[4 * t + k]));
+    const six = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
+    assert.ok(six > 0, `tetrahedron ${t}: signed volume ${six / 6}`);
+    volume += six / 6;
+  }
+  const nb = v.triangleTag.length;
+  assert.equal(v.triangles.length, 3 * nb);
+  assert.equal(nb, report.output.volume.boundary_triangles);
+  assert.ok(v.triangles.every((i) => i < nv));
+  const faces = tetsByFace(v);
+  const tagged = new Set();
+  const counts = new Map();
+  let enclosed = 0;
+  for (let t = 0; t < nb; t++) {
+    const tri = v.triangles.subarray(3 * t, 3 * t + 3);
+    const around = faces.get(faceKey(tri));
+    assert.ok(around, `boundary triangle ${t} is no tetrahedron's face`);
+    tagged.add(faceKey(tri));
+    const name = v.surfaceNames[v.triangleTag[t]];
+    assert.ok(name !== undefined, `boundary triangle ${t}: tag ${v.triangleTag[t]}`);
+    counts.set(name, (counts.get(name) ?? 0) + 1);
+    if (around.length === 2) {
+      assert.equal(name, 'wall', `triangle ${t} between two tetrahedra`);
+      continue;
+    }
+    const [a, b, c] = [0, 1, 2].map((k) => point(v.positions, tri[k]));
+    enclosed += dot(a, cross(b, c)) / 6;
+  }
+  for (const [k, around] of faces) {
+    assert.ok(around.length <= 2, `face ${k} of ${around.length} tetrahedra`);
+    if (around.length === 1) assert.ok(tagged.has(k), `untagged boundary face ${k}`);
+  }
+  assert.ok(Math.abs(enclosed / volume - 1) < 1e-4, `tets ${volume}, boundary ${enclosed}`);
+  const surfaces = report.output.groups.filter((g) => g.dim === 2);
+  assert.deepEqual(v.surfaceNames, surfaces.map((g) => g.name));
+  for (const g of surfaces) assert.equal(counts.get(g.name), g.elements, g.name);
+};
+
+/** Every group of the report is named in the MSH file, and the file has
+ * as many elements as the groups together. */
+function checkGroupsInMsh(m) {
+  const t = text(m.msh);
+  for (const g of m.report.output.groups) assert.match(t, new RegExp(`^${g.dim} \\d+ "${g.name}"$`, 'm'));
+  const lines = t.split('\n');
+  const total = m.report.output.groups.reduce((n, g) => n + g.elements, 0);
+  assert.equal(Number(lines[lines.indexOf('$Elements') + 1].split(' ')[1]), total);
+}
+
 // Closed tetrahedron as ASCII STL, one facet inside out.
 const TETRA = `solid tet
 facet normal 0 0 0
@@ -212,14 +315,16 @@ describe('mesh: surface remeshing', () => {
   });
 
   test('every parametrization and 2D mesher works; radius-adaptive is the default', () => {
+    // The surface alone: harmonic and Floater maps (for comparison) can leave
+    // folds that the boundary layer refuses (see 'mesh: boundary layers').
     for (const param of ['lscm', 'harmonic', 'floater']) {
       for (const mesher2d of ['frontal', 'delaunay', 'adapt']) {
-        const r = api.mesh(stl(), { size: 0.2, param, mesher2d });
+        const r = api.mesh(stl(), { size: 0.2, param, mesher2d, surfaceOnly: true });
         assert.equal(r.ok, true, `${param}/${mesher2d}: ${r.error}`);
         assert.equal(r.report.output.openings, 3);
       }
     }
-    const adaptive = api.mesh(stl(), { perCircumference: 20 });
+    const adaptive = api.mesh(stl(), { perCircumference: 20, surfaceOnly: true });
     assert.equal(adaptive.ok, true, adaptive.error);
     assert.ok(adaptive.report.output.remesh.size.max > adaptive.report.output.remesh.size.min);
   });
@@ -245,11 +350,6 @@ describe('mesh: volume', () => {
     r = api.mesh(stl);
   });
 
-  const point = (p, i) => [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
-  const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-  const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-  const distance = (a, b) => Math.hypot(...sub(a, b));
   /** Centroid of the boundary triangles tagged `name`. */
   const tagCentroid = (v, name) => {
     const tag = v.surfaceNames.indexOf(name);
@@ -271,13 +371,18 @@ describe('mesh: volume', () => {
       [[2, 'wall'], [2, 'inlet'], [2, 'outlet_1'], [2, 'outlet_2'], [3, 'lumen']],
     );
     assert.deepEqual(out.caps.map((c) => c.name), ['inlet', 'outlet_1', 'outlet_2']);
-    for (const c of out.caps) assert.equal(out.groups.find((g) => g.name === c.name).elements, c.triangles);
+    // Each opening's group is its cap and the layer's ring in the cap plane:
+    // 2 triangles per rim edge and layer (4 layers by default).
+    let ring = 0;
+    for (const c of out.caps) {
+      const group = out.groups.find((g) => g.name === c.name).elements;
+      assert.ok(group > c.triangles, c.name);
+      assert.equal((group - c.triangles) % 8, 0, c.name);
+      ring += group - c.triangles;
+    }
+    assert.equal(ring, 2 * 4 * rimEdges(r.surface.triangles));
     assert.equal(out.groups.at(-1).elements, out.volume.tetrahedra);
-    const t = text(r.msh);
-    for (const g of out.groups) assert.match(t, new RegExp(`^${g.dim} \\d+ "${g.name}"$`, 'm'));
-    const lines = t.split('\n');
-    const total = out.groups.reduce((n, g) => n + g.elements, 0);
-    assert.equal(Number(lines[lines.indexOf('$Elements') + 1].split(' ')[1]), total);
+    checkGroupsInMsh(r);
     // The wall surface is still returned, and is the wall group.
     assert.equal(r.surface.triangles.length, 3 * out.groups[0].elements);
   });
@@ -295,52 +400,53 @@ describe('mesh: volume', () => {
     assert.equal(v.tetQuality.length, nt);
     assert.ok(v.tetQuality.every((q) => q > 0 && q <= 1));
     assert.equal(v.tetRegion.length, nt);
-    assert.deepEqual(v.regionNames, ['lumen']);
-    assert.ok(v.tetRegion.every((g) => v.regionNames[g] !== undefined));
+    assert.deepEqual(v.regionNames, ['lumen', '', '']);
+    assert.ok(v.tetRegion.every((g) => g === 0));
     assert.ok(out.quality.min > 0 && out.quality.min <= out.quality.mean);
     assert.equal(out.quality.histogram.length, 20);
     assert.equal(out.quality.histogram.reduce((x, y) => x + y, 0), nt);
-    // Signed volumes ((b-a)x(c-a)).(d-a) > 0, and their sum is the volume
-    // enclosed by the boundary triangles (divergence theorem: outward).
-    let volume = 0;
-    for (let t = 0; t < nt; t++) {
-      const [a, b, c, d] = [0, 1, 2, 3].map((k) => point(v.positions, v.tets[4 * t + k]));
-      const six = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
-      assert.ok(six > 0, `tetrahedron ${t}: signed volume ${six / 6}`);
-      volume += six / 6;
-    }
-    const nb = v.triangleTag.length;
-    assert.equal(v.triangles.length, 3 * nb);
-    assert.equal(nb, out.boundary_triangles);
-    assert.ok(v.triangles.every((i) => i < nv));
-    let enclosed = 0;
-    for (let t = 0; t < nb; t++) {
-      const [a, b, c] = [0, 1, 2].map((k) => point(v.positions, v.triangles[3 * t + k]));
-      enclosed += dot(a, cross(b, c)) / 6;
-    }
-    assert.ok(Math.abs(enclosed / volume - 1) < 1e-4, `tets ${volume}, boundary ${enclosed}`);
-    // Every boundary triangle is a face of a tetrahedron and names a group.
-    const faces = new Set();
-    const key = (x, y, z) => [x, y, z].sort((p, q) => p - q).join(' ');
-    for (let t = 0; t < nt; t++) {
-      const [a, b, c, d] = v.tets.subarray(4 * t, 4 * t + 4);
-      for (const f of [[a, b, c], [a, b, d], [a, c, d], [b, c, d]]) faces.add(key(...f));
-    }
-    const counts = new Map();
-    for (let t = 0; t < nb; t++) {
-      assert.ok(faces.has(key(...v.triangles.subarray(3 * t, 3 * t + 3))), `boundary triangle ${t}`);
-      const name = v.surfaceNames[v.triangleTag[t]];
-      assert.ok(name !== undefined, `boundary triangle ${t}: tag ${v.triangleTag[t]}`);
-      counts.set(name, (counts.get(name) ?? 0) + 1);
-    }
-    assert.deepEqual(v.surfaceNames, ['wall', 'inlet', 'outlet_1', 'outlet_2']);
-    for (const g of r.report.output.groups.filter((g) => g.dim === 2)) {
-      assert.equal(counts.get(g.name), g.elements, g.name);
-    }
+    checkVolume(v, r.report);
     // The default inlet is the largest opening.
     const caps = r.report.output.caps;
     assert.ok(distance(caps[0].centroid, openings[0].centroid) < 0.5 * openings[0].radius);
     assert.ok(distance(tagCentroid(v, 'inlet'), openings[0].centroid) < 0.5 * openings[0].radius);
+  });
+
+  test('default: 4 boundary layers (tetPart 1) on the wall, the core apart', () => {
+    const v = r.volume;
+    const out = r.report.output.volume;
+    const nt = v.tets.length / 4;
+    const wallTriangles = r.report.output.triangles;
+    assert.ok(v.tetPart instanceof Uint8Array);
+    assert.equal(v.tetPart.length, nt);
+    const parts = partCounts(v);
+    // Every layer is one prism per wall triangle, split into 3 tetrahedra.
+    assert.deepEqual(parts, [nt - 3 * 4 * wallTriangles, 3 * 4 * wallTriangles, 0]);
+    assert.ok(parts[0] > 0);
+    // Each wall triangle is the face of one layer tetrahedron (the first layer).
+    const tag = v.surfaceNames.indexOf('wall');
+    const faces = tetsByFace(v);
+    v.triangleTag.forEach((g, b) => {
+      if (g !== tag) return;
+      const around = faces.get(faceKey(v.triangles.subarray(3 * b, 3 * b + 3)));
+      assert.deepEqual(around.map((t) => v.tetPart[t]), [1], `wall triangle ${b}`);
+    });
+    // The core's gamma_t apart (the layer's tetrahedra are flat by design).
+    const core = out.core_quality;
+    assert.equal(core.count, parts[0]);
+    assert.equal(core.histogram.reduce((x, y) => x + y, 0), parts[0]);
+    assert.ok(core.min >= out.quality.min && core.mean > out.quality.mean);
+    let min = 1;
+    v.tetPart.forEach((p, t) => p === 0 && (min = Math.min(min, v.tetQuality[t])));
+    assert.ok(Math.abs(min - core.min) < 1e-6, `core min ${core.min}, tets ${min}`);
+    const layer = out.boundary_layer;
+    assert.equal(layer.layers, 4);
+    for (const key of ['reduced_area_fraction', 'thickness_within_10pct', 'min_factor', 'mean_factor']) {
+      assert.ok(layer[key] >= 0 && layer[key] <= 1, `${key} ${layer[key]}`);
+    }
+    assert.ok(layer.front_quality_min > 0);
+    assert.equal(out.vessel_wall, undefined);
+    assert.ok(out.seconds.layers > 0);
   });
 
   test('surfaceOnly: the wall alone, no volume', () => {
@@ -388,7 +494,10 @@ describe('mesh: volume', () => {
     const arrays = [m.msh, ...Object.values(m.surface), ...Object.values(m.volume)].filter((a) =>
       ArrayBuffer.isView(a),
     );
-    assert.equal(arrays.length, 10);
+    // msh; surface positions, triangles, quality; volume positions, tets,
+    // tetQuality, tetRegion, tetPart, triangles, triangleTag.
+    assert.equal(arrays.length, 11);
+    assert.ok(list.includes(m.volume.tetPart.buffer));
     assert.equal(new Set(list).size, list.length);
     for (const a of arrays) assert.ok(list.includes(a.buffer));
     const tets = m.volume.tets.length;
@@ -414,6 +523,139 @@ describe('mesh: volume', () => {
       assert.match(m.error, pattern);
       assert.doesNotMatch(m.error, /--|vesselmesh/);
     }
+  });
+});
+
+describe('mesh: boundary layers and vessel wall', () => {
+  let bifurcation;
+  let tube;
+  before(() => {
+    bifurcation = api.makePhantom({ kind: 'bifurcation', voxel: 0.1, noise: 0.3 }).stl;
+    tube = api.makePhantom({ kind: 'tube', voxel: 0.15 }).stl;
+  });
+  const groupsOf = (m) => m.report.output.groups.map((g) => `${g.dim} ${g.name}`);
+  const group = (m, name) => m.report.output.groups.find((g) => g.name === name)?.elements;
+  test('wallThickness: the vessel wall outward (tetPart 2), its groups, `wall` an interface', () => {
+    const m = api.mesh(bifurcation, { wallThickness: 0.1 });
+    assert.equal(m.ok, true, m.error);
+    const out = m.report.output;
+    assert.deepEqual(groupsOf(m), [
+      '2 wall', '2 inlet', '2 outlet_1', '2 outlet_2',
+      '2 outer_wall', '2 wall_inlet', '2 wall_outlet_1', '2 wall_outlet_2',
+      '3 lumen', '3 vessel_wall',
+    ]);
+    const v = m.volume;
+    const nt = v.tets.length / 4;
+    const wall = out.triangles;
+    // 4 layers each way, 3 tetrahedra per prism.
+    assert.deepEqual(partCounts(v), [nt - 24 * wall, 12 * wall, 12 * wall]);
+    assert.deepEqual(v.regionNames, ['lumen', '', 'vessel_wall']);
+    v.tetPart.forEach((p, t) => assert.equal(v.tetRegion[t], p === 2 ? 2 : 0, `tet ${t}`));
+    assert.equal(group(m, 'lumen'), nt - 12 * wall);
+    assert.equal(group(m, 'vessel_wall'), 12 * wall);
+    assert.equal(group(m, 'outer_wall'), wall);
+    // The wall ring of each opening matches the layer's ring there.
+    for (const c of out.caps) assert.equal(group(m, `wall_${c.name}`), group(m, c.name) - c.triangles, c.name);
+    // `wall` is the interface: every wall triangle between a layer
+    // tetrahedron and a vessel wall one.
+    checkVolume(v, m.report);
+    const faces = tetsByFace(v);
+    const tag = v.surfaceNames.indexOf('wall');
+    let interfaces = 0;
+    v.triangleTag.forEach((g, b) => {
+      if (g !== tag) return;
+      const around = faces.get(faceKey(v.triangles.subarray(3 * b, 3 * b + 3)));
+      assert.deepEqual(around.map((t) => v.tetPart[t]).sort(), [1, 2], `wall triangle ${b}`);
+      interfaces++;
+    });
+    assert.equal(interfaces, wall);
+    checkGroupsInMsh(m);
+    for (const name of ['"vessel_wall"', '"outer_wall"', '"wall_inlet"']) assert.ok(text(m.msh).includes(name));
+    const stats = out.volume.vessel_wall;
+    assert.equal(stats.layers, 4);
+    assert.ok(stats.thickness_within_10pct >= 0 && stats.thickness_within_10pct <= 1);
+    assert.equal(out.volume.boundary_layer.layers, 4);
+    assert.equal(out.volume.core_quality.count, nt - 24 * wall);
+  });
+
+  test('tagLayer: the viscous layer is its own volume group boundary_layer', () => {
+    const m = api.mesh(tube, { tagLayer: true, layers: 3 });
+    assert.equal(m.ok, true, m.error);
+    const v = m.volume;
+    const nt = v.tets.length / 4;
+    const wall = m.report.output.triangles;
+    assert.deepEqual(groupsOf(m), ['2 wall', '2 inlet', '2 outlet_1', '3 lumen', '3 boundary_layer']);
+    assert.deepEqual(v.regionNames, ['lumen', 'boundary_layer', '']);
+    assert.deepEqual(partCounts(v), [nt - 9 * wall, 9 * wall, 0]);
+    v.tetPart.forEach((p, t) => assert.equal(v.tetRegion[t], p, `tet ${t}`));
+    assert.equal(group(m, 'lumen'), nt - 9 * wall);
+    assert.equal(group(m, 'boundary_layer'), 9 * wall);
+    assert.equal(m.report.output.volume.boundary_layer.layers, 3);
+    checkGroupsInMsh(m);
+  });
+
+  test('layers: 0 gives no layer part; firstLayer + growth sets the heights', () => {
+    const m = api.mesh(tube, { layers: 0 });
+    assert.equal(m.ok, true, m.error);
+    assert.ok(m.volume.tetPart.every((p) => p === 0));
+    assert.deepEqual(m.volume.regionNames, ['lumen', '', '']);
+    assert.equal(m.report.output.volume.boundary_layer, undefined);
+    // No ring: each opening's group is its cap alone.
+    for (const c of m.report.output.caps) assert.equal(group(m, c.name), c.triangles, c.name);
+    assert.equal(m.report.output.volume.core_quality.count, m.volume.tets.length / 4);
+
+    const f = api.mesh(tube, { firstLayer: 0.005, growth: 1.3, layers: 5 });
+    assert.equal(f.ok, true, f.error);
+    assert.equal(partCounts(f.volume)[1], 15 * f.report.output.triangles);
+    assert.equal(f.report.output.volume.boundary_layer.layers, 5);
+    // The first layer's height: the wall's vertices to their layer-1 copies.
+    // (The tets of a wall triangle's first prism have the wall vertices and
+    // the first layer's.)
+    const { positions: p, tets, tetPart } = f.volume;
+    const wallVertices = new Set(f.volume.triangles.filter((_, i) => f.volume.triangleTag[Math.floor(i / 3)] === 0));
+    let shortest = Infinity;
+    for (let t = 0; t < tets.length / 4; t++) {
+      if (tetPart[t] !== 1) continue;
+      const q = tets.subarray(4 * t, 4 * t + 4);
+      for (const a of q) {
+        if (!wallVertices.has(a)) continue;
+        for (const b of q) {
+          if (b === a || wallVertices.has(b)) continue;
+          shortest = Math.min(shortest, Math.hypot(p[3 * a] - p[3 * b], p[3 * a + 1] - p[3 * b + 1], p[3 * a + 2] - p[3 * b + 2]));
+        }
+      }
+    }
+    assert.ok(shortest <= 0.005 * 1.001 && shortest > 0.001, `first layer ${shortest}`);
+  });
+
+  test('bad layer options are refused with the JS option name', () => {
+    const cases = [
+      [{ layers: -1 }, /^layers needs a number of layers from 0 \(none\) to 100$/],
+      [{ layers: 1.5 }, /^layers needs a number of layers from 0 \(none\) to 100$/],
+      [{ layers: 101 }, /^layers needs a number of layers/],
+      [{ layerThickness: 1 }, /^layerThickness needs a fraction of the local vessel radius in \(0, 1\)$/],
+      [{ layerThickness: 0 }, /^layerThickness needs a fraction/],
+      [{ firstLayer: 0 }, /^firstLayer needs a positive height/],
+      [{ growth: 0.5 }, /^growth needs a growth ratio from 1 to 3$/],
+      [{ growth: 4 }, /^growth needs a growth ratio from 1 to 3$/],
+      [{ wallThickness: 0 }, /^wallThickness needs a fraction of the local vessel radius in \(0, 1\)$/],
+      [{ wallLayers: 2.5 }, /^wallLayers needs a number of layers from 0 \(none\) to 100$/],
+      [{ tagLayer: 1 }, /^mesh: tagLayer must be true or false$/],
+    ];
+    for (const [options, pattern] of cases) {
+      const m = api.mesh(tube, options);
+      assert.equal(m.ok, false, JSON.stringify(options));
+      assert.match(m.error, pattern);
+      assert.doesNotMatch(m.error, /--|vesselmesh|wall-|layer-/);
+    }
+  });
+
+  test('a wall too irregular for layers: the message names the JS option', () => {
+    // The phantom's staircase surface as it is (not remeshed) folds.
+    const m = api.mesh(bifurcation, { remesh: false });
+    assert.equal(m.ok, false);
+    assert.match(m.error, /\(a wall too irregular for layers: remesh it, or use layers 0\)$/);
+    assert.doesNotMatch(m.error, /--/);
   });
 });
 

@@ -139,6 +139,7 @@ export class ClipBuffers {
     this.colors = new Uint8Array(9 * triangles);
     this.count = 0; // triangles written
     this.cut = 0; // of which cut faces (inside the mesh)
+    this.cutByPart = [0, 0, 0]; // cut faces per part of their tet (with tetPart)
     this.grown = true; // the arrays were replaced since the last call
   }
 
@@ -163,18 +164,23 @@ export class ClipBuffers {
  * (centroid <= value along the axis, or >= value when `flip`) that are not
  * shared with another kept tetrahedron, each oriented out of its tet.
  * Colors: a boundary face with tag g takes tagColors[3g..], a cut face
- * cutColor, unless tetColors is given (3 bytes per tet: every face the color
- * of its tet).
+ * cutColor or, with cutTetColors (3 bytes per tet), the color of its tet;
+ * with tetColors (3 bytes per tet) every face takes the color of its tet.
+ * With tetPart (one part 0..2 per tet), out.cutByPart counts the cut faces
+ * of each part.
  * @param {{positions: Float32Array, tets: Uint32Array}} mesh
  * @param {Int32Array} across from faceAdjacency
  * @param {Float32Array} centroid from tetCentroids
  * @param {{value: number, flip?: boolean, tetColors?: Uint8Array,
- *   tagColors: Uint8Array, cutColor: number[]}} options
+ *   tagColors: Uint8Array, cutColor: number[], cutTetColors?: Uint8Array,
+ *   tetPart?: Uint8Array}} options
  * @param {ClipBuffers} out
  */
 export function clipBoundary(mesh, across, centroid, options, out) {
   const { positions, tets } = mesh;
   const { value, flip = false, tetColors = null, tagColors, cutColor } = options;
+  const { cutTetColors = null, tetPart = null } = options;
+  const cutByPart = out.cutByPart.fill(0);
   const nt = centroid.length;
   const unknown = tagColors.length / 3; // colored like the last tag
   out.grown = false;
@@ -201,6 +207,10 @@ export function clipBoundary(mesh, across, centroid, options, out) {
         r = tetColors[3 * t];
         g = tetColors[3 * t + 1];
         b = tetColors[3 * t + 2];
+      } else if (u >= 0 && cutTetColors) {
+        r = cutTetColors[3 * t];
+        g = cutTetColors[3 * t + 1];
+        b = cutTetColors[3 * t + 2];
       } else if (u >= 0) {
         [r, g, b] = cutColor;
       } else {
@@ -209,7 +219,10 @@ export function clipBoundary(mesh, across, centroid, options, out) {
         g = tagColors[3 * tag + 1];
         b = tagColors[3 * tag + 2];
       }
-      if (u >= 0) cut++;
+      if (u >= 0) {
+        cut++;
+        if (tetPart) cutByPart[tetPart[t]]++;
+      }
       const corners = TET_FACES[f];
       for (let k = 0; k < 3; k++) {
         const v = 3 * tets[4 * t + corners[k]];

@@ -1,10 +1,11 @@
 // The vesselmesh page: load an STL (drop, file picker or generated sample),
-// analyze it in the worker, show it, mesh it (surface, caps, tetrahedra),
-// inspect the volume with a clipping plane, export MSH. All meshing happens
+// analyze it in the worker, show it, mesh it (surface, caps, boundary layer,
+// vessel wall, tetrahedra), inspect the volume with a clipping plane, export
+// MSH. All meshing happens
 // in the Web Worker behind VesselmeshClient, so the page stays responsive.
 import { VesselmeshClient } from '../../wasm/src/client.js';
 import { qualityGradientCss } from './colormap.js';
-import { drawGroupLegend } from './groups.js';
+import { drawGroupLegend, drawPartLegend, PARTS } from './groups.js';
 import { drawHistogram } from './histogram.js';
 import { chosenInlet, hideAnalysis, showAnalysis, showCaps } from './panel.js';
 import { Viewer } from './viewer.js';
@@ -16,13 +17,16 @@ const MAX_FILE_BYTES = 1.5 * 2 ** 30;
 
 const client = new VesselmeshClient();
 const viewer = new Viewer($('viewer'));
-const volumeView = new VolumeView(viewer, ({ triangles, cut, ms }) => {
+const count = (n) => n.toLocaleString('en');
+const volumeView = new VolumeView(viewer, ({ triangles, cut, cutByPart, ms }) => {
   const box = $('volume-view');
   box.dataset.triangles = String(triangles);
   box.dataset.cut = String(cut);
+  [box.dataset.cutCore, box.dataset.cutLayer, box.dataset.cutWall] = cutByPart.map(String);
+  const parts = PARTS.flatMap(({ name }, i) => (cutByPart[i] ? [`${count(cutByPart[i])} ${name}`] : []));
   $('clip-info').textContent =
-    `${triangles.toLocaleString('en')} triangles drawn ` +
-    `(${cut.toLocaleString('en')} cut faces) in ${ms.toFixed(1)} ms`;
+    `${count(triangles)} triangles drawn ` +
+    `(${count(cut)} cut faces${parts.length ? `: ${parts.join(', ')}` : ''}) in ${ms.toFixed(1)} ms`;
 });
 const volumeOption = $('show').querySelector('option[value=volume]');
 let current = null; // { name, bytes, analysis, surface }
@@ -126,13 +130,79 @@ function download(name, bytes) {
   setTimeout(() => URL.revokeObjectURL(url), 10_000);
 }
 
+/** Marks `input` valid or not; returns `message` when it is not. */
+function check(input, ok, message) {
+  input.setAttribute('aria-invalid', String(!ok));
+  return ok ? null : message;
+}
+
+/** The number in a number input (NaN when blank or not a number). */
+function numberIn(id) {
+  const input = $(id);
+  const value = input.value.trim();
+  return input.validity.badInput || value === '' ? NaN : Number(value);
+}
+
+const isCount = (x, min) => Number.isInteger(x) && x >= min && x <= 100;
+
 /** Why the core size field is unusable, or null (blank is the default). */
 function coreSizeProblem() {
   const input = $('core-size');
   const value = input.value.trim();
   const bad = input.validity.badInput || (value !== '' && !(Number(value) >= 0));
-  input.setAttribute('aria-invalid', String(bad));
-  return bad ? 'Core size must be a length ≥ 0 in model units, or blank for the default.' : null;
+  return check(input, !bad, 'Core size must be a length ≥ 0 in model units, or blank for the default.');
+}
+
+const LAYER_FIELDS = ['layers', 'layer-thickness', 'first-layer', 'growth', 'wall-thickness', 'wall-layers'];
+const isFraction = (x) => x > 0 && x < 1;
+
+/** Why the boundary layer or vessel wall fields are unusable: every field
+ * that applies is marked, the first problem returned (null when all are
+ * fine). */
+function layerProblems() {
+  for (const id of LAYER_FIELDS) $(id).setAttribute('aria-invalid', 'false');
+  if ($('surface-only').checked) return null; // no volume: the fields are unused
+  const layers = numberIn('layers') > 0;
+  const first = $('layer-mode').value === 'first';
+  const wall = $('wall-on').checked;
+  // [field, applies, valid(value), message]
+  const rules = [
+    [
+      'layers',
+      true,
+      (x) => isCount(x, 0),
+      'Boundary layer: the number of layers must be a whole number from 0 (none) to 100.',
+    ],
+    [
+      'layer-thickness',
+      layers && !first,
+      isFraction,
+      'Boundary layer: the total thickness must be a fraction of the local vessel radius R between 0 and 1 (e.g. 0.2).',
+    ],
+    [
+      'first-layer',
+      layers && first,
+      (x) => x > 0,
+      'Boundary layer: the first-layer height must be a positive length in model units.',
+    ],
+    ['growth', layers, (x) => x >= 1 && x <= 3, 'Boundary layer: the growth ratio must be from 1 to 3.'],
+    [
+      'wall-thickness',
+      wall,
+      isFraction,
+      'Vessel wall: the thickness must be a fraction of the local vessel radius R between 0 and 1 (e.g. 0.1).',
+    ],
+    [
+      'wall-layers',
+      wall,
+      (x) => isCount(x, 1),
+      'Vessel wall: the number of layers must be a whole number from 1 to 100.',
+    ],
+  ];
+  const problems = rules
+    .filter(([, applies]) => applies)
+    .map(([id, , valid, message]) => check($(id), valid(numberIn(id)), message));
+  return problems.find(Boolean) ?? null;
 }
 
 /** The mesh options chosen in the panel (without progress). */
@@ -150,7 +220,51 @@ function meshOptions() {
   if (coreSize !== '') options.coreSize = Number(coreSize);
   const inlet = chosenInlet();
   if (inlet !== undefined) options.inlet = inlet;
+  if (!options.surfaceOnly) {
+    options.layers = numberIn('layers');
+    if (options.layers > 0) {
+      if ($('layer-mode').value === 'first') options.firstLayer = numberIn('first-layer');
+      else options.layerThickness = numberIn('layer-thickness');
+      options.growth = numberIn('growth');
+      options.tagLayer = $('tag-layer').checked;
+    }
+    if ($('wall-on').checked) {
+      options.wallThickness = numberIn('wall-thickness');
+      options.wallLayers = numberIn('wall-layers');
+    }
+  }
   return options;
+}
+
+/** Enables the layer fields that apply (none with 0 layers or surface only). */
+function syncLayerFields() {
+  const none = numberIn('layers') === 0;
+  for (const id of ['layer-mode', 'layer-thickness', 'first-layer', 'growth', 'tag-layer']) {
+    $(id).disabled = none;
+  }
+  const first = $('layer-mode').value === 'first';
+  $('layer-thickness-field').hidden = first;
+  $('first-layer-field').hidden = !first;
+  $('wall-thickness').disabled = $('wall-layers').disabled = !$('wall-on').checked;
+  $('layer-options').disabled = $('wall-options').disabled = $('surface-only').checked;
+}
+
+/**
+ * A first-layer height to start from: the first of the current number of
+ * layers, growing by the current ratio, that add up to the current total
+ * thickness fraction (0.2 if unusable) of the median opening's radius;
+ * '' without openings.
+ */
+function suggestedFirstLayer() {
+  const radii = (current?.analysis.openings ?? []).map((o) => o.radius).sort((a, b) => a - b);
+  if (!radii.length) return '';
+  const f = numberIn('layer-thickness');
+  const total = (f > 0 && f < 1 ? f : 0.2) * radii[Math.floor(radii.length / 2)];
+  const n = isCount(numberIn('layers'), 1) ? numberIn('layers') : 4;
+  const g = numberIn('growth') >= 1 && numberIn('growth') <= 3 ? numberIn('growth') : 1;
+  let sum = 0;
+  for (let k = 0; k < n; k++) sum += g ** k;
+  return String(Number((total / sum).toPrecision(2)));
 }
 
 /** The clipping options chosen in the panel. */
@@ -165,10 +279,33 @@ function volumeOptions() {
   };
 }
 
+const summaries = new WeakMap();
+/** Tetrahedra per part [core, boundary layer, vessel wall] and the volume
+ * groups that have tetrahedra, of a result's volume. */
+function volumeSummary(volume) {
+  let s = summaries.get(volume);
+  if (!s) {
+    const parts = [0, 0, 0];
+    for (const p of volume.tetPart ?? []) parts[p]++;
+    if (!volume.tetPart) parts[0] = volume.tets.length / 4;
+    const used = new Set(volume.tetRegion);
+    const regions = volume.regionNames.filter((name, i) => name && used.has(i));
+    s = { parts, regions };
+    summaries.set(volume, s);
+  }
+  return s;
+}
+
+/** The legends of the volume view: the parts (part colors), the groups
+ * (the boundary; with group colors also the volume groups of the cut), the
+ * gamma ramp (quality colors). */
 function drawLegend(volume) {
-  const names = [...volume.surfaceNames];
-  if ($('volume-color').value === 'group') names.push('lumen');
-  drawGroupLegend($('group-legend'), names);
+  const color = $('volume-color').value;
+  const { parts, regions } = volumeSummary(volume);
+  $('part-legend').hidden = color !== 'part';
+  drawPartLegend($('part-legend'), parts);
+  drawGroupLegend($('group-legend'), [...volume.surfaceNames, ...(color === 'group' ? regions : [])]);
+  $('legend').hidden = color !== 'quality';
 }
 
 /** Shows 'input', 'output' (the remeshed wall) or 'volume' (clipped). */
@@ -176,6 +313,8 @@ function show(which) {
   const volume = which === 'volume' ? remeshed?.result.volume : null;
   $('volume-view').hidden = !volume;
   $('group-legend').hidden = !volume;
+  $('part-legend').hidden = true;
+  $('legend').hidden = false;
   if (volume) {
     try {
       volumeView.set(volumeOptions());
@@ -184,13 +323,62 @@ function show(which) {
       return;
     } catch (e) {
       showError(`Cannot show the volume: ${e.message}`);
-      $('volume-view').hidden = $('group-legend').hidden = true;
+      $('volume-view').hidden = $('group-legend').hidden = $('part-legend').hidden = true;
+      $('legend').hidden = false;
       which = 'output';
       $('show').value = which;
     }
   }
   volumeView.hide();
   viewer.setSurface(which === 'output' && remeshed ? remeshed.result.surface : current.surface);
+}
+
+/** The gamma_t histogram: of the core (the layers' elements are flat by
+ * design), or of all tetrahedra when asked. */
+function drawTetHistogram(result) {
+  const v = result.report.output.volume;
+  const { parts } = volumeSummary(result.volume);
+  const layered = parts[1] + parts[2] > 0;
+  const all = layered && $('tet-histogram-all').checked;
+  const core = v.core_quality ?? v.quality;
+  let scope = '';
+  if (layered) scope = all ? 'of all tetrahedra' : 'of the core (the flat layer elements excluded)';
+  $('tet-histogram-scope').textContent = scope;
+  const svg = $('tet-histogram');
+  svg.dataset.scope = all || !layered ? 'all' : 'core';
+  drawHistogram(svg, (all ? v.quality : core).histogram, all ? 'tetrahedra' : 'core tetrahedra');
+}
+
+/** One row per grown layer (report.output.volume.boundary_layer and
+ * vessel_wall): layers, area with the thickness within 10% of the request,
+ * reduced area, front gamma_k min. */
+function showLayerStats(v) {
+  const pct = (x) => `${(100 * x).toFixed(1)}%`;
+  const rows = [
+    ['boundary_layer', 'Boundary layer'],
+    ['vessel_wall', 'Vessel wall'],
+  ].flatMap(([key, label]) => {
+    const s = v[key];
+    if (!s) return [];
+    const tr = document.createElement('tr');
+    tr.dataset.part = key;
+    const cells = [
+      ['name', label],
+      ['layers', String(s.layers)],
+      ['thickness-within-10pct', pct(s.thickness_within_10pct)],
+      ['reduced-area', pct(s.reduced_area_fraction)],
+      ['front-quality-min', s.front_quality_min.toFixed(3)],
+    ];
+    for (const [stat, text] of cells) {
+      const td = document.createElement('td');
+      td.dataset.stat = stat;
+      td.textContent = text;
+      tr.append(td);
+    }
+    return [tr];
+  });
+  $('layer-stats').querySelector('tbody').replaceChildren(...rows);
+  $('layer-stats').hidden = rows.length === 0;
 }
 
 /** Fills the result part of the panel with a mesh result. */
@@ -206,12 +394,24 @@ function showMeshResult(result) {
   const volume = out.volume && result.volume;
   $('volume-result').hidden = !volume;
   if (volume) {
-    $('out-tets').textContent = out.volume.tetrahedra.toLocaleString('en');
-    $('out-volume-vertices').textContent = out.volume.vertices.toLocaleString('en');
+    const v = out.volume;
+    const { parts } = volumeSummary(result.volume);
+    const layered = parts[1] + parts[2] > 0;
+    const core = v.core_quality ?? v.quality;
+    $('out-tets').textContent = count(v.tetrahedra);
+    $('out-parts').textContent = layered
+      ? ` (${PARTS.flatMap(({ name }, i) => (parts[i] ? [`${name} ${count(parts[i])}`] : [])).join(', ')})`
+      : '';
+    $('out-volume-vertices').textContent = count(v.vertices);
     $('out-caps').textContent = out.caps.map((c) => c.name).join(', ') || 'none';
-    $('out-tet-min').textContent = out.volume.quality.min.toFixed(3);
-    $('out-tet-mean').textContent = out.volume.quality.mean.toFixed(3);
-    drawHistogram($('tet-histogram'), out.volume.quality.histogram, 'tetrahedra');
+    $('out-tet-min').textContent = core.min.toFixed(3);
+    $('out-tet-mean').textContent = core.mean.toFixed(3);
+    $('out-tet-all').textContent = layered
+      ? `; all tetrahedra min ${v.quality.min.toFixed(3)}, mean ${v.quality.mean.toFixed(3)}`
+      : '';
+    $('tet-histogram-all-field').hidden = !layered;
+    drawTetHistogram(result);
+    showLayerStats(v);
     $('show').prepend(volumeOption);
   } else {
     volumeOption.remove();
@@ -224,7 +424,7 @@ function showMeshResult(result) {
 
 /** Meshes `current` with the panel's options, reusing the last result. */
 async function meshCurrent() {
-  const problem = coreSizeProblem();
+  const problem = [coreSizeProblem(), layerProblems()].find(Boolean);
   if (problem) {
     showError(problem);
     return null;
@@ -278,7 +478,21 @@ $('volume-color').addEventListener('change', (e) => {
 });
 $('show-boundary').addEventListener('change', (e) => volumeView.set({ boundary: e.target.checked }));
 $('show-edges').addEventListener('change', (e) => volumeView.set({ edges: e.target.checked }));
-$('core-size').addEventListener('input', () => $('core-size').setAttribute('aria-invalid', 'false'));
+for (const id of ['core-size', ...LAYER_FIELDS]) {
+  $(id).addEventListener('input', () => $(id).setAttribute('aria-invalid', 'false'));
+}
+$('layers').addEventListener('input', syncLayerFields);
+$('layer-mode').addEventListener('change', (e) => {
+  if (e.target.value === 'first' && $('first-layer').value.trim() === '') {
+    $('first-layer').value = suggestedFirstLayer();
+  }
+  syncLayerFields();
+});
+$('wall-on').addEventListener('change', syncLayerFields);
+$('surface-only').addEventListener('change', syncLayerFields);
+$('tet-histogram-all').addEventListener('change', () => {
+  if (remeshed?.result.volume) drawTetHistogram(remeshed.result);
+});
 $('remesh').addEventListener('click', remesh);
 $('file-input').addEventListener('change', (e) => {
   const file = e.target.files[0];
@@ -309,3 +523,4 @@ client.ready.then(
   (e) => showError(`The mesher could not start: ${e.message}`),
 );
 hideAnalysis();
+syncLayerFields();

@@ -1,17 +1,33 @@
-// The volume view: the lumen's tetrahedra cut by an axis-aligned clipping
-// plane as Gmsh draws them (clip.js: tets kept by the side of their
-// centroid, the faces of the kept set not shared by two kept tets), shaded,
-// with thin edges, colored by gamma_t or by group; the wall and caps on the
-// removed side are drawn transparent for context (or hidden).
+// The volume view: the tetrahedra (core, boundary layer, vessel wall) cut by
+// an axis-aligned clipping plane as Gmsh draws them (clip.js: tets kept by
+// the side of their centroid, the faces of the kept set not shared by two
+// kept tets), shaded, with thin edges, colored by gamma_t, by part (core,
+// boundary layer, vessel wall) or by group (the boundary by surface group,
+// the cut by volume group); the boundary on the removed side is drawn
+// transparent for context (or hidden).
 import * as THREE from 'three';
 
 import { ClipBuffers, clipBoundary, faceAdjacency, tetCentroids } from './clip.js';
 import { qualityColor } from './colormap.js';
-import { groupColor } from './groups.js';
+import { groupColor, PARTS } from './groups.js';
 
 const AXES = { x: 0, y: 1, z: 2 };
 const byte = (x) => Math.round(255 * x);
+const GREY = [150, 150, 150];
 const prepared = new WeakMap(); // volume -> what every plane position reuses
+
+/** 3 bytes per tet: the color of its entry of `table` (RGB 0..1 each). */
+function colorsByIndex(index, table) {
+  const bytes = table.map((rgb) => rgb.map(byte));
+  const out = new Uint8Array(3 * index.length);
+  for (let t = 0; t < index.length; t++) {
+    const c = bytes[index[t]] ?? GREY;
+    out[3 * t] = c[0];
+    out[3 * t + 1] = c[1];
+    out[3 * t + 2] = c[2];
+  }
+  return out;
+}
 
 /** Adjacency, colors and bounds of a volume, computed once. */
 function prepare(volume) {
@@ -19,6 +35,8 @@ function prepare(volume) {
   if (data) return data;
   const { positions, tets, tetQuality, triangles, triangleTag, surfaceNames } = volume;
   const nt = tets.length / 4;
+  const tetPart = volume.tetPart ?? new Uint8Array(nt);
+  const regionNames = volume.regionNames ?? ['lumen'];
   const across = faceAdjacency(tets, positions.length / 3, triangles, triangleTag);
   // gamma_t colors through a 256-entry table of the colormap.
   const table = new Uint8Array(3 * 256);
@@ -39,7 +57,10 @@ function prepare(volume) {
   const box = new THREE.Box3().setFromArray(positions);
   data = {
     across,
+    tetPart,
     tetColors,
+    partColors: colorsByIndex(tetPart, PARTS.map((p) => p.color)),
+    regionColors: colorsByIndex(volume.tetRegion ?? new Int32Array(nt), regionNames.map(groupColor)),
     tagColors,
     cutColor: groupColor('lumen').map(byte),
     sphere: box.getBoundingSphere(new THREE.Sphere()),
@@ -73,8 +94,9 @@ function boundaryGeometry({ positions, triangles, triangleTag, surfaceNames }) {
 export class VolumeView {
   /**
    * @param {import('./viewer.js').Viewer} viewer
-   * @param {(info: {triangles: number, cut: number, ms: number}) => void} [onDraw]
-   *   called after each redraw
+   * @param {(info: {triangles: number, cut: number, cutByPart: number[],
+   *   ms: number}) => void} [onDraw] called after each redraw (cutByPart: the
+   *   cut faces of the core, the boundary layer and the vessel wall)
    */
   constructor(viewer, onDraw) {
     this.viewer = viewer;
@@ -83,7 +105,7 @@ export class VolumeView {
       axis: 'z',
       position: 0.5,
       flip: false,
-      color: 'quality',
+      color: 'part',
       boundary: true,
       edges: true,
     };
@@ -138,7 +160,7 @@ export class VolumeView {
   }
 
   /** Changes options (axis 'x'|'y'|'z', position 0..1, flip, color
-   * 'quality'|'group', boundary, edges); redraws at the next frame. */
+   * 'quality'|'part'|'group', boundary, edges); redraws at the next frame. */
   set(options) {
     Object.assign(this.options, options);
     if (this.active && !this.frame) {
@@ -191,9 +213,11 @@ export class VolumeView {
       {
         value,
         flip,
-        tetColors: color === 'quality' ? d.tetColors : null,
+        tetColors: { quality: d.tetColors, part: d.partColors }[color] ?? null,
         tagColors: d.tagColors,
         cutColor: d.cutColor,
+        cutTetColors: d.regionColors,
+        tetPart: d.tetPart,
       },
       this.buffers,
     );
@@ -220,7 +244,12 @@ export class VolumeView {
     this.context.visible = this.options.boundary;
     this.edges.visible = this.options.edges;
     this.viewer.render();
-    this.onDraw?.({ triangles: b.count, cut: b.cut, ms: performance.now() - start });
+    this.onDraw?.({
+      triangles: b.count,
+      cut: b.cut,
+      cutByPart: [...b.cutByPart],
+      ms: performance.now() - start,
+    });
   }
 
   /** Stops pending redraws (the viewer shows something else). */

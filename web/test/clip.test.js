@@ -115,6 +115,28 @@ describe('clip: a 4x4x4 Kuhn grid', () => {
     assert.ok(q.colors.subarray(0, 9 * q.count).every((c) => c === 99));
   });
 
+  test('cut faces: the color of their tet, and counted per part', () => {
+    const nt = mesh.tets.length / 4;
+    const tetPart = Uint8Array.from({ length: nt }, (_, t) => t % 3);
+    const cutTetColors = Uint8Array.from({ length: 3 * nt }, (_, i) => 100 + tetPart[Math.floor(i / 3)]);
+    const out = clip(mesh, across, 0, 2, { cutTetColors, tetPart });
+    const centroid = tetCentroids(mesh.positions, mesh.tets, 0);
+    const expected = [0, 0, 0];
+    for (let t = 0; t < nt; t++) {
+      if (!(centroid[t] <= 2)) continue;
+      for (let f = 0; f < 4; f++) {
+        const u = across[4 * t + f];
+        if (u >= 0 && !(centroid[u] <= 2)) expected[tetPart[t]]++;
+      }
+    }
+    assert.deepEqual(out.cutByPart, expected);
+    assert.equal(expected[0] + expected[1] + expected[2], out.cut);
+    const colored = [0, 0, 0];
+    for (let t = 0; t < out.count; t++) if (out.colors[9 * t] >= 100) colored[out.colors[9 * t] - 100]++;
+    assert.deepEqual(colored, expected); // the boundary keeps its tag colors
+    assert.deepEqual(clip(mesh, across, 0, 2).cutByPart, [0, 0, 0]); // no tetPart: not counted
+  });
+
   test('buffers grow and are reused', () => {
     const centroid = tetCentroids(mesh.positions, mesh.tets, 1);
     const out = new ClipBuffers(1);
@@ -129,7 +151,8 @@ describe('clip: a 4x4x4 Kuhn grid', () => {
 });
 
 describe('clip: the volume of the bifurcation phantom', () => {
-  let volume;
+  let volume; // with the boundary layer (the default)
+  let walled; // and the vessel wall: `wall` triangles between two tets
   before(async () => {
     const wasmBinary = readFileSync(new URL('../../wasm/dist/vesselmesh_core.wasm', import.meta.url));
     const api = await createVesselmesh({ wasmBinary });
@@ -137,6 +160,9 @@ describe('clip: the volume of the bifurcation phantom', () => {
     const r = api.mesh(stl, { size: 0.3 });
     assert.equal(r.ok, true, r.error);
     volume = r.volume;
+    const w = api.mesh(stl, { size: 0.3, wallThickness: 0.1 });
+    assert.equal(w.ok, true, w.error);
+    walled = w.volume;
   });
 
   test('adjacency agrees with a brute-force face map; boundary = tagged triangles', () => {
@@ -181,6 +207,25 @@ describe('clip: the volume of the bifurcation phantom', () => {
       const out = clip(volume, across, axis, value);
       assert.ok(out.cut > 0 && out.count > out.cut);
       checkClosed(volume, out, (t) => centroid[t] <= value);
+    }
+  });
+
+  test('with the vessel wall the interface is inside: the outer boundary is drawn, cuts are closed', () => {
+    const { tets, triangles, triangleTag, positions, surfaceNames, tetPart } = walled;
+    const across = faceAdjacency(tets, positions.length / 3, triangles, triangleTag);
+    const wall = surfaceNames.indexOf('wall');
+    const interfaces = triangleTag.filter((g) => g === wall).length;
+    assert.ok(interfaces > 0);
+    const all = clip(walled, across, 0, Infinity, { tetPart });
+    assert.equal(all.count, triangleTag.length - interfaces);
+    assert.equal(all.cut, 0);
+    for (const axis of [0, 1, 2]) {
+      const centroid = tetCentroids(positions, tets, axis);
+      const sorted = Float32Array.from(centroid).sort();
+      const value = sorted[sorted.length >> 1];
+      const out = clip(walled, across, axis, value, { tetPart });
+      assert.ok(out.cutByPart.every((n) => n > 0), `axis ${axis}: ${out.cutByPart}`);
+      checkClosed(walled, out, (t) => centroid[t] <= value);
     }
   });
 });
