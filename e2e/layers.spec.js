@@ -201,3 +201,24 @@ test('layers 0: no layer part; bad layer and wall input give readable errors and
   await expect(page.locator('#layer-stats tr[data-part=boundary_layer] [data-stat=layers]')).toHaveText('5');
   expect(errors).toEqual([]);
 });
+
+test('kept prisms: shown split in the cut, written as prisms and quads', async ({ page }) => {
+  const { errors } = await loadSample(page);
+  await page.getByTestId('keep-prisms').check();
+  await mesh(page);
+  const view = page.getByTestId('volume-view');
+  await expect(page.getByTestId('part-legend').locator('li')).toHaveText(['core', 'boundary layer']);
+  await expect(view).toHaveAttribute('data-cut-layer', /^[1-9]\d*$/);
+  // The file: element blocks of prisms (type 6) and quads (type 3).
+  const text = await downloadText(page);
+  const lines = text.split('\n');
+  const first = lines.indexOf('$Elements') + 2;
+  const types = new Set();
+  for (let i = first; i < lines.length && lines[i] !== '$EndElements'; ) {
+    const [, , type, count] = lines[i].split(' ').map(Number);
+    types.add(type);
+    i += count + 1;
+  }
+  expect([...types].sort()).toEqual([2, 3, 4, 6]);
+  expect(errors).toEqual([]);
+});

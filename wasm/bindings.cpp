@@ -76,6 +76,14 @@ void set_volume(val& r, const vm::MeshJobResult& res) {
   v.set("triangles", copy_out(reinterpret_cast<const uint32_t*>(m.triangles.data()),
                               m.triangles.size(), "Uint32Array"));
   v.set("triangleTag", copy_out(m.triangle_tag.data(), m.triangle_tag.size(), "Int32Array"));
+  if (!m.prisms.empty()) {  // kept prisms and their faces at the openings
+    v.set("prisms", copy_out(reinterpret_cast<const uint32_t*>(m.prisms.data()), m.prisms.size(),
+                             "Uint32Array"));
+    v.set("prismRegion", copy_out(m.prism_region.data(), m.prism_region.size(), "Int32Array"));
+    v.set("quads", copy_out(reinterpret_cast<const uint32_t*>(m.quads.data()), m.quads.size(),
+                            "Uint32Array"));
+    v.set("quadTag", copy_out(m.quad_tag.data(), m.quad_tag.size(), "Int32Array"));
+  }
   val names = val::array();
   for (const std::string& n : res.surface_names) names.call<void>("push", n);
   v.set("surfaceNames", names);

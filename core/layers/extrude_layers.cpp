@@ -45,15 +45,15 @@ std::string where(const std::vector<double>& pts, int32_t v) {
 
 Status check_spec(const LayerSpec& s) {
   if (!(s.gap_fraction > 0 && s.gap_fraction <= 0.5))
-    return Status::Error("layers: gap_fraction must be in (0, 0.5]");
+    return Status::Error("gap_fraction must be in (0, 0.5]");
   if (!(s.min_volume_ratio > 0 && s.min_volume_ratio < 1))
-    return Status::Error("layers: min_volume_ratio must be in (0, 1)");
+    return Status::Error("min_volume_ratio must be in (0, 1)");
   if (!(s.min_front_quality_ratio >= 0 && s.min_front_quality_ratio < 1))
-    return Status::Error("layers: min_front_quality_ratio must be in [0, 1)");
+    return Status::Error("min_front_quality_ratio must be in [0, 1)");
   if (!(s.gradation > 0) || !std::isfinite(s.gradation))
-    return Status::Error("layers: gradation must be > 0");
-  if (s.smoothing_passes < 0) return Status::Error("layers: smoothing_passes must be >= 0");
-  if (s.max_rounds < 1) return Status::Error("layers: max_rounds must be >= 1");
+    return Status::Error("gradation must be > 0");
+  if (s.smoothing_passes < 0) return Status::Error("smoothing_passes must be >= 0");
+  if (s.max_rounds < 1) return Status::Error("max_rounds must be >= 1");
   return Status::Ok();
 }
 
@@ -61,16 +61,16 @@ Status check_spec(const LayerSpec& s) {
 // vertex used).
 Status check_wall(const SurfaceMesh& wall, const TriangleAdjacency& adj) {
   if (adj.num_nonmanifold_edges > 0)
-    return Status::Error("layers: the wall has " + std::to_string(adj.num_nonmanifold_edges) +
+    return Status::Error("the wall has " + std::to_string(adj.num_nonmanifold_edges) +
                          " non-manifold edges");
   for (size_t h = 0; h < adj.opposite.size(); ++h) {
     const int32_t o = adj.opposite[h];
     if (o >= 0 && half_edge_from(wall, int32_t(h)) != half_edge_to(wall, o))
-      return Status::Error("layers: the wall is not consistently oriented");
+      return Status::Error("the wall is not consistently oriented");
   }
   for (size_t v = 0; v < wall.num_vertices(); ++v)
     if (adj.star_offsets[v] == adj.star_offsets[v + 1])
-      return Status::Error("layers: wall vertex " + std::to_string(v) + " " +
+      return Status::Error("wall vertex " + std::to_string(v) + " " +
                            where(wall.points, int32_t(v)) + " is in no triangle");
   return Status::Ok();
 }
@@ -110,19 +110,19 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
   auto requested_or = requested_thickness(spec, radius, nv);
   if (!requested_or.ok()) return requested_or.status();
   const std::vector<double> requested = std::move(requested_or).value();
-  if (nt == 0) return R::Error("layers: the wall has no triangle");
+  if (nt == 0) return R::Error("the wall has no triangle");
   if (wall_in.triangles.size() % 3 != 0 || wall_in.points.size() % 3 != 0)
-    return R::Error("layers: the wall's arrays are not whole triangles / points");
+    return R::Error("the wall's arrays are not whole triangles / points");
   for (size_t t = 0; t < nt; ++t) {
     const int32_t* f = &wall_in.triangles[3 * t];
     for (int k = 0; k < 3; ++k)
       if (f[k] < 0 || size_t(f[k]) >= nv)
-        return R::Error("layers: a wall triangle index is out of range");
+        return R::Error("a wall triangle index is out of range");
     if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2])
-      return R::Error("layers: wall triangle " + std::to_string(t) + " repeats a vertex");
+      return R::Error("wall triangle " + std::to_string(t) + " repeats a vertex");
   }
   if (int64_t(nv) * (spec.layers + 1) >= int64_t(INT32_MAX))
-    return R::Error("layers: too many points for 32-bit indices");
+    return R::Error("too many points for 32-bit indices");
   const TriangleAdjacency adj = build_adjacency(wall_in);
   if (Status s = check_wall(wall_in, adj); !s.ok()) return s;
 
@@ -135,14 +135,14 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
   for (auto& loop : boundary_loops(wall_in, adj)) {
     for (int32_t v : loop) {
       if (on_opening[size_t(v)] >= 0)
-        return R::Error("layers: the openings at " + where(wall.points, v) + " share a vertex");
+        return R::Error("the openings at " + where(wall.points, v) + " share a vertex");
       on_opening[size_t(v)] = int32_t(openings.size());
     }
     if (loop.size() < 3)
-      return R::Error("layers: the opening at " + where(wall.points, loop[0]) +
+      return R::Error("the opening at " + where(wall.points, loop[0]) +
                       " has fewer than 3 rim vertices");
     auto plane = fit_opening_plane(wall_in.points, loop);
-    if (!plane.ok()) return R::Error("layers: " + plane.message());
+    if (!plane.ok()) return R::Error("" + plane.message());
     LayerOpening op;
     op.origin = plane.value().origin;
     op.normal = plane.value().normal;
@@ -157,7 +157,7 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
   }
   if (!(fan_closed_volume(wall, openings) > 0))
     return R::Error(
-        "layers: the wall faces inward (the volume it encloses is negative): orient it outward");
+        "the wall faces inward (the volume it encloses is negative): orient it outward");
   const VertexRings rings = vertex_rings(wall, adj);
 
   // Phase 2: directions.
@@ -229,7 +229,7 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
                           " wall triangles still have "
                           "invalid prisms"
                     : std::to_string(crossing / 2) + " columns still make the front intersect";
-    return R::Error("layers: no valid layer after " + std::to_string(spec.max_rounds) +
+    return R::Error("no valid layer after " + std::to_string(spec.max_rounds) +
                     " rounds of shrinking (" + what + ")");
   }
   for (size_t v = 0; v < nv; ++v) {

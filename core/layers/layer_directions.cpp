@@ -126,7 +126,7 @@ Result<LayerDirections> layer_directions(const SurfaceMesh& wall, const Triangle
       out.opening_of[size_t(v)] = int32_t(o);
       const Vec3 d = rim_direction(wall, op, i, at(out.normal, v), outward);
       if (!(norm(d) > 0.5))
-        return R::Error("layers: no in-plane direction at rim vertex " + std::to_string(v) + " " +
+        return R::Error("no in-plane direction at rim vertex " + std::to_string(v) + " " +
                         where(wall, v) + " (degenerate rim)");
       layers::put(dir, v, d);
     }
@@ -188,7 +188,7 @@ Result<LayerDirections> layer_directions(const SurfaceMesh& wall, const Triangle
       if (w2 > w) d = d2, w = w2;
     }
     if (!(w >= kVisibilityFloor))
-      return R::Error(std::string("layers: no ") + (outward ? "outward" : "inward") +
+      return R::Error(std::string("no ") + (outward ? "outward" : "inward") +
                       " direction sees all the triangles around wall vertex " + std::to_string(v) +
                       " " + where(wall, v) +
                       (plane ? " from within its cap plane (the wall meets the plane at a grazing "

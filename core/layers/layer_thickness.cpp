@@ -12,28 +12,28 @@ using namespace layers;  // NOLINT: the layer stage's own vector helpers
 Result<std::vector<double>> requested_thickness(const LayerSpec& spec,
                                                 const std::vector<double>& radius, size_t nv) {
   using R = Result<std::vector<double>>;
-  if (spec.layers < 1) return R::Error("layers: the number of layers must be >= 1");
+  if (spec.layers < 1) return R::Error("the number of layers must be >= 1");
   if (!(spec.growth > 0) || !std::isfinite(spec.growth))
-    return R::Error("layers: the growth ratio must be > 0");
+    return R::Error("the growth ratio must be > 0");
   if (spec.first_height > 0) {
     if (!std::isfinite(spec.first_height))
-      return R::Error("layers: the first-layer height must be finite");
+      return R::Error("the first-layer height must be finite");
     double total = 0, h = spec.first_height;
     for (int k = 0; k < spec.layers; ++k, h *= spec.growth) total += h;
-    if (!std::isfinite(total)) return R::Error("layers: the total thickness overflows");
+    if (!std::isfinite(total)) return R::Error("the total thickness overflows");
     return std::vector<double>(nv, total);
   }
   if (!(spec.first_height == 0))
-    return R::Error("layers: the first-layer height must be > 0 (or 0 to use the fraction)");
+    return R::Error("the first-layer height must be > 0 (or 0 to use the fraction)");
   if (!(spec.thickness_fraction > 0) || !std::isfinite(spec.thickness_fraction))
-    return R::Error("layers: the thickness fraction must be > 0");
+    return R::Error("the thickness fraction must be > 0");
   if (radius.size() != nv)
-    return R::Error("layers: " + std::to_string(radius.size()) + " radii for " +
+    return R::Error("" + std::to_string(radius.size()) + " radii for " +
                     std::to_string(nv) + " wall vertices");
   std::vector<double> t(nv);
   for (size_t v = 0; v < nv; ++v) {
     if (!(radius[v] > 0) || !std::isfinite(radius[v]))
-      return R::Error("layers: the radius at wall vertex " + std::to_string(v) +
+      return R::Error("the radius at wall vertex " + std::to_string(v) +
                       " is not a positive number");
     t[v] = spec.thickness_fraction * radius[v];
   }

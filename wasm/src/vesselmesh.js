@@ -58,6 +58,7 @@ const JS_NAMES = {
   'largest-component': 'largestComponentOnly',
   'surface-only': 'surfaceOnly',
   'tag-layer': 'tagLayer',
+  prisms: 'prisms',
 };
 
 /** A core error message in the JS API's words. */
@@ -110,6 +111,9 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * `wallThickness` (fraction of R, e.g. 0.1), `wallLayers` (default 4);
      * `tagLayer` makes the viscous layer its own region `boundary_layer`.
      * volume.tetPart tells each tet's part: 0 core, 1 viscous layer, 2 wall.
+     * `prisms: true` keeps the layers' prisms: volume.prisms (6 a prism, 0-1-2
+     * then 3-4-5 above them), prismRegion, and their faces at the openings
+     * volume.quads (4 a quad) with quadTag; the tets are then the core's.
      * Size: `size` (uniform h) or `perCircumference` (h = 2 pi R / N, the
      * default with N = 20), clamps `sizeMin` / `sizeMax`, `gradation`,
      * `curvature`, `featureAngle` (degrees; sharper creases are kept, 180:
@@ -127,6 +131,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
         remesh = true,
         surfaceOnly = false,
         tagLayer = false,
+        prisms = false,
         onProgress,
         ...rest
       } = {},
@@ -141,6 +146,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
         ['remesh', remesh],
         ['surfaceOnly', surfaceOnly],
         ['tagLayer', tagLayer],
+        ['prisms', prisms],
       ]) {
         if (typeof value !== 'boolean') return fail(`mesh: ${name} must be true or false`);
       }
@@ -150,6 +156,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
         remesh,
         surfaceOnly,
         tagLayer,
+        prisms,
       };
       for (const [name, value] of Object.entries(rest)) {
         const coreName = MESH_OPTIONS[name];

@@ -594,6 +594,37 @@ describe('mesh: boundary layers and vessel wall', () => {
     checkGroupsInMsh(m);
   });
 
+  test('prisms: kept prisms (positive by their split) and quads at the openings, shown split', async () => {
+    const m = api.mesh(tube, { prisms: true, wallThickness: 0.1, wallLayers: 2 });
+    assert.equal(m.ok, true, m.error);
+    const v = m.volume;
+    const wall = m.report.output.triangles;
+    assert.equal(v.prisms.length / 6, (4 + 2) * wall);
+    assert.equal(v.prismRegion.length, v.prisms.length / 6);
+    assert.ok(v.tetPart.every((p) => p === 0)); // the tets are the core's
+    assert.equal(v.quadTag.length, v.quads.length / 4);
+    const names = new Set(Array.from(v.quadTag, (t) => v.surfaceNames[t]));
+    assert.deepEqual([...names].sort(), ['inlet', 'outlet_1', 'wall_inlet', 'wall_outlet_1']);
+    // Shown as tetrahedra: every one positive, the boundary closed by the
+    // triangles and the split quads.
+    const { withPrismsSplit } = await import('../../web/src/prisms.js');
+    const shown = withPrismsSplit(v);
+    assert.equal(shown.tets.length / 4, v.tets.length / 4 + 3 * (v.prisms.length / 6));
+    assert.equal(shown.triangles.length / 3, v.triangles.length / 3 + 2 * (v.quads.length / 4));
+    for (let t = 0; t < shown.tets.length / 4; t++) {
+      const [a, b, c, d] = [0, 1, 2, 3].map((k) => point(shown.positions, shown.tets[4 * t + k]));
+      assert.ok(dot(cross(sub(b, a), sub(c, a)), sub(d, a)) > 0, `shown tetrahedron ${t}`);
+    }
+    const tagged = new Set();
+    for (let b = 0; b < shown.triangleTag.length; b++) tagged.add(faceKey(shown.triangles.subarray(3 * b, 3 * b + 3)));
+    for (const [k, around] of tetsByFace(shown)) {
+      assert.ok(around.length <= 2, `face ${k} of ${around.length} tetrahedra`);
+      if (around.length === 1) assert.ok(tagged.has(k), `untagged boundary face ${k}`);
+    }
+    assert.ok(text(m.msh).includes('"vessel_wall"'));
+    assert.match(api.mesh(tube, { prisms: 'yes' }).error, /^mesh: prisms must be true or false$/);
+  });
+
   test('layers: 0 gives no layer part; firstLayer + growth sets the heights', () => {
     const m = api.mesh(tube, { layers: 0 });
     assert.equal(m.ok, true, m.error);

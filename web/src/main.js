@@ -9,6 +9,7 @@ import { drawGroupLegend, drawPartLegend, PARTS } from './groups.js';
 import { drawHistogram } from './histogram.js';
 import { chosenInlet, hideAnalysis, showAnalysis, showCaps } from './panel.js';
 import { Viewer } from './viewer.js';
+import { withPrismsSplit } from './prisms.js';
 import { VolumeView } from './volume-view.js';
 
 const $ = (id) => document.getElementById(id);
@@ -227,6 +228,7 @@ function meshOptions() {
       else options.layerThickness = numberIn('layer-thickness');
       options.growth = numberIn('growth');
       options.tagLayer = $('tag-layer').checked;
+      options.prisms = $('keep-prisms').checked;
     }
     if ($('wall-on').checked) {
       options.wallThickness = numberIn('wall-thickness');
@@ -239,7 +241,7 @@ function meshOptions() {
 /** Enables the layer fields that apply (none with 0 layers or surface only). */
 function syncLayerFields() {
   const none = numberIn('layers') === 0;
-  for (const id of ['layer-mode', 'layer-thickness', 'first-layer', 'growth', 'tag-layer']) {
+  for (const id of ['layer-mode', 'layer-thickness', 'first-layer', 'growth', 'tag-layer', 'keep-prisms']) {
     $(id).disabled = none;
   }
   const first = $('layer-mode').value === 'first';
@@ -437,6 +439,8 @@ async function meshCurrent() {
     showError(result.cancelled ? 'Cancelled.' : `${current.name}: ${result.error}`);
     return null;
   }
+  // Kept prisms are shown as the tetrahedra they split into.
+  if (result.volume) result.volume = withPrismsSplit(result.volume);
   remeshed = { key, result };
   showMeshResult(result);
   return result;
