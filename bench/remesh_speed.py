@@ -23,8 +23,8 @@ runs without --surface-only (caps and tetrahedra), and the table says when
 its output has no tetrahedra (the comparison is then not valid).
 
 usage: remesh_speed.py [--file aortic-arch.stl] [--size 0.06] [--runs 5]
-                       [--wasm-runs 5] [--gmsh-runs 3] [--volume]
-                       [--no-wasm] [--no-gmsh] [--json OUT.json]
+                       [--wasm-runs 5] [--gmsh-runs 3] [--volume [--layers N] [--core-size H]]
+                       [--no-wasm] [--chromium] [--no-gmsh] [--json OUT.json]
 """
 import argparse
 import json
@@ -44,8 +44,7 @@ def bench_native(a, path, tmp):
     out = os.path.join(tmp, "native.msh")
     rep = os.path.join(tmp, "native.json")
     cmd = [a.vesselmesh, "mesh", path, "-o", out, "--report", rep, "--quiet", "--size", repr(a.size)]
-    if not a.volume:
-        cmd.append("--surface-only")
+    cmd += volume_flags(a)
     runs = []
     for i in range(a.runs):
         r = benchutil.run_measured(cmd)
@@ -70,15 +69,27 @@ def bench_native(a, path, tmp):
                 rss_source="GNU time" if os.access(benchutil.GNU_TIME, os.X_OK) else "wait4")
 
 
-def bench_wasm(a, path):
+def volume_flags(a):
+    """The job's flags beyond the size, the same for every runner: the surface
+    alone, or the volume (like Gmsh's: no boundary layer unless --layers)."""
+    if not a.volume:
+        return ["--surface-only"]
+    flags = ["--layers", str(a.layers)]
+    if a.core_size:
+        flags += ["--core-size", repr(a.core_size)]
+    return flags
+
+
+def bench_wasm(a, path, chromium=False):
     node = shutil.which("node")
     if not node:
         return dict(ok=False, error="node not found")
     wasm = os.path.join(benchutil.ROOT, "wasm", "dist", "vesselmesh_core.wasm")
     if not os.path.exists(wasm):
         return dict(ok=False, error="wasm/dist/vesselmesh_core.wasm missing (build the wasm target)")
-    cmd = [node, os.path.join(benchutil.BENCH, "wasm_mesh_bench.mjs"), path, "--size", repr(a.size),
-           "--runs", str(a.wasm_runs)]
+    script = "wasm_chromium_bench.mjs" if chromium else "wasm_mesh_bench.mjs"
+    cmd = [node, os.path.join(benchutil.BENCH, script), path, "--size", repr(a.size),
+           "--runs", str(a.wasm_runs)] + volume_flags(a)
     r = benchutil.run_measured(cmd)
     try:
         res = json.loads(r["stdout"].strip().splitlines()[-1])
@@ -142,7 +153,11 @@ def main():
     ap.add_argument("--wasm-runs", type=int, default=5)
     ap.add_argument("--gmsh-runs", type=int, default=3)
     ap.add_argument("--volume", action="store_true", help="full pipeline (STL -> MSH with tetrahedra)")
+    ap.add_argument("--layers", type=int, default=0,
+                    help="viscous layers in --volume mode (default 0: like Gmsh, none)")
+    ap.add_argument("--core-size", type=float, default=0, help="--core-size of the volume")
     ap.add_argument("--no-wasm", action="store_true")
+    ap.add_argument("--chromium", action="store_true", help="also time the wasm build in Chromium")
     ap.add_argument("--no-gmsh", action="store_true")
     ap.add_argument("--gmsh-python", default="/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable)
     ap.add_argument("--json", help="write all measurements here")
@@ -160,12 +175,15 @@ def main():
         if not a.no_wasm:
             print("wasm (node):", flush=True)
             res["wasm"] = bench_wasm(a, path)
+            if a.chromium:
+                print("wasm (chromium):", flush=True)
+                res["chromium"] = bench_wasm(a, path, chromium=True)
         if not a.no_gmsh:
             print("gmsh:", flush=True)
             res["gmsh"] = bench_gmsh(a, path, tmp)
     res["machine_end"] = benchutil.machine()
 
-    n, w, g = res["native"], res.get("wasm"), res.get("gmsh")
+    n, w, g, c = res["native"], res.get("wasm"), res.get("gmsh"), res.get("chromium")
     print()
     print(f"{res['file']} h = {a.size:g}, {what}, one thread each; start: {res['machine_start']}; "
           f"end: load {res['machine_end'].rsplit('load average', 1)[-1].strip()}")
@@ -191,6 +209,13 @@ def main():
                 f"instantiate {w['instantiate_seconds']:.2f} s)")
         else:
             row("vesselmesh wasm (node)", False, [], 0, 0, 0, None, w.get("error"))
+    if c is not None:
+        if c.get("ok"):
+            row("vesselmesh wasm (chromium)", True, c["seconds"], c["median_seconds"],
+                c.get("peak_js_heap_mb", 0), c["triangles"], c["quality"],
+                f"(first run {c['seconds'][0]:.3f} s; {c.get('browser', '')}; CPU column = wall)")
+        else:
+            row("vesselmesh wasm (chromium)", False, [], 0, 0, 0, None, c.get("error"))
     if g is not None:
         if g.get("ok"):
             row("Gmsh 4.8 (stage sum)", True, [x["seconds"]["total"] for x in g["runs"]], g["median_cpu_seconds"],
@@ -223,6 +248,14 @@ def main():
         print(f"wasm / native = {ratios['wasm_over_native']:.2f}x wall, "
               f"{ratios['wasm_over_native_cpu']:.2f}x CPU (target <= {TARGET_WASM_RATIO}x): "
               f"{'met' if ok else 'NOT met'} (judged on wall time)")
+    if n["ok"] and c and c.get("ok"):
+        ratios["chromium_over_native"] = c["median_seconds"] / n["median_seconds"]
+        ok = ratios["chromium_over_native"] <= TARGET_WASM_RATIO
+        print(f"wasm in Chromium / native = {ratios['chromium_over_native']:.2f}x wall "
+              f"(target <= {TARGET_WASM_RATIO}x): {'met' if ok else 'NOT met'}")
+    if n["ok"] and a.volume:
+        print(f"vesselmesh wrote {n['tets']} tetrahedra" +
+              (f"; Gmsh {g['runs'][0]['tets']}" if g and g.get("ok") else ""))
     res["ratios"] = ratios
     if a.json:
         os.makedirs(os.path.dirname(os.path.abspath(a.json)), exist_ok=True)

@@ -9,6 +9,7 @@
 //
 // usage: node bench/wasm_mesh_bench.mjs FILE.stl [--size H | --per-circumference N]
 //          [--param lscm|harmonic|floater] [--mesher2d frontal|delaunay|adapt] [--runs N]
+//          [--surface-only] [--layers N] [--core-size H]
 import { readFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import { performance } from 'node:perf_hooks';
@@ -27,6 +28,9 @@ for (let i = 0; i < args.length; i++) {
   else if (a === '--per-circumference') options.perCircumference = Number(args[++i]);
   else if (a === '--param') options.param = args[++i];
   else if (a === '--mesher2d') options.mesher2d = args[++i];
+  else if (a === '--surface-only') options.surfaceOnly = true;
+  else if (a === '--layers') options.layers = Number(args[++i]);
+  else if (a === '--core-size') options.coreSize = Number(args[++i]);
   else if (a.startsWith('--')) {
     console.error(`unknown option ${a}`);
     process.exit(2);
@@ -81,6 +85,7 @@ console.log(
     stage_seconds: out.remesh?.seconds ?? null,
     instantiate_seconds: instantiateSeconds,
     triangles: out.triangles,
+    tets: out.volume?.tetrahedra ?? 0,
     vertices: out.vertices,
     quality: { min: out.quality.min, mean: out.quality.mean },
     msh_bytes: last.msh.length,

@@ -1,0 +1,111 @@
+// Benchmark: the mesh job of the WebAssembly build in Chromium (Debian's
+// /usr/bin/chromium driven by playwright-core), through the JS API on the
+// page's main thread, as bench/wasm_mesh_bench.mjs does under Node. A small
+// static server on 127.0.0.1 serves the repository (wasm/src, wasm/dist) and
+// a blank page; the STL is handed to the page as bytes. Prints one JSON
+// object: per-run wall seconds (performance.now() in the page), median, the
+// output's counts and quality, the page's peak JS heap, the browser version.
+//
+// usage: node bench/wasm_chromium_bench.mjs FILE.stl [--size H | --per-circumference N]
+//          [--runs N] [--surface-only] [--layers N] [--core-size H]
+import { createReadStream, readFileSync, statSync } from 'node:fs';
+import { createServer } from 'node:http';
+import { basename, extname, join, normalize } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+import { chromium } from 'playwright-core';
+
+const ROOT = fileURLToPath(new URL('..', import.meta.url));
+const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.wasm': 'application/wasm' };
+
+const args = process.argv.slice(2);
+let runs = 5;
+let file = null;
+const options = {};
+for (let i = 0; i < args.length; i++) {
+  const a = args[i];
+  if (a === '--runs') runs = Math.max(1, Number(args[++i]));
+  else if (a === '--size') options.size = Number(args[++i]);
+  else if (a === '--per-circumference') options.perCircumference = Number(args[++i]);
+  else if (a === '--surface-only') options.surfaceOnly = true;
+  else if (a === '--layers') options.layers = Number(args[++i]);
+  else if (a === '--core-size') options.coreSize = Number(args[++i]);
+  else if (a.startsWith('--')) {
+    console.error(`unknown option ${a}`);
+    process.exit(2);
+  } else file = a;
+}
+if (!file) {
+  console.error('usage: node bench/wasm_chromium_bench.mjs FILE.stl [--size H] [--runs N]');
+  process.exit(2);
+}
+
+// The repository's files under / (no directory listing), and a blank page.
+const server = createServer((req, res) => {
+  const path = decodeURIComponent(new URL(req.url, 'http://x').pathname);
+  if (path === '/') {
+    res.writeHead(200, { 'content-type': 'text/html' });
+    res.end('<!doctype html><title>vesselmesh bench</title>');
+    return;
+  }
+  const full = normalize(join(ROOT, path));
+  if (!full.startsWith(ROOT) || !statSync(full, { throwIfNoEntry: false })?.isFile()) {
+    res.writeHead(404);
+    res.end();
+    return;
+  }
+  res.writeHead(200, { 'content-type': TYPES[extname(full)] ?? 'application/octet-stream' });
+  createReadStream(full).pipe(res);
+});
+await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+const origin = `http://127.0.0.1:${server.address().port}`;
+
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM_PATH || '/usr/bin/chromium',
+  args: ['--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
+    '--no-first-run', '--disable-sync', '--disable-quic', '--enable-precise-memory-info'],
+});
+let result;
+try {
+  const page = await browser.newPage();
+  await page.goto(`${origin}/`);
+  const bytes = Array.from(readFileSync(file));
+  result = await page.evaluate(
+    async ({ bytes, options, runs }) => {
+      const { createVesselmesh } = await import('/wasm/src/vesselmesh.js');
+      const api = await createVesselmesh();
+      const input = new Uint8Array(bytes);
+      const seconds = [];
+      let last = null;
+      let heap = 0;
+      for (let r = 0; r < runs; r++) {
+        const t = performance.now();
+        last = api.mesh(input, options);
+        seconds.push((performance.now() - t) / 1000);
+        if (!last.ok) return { ok: false, error: last.error };
+        heap = Math.max(heap, performance.memory?.usedJSHeapSize ?? 0);
+      }
+      const out = last.report.output;
+      return {
+        ok: true,
+        seconds,
+        triangles: out.triangles,
+        tets: out.volume?.tetrahedra ?? 0,
+        quality: { min: out.quality.min, mean: out.quality.mean },
+        peak_js_heap_mb: heap / 2 ** 20,
+      };
+    },
+    { bytes, options, runs },
+  );
+  result.browser = `Chromium ${browser.version()}`;
+} finally {
+  await browser.close();
+  server.close();
+}
+if (result.ok) {
+  const s = [...result.seconds].sort((a, b) => a - b);
+  const n = s.length;
+  result.median_seconds = n % 2 ? s[(n - 1) / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
+}
+console.log(JSON.stringify({ file: basename(file), options, runs, ...result }));
+process.exit(result.ok ? 0 : 1);
