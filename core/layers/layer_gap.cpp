@@ -11,26 +11,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <nanoflann.hpp>
 #include <numbers>
 #include <utility>
 
+#include "core/geom/point_kdtree.h"
+#include "core/mesh/edge_lengths.h"
+
 namespace vm {
-namespace {
-
-struct Cloud {
-  const std::vector<double>& pts;
-  size_t kdtree_get_point_count() const { return pts.size() / 3; }
-  double kdtree_get_pt(size_t i, size_t d) const { return pts[3 * i + d]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>,
-                                                   Cloud, 3, uint32_t>;
-
-}  // namespace
 
 std::vector<double> empty_ball_radius(const SurfaceMesh& wall, const std::vector<double>& normal,
                                       const std::vector<double>& needed, double separation_degrees,
@@ -39,26 +26,15 @@ std::vector<double> empty_ball_radius(const SurfaceMesh& wall, const std::vector
   std::vector<double> radius(needed);
   if (nv == 0) return radius;
   const double cos_sep = std::cos(separation_degrees * std::numbers::pi / 180);
-  Cloud cloud{wall.points};
-  KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  PointCloud cloud{wall.points};
+  PointKdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   std::vector<std::pair<uint32_t, double>> found;
   const nanoflann::SearchParams unsorted(32, 0, false);
   constexpr size_t kNearest = 8, kMore = 64;
   uint32_t knn_index[kMore];
   double knn_d2[kMore];
   // Mean edge length at each vertex: the first ball tried is a few of them.
-  std::vector<double> edge(nv, 0.0), count(nv, 0.0);
-  for (size_t t = 0; t < wall.num_triangles(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int32_t a = wall.triangles[3 * t + size_t(k)];
-      const int32_t b = wall.triangles[3 * t + size_t(k + 1) % 3];
-      const double* pa = &wall.points[3 * size_t(a)];
-      const double* pb = &wall.points[3 * size_t(b)];
-      const double l =
-          std::sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
-                    (pa[2] - pb[2]) * (pa[2] - pb[2]));
-      for (int32_t v : {a, b}) edge[size_t(v)] += l, count[size_t(v)] += 1;
-    }
+  const std::vector<double> edge = mean_edge_lengths(wall);
   for (size_t p = 0; p < nv; ++p) {
     if (!(needed[p] > 0)) continue;
     const double* x = &wall.points[3 * p];
@@ -117,7 +93,7 @@ std::vector<double> empty_ball_radius(const SurfaceMesh& wall, const std::vector
     // Balls are nested, so the answer for `needed` is the answer for the
     // first ball tried, doubled until a counted vertex shrinks it (small
     // balls keep the k-d tree queries near the wall, hence fast).
-    const double start = count[p] > 0 ? 4 * edge[p] / count[p] : needed[p];
+    const double start = edge[p] > 0 ? 4 * edge[p] : needed[p];
     double r = std::min(needed[p], start);
     for (;;) {
       const double settled = settle(r);

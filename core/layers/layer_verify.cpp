@@ -136,44 +136,7 @@ std::vector<int32_t> layer_intersections(const SurfaceMesh& wall, const LayerCol
                               shell.triangles.end());
   const TriangleBvh bvh = build_triangle_bvh(layer_part, 8);
   auto id = [&](int32_t i) { return nt + size_t(bvh.order[size_t(i)]); };
-  struct Job {
-    int32_t a, b;
-  };
-  std::vector<Job> stack = {{0, 0}};
-  while (!stack.empty()) {
-    const Job job = stack.back();
-    stack.pop_back();
-    const TriangleBvh::Node& A = bvh.nodes[size_t(job.a)];
-    const TriangleBvh::Node& B = bvh.nodes[size_t(job.b)];
-    if (job.a == job.b) {
-      if (TriangleBvh::is_leaf(A)) {
-        for (int32_t i = A.first; i < A.first + A.count; ++i)
-          for (int32_t j = i + 1; j < A.first + A.count; ++j) test(id(i), id(j));
-      } else {
-        stack.push_back({A.first, A.first});
-        stack.push_back({A.first + 1, A.first + 1});
-        stack.push_back({A.first, A.first + 1});
-      }
-      continue;
-    }
-    if (!boxes_overlap(A.lo, A.hi, B.lo, B.hi)) continue;
-    const bool la = TriangleBvh::is_leaf(A), lb = TriangleBvh::is_leaf(B);
-    if (la && lb) {
-      for (int32_t i = A.first; i < A.first + A.count; ++i)
-        for (int32_t j = B.first; j < B.first + B.count; ++j) test(id(i), id(j));
-      continue;
-    }
-    auto extent = [](const TriangleBvh::Node& n) {
-      return std::max({n.hi[0] - n.lo[0], n.hi[1] - n.lo[1], n.hi[2] - n.lo[2]});
-    };
-    if (lb || (!la && extent(A) >= extent(B))) {
-      stack.push_back({A.first, job.b});
-      stack.push_back({A.first + 1, job.b});
-    } else {
-      stack.push_back({job.a, B.first});
-      stack.push_back({job.a, B.first + 1});
-    }
-  }
+  for_each_leaf_pair(bvh, [&](int32_t i, int32_t j) { test(id(i), id(j)); });
   std::vector<int32_t> nodes;
   for (size_t w = 0; w < nt; ++w) {
     const double* lo = &box[6 * w];

@@ -310,50 +310,9 @@ SelfIntersectionReport find_self_intersections(const SurfaceMesh& mesh, size_t m
       report.examples.push_back({std::min(s, t), std::max(s, t)});
   };
 
-  // Self-traversal of the hierarchy: (n, n) pairs a node with itself, (a,
-  // b) two disjoint subtrees; each triangle pair is reached exactly once.
   const TriangleBvh bvh = build_triangle_bvh(mesh, 8);
-  struct Job {
-    int32_t a, b;
-  };
-  std::vector<Job> stack = {{0, 0}};
-  while (!stack.empty()) {
-    const Job job = stack.back();
-    stack.pop_back();
-    const TriangleBvh::Node& A = bvh.nodes[size_t(job.a)];
-    const TriangleBvh::Node& B = bvh.nodes[size_t(job.b)];
-    if (job.a == job.b) {
-      if (TriangleBvh::is_leaf(A)) {
-        for (int32_t i = A.first; i < A.first + A.count; ++i)
-          for (int32_t j = i + 1; j < A.first + A.count; ++j)
-            test(bvh.order[size_t(i)], bvh.order[size_t(j)]);
-      } else {
-        stack.push_back({A.first, A.first});
-        stack.push_back({A.first + 1, A.first + 1});
-        stack.push_back({A.first, A.first + 1});
-      }
-      continue;
-    }
-    if (!boxes_overlap(A.lo, A.hi, B.lo, B.hi)) continue;
-    const bool la = TriangleBvh::is_leaf(A), lb = TriangleBvh::is_leaf(B);
-    if (la && lb) {
-      for (int32_t i = A.first; i < A.first + A.count; ++i)
-        for (int32_t j = B.first; j < B.first + B.count; ++j)
-          test(bvh.order[size_t(i)], bvh.order[size_t(j)]);
-      continue;
-    }
-    // Descend the larger box (by its longest side).
-    auto extent = [](const TriangleBvh::Node& n) {
-      return std::max({n.hi[0] - n.lo[0], n.hi[1] - n.lo[1], n.hi[2] - n.lo[2]});
-    };
-    if (lb || (!la && extent(A) >= extent(B))) {
-      stack.push_back({A.first, job.b});
-      stack.push_back({A.first + 1, job.b});
-    } else {
-      stack.push_back({job.a, B.first});
-      stack.push_back({job.a, B.first + 1});
-    }
-  }
+  for_each_leaf_pair(
+      bvh, [&](int32_t i, int32_t j) { test(bvh.order[size_t(i)], bvh.order[size_t(j)]); });
   return report;
 }
 

@@ -11,6 +11,7 @@
 #include "core/layers/chord_radius.h"
 #include "core/layers/extrude_layers.h"
 #include "core/layers/layered_volume.h"
+#include "core/mesh/edge_lengths.h"
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/surface_distance.h"
 #include "core/mesh/volume_check.h"
@@ -24,25 +25,6 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-/// Mean length of the edges at each vertex of m (a size for vertices that
-/// have no target size, e.g. of an input used as it is).
-std::vector<double> mean_edge_lengths(const SurfaceMesh& m) {
-  std::vector<double> sum(m.num_vertices(), 0.0), count(m.num_vertices(), 0.0);
-  for (size_t t = 0; t < m.num_triangles(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int32_t a = m.triangles[3 * t + size_t(k)],
-                    b = m.triangles[3 * t + size_t((k + 1) % 3)];
-      const double* pa = &m.points[3 * size_t(a)];
-      const double* pb = &m.points[3 * size_t(b)];
-      const double l =
-          std::sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
-                    (pa[2] - pb[2]) * (pa[2] - pb[2]));
-      for (int32_t v : {a, b}) sum[size_t(v)] += l, count[size_t(v)] += 1;
-    }
-  for (size_t v = 0; v < sum.size(); ++v) sum[v] = count[v] > 0 ? sum[v] / count[v] : 0;
-  return sum;
 }
 
 /// Caps on the openings of `surface` with the inlet at the input's opening

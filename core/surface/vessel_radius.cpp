@@ -8,25 +8,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <nanoflann.hpp>
 #include <numbers>
 
+#include "core/geom/point_kdtree.h"
 #include "core/mesh/adjacency.h"
 
 namespace vm {
 namespace {
-
-struct Cloud {
-  const std::vector<double>& pts;
-  size_t kdtree_get_point_count() const { return pts.size() / 3; }
-  double kdtree_get_pt(size_t i, size_t d) const { return pts[3 * i + d]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>,
-                                                   Cloud, 3, uint32_t>;
 
 // Area-weighted vertex normals pointing inward (against the triangles'
 // outward orientation), unit length.
@@ -64,8 +52,8 @@ std::vector<double> vessel_radius(const SurfaceMesh& m) {
   const double r_max = 0.5 * bounding_box(m.points).diagonal();
   TriangleAdjacency adj = build_adjacency(m);
   std::vector<double> normal = inward_normals(m);
-  Cloud cloud{m.points};
-  KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  PointCloud cloud{m.points};
+  PointKdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
 
   // Phase 1: shrink a ball at every vertex.
   std::vector<double> radius(nv, -1.0);  // -1: the ball never closed
