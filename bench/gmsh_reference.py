@@ -208,6 +208,7 @@ def run(path, h, volume=False, angle=DEFAULT_ANGLE, curve_angle=DEFAULT_CURVE_AN
             res["tets"] = int(len(tet))
             res["nodes"] = int(len(gmsh.model.mesh.getNodes()[0]))
             res["gamma_t"] = meshquality.summary(meshquality.gamma_t(xyz, tet))
+            res["median_tet_edge"] = meshquality.median_edge(xyz, tet)
             if len(tet):
                 vol = meshquality.signed_tet_volumes(xyz, tet)
                 res["inverted_tets"] = int(min((vol < 0).sum(), (vol > 0).sum()))

@@ -57,11 +57,14 @@ def signed_tet_volumes(xyz, tet):
     return np.einsum("ij,ij->i", b - a, np.cross(c - a, d - a)) / 6.0
 
 
-def median_edge(xyz, tri):
-    tri = np.asarray(tri, dtype=np.int64)
-    if len(tri) == 0:
+def median_edge(xyz, cells):
+    """Median length of the distinct edges of triangles (m, 3) or tetrahedra
+    (m, 4)."""
+    cells = np.asarray(cells, dtype=np.int64)
+    if len(cells) == 0:
         return float("nan")
-    e = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])
+    k = cells.shape[1]
+    e = np.concatenate([cells[:, [i, j]] for i in range(k) for j in range(i + 1, k)])
     e.sort(axis=1)
     e = np.unique(e, axis=0)
     return float(np.median(np.linalg.norm(xyz[e[:, 0]] - xyz[e[:, 1]], axis=1)))
@@ -157,6 +160,7 @@ def msh_quality(path):
              gamma_k=summary(gamma_k(xyz, tri)), median_edge=median_edge(xyz, tri))
     if len(tet):
         r["gamma_t"] = summary(gamma_t(xyz, tet))
+        r["median_tet_edge"] = median_edge(xyz, tet)
     return r
 
 
