@@ -245,6 +245,11 @@ def check_volume(fname, path, tmp, args, d, have_gmsh, label, flags, layers):
               f"{label}: {part} thickness within 10% of the request on "
               f"{100 * s['thickness_within_10pct']:.1f}% of the wall (>= 95%), reduced on "
               f"{100 * s['reduced_area_fraction']:.1f}% (min factor {s['min_factor']:.2f})")
+        # Heights measured as distances from the wall (--verify).
+        check(fname, min(s["measured_first_within_10pct"], s["measured_total_within_10pct"]) >= 0.95,
+              f"{label}: {part} first layer and total measured from the wall within 10% on "
+              f"{100 * s['measured_first_within_10pct']:.1f}% / "
+              f"{100 * s['measured_total_within_10pct']:.1f}% of it (>= 95%)")
     if layers:
         share = v["seconds"]["layers"] / rep["seconds"]
         print(f"  {label}: layers take {100 * share:.1f}% of the pipeline's {rep['seconds']:.2f} s "

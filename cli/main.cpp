@@ -43,7 +43,8 @@ usage:
       repaired input surface as it is. --inlet K names opening K (as
       `info` lists them, largest first) `inlet` instead of the largest.
       --verify checks the volume fully before writing it (conformity, the
-      boundary faces are the surface triangles); no element is ever inverted.
+      boundary faces are the surface triangles) and measures the layers'
+      heights from the wall (report); no element is ever inverted.
       Size options (model units):
         --size H                 uniform target edge length
         --per-circumference N    h = 2 pi R(x) / N, R the local vessel radius

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <sstream>
 
+#include "core/geom/closest_point.h"
 #include "core/layers/layer_columns.h"
 #include "core/layers/layer_directions.h"
 #include "core/layers/layer_gap.h"
@@ -33,6 +34,8 @@ double seconds_since(Clock::time_point t0) {
 }
 
 constexpr double kMinFactor = 1e-3;
+// Columns are lengthened for their lean by at most 1 / kMinLean.
+constexpr double kMinLean = 0.7;
 constexpr double kIntersectionShrink = 0.7;
 
 std::string where(const std::vector<double>& pts, int32_t v) {
@@ -116,8 +119,7 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
   for (size_t t = 0; t < nt; ++t) {
     const int32_t* f = &wall_in.triangles[3 * t];
     for (int k = 0; k < 3; ++k)
-      if (f[k] < 0 || size_t(f[k]) >= nv)
-        return R::Error("a wall triangle index is out of range");
+      if (f[k] < 0 || size_t(f[k]) >= nv) return R::Error("a wall triangle index is out of range");
     if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2])
       return R::Error("wall triangle " + std::to_string(t) + " repeats a vertex");
   }
@@ -168,31 +170,65 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
   stats.min_visibility = dirs.min_visibility;
   stats.seconds_directions = seconds_since(t0);
 
+  // Phase 2b: column lengths. A column leaning from the normals of its
+  // wall triangles, or standing in a faceted hollow or crease, ends closer
+  // to the wall than its length; it is lengthened (at most to 1 / kMinLean
+  // times) until its end is at the requested distance from its star's
+  // triangles, so the layer's height measured from the wall is the
+  // requested one.
+  std::vector<int32_t> star_offsets(nv + 1, 0), star_tris(3 * nt);
+  for (int32_t v : wall.triangles) ++star_offsets[size_t(v) + 1];
+  for (size_t v = 0; v < nv; ++v) star_offsets[v + 1] += star_offsets[v];
+  {
+    std::vector<int32_t> fill(star_offsets.begin(), star_offsets.end() - 1);
+    for (size_t t = 0; t < nt; ++t)
+      for (int c = 0; c < 3; ++c)
+        star_tris[size_t(fill[size_t(wall.triangles[3 * t + size_t(c)])]++)] = int32_t(t);
+  }
+  std::vector<double> column(requested);
+  for (size_t v = 0; v < nv; ++v) {
+    const Vec3 x = at(wall.points, int32_t(v)), d = at(dirs.direction, int32_t(v));
+    for (int iter = 0; iter < 3; ++iter) {
+      const Vec3 p = x + column[v] * d;
+      double d2 = column[v] * column[v];
+      for (int32_t i = star_offsets[v]; i < star_offsets[v + 1]; ++i) {
+        const int32_t* tv = &wall.triangles[3 * size_t(star_tris[size_t(i)])];
+        double q[3];
+        d2 = std::min(d2, closest_point_on_triangle(p.data(), &wall.points[3 * size_t(tv[0])],
+                                                    &wall.points[3 * size_t(tv[1])],
+                                                    &wall.points[3 * size_t(tv[2])], q));
+      }
+      const double reach = std::sqrt(d2);
+      if (!(reach > 0) || reach >= 0.999 * requested[v]) break;
+      column[v] = std::min(column[v] * requested[v] / reach, requested[v] / kMinLean);
+    }
+  }
+
   // Phase 3: gap limit.
   t0 = Clock::now();
   const std::vector<double> fraction = layer_fractions(spec);
   std::vector<double> cosine(nv), needed(nv);
   for (size_t v = 0; v < nv; ++v) {
     cosine[v] = std::max(0.1, dot(at(dirs.direction, int32_t(v)), at(dirs.normal, int32_t(v))));
-    needed[v] = requested[v] / (2 * spec.gap_fraction * cosine[v]);
+    needed[v] = column[v] / (2 * spec.gap_fraction * cosine[v]);
   }
   const std::vector<double> ball = empty_ball_radius(wall, dirs.normal, needed);
   std::vector<double> factor(nv, 1.0);
   for (size_t v = 0; v < nv; ++v) {
     if (!(ball[v] < needed[v])) continue;  // the ball of the needed size is empty
     const double limit = 2 * spec.gap_fraction * ball[v] * cosine[v];
-    if (limit < requested[v]) {
-      factor[v] = std::max(kMinFactor, limit / requested[v]);
+    if (limit < column[v]) {
+      factor[v] = std::max(kMinFactor, limit / column[v]);
       ++stats.limited_by_gap;
     }
   }
-  grade_reduction(wall, rings, requested, spec.gradation, kMinFactor, factor);
+  grade_reduction(wall, rings, column, spec.gradation, kMinFactor, factor);
   stats.seconds_gap = seconds_since(t0);
 
   // Phases 4-5: validity and verification rounds.
-  const LayerValidity validity(wall, dirs, requested, fraction, spec.outward, spec.min_volume_ratio,
+  const LayerValidity validity(wall, dirs, column, fraction, spec.outward, spec.min_volume_ratio,
                                spec.min_front_quality_ratio);
-  const LayerColumns cols(wall, dirs.direction, requested, fraction, planes, openings,
+  const LayerColumns cols(wall, dirs.direction, column, fraction, planes, openings,
                           dirs.opening_of);
   std::vector<uint8_t> by_validity(nv, 0), by_intersection(nv, 0);
   bool valid = false;
@@ -201,7 +237,7 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
     stats.rounds = round;
     t0 = Clock::now();
     failing = validity.shrink_invalid(factor, by_validity, &stats.min_volume_ratio);
-    if (failing > 0) grade_reduction(wall, rings, requested, spec.gradation, kMinFactor, factor);
+    if (failing > 0) grade_reduction(wall, rings, column, spec.gradation, kMinFactor, factor);
     stats.seconds_validity += seconds_since(t0);
     if (failing > 0) continue;
     if (!spec.verify_intersections) {
@@ -221,7 +257,7 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
       factor[size_t(v)] = std::max(kMinFactor, factor[size_t(v)] * kIntersectionShrink);
       by_intersection[size_t(v)] = 1;
     }
-    grade_reduction(wall, rings, requested, spec.gradation, kMinFactor, factor);
+    grade_reduction(wall, rings, column, spec.gradation, kMinFactor, factor);
   }
   if (!valid) {
     std::string what =
@@ -248,7 +284,7 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
   m.factor = factor;
   m.fraction = fraction;
   m.thickness.resize(nv);
-  for (size_t v = 0; v < nv; ++v) m.thickness[v] = factor[v] * requested[v];
+  for (size_t v = 0; v < nv; ++v) m.thickness[v] = factor[v] * column[v];
   const size_t n_layers = size_t(spec.layers);
   m.points.resize(3 * nv * (n_layers + 1));
   std::copy(wall.points.begin(), wall.points.end(), m.points.begin());

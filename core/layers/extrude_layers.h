@@ -29,7 +29,10 @@ namespace vm {
 ///     from it outward), columns near an opening kept from reaching its cap
 ///     plane, every direction seeing its incident triangles;
 ///  3. thickness (layer_thickness.h): requested T(v) = F R(v) or the
-///     H1 / growth series; gap limit T <= 2 gap_fraction r(v) cos(d, n) with
+///     H1 / growth series; each column lengthened (at most 1 / 0.7 times)
+///     until its end is T(v) from the triangles of its star, so heights
+///     measured from the wall are the requested ones on faceted or creased
+///     walls; gap limit T <= 2 gap_fraction r(v) cos(d, n) with
 ///     r the empty-ball radius on the layer side (layer_gap.h);
 ///  4. local validity (layer_validity.h): per-vertex factors lowered by
 ///     bisection until every sub-tetrahedron of every prism has the volume

@@ -91,8 +91,9 @@ struct LayerMesh {
   std::vector<int32_t> front;
   std::vector<LayerOpening> openings;
   /// Per wall vertex: unit direction of its column (3 doubles), the
-  /// requested total thickness, the achieved one (along the direction), and
-  /// achieved / requested (1 where nothing was reduced).
+  /// requested total thickness, the achieved column length (along the
+  /// direction; lengthened for the column's lean, see extrude_layers.h) and
+  /// the reduction factor (1 where nothing was reduced).
   std::vector<double> directions;
   std::vector<double> requested_thickness;
   std::vector<double> thickness;

@@ -70,6 +70,7 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
       LayerSpec spec = out ? options.vessel : options.viscous;
       if (spec.layers <= 0) continue;
       spec.outward = out;
+      spec.measure = options.verify;  // the heights as distances to the wall too
       LayerStats ls;
       auto layer = extrude_layers(r.output_surface, radius, spec, &ls);
       if (!layer.ok())

@@ -155,6 +155,12 @@ std::string mesh_report_json(const MeshJobResult& r) {
       j.key("min_factor").value(ls->min_factor);
       j.key("mean_factor").value(ls->mean_factor);
       j.key("thickness_within_10pct").value(ls->thickness_within_10pct);
+      if (ls->measured_total_mean_ratio > 0) {  // measured (--verify)
+        j.key("measured_first_within_10pct").value(ls->measured_first_within_10pct);
+        j.key("measured_total_within_10pct").value(ls->measured_total_within_10pct);
+        j.key("measured_first_mean_ratio").value(ls->measured_first_mean_ratio);
+        j.key("measured_total_mean_ratio").value(ls->measured_total_mean_ratio);
+      }
       j.key("front_quality_min").value(ls->front_quality_min);
       j.key("seconds").value(ls->seconds_total);
       j.end_object();

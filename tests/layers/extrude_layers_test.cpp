@@ -203,26 +203,29 @@ TEST(Layers, StraightTubeInwardUniform) {
   const LayerMesh& m = r.value();
   check_layers(wall, m, spec, "tube");
   print_stats("tube inward", st);
-  // Thickness F R within 1% everywhere, nothing reduced, the first layer a
-  // quarter of it; columns point at the axis.
+  // Thickness F R everywhere measured from the wall's facets (the column
+  // is lengthened by 1 / cos(pi / n), the facets' tilt from a vertex
+  // normal), nothing reduced, the first layer a quarter of it; columns
+  // point at the axis.
   EXPECT_EQ(st.reduced_area, 0);
   EXPECT_EQ(st.min_factor, 1);
+  const double column = 0.2 / std::cos(kPi / n);
   for (size_t v = 0; v < wall.num_vertices(); ++v) {
     const double* p = pt(m.points, int32_t(v));
     const double* q = pt(m.points, m.layer_vertex(int32_t(v), 4));
     const double* q1 = pt(m.points, m.layer_vertex(int32_t(v), 1));
-    EXPECT_NEAR(dist(p, q), 0.2, 0.002);
-    EXPECT_NEAR(dist(p, q1), 0.05, 0.0005);
-    EXPECT_NEAR(std::hypot(q[0], q[1]), 0.8, 0.002);
+    EXPECT_NEAR(dist(p, q), column, 1e-9);
+    EXPECT_NEAR(dist(p, q1), column / 4, 1e-9);
+    EXPECT_NEAR(std::hypot(q[0], q[1]), 1 - column, 1e-9);
     EXPECT_NEAR(q[2], p[2], 1e-9);
   }
   EXPECT_GE(st.thickness_within_10pct, 0.999);
   EXPECT_GE(st.measured_total_within_10pct, 0.95);
   EXPECT_GE(st.measured_first_within_10pct, 0.95);
-  // Ring = the polygonal annulus between R and R - T: exactly, and pi (R^2 -
-  // (R - T)^2) up to the polygon's discretization.
+  // Ring = the polygonal annulus between R and R - column: exactly, and
+  // pi (R^2 - (R - T)^2) up to the polygon's discretization.
   ASSERT_EQ(m.openings.size(), 2u);
-  const double polygon = 0.5 * n * std::sin(2 * kPi / n) * (1 - 0.8 * 0.8);
+  const double polygon = 0.5 * n * std::sin(2 * kPi / n) * (1 - (1 - column) * (1 - column));
   for (size_t o = 0; o < 2; ++o) {
     EXPECT_NEAR(ring_area(m, o), polygon, 1e-9);
     EXPECT_NEAR(ring_area(m, o), kPi * (1 - 0.8 * 0.8), 0.005 * kPi * (1 - 0.8 * 0.8));
@@ -232,6 +235,7 @@ TEST(Layers, StraightTubeInwardUniform) {
 
 TEST(Layers, FirstHeightAndGrowth) {
   const SurfaceMesh wall = testing::open_tube(40, 30, 1.0, 4.0);
+  const double lean = std::cos(kPi / 40);  // the facets' tilt from a vertex normal
   LayerSpec spec;
   spec.layers = 5;
   spec.first_height = 0.02;
@@ -246,7 +250,7 @@ TEST(Layers, FirstHeightAndGrowth) {
     for (int k = 1; k <= 5; ++k, h *= 1.3) {
       const double got = dist(pt(m.points, m.layer_vertex(int32_t(v), k - 1)),
                               pt(m.points, m.layer_vertex(int32_t(v), k)));
-      EXPECT_NEAR(got, h, 0.01 * h) << "layer " << k;
+      EXPECT_NEAR(got * lean, h, 1e-12) << "layer " << k;
     }
   }
   EXPECT_EQ(st.reduced_area, 0);
@@ -260,8 +264,31 @@ TEST(Layers, FirstHeightAndGrowth) {
   for (size_t v = 0; v < wall.num_vertices(); ++v)
     for (int k = 1; k <= 4; ++k)
       EXPECT_NEAR(dist(pt(r.value().points, r.value().layer_vertex(int32_t(v), k - 1)),
-                       pt(r.value().points, r.value().layer_vertex(int32_t(v), k))),
+                       pt(r.value().points, r.value().layer_vertex(int32_t(v), k))) *
+                      lean,
                   0.03, 1e-12);
+}
+
+TEST(Layers, HeightsMeasuredFromACoarselyFacetedWall) {
+  // A hexagonal tube: its facets lean 30 degrees from the vertex normals,
+  // so a column of the requested length would end only cos 30 = 0.87 of it
+  // from the wall. Inward and outward, the first layer and the front must
+  // be at the requested distance from the wall (closest point).
+  const SurfaceMesh wall = testing::open_tube(6, 12, 1.0, 4.0);
+  const std::vector<double> radius(wall.num_vertices(), 1.0);
+  for (bool outward : {false, true}) {
+    LayerSpec spec;
+    spec.outward = outward;
+    spec.thickness_fraction = 0.1;
+    spec.measure = true;
+    LayerStats st;
+    auto r = extrude_layers(wall, radius, spec, &st);
+    ASSERT_TRUE(r.ok()) << r.message();
+    check_layers(wall, r.value(), spec, outward ? "hexagon outward" : "hexagon inward");
+    EXPECT_GE(st.measured_first_within_10pct, 0.95) << outward;
+    EXPECT_GE(st.measured_total_within_10pct, 0.95) << outward;
+    EXPECT_NEAR(st.measured_total_mean_ratio, 1, 0.03) << outward;
+  }
 }
 
 TEST(Layers, StraightTubeOutwardWallRings) {
