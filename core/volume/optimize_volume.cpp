@@ -186,7 +186,7 @@ class Optimizer {
     }
     const int32_t a = v[kEdges[best_arg][0]], b = v[kEdges[best_arg][1]];
     m_.edge_ring(t, a, b, ring_tets_, ring_);
-    best_ring_triangulation(a, b, 0, &tris_);
+    if (!(best_ring_triangulation(a, b, 0, &tris_) > 0)) return false;
     for (const auto& tri : tris_) {
       const int32_t x = ring_[size_t(tri[0])], y = ring_[size_t(tri[1])], z = ring_[size_t(tri[2])];
       nt[n_new++] = {x, y, z, b};
@@ -202,33 +202,83 @@ class Optimizer {
   // triangulation maximizing the smallest quality of its tetrahedra pairs
   // (x, y, z, b), (y, x, z, a). Returns that quality (stops early, returning
   // something <= floor, when it cannot beat floor); triangles into tris.
+  // A triangle (or sub-polygon) whose quality is not above floor is never
+  // part of an answer above floor, so it is dropped at once; the squared
+  // lengths and the areas of the faces through a or b are computed once
+  // per pair of ring vertices (lazily) instead of once per tetrahedron.
   double best_ring_triangulation(int32_t a, int32_t b, double floor,
                                  std::vector<std::array<int, 3>>* tris) {
+    constexpr double kNone = -1e300;
     const int n = int(ring_.size());
+    const double* pa = m_.point(a);
+    const double* pb = m_.point(b);
+    const double* P[kMaxRing];
+    double da[kMaxRing], db[kMaxRing];  // squared distances to a and b
+    for (int i = 0; i < n; ++i) {
+      P[i] = m_.point(ring_[size_t(i)]);
+      double d[3];
+      sub(P[i], pa, d);
+      da[i] = dot(d, d);
+      sub(P[i], pb, d);
+      db[i] = dot(d, d);
+    }
+    // Per pair i < k: squared length, twice the areas of (i, k, a), (i, k, b).
+    double len2[kMaxRing][kMaxRing], fa[kMaxRing][kMaxRing], fb[kMaxRing][kMaxRing];
+    for (int i = 0; i < n; ++i)
+      for (int k = i + 1; k < n; ++k) len2[i][k] = -1;
+    auto pair = [&](int i, int k) {
+      if (len2[i][k] < 0) {
+        double u[3], w[3], c[3];
+        sub(P[k], P[i], u);
+        len2[i][k] = dot(u, u);
+        sub(P[i], pa, u), sub(P[k], pa, w), cross(u, w, c);
+        fa[i][k] = std::sqrt(dot(c, c));
+        sub(P[i], pb, u), sub(P[k], pb, w), cross(u, w, c);
+        fb[i][k] = std::sqrt(dot(c, c));
+      }
+    };
+    constexpr double kSqrt6 = 2.449489742783178;
     double best[kMaxRing][kMaxRing];
     int arg[kMaxRing][kMaxRing];
-    for (int len = 1; len < n; ++len)
+    for (int i = 0; i + 1 < n; ++i) best[i][i + 1] = 1e300;
+    for (int len = 2; len < n; ++len)
       for (int i = 0; i + len < n; ++i) {
         const int j = i + len;
-        best[i][j] = len == 1 ? 1e300 : -1e300;
-        arg[i][j] = -1;
+        double bij = kNone;
+        int aij = -1;
         for (int k = i + 1; k < j; ++k) {
           const double sub_q = std::min(best[i][k], best[k][j]);
-          if (sub_q <= best[i][j]) continue;
-          const double* px = m_.point(ring_[size_t(i)]);
-          const double* py = m_.point(ring_[size_t(k)]);
-          const double* pz = m_.point(ring_[size_t(j)]);
-          double q = gamma_fast(px, py, pz, m_.point(b));
-          if (q > best[i][j] && q > floor) q = std::min(q, gamma_fast(py, px, pz, m_.point(a)));
+          if (sub_q <= bij || sub_q <= floor) continue;
+          // Triangle (x, y, z) = ring (i, k, j); n = (y - x) x (z - x).
+          double u[3], w[3], nr[3], d[3];
+          sub(P[k], P[i], u), sub(P[j], P[i], w), cross(u, w, nr);
+          sub(pb, P[i], d);
+          const double vol_b = dot(nr, d);
+          if (!(vol_b > 0)) continue;
+          pair(i, k), pair(k, j), pair(i, j);
+          const double area = std::sqrt(dot(nr, nr));
+          const double lmax = std::max({len2[i][k], len2[k][j], len2[i][j]});
+          const double den_b = 0.5 * (area + fb[i][k] + fb[k][j] + fb[i][j]) *
+                               std::sqrt(std::max({lmax, db[i], db[k], db[j]}));
+          double q = den_b > 0 ? kSqrt6 * vol_b / den_b : 0;
+          if (q <= bij || q <= floor) continue;
+          sub(pa, P[i], d);
+          const double vol_a = -dot(nr, d);
+          const double den_a = 0.5 * (area + fa[i][k] + fa[k][j] + fa[i][j]) *
+                               std::sqrt(std::max({lmax, da[i], da[k], da[j]}));
+          q = std::min(q, den_a > 0 ? kSqrt6 * vol_a / den_a : 0);
           q = std::min(q, sub_q);
-          if (q > best[i][j]) {
-            best[i][j] = q;
-            arg[i][j] = k;
-          }
+          if (q <= bij || q <= floor) continue;
+          bij = q;
+          aij = k;
         }
+        best[i][j] = bij;
+        arg[i][j] = aij;
       }
+    const double result = best[0][n - 1];
     if (tris) {
       tris->clear();
+      if (result <= floor) return result;
       int stack[2 * kMaxRing][2], top = 0;
       stack[top][0] = 0, stack[top][1] = n - 1, ++top;
       while (top > 0) {
@@ -241,7 +291,7 @@ class Optimizer {
         stack[top][0] = k, stack[top][1] = j, ++top;
       }
     }
-    return best[0][n - 1];
+    return result;
   }
 
   // Exact orientation of the new set, then the replacement and the cache.
