@@ -62,18 +62,16 @@ inline double gamma_fast(const double* a, const double* b, const double* c, cons
   return 2.449489742783178 * vol6 / den;
 }
 
-inline double tet_vol6(const double* a, const double* b, const double* c, const double* d) {
-  return tet_volume6(a, b, c, d);
-}
-
-// Circumcenter of a tetrahedron; false when (nearly) flat.
+// Circumcenter of a tetrahedron and its signed volume times 6 (> 0:
+// positive); false when (nearly) flat.
 inline bool circumcenter(const double* a, const double* b, const double* c, const double* d,
-                         double* o) {
+                         double* o, double* vol6) {
   double u[3], v[3], w[3];
   sub(b, a, u), sub(c, a, v), sub(d, a, w);
   double vw[3], wu[3], uv[3];
   cross(v, w, vw), cross(w, u, wu), cross(u, v, uv);
-  const double det = 2 * dot(u, vw);
+  *vol6 = dot(u, vw);
+  const double det = 2 * *vol6;
   if (det == 0) return false;
   const double uu = dot(u, u), vv = dot(v, v), ww = dot(w, w);
   for (int k = 0; k < 3; ++k) o[k] = a[k] + (uu * vw[k] + vv * wu[k] + ww * uv[k]) / det;
@@ -344,16 +342,20 @@ class Optimizer {
   // ---------------------------------------------------------------- smoothing
 
   // Min and sum of 1/q over the star S of v with v at p; false if a
-  // tetrahedron falls below kGuard (or min_required).
+  // tetrahedron falls below kGuard (or min_required). The qualities go to
+  // star_q_ (for move()).
   bool eval_star(int32_t v, Span S, const double* p, double min_required, double* qmin,
                  double* inv_sum) {
     double mn = 1e300, sum = 0;
+    star_q_.resize(S.size());
+    size_t i = 0;
     for (int32_t t : S) {
       const int32_t* tv = m_.tet(t);
       const double* c[4];
       for (int k = 0; k < 4; ++k) c[k] = tv[k] == v ? p : m_.point(tv[k]);
       const double q = gamma_fast(c[0], c[1], c[2], c[3]);
       if (q < kGuard || q < min_required) return false;
+      star_q_[i++] = q;
       mn = std::min(mn, q);
       sum += 1 / q;
     }
@@ -372,9 +374,11 @@ class Optimizer {
     return true;
   }
 
+  // Moves v to p, the star's qualities from the eval_star() that accepted p.
   void move(int32_t v, Span S, const double* p) {
     m_.set_point(v, p);
-    for (int32_t t : S) q_[size_t(t)] = quality(t), dirty_[size_t(t)] = 1;
+    size_t i = 0;
+    for (int32_t t : S) q_[size_t(t)] = star_q_[i++], dirty_[size_t(t)] = 1;
   }
 
   // Smart smoothing of v toward its ODT-like position (circumcenters of the
@@ -400,12 +404,11 @@ class Optimizer {
     for (int32_t t : star) {
       const int32_t* tv = m_.tet(t);
       const double* c[4] = {m_.point(tv[0]), m_.point(tv[1]), m_.point(tv[2]), m_.point(tv[3])};
-      double cc[3];
-      const double vol = tet_vol6(c[0], c[1], c[2], c[3]);
-      const double ht =
-          0.25 * (h_[size_t(tv[0])] + h_[size_t(tv[1])] + h_[size_t(tv[2])] + h_[size_t(tv[3])]);
-      const double w = vol / (ht * ht * ht);
-      if (vol > 0 && circumcenter(c[0], c[1], c[2], c[3], cc)) {
+      double cc[3], vol;
+      if (circumcenter(c[0], c[1], c[2], c[3], cc, &vol) && vol > 0) {
+        const double ht = 0.25 * (h_[size_t(tv[0])] + h_[size_t(tv[1])] + h_[size_t(tv[2])] +
+                                  h_[size_t(tv[3])]);
+        const double w = vol / (ht * ht * ht);
         for (int k = 0; k < 3; ++k) odt[k] += w * cc[k];
         wsum += w;
       }
@@ -730,6 +733,7 @@ class Optimizer {
   std::vector<double> q_;
   std::vector<uint8_t> dirty_;  // per slot: created or moved since the last flip pass
   std::vector<int32_t> ring_tets_, ring_, ids_, work_, created_, star_;
+  std::vector<double> star_q_;  // qualities of the star at the point eval_star() tried
   std::vector<int32_t> inc_off_, inc_, fill_;  // smoothing: vertex -> tetrahedra
   std::vector<std::array<int, 3>> tris_;
   std::vector<int32_t> cav_;
