@@ -24,6 +24,11 @@ inline bool parity_even(int a, int b, int c, int d) {
   return inv % 2 == 0;
 }
 
+// Equality of face keys without memcmp (the hot loop of replace()).
+inline bool same_key(const std::array<int32_t, 3>& a, const std::array<int32_t, 3>& b) {
+  return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+}
+
 inline std::array<int32_t, 3> face_key(const int32_t* v, int k) {
   std::array<int32_t, 3> f;
   for (int s = 0, n = 0; s < 4; ++s)
@@ -248,7 +253,7 @@ bool TetMesh::replace(const int32_t* old_tets, int n_old, const std::array<int32
       const auto key = face_key(new_tets[i].data(), k);
       int32_t found = -1;
       for (size_t o = 0; o < outer_.size() && found < 0; ++o)
-        if (!outer_[o].used && outer_[o].key == key) found = int32_t(o);
+        if (!outer_[o].used && same_key(outer_[o].key, key)) found = int32_t(o);
       if (found >= 0) {
         outer_[size_t(found)].used = 1;
         match_[4 * size_t(i) + size_t(k)] = found;
@@ -256,7 +261,8 @@ bool TetMesh::replace(const int32_t* old_tets, int n_old, const std::array<int32
       }
       for (int j = i + 1; j < n_new && found < 0; ++j)
         for (int l = 0; l < 4 && found < 0; ++l)
-          if (match_[4 * size_t(j) + size_t(l)] == -1 && face_key(new_tets[j].data(), l) == key) {
+          if (match_[4 * size_t(j) + size_t(l)] == -1 &&
+              same_key(face_key(new_tets[j].data(), l), key)) {
             found = 4 * j + l;
             match_[size_t(found)] = -2 - (4 * i + k);
             match_[4 * size_t(i) + size_t(k)] = -2 - found;
