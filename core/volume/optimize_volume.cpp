@@ -18,7 +18,6 @@
 #include <cstdlib>
 
 #include "core/geom/predicates.h"
-#include "core/quality/tet_quality.h"
 
 namespace vm {
 namespace {
@@ -112,6 +111,16 @@ class Optimizer {
     return gamma_fast(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]));
   }
   double cached(int32_t t) const { return q_[size_t(t)]; }
+
+  // Statistics of the cached qualities of the live tetrahedra (the formula
+  // of tet_qualities(), clamped to [-1, 1] as there).
+  QualityStats stats() const {
+    std::vector<float> q;
+    q.reserve(m_.num_tets());
+    for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
+      if (m_.is_live(t)) q.push_back(float(std::clamp(cached(t), -1.0, 1.0)));
+    return quality_stats(q, 20);
+  }
 
   // ---------------------------------------------------------------- flips
 
@@ -741,9 +750,6 @@ class Optimizer {
   int32_t old_[64];
 };
 
-QualityStats mesh_quality(const TetMesh& m) {
-  return quality_stats(tet_qualities(m.points(), m.tets()), 20);
-}
 
 }  // namespace
 
@@ -758,9 +764,9 @@ Status optimize_volume(TetMesh& mesh, const std::vector<double>& vertex_h,
     if (!(h > 0) || !std::isfinite(h))
       return Status::Error("optimize: sizes must be finite and > 0");
   OptimizeStats st;
-  st.before = mesh_quality(mesh);
   Optimizer opt(mesh, vertex_h, options, st);
   opt.compute_all_qualities();
+  st.before = opt.stats();
   auto seconds_since = [](clock::time_point a) {
     return std::chrono::duration<double>(clock::now() - a).count();
   };
@@ -786,7 +792,7 @@ Status optimize_volume(TetMesh& mesh, const std::vector<double>& vertex_h,
   t = clock::now();
   opt.sliver_phase();
   st.sliver_seconds += seconds_since(t);
-  st.after = mesh_quality(mesh);
+  st.after = opt.stats();
   st.seconds = seconds_since(t0);
   if (stats) *stats = st;
   return Status::Ok();
