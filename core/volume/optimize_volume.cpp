@@ -70,10 +70,10 @@ inline bool circumcenter(const double* a, const double* b, const double* c, cons
   double vw[3], wu[3], uv[3];
   cross(v, w, vw), cross(w, u, wu), cross(u, v, uv);
   *vol6 = dot(u, vw);
-  const double det = 2 * *vol6;
-  if (det == 0) return false;
+  if (*vol6 == 0) return false;
+  const double inv = 0.5 / *vol6;
   const double uu = dot(u, u), vv = dot(v, v), ww = dot(w, w);
-  for (int k = 0; k < 3; ++k) o[k] = a[k] + (uu * vw[k] + vv * wu[k] + ww * uv[k]) / det;
+  for (int k = 0; k < 3; ++k) o[k] = a[k] + (uu * vw[k] + vv * wu[k] + ww * uv[k]) * inv;
   return std::isfinite(o[0]) && std::isfinite(o[1]) && std::isfinite(o[2]);
 }
 
@@ -170,9 +170,9 @@ class Optimizer {
       if (rank == kLongEdges && best_kind != 0) break;
       const int e = edges[rank];
       const int32_t a = v[kEdges[e][0]], b = v[kEdges[e][1]];
-      if (!m_.edge_ring(t, a, b, ring_tets_, ring_)) continue;
+      if (!m_.edge_ring(t, a, b, ring_tets_, ring_, kMaxRing)) continue;
       const int n = int(ring_.size());
-      if (n < 3 || n > kMaxRing) continue;
+      if (n < 3) continue;
       double old_min = 1e300;
       for (int32_t u : ring_tets_) old_min = std::min(old_min, cached(u));
       const double new_min = best_ring_triangulation(a, b, old_min + best_gain, nullptr);
@@ -199,7 +199,7 @@ class Optimizer {
       return true;
     }
     const int32_t a = v[kEdges[best_arg][0]], b = v[kEdges[best_arg][1]];
-    m_.edge_ring(t, a, b, ring_tets_, ring_);
+    m_.edge_ring(t, a, b, ring_tets_, ring_, kMaxRing);
     if (!(best_ring_triangulation(a, b, 0, &tris_) > 0)) return false;
     for (const auto& tri : tris_) {
       const int32_t x = ring_[size_t(tri[0])], y = ring_[size_t(tri[1])], z = ring_[size_t(tri[2])];

@@ -196,7 +196,7 @@ void TetMesh::star(int32_t v, std::vector<int32_t>& out) const {
 }
 
 bool TetMesh::edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>& ring_tets,
-                        std::vector<int32_t>& ring) const {
+                        std::vector<int32_t>& ring, int max_size) const {
   ring_tets.clear();
   ring.clear();
   const int32_t* v = tet(t);
@@ -207,22 +207,24 @@ bool TetMesh::edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>& r
   if (!parity_even(sa, sb, sc, sd)) std::swap(sc, sd);
   int32_t c = v[sc], d = v[sd];
   int32_t cur = t;
-  for (size_t guard = 0; guard < 64; ++guard) {
+  int k = sc;  // slot of c in cur
+  for (int n = 0; n < max_size; ++n) {
     ring_tets.push_back(cur);
     ring.push_back(c);
     // Next: across the face (a, b, d), opposite c.
-    const int k = slot_of(tet(cur), c);
-    if (is_constrained(cur, k)) return false;
-    cur = tn_[4 * size_t(cur) + size_t(k)] >> 2;
+    const int32_t e = tn_[4 * size_t(cur) + size_t(k)];
+    if (e < 0 || ((tc_[size_t(cur)] >> k) & 1)) return false;
+    cur = e >> 2;
     if (cur == t) return true;
+    // In cur, the face (a, b, d) is opposite slot e & 3: that vertex is the
+    // next d, and d becomes the vertex to cross.
     const int32_t* w = tet(cur);
-    int32_t next_d = -1;
-    for (int s = 0; s < 4; ++s)
-      if (w[s] != a && w[s] != b && w[s] != d) next_d = w[s];
+    k = 0;
+    while (w[k] != d) ++k;
     c = d;
-    d = next_d;
+    d = w[e & 3];
   }
-  return false;  // more than 64 tetrahedra around an edge: not handled
+  return false;  // more than max_size tetrahedra around the edge
 }
 
 bool TetMesh::replace(const int32_t* old_tets, int n_old, const std::array<int32_t, 4>* new_tets,
