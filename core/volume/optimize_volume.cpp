@@ -102,6 +102,8 @@ class Optimizer {
   void compute_all_qualities() {
     q_.assign(m_.capacity(), 2.0);
     dirty_.assign(m_.capacity(), 1);
+    all_dirty_ = true;
+    touched_.clear();
     for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
       if (m_.is_live(t)) q_[size_t(t)] = quality(t);
   }
@@ -316,27 +318,48 @@ class Optimizer {
                    m_.point(nt[i][3])) >= 0)
         return false;
     if (!m_.replace(old, n_old, nt, n_new, &ids_)) return false;
-    if (q_.size() < m_.capacity()) q_.resize(m_.capacity(), 2.0), dirty_.resize(m_.capacity(), 1);
+    if (q_.size() < m_.capacity()) q_.resize(m_.capacity(), 2.0), dirty_.resize(m_.capacity(), 0);
     for (int i = n_new; i < n_old; ++i) q_[size_t(old[i])] = 2.0;
     for (int32_t id : ids_) {
       q_[size_t(id)] = quality(id);
-      dirty_[size_t(id)] = 1;
+      mark(id);
       created.push_back(id);
     }
     return true;
   }
 
+  // Tetrahedron t was created or moved: dirty (listed once in touched_),
+  // and logged when a log is on.
+  void mark(int32_t t) {
+    if (!dirty_[size_t(t)]) dirty_[size_t(t)] = 1, touched_.push_back(t);
+    if (log_) log_->push_back(t);
+  }
+
   // Flips on every tetrahedron below threshold until none improves. Only
   // tetrahedra created or moved since the last pass are tried (dirty):
   // the others already failed with the same neighbors, nearly always.
-  void flip_pass(double threshold) {
+  // worst_first: in increasing quality, else in id order (neighbors have
+  // nearby ids, so the many changes of a first pass stay in cache: 30%
+  // less time there, the same quality).
+  void flip_pass(double threshold, bool worst_first) {
     work_.clear();
-    for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
-      if (m_.is_live(t) && cached(t) < threshold && dirty_[size_t(t)]) work_.push_back(t);
-    std::fill(dirty_.begin(), dirty_.end(), 0);
-    std::sort(work_.begin(), work_.end(), [&](int32_t a, int32_t b) {
-      return cached(a) < cached(b) || (cached(a) == cached(b) && a < b);
-    });
+    if (all_dirty_ || touched_.size() > m_.capacity() / 8) {
+      for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
+        if (m_.is_live(t) && cached(t) < threshold && dirty_[size_t(t)]) work_.push_back(t);
+      std::fill(dirty_.begin(), dirty_.end(), 0);
+    } else {
+      for (int32_t t : touched_) {
+        if (m_.is_live(t) && cached(t) < threshold) work_.push_back(t);
+        dirty_[size_t(t)] = 0;
+      }
+      std::sort(work_.begin(), work_.end());
+    }
+    all_dirty_ = false;
+    touched_.clear();
+    if (worst_first)
+      std::sort(work_.begin(), work_.end(), [&](int32_t a, int32_t b) {
+        return cached(a) < cached(b) || (cached(a) == cached(b) && a < b);
+      });
     const size_t limit = 20 * work_.size() + 1000;
     for (size_t i = 0; i < work_.size() && i < limit; ++i) {
       const int32_t t = work_[i];
@@ -387,7 +410,7 @@ class Optimizer {
   void move(int32_t v, Span S, const double* p) {
     m_.set_point(v, p);
     size_t i = 0;
-    for (int32_t t : S) q_[size_t(t)] = star_q_[i++], dirty_[size_t(t)] = 1;
+    for (int32_t t : S) q_[size_t(t)] = star_q_[i++], mark(t);
   }
 
   // Smart smoothing of v toward its ODT-like position (circumcenters of the
@@ -696,20 +719,36 @@ class Optimizer {
   void sliver_phase() {
     // Work bound: tetrahedra treated, over all rounds, at most 4 times the
     // first round's count (plus a constant), whatever the rounds create.
+    // The bad tetrahedra of a round after the first: those of the round
+    // before and those it created or moved, still below the threshold
+    // (no scan of the whole mesh).
     int64_t budget = -1;
+    std::vector<int32_t> bad, log;
+    for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
+      if (m_.is_live(t) && cached(t) < opt_.sliver_threshold) bad.push_back(t);
+    log_ = &log;
     for (int round = 0; round < opt_.sliver_rounds; ++round) {
-      std::vector<int32_t> bad;
-      for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
-        if (m_.is_live(t) && cached(t) < opt_.sliver_threshold) bad.push_back(t);
+      if (round > 0) {
+        log.insert(log.end(), bad.begin(), bad.end());
+        std::sort(log.begin(), log.end());
+        log.erase(std::unique(log.begin(), log.end()), log.end());
+        bad.clear();
+        for (int32_t t : log)
+          if (m_.is_live(t) && cached(t) < opt_.sliver_threshold) bad.push_back(t);
+        log.clear();
+      }
       if (bad.empty()) break;
       if (budget < 0) budget = 4 * int64_t(bad.size()) + 256;
       std::sort(bad.begin(), bad.end(), [&](int32_t a, int32_t b) {
         return cached(a) < cached(b) || (cached(a) == cached(b) && a < b);
       });
-      bool changed = false;
+      bool changed = false, spent = false;
       for (int32_t t : bad) {
         if (!m_.is_live(t) || cached(t) >= opt_.sliver_threshold) continue;
-        if (--budget < 0) return;
+        if (--budget < 0) {
+          spent = true;
+          break;
+        }
         created_.clear();
         if (improve_topology(t, created_)) {
           changed = true;
@@ -719,9 +758,10 @@ class Optimizer {
         for (int32_t v : tv) changed = climb_vertex(v) || changed;
         if (m_.is_live(t) && cached(t) < opt_.sliver_threshold && insert_near(t)) changed = true;
       }
-      flip_pass(opt_.sliver_threshold);
-      if (!changed) break;
+      flip_pass(opt_.sliver_threshold, true);
+      if (!changed || spent) break;
     }
+    log_ = nullptr;
   }
 
   double uniform() {
@@ -741,6 +781,9 @@ class Optimizer {
   uint64_t rng_;
   std::vector<double> q_;
   std::vector<uint8_t> dirty_;  // per slot: created or moved since the last flip pass
+  std::vector<int32_t> touched_;  // the dirty slots (unless all_dirty_)
+  bool all_dirty_ = true;
+  std::vector<int32_t>* log_ = nullptr;  // sliver phase: created or moved tetrahedra
   std::vector<int32_t> ring_tets_, ring_, ids_, work_, created_, star_;
   std::vector<double> star_q_;  // qualities of the star at the point eval_star() tried
   std::vector<int32_t> inc_off_, inc_, fill_;  // smoothing: vertex -> tetrahedra
@@ -776,7 +819,7 @@ Status optimize_volume(TetMesh& mesh, const std::vector<double>& vertex_h,
     if (!report_progress(progress, double(step++) / steps, "optimize volume"))
       return Status::Error(kCancelledMessage);
     auto t = clock::now();
-    opt.flip_pass(options.flip_threshold);
+    opt.flip_pass(options.flip_threshold, false);
     st.flip_seconds += seconds_since(t);
     if (!report_progress(progress, double(step++) / steps, "optimize volume"))
       return Status::Error(kCancelledMessage);
@@ -787,7 +830,7 @@ Status optimize_volume(TetMesh& mesh, const std::vector<double>& vertex_h,
   if (!report_progress(progress, double(step++) / steps, "optimize volume"))
     return Status::Error(kCancelledMessage);
   auto t = clock::now();
-  opt.flip_pass(options.flip_threshold);
+  opt.flip_pass(options.flip_threshold, false);
   st.flip_seconds += seconds_since(t);
   t = clock::now();
   opt.sliver_phase();
