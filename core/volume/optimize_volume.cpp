@@ -373,21 +373,57 @@ class Optimizer {
 
   // ---------------------------------------------------------------- smoothing
 
-  // Min and sum of 1/q over the star S of v with v at p; false if a
-  // tetrahedron falls below kGuard (or min_required). The qualities go to
-  // star_q_ (for move()).
-  bool eval_star(int32_t v, Span S, const double* p, double min_required, double* qmin,
-                 double* inv_sum) {
-    double mn = 1e300, sum = 0;
-    star_q_.resize(S.size());
+  // What gamma_t of a tetrahedron (p, x, y, z) of v's star needs besides
+  // p, which does not change while v moves: x, y, z (positive with p in
+  // v's place), n = (y - x) x (z - x), |n| and the longest squared edge of
+  // the face (x, y, z).
+  struct Opposite {
+    double x[3], y[3], z[3], n[3], area2, len2;
+  };
+
+  // The Opposite of each tetrahedron of the star S of v, for eval_star().
+  void prepare_star(int32_t v, Span S) {
+    opp_.resize(S.size());
     size_t i = 0;
     for (int32_t t : S) {
       const int32_t* tv = m_.tet(t);
-      const double* c[4];
-      for (int k = 0; k < 4; ++k) c[k] = tv[k] == v ? p : m_.point(tv[k]);
-      const double q = gamma_fast(c[0], c[1], c[2], c[3]);
+      int s = 0;
+      while (tv[s] != v) ++s;
+      const int* f = kFaceOut[s];  // (v, f) is an even permutation of (0, 1, 2, 3)
+      Opposite& o = opp_[i++];
+      const double* px = m_.point(tv[f[0]]);
+      const double* py = m_.point(tv[f[1]]);
+      const double* pz = m_.point(tv[f[2]]);
+      double u[3], w[3], e[3];
+      for (int k = 0; k < 3; ++k) o.x[k] = px[k], o.y[k] = py[k], o.z[k] = pz[k];
+      sub(py, px, u), sub(pz, px, w), sub(pz, py, e);
+      cross(u, w, o.n);
+      o.area2 = std::sqrt(dot(o.n, o.n));
+      o.len2 = std::max({dot(u, u), dot(w, w), dot(e, e)});
+    }
+  }
+
+  // Min and sum of 1/q over the star S of v with v at p; false if a
+  // tetrahedron falls below kGuard (or min_required). Precondition:
+  // prepare_star(v, S) (v may have moved since). The qualities go to
+  // star_q_ (for move()).
+  bool eval_star(Span S, const double* p, double min_required, double* qmin, double* inv_sum) {
+    double mn = 1e300, sum = 0;
+    star_q_.resize(S.size());
+    for (size_t i = 0; i < S.size(); ++i) {
+      const Opposite& o = opp_[i];
+      double dx[3], dy[3], dz[3], c1[3], c2[3], c3[3];
+      sub(o.x, p, dx), sub(o.y, p, dy), sub(o.z, p, dz);
+      cross(dx, dy, c1), cross(dy, dz, c2), cross(dz, dx, c3);
+      // vol6 = (x - p) . ((y - p) x (z - p)) = (x - p) . n.
+      const double vol6 = dot(dx, o.n);
+      const double faces = 0.5 * (o.area2 + std::sqrt(dot(c1, c1)) + std::sqrt(dot(c2, c2)) +
+                                  std::sqrt(dot(c3, c3)));
+      const double l2 = std::max({o.len2, dot(dx, dx), dot(dy, dy), dot(dz, dz)});
+      const double den = faces * std::sqrt(l2);
+      const double q = den > 0 ? 2.449489742783178 * vol6 / den : 0;
       if (q < kGuard || q < min_required) return false;
-      star_q_[i++] = q;
+      star_q_[i] = q;
       mn = std::min(mn, q);
       sum += 1 / q;
     }
@@ -430,6 +466,7 @@ class Optimizer {
       old_sum += 1 / std::max(cached(t), 1e-12);
     }
     if (old_min >= opt_.smooth_below) return false;
+    prepare_star(v, star);
     const double* x = m_.point(v);
     double odt[3] = {0, 0, 0}, wsum = 0, lap[3] = {0, 0, 0};
     int nlap = 0;
@@ -468,7 +505,7 @@ class Optimizer {
                              x[1] + step * (targets[i][1] - x[1]),
                              x[2] + step * (targets[i][2] - x[2])};
         double mn, sum;
-        if (!eval_star(v, star, p, floor, &mn, &sum)) continue;
+        if (!eval_star(star, p, floor, &mn, &sum)) continue;
         if (sum < old_sum * (1 - 1e-6) && exact_star_ok(v, star, p)) {
           move(v, star, p);
           ++st_.smoothing_moves;
@@ -507,6 +544,7 @@ class Optimizer {
     if (m_.is_fixed(v)) return false;
     m_.star(v, star_);
     if (star_.empty()) return false;
+    prepare_star(v, Span(star_));
     double old_min = 1e300;
     int32_t worst = -1;
     for (int32_t t : star_)
@@ -547,7 +585,7 @@ class Optimizer {
           const double p[3] = {x[0] + step * grad[0] / gn, x[1] + step * grad[1] / gn,
                                x[2] + step * grad[2] / gn};
           double mn, sum;
-          if (!eval_star(v, Span(star_), p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum)) continue;
+          if (!eval_star(Span(star_), p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum)) continue;
           if (exact_star_ok(v, Span(star_), p)) {
             move(v, Span(star_), p);
             old_min = mn;
@@ -566,7 +604,7 @@ class Optimizer {
       const double* xv = m_.point(v);
       const double p[3] = {xv[0] + mag * d[0], xv[1] + mag * d[1], xv[2] + mag * d[2]};
       double mn, sum;
-      if (!eval_star(v, Span(star_), p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum)) continue;
+      if (!eval_star(Span(star_), p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum)) continue;
       if (exact_star_ok(v, Span(star_), p)) {
         move(v, Span(star_), p);
         old_min = mn;
@@ -785,6 +823,7 @@ class Optimizer {
   bool all_dirty_ = true;
   std::vector<int32_t>* log_ = nullptr;  // sliver phase: created or moved tetrahedra
   std::vector<int32_t> ring_tets_, ring_, ids_, work_, created_, star_;
+  std::vector<Opposite> opp_;    // prepare_star()
   std::vector<double> star_q_;  // qualities of the star at the point eval_star() tried
   std::vector<int32_t> inc_off_, inc_, fill_;  // smoothing: vertex -> tetrahedra
   std::vector<std::array<int, 3>> tris_;
