@@ -247,30 +247,30 @@ bool TetMesh::replace(const int32_t* old_tets, int n_old, const std::array<int32
       outer_.push_back({face_key(tet(t), k), e, uint8_t((tc_[size_t(t)] >> k) & 1), 0});
     }
   }
-  // Phase 2: match the faces of the new set.
+  // Phase 2: match the faces of the new set (keys computed once).
   match_.assign(4 * size_t(n_new), -1);  // outer index, or -2 - (4 i + k)
+  new_keys_.resize(4 * size_t(n_new));
   for (int i = 0; i < n_new; ++i)
-    for (int k = 0; k < 4; ++k) {
-      if (match_[4 * size_t(i) + size_t(k)] != -1) continue;
-      const auto key = face_key(new_tets[i].data(), k);
-      int32_t found = -1;
-      for (size_t o = 0; o < outer_.size() && found < 0; ++o)
-        if (!outer_[o].used && same_key(outer_[o].key, key)) found = int32_t(o);
-      if (found >= 0) {
-        outer_[size_t(found)].used = 1;
-        match_[4 * size_t(i) + size_t(k)] = found;
-        continue;
-      }
-      for (int j = i + 1; j < n_new && found < 0; ++j)
-        for (int l = 0; l < 4 && found < 0; ++l)
-          if (match_[4 * size_t(j) + size_t(l)] == -1 &&
-              same_key(face_key(new_tets[j].data(), l), key)) {
-            found = 4 * j + l;
-            match_[size_t(found)] = -2 - (4 * i + k);
-            match_[4 * size_t(i) + size_t(k)] = -2 - found;
-          }
-      if (found < 0) return false;
+    for (int k = 0; k < 4; ++k) new_keys_[4 * size_t(i) + size_t(k)] = face_key(new_tets[i].data(), k);
+  for (int f = 0; f < 4 * n_new; ++f) {
+    if (match_[size_t(f)] != -1) continue;
+    const auto& key = new_keys_[size_t(f)];
+    int32_t found = -1;
+    for (size_t o = 0; o < outer_.size() && found < 0; ++o)
+      if (!outer_[o].used && same_key(outer_[o].key, key)) found = int32_t(o);
+    if (found >= 0) {
+      outer_[size_t(found)].used = 1;
+      match_[size_t(f)] = found;
+      continue;
     }
+    for (int g = 4 * (f / 4 + 1); g < 4 * n_new && found < 0; ++g)
+      if (match_[size_t(g)] == -1 && same_key(new_keys_[size_t(g)], key)) {
+        found = g;
+        match_[size_t(g)] = -2 - f;
+        match_[size_t(f)] = -2 - g;
+      }
+    if (found < 0) return false;
+  }
   for (const OuterFace& f : outer_)
     if (!f.used) return false;
   // Phase 3: commit (old slots reused first).

@@ -123,6 +123,7 @@ class TetMesh {
   };
   std::vector<OuterFace> outer_;
   std::vector<int32_t> match_;
+  std::vector<std::array<int32_t, 3>> new_keys_;
 };
 
 }  // namespace vm
