@@ -9,7 +9,9 @@
 //   re-triangulated by Klincsek's dynamic program ("Minimal triangulations
 //   of polygonal domains", 1980) maximizing the smallest gamma_t; a change
 //   is made only when it raises the smallest quality of the tetrahedra it
-//   replaces (hence 3-2 and 4-4 flips are the ring sizes 3 and 4).
+//   replaces (hence 3-2 and 4-4 flips are the ring sizes 3 and 4). The
+//   three shorter edges of a tetrahedron are tried only when its faces and
+//   three longer edges give no such change.
 // - Smoothing of the free vertices (Freitag and Ollivier-Gooch, "Tetrahedral
 //   mesh improvement using swapping and smoothing", IJNME 40, 1997: smart
 //   Laplacian with a quality guard): each vertex moves toward the centroid

@@ -251,7 +251,8 @@ bool TetMesh::replace(const int32_t* old_tets, int n_old, const std::array<int32
   match_.assign(4 * size_t(n_new), -1);  // outer index, or -2 - (4 i + k)
   new_keys_.resize(4 * size_t(n_new));
   for (int i = 0; i < n_new; ++i)
-    for (int k = 0; k < 4; ++k) new_keys_[4 * size_t(i) + size_t(k)] = face_key(new_tets[i].data(), k);
+    for (int k = 0; k < 4; ++k)
+      new_keys_[4 * size_t(i) + size_t(k)] = face_key(new_tets[i].data(), k);
   for (int f = 0; f < 4 * n_new; ++f) {
     if (match_[size_t(f)] != -1) continue;
     const auto& key = new_keys_[size_t(f)];
