@@ -377,10 +377,10 @@ class Optimizer {
 
   // What gamma_t of a tetrahedron (p, x, y, z) of v's star needs besides
   // p, which does not change while v moves: x, y, z (positive with p in
-  // v's place), n = (y - x) x (z - x), |n| and the longest squared edge of
-  // the face (x, y, z).
+  // v's place), n = (y - x) x (z - x), |n|, the longest squared edge of
+  // the face (x, y, z) and the sum of h at x, y, z.
   struct Opposite {
-    double x[3], y[3], z[3], n[3], area2, len2;
+    double x[3], y[3], z[3], n[3], area2, len2, hsum;
   };
 
   // The Opposite of each tetrahedron of the star S of v, for eval_star().
@@ -402,6 +402,7 @@ class Optimizer {
       cross(u, w, o.n);
       o.area2 = std::sqrt(dot(o.n, o.n));
       o.len2 = std::max({dot(u, u), dot(w, w), dot(e, e)});
+      o.hsum = h_[size_t(tv[f[0]])] + h_[size_t(tv[f[1]])] + h_[size_t(tv[f[2]])];
     }
   }
 
@@ -472,22 +473,18 @@ class Optimizer {
     const double* x = m_.point(v);
     double odt[3] = {0, 0, 0}, wsum = 0, lap[3] = {0, 0, 0};
     int nlap = 0;
-    for (int32_t t : star) {
-      const int32_t* tv = m_.tet(t);
-      const double* c[4] = {m_.point(tv[0]), m_.point(tv[1]), m_.point(tv[2]), m_.point(tv[3])};
+    // (v, x, y, z) is positive: the circumcenter from v's corner.
+    for (size_t i = 0; i < star.size(); ++i) {
+      const Opposite& o = opp_[i];
       double cc[3], vol;
-      if (circumcenter(c[0], c[1], c[2], c[3], cc, &vol) && vol > 0) {
-        const double ht =
-            0.25 * (h_[size_t(tv[0])] + h_[size_t(tv[1])] + h_[size_t(tv[2])] + h_[size_t(tv[3])]);
+      if (circumcenter(x, o.x, o.y, o.z, cc, &vol) && vol > 0) {
+        const double ht = 0.25 * (h_[size_t(v)] + o.hsum);
         const double w = vol / (ht * ht * ht);
         for (int k = 0; k < 3; ++k) odt[k] += w * cc[k];
         wsum += w;
       }
-      for (int s = 0; s < 4; ++s)
-        if (tv[s] != v) {
-          for (int k = 0; k < 3; ++k) lap[k] += c[s][k];
-          ++nlap;
-        }
+      for (int k = 0; k < 3; ++k) lap[k] += o.x[k] + o.y[k] + o.z[k];
+      nlap += 3;
     }
     const double floor = std::min(old_min, opt_.smooth_floor);
     double targets[2][3];
