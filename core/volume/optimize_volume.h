@@ -9,7 +9,9 @@
 //   re-triangulated by Klincsek's dynamic program ("Minimal triangulations
 //   of polygonal domains", 1980) maximizing the smallest gamma_t; a change
 //   is made only when it raises the smallest quality of the tetrahedra it
-//   replaces (hence 3-2 and 4-4 flips are the ring sizes 3 and 4).
+//   replaces (hence 3-2 and 4-4 flips are the ring sizes 3 and 4). The
+//   three shorter edges of a tetrahedron are tried only when its faces and
+//   three longer edges give no such change.
 // - Smoothing of the free vertices (Freitag and Ollivier-Gooch, "Tetrahedral
 //   mesh improvement using swapping and smoothing", IJNME 40, 1997: smart
 //   Laplacian with a quality guard): each vertex moves toward the centroid
@@ -51,8 +53,10 @@ struct OptimizeOptions {
   double smooth_below = 1.0;
   /// Sliver phase: work on tetrahedra below this gamma_t ...
   double sliver_threshold = 0.25;
-  /// ... for at most this many rounds.
-  int sliver_rounds = 8;
+  /// ... for at most this many rounds (aortic arch at h = 0.06, core
+  /// 0.084: smallest gamma_t 0.230 with 8, 0.245 with 12, 0.248 with 16;
+  /// the later rounds see few tetrahedra).
+  int sliver_rounds = 16;
   /// Seed of the deterministic perturbations.
   uint64_t seed = 0x853c49e6748fea9bull;
 };

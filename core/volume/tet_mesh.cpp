@@ -24,6 +24,11 @@ inline bool parity_even(int a, int b, int c, int d) {
   return inv % 2 == 0;
 }
 
+// Equality of face keys without memcmp (the hot loop of replace()).
+inline bool same_key(const std::array<int32_t, 3>& a, const std::array<int32_t, 3>& b) {
+  return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+}
+
 inline std::array<int32_t, 3> face_key(const int32_t* v, int k) {
   std::array<int32_t, 3> f;
   for (int s = 0, n = 0; s < 4; ++s)
@@ -191,7 +196,7 @@ void TetMesh::star(int32_t v, std::vector<int32_t>& out) const {
 }
 
 bool TetMesh::edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>& ring_tets,
-                        std::vector<int32_t>& ring) const {
+                        std::vector<int32_t>& ring, int max_size) const {
   ring_tets.clear();
   ring.clear();
   const int32_t* v = tet(t);
@@ -202,22 +207,24 @@ bool TetMesh::edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>& r
   if (!parity_even(sa, sb, sc, sd)) std::swap(sc, sd);
   int32_t c = v[sc], d = v[sd];
   int32_t cur = t;
-  for (size_t guard = 0; guard < 64; ++guard) {
+  int k = sc;  // slot of c in cur
+  for (int n = 0; n < max_size; ++n) {
     ring_tets.push_back(cur);
     ring.push_back(c);
     // Next: across the face (a, b, d), opposite c.
-    const int k = slot_of(tet(cur), c);
-    if (is_constrained(cur, k)) return false;
-    cur = tn_[4 * size_t(cur) + size_t(k)] >> 2;
+    const int32_t e = tn_[4 * size_t(cur) + size_t(k)];
+    if (e < 0 || ((tc_[size_t(cur)] >> k) & 1)) return false;
+    cur = e >> 2;
     if (cur == t) return true;
+    // In cur, the face (a, b, d) is opposite slot e & 3: that vertex is the
+    // next d, and d becomes the vertex to cross.
     const int32_t* w = tet(cur);
-    int32_t next_d = -1;
-    for (int s = 0; s < 4; ++s)
-      if (w[s] != a && w[s] != b && w[s] != d) next_d = w[s];
+    k = 0;
+    while (w[k] != d) ++k;
     c = d;
-    d = next_d;
+    d = w[e & 3];
   }
-  return false;  // more than 64 tetrahedra around an edge: not handled
+  return false;  // more than max_size tetrahedra around the edge
 }
 
 bool TetMesh::replace(const int32_t* old_tets, int n_old, const std::array<int32_t, 4>* new_tets,
@@ -240,29 +247,31 @@ bool TetMesh::replace(const int32_t* old_tets, int n_old, const std::array<int32
       outer_.push_back({face_key(tet(t), k), e, uint8_t((tc_[size_t(t)] >> k) & 1), 0});
     }
   }
-  // Phase 2: match the faces of the new set.
+  // Phase 2: match the faces of the new set (keys computed once).
   match_.assign(4 * size_t(n_new), -1);  // outer index, or -2 - (4 i + k)
+  new_keys_.resize(4 * size_t(n_new));
   for (int i = 0; i < n_new; ++i)
-    for (int k = 0; k < 4; ++k) {
-      if (match_[4 * size_t(i) + size_t(k)] != -1) continue;
-      const auto key = face_key(new_tets[i].data(), k);
-      int32_t found = -1;
-      for (size_t o = 0; o < outer_.size() && found < 0; ++o)
-        if (!outer_[o].used && outer_[o].key == key) found = int32_t(o);
-      if (found >= 0) {
-        outer_[size_t(found)].used = 1;
-        match_[4 * size_t(i) + size_t(k)] = found;
-        continue;
-      }
-      for (int j = i + 1; j < n_new && found < 0; ++j)
-        for (int l = 0; l < 4 && found < 0; ++l)
-          if (match_[4 * size_t(j) + size_t(l)] == -1 && face_key(new_tets[j].data(), l) == key) {
-            found = 4 * j + l;
-            match_[size_t(found)] = -2 - (4 * i + k);
-            match_[4 * size_t(i) + size_t(k)] = -2 - found;
-          }
-      if (found < 0) return false;
+    for (int k = 0; k < 4; ++k)
+      new_keys_[4 * size_t(i) + size_t(k)] = face_key(new_tets[i].data(), k);
+  for (int f = 0; f < 4 * n_new; ++f) {
+    if (match_[size_t(f)] != -1) continue;
+    const auto& key = new_keys_[size_t(f)];
+    int32_t found = -1;
+    for (size_t o = 0; o < outer_.size() && found < 0; ++o)
+      if (!outer_[o].used && same_key(outer_[o].key, key)) found = int32_t(o);
+    if (found >= 0) {
+      outer_[size_t(found)].used = 1;
+      match_[size_t(f)] = found;
+      continue;
     }
+    for (int g = 4 * (f / 4 + 1); g < 4 * n_new && found < 0; ++g)
+      if (match_[size_t(g)] == -1 && same_key(new_keys_[size_t(g)], key)) {
+        found = g;
+        match_[size_t(g)] = -2 - f;
+        match_[size_t(f)] = -2 - g;
+      }
+    if (found < 0) return false;
+  }
   for (const OuterFace& f : outer_)
     if (!f.used) return false;
   // Phase 3: commit (old slots reused first).

@@ -81,10 +81,11 @@ class TetMesh {
   /// the ring vertices: ring_tets[i] is (a, b, ring[i], ring[i + 1]) up to
   /// an even permutation (positive). Returns false (outputs unspecified)
   /// when the edge lies on the boundary or a face around it is
-  /// constrained, i.e. when it cannot be removed. Precondition: a and b are
-  /// vertices of live t.
+  /// constrained, i.e. when it cannot be removed, or when more than
+  /// max_size tetrahedra surround it. Precondition: a and b are vertices of
+  /// live t.
   bool edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>& ring_tets,
-                 std::vector<int32_t>& ring) const;
+                 std::vector<int32_t>& ring, int max_size = 64) const;
 
   /// Replaces the live tetrahedra old_tets (connected) by new_tets with the
   /// same boundary; new ids into new_ids. Checks only the face matching
@@ -122,6 +123,7 @@ class TetMesh {
   };
   std::vector<OuterFace> outer_;
   std::vector<int32_t> match_;
+  std::vector<std::array<int32_t, 3>> new_keys_;
 };
 
 }  // namespace vm

@@ -69,6 +69,7 @@ TEST(OptimizeVolume, RemovesSliversOfARandomDelaunayMesh) {
   TetMesh m = random_cube_mesh(6, 400, 7, &h);
   const auto faces = boundary_faces(m);
   const std::vector<double> before_points = m.points();
+  const std::vector<int32_t> before_tets = m.tets();
   const size_t n0 = m.num_vertices();
   OptimizeStats st;
   ASSERT_TRUE(optimize_volume(m, h, OptimizeOptions{}, &st).ok());
@@ -87,9 +88,15 @@ TEST(OptimizeVolume, RemovesSliversOfARandomDelaunayMesh) {
   }
   EXPECT_EQ(boundary_faces(m), faces);
   EXPECT_NEAR(volume(m), 1.0, 1e-12);
-  // The summary matches the mesh.
+  // The summaries (from the optimizer's cached qualities) match the meshes.
   const auto q = tet_qualities(m.points(), m.tets());
   EXPECT_FLOAT_EQ(float(st.after.min), *std::min_element(q.begin(), q.end()));
+  EXPECT_EQ(st.after.count, m.num_tets());
+  EXPECT_NEAR(st.after.mean, quality_stats(q, 20).mean, 1e-6);
+  const auto q0 = tet_qualities(before_points, before_tets);
+  EXPECT_EQ(st.before.count, q0.size());
+  EXPECT_FLOAT_EQ(float(st.before.min), *std::min_element(q0.begin(), q0.end()));
+  EXPECT_NEAR(st.before.mean, quality_stats(q0, 20).mean, 1e-6);
 }
 
 TEST(OptimizeVolume, DeterministicCancellableAndErrors) {

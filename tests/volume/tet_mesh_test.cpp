@@ -59,6 +59,50 @@ TEST(TetMesh, FromArraysAdjacencyAndRing) {
   EXPECT_EQ(star.size(), 4u);
 }
 
+TEST(TetMesh, EdgeRingOrderAndSizeLimit) {
+  // Every removable edge of a Delaunay mesh of the cube with interior
+  // points: ring_tets[i] is (a, b, ring[i], ring[i + 1]), positive in that
+  // order, from whichever tetrahedron of the ring the walk starts.
+  testing::VolumeInput in;
+  ASSERT_TRUE(testing::convex_input(testing::cube_surface_points(3), &in));
+  const double inner[4][3] = {{0.3, 0.4, 0.5}, {0.6, 0.55, 0.45}, {0.5, 0.3, 0.7}, {0.4, 0.7, 0.3}};
+  for (const auto& p : inner) in.kernel.insert(p, -1, true);
+  const size_t n = in.kernel.num_vertices();
+  std::vector<int32_t> vmap(n);
+  for (size_t v = 0; v < n; ++v) vmap[v] = int32_t(v);
+  auto r = TetMesh::from_kernel(in.kernel, 1, vmap, int32_t(n), std::vector<uint8_t>(n, 0));
+  ASSERT_TRUE(r.ok()) << r.message();
+  const TetMesh& m = r.value();
+  ASSERT_TRUE(m.check().ok()) << m.check().message();
+  std::vector<int32_t> ring_tets, ring, again_tets, again;
+  int removable = 0;
+  for (int32_t t = 0; t < int32_t(m.capacity()); ++t) {
+    if (!m.is_live(t)) continue;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const int32_t a = m.tet(t)[i], b = m.tet(t)[j];
+        if (!m.edge_ring(t, a, b, ring_tets, ring)) continue;
+        ++removable;
+        const size_t k = ring.size();
+        ASSERT_GE(k, 3u);
+        ASSERT_EQ(ring_tets.size(), k);
+        EXPECT_EQ(ring_tets[0], t);
+        for (size_t q = 0; q < k; ++q) {
+          const int32_t* v = m.tet(ring_tets[q]);
+          for (int32_t x : {a, b, ring[q], ring[(q + 1) % k]})
+            EXPECT_NE(std::find(v, v + 4, x), v + 4);
+          EXPECT_GT(
+              tet_volume6(m.point(a), m.point(b), m.point(ring[q]), m.point(ring[(q + 1) % k])), 0);
+        }
+        // The size limit: refused below the ring's size, accepted at it.
+        EXPECT_FALSE(m.edge_ring(t, a, b, again_tets, again, int(k) - 1));
+        ASSERT_TRUE(m.edge_ring(t, a, b, again_tets, again, int(k)));
+        EXPECT_EQ(again, ring);
+      }
+  }
+  EXPECT_GT(removable, 0);
+}
+
 TEST(TetMesh, ReplaceKeepsBoundaryAndRejectsMismatch) {
   TetMesh m = octahedron();
   const double vol = total_volume(m);
