@@ -5,12 +5,14 @@
 // (Shewchuk 2002). See delaunay3d.h for the data layout.
 //
 // Insertion phases: (1) walk to a tetrahedron containing the point, (2)
-// cavity search (breadth-first over conflicting tetrahedra; the "checked"
-// variant additionally stops at constrained faces and shrinks the cavity
-// until every boundary face is strictly visible from the point), (3) star:
-// one new tetrahedron per cavity boundary face, linked to the outside
-// through the old face and to each other through a small hash on the
-// boundary edges.
+// cavity search: breadth-first over conflicting tetrahedra; in constrained /
+// non-Delaunay mode the same search not crossing constrained faces, bounded
+// and verified star-shaped (every boundary face strictly visible from the
+// point), else the "checked" search, which crosses only faces seen from the
+// point, stops at constrained faces and shrinks the cavity until every
+// boundary face is strictly visible; (3) star: one new tetrahedron per
+// cavity boundary face, linked to the outside through the old face and to
+// each other through a small open-addressing hash on the boundary edges.
 #include "core/volume/delaunay3d.h"
 
 #include <algorithm>
@@ -40,6 +42,11 @@ inline int slot_of(const int32_t* v, int32_t x) {
   for (int k = 0; k < 4; ++k)
     if (v[k] == x) return k;
   return -1;
+}
+
+// Slot of x in v, branch-free; precondition: x is in v.
+inline int slot_present(const int32_t* v, int32_t x) {
+  return (v[1] == x) + 2 * (v[2] == x) + 3 * (v[3] == x);
 }
 
 // kOther[f][j]: the two slots other than f and j (f != j).
@@ -112,8 +119,8 @@ inline double insphere_fast(const double* a, const double* b, const double* c, c
   const double clift = cex * cex + cey * cey + cez * cez;
   const double dlift = dex * dex + dey * dey + dez * dez;
   const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
-  const double m = std::max(max_abs(aex, aey, aez, bex, bey, bez),
-                            max_abs(cex, cey, cez, dex, dey, dez));
+  const double m =
+      std::max(max_abs(aex, aey, aez, bex, bey, bez), max_abs(cex, cey, cez, dex, dey, dez));
   if (m > 1e-55 && m < 1e55) {
     const double m2 = m * m;
     const double bound = kIsStatic * m2 * m2 * m;
@@ -588,10 +595,11 @@ void Delaunay3D::star(int32_t pv) {
     b.constrained = uint8_t(tc_[size_t(t)] & (1u << f));
     b.tag = tag_[size_t(t)];
   }
-  // Phase 3b: slots: the cavity's first, then free or new ones.
+  // Phase 3b: slots: free or new ones, then the cavity's are freed (for
+  // the next insertion: the free list gives them back last-freed first).
   new_.resize(nb);
-  for (size_t i = 0; i < nb; ++i) new_[i] = i < nc ? cavity_[i] : new_tet_id();
-  for (size_t i = nb; i < nc; ++i) free_tet(cavity_[i]);
+  for (size_t i = 0; i < nb; ++i) new_[i] = new_tet_id();
+  for (int32_t t : cavity_) free_tet(t);
   // Phase 3c: write, link to the outside through the old face, and to each
   // other through the hash of boundary edges: face j != f of a new
   // tetrahedron holds p and the boundary edge on the two other slots, and
@@ -718,11 +726,11 @@ void Delaunay3D::tets_around_vertex(int32_t v, std::vector<int32_t>& out) const 
   out.push_back(t0);
   stamp_[size_t(t0)] = mark;
   for (size_t i = 0; i < out.size(); ++i) {
-    const int32_t t = out[i];
-    const int s = slot_of(tet(t), v);
-    for (int k = 0; k < 4; ++k) {
-      if (k == s) continue;
-      const int32_t n = tets_[size_t(t)].n[k] >> 2;
+    const TetRec& r = tets_[size_t(out[i])];
+    const int sv = slot_of(r.v, v);
+    for (int j = 0; j < 4; ++j) {
+      if (j == sv) continue;
+      const int32_t n = r.n[j] >> 2;
       if (stamp_[size_t(n)] == mark) continue;
       stamp_[size_t(n)] = mark;
       out.push_back(n);

@@ -135,6 +135,11 @@ class Delaunay3D {
   // ---- Topology queries.
   /// Live tetrahedra incident to vertex v (ghosts included), into `out`.
   void tets_around_vertex(int32_t v, std::vector<int32_t>& out) const;
+  /// The tetrahedra created by the last successful insertion (insert() or
+  /// build()), ghosts included: exactly the tetrahedra incident to the new
+  /// vertex, as tets_around_vertex would list them (in another order). Valid
+  /// until the next insertion or flip.
+  const std::vector<int32_t>& last_inserted_tets() const { return new_; }
   /// A tetrahedron with edge (a, b), or -1.
   int32_t find_edge(int32_t a, int32_t b) const;
   /// A tetrahedron t with face (a, b, c) as face k (any orientation), or -1.
@@ -233,8 +238,8 @@ class Delaunay3D {
     int32_t n[4];
   };
   std::vector<TetRec> tets_;
-  std::vector<uint8_t> tc_;      // per tet: bit k = face k constrained
-  std::vector<int32_t> tag_;     // per tet
+  std::vector<uint8_t> tc_;   // per tet: bit k = face k constrained
+  std::vector<int32_t> tag_;  // per tet
   std::vector<int32_t> free_;
   bool delaunay_ = true;
   mutable Stats stats_;
