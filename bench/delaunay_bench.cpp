@@ -2,9 +2,13 @@
 // the BRIO/Hilbert sort), median of several runs, for random points in a
 // cube, on a sphere, and on a cylinder surface plus its interior (a vessel-
 // like mix of surface and volume points). The median thread CPU time is
-// printed beside the wall time (the machine may be shared).
+// printed beside the wall time (the machine may be shared). --constrained
+// also times, after each build, the insertion of n/4 more points of the same
+// kind (in BRIO order) in constrained mode after one flip (the refinement path: the kernel
+// is no longer Delaunay, insert(p, hint, true)).
 //
 // usage: delaunay_bench [--runs N] [--sizes 100000,1000000] [--kinds cube,sphere,cylinder]
+//                       [--constrained]
 #include <time.h>
 
 #include <algorithm>
@@ -62,6 +66,7 @@ int main(int argc, char** argv) {
   int runs = 5;
   std::vector<int> sizes = {100000, 1000000};
   std::vector<std::string> kinds = {"cube", "sphere", "cylinder"};
+  bool constrained = false;
   auto split = [](const std::string& s) {
     std::vector<std::string> out;
     for (size_t pos = 0; pos <= s.size();) {
@@ -81,8 +86,12 @@ int main(int argc, char** argv) {
       for (const auto& s : split(argv[++i])) sizes.push_back(std::atoi(s.c_str()));
     } else if (a == "--kinds" && i + 1 < argc) {
       kinds = split(argv[++i]);
+    } else if (a == "--constrained") {
+      constrained = true;
     } else {
-      std::fprintf(stderr, "usage: delaunay_bench [--runs N] [--sizes N1,...] [--kinds K1,...]\n");
+      std::fprintf(stderr,
+                   "usage: delaunay_bench [--runs N] [--sizes N1,...] [--kinds K1,...] "
+                   "[--constrained]\n");
       return 2;
     }
   }
@@ -91,7 +100,7 @@ int main(int argc, char** argv) {
               "cavity", "created");
   for (const std::string& kind : kinds) {
     for (int n : sizes) {
-      std::vector<double> times, cpu;
+      std::vector<double> times, cpu, ccpu;
       size_t tets = 0;
       int64_t steps = 0, cavity = 0, created = 0;
       for (int r = 0; r < runs; ++r) {
@@ -110,11 +119,29 @@ int main(int argc, char** argv) {
         steps = d.value().stats().walk_steps;
         cavity = d.value().stats().cavity_tets;
         created = d.value().stats().boundary_faces;
+        if (!constrained) continue;
+        vm::Delaunay3D& k = d.value();
+        for (int32_t t = 0; t < int32_t(k.tet_capacity()); ++t)
+          if (k.is_live(t) && !k.is_ghost(t) && k.flip23(t, 0).ok()) break;
+        const int m = n / 4;
+        std::vector<double> more = make_points(kind, m, uint32_t(r + 101));
+        const std::vector<int32_t> order = vm::brio_hilbert_order(more);
+        const double c1 = thread_cpu();
+        int32_t hint = -1;
+        for (int32_t i : order) {
+          auto ins = k.insert(&more[3 * size_t(i)], hint, true);
+          if (ins.status == vm::Delaunay3D::InsertStatus::kInserted)
+            hint = k.vertex_tet(ins.vertex);
+        }
+        ccpu.push_back(thread_cpu() - c1);
       }
       const double t = median(times), c = median(cpu);
       std::printf("%-9s %9d %6d %10.4f %14.0f %10.4f %14.0f %8.2f %9.2f %9.2f %9.2f\n",
                   kind.c_str(), n, runs, t, n / t, c, n / c, double(tets) / n, double(steps) / n,
                   double(cavity) / n, double(created) / n);
+      if (constrained)
+        std::printf("  constrained insertion of %d more: cpu %.4f s, %.0f points/cpu s\n", n / 4,
+                    median(ccpu), (n / 4) / median(ccpu));
       std::fflush(stdout);
     }
   }

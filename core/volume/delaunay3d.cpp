@@ -5,12 +5,14 @@
 // (Shewchuk 2002). See delaunay3d.h for the data layout.
 //
 // Insertion phases: (1) walk to a tetrahedron containing the point, (2)
-// cavity search (breadth-first over conflicting tetrahedra; the "checked"
-// variant additionally stops at constrained faces and shrinks the cavity
-// until every boundary face is strictly visible from the point), (3) star:
-// one new tetrahedron per cavity boundary face, linked to the outside
-// through the old face and to each other through a small hash on the
-// boundary edges.
+// cavity search: breadth-first over conflicting tetrahedra; in constrained /
+// non-Delaunay mode the same search not crossing constrained faces, bounded
+// and verified star-shaped (every boundary face strictly visible from the
+// point), else the "checked" search, which crosses only faces seen from the
+// point, stops at constrained faces and shrinks the cavity until every
+// boundary face is strictly visible; (3) star: one new tetrahedron per
+// cavity boundary face, linked to the outside through the old face and to
+// each other through a small open-addressing hash on the boundary edges.
 #include "core/volume/delaunay3d.h"
 
 #include <algorithm>
@@ -21,6 +23,10 @@
 
 namespace vm {
 namespace {
+
+// Bound on the cavity of the non-Delaunay / constrained insertion (so that
+// an insertion stays local).
+constexpr size_t kMaxCavity = 512;
 
 // Face k of a positive tetrahedron, as slots ordered counterclockwise seen
 // from outside (so orient3d(face, q) < 0 iff q is strictly outside face k).
@@ -49,6 +55,9 @@ constexpr int kOther[4][4][2] = {{{-1, -1}, {2, 3}, {1, 3}, {1, 2}},
                                  {{1, 3}, {0, 3}, {-1, -1}, {0, 1}},
                                  {{1, 2}, {0, 2}, {0, 1}, {-1, -1}}};
 
+// kApexFaces[f]: the three slots other than f.
+constexpr int kApexFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+
 inline bool parity_even(int a, int b, int c, int d) {
   int p[4] = {a, b, c, d}, inv = 0;
   for (int i = 0; i < 4; ++i)
@@ -66,15 +75,25 @@ constexpr double kEps = 0x1p-53;
 constexpr double kO3Static = (7.0 + 56.0 * kEps) * kEps * 6 * (1 + 1e-12);
 constexpr double kIsStatic = (16.0 + 224.0 * kEps) * kEps * 72 * (1 + 1e-12);
 
+// The largest |x| (a max tree, no temporary array).
+inline double max_abs(double a, double b, double c) {
+  return std::max(std::max(std::fabs(a), std::fabs(b)), std::fabs(c));
+}
+inline double max_abs(double a, double b, double c, double d, double e, double f) {
+  return std::max(max_abs(a, b, c), max_abs(d, e, f));
+}
+inline double max_abs(double a, double b, double c, double d, double e, double f, double g,
+                      double h, double i) {
+  return std::max(max_abs(a, b, c, d, e, f), max_abs(g, h, i));
+}
+
 inline double orient3d_fast(const double* a, const double* b, const double* c, const double* d) {
   const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
   const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
   const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
   const double det =
       adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
-  const double m =
-      std::max({std::fabs(adx), std::fabs(ady), std::fabs(adz), std::fabs(bdx), std::fabs(bdy),
-                std::fabs(bdz), std::fabs(cdx), std::fabs(cdy), std::fabs(cdz)});
+  const double m = max_abs(adx, ady, adz, bdx, bdy, bdz, cdx, cdy, cdz);
   if (m > 1e-55 && m < 1e55) {
     const double bound = kO3Static * m * m * m;
     if (det > bound || -det > bound) return det;
@@ -100,9 +119,8 @@ inline double insphere_fast(const double* a, const double* b, const double* c, c
   const double clift = cex * cex + cey * cey + cez * cez;
   const double dlift = dex * dex + dey * dey + dez * dez;
   const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
-  const double m = std::max({std::fabs(aex), std::fabs(aey), std::fabs(aez), std::fabs(bex),
-                             std::fabs(bey), std::fabs(bez), std::fabs(cex), std::fabs(cey),
-                             std::fabs(cez), std::fabs(dex), std::fabs(dey), std::fabs(dez)});
+  const double m =
+      std::max(max_abs(aex, aey, aez, bex, bey, bez), max_abs(cex, cey, cez, dex, dey, dez));
   if (m > 1e-55 && m < 1e55) {
     const double m2 = m * m;
     const double bound = kIsStatic * m2 * m2 * m;
@@ -159,8 +177,7 @@ Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
     return Result<Delaunay3D>::Error(
         "points: fewer than 4 affinely independent points (all coplanar, collinear or equal)");
   size_t expect = size_t(n) * 7 + 16;
-  d.tv_.reserve(4 * expect);
-  d.tn_.reserve(4 * expect);
+  d.tets_.reserve(expect);
   d.tc_.reserve(expect);
   d.tag_.reserve(expect);
   d.stamp_.reserve(expect);
@@ -175,8 +192,9 @@ Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
   }
 
   // Phase 3: back to input numbering.
-  for (int32_t& v : d.tv_)
-    if (v >= 0) v = order[size_t(v)];
+  for (TetRec& r : d.tets_)
+    for (int32_t& v : r.v)
+      if (v >= 0) v = order[size_t(v)];
   std::vector<int32_t> vtet(static_cast<size_t>(n)), dup(static_cast<size_t>(n));
   for (int64_t i = 0; i < n; ++i) {
     vtet[size_t(order[size_t(i)])] = d.vtet_[size_t(i)];
@@ -195,9 +213,9 @@ void Delaunay3D::init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d) {
   const int32_t base[4] = {a, b, c, d};
   int32_t ids[5];
   for (int32_t& t : ids) t = new_tet_id();
-  std::copy(base, base + 4, &tv_[4 * size_t(ids[0])]);
+  std::copy(base, base + 4, tets_[size_t(ids[0])].v);
   for (int k = 0; k < 4; ++k) {
-    int32_t* g = &tv_[4 * size_t(ids[k + 1])];
+    int32_t* g = tets_[size_t(ids[k + 1])].v;
     std::copy(base, base + 4, g);
     g[k] = kInfinite;
     // Replacing a vertex by a point on the other side of its face flips
@@ -208,16 +226,16 @@ void Delaunay3D::init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d) {
   // Link every pair of faces with the same vertex set.
   for (int x = 0; x < 5; ++x)
     for (int kx = 0; kx < 4; ++kx) {
-      const int32_t* vx = &tv_[4 * size_t(ids[x])];
+      const int32_t* vx = tets_[size_t(ids[x])].v;
       for (int y = x + 1; y < 5; ++y)
         for (int ky = 0; ky < 4; ++ky) {
-          const int32_t* vy = &tv_[4 * size_t(ids[y])];
+          const int32_t* vy = tets_[size_t(ids[y])].v;
           int shared = 0;
           for (int s = 0; s < 4; ++s)
             if (s != kx && slot_of(vy, vx[s]) >= 0 && slot_of(vy, vx[s]) != ky) ++shared;
           if (shared == 3) {
-            tn_[4 * size_t(ids[x]) + kx] = 4 * ids[y] + ky;
-            tn_[4 * size_t(ids[y]) + ky] = 4 * ids[x] + kx;
+            tets_[size_t(ids[x])].n[kx] = 4 * ids[y] + ky;
+            tets_[size_t(ids[y])].n[ky] = 4 * ids[x] + kx;
           }
         }
     }
@@ -232,8 +250,7 @@ int32_t Delaunay3D::new_tet_id() {
     return t;
   }
   int32_t t = int32_t(tag_.size());
-  tv_.insert(tv_.end(), {kFree, kFree, kFree, kFree});
-  tn_.insert(tn_.end(), {-1, -1, -1, -1});
+  tets_.push_back({{kFree, kFree, kFree, kFree}, {-1, -1, -1, -1}});
   tc_.push_back(0);
   tag_.push_back(0);
   stamp_.push_back(0);
@@ -241,7 +258,7 @@ int32_t Delaunay3D::new_tet_id() {
 }
 
 void Delaunay3D::free_tet(int32_t t) {
-  tv_[4 * size_t(t)] = kFree;
+  tets_[size_t(t)].v[0] = kFree;
   tc_[size_t(t)] = 0;
   free_.push_back(t);
 }
@@ -263,7 +280,7 @@ int32_t Delaunay3D::walk(const double* p, int32_t hint) const {
     t = 0;
     while (!is_live(t)) ++t;
   }
-  if (is_ghost(t)) t = tn_[4 * size_t(t) + size_t(inf_slot(tet(t)))] >> 2;
+  if (is_ghost(t)) t = tets_[size_t(t)].n[inf_slot(tet(t))] >> 2;
   int32_t prev = -1;
   const int64_t max_steps = int64_t(tet_capacity()) * 4 + 64;
   for (int64_t step = 0; step < max_steps; ++step) {
@@ -276,7 +293,7 @@ int32_t Delaunay3D::walk(const double* p, int32_t hint) const {
     int32_t next = -1;
     for (int j = 0; j < 4; ++j) {
       const int k = (start + j) & 3;
-      const int32_t n = tn_[4 * size_t(t) + size_t(k)] >> 2;
+      const int32_t n = tets_[size_t(t)].n[k] >> 2;
       if (n == prev) continue;  // p is strictly inside that face
       const int* f = kFaceOut[k];
       if (orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) < 0) {
@@ -313,7 +330,7 @@ int32_t Delaunay3D::walk(const double* p, int32_t hint) const {
 
 Delaunay3D::Location Delaunay3D::locate(const double* p, int32_t hint) const {
   Location loc;
-  if (tv_.empty()) return loc;
+  if (tets_.empty()) return loc;
   loc.tet = walk(p, hint);
   if (is_ghost(loc.tet)) return loc;
   const int32_t* v = tet(loc.tet);
@@ -335,24 +352,35 @@ Delaunay3D::Location Delaunay3D::locate(const double* p, int32_t hint) const {
 
 // ---------------------------------------------------------------- insertion
 
-bool Delaunay3D::finite_conflict(int32_t t, const double* p, int32_t pv) const {
+inline bool Delaunay3D::finite_conflict(int32_t t, const double* p, int32_t pv) const {
+  const int32_t* v = tet(t);
+  // Positive tetrahedra have orient3d < 0, so "inside" is insphere < 0.
+  const double s = insphere_fast(point(v[0]), point(v[1]), point(v[2]), point(v[3]), p);
+  if (s != 0) return s < 0;
+  return sos_conflict(t, p, pv);
+}
+
+bool Delaunay3D::sos_conflict(int32_t t, const double* p, int32_t pv) const {
   const int32_t* v = tet(t);
   const double* a = point(v[0]);
   const double* b = point(v[1]);
   const double* c = point(v[2]);
   const double* d = point(v[3]);
-  // Positive tetrahedra have orient3d < 0, so "inside" is insphere < 0.
-  double s = insphere_fast(a, b, c, d, p);
-  if (s != 0) return s < 0;
   if (sos_id_.empty()) return insphere_sos(a, b, c, d, p, v[0], v[1], v[2], v[3], pv) < 0;
   const int32_t* id = sos_id_.data();
   return insphere_sos(a, b, c, d, p, id[v[0]], id[v[1]], id[v[2]], id[v[3]], id[pv]) < 0;
 }
 
-bool Delaunay3D::conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const {
+inline bool Delaunay3D::conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const {
+  const int32_t* v = tet(t);
+  // Live tetrahedra have no kFree vertex: negative only for kInfinite.
+  if ((v[0] | v[1] | v[2] | v[3]) >= 0) return finite_conflict(t, p, pv);
+  return ghost_conflict(t, p, pv, strict_hull);
+}
+
+bool Delaunay3D::ghost_conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const {
   const int32_t* v = tet(t);
   const int g = inf_slot(v);
-  if (g < 0) return finite_conflict(t, p, pv);
   const double* q[4];
   for (int k = 0; k < 4; ++k) q[k] = k == g ? p : point(v[k]);
   double o = orient3d_fast(q[0], q[1], q[2], q[3]);
@@ -361,7 +389,7 @@ bool Delaunay3D::conflict(int32_t t, const double* p, int32_t pv, bool strict_hu
   // p in the plane of the hull face: inside the ghost's "sphere" iff inside
   // the circumcircle of the face, which every sphere through the face
   // shares; the finite neighbor decides (with the same perturbation).
-  return finite_conflict(tn_[4 * size_t(t) + size_t(g)] >> 2, p, pv);
+  return finite_conflict(tets_[size_t(t)].n[g] >> 2, p, pv);
 }
 
 void Delaunay3D::find_cavity_fast(int32_t t0, const double* p, int32_t pv) {
@@ -374,7 +402,7 @@ void Delaunay3D::find_cavity_fast(int32_t t0, const double* p, int32_t pv) {
     const int32_t t = cavity_[i];
     for (int k = 0; k < 4; ++k) {
       const int32_t e = 4 * t + k;
-      const int32_t n = tn_[size_t(e)] >> 2;
+      const int32_t n = link(e) >> 2;
       const uint32_t s = stamp_[size_t(n)];
       if (s == in) continue;
       if (s != out && conflict(n, p, pv, false)) {
@@ -386,6 +414,58 @@ void Delaunay3D::find_cavity_fast(int32_t t0, const double* p, int32_t pv) {
       }
     }
   }
+}
+
+bool Delaunay3D::find_cavity_verified(int32_t t0, const double* p, int32_t pv,
+                                      bool respect_constraints) {
+  // Bowyer-Watson's search, not crossing constrained faces; any doubt
+  // (a ghost, a constrained face inside, too many tetrahedra, a boundary
+  // face not strictly visible from p) returns false, and the caller falls
+  // back to find_cavity_checked. When the conflict region is locally
+  // Delaunay it is star-shaped from p (p in ball(t) but not in ball(n)
+  // across a locally Delaunay face puts p strictly on t's side, up to
+  // ties), so this usually succeeds; when it does, the cavity is exactly
+  // what find_cavity_checked would find (every tetrahedron of a star-shaped
+  // region is reached from p across faces seen from inside) without the
+  // shrinking passes.
+  if (is_ghost(t0)) return false;
+  const uint32_t in = uint32_t(visit_stamp()), out = in + 1;
+  cavity_.clear();
+  boundary_.clear();
+  cavity_.push_back(t0);
+  stamp_[size_t(t0)] = in;
+  for (size_t i = 0; i < cavity_.size(); ++i) {
+    const int32_t t = cavity_[i];
+    const unsigned cons = respect_constraints ? tc_[size_t(t)] : 0u;
+    for (int k = 0; k < 4; ++k) {
+      const int32_t e = 4 * t + k;
+      const int32_t n = link(e) >> 2;
+      const uint32_t s = stamp_[size_t(n)];
+      if ((cons >> k) & 1u) {
+        if (s == in) return false;  // a constrained face inside the cavity
+        boundary_.push_back(e);     // n may still be reached another way
+        continue;
+      }
+      if (s == in) continue;
+      if (s != out && conflict(n, p, pv, false)) {
+        const int32_t* v = tet(n);
+        if ((v[0] | v[1] | v[2] | v[3]) < 0 || cavity_.size() >= kMaxCavity) return false;
+        stamp_[size_t(n)] = in;
+        cavity_.push_back(n);
+      } else {
+        stamp_[size_t(n)] = out;
+        boundary_.push_back(e);
+      }
+    }
+  }
+  // Star-shaped: p strictly inside every boundary face (its new
+  // tetrahedron positive).
+  for (int32_t e : boundary_) {
+    const int32_t* v = tet(e >> 2);
+    const int* f = kFaceOut[e & 3];
+    if (!(orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) > 0)) return false;
+  }
+  return true;
 }
 
 bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
@@ -404,7 +484,7 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
       if (orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) == 0) zero[nz++] = k;
     }
     if (nz == 1) {
-      pinned_.push_back(tn_[4 * size_t(t0) + size_t(zero[0])] >> 2);
+      pinned_.push_back(tets_[size_t(t0)].n[zero[0]] >> 2);
     } else if (nz == 2) {
       int32_t e[2], m = 0;
       for (int s = 0; s < 4; ++s)
@@ -421,7 +501,7 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
   if (respect_constraints)
     for (int32_t t : pinned_)
       for (int k = 0; k < 4; ++k)
-        if (is_constrained(t, k) && stamp_[size_t(tn_[4 * size_t(t) + size_t(k)] >> 2)] == in)
+        if (is_constrained(t, k) && stamp_[size_t(tets_[size_t(t)].n[k] >> 2)] == in)
           return false;  // p on a constrained face
   // Phase 2b: conflict search, not crossing constrained faces, only
   // outward (across faces that p sees from inside: the triangulation need
@@ -442,11 +522,10 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
     for (int s = 0; s < 4; ++s) c[s] = q[s] == -2 ? p : point(q[s]);
     return orient3d(c[0], c[1], c[2], c[3]) < 0;
   };
-  constexpr size_t kMaxCavity = 512;
   for (size_t i = 0; i < cavity_.size() && cavity_.size() < kMaxCavity; ++i) {
     const int32_t t = cavity_[i];
     for (int k = 0; k < 4; ++k) {
-      const int32_t n = tn_[4 * size_t(t) + size_t(k)] >> 2;
+      const int32_t n = tets_[size_t(t)].n[k] >> 2;
       const uint32_t s = stamp_[size_t(n)];
       if (s == in || s == out) continue;
       if (respect_constraints && is_constrained(t, k)) continue;
@@ -469,7 +548,7 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
       const int32_t t = cavity_[i];
       if (stamp_[size_t(t)] != in) continue;
       for (int k = 0; k < 4; ++k) {
-        const int32_t n = tn_[4 * size_t(t) + size_t(k)] >> 2;
+        const int32_t n = tets_[size_t(t)].n[k] >> 2;
         int32_t drop = -1;
         if (stamp_[size_t(n)] == in) {
           if (!(respect_constraints && is_constrained(t, k))) continue;
@@ -493,76 +572,83 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
   boundary_.clear();
   for (int32_t t : cavity_)
     for (int k = 0; k < 4; ++k)
-      if (stamp_[size_t(tn_[4 * size_t(t) + size_t(k)] >> 2)] != in) boundary_.push_back(4 * t + k);
+      if (stamp_[size_t(tets_[size_t(t)].n[k] >> 2)] != in) boundary_.push_back(4 * t + k);
   return true;
 }
 
 void Delaunay3D::star(int32_t pv) {
-  // Phase 3a: one new tetrahedron per boundary face, on a fresh slot (the
-  // cavity stays intact until 3c). The boundary face's old link is
-  // overwritten with the new tetrahedron, which 3b reads.
-  const uint32_t in = gen_;
-  const size_t nb = boundary_.size();
-  new_.resize(nb);
+  // Phase 3a: the boundary faces, read before the cavity slots are reused:
+  // the new tetrahedron on face f of cavity tetrahedron t is t with slot f
+  // replaced by p (so it is positive and its face f is the old face).
+  const size_t nb = boundary_.size(), nc = cavity_.size();
+  faces_.resize(nb);
   for (size_t i = 0; i < nb; ++i) {
     const int32_t e = boundary_[i];
     const int32_t t = e >> 2;
     const int f = e & 3;
-    const int32_t n = new_tet_id();
-    int32_t* nv = &tv_[4 * size_t(n)];
-    const int32_t* ov = &tv_[4 * size_t(t)];
-    nv[0] = ov[0], nv[1] = ov[1], nv[2] = ov[2], nv[3] = ov[3];
-    nv[f] = pv;
-    int32_t* nn = &tn_[4 * size_t(n)];
-    nn[0] = nn[1] = nn[2] = nn[3] = -1;
-    const int32_t outer = tn_[size_t(e)];
-    nn[f] = outer;
-    tn_[size_t(outer)] = 4 * n + f;
-    tn_[size_t(e)] = 4 * n + f;
-    tc_[size_t(n)] = uint8_t(tc_[size_t(t)] & (1u << f));
-    tag_[size_t(n)] = tag_[size_t(t)];
-    for (int k = 0; k < 4; ++k)
-      if (nv[k] >= 0) vtet_[size_t(nv[k])] = n;
-    new_[i] = n;
+    BoundaryFace& b = faces_[i];
+    const int32_t* ov = tets_[size_t(t)].v;
+    b.v[0] = ov[0], b.v[1] = ov[1], b.v[2] = ov[2], b.v[3] = ov[3];
+    b.v[f] = pv;
+    b.outer = link(e);
+    b.f = f;
+    b.constrained = uint8_t(tc_[size_t(t)] & (1u << f));
+    b.tag = tag_[size_t(t)];
   }
-  // Phase 3b: links between new tetrahedra. Face j of new tetrahedron n
-  // (built on face f of cavity tetrahedron t) holds p and the boundary edge
-  // (u, w) on t's two other slots; its neighbor is the new tetrahedron on
-  // the next boundary face around (u, w), found by turning around the edge
-  // through the old cavity.
+  // Phase 3b: slots: free or new ones, then the cavity's are freed (for
+  // the next insertion: the free list gives them back last-freed first).
+  new_.resize(nb);
+  for (size_t i = 0; i < nb; ++i) new_[i] = new_tet_id();
+  for (int32_t t : cavity_) free_tet(t);
+  // Phase 3c: write, link to the outside through the old face, and to each
+  // other through the hash of boundary edges: face j != f of a new
+  // tetrahedron holds p and the boundary edge on the two other slots, and
+  // the cavity boundary is a closed surface, so every boundary edge is in
+  // exactly two boundary faces, whose new tetrahedra share that face.
+  int bits = 4;
+  while ((size_t(1) << bits) < 3 * nb) ++bits;
+  const size_t hsize = size_t(1) << bits;
+  if (edge_hash_.size() < hsize) edge_hash_.resize(hsize);
+  if (++hash_gen_ == 0) {
+    for (EdgeSlot& s : edge_hash_) s.gen = 0;
+    hash_gen_ = 1;
+  }
+  const uint32_t hgen = hash_gen_;
+  const uint32_t mask = uint32_t(hsize - 1);
+  EdgeSlot* table = edge_hash_.data();
   for (size_t i = 0; i < nb; ++i) {
     const int32_t n = new_[i];
-    const int32_t t = boundary_[i] >> 2;
-    const int f = boundary_[i] & 3;
-    for (int j = 0; j < 4; ++j) {
-      if (j == f || tn_[4 * size_t(n) + size_t(j)] >= 0) continue;
-      const int s1 = kOther[f][j][0], s2 = kOther[f][j][1];
-      const int32_t u = tv_[4 * size_t(t) + size_t(s1)], w = tv_[4 * size_t(t) + size_t(s2)];
-      int32_t cur = t;
-      int sa = j;  // slot of the vertex opposite the face to cross
-      for (;;) {
-        const int32_t* cv = &tv_[4 * size_t(cur)];
-        const int su = slot_present(cv, u), sw = slot_present(cv, w);
-        const int sb = 6 - su - sw - sa;
-        const int32_t e2 = tn_[4 * size_t(cur) + size_t(sa)];
-        const int32_t nx = e2 >> 2;
-        if (stamp_[size_t(nx)] == in) {  // inside the cavity: keep turning
-          const int32_t b = cv[sb];
-          cur = nx;
-          sa = slot_present(&tv_[4 * size_t(nx)], b);
-          continue;
+    const BoundaryFace& b = faces_[i];
+    const int f = b.f;
+    int32_t* nv = tets_[size_t(n)].v;
+    int32_t* nn = tets_[size_t(n)].n;
+    nv[0] = b.v[0], nv[1] = b.v[1], nv[2] = b.v[2], nv[3] = b.v[3];
+    nn[f] = b.outer;
+    link(b.outer) = 4 * n + f;
+    tc_[size_t(n)] = b.constrained;
+    tag_[size_t(n)] = b.tag;
+    for (int jj = 0; jj < 3; ++jj) {
+      const int j = kApexFaces[f][jj];
+      if (b.v[j] >= 0) vtet_[size_t(b.v[j])] = n;
+      int32_t u = b.v[kOther[f][j][0]], w = b.v[kOther[f][j][1]];
+      if (u > w) std::swap(u, w);
+      uint32_t h = ((uint32_t(u) * 0x9e3779b1u) ^ (uint32_t(w) * 0x85ebca6bu)) >> (32 - bits);
+      for (;; h = (h + 1) & mask) {
+        EdgeSlot& s = table[h];
+        if (s.gen != hgen) {
+          s = {u, w, 4 * n + j, hgen};
+          break;
         }
-        // Face sa of cur is a boundary face; nx was built on it with the
-        // same slots, and its face sb holds p, u, w.
-        tn_[4 * size_t(n) + size_t(j)] = 4 * nx + sb;
-        tn_[4 * size_t(nx) + size_t(sb)] = 4 * n + j;
-        break;
+        if (s.u == u && s.w == w) {
+          nn[j] = s.face;
+          link(s.face) = 4 * n + j;
+          break;
+        }
       }
     }
   }
-  // Phase 3c: release the cavity.
-  for (int32_t t : cavity_) free_tet(t);
-  stats_.cavity_tets += int64_t(cavity_.size());
+  vtet_[size_t(pv)] = new_[0];
+  stats_.cavity_tets += int64_t(nc);
   stats_.boundary_faces += int64_t(nb);
   last_ = new_[0];
 }
@@ -580,8 +666,9 @@ Delaunay3D::InsertResult Delaunay3D::insert_vertex(int32_t v, int32_t hint,
   }
   if (delaunay_ && !respect_constraints) {
     find_cavity_fast(t, p, v);
-  } else if (!find_cavity_checked(t, p, v, respect_constraints)) {
-    return {InsertStatus::kBlocked, -1};
+  } else if (!find_cavity_verified(t, p, v, respect_constraints)) {
+    ++stats_.checked_cavities;
+    if (!find_cavity_checked(t, p, v, respect_constraints)) return {InsertStatus::kBlocked, -1};
   }
   star(v);
   return {InsertStatus::kInserted, v};
@@ -589,7 +676,7 @@ Delaunay3D::InsertResult Delaunay3D::insert_vertex(int32_t v, int32_t hint,
 
 Delaunay3D::InsertResult Delaunay3D::insert(const double* p, int32_t hint,
                                             bool respect_constraints) {
-  if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]) || tv_.empty())
+  if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]) || tets_.empty())
     return {InsertStatus::kInvalid, -1};
   const int32_t v = int32_t(num_vertices());
   pts_.insert(pts_.end(), {p[0], p[1], p[2]});
@@ -620,7 +707,7 @@ std::vector<int32_t> Delaunay3D::finite_tets() const {
 }
 
 void Delaunay3D::set_constrained(int32_t t, int k, bool on) {
-  const int32_t e = tn_[4 * size_t(t) + size_t(k)];
+  const int32_t e = tets_[size_t(t)].n[k];
   const int32_t u = e >> 2, j = e & 3;
   if (on) {
     tc_[size_t(t)] |= uint8_t(1u << k);
@@ -639,11 +726,11 @@ void Delaunay3D::tets_around_vertex(int32_t v, std::vector<int32_t>& out) const 
   out.push_back(t0);
   stamp_[size_t(t0)] = mark;
   for (size_t i = 0; i < out.size(); ++i) {
-    const int32_t t = out[i];
-    const int s = slot_of(tet(t), v);
-    for (int k = 0; k < 4; ++k) {
-      if (k == s) continue;
-      const int32_t n = tn_[4 * size_t(t) + size_t(k)] >> 2;
+    const TetRec& r = tets_[size_t(out[i])];
+    const int sv = slot_of(r.v, v);
+    for (int j = 0; j < 4; ++j) {
+      if (j == sv) continue;
+      const int32_t n = r.n[j] >> 2;
       if (stamp_[size_t(n)] == mark) continue;
       stamp_[size_t(n)] = mark;
       out.push_back(n);
@@ -690,7 +777,7 @@ void Delaunay3D::edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>
     ring_tets.push_back(cur);
     ring_verts.push_back(c);
     // Next: across the face (a, b, d), i.e. opposite c.
-    const int32_t e = tn_[4 * size_t(cur) + size_t(slot_of(tet(cur), c))];
+    const int32_t e = tets_[size_t(cur)].n[slot_of(tet(cur), c)];
     cur = e >> 2;
     if (cur == t) return;
     const int32_t* w = tet(cur);
@@ -757,7 +844,7 @@ Result<std::vector<int32_t>> Delaunay3D::replace_tets(
   std::vector<Face> outer;
   for (int32_t t : old_tets)
     for (int k = 0; k < 4; ++k) {
-      const int32_t e = tn_[4 * size_t(t) + size_t(k)];
+      const int32_t e = tets_[size_t(t)].n[k];
       if (in_old(e >> 2)) {
         if (is_constrained(t, k)) return R::Error("replace_tets: would remove a constrained face");
         continue;
@@ -810,7 +897,7 @@ Result<std::vector<int32_t>> Delaunay3D::replace_tets(
   for (size_t i = ids.size(); i < old_tets.size(); ++i) free_tet(old_tets[i]);
   for (size_t i = 0; i < ids.size(); ++i) {
     const int32_t t = ids[i];
-    std::copy(new_tets[i].begin(), new_tets[i].end(), &tv_[4 * size_t(t)]);
+    std::copy(new_tets[i].begin(), new_tets[i].end(), tets_[size_t(t)].v);
     tag_[size_t(t)] = tag;
     tc_[size_t(t)] = 0;
     for (int32_t x : new_tets[i])
@@ -822,12 +909,12 @@ Result<std::vector<int32_t>> Delaunay3D::replace_tets(
       const int32_t e = 4 * ids[i] + k;
       if (m >= 0) {
         const Face& f = outer[size_t(m)];
-        tn_[size_t(e)] = f.link;
-        tn_[size_t(f.link)] = e;
+        link(e) = f.link;
+        link(f.link) = e;
         tc_[size_t(ids[i])] |= uint8_t(f.constrained << k);
       } else {
         const int32_t other = -2 - m;
-        tn_[size_t(e)] = 4 * ids[size_t(other / 4)] + other % 4;
+        link(e) = 4 * ids[size_t(other / 4)] + other % 4;
       }
     }
   last_ = ids[0];
@@ -840,10 +927,10 @@ Result<std::array<int32_t, 3>> Delaunay3D::flip23(int32_t t, int k) {
   using R = Result<std::array<int32_t, 3>>;
   if (t < 0 || size_t(t) >= tet_capacity() || !is_live(t) || k < 0 || k > 3)
     return R::Error("flip23: invalid face");
-  const int32_t u = tn_[4 * size_t(t) + size_t(k)] >> 2;
+  const int32_t u = tets_[size_t(t)].n[k] >> 2;
   if (is_ghost(t) || is_ghost(u)) return R::Error("flip23: a hull face");
   const int32_t* v = tet(t);
-  const int32_t x = v[k], y = tet(u)[tn_[4 * size_t(t) + size_t(k)] & 3];
+  const int32_t x = v[k], y = tet(u)[tets_[size_t(t)].n[k] & 3];
   const int* f = kFaceOut[k];
   const int32_t r[3] = {v[f[0]], v[f[1]], v[f[2]]};  // clockwise seen from x
   std::vector<std::array<int32_t, 4>> nt;
@@ -976,10 +1063,10 @@ Status Delaunay3D::check(bool delaunay) const {
     if (infs == 0 && orient3d(point(v[0]), point(v[1]), point(v[2]), point(v[3])) >= 0)
       return fail("finite tetrahedron not positive", t);
     for (int k = 0; k < 4; ++k) {
-      const int32_t e = tn_[4 * size_t(t) + size_t(k)];
+      const int32_t e = tets_[size_t(t)].n[k];
       const int32_t u = e >> 2, j = e & 3;
       if (e < 0 || size_t(u) >= tet_capacity() || !is_live(u)) return fail("dead neighbor", t);
-      if (tn_[size_t(e)] != 4 * t + k) return fail("neighbor links not symmetric", t);
+      if (link(e) != 4 * t + k) return fail("neighbor links not symmetric", t);
       if (is_constrained(u, j) != is_constrained(t, k))
         return fail("constraint flags not symmetric", t);
       const int32_t* w = tet(u);

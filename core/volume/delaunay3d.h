@@ -103,16 +103,16 @@ class Delaunay3D {
   // positive: tet_volume6 > 0 (orient3d < 0). A ghost has one vertex
   // kInfinite; its finite face is a convex hull face, and replacing
   // kInfinite by a point beyond that face gives a positive tetrahedron.
-  size_t tet_capacity() const { return tv_.size() / 4; }
-  bool is_live(int32_t t) const { return tv_[4 * size_t(t)] != kFree; }
+  size_t tet_capacity() const { return tets_.size(); }
+  bool is_live(int32_t t) const { return tets_[size_t(t)].v[0] != kFree; }
   bool is_ghost(int32_t t) const {
-    const int32_t* v = &tv_[4 * size_t(t)];
+    const int32_t* v = tets_[size_t(t)].v;
     return v[0] == kInfinite || v[1] == kInfinite || v[2] == kInfinite || v[3] == kInfinite;
   }
-  const int32_t* tet(int32_t t) const { return &tv_[4 * size_t(t)]; }
+  const int32_t* tet(int32_t t) const { return tets_[size_t(t)].v; }
   /// 4 * u + j: the tetrahedron u across face k of t, and the index j of
   /// that face in u (so neighbor(u, j) == 4 * t + k).
-  int32_t neighbor(int32_t t, int k) const { return tn_[4 * size_t(t) + size_t(k)]; }
+  int32_t neighbor(int32_t t, int k) const { return tets_[size_t(t)].n[k]; }
   size_t num_finite_tets() const;
   /// 4 vertex ids per finite tetrahedron (positive), live slots in id order.
   std::vector<int32_t> finite_tets() const;
@@ -135,6 +135,11 @@ class Delaunay3D {
   // ---- Topology queries.
   /// Live tetrahedra incident to vertex v (ghosts included), into `out`.
   void tets_around_vertex(int32_t v, std::vector<int32_t>& out) const;
+  /// The tetrahedra created by the last successful insertion (insert() or
+  /// build()), ghosts included: exactly the tetrahedra incident to the new
+  /// vertex, as tets_around_vertex would list them (in another order). Valid
+  /// until the next insertion or flip.
+  const std::vector<int32_t>& last_inserted_tets() const { return new_; }
   /// A tetrahedron with edge (a, b), or -1.
   int32_t find_edge(int32_t a, int32_t b) const;
   /// A tetrahedron t with face (a, b, c) as face k (any orientation), or -1.
@@ -194,6 +199,9 @@ class Delaunay3D {
     int64_t cavity_tets = 0;     ///< tetrahedra removed by insertions
     int64_t boundary_faces = 0;  ///< tetrahedra created by insertions
     int64_t flips = 0;
+    /// Constrained / non-Delaunay insertions whose Bowyer-Watson cavity
+    /// was not star-shaped (or too large), so it was grown and shrunk.
+    int64_t checked_cavities = 0;
   };
   const Stats& stats() const { return stats_; }
 
@@ -204,7 +212,10 @@ class Delaunay3D {
   int32_t walk(const double* p, int32_t hint) const;
   bool conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const;
   bool finite_conflict(int32_t t, const double* p, int32_t pv) const;
+  bool sos_conflict(int32_t t, const double* p, int32_t pv) const;
+  bool ghost_conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const;
   void find_cavity_fast(int32_t t0, const double* p, int32_t pv);
+  bool find_cavity_verified(int32_t t0, const double* p, int32_t pv, bool respect_constraints);
   bool find_cavity_checked(int32_t t0, const double* p, int32_t pv, bool respect_constraints);
   void star(int32_t pv);
   int32_t new_tet_id();
@@ -212,15 +223,23 @@ class Delaunay3D {
   void free_tet(int32_t t);
   void init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d);
   int32_t visit_stamp() const;
+  /// The link (4 * neighbor + face) stored at encoded face e = 4 * t + k.
+  int32_t& link(int32_t e) { return tets_[size_t(e >> 2)].n[e & 3]; }
+  int32_t link(int32_t e) const { return tets_[size_t(e >> 2)].n[e & 3]; }
 
   std::vector<double> pts_;      // 3 per vertex
   std::vector<int32_t> sos_id_;  // while building: vertex -> input index
   std::vector<int32_t> dup_;     // per vertex: coincident vertex or -1
   std::vector<int32_t> vtet_;    // per vertex: an incident live tet or -1
-  std::vector<int32_t> tv_;      // 4 per tet: vertices (kFree at [0] if free)
-  std::vector<int32_t> tn_;      // 4 per tet: 4 * neighbor + face
-  std::vector<uint8_t> tc_;      // per tet: bit k = face k constrained
-  std::vector<int32_t> tag_;     // per tet
+  // Per tet, in one 32-byte record (a cavity search reads both): the
+  // vertices (kFree at v[0] if free) and the links 4 * neighbor + face.
+  struct TetRec {
+    int32_t v[4];
+    int32_t n[4];
+  };
+  std::vector<TetRec> tets_;
+  std::vector<uint8_t> tc_;   // per tet: bit k = face k constrained
+  std::vector<int32_t> tag_;  // per tet
   std::vector<int32_t> free_;
   bool delaunay_ = true;
   mutable Stats stats_;
@@ -232,6 +251,21 @@ class Delaunay3D {
   mutable uint64_t rng_ = 0x2545f4914f6cdd1dull;
   std::vector<int32_t> cavity_, boundary_;  // tets; encoded faces
   std::vector<int32_t> new_, pinned_, ring_scratch_;
+  struct BoundaryFace {  // star(): a cavity boundary face and its new tet
+    int32_t v[4];        // the new tet's vertices (p at slot f)
+    int32_t outer;       // encoded face of the outer neighbor
+    int32_t tag;
+    int32_t f;
+    uint8_t constrained;  // bit f
+  };
+  std::vector<BoundaryFace> faces_;
+  struct EdgeSlot {  // star(): open-addressing hash of boundary edges
+    int32_t u, w;    // the edge, u < w
+    int32_t face;    // encoded face (p, u, w) of the first new tet seen
+    uint32_t gen;    // live iff == hash_gen_
+  };
+  std::vector<EdgeSlot> edge_hash_;
+  uint32_t hash_gen_ = 0;
   mutable std::vector<int32_t> queue_;
 };
 
