@@ -186,7 +186,7 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
         star_tris[size_t(fill[size_t(wall.triangles[3 * t + size_t(c)])]++)] = int32_t(t);
   }
   std::vector<double> column(requested);
-  for (size_t v = 0; v < nv; ++v) {
+  for (size_t v = 0; v < nv && spec.lean_compensation; ++v) {
     const Vec3 x = at(wall.points, int32_t(v)), d = at(dirs.direction, int32_t(v));
     for (int iter = 0; iter < 3; ++iter) {
       const Vec3 p = x + column[v] * d;
@@ -258,6 +258,11 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
       by_intersection[size_t(v)] = 1;
     }
     grade_reduction(wall, rings, column, spec.gradation, kMinFactor, factor);
+  }
+  if (!valid && spec.lean_compensation) {  // retry with columns of the requested length
+    LayerSpec plain = spec;
+    plain.lean_compensation = false;
+    return extrude_layers(wall_in, radius, plain, stats_out);
   }
   if (!valid) {
     std::string what =

@@ -32,7 +32,8 @@ namespace vm {
 ///     H1 / growth series; each column lengthened (at most 1 / 0.7 times)
 ///     until its end is T(v) from the triangles of its star, so heights
 ///     measured from the wall are the requested ones on faceted or creased
-///     walls; gap limit T <= 2 gap_fraction r(v) cos(d, n) with
+///     walls (spec.lean_compensation; without it if no valid layer is
+///     found with it); gap limit T <= 2 gap_fraction r(v) cos(d, n) with
 ///     r the empty-ball radius on the layer side (layer_gap.h);
 ///  4. local validity (layer_validity.h): per-vertex factors lowered by
 ///     bisection until every sub-tetrahedron of every prism has the volume

@@ -48,6 +48,11 @@ struct LayerSpec {
   /// Exact check that wall, front and rings do not intersect (with all
   /// prisms positive this proves the layer is embedded, see extrude_layers.h).
   bool verify_intersections = true;
+  /// Lengthen each column for its lean from its wall triangles, so heights
+  /// measured from a faceted or creased wall are the requested ones; when
+  /// no valid layer is found that way (a raw, jagged wall), the stage
+  /// retries with columns of the requested length.
+  bool lean_compensation = true;
   /// Also measure the heights as distances of the first layer's and the
   /// front's points to the wall surface (LayerStats::measured_*; two
   /// closest-point queries per vertex, about a third of the stage's time,
