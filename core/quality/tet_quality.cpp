@@ -12,52 +12,21 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/geom/vec3.h"
+
 namespace vm {
 namespace {
 
-inline void sub(const double* a, const double* b, double* out) {
-  for (int k = 0; k < 3; ++k) out[k] = a[k] - b[k];
-}
-inline void cross(const double* u, const double* v, double* out) {
-  out[0] = u[1] * v[2] - u[2] * v[1];
-  out[1] = u[2] * v[0] - u[0] * v[2];
-  out[2] = u[0] * v[1] - u[1] * v[0];
-}
-inline double dot(const double* u, const double* v) {
-  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-}
-inline double norm(const double* u) { return std::sqrt(dot(u, u)); }
-
-// Twice the area of triangle a, b, c.
-double area2(const double* a, const double* b, const double* c) {
-  double u[3], v[3], n[3];
-  sub(b, a, u);
-  sub(c, a, v);
-  cross(u, v, n);
-  return norm(n);
-}
+using v3::cross;
+using v3::dot;
+using v3::norm;
+using v3::sub;
 
 const double* corner(const std::vector<double>& points, int32_t v) {
   return &points[3 * size_t(v)];
 }
 
 }  // namespace
-
-double tet_gamma(const double* a, const double* b, const double* c, const double* d) {
-  const double vol6 = tet_volume6(a, b, c, d);
-  const double faces = 0.5 * (area2(a, b, c) + area2(a, b, d) + area2(a, c, d) + area2(b, c, d));
-  const double* p[4] = {a, b, c, d};
-  double longest2 = 0;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j) {
-      double e[3];
-      sub(p[j], p[i], e);
-      longest2 = std::max(longest2, dot(e, e));
-    }
-  const double den = faces * std::sqrt(longest2);
-  if (!(den > 0)) return 0.0;
-  return std::clamp(std::sqrt(6.0) * vol6 / den, -1.0, 1.0);
-}
 
 std::vector<float> tet_qualities(const std::vector<double>& points,
                                  const std::vector<int32_t>& tets) {

@@ -4,9 +4,12 @@
 // angles, the usual companion measure of volume meshes.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
+#include "core/geom/vec3.h"
 #include "core/mesh/volume_mesh.h"
 
 namespace vm {
@@ -17,8 +20,23 @@ namespace vm {
 /// only for the regular one; 0 for a flat one (coplanar corners) or one with
 /// coincident corners; negative for an inverted one (-gamma of its mirror
 /// image), so a single `min >= 0` check also catches inversions. Invariant
-/// under translation, rotation and uniform scaling.
-double tet_gamma(const double* a, const double* b, const double* c, const double* d);
+/// under translation, rotation and uniform scaling. Inline: the volume
+/// optimizer evaluates it in its hot loops.
+inline double tet_gamma(const double* a, const double* b, const double* c, const double* d) {
+  using v3::cross, v3::dot, v3::sub;
+  double ab[3], ac[3], ad[3], bc[3], bd[3], cd[3];
+  sub(b, a, ab), sub(c, a, ac), sub(d, a, ad), sub(c, b, bc), sub(d, b, bd), sub(d, c, cd);
+  double n1[3], n2[3], n3[3], n4[3];  // twice the face areas' vectors
+  cross(ab, ac, n1), cross(ab, ad, n2), cross(ac, ad, n3), cross(bc, bd, n4);
+  const double vol6 = dot(n1, ad);  // tet_volume6(a, b, c, d)
+  const double faces = 0.5 * (std::sqrt(dot(n1, n1)) + std::sqrt(dot(n2, n2)) +
+                              std::sqrt(dot(n3, n3)) + std::sqrt(dot(n4, n4)));
+  const double longest2 =
+      std::max({dot(ab, ab), dot(ac, ac), dot(ad, ad), dot(bc, bc), dot(bd, bd), dot(cd, cd)});
+  const double den = faces * std::sqrt(longest2);
+  if (!(den > 0)) return 0.0;
+  return std::clamp(2.449489742783178 * vol6 / den, -1.0, 1.0);  // sqrt(6)
+}
 
 /// gamma_t of every tetrahedron of `points` (3 doubles per vertex) and `tets`
 /// (4 indices each): tets.size() / 4 values. Summarize with quality_stats

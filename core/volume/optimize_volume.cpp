@@ -20,6 +20,8 @@
 #include <cstdlib>
 
 #include "core/geom/predicates.h"
+#include "core/geom/vec3.h"
+#include "core/quality/tet_quality.h"
 
 namespace vm {
 namespace {
@@ -34,34 +36,9 @@ constexpr int kLongEdges = 3;
 // orientation test decides anyway; this keeps the search off flat shapes).
 constexpr double kGuard = 1e-3;
 
-inline void sub(const double* a, const double* b, double* o) {
-  o[0] = a[0] - b[0], o[1] = a[1] - b[1], o[2] = a[2] - b[2];
-}
-inline void cross(const double* u, const double* v, double* o) {
-  o[0] = u[1] * v[2] - u[2] * v[1];
-  o[1] = u[2] * v[0] - u[0] * v[2];
-  o[2] = u[0] * v[1] - u[1] * v[0];
-}
-inline double dot(const double* u, const double* v) {
-  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-}
-
-// gamma_t = sqrt(6) vol6 / (sum of face areas * longest edge), signed
-// (the formula of quality/tet_quality.cpp, inlined for the hot loops).
-inline double gamma_fast(const double* a, const double* b, const double* c, const double* d) {
-  double ab[3], ac[3], ad[3], bc[3], bd[3], cd[3];
-  sub(b, a, ab), sub(c, a, ac), sub(d, a, ad), sub(c, b, bc), sub(d, b, bd), sub(d, c, cd);
-  double n1[3], n2[3], n3[3], n4[3];
-  cross(ab, ac, n1), cross(ab, ad, n2), cross(ac, ad, n3), cross(bc, bd, n4);
-  const double vol6 = dot(n1, ad);
-  const double s = 0.5 * (std::sqrt(dot(n1, n1)) + std::sqrt(dot(n2, n2)) + std::sqrt(dot(n3, n3)) +
-                          std::sqrt(dot(n4, n4)));
-  const double l2 =
-      std::max({dot(ab, ab), dot(ac, ac), dot(ad, ad), dot(bc, bc), dot(bd, bd), dot(cd, cd)});
-  const double den = s * std::sqrt(l2);
-  if (!(den > 0)) return 0;
-  return 2.449489742783178 * vol6 / den;
-}
+using v3::cross;
+using v3::dot;
+using v3::sub;
 
 // Circumcenter of a tetrahedron and its signed volume times 6 (> 0:
 // positive); false when (nearly) flat.
@@ -112,7 +89,7 @@ class Optimizer {
 
   double quality(int32_t t) const {
     const int32_t* v = m_.tet(t);
-    return gamma_fast(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]));
+    return tet_gamma(m_.point(v[0]), m_.point(v[1]), m_.point(v[2]), m_.point(v[3]));
   }
   double cached(int32_t t) const { return q_[size_t(t)]; }
 
@@ -148,8 +125,8 @@ class Optimizer {
       const double old_min = std::min(cached(t), cached(u));
       double new_min = 1e300;
       for (int i = 0; i < 3 && new_min > old_min; ++i)
-        new_min = std::min(new_min, gamma_fast(m_.point(x), m_.point(y), m_.point(r[i]),
-                                               m_.point(r[(i + 1) % 3])));
+        new_min = std::min(
+            new_min, tet_gamma(m_.point(x), m_.point(y), m_.point(r[i]), m_.point(r[(i + 1) % 3])));
       if (new_min - old_min > best_gain) {
         best_gain = new_min - old_min;
         best_kind = 1;
@@ -560,6 +537,19 @@ class Optimizer {
       hv += std::sqrt(dot(d, d)) / 3;
     }
     bool moved = false;
+    // A move to p is kept when the star's smallest quality rises and every
+    // tetrahedron stays positive (exact).
+    auto try_move = [&](const double* p) {
+      double mn, sum;
+      if (!eval_star(Span(star_), p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum) ||
+          !exact_star_ok(v, Span(star_), p))
+        return false;
+      move(v, Span(star_), p);
+      old_min = mn;
+      moved = true;
+      ++st_.sliver_moves;
+      return true;
+    };
     // Gradient of the worst quality by central differences.
     {
       const int32_t* tv = m_.tet(worst);
@@ -574,24 +564,15 @@ class Optimizer {
           c1[s] = tv[s] == v ? pp : m_.point(tv[s]);
           c2[s] = tv[s] == v ? pm : m_.point(tv[s]);
         }
-        grad[k] =
-            (gamma_fast(c1[0], c1[1], c1[2], c1[3]) - gamma_fast(c2[0], c2[1], c2[2], c2[3])) /
-            (2 * eps);
+        grad[k] = (tet_gamma(c1[0], c1[1], c1[2], c1[3]) - tet_gamma(c2[0], c2[1], c2[2], c2[3])) /
+                  (2 * eps);
       }
       const double gn = std::sqrt(dot(grad, grad));
       if (gn > 0) {
         for (double step = 0.2 * hv; step > 0.005 * hv; step *= 0.5) {
           const double p[3] = {x[0] + step * grad[0] / gn, x[1] + step * grad[1] / gn,
                                x[2] + step * grad[2] / gn};
-          double mn, sum;
-          if (!eval_star(Span(star_), p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum)) continue;
-          if (exact_star_ok(v, Span(star_), p)) {
-            move(v, Span(star_), p);
-            old_min = mn;
-            moved = true;
-            ++st_.sliver_moves;
-            break;
-          }
+          if (try_move(p)) break;
         }
       }
     }
@@ -602,14 +583,7 @@ class Optimizer {
       for (double& c : d) c = 2 * uniform() - 1;
       const double* xv = m_.point(v);
       const double p[3] = {xv[0] + mag * d[0], xv[1] + mag * d[1], xv[2] + mag * d[2]};
-      double mn, sum;
-      if (!eval_star(Span(star_), p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum)) continue;
-      if (exact_star_ok(v, Span(star_), p)) {
-        move(v, Span(star_), p);
-        old_min = mn;
-        moved = true;
-        ++st_.sliver_moves;
-      }
+      try_move(p);
     }
     return moved;
   }
@@ -654,7 +628,7 @@ class Optimizer {
         const double* x[4] = {m_.point(tv[0]), m_.point(tv[1]), m_.point(tv[2]), m_.point(tv[3])};
         x[k] = p;
         q[size_t(k)] = pv;
-        mn = std::min(mn, gamma_fast(x[0], x[1], x[2], x[3]));
+        mn = std::min(mn, tet_gamma(x[0], x[1], x[2], x[3]));
         nt.push_back(q);
       }
     return mn;
