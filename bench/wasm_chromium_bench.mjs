@@ -14,31 +14,12 @@ import { basename, extname, join, normalize } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 import { chromium } from 'playwright-core';
+import { parseBenchArgs } from './wasm_bench_args.mjs';
 
 const ROOT = fileURLToPath(new URL('..', import.meta.url));
 const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.wasm': 'application/wasm' };
 
-const args = process.argv.slice(2);
-let runs = 5;
-let file = null;
-const options = {};
-for (let i = 0; i < args.length; i++) {
-  const a = args[i];
-  if (a === '--runs') runs = Math.max(1, Number(args[++i]));
-  else if (a === '--size') options.size = Number(args[++i]);
-  else if (a === '--per-circumference') options.perCircumference = Number(args[++i]);
-  else if (a === '--surface-only') options.surfaceOnly = true;
-  else if (a === '--layers') options.layers = Number(args[++i]);
-  else if (a === '--core-size') options.coreSize = Number(args[++i]);
-  else if (a.startsWith('--')) {
-    console.error(`unknown option ${a}`);
-    process.exit(2);
-  } else file = a;
-}
-if (!file) {
-  console.error('usage: node bench/wasm_chromium_bench.mjs FILE.stl [--size H] [--runs N]');
-  process.exit(2);
-}
+const { file, runs, options } = parseBenchArgs(process.argv.slice(2), 'wasm_chromium_bench.mjs');
 
 // The repository's files under / (no directory listing), and a blank page.
 const server = createServer((req, res) => {

@@ -13,33 +13,12 @@
 import { readFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import { performance } from 'node:perf_hooks';
+import { parseBenchArgs } from './wasm_bench_args.mjs';
 
 const baselineRss = process.memoryUsage().rss;
 const { createVesselmesh } = await import('../wasm/src/vesselmesh.js');
 
-const args = process.argv.slice(2);
-let runs = 5;
-const options = {};
-let file = null;
-for (let i = 0; i < args.length; i++) {
-  const a = args[i];
-  if (a === '--runs') runs = Math.max(1, Number(args[++i]));
-  else if (a === '--size') options.size = Number(args[++i]);
-  else if (a === '--per-circumference') options.perCircumference = Number(args[++i]);
-  else if (a === '--param') options.param = args[++i];
-  else if (a === '--mesher2d') options.mesher2d = args[++i];
-  else if (a === '--surface-only') options.surfaceOnly = true;
-  else if (a === '--layers') options.layers = Number(args[++i]);
-  else if (a === '--core-size') options.coreSize = Number(args[++i]);
-  else if (a.startsWith('--')) {
-    console.error(`unknown option ${a}`);
-    process.exit(2);
-  } else file = a;
-}
-if (!file) {
-  console.error('usage: node bench/wasm_mesh_bench.mjs FILE.stl [--size H] [--runs N]');
-  process.exit(2);
-}
+const { file, runs, options } = parseBenchArgs(process.argv.slice(2), 'wasm_mesh_bench.mjs');
 
 const median = (v) => {
   const s = [...v].sort((a, b) => a - b);
