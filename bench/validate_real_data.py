@@ -76,21 +76,28 @@ def gmsh_read(path):
         gmsh.finalize()
 
 
+def _gmsh_nodes(gmsh):
+    """The open model's node coordinates as an array indexed by node tag."""
+    import numpy as np
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    xyz = np.zeros((int(tags.max()) + 1, 3))
+    xyz[tags.astype(int)] = coords.reshape(-1, 3)
+    return xyz
+
+
 def median_edge(path):
     """Median edge length of the triangles in an MSH file, read by Gmsh."""
     import gmsh
     import numpy as np
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import meshquality
     gmsh.initialize()
     gmsh.option.setNumber("General.Verbosity", 0)
     try:
         gmsh.open(path)
-        tags, coords, _ = gmsh.model.mesh.getNodes()
-        xyz = np.zeros((int(tags.max()) + 1, 3))
-        xyz[tags.astype(int)] = coords.reshape(-1, 3)
+        xyz = _gmsh_nodes(gmsh)
         _, _, nodes = gmsh.model.mesh.getElements(2)
-        tri = np.concatenate(nodes).astype(int).reshape(-1, 3)
-        e = np.concatenate([tri[:, [0, 1]], tri[:, [1, 2]], tri[:, [2, 0]]])
-        return float(np.median(np.linalg.norm(xyz[e[:, 0]] - xyz[e[:, 1]], axis=1)))
+        return meshquality.median_edge(xyz, np.concatenate(nodes).astype(int).reshape(-1, 3))
     finally:
         gmsh.finalize()
 
@@ -153,9 +160,7 @@ def gmsh_volume(path):
     gmsh.option.setNumber("General.Verbosity", 0)
     try:
         gmsh.open(path)
-        tags, coords, _ = gmsh.model.mesh.getNodes()
-        xyz = np.zeros((int(tags.max()) + 1, 3))
-        xyz[tags.astype(int)] = coords.reshape(-1, 3)
+        xyz = _gmsh_nodes(gmsh)
         groups, counts, tris, tets, tet_group = {}, {}, [], [], []
         orphans = 0
         for dim, ptag in gmsh.model.getPhysicalGroups():
