@@ -296,16 +296,7 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
   for (size_t k = 1; k <= n_layers; ++k)
     for (size_t v = 0; v < nv; ++v)
       put(m.points, m.layer_vertex(int32_t(v), int(k)), cols.point(int32_t(v), k, factor[v]));
-  m.prisms.reserve(6 * nt * n_layers);
-  for (size_t k = 0; k < n_layers; ++k)
-    for (size_t t = 0; t < nt; ++t) {
-      const int32_t* f = &wall.triangles[3 * t];
-      const int32_t b[3] = {f[0], spec.outward ? f[1] : f[2], spec.outward ? f[2] : f[1]};
-      for (int j = 0; j < 3; ++j) m.prisms.push_back(m.layer_vertex(b[j], int(k)));
-      for (int j = 0; j < 3; ++j) m.prisms.push_back(m.layer_vertex(b[j], int(k + 1)));
-    }
-  m.front.resize(3 * nt);
-  for (size_t i = 0; i < 3 * nt; ++i) m.front[i] = m.layer_vertex(wall.triangles[i], spec.layers);
+  build_prisms_and_front(m, wall.triangles);
   for (LayerOpening& op : openings) {
     op.columns.reserve(op.rim.size() * (n_layers + 1));
     for (int32_t v : op.rim)

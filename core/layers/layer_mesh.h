@@ -114,6 +114,24 @@ struct LayerMesh {
   size_t num_prisms() const { return prisms.size() / 6; }
 };
 
+/// Fills m.prisms and m.front (layouts above) from the wall's triangles
+/// (3 ids each, outward): m.layers, m.outward and m.wall_vertices must be
+/// set; the prism bottoms are the triangles turned to face the layer side.
+inline void build_prisms_and_front(LayerMesh& m, const std::vector<int32_t>& triangles) {
+  const size_t nt = triangles.size() / 3, n_layers = size_t(m.layers);
+  m.prisms.clear();
+  m.prisms.reserve(6 * nt * n_layers);
+  for (size_t k = 0; k < n_layers; ++k)
+    for (size_t t = 0; t < nt; ++t) {
+      const int32_t* f = &triangles[3 * t];
+      const int32_t b[3] = {f[0], m.outward ? f[1] : f[2], m.outward ? f[2] : f[1]};
+      for (int j = 0; j < 3; ++j) m.prisms.push_back(m.layer_vertex(b[j], int(k)));
+      for (int j = 0; j < 3; ++j) m.prisms.push_back(m.layer_vertex(b[j], int(k + 1)));
+    }
+  m.front.resize(3 * nt);
+  for (size_t i = 0; i < 3 * nt; ++i) m.front[i] = m.layer_vertex(triangles[i], m.layers);
+}
+
 /// What the stage did (areas are wall areas: each vertex owns a third of
 /// its triangles' areas).
 struct LayerStats {

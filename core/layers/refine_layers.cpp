@@ -132,16 +132,7 @@ Result<LayerMesh> refine_layer_columns(const LayerMesh& m, const std::vector<int
         norm(at(out.points, out.layer_vertex(int32_t(v), m.layers)) - at(out.points, int32_t(v)));
 
   // Phase 3: prisms and front over the refined triangles.
-  out.prisms.reserve(6 * nt2 * n_layers);
-  for (size_t k = 0; k < n_layers; ++k)
-    for (size_t t = 0; t < nt2; ++t) {
-      const int32_t* f = &triangles[3 * t];
-      const int32_t b[3] = {f[0], m.outward ? f[1] : f[2], m.outward ? f[2] : f[1]};
-      for (int j = 0; j < 3; ++j) out.prisms.push_back(out.layer_vertex(b[j], int(k)));
-      for (int j = 0; j < 3; ++j) out.prisms.push_back(out.layer_vertex(b[j], int(k + 1)));
-    }
-  out.front.resize(3 * nt2);
-  for (size_t i = 0; i < 3 * nt2; ++i) out.front[i] = out.layer_vertex(triangles[i], m.layers);
+  build_prisms_and_front(out, triangles);
 
   // Phase 4: rims with the new columns on their edges, in edge order.
   for (const LayerOpening& op : m.openings) {
