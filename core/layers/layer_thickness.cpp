@@ -16,8 +16,7 @@ Result<std::vector<double>> requested_thickness(const LayerSpec& spec,
   if (!(spec.growth > 0) || !std::isfinite(spec.growth))
     return R::Error("the growth ratio must be > 0");
   if (spec.first_height > 0) {
-    if (!std::isfinite(spec.first_height))
-      return R::Error("the first-layer height must be finite");
+    if (!std::isfinite(spec.first_height)) return R::Error("the first-layer height must be finite");
     double total = 0, h = spec.first_height;
     for (int k = 0; k < spec.layers; ++k, h *= spec.growth) total += h;
     if (!std::isfinite(total)) return R::Error("the total thickness overflows");
@@ -28,8 +27,8 @@ Result<std::vector<double>> requested_thickness(const LayerSpec& spec,
   if (!(spec.thickness_fraction > 0) || !std::isfinite(spec.thickness_fraction))
     return R::Error("the thickness fraction must be > 0");
   if (radius.size() != nv)
-    return R::Error("" + std::to_string(radius.size()) + " radii for " +
-                    std::to_string(nv) + " wall vertices");
+    return R::Error("" + std::to_string(radius.size()) + " radii for " + std::to_string(nv) +
+                    " wall vertices");
   std::vector<double> t(nv);
   for (size_t v = 0; v < nv; ++v) {
     if (!(radius[v] > 0) || !std::isfinite(radius[v]))
