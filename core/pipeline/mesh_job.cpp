@@ -258,12 +258,8 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
     // Fidelity: output vertices on the input, input vertices near the output.
     r.fidelity.max_vertex_offset = distances_to_surface(input, r.output_surface.points).max /
                                    bounding_box(input.points).diagonal();
-    const DistanceReport gaps = distances_to_surface(r.output_surface, input.points, true);
-    for (size_t v = 0; v < gaps.per_point.size(); ++v) {
-      const double rel = gaps.per_point[v] / remeshed.value().input_sizes[v];
-      r.fidelity.max_input_gap = std::max(r.fidelity.max_input_gap, rel);
-      r.fidelity.input_gap_vertices += rel > 0.1;
-    }
+    r.fidelity.max_input_gap = r.remesh_stats.max_input_gap;
+    r.fidelity.input_gap_vertices = r.remesh_stats.input_gap_vertices;
     // Never write a surface whose topology differs from the input's.
     r.output_topology = analyze_topology(r.output_surface);
     const TopologyReport& out = r.output_topology;

@@ -104,6 +104,9 @@ std::string mesh_report_json(const MeshJobResult& r) {
     j.key("max_input_gap").value(r.fidelity.max_input_gap);
     j.key("self_intersections").value(r.fidelity.self_intersections);
     j.key("input_gap_vertices").value(r.fidelity.input_gap_vertices);
+    j.key("pinned_vertices").value(st.fidelity_pinned);
+    j.key("pinning_rounds").value(st.fidelity_rounds);
+    j.key("pinning_reverted").value(st.fidelity_reverted);
     j.end_object();
     j.key("swaps").value(st.swaps);
     j.key("moves").value(st.moves);
@@ -113,6 +116,7 @@ std::string mesh_report_json(const MeshJobResult& r) {
     j.key("partition").value(st.seconds_partition);
     j.key("mesh").value(st.seconds_mesh);
     j.key("optimize").value(st.seconds_optimize);
+    j.key("fidelity").value(st.seconds_fidelity);
     j.end_object();
     j.end_object();
   }

@@ -93,6 +93,11 @@ class Optimizer {
   /// previous pass started.
   void next_pass() { ++pass_; }
 
+  /// The first pass works only on the flagged vertices (one per vertex).
+  void start_from(const std::vector<uint8_t>& flags) {
+    for (size_t v = 0; v < recent_.size(); ++v) recent_[v] = flags[v] ? pass_ : pass_ - 2;
+  }
+
   /// Splits the interior edges longer than split_ratio times the target
   /// size at their midpoint projected onto the input (see try_split).
   size_t split_pass() {
@@ -224,6 +229,15 @@ class Optimizer {
 
   enum class SwapGoal { kQuality, kValence };
 
+  /// An edge between two vertices on openings or creases may be a crease
+  /// (or an opening edge): it stays.
+  bool on_crease(int32_t a, int32_t b) const {
+    auto kept = [&](int32_t v) {
+      return fixed_[size_t(v)] == kOnOpening || fixed_[size_t(v)] == kOnFeature;
+    };
+    return kept(a) && kept(b);
+  }
+
   int valence_excess(int32_t v, int change) const {
     // Neighbors: one per star triangle, plus one on an opening.
     const bool opening = fixed_[size_t(v)] == kOnOpening;
@@ -242,8 +256,7 @@ class Optimizer {
     int32_t d = -1;
     for (int j = 0; j < 3; ++j)
       if (U[j] != a && U[j] != b) d = U[j];
-    // An edge between two fixed vertices may be a crease: it stays.
-    if (d < 0 || d == c || (fixed_[size_t(a)] && fixed_[size_t(b)])) return false;
+    if (d < 0 || d == c || on_crease(a, b)) return false;
     const int excess_before =
         valence_excess(a, 0) + valence_excess(b, 0) + valence_excess(c, 0) + valence_excess(d, 0);
     const int excess_after =
@@ -306,7 +319,7 @@ class Optimizer {
     int32_t* T = tri(t);
     const int32_t a = T[k], b = T[(k + 1) % 3], c = T[(k + 2) % 3];
     const int32_t u = across(t, a, b);
-    if (u < 0 || (fixed_[size_t(a)] && fixed_[size_t(b)])) return false;  // an opening, a crease
+    if (u < 0 || on_crease(a, b)) return false;
     int32_t d = -1;
     for (int j = 0; j < 3; ++j)
       if (tri(u)[j] != a && tri(u)[j] != b) d = tri(u)[j];
@@ -572,9 +585,11 @@ SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>
                                          std::vector<uint8_t>& fixed, std::vector<double>& size,
                                          const SurfaceMesh& input,
                                          const TriangleAdjacency& input_adj,
-                                         const SurfaceOptimizeOptions& options) {
+                                         const SurfaceOptimizeOptions& options,
+                                         const std::vector<uint8_t>& start) {
   SurfaceOptimizeStats stats;
   Optimizer opt(mesh, home, fixed, size, input, input_adj, options);
+  if (!start.empty()) opt.start_from(start);
   for (int pass = 0; pass < options.passes; ++pass) {
     size_t splits = pass < options.valence_passes ? opt.split_pass() : 0;
     size_t collapses = pass < options.valence_passes ? opt.collapse_pass() : 0;

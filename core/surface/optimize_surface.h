@@ -31,6 +31,9 @@ struct SurfaceOptimizeOptions {
 inline constexpr uint8_t kFree = 0;       ///< may move
 inline constexpr uint8_t kOnOpening = 1;  ///< on an opening: never moves
 inline constexpr uint8_t kOnFeature = 2;  ///< on a sharp crease: never moves
+/// Pinned to an input vertex the output must pass through (see
+/// pin_to_input): never moves, but its edges are not creases.
+inline constexpr uint8_t kPinned = 3;
 
 struct SurfaceOptimizeStats {
   size_t swaps = 0;
@@ -59,11 +62,14 @@ struct SurfaceOptimizeStats {
 /// home, fixed and size are renumbered together. Preconditions: `mesh` is manifold and consistently
 /// oriented, home has one input triangle per vertex, fixed one flag per vertex (kOnOpening on every
 /// boundary vertex, else kFree), input_adj is build_adjacency(input).
+/// `start` (empty, or one flag per vertex) limits the first pass to the
+/// flagged vertices and their triangles; later passes follow the changes.
 SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>& home,
                                          std::vector<uint8_t>& fixed, std::vector<double>& size,
                                          const SurfaceMesh& input,
                                          const TriangleAdjacency& input_adj,
-                                         const SurfaceOptimizeOptions& options = {});
+                                         const SurfaceOptimizeOptions& options = {},
+                                         const std::vector<uint8_t>& start = {});
 
 /// The point of `input` closest to q (3 doubles) among the triangles reached
 /// by a walk from triangle `start` over triangles no farther than `start`;

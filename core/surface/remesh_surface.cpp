@@ -11,7 +11,10 @@
 #include <unordered_map>
 
 #include "core/mesh/boundary_loops.h"
+#include "core/mesh/surface_distance.h"
 #include "core/param/fixed_boundary_map.h"
+#include "core/quality/triangle_quality.h"
+#include "core/surface/pin_to_input.h"
 #include "core/surface/resample_curve.h"
 #include "core/surface/sharp_features.h"
 
@@ -305,6 +308,95 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
   std::vector<double> out_size = output_sizes(input, out.home, h);
   const auto ostats =
       optimize_on_surface(out.mesh, out.home, fixed, out_size, input, adj, options.optimize);
+  stats.collapses = ostats.collapses;
+  stats.swaps = ostats.swaps;
+  stats.moves = ostats.moves;
+  stats.seconds_optimize = seconds_since(t0);
+
+  // Phase 6: fidelity: output vertices pinned onto the input vertices
+  // farther than options.fidelity h from the output, then a few
+  // optimization passes around them.
+  t0 = std::chrono::steady_clock::now();
+  SurfaceOptimizeOptions again = options.optimize;
+  again.passes = options.fidelity_passes;
+  again.valence_passes = std::min(again.valence_passes, options.fidelity_passes);
+  std::vector<uint8_t> given_up(input.num_vertices(), 0);
+  // The vertices whose flag differs from `before` (or are new) and their
+  // neighbors: where a fidelity round changed the mesh.
+  auto around_changes = [&](const std::vector<uint8_t>& before) {
+    std::vector<uint8_t> flag(fixed.size(), 0);
+    for (size_t t = 0; t < out.mesh.num_triangles(); ++t) {
+      const int32_t* T = &out.mesh.triangles[3 * t];
+      bool changed = false;
+      for (int c = 0; c < 3; ++c)
+        changed |= size_t(T[c]) >= before.size() || before[size_t(T[c])] != fixed[size_t(T[c])];
+      if (changed)
+        for (int c = 0; c < 3; ++c) flag[size_t(T[c])] = 1;
+    }
+    return flag;
+  };
+  const SurfaceMesh unpinned = out.mesh;
+  const std::vector<int32_t> unpinned_home = out.home;
+  const std::vector<uint8_t> unpinned_fixed = fixed;
+  std::vector<double> unpinned_gaps;
+  double unpinned_max_gap = 0;
+  size_t unpinned_gap_vertices = 0;
+  for (int round = 0;; ++round) {
+    out.input_gaps = distances_to_surface(out.mesh, input.points, true).per_point;
+    stats.max_input_gap = 0;
+    stats.input_gap_vertices = 0;
+    for (size_t v = 0; v < h.size(); ++v) {
+      const double rel = out.input_gaps[v] / h[v];
+      stats.max_input_gap = std::max(stats.max_input_gap, rel);
+      stats.input_gap_vertices += rel > options.fidelity;
+    }
+    if (round == 0) {
+      unpinned_gaps = out.input_gaps;
+      unpinned_max_gap = stats.max_input_gap;
+      unpinned_gap_vertices = stats.input_gap_vertices;
+    }
+    if (stats.input_gap_vertices == 0 || round >= options.fidelity_rounds) break;
+    std::vector<uint8_t> before = fixed;
+    const PinStats pinned = pin_to_input(out.mesh, out.home, fixed, input, h, out.input_gaps,
+                                         options.fidelity, given_up);
+    if (pinned.pinned == 0) break;
+    ++stats.fidelity_rounds;
+    stats.fidelity_pinned += pinned.pinned;
+    // Quality first: pins left in poor triangles are freed and the mesh
+    // relaxes around them again (pins only decrease, so this ends).
+    for (int step = 0; step < 8; ++step) {
+      out_size = output_sizes(input, out.home, h);
+      const auto more = optimize_on_surface(out.mesh, out.home, fixed, out_size, input, adj, again,
+                                            around_changes(before));
+      stats.collapses += more.collapses;
+      stats.swaps += more.swaps;
+      stats.moves += more.moves;
+      before = fixed;
+      const size_t freed =
+          unpin_poor(out.mesh, fixed, input, options.fidelity_min_quality, given_up);
+      stats.fidelity_pinned -= freed;
+      if (freed == 0) break;
+    }
+  }
+  // The pinned surface only if its quality stays at the floors (or at
+  // least as good as before pinning).
+  if (stats.fidelity_rounds > 0) {
+    const QualityStats q0 = quality_stats(triangle_qualities(unpinned)),
+                       q1 = quality_stats(triangle_qualities(out.mesh));
+    if (q1.min < std::min(q0.min, options.fidelity_floor_min) ||
+        q1.mean < std::min(q0.mean, options.fidelity_floor_mean)) {
+      out.mesh = unpinned;
+      out.home = unpinned_home;
+      fixed = unpinned_fixed;
+      out_size = output_sizes(input, out.home, h);
+      out.input_gaps = unpinned_gaps;
+      stats.max_input_gap = unpinned_max_gap;
+      stats.input_gap_vertices = unpinned_gap_vertices;
+      stats.fidelity_pinned = 0;
+      stats.fidelity_reverted = true;
+    }
+  }
+  stats.seconds_fidelity = seconds_since(t0);
   out.sizes = out_size;
   out.on_opening.resize(fixed.size());
   out.on_feature.resize(fixed.size());
@@ -312,10 +404,7 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
     out.on_opening[v] = fixed[v] == kOnOpening;
     out.on_feature[v] = fixed[v] == kOnFeature;
   }
-  stats.collapses = ostats.collapses;
-  stats.swaps = ostats.swaps;
-  stats.moves = ostats.moves;
-  stats.seconds_optimize = seconds_since(t0);
+
   // How well the edges follow the field: edge length / mean target size of
   // its ends, each edge once.
   {

@@ -35,6 +35,19 @@ struct RemeshOptions {
   /// degrees) that form closed or anchored chains are kept: patches end at
   /// them and their vertices stay on them. 180 = off.
   double feature_angle_degrees = 60;
+  /// Fidelity: input vertices farther than this times h from the output
+  /// get an output vertex pinned onto them (pin_to_input), then the mesh is
+  /// optimized around them again, at most `fidelity_rounds` times (0: off).
+  double fidelity = 0.1;
+  int fidelity_rounds = 3;
+  /// Optimization passes after each fidelity round.
+  int fidelity_passes = 10;
+  /// Pins left in a triangle with gamma_k below this are freed again.
+  double fidelity_min_quality = 0.75;
+  /// The pinned surface is kept only if its worst and mean gamma_k stay at
+  /// least min(their values before pinning, these floors: the seed's
+  /// Table 1 frontal row); else the surface before pinning is returned.
+  double fidelity_floor_min = 0.55, fidelity_floor_mean = 0.978;
 };
 
 struct RemeshStats {
@@ -49,7 +62,15 @@ struct RemeshStats {
   /// Output edge length / target size (mean of its ends' sizes): median and
   /// 10th / 90th percentiles over the edges (1 = the field followed exactly).
   double edge_ratio_median = 0, edge_ratio_p10 = 0, edge_ratio_p90 = 0;
-  double seconds_size = 0, seconds_partition = 0, seconds_mesh = 0, seconds_optimize = 0;
+  /// Fidelity: pinning rounds done, output vertices pinned, and at the end
+  /// the largest input-vertex distance to the output over h, with the count
+  /// of input vertices beyond options.fidelity h.
+  size_t fidelity_rounds = 0, fidelity_pinned = 0;
+  bool fidelity_reverted = false;  ///< pinning was undone (it cost too much quality)
+  double max_input_gap = 0;
+  size_t input_gap_vertices = 0;
+  double seconds_size = 0, seconds_partition = 0, seconds_mesh = 0, seconds_optimize = 0,
+         seconds_fidelity = 0;
 };
 
 /// The remeshed surface, with what ties it to the input.
@@ -63,6 +84,8 @@ struct RemeshedSurface {
   std::vector<uint8_t> on_feature;
   /// The size field at the input vertices.
   std::vector<double> input_sizes;
+  /// Per input vertex: its distance to the output surface.
+  std::vector<double> input_gaps;
   /// The target size at each output vertex (from its home triangle).
   std::vector<double> sizes;
 };

@@ -1,0 +1,173 @@
+#include "core/surface/pin_to_input.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "core/mesh/surface_distance.h"
+#include "core/quality/triangle_quality.h"
+#include "core/surface/optimize_surface.h"
+#include "core/surface/remesh_surface.h"
+#include "tests/support/phantoms.h"
+
+namespace vm {
+namespace {
+
+// An n x n grid of squares on [0, 1]^2 at z = 0, two triangles each,
+// counterclockwise seen from +z.
+SurfaceMesh grid(int n) {
+  SurfaceMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.points.insert(m.points.end(), {double(i) / n, double(j) / n, 0});
+  auto id = [&](int i, int j) { return int32_t(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+// Every directed edge once, every edge at most twice: a consistently
+// oriented manifold.
+bool oriented_manifold(const SurfaceMesh& m) {
+  std::map<std::pair<int32_t, int32_t>, int> directed;
+  for (size_t t = 0; t < m.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k)
+      if (directed[{m.triangles[3 * t + k], m.triangles[3 * t + (k + 1) % 3]}]++ > 0) return false;
+  return true;
+}
+
+// The z component of each triangle's normal is positive: nothing folded.
+bool faces_up(const SurfaceMesh& m) {
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    const double* a = &m.points[3 * size_t(m.triangles[3 * t])];
+    const double* b = &m.points[3 * size_t(m.triangles[3 * t + 1])];
+    const double* c = &m.points[3 * size_t(m.triangles[3 * t + 2])];
+    if (!((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) > 0)) return false;
+  }
+  return true;
+}
+
+// A fine grid with one spike, remeshed as a coarse flat grid whose vertices
+// lie on the fine one.
+struct SpikeCase {
+  SurfaceMesh input = grid(20), output = grid(4);
+  int32_t spike = 8 * 21 + 7;  // input vertex (7, 8): (0.35, 0.4)
+  std::vector<int32_t> home;
+  std::vector<uint8_t> fixed;
+  std::vector<double> h;
+  SpikeCase() {
+    input.points[3 * size_t(spike) + 2] = 0.05;
+    home.assign(output.num_vertices(), 0);
+    fixed.assign(output.num_vertices(), kFree);
+    h.assign(input.num_vertices(), 0.25);
+  }
+  std::vector<double> gaps() const {
+    return distances_to_surface(output, input.points, true).per_point;
+  }
+};
+
+TEST(PinToInput, AnOutputVertexLandsOnTheFarInputVertex) {
+  SpikeCase c;
+  const std::vector<double> before = c.gaps();
+  ASSERT_NEAR(before[size_t(c.spike)], 0.05, 1e-12);  // 0.2 h
+  const size_t nt = c.output.num_triangles();
+  const PinStats st = pin_to_input(c.output, c.home, c.fixed, c.input, c.h, before, 0.1, {});
+  // Only the spike and its 1-ring (under 0.1 h = 0.025 only the spike) are far.
+  EXPECT_EQ(st.far, 1u);
+  EXPECT_EQ(st.pinned, 1u);
+  const std::vector<double> after = c.gaps();
+  EXPECT_EQ(after[size_t(c.spike)], 0.0);
+  for (size_t v = 0; v < after.size(); ++v) EXPECT_LE(after[v], 0.1 * 0.25 + 1e-12) << v;
+  size_t pinned = 0;
+  for (size_t v = 0; v < c.fixed.size(); ++v) {
+    if (c.fixed[v] != kPinned) continue;
+    ++pinned;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(c.output.points[3 * v + size_t(k)],
+                c.input.points[3 * size_t(c.spike) + size_t(k)]);
+    const int32_t* T = &c.input.triangles[3 * size_t(c.home[v])];
+    EXPECT_TRUE(T[0] == c.spike || T[1] == c.spike || T[2] == c.spike);
+  }
+  EXPECT_EQ(pinned, 1u);
+  EXPECT_TRUE(oriented_manifold(c.output));
+  EXPECT_TRUE(faces_up(c.output));
+  EXPECT_GE(c.output.num_triangles(), nt);
+  EXPECT_EQ(c.home.size(), c.output.num_vertices());
+  // Every output vertex still lies on the input.
+  EXPECT_LE(distances_to_surface(c.input, c.output.points).max, 1e-12);
+}
+
+TEST(PinToInput, SkippedVerticesAndNearOnesAreLeftAlone) {
+  SpikeCase c;
+  std::vector<uint8_t> skip(c.input.num_vertices(), 0);
+  skip[size_t(c.spike)] = 1;
+  const SurfaceMesh original = c.output;
+  EXPECT_EQ(pin_to_input(c.output, c.home, c.fixed, c.input, c.h, c.gaps(), 0.1, skip).pinned, 0u);
+  // A looser limit than the spike's gap: nothing to do either.
+  EXPECT_EQ(pin_to_input(c.output, c.home, c.fixed, c.input, c.h, c.gaps(), 0.5, {}).far, 0u);
+  EXPECT_EQ(c.output.points, original.points);
+  EXPECT_EQ(c.output.triangles, original.triangles);
+}
+
+TEST(PinToInput, UnpinPoorFreesPinsInPoorTrianglesAndRemembersThem) {
+  SpikeCase c;
+  ASSERT_EQ(pin_to_input(c.output, c.home, c.fixed, c.input, c.h, c.gaps(), 0.1, {}).pinned, 1u);
+  std::vector<uint8_t> skip(c.input.num_vertices(), 0);
+  double worst = 1;
+  for (size_t t = 0; t < c.output.num_triangles(); ++t) {
+    const int32_t* T = &c.output.triangles[3 * t];
+    worst = std::min(worst, triangle_gamma(&c.output.points[3 * size_t(T[0])],
+                                           &c.output.points[3 * size_t(T[1])],
+                                           &c.output.points[3 * size_t(T[2])]));
+  }
+  // Below the worst triangle: nothing freed.
+  EXPECT_EQ(unpin_poor(c.output, c.fixed, c.input, worst * 0.99, skip), 0u);
+  EXPECT_EQ(std::count(skip.begin(), skip.end(), 1), 0);
+  // Above every triangle: the pin is freed and its input vertex skipped.
+  EXPECT_EQ(unpin_poor(c.output, c.fixed, c.input, 1.01, skip), 1u);
+  EXPECT_EQ(std::count(c.fixed.begin(), c.fixed.end(), kPinned), 0);
+  EXPECT_EQ(skip[size_t(c.spike)], 1);
+  EXPECT_EQ(std::count(skip.begin(), skip.end(), 1), 1);
+}
+
+TEST(RemeshSurface, FidelityRoundsBringTheInputCloserWithoutLosingQuality) {
+  const SurfaceMesh in = testing::phantom(PhantomKind::kBifurcation, true, 0.1, 0.1);
+  RemeshOptions o;
+  o.size.mode = SizeMode::kUniform;
+  o.size.size = 0.3;
+  RemeshStats off_stats, on_stats;
+  o.fidelity_rounds = 0;
+  auto off = remesh_surface(in, o, &off_stats);
+  o.fidelity_rounds = 3;
+  auto on = remesh_surface(in, o, &on_stats);
+  ASSERT_TRUE(off.ok()) << off.message();
+  ASSERT_TRUE(on.ok()) << on.message();
+  // The reported gaps are the real ones.
+  for (const auto* r : {&off.value(), &on.value()}) {
+    const std::vector<double> gaps = distances_to_surface(r->mesh, in.points, true).per_point;
+    ASSERT_EQ(gaps.size(), r->input_gaps.size());
+    for (size_t v = 0; v < gaps.size(); ++v) EXPECT_NEAR(gaps[v], r->input_gaps[v], 1e-12);
+  }
+  ASSERT_GT(off_stats.input_gap_vertices, 0u) << "the phantom should have far input vertices";
+  const QualityStats q0 = quality_stats(triangle_qualities(off.value().mesh));
+  const QualityStats q1 = quality_stats(triangle_qualities(on.value().mesh));
+  std::cout << "[ info ] far input vertices " << off_stats.input_gap_vertices << " -> "
+            << on_stats.input_gap_vertices << " (" << on_stats.fidelity_pinned
+            << " pinned), max gap " << off_stats.max_input_gap << " -> " << on_stats.max_input_gap
+            << " h; gamma min " << q0.min << " -> " << q1.min << ", mean " << q0.mean << " -> "
+            << q1.mean << (on_stats.fidelity_reverted ? " (reverted)" : "") << "\n";
+  EXPECT_FALSE(on_stats.fidelity_reverted);
+  EXPECT_GT(on_stats.fidelity_pinned, 0u);
+  EXPECT_LT(on_stats.input_gap_vertices, off_stats.input_gap_vertices / 2);
+  EXPECT_GE(q1.min, std::min(q0.min, o.fidelity_floor_min));
+  EXPECT_GE(q1.mean, std::min(q0.mean, o.fidelity_floor_mean));
+  // Still on the input.
+  EXPECT_LE(distances_to_surface(in, on.value().mesh.points).max, 1e-9);
+}
+
+}  // namespace
+}  // namespace vm
