@@ -2,7 +2,8 @@
 // phases: size field; partition into mapped patches; seams (the patch
 // boundaries and the openings) cut into curves between corners and each
 // curve resampled once in 3D; every patch meshed in its plane against the
-// shared samples; assembly by sample ids; optimization on the input.
+// shared samples; assembly by sample ids; optimization on the input;
+// fidelity: output vertices pinned onto far input vertices.
 #include "core/surface/remesh_surface.h"
 
 #include <algorithm>
@@ -335,9 +336,11 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
     }
     return flag;
   };
-  const SurfaceMesh unpinned = out.mesh;
-  const std::vector<int32_t> unpinned_home = out.home;
-  const std::vector<uint8_t> unpinned_fixed = fixed;
+  // The surface before pinning, kept to return it if pinning costs too
+  // much quality.
+  SurfaceMesh unpinned;
+  std::vector<int32_t> unpinned_home;
+  std::vector<uint8_t> unpinned_fixed;
   std::vector<double> unpinned_gaps;
   double unpinned_max_gap = 0;
   size_t unpinned_gap_vertices = 0;
@@ -350,12 +353,15 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
       stats.max_input_gap = std::max(stats.max_input_gap, rel);
       stats.input_gap_vertices += rel > options.fidelity;
     }
+    if (stats.input_gap_vertices == 0 || round >= options.fidelity_rounds) break;
     if (round == 0) {
+      unpinned = out.mesh;
+      unpinned_home = out.home;
+      unpinned_fixed = fixed;
       unpinned_gaps = out.input_gaps;
       unpinned_max_gap = stats.max_input_gap;
       unpinned_gap_vertices = stats.input_gap_vertices;
     }
-    if (stats.input_gap_vertices == 0 || round >= options.fidelity_rounds) break;
     std::vector<uint8_t> before = fixed;
     const PinStats pinned = pin_to_input(out.mesh, out.home, fixed, input, h, out.input_gaps,
                                          options.fidelity, given_up);
@@ -385,11 +391,11 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
                        q1 = quality_stats(triangle_qualities(out.mesh));
     if (q1.min < std::min(q0.min, options.fidelity_floor_min) ||
         q1.mean < std::min(q0.mean, options.fidelity_floor_mean)) {
-      out.mesh = unpinned;
-      out.home = unpinned_home;
-      fixed = unpinned_fixed;
+      out.mesh = std::move(unpinned);
+      out.home = std::move(unpinned_home);
+      fixed = std::move(unpinned_fixed);
       out_size = output_sizes(input, out.home, h);
-      out.input_gaps = unpinned_gaps;
+      out.input_gaps = std::move(unpinned_gaps);
       stats.max_input_gap = unpinned_max_gap;
       stats.input_gap_vertices = unpinned_gap_vertices;
       stats.fidelity_pinned = 0;
