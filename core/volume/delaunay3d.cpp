@@ -653,8 +653,23 @@ void Delaunay3D::star(int32_t pv) {
   last_ = new_[0];
 }
 
+bool Delaunay3D::cavity_vertex_within(const double* p, double d2) const {
+  for (int32_t e : boundary_) {
+    const int32_t* v = tet(e >> 2);
+    const int* f = kFaceOut[e & 3];
+    for (int j = 0; j < 3; ++j) {
+      const int32_t w = v[f[j]];
+      if (w < 0) continue;
+      const double* q = point(w);
+      const double x = q[0] - p[0], y = q[1] - p[1], z = q[2] - p[2];
+      if (x * x + y * y + z * z < d2) return true;
+    }
+  }
+  return false;
+}
+
 Delaunay3D::InsertResult Delaunay3D::insert_vertex(int32_t v, int32_t hint,
-                                                   bool respect_constraints) {
+                                                   bool respect_constraints, double min_distance) {
   const double* p = point(v);
   const int32_t t = walk(p, hint);
   if (!is_ghost(t)) {
@@ -670,19 +685,21 @@ Delaunay3D::InsertResult Delaunay3D::insert_vertex(int32_t v, int32_t hint,
     ++stats_.checked_cavities;
     if (!find_cavity_checked(t, p, v, respect_constraints)) return {InsertStatus::kBlocked, -1};
   }
+  if (min_distance > 0 && cavity_vertex_within(p, min_distance * min_distance))
+    return {InsertStatus::kTooClose, -1};
   star(v);
   return {InsertStatus::kInserted, v};
 }
 
-Delaunay3D::InsertResult Delaunay3D::insert(const double* p, int32_t hint,
-                                            bool respect_constraints) {
+Delaunay3D::InsertResult Delaunay3D::insert(const double* p, int32_t hint, bool respect_constraints,
+                                            double min_distance) {
   if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]) || tets_.empty())
     return {InsertStatus::kInvalid, -1};
   const int32_t v = int32_t(num_vertices());
   pts_.insert(pts_.end(), {p[0], p[1], p[2]});
   dup_.push_back(-1);
   vtet_.push_back(-1);
-  InsertResult r = insert_vertex(v, hint, respect_constraints);
+  InsertResult r = insert_vertex(v, hint, respect_constraints, min_distance);
   if (r.status != InsertStatus::kInserted) {
     pts_.resize(pts_.size() - 3);
     dup_.pop_back();

@@ -44,6 +44,7 @@ class Delaunay3D {
     kBlocked,      ///< constrained / non-Delaunay mode: no star-shaped cavity
                    ///< around the point (e.g. it lies on a constrained face)
     kInvalid,      ///< a coordinate is not finite
+    kTooClose,     ///< a vertex of the cavity lies within the given distance
   };
   struct InsertResult {
     InsertStatus status = InsertStatus::kInvalid;
@@ -80,8 +81,11 @@ class Delaunay3D {
   /// whose closure holds p always stay (kBlocked if they cannot, e.g. p on a
   /// constrained face). The result is then valid but not necessarily
   /// (constrained) Delaunay. On any status other than kInserted nothing is
-  /// changed.
-  InsertResult insert(const double* p, int32_t hint = -1, bool respect_constraints = false);
+  /// changed. With min_distance > 0 the point is refused (kTooClose,
+  /// nothing changed) if a vertex of its cavity, which holds every vertex
+  /// the point would be joined to, is closer than min_distance to it.
+  InsertResult insert(const double* p, int32_t hint = -1, bool respect_constraints = false,
+                      double min_distance = 0);
 
   /// Locates p (3 doubles) by walking from `hint` (-1: the last tetrahedron
   /// touched).
@@ -208,7 +212,11 @@ class Delaunay3D {
  private:
   static constexpr int32_t kFree = -2;
 
-  InsertResult insert_vertex(int32_t v, int32_t hint, bool respect_constraints);
+  InsertResult insert_vertex(int32_t v, int32_t hint, bool respect_constraints,
+                             double min_distance = 0);
+  /// A finite vertex of the cavity's boundary faces closer than
+  /// sqrt(d2) to p.
+  bool cavity_vertex_within(const double* p, double d2) const;
   int32_t walk(const double* p, int32_t hint) const;
   bool conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const;
   bool finite_conflict(int32_t t, const double* p, int32_t pv) const;

@@ -11,9 +11,11 @@
 // one candidate (the metric midpoint when shorter than kFarLength, else one
 // unit of h from v). A candidate is rejected when it lies outside the
 // region, closer than min_spacing * h to a vertex of v's star, of the
-// tetrahedron containing it or of that tetrahedron's neighbors, or closer
-// than boundary_spacing * h to a constrained face of those tetrahedra;
-// else it is inserted at once (constrained cavity) and queued. Metric
+// tetrahedron containing it or of that tetrahedron's neighbors, closer
+// than boundary_spacing * h to a constrained face of those tetrahedra, or
+// closer than min_spacing * h to a vertex of its cavity (checked by the
+// kernel before it changes anything); else it is inserted at once
+// (constrained cavity) and queued. Metric
 // lengths use h linear along the edge between its ends.
 #include "core/volume/refine_volume.h"
 
@@ -84,8 +86,6 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
     return field.eval(p, ub, options.size_tolerance);
   };
 
-  std::vector<int32_t> around;  // scratch of try_insert
-
   // The test and insertion of a candidate p with exact size hp, located
   // from tetrahedron hint; r2 / b2: squared spacing to vertices / faces.
   // Returns the new vertex or -1.
@@ -104,15 +104,11 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
     // The tetrahedron containing p and its neighbors: their vertices and
     // constrained faces.
     bool close = false, near_boundary = false;
-    int32_t nearest = -1;
-    double nearest_d2 = 1e300;
     auto check_tet = [&](int32_t t) {
       const int32_t* tv = kernel.tet(t);
       for (int k = 0; k < 4; ++k) {
         if (tv[k] != Delaunay3D::kInfinite) {
-          const double d2 = dist2(p, kernel.point(tv[k]));
-          if (d2 < r2) close = true;
-          if (d2 < nearest_d2) nearest_d2 = d2, nearest = tv[k];
+          if (dist2(p, kernel.point(tv[k])) < r2) close = true;
         }
         if (!kernel.is_constrained(t, k)) continue;
         const int* f = kFaceVerts[k];
@@ -128,19 +124,6 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
       const int32_t u = kernel.neighbor(loc.tet, k) >> 2;
       if (!kernel.is_ghost(u)) check_tet(u);
     }
-    // One step of greedy nearest-vertex search: the neighbors of the
-    // nearest vertex seen (in a Delaunay triangulation a vertex with no
-    // closer neighbor is the nearest; after flips or clipped cavities the
-    // triangulation is not Delaunay and the tetrahedra around p miss some).
-    if (!close && nearest >= 0) {
-      kernel.tets_around_vertex(nearest, around);
-      for (int32_t t : around) {
-        if (close) break;
-        const int32_t* tv = kernel.tet(t);
-        for (int k = 0; k < 4; ++k)
-          if (tv[k] != Delaunay3D::kInfinite && dist2(p, kernel.point(tv[k])) < r2) close = true;
-      }
-    }
     if (close) {
       ++st.rejected_spacing;
       return -1;
@@ -149,7 +132,14 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
       ++st.rejected_boundary;
       return -1;
     }
-    const Delaunay3D::InsertResult ins = kernel.insert(p, loc.tet, true);
+    // Last, every vertex p would be joined to (its cavity's: after flips
+    // or clipped cavities the tetrahedra around p miss some neighbors).
+    const Delaunay3D::InsertResult ins =
+        kernel.insert(p, loc.tet, true, options.min_spacing * hspacing);
+    if (ins.status == Delaunay3D::InsertStatus::kTooClose) {
+      ++st.rejected_spacing;
+      return -1;
+    }
     if (ins.status != Delaunay3D::InsertStatus::kInserted) {
       ++st.rejected_kernel;
       return -1;
