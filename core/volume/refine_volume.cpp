@@ -299,8 +299,10 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
       // h is g-Lipschitz and vertex_h holds its values (or upper bounds of
       // them): every neighbor gives an upper bound.
       double ub = std::min(hv + g * d, hw + g * (L - d));
-      for (size_t j = 0; j < nbs.size(); ++j)
-        ub = std::min(ub, vertex_h[size_t(nbs[j])] + g * std::sqrt(dist2(p, kernel.point(nbs[j]))));
+      for (size_t j = 0; j < nbs.size(); ++j) {
+        const double hj = vertex_h[size_t(nbs[j])];
+        if (hj < ub) ub = std::min(ub, hj + g * std::sqrt(dist2(p, kernel.point(nbs[j]))));
+      }
       const double hp = size_at(p, ub);
       const double r2 = options.min_spacing * options.min_spacing * hp * hp;
       for (size_t j = 0; j < nbs.size() && !close; ++j) close = dist2(p, kernel.point(nbs[j])) < r2;
