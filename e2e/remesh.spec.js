@@ -1,6 +1,9 @@
+import { readFileSync } from 'node:fs';
+
 import { expect, test } from '@playwright/test';
 
-import { openApp } from './helpers.js';
+import { createVesselmesh } from '../wasm/src/vesselmesh.js';
+import { openApp, upload } from './helpers.js';
 
 const num = async (page, id) => Number((await page.getByTestId(id).textContent()).replace(/,/g, ''));
 
@@ -59,4 +62,28 @@ test('a bad size gives a readable error and the page keeps working', async ({ pa
   await expect(page.getByTestId('remesh-result')).toBeVisible();
   await expect(page.getByTestId('error')).toBeHidden();
   expect(await num(page, 'out-quality-min')).toBeGreaterThan(0.3);
+});
+
+test('pinning to far input vertices: on by default, off from the advanced options', async ({ page }) => {
+  // A mildly noisy phantom whose bumps a 0.3 wall partly misses.
+  const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
+  const api = await createVesselmesh({ wasmBinary });
+  const stl = api.makePhantom({ kind: 'bifurcation', voxel: 0.1, noise: 0.1 }).stl;
+  await openApp(page);
+  await upload(page, 'bumpy.stl', Buffer.from(stl));
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  await page.getByTestId('size-mode').selectOption('size');
+  await page.getByTestId('size-value').fill('0.3');
+  await page.getByTestId('surface-only').check();
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('out-fidelity')).toBeVisible();
+  const pinned = await num(page, 'out-pinned');
+  const far = await num(page, 'out-far');
+  expect(pinned).toBeGreaterThan(0);
+
+  await page.locator('details summary').click();
+  await page.getByTestId('fidelity-on').uncheck();
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('out-pinned')).toHaveText('0');
+  expect(await num(page, 'out-far')).toBeGreaterThan(far);
 });

@@ -28,7 +28,7 @@ const std::vector<std::string_view>& job_option_names() {
       "gradation",      "curvature",         "param",       "mesher2d",
       "msh-version",    "feature-angle",     "inlet",       "core-size",
       "layers",         "layer-thickness",   "first-layer", "growth",
-      "wall-thickness", "wall-layers"};
+      "wall-thickness", "wall-layers",       "fidelity"};
   return names;
 }
 
@@ -83,6 +83,11 @@ Status set_job_option(MeshJobOptions& o, std::string_view name, std::string_view
     if (!number || x <= 0 || x > 180)
       return need(name, "an angle in degrees in (0, 180] (180: no sharp features)");
     o.remesh_options.feature_angle_degrees = x;
+  } else if (name == "fidelity") {
+    if (!number || x < 0 || x > 1)
+      return need(name, "a fraction of h in [0, 1] (0: no pinning to the input)");
+    o.remesh_options.fidelity = x;
+    o.remesh_options.fidelity_rounds = x > 0 ? RemeshOptions{}.fidelity_rounds : 0;
   } else if (name == "param") {
     if (value == "lscm")
       o.remesh_options.param = ParamMethod::kLscm;

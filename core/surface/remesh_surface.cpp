@@ -348,12 +348,18 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
     out.input_gaps = distances_to_surface(out.mesh, input.points, true).per_point;
     stats.max_input_gap = 0;
     stats.input_gap_vertices = 0;
+    size_t far = 0;  // beyond options.fidelity h
     for (size_t v = 0; v < h.size(); ++v) {
       const double rel = out.input_gaps[v] / h[v];
       stats.max_input_gap = std::max(stats.max_input_gap, rel);
-      stats.input_gap_vertices += rel > options.fidelity;
+      stats.input_gap_vertices += rel > kReportedGap;
+      far += rel > options.fidelity;
     }
-    if (stats.input_gap_vertices == 0 || round >= options.fidelity_rounds) break;
+    // Noise everywhere (more pins than a share of the output's vertices)
+    // would cost more quality than the floors allow: not tried.
+    if (far == 0 || round >= options.fidelity_rounds ||
+        (round == 0 && double(far) > options.fidelity_max_share * double(out.mesh.num_vertices())))
+      break;
     if (round == 0) {
       unpinned = out.mesh;
       unpinned_home = out.home;

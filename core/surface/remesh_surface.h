@@ -40,6 +40,9 @@ struct RemeshOptions {
   /// optimized around them again, at most `fidelity_rounds` times (0: off).
   double fidelity = 0.1;
   int fidelity_rounds = 3;
+  /// Pinning is not tried when more input vertices than this share of
+  /// the output's vertices are far (noise everywhere).
+  double fidelity_max_share = 0.1;
   /// Optimization passes after each fidelity round.
   int fidelity_passes = 10;
   /// Pins left in a triangle with gamma_k below this are freed again.
@@ -49,6 +52,9 @@ struct RemeshOptions {
   /// Table 1 frontal row); else the surface before pinning is returned.
   double fidelity_floor_min = 0.55, fidelity_floor_mean = 0.978;
 };
+
+/// The input-vertex distance to the output (over h) the statistics count.
+inline constexpr double kReportedGap = 0.1;
 
 struct RemeshStats {
   size_t patches = 0;
@@ -64,7 +70,7 @@ struct RemeshStats {
   double edge_ratio_median = 0, edge_ratio_p10 = 0, edge_ratio_p90 = 0;
   /// Fidelity: pinning rounds done, output vertices pinned, and at the end
   /// the largest input-vertex distance to the output over h, with the count
-  /// of input vertices beyond options.fidelity h.
+  /// of input vertices beyond kReportedGap h.
   size_t fidelity_rounds = 0, fidelity_pinned = 0;
   bool fidelity_reverted = false;  ///< pinning was undone (it cost too much quality)
   double max_input_gap = 0;

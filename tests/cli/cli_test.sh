@@ -56,6 +56,9 @@ check "mesh bad param" expect_exit 2 "lscm, harmonic or floater" "$VM" mesh "$T/
 check "mesh bad mesher" expect_exit 2 "frontal, delaunay or adapt" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --mesher2d quad
 check "mesh min > max" expect_exit 1 "at most --size-max" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size-min 2 --size-max 1
 check "mesh surface-only uniform" expect_exit 0 "remeshed:" "$VM" mesh "$T/bif.stl" -o "$T/u.msh" --surface-only --size 0.2 --param floater --mesher2d delaunay --report "$T/u.json"
+check "mesh bad fidelity" expect_exit 2 "--fidelity needs a fraction of h in [0, 1]" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --fidelity 3
+check "mesh fidelity 0" expect_exit 0 "remeshed:" "$VM" mesh "$T/bif.stl" -o "$T/f0.msh" --surface-only --size 0.2 --fidelity 0 --report "$T/f0.json"
+check "fidelity 0 pins nothing" [ "$(json "$T/f0.json" "d['output']['remesh']['fidelity']['pinned_vertices']")" = 0 ]
 check "mesh bad inlet" expect_exit 1 "--inlet must be between 1 and the number of openings (3)" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --inlet 7
 check "mesh inlet not a number" expect_exit 2 "--inlet needs an opening number" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --inlet first
 check "mesh no-remesh" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/n.msh" --no-remesh --layers 0

@@ -122,6 +122,44 @@ TEST(MeshJob, RemeshesKeepingTopologyAndWritesEveryTriangleAsWall) {
   EXPECT_LT(res.fidelity.max_input_gap, 0.5);
 }
 
+TEST(MeshJob, FidelityOptionPinsTheWallOntoFarInputVerticesOrNot) {
+  MeshJobOptions o;
+  EXPECT_FALSE(set_job_option(o, "fidelity", "-0.1").ok());
+  EXPECT_FALSE(set_job_option(o, "fidelity", "2").ok());
+  EXPECT_FALSE(set_job_option(o, "fidelity", "x").ok());
+  ASSERT_TRUE(set_job_option(o, "fidelity", "0.2").ok());
+  EXPECT_EQ(o.remesh_options.fidelity, 0.2);
+  EXPECT_GT(o.remesh_options.fidelity_rounds, 0);
+  // A mildly noisy phantom at a size that leaves some of its bumps off the
+  // wall: pinned by default, not with 0.
+  PhantomOptions po;
+  po.kind = PhantomKind::kBifurcation;
+  po.voxel = 0.1;
+  po.noise = 0.1;
+  auto phantom = make_vessel_phantom(po);
+  ASSERT_TRUE(phantom.ok()) << phantom.message();
+  const std::vector<uint8_t> stl = write_stl_binary(phantom.value());
+  size_t far[2], pinned[2];
+  for (int off = 0; off < 2; ++off) {
+    MeshJobOptions j;
+    ASSERT_TRUE(set_job_option(j, "size", "0.3").ok());
+    if (off) {
+      ASSERT_TRUE(set_job_option(j, "fidelity", "0").ok());
+    }
+    j.volume = false;
+    auto r = run_mesh_job(stl, j);
+    ASSERT_TRUE(r.ok()) << r.message();
+    far[off] = r.value().fidelity.input_gap_vertices;
+    pinned[off] = r.value().remesh_stats.fidelity_pinned;
+    EXPECT_EQ(r.value().output_topology.openings.size(), 3u);
+    EXPECT_LE(r.value().fidelity.max_vertex_offset, 1e-9);
+  }
+  EXPECT_GT(pinned[0], 0u);
+  EXPECT_EQ(pinned[1], 0u);
+  EXPECT_GT(far[1], 0u);
+  EXPECT_LT(far[0], far[1]);
+}
+
 TEST(MeshJob, MeshesTheLumenWithNamedPlanarCaps) {
   // The bifurcation phantom: 3 openings, so inlet, outlet_1, outlet_2; the
   // volume is checked (positive, conforming, bounded by wall + caps) and
@@ -308,7 +346,9 @@ TEST(ReportJson, HasTheDocumentedKeys) {
   for (const char* key :
        {"\"remesh\":{\"patches\":", "\"seam_points\":", "\"genus\":0",
         "\"caps\":[{\"name\":\"inlet\"", "\"volume\":{\"vertices\":", "\"tetrahedra\":",
-        "\"groups\":[{\"dim\":2,\"name\":\"wall\",\"elements\":", "{\"dim\":3,\"name\":\"lumen\""})
+        "\"groups\":[{\"dim\":2,\"name\":\"wall\",\"elements\":", "{\"dim\":3,\"name\":\"lumen\"",
+        "\"input_gap_vertices\":", "\"pinned_vertices\":", "\"pinning_rounds\":",
+        "\"pinning_reverted\":", "\"fidelity\":"})
     EXPECT_NE(m.find(key), std::string::npos) << key << " in " << m;
 }
 

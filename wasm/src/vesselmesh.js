@@ -42,6 +42,7 @@ const MESH_OPTIONS = {
   param: 'param',
   mesher2d: 'mesher2d',
   featureAngle: 'feature-angle',
+  fidelity: 'fidelity',
   inlet: 'inlet',
   coreSize: 'core-size',
   layers: 'layers',
@@ -117,7 +118,9 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * Size: `size` (uniform h) or `perCircumference` (h = 2 pi R / N, the
      * default with N = 20), clamps `sizeMin` / `sizeMax`, `gradation`,
      * `curvature`, `featureAngle` (degrees; sharper creases are kept, 180:
-     * none); advanced: `param` ('lscm' | 'harmonic' | 'floater'),
+     * none), `fidelity` (default 0.1: input vertices farther than 0.1 h from
+     * the wall get a wall vertex pinned onto them where quality allows; 0:
+     * none, bumps are smoothed over); advanced: `param` ('lscm' | 'harmonic' | 'floater'),
      * `mesher2d` ('frontal' | 'delaunay' | 'adapt').
      * @returns {{ok: true, msh: Uint8Array, report: object, surface: object,
      *   volume?: object} | {ok: false, error: string}} (no volume when

@@ -329,6 +329,21 @@ describe('mesh: surface remeshing', () => {
     assert.ok(adaptive.report.output.remesh.size.max > adaptive.report.output.remesh.size.min);
   });
 
+  test('fidelity: far input vertices pinned by default, none with 0; bad values refused', () => {
+    const bumpy = api.makePhantom({ kind: 'bifurcation', voxel: 0.1, noise: 0.1 }).stl;
+    const on = api.mesh(bumpy, { size: 0.3, surfaceOnly: true });
+    const off = api.mesh(bumpy, { size: 0.3, surfaceOnly: true, fidelity: 0 });
+    assert.equal(on.ok, true, on.error);
+    assert.equal(off.ok, true, off.error);
+    const a = on.report.output.remesh.fidelity;
+    const b = off.report.output.remesh.fidelity;
+    assert.ok(a.pinned_vertices > 0, JSON.stringify(a));
+    assert.equal(b.pinned_vertices, 0);
+    assert.ok(a.input_gap_vertices < b.input_gap_vertices, `${a.input_gap_vertices} vs ${b.input_gap_vertices}`);
+    assert.equal(on.report.output.openings, 3);
+    assert.match(api.mesh(bumpy, { fidelity: 2 }).error, /^fidelity needs a fraction of h in \[0, 1\]/);
+  });
+
   test('bad options are refused with the JS option name', () => {
     assert.match(api.mesh(stl(), { size: -1 }).error, /^size needs a positive length/);
     assert.match(api.mesh(stl(), { perCircumference: 2 }).error, /^perCircumference needs/);

@@ -217,6 +217,7 @@ function meshOptions() {
     mesher2d: $('mesher2d').value,
     surfaceOnly: $('surface-only').checked,
   };
+  if (!$('fidelity-on').checked) options.fidelity = 0;
   const coreSize = $('core-size').value.trim();
   if (coreSize !== '') options.coreSize = Number(coreSize);
   const inlet = chosenInlet();
@@ -390,6 +391,12 @@ function showMeshResult(result) {
   $('out-patches').textContent = out.remesh ? out.remesh.patches : '-';
   $('out-quality-min').textContent = out.quality.min.toFixed(3);
   $('out-quality-mean').textContent = out.quality.mean.toFixed(3);
+  const fidelity = out.remesh?.fidelity;
+  $('out-fidelity').hidden = !fidelity;
+  if (fidelity) {
+    $('out-far').textContent = fidelity.input_gap_vertices.toLocaleString('en');
+    $('out-pinned').textContent = fidelity.pinned_vertices.toLocaleString('en');
+  }
   drawHistogram($('out-histogram'), out.quality.histogram);
   const elements = out.groups.reduce((n, g) => n + g.elements, 0);
   $('remesh-result').dataset.elements = String(elements);
