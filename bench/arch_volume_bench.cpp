@@ -160,10 +160,13 @@ bool run_once(const Capped& in, double core, RunResult* out) {
   out->qmean = qs.mean;
   out->below02 = double(std::count_if(q.begin(), q.end(), [](float x) { return x < 0.2f; }));
   std::fprintf(stderr,
-               "  refine: %lld inserted, %lld candidates, %lld size evals, first layer %.2f s; "
+               "  refine: %lld inserted, %lld candidates (rejected: %lld spacing, %lld boundary, "
+               "%lld outside, %lld kernel), %lld size evals, first layer %.2f s; "
                "optimize: flips %.2f s, smooth %.2f s, slivers %.2f s (%lld flips23, %lld edge "
                "removals, %lld smoothing moves, %lld sliver moves, %lld insertions)\n",
                (long long)fs.refine.inserted, (long long)fs.refine.candidates,
+               (long long)fs.refine.rejected_spacing, (long long)fs.refine.rejected_boundary,
+               (long long)fs.refine.rejected_outside, (long long)fs.refine.rejected_kernel,
                (long long)fs.refine.size_evaluations, fs.refine.first_layer_seconds,
                fs.optimize.flip_seconds, fs.optimize.smooth_seconds, fs.optimize.sliver_seconds,
                (long long)fs.optimize.flips23, (long long)fs.optimize.edge_removals,
