@@ -59,9 +59,11 @@ struct SurfaceOptimizeStats {
 /// Vertices only move to points of the input surface; the boundary edges of
 /// `mesh` never change; no triangle turns by more than the normal guard.
 /// Split vertices are appended (free) and collapsed vertices removed: mesh,
-/// home, fixed and size are renumbered together. Preconditions: `mesh` is manifold and consistently
-/// oriented, home has one input triangle per vertex, fixed one flag per vertex (kOnOpening on every
-/// boundary vertex, else kFree), input_adj is build_adjacency(input).
+/// home, fixed and size are renumbered together. Preconditions: `mesh` is
+/// manifold and consistently oriented, home has one input triangle per
+/// vertex, fixed one flag per vertex (kOnOpening on every boundary vertex;
+/// kOnFeature, kPinned or kFree elsewhere), input_adj is
+/// build_adjacency(input).
 /// `start` (empty, or one flag per vertex) limits the first pass to the
 /// flagged vertices and their triangles; later passes follow the changes.
 SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>& home,
