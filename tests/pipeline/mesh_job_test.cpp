@@ -9,6 +9,7 @@
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/job_options.h"
 #include "core/pipeline/report_json.h"
+#include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -132,13 +133,8 @@ TEST(MeshJob, FidelityOptionPinsTheWallOntoFarInputVerticesOrNot) {
   EXPECT_GT(o.remesh_options.fidelity_rounds, 0);
   // A mildly noisy phantom at a size that leaves some of its bumps off the
   // wall: pinned by default, not with 0.
-  PhantomOptions po;
-  po.kind = PhantomKind::kBifurcation;
-  po.voxel = 0.1;
-  po.noise = 0.1;
-  auto phantom = make_vessel_phantom(po);
-  ASSERT_TRUE(phantom.ok()) << phantom.message();
-  const std::vector<uint8_t> stl = write_stl_binary(phantom.value());
+  const std::vector<uint8_t> stl =
+      write_stl_binary(testing::phantom(PhantomKind::kBifurcation, true, 0.1, 0.1));
   size_t far[2], pinned[2];
   for (int off = 0; off < 2; ++off) {
     MeshJobOptions j;

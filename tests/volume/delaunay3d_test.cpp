@@ -243,14 +243,18 @@ TEST(Delaunay3D, InsertRefusesAPointTooCloseToACavityVertex) {
   // accepted just below it, for both cavity searches.
   auto queries = random_cube(50, 6);
   for (double& x : queries) x *= 0.7;  // inside the hull
+  auto nearest_to = [&](const double* q) {
+    double nearest = 1e300;
+    for (int32_t v = 0; v < int32_t(d.num_vertices()); ++v) {
+      const double* x = d.point(v);
+      nearest = std::min(nearest, std::hypot(x[0] - q[0], x[1] - q[1], x[2] - q[2]));
+    }
+    return nearest;
+  };
   for (bool constrained : {false, true}) {
     for (size_t i = 0; i < queries.size(); i += 3) {
       const double* q = &queries[i];
-      double nearest = 1e300;
-      for (int32_t v = 0; v < int32_t(d.num_vertices()); ++v) {
-        const double* x = d.point(v);
-        nearest = std::min(nearest, std::hypot(x[0] - q[0], x[1] - q[1], x[2] - q[2]));
-      }
+      const double nearest = nearest_to(q);
       const size_t nv = d.num_vertices(), nt = d.num_finite_tets();
       EXPECT_EQ(d.insert(q, -1, constrained, nearest * 1.001).status, D::InsertStatus::kTooClose);
       EXPECT_EQ(d.num_vertices(), nv);
@@ -260,12 +264,7 @@ TEST(Delaunay3D, InsertRefusesAPointTooCloseToACavityVertex) {
   }
   for (size_t i = 0; i < queries.size(); i += 3) {
     const double* q = &queries[i];
-    double nearest = 1e300;
-    for (int32_t v = 0; v < int32_t(d.num_vertices()); ++v) {
-      const double* x = d.point(v);
-      nearest = std::min(nearest, std::hypot(x[0] - q[0], x[1] - q[1], x[2] - q[2]));
-    }
-    EXPECT_EQ(d.insert(q, -1, false, nearest * 0.999).status, D::InsertStatus::kInserted);
+    EXPECT_EQ(d.insert(q, -1, false, nearest_to(q) * 0.999).status, D::InsertStatus::kInserted);
   }
   ASSERT_TRUE(d.check(true).ok()) << d.check(true).message();
   expect_empty_spheres(d);
