@@ -344,17 +344,37 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
   std::vector<double> unpinned_gaps;
   double unpinned_max_gap = 0;
   size_t unpinned_gap_vertices = 0;
-  for (int round = 0;; ++round) {
+  // The input vertices' distances to the output; returns how many are
+  // beyond options.fidelity h.
+  auto measure_gaps = [&] {
     out.input_gaps = distances_to_surface(out.mesh, input.points, true).per_point;
     stats.max_input_gap = 0;
     stats.input_gap_vertices = 0;
-    size_t far = 0;  // beyond options.fidelity h
+    size_t far = 0;
     for (size_t v = 0; v < h.size(); ++v) {
       const double rel = out.input_gaps[v] / h[v];
       stats.max_input_gap = std::max(stats.max_input_gap, rel);
       stats.input_gap_vertices += rel > kReportedGap;
       far += rel > options.fidelity;
     }
+    return far;
+  };
+  // Frees the pins of triangles below min_gamma, then relaxes around them.
+  auto unpin_and_relax = [&](double min_gamma) {
+    const std::vector<uint8_t> before = fixed;
+    const size_t freed = unpin_poor(out.mesh, fixed, input, min_gamma, given_up);
+    stats.fidelity_pinned -= freed;
+    if (freed == 0) return size_t(0);
+    out_size = output_sizes(input, out.home, h);
+    const auto more = optimize_on_surface(out.mesh, out.home, fixed, out_size, input, adj, again,
+                                          around_changes(before));
+    stats.collapses += more.collapses;
+    stats.swaps += more.swaps;
+    stats.moves += more.moves;
+    return freed;
+  };
+  for (int round = 0;; ++round) {
+    const size_t far = measure_gaps();
     // Noise everywhere (more pins than a share of the output's vertices)
     // would cost more quality than the floors allow: not tried.
     if (far == 0 || round >= options.fidelity_rounds ||
@@ -368,35 +388,39 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
       unpinned_max_gap = stats.max_input_gap;
       unpinned_gap_vertices = stats.input_gap_vertices;
     }
-    std::vector<uint8_t> before = fixed;
+    const std::vector<uint8_t> before = fixed;
     const PinStats pinned = pin_to_input(out.mesh, out.home, fixed, input, h, out.input_gaps,
                                          options.fidelity, given_up);
     if (pinned.pinned == 0) break;
     ++stats.fidelity_rounds;
     stats.fidelity_pinned += pinned.pinned;
+    out_size = output_sizes(input, out.home, h);
+    const auto more = optimize_on_surface(out.mesh, out.home, fixed, out_size, input, adj, again,
+                                          around_changes(before));
+    stats.collapses += more.collapses;
+    stats.swaps += more.swaps;
+    stats.moves += more.moves;
     // Quality first: pins left in poor triangles are freed and the mesh
     // relaxes around them again (pins only decrease, so this ends).
-    for (int step = 0; step < 8; ++step) {
-      out_size = output_sizes(input, out.home, h);
-      const auto more = optimize_on_surface(out.mesh, out.home, fixed, out_size, input, adj, again,
-                                            around_changes(before));
-      stats.collapses += more.collapses;
-      stats.swaps += more.swaps;
-      stats.moves += more.moves;
-      before = fixed;
-      const size_t freed =
-          unpin_poor(out.mesh, fixed, input, options.fidelity_min_quality, given_up);
-      stats.fidelity_pinned -= freed;
-      if (freed == 0) break;
+    for (int step = 0; step < 8 && unpin_and_relax(options.fidelity_min_quality) > 0; ++step) {
     }
   }
-  // The pinned surface only if its quality stays at the floors (or at
-  // least as good as before pinning).
+  // The quality floors (or the quality before pinning, if lower): pins of
+  // ever better triangles are freed until they hold; else pinning is undone.
   if (stats.fidelity_rounds > 0) {
-    const QualityStats q0 = quality_stats(triangle_qualities(unpinned)),
-                       q1 = quality_stats(triangle_qualities(out.mesh));
-    if (q1.min < std::min(q0.min, options.fidelity_floor_min) ||
-        q1.mean < std::min(q0.mean, options.fidelity_floor_mean)) {
+    const QualityStats q0 = quality_stats(triangle_qualities(unpinned));
+    const double floor_min = std::min(q0.min, options.fidelity_floor_min);
+    const double floor_mean = std::min(q0.mean, options.fidelity_floor_mean);
+    auto holds = [&] {
+      const QualityStats q = quality_stats(triangle_qualities(out.mesh));
+      return q.min >= floor_min && q.mean >= floor_mean;
+    };
+    bool ok = holds();
+    for (double strict = options.fidelity_min_quality + 0.05; !ok && strict < 1; strict += 0.05)
+      if (unpin_and_relax(strict) > 0) ok = holds();
+    if (ok) {
+      measure_gaps();
+    } else {
       out.mesh = std::move(unpinned);
       out.home = std::move(unpinned_home);
       fixed = std::move(unpinned_fixed);
