@@ -54,9 +54,10 @@ usage:
         --curvature P            at least P edges per radian of curvature
         --feature-angle A        keep creases sharper than A degrees (default 60;
                                  180: none)
-        --fidelity F             pin the surface onto input vertices farther than
-                                 F h from it, where quality allows (default 0.1;
-                                 0: none, bumps are smoothed over)
+        --fidelity F             input vertices farther than F h from the wall get
+                                 a wall vertex pinned onto them and a finer size
+                                 around them, where quality and size allow
+                                 (default 0.1; 0: none, bumps are smoothed over)
         --core-size H            target size in the core of the lumen (default:
                                  the uniform size, or grown from the wall's)
       Layer options (R = the local vessel radius):

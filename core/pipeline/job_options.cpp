@@ -85,9 +85,10 @@ Status set_job_option(MeshJobOptions& o, std::string_view name, std::string_view
     o.remesh_options.feature_angle_degrees = x;
   } else if (name == "fidelity") {
     if (!number || x < 0 || x > 1)
-      return need(name, "a fraction of h in [0, 1] (0: no pinning to the input)");
+      return need(name, "a fraction of h in [0, 1] (0: the wall may smooth over the input)");
     o.remesh_options.fidelity = x;
     o.remesh_options.fidelity_rounds = x > 0 ? RemeshOptions{}.fidelity_rounds : 0;
+    o.remesh_options.fidelity_size_rounds = x > 0 ? RemeshOptions{}.fidelity_size_rounds : 0;
   } else if (name == "param") {
     if (value == "lscm")
       o.remesh_options.param = ParamMethod::kLscm;

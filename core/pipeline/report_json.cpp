@@ -107,6 +107,7 @@ std::string mesh_report_json(const MeshJobResult& r) {
     j.key("pinned_vertices").value(st.fidelity_pinned);
     j.key("pinning_rounds").value(st.fidelity_rounds);
     j.key("pinning_reverted").value(st.fidelity_reverted);
+    j.key("size_rounds").value(st.fidelity_size_rounds);
     j.end_object();
     j.key("swaps").value(st.swaps);
     j.key("moves").value(st.moves);

@@ -7,10 +7,12 @@
 #include "core/surface/remesh_surface.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <unordered_map>
 
+#include "core/geom/point_kdtree.h"
 #include "core/mesh/boundary_loops.h"
 #include "core/mesh/surface_distance.h"
 #include "core/param/fixed_boundary_map.h"
@@ -187,18 +189,39 @@ std::vector<double> output_sizes(const SurfaceMesh& input, const std::vector<int
   return size;
 }
 
-}  // namespace
+/// Edge length / mean target size of its ends (`size`: one per output
+/// vertex), each edge once: 10th percentile, median, 90th percentile.
+std::array<double, 3> edge_ratios(const RemeshedSurface& out, const std::vector<double>& size) {
+  std::vector<double> ratio;
+  ratio.reserve(out.mesh.triangles.size() / 2);
+  for (size_t t = 0; t < out.mesh.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int32_t a = out.mesh.triangles[3 * t + size_t(k)],
+                    b = out.mesh.triangles[3 * t + size_t((k + 1) % 3)];
+      if (a > b && !(out.on_opening[size_t(a)] && out.on_opening[size_t(b)])) continue;
+      const double* pa = &out.mesh.points[3 * size_t(a)];
+      const double* pb = &out.mesh.points[3 * size_t(b)];
+      const double len =
+          std::sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
+                    (pa[2] - pb[2]) * (pa[2] - pb[2]));
+      ratio.push_back(len / (0.5 * (size[size_t(a)] + size[size_t(b)])));
+    }
+  if (ratio.empty()) return {0, 0, 0};
+  auto at = [&](double q) {
+    auto it = ratio.begin() + std::ptrdiff_t(q * double(ratio.size() - 1));
+    std::nth_element(ratio.begin(), it, ratio.end());
+    return *it;
+  };
+  return {at(0.1), at(0.5), at(0.9)};
+}
 
-Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOptions& options,
-                                       RemeshStats* stats_out, const ProgressFn& progress) {
+/// Phases 2-6 at the sizes `sizes` (one per input vertex); adds to `stats`.
+Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOptions& options,
+                                        std::vector<double> sizes, RemeshStats& stats,
+                                        const ProgressFn& progress) {
   using R = Result<RemeshedSurface>;
-  RemeshStats stats;
   RemeshedSurface out;
-  auto t0 = std::chrono::steady_clock::now();
-  // Phase 1: size field.
-  auto sizes = vertex_sizes(input, options.size);
-  if (!sizes.ok()) return sizes.status();
-  out.input_sizes = std::move(sizes).value();
+  out.input_sizes = std::move(sizes);
   const std::vector<double>& h = out.input_sizes;
   {
     std::vector<double> sorted = h;
@@ -207,8 +230,10 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
     stats.size_max = sorted.back();
     stats.size_median = sorted[sorted.size() / 2];
   }
-  stats.seconds_size = seconds_since(t0);
+  stats.fidelity_rounds = stats.fidelity_pinned = 0;
+  stats.fidelity_reverted = false;
   if (!report_progress(progress, 0.1, "partitioning")) return R::Error(kCancelledMessage);
+  auto t0 = std::chrono::steady_clock::now();
 
   // Phase 2: sharp features, then the partition into mapped patches, which
   // sees the features as cuts (so no patch crosses a crease).
@@ -301,7 +326,7 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
     ++stats.retries;
     t0 = std::chrono::steady_clock::now();
   }
-  stats.seconds_mesh = seconds_since(t0);
+  stats.seconds_mesh += seconds_since(t0);
   if (!report_progress(progress, 0.85, "optimizing")) return R::Error(kCancelledMessage);
 
   // Phase 5: swaps and smoothing on the input surface.
@@ -312,7 +337,7 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
   stats.collapses = ostats.collapses;
   stats.swaps = ostats.swaps;
   stats.moves = ostats.moves;
-  stats.seconds_optimize = seconds_since(t0);
+  stats.seconds_optimize += seconds_since(t0);
 
   // Phase 6: fidelity: output vertices pinned onto the input vertices
   // farther than options.fidelity h from the output, then a few
@@ -432,7 +457,7 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
       stats.fidelity_reverted = true;
     }
   }
-  stats.seconds_fidelity = seconds_since(t0);
+  stats.seconds_fidelity += seconds_since(t0);
   out.sizes = out_size;
   out.on_opening.resize(fixed.size());
   out.on_feature.resize(fixed.size());
@@ -441,36 +466,70 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
     out.on_feature[v] = fixed[v] == kOnFeature;
   }
 
-  // How well the edges follow the field: edge length / mean target size of
-  // its ends, each edge once.
-  {
-    std::vector<double> ratio;
-    ratio.reserve(out.mesh.triangles.size() / 2);
-    for (size_t t = 0; t < out.mesh.num_triangles(); ++t)
-      for (int k = 0; k < 3; ++k) {
-        const int32_t a = out.mesh.triangles[3 * t + size_t(k)],
-                      b = out.mesh.triangles[3 * t + size_t((k + 1) % 3)];
-        if (a > b && !(out.on_opening[size_t(a)] && out.on_opening[size_t(b)])) continue;
-        const double* pa = &out.mesh.points[3 * size_t(a)];
-        const double* pb = &out.mesh.points[3 * size_t(b)];
-        const double len =
-            std::sqrt((pa[0] - pb[0]) * (pa[0] - pb[0]) + (pa[1] - pb[1]) * (pa[1] - pb[1]) +
-                      (pa[2] - pb[2]) * (pa[2] - pb[2]));
-        ratio.push_back(len / (0.5 * (out_size[size_t(a)] + out_size[size_t(b)])));
-      }
-    if (!ratio.empty()) {
-      auto at = [&](double q) {
-        auto it = ratio.begin() + std::ptrdiff_t(q * double(ratio.size() - 1));
-        std::nth_element(ratio.begin(), it, ratio.end());
-        return *it;
-      };
-      stats.edge_ratio_p10 = at(0.1);
-      stats.edge_ratio_median = at(0.5);
-      stats.edge_ratio_p90 = at(0.9);
+  // How well the edges follow the field.
+  const std::array<double, 3> ratios = edge_ratios(out, out_size);
+  stats.edge_ratio_p10 = ratios[0];
+  stats.edge_ratio_median = ratios[1];
+  stats.edge_ratio_p90 = ratios[2];
+  return out;
+}
+
+}  // namespace
+
+Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOptions& options,
+                                       RemeshStats* stats_out, const ProgressFn& progress) {
+  RemeshStats stats;
+  auto t0 = std::chrono::steady_clock::now();
+  // Phase 1: size field.
+  auto sizes = vertex_sizes(input, options.size);
+  if (!sizes.ok()) return sizes.status();
+  std::vector<double> h = std::move(sizes).value();
+  const std::vector<double> asked = h;
+  stats.seconds_size = seconds_since(t0);
+  auto result = remesh_at_sizes(input, options, h, stats, progress);
+  // Phase 7: where more than a few input vertices stay far from the output
+  // (a bend tighter than h can follow, coarse facets), a finer size within
+  // h of each (at most halved per round, graded), and phases 2-6 again. Not
+  // when they are everywhere (noise: the surface smooths over it).
+  for (int round = 0; round < options.fidelity_size_rounds && result.ok(); ++round) {
+    const RemeshedSurface& r = result.value();
+    t0 = std::chrono::steady_clock::now();
+    std::vector<int32_t> far;
+    for (size_t v = 0; v < h.size(); ++v)
+      if (r.input_gaps[v] > options.fidelity * h[v]) far.push_back(int32_t(v));
+    const double share = double(far.size()) / double(r.mesh.num_vertices());
+    if (!(share > options.fidelity_size_share) || share > options.fidelity_noise_share) break;
+    const PointCloud cloud{input.points};
+    PointKdTree tree(3, cloud);
+    tree.buildIndex();
+    std::vector<double> finer = h;
+    std::vector<std::pair<uint32_t, double>> near;
+    const nanoflann::SearchParams unsorted(32, 0, false);
+    for (int32_t v : far) {
+      const double rel = r.input_gaps[size_t(v)] / h[size_t(v)];
+      const double target = std::max(
+          h[size_t(v)] * std::clamp(0.8 * options.fidelity / rel, 0.5, 0.8), options.size.size_min);
+      tree.radiusSearch(&input.points[3 * size_t(v)], h[size_t(v)] * h[size_t(v)], near, unsorted);
+      for (const auto& item : near) finer[item.first] = std::min(finer[item.first], target);
     }
+    limit_gradation(input, finer, options.size.gradation);
+    stats.seconds_fidelity += seconds_since(t0);
+    RemeshStats next = stats;
+    auto again = remesh_at_sizes(input, options, finer, next, progress);
+    if (!again.ok() && again.status().message() == kCancelledMessage) return again.status();
+    // Kept only if the edges still follow the asked size (median within
+    // fidelity_size_drift of it); else the surface of the previous round.
+    if (!again.ok() ||
+        edge_ratios(again.value(), output_sizes(input, again.value().home, asked))[1] <
+            1 - options.fidelity_size_drift)
+      break;
+    h = std::move(finer);
+    stats = next;
+    ++stats.fidelity_size_rounds;
+    result = std::move(again);
   }
   if (stats_out) *stats_out = stats;
-  return out;
+  return result;
 }
 
 }  // namespace vm

@@ -43,6 +43,15 @@ struct RemeshOptions {
   /// Pinning is not tried when more input vertices than this share of
   /// the output's vertices are far (noise everywhere).
   double fidelity_max_share = 0.1;
+  /// Size rounds: when the input vertices left beyond fidelity h are more
+  /// than fidelity_size_share of the output's vertices (and at most
+  /// fidelity_noise_share: beyond that they are noise, smoothed over), the
+  /// size is made finer within h of each (at most halved, graded) and the
+  /// surface meshed again, at most this many times.
+  /// A round is kept only if the median edge over the asked size stays
+  /// above 1 - fidelity_size_drift.
+  int fidelity_size_rounds = 2;
+  double fidelity_size_share = 0.005, fidelity_noise_share = 0.2, fidelity_size_drift = 0.08;
   /// Optimization passes after each fidelity round.
   int fidelity_passes = 10;
   /// Pins left in a triangle with gamma_k below this are freed again.
@@ -72,7 +81,9 @@ struct RemeshStats {
   /// the largest input-vertex distance to the output over h, with the count
   /// of input vertices beyond kReportedGap h.
   size_t fidelity_rounds = 0, fidelity_pinned = 0;
-  bool fidelity_reverted = false;  ///< pinning was undone (it cost too much quality)
+  bool fidelity_reverted = false;
+  size_t fidelity_size_rounds =
+      0;  ///< meshings again at a finer size  ///< pinning was undone (it cost too much quality)
   double max_input_gap = 0;
   size_t input_gap_vertices = 0;
   double seconds_size = 0, seconds_partition = 0, seconds_mesh = 0, seconds_optimize = 0,

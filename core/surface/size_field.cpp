@@ -64,7 +64,41 @@ std::vector<double> max_curvature(const SurfaceMesh& m, const std::vector<int32_
   return k;
 }
 
+/// Gradation, smallest sizes first: h_w <= h_v + gradation |x_v x_w| along
+/// the edges (off/nb: vertex_neighbors).
+void grade_sizes(const SurfaceMesh& m, const std::vector<int32_t>& off,
+                 const std::vector<int32_t>& nb, std::vector<double>& h, double gradation) {
+  if (!(gradation > 0)) return;
+  using Item = std::pair<double, int32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
+  for (size_t v = 0; v < h.size(); ++v) q.push({h[v], int32_t(v)});
+  while (!q.empty()) {
+    auto [hv, v] = q.top();
+    q.pop();
+    if (hv > h[size_t(v)]) continue;
+    for (int32_t i = off[size_t(v)]; i < off[size_t(v) + 1]; ++i) {
+      const size_t w = size_t(nb[size_t(i)]);
+      double d = 0;
+      for (int c = 0; c < 3; ++c) {
+        double e = m.points[3 * w + c] - m.points[3 * size_t(v) + c];
+        d += e * e;
+      }
+      double limit = hv + gradation * std::sqrt(d);
+      if (limit < h[w]) {
+        h[w] = limit;
+        q.push({limit, int32_t(w)});
+      }
+    }
+  }
+}
+
 }  // namespace
+
+void limit_gradation(const SurfaceMesh& m, std::vector<double>& h, double gradation) {
+  std::vector<int32_t> off, nb;
+  vertex_neighbors(m, off, nb);
+  grade_sizes(m, off, nb, h, gradation);
+}
 
 Result<std::vector<double>> vertex_sizes(const SurfaceMesh& m, const SizeOptions& o) {
   using R = Result<std::vector<double>>;
@@ -98,30 +132,8 @@ Result<std::vector<double>> vertex_sizes(const SurfaceMesh& m, const SizeOptions
   }
   // Phase 3: clamps.
   for (double& x : h) x = std::clamp(x, o.size_min, o.size_max);
-  // Phase 4: gradation, smallest sizes first.
-  if (o.gradation > 0) {
-    using Item = std::pair<double, int32_t>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
-    for (size_t v = 0; v < nv; ++v) q.push({h[v], int32_t(v)});
-    while (!q.empty()) {
-      auto [hv, v] = q.top();
-      q.pop();
-      if (hv > h[size_t(v)]) continue;
-      for (int32_t i = off[size_t(v)]; i < off[size_t(v) + 1]; ++i) {
-        const size_t w = size_t(nb[size_t(i)]);
-        double d = 0;
-        for (int c = 0; c < 3; ++c) {
-          double e = m.points[3 * w + c] - m.points[3 * size_t(v) + c];
-          d += e * e;
-        }
-        double limit = hv + o.gradation * std::sqrt(d);
-        if (limit < h[w]) {
-          h[w] = limit;
-          q.push({limit, int32_t(w)});
-        }
-      }
-    }
-  }
+  // Phase 4: gradation.
+  grade_sizes(m, off, nb, h, o.gradation);
   for (double x : h)
     if (!(x > 0) || !std::isfinite(x))
       return R::Error("the size field is not positive everywhere (check the size settings)");

@@ -37,4 +37,8 @@ struct SizeOptions {
 /// parameters, min > max, an empty mesh.
 Result<std::vector<double>> vertex_sizes(const SurfaceMesh& mesh, const SizeOptions& options);
 
+/// Limits the growth of `h` (one size per vertex of `mesh`) to `gradation`
+/// per unit length along the edges, lowering sizes only (0: no change).
+void limit_gradation(const SurfaceMesh& mesh, std::vector<double>& h, double gradation);
+
 }  // namespace vm

@@ -131,6 +131,10 @@ TEST(MeshJob, FidelityOptionPinsTheWallOntoFarInputVerticesOrNot) {
   ASSERT_TRUE(set_job_option(o, "fidelity", "0.2").ok());
   EXPECT_EQ(o.remesh_options.fidelity, 0.2);
   EXPECT_GT(o.remesh_options.fidelity_rounds, 0);
+  EXPECT_GT(o.remesh_options.fidelity_size_rounds, 0);
+  ASSERT_TRUE(set_job_option(o, "fidelity", "0").ok());
+  EXPECT_EQ(o.remesh_options.fidelity_rounds, 0);
+  EXPECT_EQ(o.remesh_options.fidelity_size_rounds, 0);
   // A mildly noisy phantom at a size that leaves some of its bumps off the
   // wall: pinned by default, not with 0.
   const std::vector<uint8_t> stl =
@@ -344,7 +348,7 @@ TEST(ReportJson, HasTheDocumentedKeys) {
         "\"caps\":[{\"name\":\"inlet\"", "\"volume\":{\"vertices\":", "\"tetrahedra\":",
         "\"groups\":[{\"dim\":2,\"name\":\"wall\",\"elements\":", "{\"dim\":3,\"name\":\"lumen\"",
         "\"input_gap_vertices\":", "\"pinned_vertices\":", "\"pinning_rounds\":",
-        "\"pinning_reverted\":", "\"fidelity\":"})
+        "\"pinning_reverted\":", "\"size_rounds\":", "\"fidelity\":"})
     EXPECT_NE(m.find(key), std::string::npos) << key << " in " << m;
 }
 

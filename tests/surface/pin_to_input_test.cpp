@@ -2,15 +2,18 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 #include <utility>
 #include <vector>
 
 #include "core/mesh/surface_distance.h"
+#include "core/mesh/topology.h"
 #include "core/quality/triangle_quality.h"
 #include "core/surface/optimize_surface.h"
 #include "core/surface/remesh_surface.h"
 #include "tests/support/phantoms.h"
+#include "tests/support/test_meshes.h"
 
 namespace vm {
 namespace {
@@ -140,7 +143,7 @@ TEST(RemeshSurface, FidelityRoundsBringTheInputCloserWithoutLosingQuality) {
   o.size.mode = SizeMode::kUniform;
   o.size.size = 0.3;
   RemeshStats off_stats, on_stats;
-  o.fidelity_rounds = 0;
+  o.fidelity_rounds = o.fidelity_size_rounds = 0;
   auto off = remesh_surface(in, o, &off_stats);
   o.fidelity_rounds = 3;
   auto on = remesh_surface(in, o, &on_stats);
@@ -167,6 +170,60 @@ TEST(RemeshSurface, FidelityRoundsBringTheInputCloserWithoutLosingQuality) {
   EXPECT_GE(q1.mean, std::min(q0.mean, o.fidelity_floor_mean));
   // Still on the input.
   EXPECT_LE(distances_to_surface(in, on.value().mesh.points).max, 1e-9);
+}
+
+}  // namespace
+}  // namespace vm
+
+namespace vm {
+namespace {
+
+TEST(RemeshSurface, SizeRoundsRefineAroundWhatTheWallCannotFollow) {
+  // The aneurysm phantom: its neck bends tighter than a wall of 0.3 can
+  // follow, so pinning alone leaves input vertices far from it.
+  const SurfaceMesh in = testing::phantom(PhantomKind::kAneurysm, true, 0.1, 0.1);
+  const double h = 0.3;
+  RemeshOptions o;
+  o.size.mode = SizeMode::kUniform;
+  o.size.size = h;
+  RemeshStats off_stats, on_stats;
+  o.fidelity_size_rounds = 0;
+  auto off = remesh_surface(in, o, &off_stats);
+  o.fidelity_size_rounds = 2;
+  auto on = remesh_surface(in, o, &on_stats);
+  ASSERT_TRUE(off.ok()) << off.message();
+  ASSERT_TRUE(on.ok()) << on.message();
+  std::vector<double> lengths;
+  const SurfaceMesh& m = on.value().mesh;
+  for (size_t t = 0; t < m.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const double* a = &m.points[3 * size_t(m.triangles[3 * t + size_t(k)])];
+      const double* b = &m.points[3 * size_t(m.triangles[3 * t + size_t(k + 1) % 3])];
+      lengths.push_back(std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
+    }
+  const double median = testing::median(lengths);
+  const QualityStats q = quality_stats(triangle_qualities(m));
+  std::cout << "[ info ] far input vertices " << off_stats.input_gap_vertices << " -> "
+            << on_stats.input_gap_vertices << " (" << on_stats.fidelity_size_rounds
+            << " size rounds, sizes " << on_stats.size_min << ".." << on_stats.size_max
+            << "), median edge " << median / h << " h, gamma min " << q.min << " mean " << q.mean
+            << "\n";
+  EXPECT_GE(on_stats.fidelity_size_rounds, 1u);
+  EXPECT_LT(on_stats.input_gap_vertices, off_stats.input_gap_vertices / 2);
+  // Finer only where needed: the sizes stay within [h/4, h] and the median
+  // edge within the drift allowed of h.
+  EXPECT_LT(on_stats.size_min, h);
+  EXPECT_GE(on_stats.size_min, h / 4);
+  EXPECT_EQ(on_stats.size_max, h);
+  EXPECT_GT(median, (1 - o.fidelity_size_drift - 0.02) * h);
+  EXPECT_LT(median, 1.1 * h);
+  EXPECT_GE(q.min, 0.55);
+  EXPECT_GE(q.mean, 0.97);
+  EXPECT_EQ(analyze_topology(m).openings.size(), 3u);
+  EXPECT_LE(distances_to_surface(in, m.points).max, 1e-9);
+  // The reported gaps are those of the final surface.
+  const std::vector<double> gaps = distances_to_surface(m, in.points, true).per_point;
+  for (size_t v = 0; v < gaps.size(); ++v) EXPECT_NEAR(gaps[v], on.value().input_gaps[v], 1e-12);
 }
 
 }  // namespace

@@ -119,8 +119,9 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * default with N = 20), clamps `sizeMin` / `sizeMax`, `gradation`,
      * `curvature`, `featureAngle` (degrees; sharper creases are kept, 180:
      * none), `fidelity` (default 0.1: input vertices farther than 0.1 h from
-     * the wall get a wall vertex pinned onto them where quality allows; 0:
-     * none, bumps are smoothed over); advanced: `param` ('lscm' | 'harmonic' | 'floater'),
+     * the wall get a wall vertex pinned onto them and a finer size around
+     * them where quality and size allow; 0: none, bumps are smoothed over);
+     * advanced: `param` ('lscm' | 'harmonic' | 'floater'),
      * `mesher2d` ('frontal' | 'delaunay' | 'adapt').
      * @returns {{ok: true, msh: Uint8Array, report: object, surface: object,
      *   volume?: object} | {ok: false, error: string}} (no volume when
