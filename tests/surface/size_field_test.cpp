@@ -237,6 +237,27 @@ TEST(SizeField, GradationBoundsTheSizeChangeAlongEveryEdge) {
   }
 }
 
+TEST(SizeField, LimitGradationSpreadsALocalDipOnly) {
+  const SurfaceMesh m = testing::open_tube(32, 16, 1.0, 4.0);
+  std::vector<double> h(m.num_vertices(), 0.3);
+  h[100] = 0.05;  // a dip, as the fidelity rounds make
+  const std::vector<double> before = h;
+  ASSERT_GT(worst_gradation_excess(m, h, 0.2), 1e-6);
+  limit_gradation(m, h, 0.2);
+  EXPECT_LE(worst_gradation_excess(m, h, 0.2), 1e-12);
+  size_t lowered = 0;
+  for (size_t v = 0; v < h.size(); ++v) {
+    EXPECT_LE(h[v], before[v]);
+    lowered += h[v] < before[v];
+  }
+  EXPECT_EQ(h[100], 0.05);
+  EXPECT_GT(lowered, 1u);            // spread around the dip
+  EXPECT_LT(lowered, h.size() / 4);  // and only there
+  std::vector<double> same = before;
+  limit_gradation(m, same, 0);  // 0: off
+  EXPECT_EQ(same, before);
+}
+
 TEST(SizeField, InvalidOptionsAreErrors) {
   const SurfaceMesh tube = testing::open_tube(16, 8);
   auto fails = [&](const SizeOptions& o) { return !vertex_sizes(tube, o).ok(); };
