@@ -215,10 +215,39 @@ std::array<double, 3> edge_ratios(const RemeshedSurface& out, const std::vector<
   return {at(0.1), at(0.5), at(0.9)};
 }
 
-/// Phases 2-6 at the sizes `sizes` (one per input vertex); adds to `stats`.
+/// Phase 2: the sharp features (at the asked sizes) and the partition into
+/// mapped patches, which sees the features as cuts (so no patch crosses a
+/// crease). The partition does not depend on the sizes, so the size rounds
+/// reuse it; a patch that fails to mesh empties `patches` and is split.
+struct Partition {
+  TriangleAdjacency full_adj;    ///< of the input
+  std::vector<uint8_t> feature;  ///< per half-edge: a sharp feature
+  TriangleAdjacency adj;         ///< full_adj cut along the features
+  PartitionOptions options;
+  std::vector<MappedPatch> patches;  ///< empty: to be computed
+  std::vector<int32_t> label;        ///< per input triangle: its patch
+};
+
+Partition find_features(const SurfaceMesh& input, const RemeshOptions& options,
+                        const std::vector<double>& h, RemeshStats& stats) {
+  Partition part;
+  part.full_adj = build_adjacency(input);
+  part.feature = sharp_feature_edges(input, part.full_adj, h, options.feature_angle_degrees);
+  part.adj = part.full_adj;
+  stats.feature_edges = 0;
+  for (size_t he = 0; he < part.feature.size(); ++he)
+    if (part.feature[he])
+      part.adj.opposite[he] = TriangleAdjacency::kBoundary, ++stats.feature_edges;
+  stats.feature_edges /= 2;
+  part.options = options.partition;
+  return part;
+}
+
+/// Phases 2-6 at the sizes `sizes` (one per input vertex) on the features
+/// of `part`; adds to `stats`.
 Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOptions& options,
-                                        std::vector<double> sizes, RemeshStats& stats,
-                                        const ProgressFn& progress) {
+                                        std::vector<double> sizes, Partition& part,
+                                        RemeshStats& stats, const ProgressFn& progress) {
   using R = Result<RemeshedSurface>;
   RemeshedSurface out;
   out.input_sizes = std::move(sizes);
@@ -234,17 +263,7 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
   stats.fidelity_reverted = false;
   if (!report_progress(progress, 0.1, "partitioning")) return R::Error(kCancelledMessage);
   auto t0 = std::chrono::steady_clock::now();
-
-  // Phase 2: sharp features, then the partition into mapped patches, which
-  // sees the features as cuts (so no patch crosses a crease).
-  t0 = std::chrono::steady_clock::now();
-  const TriangleAdjacency full_adj = build_adjacency(input);
-  const std::vector<uint8_t> feature =
-      sharp_feature_edges(input, full_adj, h, options.feature_angle_degrees);
-  TriangleAdjacency adj = full_adj;
-  for (size_t he = 0; he < feature.size(); ++he)
-    if (feature[he]) adj.opposite[he] = TriangleAdjacency::kBoundary, ++stats.feature_edges;
-  stats.feature_edges /= 2;
+  const TriangleAdjacency& adj = part.adj;
   PatchMapFn map = [&](const SurfaceMesh& patch) -> Result<Parametrization> {
     switch (options.param) {
       case ParamMethod::kHarmonic:
@@ -257,23 +276,25 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
   };
   // Phases 2-4, again with the failing patch forced to split if its planar
   // boundary crosses itself (a coarse resampling of a tortuous boundary).
-  PartitionOptions partition = options.partition;
   std::vector<uint8_t> fixed;  // per output vertex: kFree, kOnOpening or kOnFeature
-  for (int attempt = 0;; ++attempt) {
-    PartitionStats pstats;
-    auto patches = partition_for_maps(input, adj, map, partition, &pstats);
-    if (!patches.ok()) return patches.status();
-    stats.patches = patches.value().size();
-    stats.bisections = pstats.bisections;
-    stats.rejected_maps = pstats.rejected_maps;
-    std::vector<int32_t> label(input.num_triangles(), -1);
-    for (size_t i = 0; i < patches.value().size(); ++i)
-      for (int32_t t : patches.value()[i].triangle_of) label[size_t(t)] = int32_t(i);
-    stats.seconds_partition += seconds_since(t0);
+  for (;;) {
+    if (part.patches.empty()) {
+      PartitionStats pstats;
+      auto patches = partition_for_maps(input, adj, map, part.options, &pstats);
+      if (!patches.ok()) return patches.status();
+      part.patches = std::move(patches).value();
+      stats.bisections = pstats.bisections;
+      stats.rejected_maps = pstats.rejected_maps;
+      part.label.assign(input.num_triangles(), -1);
+      for (size_t i = 0; i < part.patches.size(); ++i)
+        for (int32_t t : part.patches[i].triangle_of) part.label[size_t(t)] = int32_t(i);
+      stats.seconds_partition += seconds_since(t0);
+    }
+    stats.patches = part.patches.size();
 
     // Phase 3: seams.
     t0 = std::chrono::steady_clock::now();
-    Seams seams = discretize_seams(input, full_adj, feature, label, h);
+    Seams seams = discretize_seams(input, part.full_adj, part.feature, part.label, h);
     stats.seam_points = seams.home.size();
     out.mesh.points = seams.points;
     out.mesh.triangles.clear();
@@ -284,8 +305,8 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
     std::vector<int32_t> ids;
     Status failed = Status::Ok();
     size_t failed_patch = 0;
-    for (size_t i = 0; i < patches.value().size() && failed.ok(); ++i) {
-      const MappedPatch& p = patches.value()[i];
+    for (size_t i = 0; i < part.patches.size() && failed.ok(); ++i) {
+      const MappedPatch& p = part.patches[i];
       if (!report_progress(progress, 0.2 + 0.6 * double(i) / double(stats.patches),
                            "meshing patches"))
         return R::Error(kCancelledMessage);
@@ -317,13 +338,15 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
       for (int32_t v : mesh.mesh.triangles) out.mesh.triangles.push_back(global[size_t(v)]);
     }
     if (failed.ok()) break;
-    const auto& bad = patches.value()[failed_patch].triangle_of;
-    if (attempt >= 8 || bad.size() < 8)
+    const std::vector<int32_t> bad = part.patches[failed_patch].triangle_of;
+    if (stats.retries >= 8 || bad.size() < 8)
       return Status::Error("meshing a patch of " + std::to_string(bad.size()) +
                            " input triangles failed: " + failed.message());
-    if (partition.size_limit.empty()) partition.size_limit.assign(input.num_triangles(), 0);
-    for (int32_t t : bad) partition.size_limit[size_t(t)] = int32_t(bad.size());
+    std::vector<int32_t>& limit = part.options.size_limit;
+    if (limit.empty()) limit.assign(input.num_triangles(), 0);
+    for (int32_t t : bad) limit[size_t(t)] = int32_t(bad.size());
     ++stats.retries;
+    part.patches.clear();
     t0 = std::chrono::steady_clock::now();
   }
   stats.seconds_mesh += seconds_since(t0);
@@ -384,18 +407,21 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
     }
     return far;
   };
-  // Frees the pins of triangles below min_gamma, then relaxes around them.
-  auto unpin_and_relax = [&](double min_gamma) {
-    const std::vector<uint8_t> before = fixed;
-    const size_t freed = unpin_poor(out.mesh, fixed, input, min_gamma, given_up);
-    stats.fidelity_pinned -= freed;
-    if (freed == 0) return size_t(0);
+  // A few optimization passes where the flags changed since `before`.
+  auto relax = [&](const std::vector<uint8_t>& before) {
     out_size = output_sizes(input, out.home, h);
     const auto more = optimize_on_surface(out.mesh, out.home, fixed, out_size, input, adj, again,
                                           around_changes(before));
     stats.collapses += more.collapses;
     stats.swaps += more.swaps;
     stats.moves += more.moves;
+  };
+  // Frees the pins of triangles below min_gamma, then relaxes around them.
+  auto unpin_and_relax = [&](double min_gamma) {
+    const std::vector<uint8_t> before = fixed;
+    const size_t freed = unpin_poor(out.mesh, fixed, input, min_gamma, given_up);
+    stats.fidelity_pinned -= freed;
+    if (freed > 0) relax(before);
     return freed;
   };
   for (int round = 0;; ++round) {
@@ -419,12 +445,7 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
     if (pinned.pinned == 0) break;
     ++stats.fidelity_rounds;
     stats.fidelity_pinned += pinned.pinned;
-    out_size = output_sizes(input, out.home, h);
-    const auto more = optimize_on_surface(out.mesh, out.home, fixed, out_size, input, adj, again,
-                                          around_changes(before));
-    stats.collapses += more.collapses;
-    stats.swaps += more.swaps;
-    stats.moves += more.moves;
+    relax(before);
     // Quality first: pins left in poor triangles are freed and the mesh
     // relaxes around them again (pins only decrease, so this ends).
     for (int step = 0; step < 8 && unpin_and_relax(options.fidelity_min_quality) > 0; ++step) {
@@ -486,10 +507,14 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
   std::vector<double> h = std::move(sizes).value();
   const std::vector<double> asked = h;
   stats.seconds_size = seconds_since(t0);
-  auto result = remesh_at_sizes(input, options, h, stats, progress);
+  t0 = std::chrono::steady_clock::now();
+  Partition part = find_features(input, options, h, stats);
+  stats.seconds_partition = seconds_since(t0);
+  auto result = remesh_at_sizes(input, options, h, part, stats, progress);
   // Phase 7: where more than a few input vertices stay far from the output
   // (a bend tighter than h can follow, coarse facets), a finer size within
-  // h of each (at most halved per round, graded), and phases 2-6 again. Not
+  // h of each (at most halved per round, graded), and phases 3-6 again on
+  // the same partition. Not
   // when they are everywhere (noise: the surface smooths over it).
   for (int round = 0; round < options.fidelity_size_rounds && result.ok(); ++round) {
     const RemeshedSurface& r = result.value();
@@ -515,7 +540,7 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
     limit_gradation(input, finer, options.size.gradation);
     stats.seconds_fidelity += seconds_since(t0);
     RemeshStats next = stats;
-    auto again = remesh_at_sizes(input, options, finer, next, progress);
+    auto again = remesh_at_sizes(input, options, finer, part, next, progress);
     if (!again.ok() && again.status().message() == kCancelledMessage) return again.status();
     // Kept only if the edges still follow the asked size (median within
     // fidelity_size_drift of it); else the surface of the previous round.
