@@ -392,7 +392,21 @@ bool Delaunay3D::ghost_conflict(int32_t t, const double* p, int32_t pv, bool str
   return finite_conflict(tets_[size_t(t)].n[g] >> 2, p, pv);
 }
 
-void Delaunay3D::find_cavity_fast(int32_t t0, const double* p, int32_t pv) {
+template <bool kVerify>
+bool Delaunay3D::bowyer_watson(int32_t t0, const double* p, int32_t pv, bool respect_constraints) {
+  // Bowyer-Watson's search from t0 (which holds p). Unverified (the
+  // triangulation is Delaunay, nothing constrained): the conflict region,
+  // always star-shaped. Verified: not crossing constrained faces, and any
+  // doubt (a ghost, a constrained face inside, too many tetrahedra, a
+  // boundary face not strictly visible from p) returns false, and the
+  // caller falls back to find_cavity_checked. When the conflict region is
+  // locally Delaunay it is star-shaped from p (p in ball(t) but not in
+  // ball(n) across a locally Delaunay face puts p strictly on t's side, up
+  // to ties), so this usually succeeds; when it does, the cavity is exactly
+  // what find_cavity_checked would find (every tetrahedron of a
+  // star-shaped region is reached from p across faces seen from inside)
+  // without the shrinking passes.
+  if (kVerify && is_ghost(t0)) return false;
   const uint32_t in = uint32_t(visit_stamp()), out = in + 1;
   cavity_.clear();
   boundary_.clear();
@@ -400,56 +414,22 @@ void Delaunay3D::find_cavity_fast(int32_t t0, const double* p, int32_t pv) {
   stamp_[size_t(t0)] = in;
   for (size_t i = 0; i < cavity_.size(); ++i) {
     const int32_t t = cavity_[i];
+    const unsigned cons = kVerify && respect_constraints ? tc_[size_t(t)] : 0u;
     for (int k = 0; k < 4; ++k) {
       const int32_t e = 4 * t + k;
       const int32_t n = link(e) >> 2;
       const uint32_t s = stamp_[size_t(n)];
-      if (s == in) continue;
-      if (s != out && conflict(n, p, pv, false)) {
-        stamp_[size_t(n)] = in;
-        cavity_.push_back(n);
-      } else {
-        stamp_[size_t(n)] = out;
-        boundary_.push_back(e);
-      }
-    }
-  }
-}
-
-bool Delaunay3D::find_cavity_verified(int32_t t0, const double* p, int32_t pv,
-                                      bool respect_constraints) {
-  // Bowyer-Watson's search, not crossing constrained faces; any doubt
-  // (a ghost, a constrained face inside, too many tetrahedra, a boundary
-  // face not strictly visible from p) returns false, and the caller falls
-  // back to find_cavity_checked. When the conflict region is locally
-  // Delaunay it is star-shaped from p (p in ball(t) but not in ball(n)
-  // across a locally Delaunay face puts p strictly on t's side, up to
-  // ties), so this usually succeeds; when it does, the cavity is exactly
-  // what find_cavity_checked would find (every tetrahedron of a star-shaped
-  // region is reached from p across faces seen from inside) without the
-  // shrinking passes.
-  if (is_ghost(t0)) return false;
-  const uint32_t in = uint32_t(visit_stamp()), out = in + 1;
-  cavity_.clear();
-  boundary_.clear();
-  cavity_.push_back(t0);
-  stamp_[size_t(t0)] = in;
-  for (size_t i = 0; i < cavity_.size(); ++i) {
-    const int32_t t = cavity_[i];
-    const unsigned cons = respect_constraints ? tc_[size_t(t)] : 0u;
-    for (int k = 0; k < 4; ++k) {
-      const int32_t e = 4 * t + k;
-      const int32_t n = link(e) >> 2;
-      const uint32_t s = stamp_[size_t(n)];
-      if ((cons >> k) & 1u) {
+      if (kVerify && ((cons >> k) & 1u)) {
         if (s == in) return false;  // a constrained face inside the cavity
         boundary_.push_back(e);     // n may still be reached another way
         continue;
       }
       if (s == in) continue;
       if (s != out && conflict(n, p, pv, false)) {
-        const int32_t* v = tet(n);
-        if ((v[0] | v[1] | v[2] | v[3]) < 0 || cavity_.size() >= kMaxCavity) return false;
+        if (kVerify) {
+          const int32_t* v = tet(n);
+          if ((v[0] | v[1] | v[2] | v[3]) < 0 || cavity_.size() >= kMaxCavity) return false;
+        }
         stamp_[size_t(n)] = in;
         cavity_.push_back(n);
       } else {
@@ -458,6 +438,7 @@ bool Delaunay3D::find_cavity_verified(int32_t t0, const double* p, int32_t pv,
       }
     }
   }
+  if (!kVerify) return true;
   // Star-shaped: p strictly inside every boundary face (its new
   // tetrahedron positive).
   for (int32_t e : boundary_) {
@@ -680,8 +661,8 @@ Delaunay3D::InsertResult Delaunay3D::insert_vertex(int32_t v, int32_t hint,
     return {InsertStatus::kOutsideHull, -1};
   }
   if (delaunay_ && !respect_constraints) {
-    find_cavity_fast(t, p, v);
-  } else if (!find_cavity_verified(t, p, v, respect_constraints)) {
+    bowyer_watson<false>(t, p, v, false);
+  } else if (!bowyer_watson<true>(t, p, v, respect_constraints)) {
     ++stats_.checked_cavities;
     if (!find_cavity_checked(t, p, v, respect_constraints)) return {InsertStatus::kBlocked, -1};
   }

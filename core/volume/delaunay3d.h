@@ -222,8 +222,11 @@ class Delaunay3D {
   bool finite_conflict(int32_t t, const double* p, int32_t pv) const;
   bool sos_conflict(int32_t t, const double* p, int32_t pv) const;
   bool ghost_conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const;
-  void find_cavity_fast(int32_t t0, const double* p, int32_t pv);
-  bool find_cavity_verified(int32_t t0, const double* p, int32_t pv, bool respect_constraints);
+  /// The Bowyer-Watson cavity of p from t0 into cavity_ / boundary_;
+  /// kVerify: constrained faces respected and the result checked
+  /// star-shaped (false: fall back to find_cavity_checked).
+  template <bool kVerify>
+  bool bowyer_watson(int32_t t0, const double* p, int32_t pv, bool respect_constraints);
   bool find_cavity_checked(int32_t t0, const double* p, int32_t pv, bool respect_constraints);
   void star(int32_t pv);
   int32_t new_tet_id();
