@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_util.h"
 #include "core/pipeline/job_options.h"
 #include "core/pipeline/mesh_job.h"
 #include "core/quality/tet_quality.h"
@@ -43,17 +44,8 @@ struct RunResult {
   double tets, inserted, qmin, qmean, below02, peak_mb, steiner;
 };
 
-double thread_cpu() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using vm::bench::median_of;
+using vm::bench::thread_cpu;
 
 template <class T>
 void put(std::ofstream& f, const std::vector<T>& v) {
@@ -70,7 +62,8 @@ bool get(std::ifstream& f, std::vector<T>& v) {
 }
 
 // Mean length of the edges at each vertex (mesh_job.cpp's mean_edge_lengths).
-std::vector<double> mean_edge_lengths(const std::vector<double>& pts, const std::vector<int32_t>& tr) {
+std::vector<double> mean_edge_lengths(const std::vector<double>& pts,
+                                      const std::vector<int32_t>& tr) {
   std::vector<double> sum(pts.size() / 3, 0.0), cnt(pts.size() / 3, 0.0);
   for (size_t t = 0; t < tr.size(); t += 3)
     for (int k = 0; k < 3; ++k) {
@@ -141,24 +134,19 @@ bool run_once(const Capped& in, double core, RunResult* out) {
   }
   vm::FillOptions fo;
   fo.core_size = core;
-  vm::FillStats fs;
-  c0 = thread_cpu();
-  auto filled = vm::fill_volume(rec.value().kernel, size, fo, &fs);
-  out->fill_cpu = thread_cpu() - c0;
-  if (!filled.ok()) {
-    std::fprintf(stderr, "fill: %s\n", filled.message().c_str());
-    return false;
-  }
+  vm::bench::FillRun fill;
+  if (!vm::bench::timed_fill(rec.value().kernel, size, fo, &fill)) return false;
+  const vm::FillStats& fs = fill.stats;
+  out->fill_cpu = fill.cpu_s;
   out->fill_s = fs.seconds;
   out->refine_s = fs.refine_seconds;
   out->optimize_s = fs.optimize_seconds;
   out->tets = double(fs.tets);
   out->inserted = double(fs.inserted_vertices);
-  auto q = vm::tet_qualities(filled.value());
-  auto qs = vm::quality_stats(q, 20);
-  out->qmin = qs.min;
-  out->qmean = qs.mean;
-  out->below02 = double(std::count_if(q.begin(), q.end(), [](float x) { return x < 0.2f; }));
+  out->qmin = fill.summary.min;
+  out->qmean = fill.summary.mean;
+  out->below02 = double(
+      std::count_if(fill.quality.begin(), fill.quality.end(), [](float x) { return x < 0.2f; }));
   std::fprintf(stderr,
                "  refine: %lld inserted, %lld candidates (rejected: %lld spacing, %lld boundary, "
                "%lld outside, %lld kernel), %lld size evals, first layer %.2f s; "
@@ -187,12 +175,18 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() { return i + 1 < argc ? std::string(argv[++i]) : std::string(); };
-    if (a == "--stl") stl = next();
-    else if (a == "--size") size = std::atof(next().c_str());
-    else if (a == "--core") core = std::atof(next().c_str());
-    else if (a == "--runs") runs = std::max(1, std::atoi(next().c_str()));
-    else if (a == "--cache") cache = next();
-    else if (a == "--inline") inline_run = true;
+    if (a == "--stl")
+      stl = next();
+    else if (a == "--size")
+      size = std::atof(next().c_str());
+    else if (a == "--core")
+      core = std::atof(next().c_str());
+    else if (a == "--runs")
+      runs = std::max(1, std::atoi(next().c_str()));
+    else if (a == "--cache")
+      cache = next();
+    else if (a == "--inline")
+      inline_run = true;
     else {
       std::fprintf(stderr,
                    "usage: arch_volume_bench [--stl FILE] [--size H] [--core H] [--runs N] "
@@ -224,27 +218,10 @@ int main(int argc, char** argv) {
       struct rusage ru {};
       getrusage(RUSAGE_SELF, &ru);
       res.peak_mb = double(ru.ru_maxrss) / 1024.0;
-    } else {
-      int fds[2];
-      if (pipe(fds) != 0) return 1;
-      const pid_t pid = fork();
-      if (pid == 0) {
-        close(fds[0]);
-        const bool ok = run_once(in, core, &res);
-        if (ok && write(fds[1], &res, sizeof(res)) != ssize_t(sizeof(res))) _exit(1);
-        _exit(ok ? 0 : 1);
-      }
-      close(fds[1]);
-      const ssize_t got = read(fds[0], &res, sizeof(res));
-      close(fds[0]);
-      int status = 0;
-      struct rusage ru {};
-      wait4(pid, &status, 0, &ru);
-      if (got != ssize_t(sizeof(res)) || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        std::fprintf(stderr, "run failed\n");
-        return 1;
-      }
-      res.peak_mb = double(ru.ru_maxrss) / 1024.0;
+    } else if (!vm::bench::run_in_child([&](RunResult* out) { return run_once(in, core, out); },
+                                        &res, &res.peak_mb)) {
+      std::fprintf(stderr, "run failed\n");
+      return 1;
     }
     std::printf(
         "run %d: recovery %.2f s (cpu %.2f), refine %.2f s, optimize %.2f s, fill %.2f s (cpu "
@@ -254,11 +231,7 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     rs.push_back(res);
   }
-  auto med = [&](double RunResult::*f) {
-    std::vector<double> v;
-    for (const auto& r : rs) v.push_back(r.*f);
-    return median(v);
-  };
+  auto med = [&](double RunResult::*f) { return median_of(rs, f); };
   std::printf(
       "median: recovery %.2f s (cpu %.2f), refine %.2f s, optimize %.2f s, fill %.2f s (cpu "
       "%.2f), volume cpu %.2f s; %.0f tets, min %.4f mean %.4f; peak %.0f MB\n",

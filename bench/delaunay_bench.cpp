@@ -20,22 +20,14 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_util.h"
 #include "core/util/allocator_tuning.h"
 #include "core/volume/delaunay3d.h"
 
 namespace {
 
-double thread_cpu() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using vm::bench::median;
+using vm::bench::thread_cpu;
 
 std::vector<double> make_points(const std::string& kind, int n, uint32_t seed) {
   std::mt19937_64 rng(seed);

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_util.h"
 #include "core/layers/chord_radius.h"
 #include "core/layers/extrude_layers.h"
 #include "core/phantom/vessel_phantom.h"
@@ -26,11 +27,7 @@
 
 namespace {
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using vm::bench::median;
 
 struct Timer {
   std::chrono::steady_clock::time_point wall0 = std::chrono::steady_clock::now();

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_util.h"
 #include "core/io/stl.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/prepare_surface.h"
@@ -28,11 +29,7 @@ struct Input {
   std::vector<uint8_t> bytes;
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using vm::bench::median;
 
 double peak_rss_mb() {
   rusage u{};

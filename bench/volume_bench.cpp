@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_util.h"
 #include "core/quality/tet_quality.h"
 #include "core/util/allocator_tuning.h"
 #include "core/volume/tetrahedralize.h"
@@ -45,12 +46,6 @@ struct RunResult {
   double hist[20];
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 bool make_input(const std::string& shape, int n, vm::testing::VolumeInput* in) {
   if (shape == "torus") return vm::testing::torus_input(int(2.5 * n), n, 3, 1, in);
   if (shape == "sphere") return vm::testing::convex_input(vm::testing::sphere_points(n), in);
@@ -61,11 +56,8 @@ bool make_input(const std::string& shape, int n, vm::testing::VolumeInput* in) {
   return false;
 }
 
-double thread_cpu() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
+using vm::bench::median;
+using vm::bench::median_of;
 
 bool run_once(const std::string& shape, int n, const vm::FillOptions& fo, RunResult* out) {
   using clock = std::chrono::steady_clock;
@@ -77,22 +69,18 @@ bool run_once(const std::string& shape, int n, const vm::FillOptions& fo, RunRes
   }
   out->build_s = std::chrono::duration<double>(clock::now() - t0).count();
   out->surface_triangles = double(in.surface.num_triangles());
-  vm::FillStats st;
-  const double c0 = thread_cpu();
-  auto res = vm::fill_volume(in.kernel, in.sizes, fo, &st);
-  out->fill_cpu_s = thread_cpu() - c0;
-  if (!res.ok()) {
-    std::fprintf(stderr, "fill_volume: %s\n", res.message().c_str());
-    return false;
-  }
+  vm::bench::FillRun fill;
+  if (!vm::bench::timed_fill(in.kernel, in.sizes, fo, &fill)) return false;
+  const vm::FillStats& st = fill.stats;
+  const std::vector<float>& q = fill.quality;
+  const vm::QualityStats& qs = fill.summary;
+  out->fill_cpu_s = fill.cpu_s;
   out->fill_s = st.seconds;
   out->refine_s = st.refine_seconds;
   out->optimize_s = st.optimize_seconds;
   out->points_per_s = st.refine.inserted / std::max(1e-9, st.refine_seconds);
   out->tets = double(st.tets);
   out->inserted = double(st.inserted_vertices);
-  auto q = vm::tet_qualities(res.value());
-  auto qs = vm::quality_stats(q, 20);
   out->qmin = qs.min;
   out->qmean = qs.mean;
   const double thr[4] = {0.1, 0.2, 0.3, 0.5};
@@ -152,35 +140,15 @@ int main(int argc, char** argv) {
   for (int n : ns) {
     std::vector<RunResult> rs;
     for (int r = 0; r < runs; ++r) {
-      int fds[2];
-      if (pipe(fds) != 0) return 1;
-      const pid_t pid = fork();
-      if (pid == 0) {
-        close(fds[0]);
-        RunResult res{};
-        const bool ok = run_once(shape, n, fo, &res);
-        if (ok && write(fds[1], &res, sizeof(res)) != ssize_t(sizeof(res))) _exit(1);
-        _exit(ok ? 0 : 1);
-      }
-      close(fds[1]);
       RunResult res{};
-      const ssize_t got = read(fds[0], &res, sizeof(res));
-      close(fds[0]);
-      int status = 0;
-      struct rusage ru {};
-      wait4(pid, &status, 0, &ru);
-      if (got != ssize_t(sizeof(res)) || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      if (!vm::bench::run_in_child([&](RunResult* out) { return run_once(shape, n, fo, out); },
+                                   &res, &res.peak_mb)) {
         std::fprintf(stderr, "run failed for n = %d\n", n);
         return 1;
       }
-      res.peak_mb = double(ru.ru_maxrss) / 1024.0;
       rs.push_back(res);
     }
-    auto med = [&](double RunResult::*f) {
-      std::vector<double> v;
-      for (const auto& r : rs) v.push_back(r.*f);
-      return median(v);
-    };
+    auto med = [&](double RunResult::*f) { return median_of(rs, f); };
     std::vector<double> b2, b3;
     for (const auto& r : rs) b2.push_back(r.below[1]), b3.push_back(r.below[2]);
     std::printf(
