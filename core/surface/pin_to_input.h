@@ -14,21 +14,23 @@
 namespace vm {
 
 struct PinStats {
-  size_t far = 0;     ///< input vertices beyond the limit before pinning
-  size_t pinned = 0;  ///< output vertices moved onto them
+  size_t far = 0;     ///< input vertices beyond the limit (not skipped)
+  size_t pinned = 0;  ///< output vertices put onto them (moved or new)
 };
 
-/// For each input vertex v with gaps[v] > limit * h[v] (largest relative
-/// gap first): the free corner (fixed == kFree) of the output triangle
-/// closest to v that can move onto v without folding its triangles (each
-/// turns by less than 60 degrees and keeps gamma_k >= 0.1) moves there,
-/// gets home = a triangle of v and fixed = kPinned. At most one corner of
-/// each output triangle per call. `output` is manifold and oriented like
-/// `input`; home, fixed: one per output vertex; h and gaps: one per input
-/// vertex, h > 0 (gaps: distances_to_surface(output, input.points)). The
-/// output's connectivity is unchanged.
-/// Input vertices flagged in `skip` (empty, or one per input vertex) are
-/// left alone.
+/// For each input vertex v with gaps[v] > limit * h[v], largest relative
+/// gap first, and not flagged in `skip` (empty, or one flag per input
+/// vertex): the output triangle closest to v gets a vertex exactly at v,
+/// with home = a triangle of v and fixed = kPinned. Its nearest corner
+/// moves there if it is free (kFree), closer than 0.35 h[v], and its
+/// triangles keep gamma_k >= 0.3; else the edge nearest to v's projection
+/// (barycentric < 0.2; not an opening or crease edge) or the triangle is
+/// split at v (new triangles appended, new vertex appended to the points,
+/// home and fixed). Every changed triangle turns by less than 60 degrees.
+/// Triangles changed once are not changed again in the same call.
+/// `output` is manifold and oriented like `input`; home, fixed: one per
+/// output vertex; h, gaps: one per input vertex, h > 0 (gaps:
+/// distances_to_surface(output, input.points)).
 PinStats pin_to_input(SurfaceMesh& output, std::vector<int32_t>& home, std::vector<uint8_t>& fixed,
                       const SurfaceMesh& input, const std::vector<double>& h,
                       const std::vector<double>& gaps, double limit,
