@@ -243,6 +243,121 @@ Partition find_features(const SurfaceMesh& input, const RemeshOptions& options,
   return part;
 }
 
+/// Phase 6: output vertices pinned onto the input vertices farther than
+/// options.fidelity h from the output (pin_to_input), then a few
+/// optimization passes around them; pins that cost quality are freed, and
+/// pinning is undone if the quality floors still fail. Updates out (mesh,
+/// home, input_gaps), fixed and out_size (one per output vertex) and the
+/// fidelity statistics.
+void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& adj,
+                            const RemeshOptions& options, RemeshedSurface& out,
+                            std::vector<uint8_t>& fixed, std::vector<double>& out_size,
+                            RemeshStats& stats) {
+  const std::vector<double>& h = out.input_sizes;
+  SurfaceOptimizeOptions again = options.optimize;
+  again.passes = options.fidelity_passes;
+  again.valence_passes = std::min(again.valence_passes, options.fidelity_passes);
+  std::vector<uint8_t> given_up(input.num_vertices(), 0);
+  // The vertices whose flag differs from `before` (or are new) and their
+  // neighbors: where a fidelity round changed the mesh.
+  auto around_changes = [&](const std::vector<uint8_t>& before) {
+    std::vector<uint8_t> flag(fixed.size(), 0);
+    for (size_t t = 0; t < out.mesh.num_triangles(); ++t) {
+      const int32_t* T = &out.mesh.triangles[3 * t];
+      bool changed = false;
+      for (int c = 0; c < 3; ++c)
+        changed |= size_t(T[c]) >= before.size() || before[size_t(T[c])] != fixed[size_t(T[c])];
+      if (changed)
+        for (int c = 0; c < 3; ++c) flag[size_t(T[c])] = 1;
+    }
+    return flag;
+  };
+  // The surface before pinning, kept to return it if pinning costs too
+  // much quality.
+  SurfaceMesh unpinned;
+  std::vector<int32_t> unpinned_home;
+  std::vector<uint8_t> unpinned_fixed;
+  // The input vertices' distances to the output; returns how many are
+  // beyond options.fidelity h.
+  auto measure_gaps = [&] {
+    out.input_gaps = distances_to_surface(out.mesh, input.points, true).per_point;
+    stats.max_input_gap = 0;
+    stats.input_gap_vertices = 0;
+    size_t far = 0;
+    for (size_t v = 0; v < h.size(); ++v) {
+      const double rel = out.input_gaps[v] / h[v];
+      stats.max_input_gap = std::max(stats.max_input_gap, rel);
+      stats.input_gap_vertices += rel > kReportedGap;
+      far += rel > options.fidelity;
+    }
+    return far;
+  };
+  // A few optimization passes where the flags changed since `before`.
+  auto relax = [&](const std::vector<uint8_t>& before) {
+    out_size = output_sizes(input, out.home, h);
+    const auto more = optimize_on_surface(out.mesh, out.home, fixed, out_size, input, adj, again,
+                                          around_changes(before));
+    stats.collapses += more.collapses;
+    stats.swaps += more.swaps;
+    stats.moves += more.moves;
+  };
+  // Frees the pins of triangles below min_gamma, then relaxes around them.
+  auto unpin_and_relax = [&](double min_gamma) {
+    const std::vector<uint8_t> before = fixed;
+    const size_t freed = unpin_poor(out.mesh, fixed, input, min_gamma, given_up);
+    stats.fidelity_pinned -= freed;
+    if (freed > 0) relax(before);
+    return freed;
+  };
+  for (int round = 0;; ++round) {
+    const size_t far = measure_gaps();
+    // Noise everywhere (more pins than a share of the output's vertices)
+    // would cost more quality than the floors allow: not tried.
+    if (far == 0 || round >= options.fidelity_rounds ||
+        (round == 0 && double(far) > options.fidelity_max_share * double(out.mesh.num_vertices())))
+      break;
+    if (round == 0) {
+      unpinned = out.mesh;
+      unpinned_home = out.home;
+      unpinned_fixed = fixed;
+    }
+    const std::vector<uint8_t> before = fixed;
+    const PinStats pinned = pin_to_input(out.mesh, out.home, fixed, input, h, out.input_gaps,
+                                         options.fidelity, given_up);
+    if (pinned.pinned == 0) break;
+    ++stats.fidelity_rounds;
+    stats.fidelity_pinned += pinned.pinned;
+    relax(before);
+    // Quality first: pins left in poor triangles are freed and the mesh
+    // relaxes around them again (pins only decrease, so this ends).
+    for (int step = 0; step < 8 && unpin_and_relax(options.fidelity_min_quality) > 0; ++step) {
+    }
+  }
+  // The quality floors (or the quality before pinning, if lower): pins of
+  // ever better triangles are freed until they hold; else pinning is undone.
+  if (stats.fidelity_rounds > 0) {
+    const QualityStats q0 = quality_stats(triangle_qualities(unpinned));
+    const double floor_min = std::min(q0.min, options.fidelity_floor_min);
+    const double floor_mean = std::min(q0.mean, options.fidelity_floor_mean);
+    auto holds = [&] {
+      const QualityStats q = quality_stats(triangle_qualities(out.mesh));
+      return q.min >= floor_min && q.mean >= floor_mean;
+    };
+    bool ok = holds(), changed = false;
+    for (double strict = options.fidelity_min_quality + 0.05; !ok && strict < 1; strict += 0.05)
+      if (unpin_and_relax(strict) > 0) ok = holds(), changed = true;
+    if (!ok) {
+      out.mesh = std::move(unpinned);
+      out.home = std::move(unpinned_home);
+      fixed = std::move(unpinned_fixed);
+      out_size = output_sizes(input, out.home, h);
+      stats.fidelity_pinned = 0;
+      stats.fidelity_reverted = true;
+    }
+    if (changed || !ok) measure_gaps();  // the gaps of the surface returned
+  }
+}
+
 /// Phases 2-6 at the sizes `sizes` (one per input vertex) on the features
 /// of `part`; adds to `stats`.
 Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOptions& options,
@@ -362,122 +477,9 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
   stats.moves = ostats.moves;
   stats.seconds_optimize += seconds_since(t0);
 
-  // Phase 6: fidelity: output vertices pinned onto the input vertices
-  // farther than options.fidelity h from the output, then a few
-  // optimization passes around them.
+  // Phase 6: fidelity.
   t0 = std::chrono::steady_clock::now();
-  SurfaceOptimizeOptions again = options.optimize;
-  again.passes = options.fidelity_passes;
-  again.valence_passes = std::min(again.valence_passes, options.fidelity_passes);
-  std::vector<uint8_t> given_up(input.num_vertices(), 0);
-  // The vertices whose flag differs from `before` (or are new) and their
-  // neighbors: where a fidelity round changed the mesh.
-  auto around_changes = [&](const std::vector<uint8_t>& before) {
-    std::vector<uint8_t> flag(fixed.size(), 0);
-    for (size_t t = 0; t < out.mesh.num_triangles(); ++t) {
-      const int32_t* T = &out.mesh.triangles[3 * t];
-      bool changed = false;
-      for (int c = 0; c < 3; ++c)
-        changed |= size_t(T[c]) >= before.size() || before[size_t(T[c])] != fixed[size_t(T[c])];
-      if (changed)
-        for (int c = 0; c < 3; ++c) flag[size_t(T[c])] = 1;
-    }
-    return flag;
-  };
-  // The surface before pinning, kept to return it if pinning costs too
-  // much quality.
-  SurfaceMesh unpinned;
-  std::vector<int32_t> unpinned_home;
-  std::vector<uint8_t> unpinned_fixed;
-  std::vector<double> unpinned_gaps;
-  double unpinned_max_gap = 0;
-  size_t unpinned_gap_vertices = 0;
-  // The input vertices' distances to the output; returns how many are
-  // beyond options.fidelity h.
-  auto measure_gaps = [&] {
-    out.input_gaps = distances_to_surface(out.mesh, input.points, true).per_point;
-    stats.max_input_gap = 0;
-    stats.input_gap_vertices = 0;
-    size_t far = 0;
-    for (size_t v = 0; v < h.size(); ++v) {
-      const double rel = out.input_gaps[v] / h[v];
-      stats.max_input_gap = std::max(stats.max_input_gap, rel);
-      stats.input_gap_vertices += rel > kReportedGap;
-      far += rel > options.fidelity;
-    }
-    return far;
-  };
-  // A few optimization passes where the flags changed since `before`.
-  auto relax = [&](const std::vector<uint8_t>& before) {
-    out_size = output_sizes(input, out.home, h);
-    const auto more = optimize_on_surface(out.mesh, out.home, fixed, out_size, input, adj, again,
-                                          around_changes(before));
-    stats.collapses += more.collapses;
-    stats.swaps += more.swaps;
-    stats.moves += more.moves;
-  };
-  // Frees the pins of triangles below min_gamma, then relaxes around them.
-  auto unpin_and_relax = [&](double min_gamma) {
-    const std::vector<uint8_t> before = fixed;
-    const size_t freed = unpin_poor(out.mesh, fixed, input, min_gamma, given_up);
-    stats.fidelity_pinned -= freed;
-    if (freed > 0) relax(before);
-    return freed;
-  };
-  for (int round = 0;; ++round) {
-    const size_t far = measure_gaps();
-    // Noise everywhere (more pins than a share of the output's vertices)
-    // would cost more quality than the floors allow: not tried.
-    if (far == 0 || round >= options.fidelity_rounds ||
-        (round == 0 && double(far) > options.fidelity_max_share * double(out.mesh.num_vertices())))
-      break;
-    if (round == 0) {
-      unpinned = out.mesh;
-      unpinned_home = out.home;
-      unpinned_fixed = fixed;
-      unpinned_gaps = out.input_gaps;
-      unpinned_max_gap = stats.max_input_gap;
-      unpinned_gap_vertices = stats.input_gap_vertices;
-    }
-    const std::vector<uint8_t> before = fixed;
-    const PinStats pinned = pin_to_input(out.mesh, out.home, fixed, input, h, out.input_gaps,
-                                         options.fidelity, given_up);
-    if (pinned.pinned == 0) break;
-    ++stats.fidelity_rounds;
-    stats.fidelity_pinned += pinned.pinned;
-    relax(before);
-    // Quality first: pins left in poor triangles are freed and the mesh
-    // relaxes around them again (pins only decrease, so this ends).
-    for (int step = 0; step < 8 && unpin_and_relax(options.fidelity_min_quality) > 0; ++step) {
-    }
-  }
-  // The quality floors (or the quality before pinning, if lower): pins of
-  // ever better triangles are freed until they hold; else pinning is undone.
-  if (stats.fidelity_rounds > 0) {
-    const QualityStats q0 = quality_stats(triangle_qualities(unpinned));
-    const double floor_min = std::min(q0.min, options.fidelity_floor_min);
-    const double floor_mean = std::min(q0.mean, options.fidelity_floor_mean);
-    auto holds = [&] {
-      const QualityStats q = quality_stats(triangle_qualities(out.mesh));
-      return q.min >= floor_min && q.mean >= floor_mean;
-    };
-    bool ok = holds();
-    for (double strict = options.fidelity_min_quality + 0.05; !ok && strict < 1; strict += 0.05)
-      if (unpin_and_relax(strict) > 0) ok = holds();
-    if (ok) {
-      measure_gaps();
-    } else {
-      out.mesh = std::move(unpinned);
-      out.home = std::move(unpinned_home);
-      fixed = std::move(unpinned_fixed);
-      out_size = output_sizes(input, out.home, h);
-      out.input_gaps = std::move(unpinned_gaps);
-      stats.max_input_gap = unpinned_max_gap;
-      stats.input_gap_vertices = unpinned_gap_vertices;
-      stats.fidelity_pinned = 0;
-      stats.fidelity_reverted = true;
-    }
-  }
+  pin_far_input_vertices(input, adj, options, out, fixed, out_size, stats);
   stats.seconds_fidelity += seconds_since(t0);
   out.sizes = out_size;
   out.on_opening.resize(fixed.size());

@@ -178,6 +178,34 @@ TEST(RemeshSurface, FidelityRoundsBringTheInputCloserWithoutLosingQuality) {
 namespace vm {
 namespace {
 
+TEST(RemeshSurface, PinningIsUndoneWhenTheQualityFloorsCannotHold) {
+  // Noise everywhere, pinned all the same (no share limit): the quality
+  // drops below what it was, and the floors at 1 leave no room for that.
+  const SurfaceMesh in = testing::phantom(PhantomKind::kBifurcation, true, 0.15, 0.3);
+  RemeshOptions o;
+  o.size.mode = SizeMode::kUniform;
+  o.size.size = 0.2;
+  o.fidelity_max_share = 1;
+  o.fidelity_floor_min = 1;
+  o.fidelity_size_rounds = 0;
+  o.fidelity_rounds = 0;
+  RemeshStats off_stats, undone_stats;
+  auto off = remesh_surface(in, o, &off_stats);
+  o.fidelity_rounds = 3;
+  o.fidelity_floor_mean = 1;
+  auto undone = remesh_surface(in, o, &undone_stats);
+  ASSERT_TRUE(off.ok()) << off.message();
+  ASSERT_TRUE(undone.ok()) << undone.message();
+  EXPECT_GT(undone_stats.fidelity_rounds, 0u);
+  EXPECT_TRUE(undone_stats.fidelity_reverted);
+  EXPECT_EQ(undone_stats.fidelity_pinned, 0u);
+  // The surface before pinning, and its own gaps.
+  EXPECT_EQ(undone.value().mesh.points, off.value().mesh.points);
+  EXPECT_EQ(undone.value().mesh.triangles, off.value().mesh.triangles);
+  EXPECT_EQ(undone_stats.input_gap_vertices, off_stats.input_gap_vertices);
+  EXPECT_EQ(undone.value().input_gaps, off.value().input_gaps);
+}
+
 TEST(RemeshSurface, SizeRoundsRefineAroundWhatTheWallCannotFollow) {
   // The aneurysm phantom: its neck bends tighter than a wall of 0.3 can
   // follow, so pinning alone leaves input vertices far from it.
