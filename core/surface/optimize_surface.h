@@ -27,12 +27,33 @@ struct SurfaceOptimizeOptions {
   double split_ratio = 1.6;
 };
 
+/// Fidelity to the input while a pinned surface is optimized (see
+/// pin_to_input).
+struct FidelityGuard {
+  /// Per output vertex, the input vertex it is pinned to (-1: none);
+  /// renumbered and extended with the mesh.
+  std::vector<int32_t>* pin_of = nullptr;
+  /// Per input vertex, the size h there (> 0).
+  const std::vector<double>* input_h = nullptr;
+  /// A smoothing move is refused if an input vertex within limit h of the
+  /// vertex's triangles ends beyond limit h of them (0: not checked). Swaps,
+  /// collapses and splits, there to repair shapes, are not checked.
+  double limit = 0;
+  /// Per input vertex (or null): 1 if it may end beyond the limit (given
+  /// up on).
+  const std::vector<uint8_t>* ignored = nullptr;
+  /// A pinned vertex may move, like a free one, while it stays within
+  /// pin_slack h of its input vertex (0: never).
+  double pin_slack = 0;
+};
+
 /// Values of the `fixed` flags of optimize_on_surface.
 inline constexpr uint8_t kFree = 0;       ///< may move
 inline constexpr uint8_t kOnOpening = 1;  ///< on an opening: never moves
 inline constexpr uint8_t kOnFeature = 2;  ///< on a sharp crease: never moves
 /// Pinned to an input vertex the output must pass through (see
-/// pin_to_input): never moves, but its edges are not creases.
+/// pin_to_input): moves only within FidelityGuard::pin_slack of it, and
+/// its edges are not creases.
 inline constexpr uint8_t kPinned = 3;
 
 struct SurfaceOptimizeStats {
@@ -51,8 +72,8 @@ struct SurfaceOptimizeStats {
 /// - swaps of interior edges towards regular valences (6 inside, 4 on an
 ///   opening) that keep the pair's worst gamma_k above a fraction of itself;
 /// - swaps that raise the smaller gamma_k of an edge's two triangles;
-/// - moves of each vertex not `fixed` to the mean of the apexes that would
-///   make its triangles equilateral, projected onto `input` (the closest
+/// - moves of each vertex not `fixed` (or pinned, within its slack) to the
+///   mean of the apexes that would make its triangles equilateral, projected onto `input` (the closest
 ///   point found by a walk from `home[v]`, an input triangle near v, which is
 ///   updated), when the star's worst gamma_k increases, or its mean
 ///   increases while the worst stays above min(before, 0.8).
@@ -66,12 +87,15 @@ struct SurfaceOptimizeStats {
 /// build_adjacency(input).
 /// `start` (empty, or one flag per vertex) limits the first pass to the
 /// flagged vertices and their triangles; later passes follow the changes.
+/// `fidelity` (null: none) keeps the input near the surface and lets
+/// pinned vertices slide (see FidelityGuard).
 SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>& home,
                                          std::vector<uint8_t>& fixed, std::vector<double>& size,
                                          const SurfaceMesh& input,
                                          const TriangleAdjacency& input_adj,
                                          const SurfaceOptimizeOptions& options = {},
-                                         const std::vector<uint8_t>& start = {});
+                                         const std::vector<uint8_t>& start = {},
+                                         const FidelityGuard* fidelity = nullptr);
 
 /// The point of `input` closest to q (3 doubles) among the triangles reached
 /// by a walk from triangle `start` over triangles no farther than `start`;

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <array>
 
-#include "core/geom/point_kdtree.h"
 #include "core/geom/vec3.h"
 #include "core/mesh/surface_distance.h"
 #include "core/quality/triangle_quality.h"
@@ -21,7 +20,7 @@ namespace {
 constexpr double kCosMaxTurn = 0.5;
 /// Moved triangles keep gamma_k >= kMoveGamma; split ones >= kSplitGamma.
 constexpr double kMoveGamma = 0.3;
-constexpr double kSplitGamma = 0.02;
+constexpr double kSplitGamma = 0.1;
 /// A corner closer than this times h moves; a closest point with a
 /// barycentric coordinate below kEdgeBary splits the opposite edge.
 constexpr double kMoveDistance = 0.35;
@@ -46,8 +45,14 @@ bool acceptable(const double* a, const double* b, const double* c, const double*
 
 class Pinner {
  public:
-  Pinner(SurfaceMesh& m, std::vector<int32_t>& home, std::vector<uint8_t>& fixed)
-      : m_(m), home_(home), fixed_(fixed), star_(m.num_vertices()), touched_(m.num_triangles(), 0) {
+  Pinner(SurfaceMesh& m, std::vector<int32_t>& home, std::vector<uint8_t>& fixed,
+         std::vector<int32_t>& pin_of)
+      : m_(m),
+        home_(home),
+        fixed_(fixed),
+        pin_of_(pin_of),
+        star_(m.num_vertices()),
+        touched_(m.num_triangles(), 0) {
     for (size_t t = 0; t < m.num_triangles(); ++t)
       for (int c = 0; c < 3; ++c)
         star_[size_t(m.triangles[3 * t + size_t(c)])].push_back(int32_t(t));
@@ -55,9 +60,9 @@ class Pinner {
 
   bool touched(int32_t t) const { return touched_[size_t(t)] != 0; }
 
-  /// Moves free vertex o onto x (home triangle `home`) if its triangles
-  /// pass the guard.
-  bool move(int32_t o, const double* x, int32_t home) {
+  /// Moves free vertex o onto input vertex v at x (home triangle `home`)
+  /// if its triangles pass the guard.
+  bool move(int32_t o, int32_t v, const double* x, int32_t home) {
     if (fixed_[size_t(o)] != kFree) return false;
     for (int32_t t : star_[size_t(o)]) {
       const int32_t* T = tri(t);
@@ -71,19 +76,20 @@ class Pinner {
     std::copy_n(x, 3, p(o));
     home_[size_t(o)] = home;
     fixed_[size_t(o)] = kPinned;
+    pin_of_[size_t(o)] = v;
     for (int32_t t : star_[size_t(o)]) touched_[size_t(t)] = 1;
     return true;
   }
 
-  /// Splits triangle t = (a, b, c) into three at x.
-  bool split_triangle(int32_t t, const double* x, int32_t home) {
+  /// Splits triangle t = (a, b, c) into three at input vertex v (at x).
+  bool split_triangle(int32_t t, int32_t v, const double* x, int32_t home) {
     const std::array<int32_t, 3> T{tri(t)[0], tri(t)[1], tri(t)[2]};
     double before[3];
     normal(p(T[0]), p(T[1]), p(T[2]), before);
     for (int k = 0; k < 3; ++k)
       if (!acceptable(p(T[size_t(k)]), p(T[size_t(k + 1) % 3]), x, before, kSplitGamma))
         return false;
-    const int32_t n = add_vertex(x, home);
+    const int32_t n = add_vertex(v, x, home);
     set(t, {T[0], T[1], n});
     add({T[1], T[2], n});
     add({T[2], T[0], n});
@@ -91,8 +97,9 @@ class Pinner {
   }
 
   /// Splits the edge of t opposite corner k, and the triangle across it,
-  /// at x. Refused on an opening or a crease (both ends kept).
-  bool split_edge(int32_t t, int k, const double* x, int32_t home) {
+  /// at input vertex v (at x). Refused on an opening or a crease (both
+  /// ends kept).
+  bool split_edge(int32_t t, int k, int32_t v, const double* x, int32_t home) {
     const int32_t c = tri(t)[k], a = tri(t)[(k + 1) % 3], b = tri(t)[(k + 2) % 3];
     auto kept = [&](int32_t v) {
       return fixed_[size_t(v)] == kOnOpening || fixed_[size_t(v)] == kOnFeature;
@@ -113,7 +120,7 @@ class Pinner {
         !acceptable(x, p(b), p(c), nt, kSplitGamma) ||
         !acceptable(p(b), x, p(d), nu, kSplitGamma) || !acceptable(x, p(a), p(d), nu, kSplitGamma))
       return false;
-    const int32_t n = add_vertex(x, home);
+    const int32_t n = add_vertex(v, x, home);
     set(t, {a, n, c});
     add({n, b, c});
     set(u, {b, n, d});
@@ -125,10 +132,11 @@ class Pinner {
   int32_t* tri(int32_t t) { return &m_.triangles[3 * size_t(t)]; }
 
  private:
-  int32_t add_vertex(const double* x, int32_t home) {
+  int32_t add_vertex(int32_t v, const double* x, int32_t home) {
     m_.points.insert(m_.points.end(), x, x + 3);
     home_.push_back(home);
     fixed_.push_back(kPinned);
+    pin_of_.push_back(v);
     star_.emplace_back();
     return int32_t(home_.size() - 1);
   }
@@ -156,6 +164,7 @@ class Pinner {
   SurfaceMesh& m_;
   std::vector<int32_t>& home_;
   std::vector<uint8_t>& fixed_;
+  std::vector<int32_t>& pin_of_;
   std::vector<std::vector<int32_t>> star_;
   std::vector<uint8_t> touched_;
 };
@@ -177,8 +186,8 @@ std::array<double, 3> barycentric(const double* x, const double* a, const double
 }  // namespace
 
 PinStats pin_to_input(SurfaceMesh& output, std::vector<int32_t>& home, std::vector<uint8_t>& fixed,
-                      const SurfaceMesh& input, const std::vector<double>& h,
-                      const std::vector<double>& gaps, double limit,
+                      std::vector<int32_t>& pin_of, const SurfaceMesh& input,
+                      const std::vector<double>& h, const std::vector<double>& gaps, double limit,
                       const std::vector<uint8_t>& skip) {
   PinStats st;
   // Phase 1: the far input vertices.
@@ -197,7 +206,7 @@ PinStats pin_to_input(SurfaceMesh& output, std::vector<int32_t>& home, std::vect
     for (int c = 0; c < 3; ++c) input_tri[size_t(input.triangles[3 * t + size_t(c)])] = int32_t(t);
   // Built before any change: triangles split later are touched and skipped.
   const TriangleBvh bvh = build_triangle_bvh(output);
-  Pinner pin(output, home, fixed);
+  Pinner pin(output, home, fixed, pin_of);
   for (const auto& [neg_rel, v] : far) {
     const double* x = &input.points[3 * size_t(v)];
     const int32_t t = closest_surface_point(output, bvh, x).triangle;
@@ -213,22 +222,22 @@ PinStats pin_to_input(SurfaceMesh& output, std::vector<int32_t>& home, std::vect
     }
     const double hv = h[size_t(v)];
     const int32_t home_v = input_tri[size_t(v)];
-    bool done =
-        best < kMoveDistance * kMoveDistance * hv * hv && pin.move(T[size_t(nearest)], x, home_v);
+    bool done = best < kMoveDistance * kMoveDistance * hv * hv &&
+                pin.move(T[size_t(nearest)], v, x, home_v);
     if (!done) {
       const auto l = barycentric(x, pin.p(T[0]), pin.p(T[1]), pin.p(T[2]));
       const int k = int(std::min_element(l.begin(), l.end()) - l.begin());
-      done = (l[size_t(k)] < kEdgeBary && pin.split_edge(t, k, x, home_v)) ||
-             pin.split_triangle(t, x, home_v);
+      done = (l[size_t(k)] < kEdgeBary && pin.split_edge(t, k, v, x, home_v)) ||
+             pin.split_triangle(t, v, x, home_v);
     }
     st.pinned += done;
   }
   return st;
 }
 
-size_t unpin_poor(const SurfaceMesh& output, std::vector<uint8_t>& fixed, const SurfaceMesh& input,
-                  double min_gamma, std::vector<uint8_t>& skip) {
-  std::vector<int32_t> poor;
+size_t unpin_poor(const SurfaceMesh& output, std::vector<uint8_t>& fixed,
+                  std::vector<int32_t>& pin_of, double min_gamma, std::vector<uint8_t>& skip) {
+  size_t freed = 0;
   for (size_t t = 0; t < output.num_triangles(); ++t) {
     const int32_t* T = &output.triangles[3 * t];
     if (fixed[size_t(T[0])] != kPinned && fixed[size_t(T[1])] != kPinned &&
@@ -237,23 +246,14 @@ size_t unpin_poor(const SurfaceMesh& output, std::vector<uint8_t>& fixed, const 
     if (triangle_gamma(&output.points[3 * size_t(T[0])], &output.points[3 * size_t(T[1])],
                        &output.points[3 * size_t(T[2])]) >= min_gamma)
       continue;
-    for (int c = 0; c < 3; ++c)
-      if (fixed[size_t(T[c])] == kPinned) poor.push_back(T[c]);
-  }
-  if (poor.empty()) return 0;
-  // A pinned vertex sits exactly on its input vertex.
-  const PointCloud cloud{input.points};
-  PointKdTree tree(3, cloud);
-  tree.buildIndex();
-  size_t freed = 0;
-  for (int32_t o : poor) {
-    if (fixed[size_t(o)] != kPinned) continue;
-    fixed[size_t(o)] = kFree;
-    ++freed;
-    uint32_t v = 0;
-    double d2 = 0;
-    tree.knnSearch(&output.points[3 * size_t(o)], 1, &v, &d2);
-    skip[v] = 1;
+    for (int c = 0; c < 3; ++c) {
+      const size_t o = size_t(T[c]);
+      if (fixed[o] != kPinned) continue;
+      fixed[o] = kFree;
+      skip[size_t(pin_of[o])] = 1;
+      pin_of[o] = -1;
+      ++freed;
+    }
   }
   return freed;
 }

@@ -245,8 +245,9 @@ Partition find_features(const SurfaceMesh& input, const RemeshOptions& options,
 
 /// Phase 6: output vertices pinned onto the input vertices farther than
 /// options.fidelity h from the output (pin_to_input), then a few
-/// optimization passes around them; pins that cost quality are freed, and
-/// pinning is undone if the quality floors still fail. Updates out (mesh,
+/// optimization passes around them (guarded: no smoothing move takes an
+/// input vertex beyond the limit); pins that cost quality are freed, and a
+/// round is undone if the quality floors still fail. Updates out (mesh,
 /// home, input_gaps), fixed and out_size (one per output vertex) and the
 /// fidelity statistics.
 void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& adj,
@@ -258,6 +259,13 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
   again.passes = options.fidelity_passes;
   again.valence_passes = std::min(again.valence_passes, options.fidelity_passes);
   std::vector<uint8_t> given_up(input.num_vertices(), 0);
+  std::vector<int32_t> pin_of(fixed.size(), -1);  // per output vertex: its input vertex
+  FidelityGuard guard;
+  guard.pin_of = &pin_of;
+  guard.input_h = &h;
+  guard.ignored = &given_up;
+  guard.limit = options.fidelity;
+  guard.pin_slack = options.fidelity_pin_slack * options.fidelity;
   // The vertices whose flag differs from `before` (or are new) and their
   // neighbors: where a fidelity round changed the mesh.
   auto around_changes = [&](const std::vector<uint8_t>& before) {
@@ -272,11 +280,22 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     }
     return flag;
   };
-  // The surface before pinning, kept to return it if pinning costs too
-  // much quality.
-  SurfaceMesh unpinned;
-  std::vector<int32_t> unpinned_home;
-  std::vector<uint8_t> unpinned_fixed;
+  // The last surface that held the quality floors (first the one before
+  // pinning), returned if pinning ends up costing too much quality.
+  struct Kept {
+    SurfaceMesh mesh;
+    std::vector<int32_t> home;
+    std::vector<uint8_t> fixed;
+    std::vector<int32_t> pin_of;
+    size_t pinned = 0;
+  } kept;
+  // The floors: the seed's, or the quality before pinning if lower.
+  double floor_min = 0, floor_mean = 0;
+  auto holds = [&] {
+    const QualityStats q = quality_stats(triangle_qualities(out.mesh));
+    return q.min >= floor_min && q.mean >= floor_mean;
+  };
+  auto keep = [&] { kept = {out.mesh, out.home, fixed, pin_of, stats.fidelity_pinned}; };
   // The input vertices' distances to the output; returns how many are
   // beyond options.fidelity h.
   auto measure_gaps = [&] {
@@ -296,7 +315,7 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
   auto relax = [&](const std::vector<uint8_t>& before) {
     out_size = output_sizes(input, out.home, h);
     const auto more = optimize_on_surface(out.mesh, out.home, fixed, out_size, input, adj, again,
-                                          around_changes(before));
+                                          around_changes(before), &guard);
     stats.collapses += more.collapses;
     stats.swaps += more.swaps;
     stats.moves += more.moves;
@@ -304,7 +323,7 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
   // Frees the pins of triangles below min_gamma, then relaxes around them.
   auto unpin_and_relax = [&](double min_gamma) {
     const std::vector<uint8_t> before = fixed;
-    const size_t freed = unpin_poor(out.mesh, fixed, input, min_gamma, given_up);
+    const size_t freed = unpin_poor(out.mesh, fixed, pin_of, min_gamma, given_up);
     stats.fidelity_pinned -= freed;
     if (freed > 0) relax(before);
     return freed;
@@ -317,13 +336,14 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
         (round == 0 && double(far) > options.fidelity_max_share * double(out.mesh.num_vertices())))
       break;
     if (round == 0) {
-      unpinned = out.mesh;
-      unpinned_home = out.home;
-      unpinned_fixed = fixed;
+      const QualityStats q0 = quality_stats(triangle_qualities(out.mesh));
+      floor_min = std::min(q0.min, options.fidelity_floor_min);
+      floor_mean = std::min(q0.mean, options.fidelity_floor_mean);
+      keep();
     }
     const std::vector<uint8_t> before = fixed;
-    const PinStats pinned = pin_to_input(out.mesh, out.home, fixed, input, h, out.input_gaps,
-                                         options.fidelity, given_up);
+    const PinStats pinned = pin_to_input(out.mesh, out.home, fixed, pin_of, input, h,
+                                         out.input_gaps, options.fidelity, given_up);
     if (pinned.pinned == 0) break;
     ++stats.fidelity_rounds;
     stats.fidelity_pinned += pinned.pinned;
@@ -332,29 +352,23 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     // relaxes around them again (pins only decrease, so this ends).
     for (int step = 0; step < 8 && unpin_and_relax(options.fidelity_min_quality) > 0; ++step) {
     }
-  }
-  // The quality floors (or the quality before pinning, if lower): pins of
-  // ever better triangles are freed until they hold; else pinning is undone.
-  if (stats.fidelity_rounds > 0) {
-    const QualityStats q0 = quality_stats(triangle_qualities(unpinned));
-    const double floor_min = std::min(q0.min, options.fidelity_floor_min);
-    const double floor_mean = std::min(q0.mean, options.fidelity_floor_mean);
-    auto holds = [&] {
-      const QualityStats q = quality_stats(triangle_qualities(out.mesh));
-      return q.min >= floor_min && q.mean >= floor_mean;
-    };
-    bool ok = holds(), changed = false;
+    // Then the quality floors: pins of ever better triangles are freed
+    // until they hold; else the round is undone (the pins freed stay given
+    // up, so the next round tries the others).
+    bool ok = holds();
     for (double strict = options.fidelity_min_quality + 0.05; !ok && strict < 1; strict += 0.05)
-      if (unpin_and_relax(strict) > 0) ok = holds(), changed = true;
-    if (!ok) {
-      out.mesh = std::move(unpinned);
-      out.home = std::move(unpinned_home);
-      fixed = std::move(unpinned_fixed);
-      out_size = output_sizes(input, out.home, h);
-      stats.fidelity_pinned = 0;
-      stats.fidelity_reverted = true;
+      if (unpin_and_relax(strict) > 0) ok = holds();
+    if (ok) {
+      keep();
+      continue;
     }
-    if (changed || !ok) measure_gaps();  // the gaps of the surface returned
+    out.mesh = kept.mesh;
+    out.home = kept.home;
+    fixed = kept.fixed;
+    pin_of = kept.pin_of;
+    out_size = output_sizes(input, out.home, h);
+    stats.fidelity_pinned = kept.pinned;
+    stats.fidelity_reverted = true;
   }
 }
 

@@ -39,10 +39,10 @@ struct RemeshOptions {
   /// get an output vertex pinned onto them (pin_to_input), then the mesh is
   /// optimized around them again, at most `fidelity_rounds` times (0: off).
   double fidelity = 0.1;
-  int fidelity_rounds = 3;
+  int fidelity_rounds = 5;
   /// Pinning is not tried when more input vertices than this share of
   /// the output's vertices are far (noise everywhere).
-  double fidelity_max_share = 0.1;
+  double fidelity_max_share = 0.3;
   /// Size rounds: when the input vertices left beyond fidelity h are more
   /// than fidelity_size_share of the output's vertices (and at most
   /// fidelity_noise_share: beyond that they are noise, smoothed over), the
@@ -52,13 +52,18 @@ struct RemeshOptions {
   /// above 1 - fidelity_size_drift.
   int fidelity_size_rounds = 2;
   double fidelity_size_share = 0.005, fidelity_noise_share = 0.2, fidelity_size_drift = 0.08;
-  /// Optimization passes after each fidelity round.
+  /// Optimization passes after each fidelity round. Their smoothing moves
+  /// never take an input vertex beyond fidelity h of the output (unless
+  /// given up on), and a pinned vertex may slide on the input within
+  /// fidelity_pin_slack times fidelity h of its input vertex.
   int fidelity_passes = 10;
+  double fidelity_pin_slack = 0.8;
   /// Pins left in a triangle with gamma_k below this are freed again.
   double fidelity_min_quality = 0.75;
-  /// The pinned surface is kept only if its worst and mean gamma_k stay at
-  /// least min(their values before pinning, these floors: the seed's
-  /// Table 1 frontal row); else the surface before pinning is returned.
+  /// After each round the worst and mean gamma_k must stay at least
+  /// min(their values before pinning, these floors: the seed's Table 1
+  /// frontal row): pins of ever better triangles are freed until they do,
+  /// else the round is undone.
   double fidelity_floor_min = 0.55, fidelity_floor_mean = 0.978;
 };
 

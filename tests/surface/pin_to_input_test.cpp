@@ -61,11 +61,13 @@ struct SpikeCase {
   int32_t spike = 8 * 21 + 7;  // input vertex (7, 8): (0.35, 0.4)
   std::vector<int32_t> home;
   std::vector<uint8_t> fixed;
+  std::vector<int32_t> pin_of;
   std::vector<double> h;
-  SpikeCase() {
-    input.points[3 * size_t(spike) + 2] = 0.05;
+  explicit SpikeCase(double height = 0.05) {
+    input.points[3 * size_t(spike) + 2] = height;
     home.assign(output.num_vertices(), 0);
     fixed.assign(output.num_vertices(), kFree);
+    pin_of.assign(output.num_vertices(), -1);
     h.assign(input.num_vertices(), 0.25);
   }
   std::vector<double> gaps() const {
@@ -78,7 +80,8 @@ TEST(PinToInput, AnOutputVertexLandsOnTheFarInputVertex) {
   const std::vector<double> before = c.gaps();
   ASSERT_NEAR(before[size_t(c.spike)], 0.05, 1e-12);  // 0.2 h
   const size_t nt = c.output.num_triangles();
-  const PinStats st = pin_to_input(c.output, c.home, c.fixed, c.input, c.h, before, 0.1, {});
+  const PinStats st =
+      pin_to_input(c.output, c.home, c.fixed, c.pin_of, c.input, c.h, before, 0.1, {});
   // Only the spike and its 1-ring (under 0.1 h = 0.025 only the spike) are far.
   EXPECT_EQ(st.far, 1u);
   EXPECT_EQ(st.pinned, 1u);
@@ -109,16 +112,21 @@ TEST(PinToInput, SkippedVerticesAndNearOnesAreLeftAlone) {
   std::vector<uint8_t> skip(c.input.num_vertices(), 0);
   skip[size_t(c.spike)] = 1;
   const SurfaceMesh original = c.output;
-  EXPECT_EQ(pin_to_input(c.output, c.home, c.fixed, c.input, c.h, c.gaps(), 0.1, skip).pinned, 0u);
+  EXPECT_EQ(
+      pin_to_input(c.output, c.home, c.fixed, c.pin_of, c.input, c.h, c.gaps(), 0.1, skip).pinned,
+      0u);
   // A looser limit than the spike's gap: nothing to do either.
-  EXPECT_EQ(pin_to_input(c.output, c.home, c.fixed, c.input, c.h, c.gaps(), 0.5, {}).far, 0u);
+  EXPECT_EQ(pin_to_input(c.output, c.home, c.fixed, c.pin_of, c.input, c.h, c.gaps(), 0.5, {}).far,
+            0u);
   EXPECT_EQ(c.output.points, original.points);
   EXPECT_EQ(c.output.triangles, original.triangles);
 }
 
 TEST(PinToInput, UnpinPoorFreesPinsInPoorTrianglesAndRemembersThem) {
   SpikeCase c;
-  ASSERT_EQ(pin_to_input(c.output, c.home, c.fixed, c.input, c.h, c.gaps(), 0.1, {}).pinned, 1u);
+  ASSERT_EQ(
+      pin_to_input(c.output, c.home, c.fixed, c.pin_of, c.input, c.h, c.gaps(), 0.1, {}).pinned,
+      1u);
   std::vector<uint8_t> skip(c.input.num_vertices(), 0);
   double worst = 1;
   for (size_t t = 0; t < c.output.num_triangles(); ++t) {
@@ -128,13 +136,120 @@ TEST(PinToInput, UnpinPoorFreesPinsInPoorTrianglesAndRemembersThem) {
                                            &c.output.points[3 * size_t(T[2])]));
   }
   // Below the worst triangle: nothing freed.
-  EXPECT_EQ(unpin_poor(c.output, c.fixed, c.input, worst * 0.99, skip), 0u);
+  EXPECT_EQ(unpin_poor(c.output, c.fixed, c.pin_of, worst * 0.99, skip), 0u);
   EXPECT_EQ(std::count(skip.begin(), skip.end(), 1), 0);
   // Above every triangle: the pin is freed and its input vertex skipped.
-  EXPECT_EQ(unpin_poor(c.output, c.fixed, c.input, 1.01, skip), 1u);
+  EXPECT_EQ(unpin_poor(c.output, c.fixed, c.pin_of, 1.01, skip), 1u);
   EXPECT_EQ(std::count(c.fixed.begin(), c.fixed.end(), kPinned), 0);
   EXPECT_EQ(skip[size_t(c.spike)], 1);
   EXPECT_EQ(std::count(skip.begin(), skip.end(), 1), 1);
+}
+
+TEST(PinToInput, PinnedVerticesSlideOnlyWithinTheSlack) {
+  // The same pinned surface optimized three ways: pins held (no pin_of),
+  // pins sliding within 0.08 h, and the same without pin_of.
+  auto optimized = [](double slack, bool with_pin_of) {
+    SpikeCase c(0.03);  // 0.12 h
+    EXPECT_EQ(
+        pin_to_input(c.output, c.home, c.fixed, c.pin_of, c.input, c.h, c.gaps(), 0.1, {}).pinned,
+        1u);
+    const TriangleAdjacency adj = build_adjacency(c.input);
+    const TriangleBvh bvh = build_triangle_bvh(c.input);
+    for (size_t v = 0; v < c.output.num_vertices(); ++v)  // home: the input triangle under v
+      if (c.fixed[v] != kPinned)
+        c.home[v] = closest_surface_point(c.input, bvh, &c.output.points[3 * v]).triangle;
+    for (size_t v = 0; v < c.output.num_vertices(); ++v)  // the boundary stays
+      if (c.output.points[3 * v] == 0 || c.output.points[3 * v] == 1 ||
+          c.output.points[3 * v + 1] == 0 || c.output.points[3 * v + 1] == 1)
+        c.fixed[v] = kOnOpening;
+    std::vector<double> size(c.output.num_vertices(), 0.25);
+    FidelityGuard guard;
+    guard.pin_of = &c.pin_of;
+    guard.input_h = &c.h;
+    guard.pin_slack = slack;
+    optimize_on_surface(c.output, c.home, c.fixed, size, c.input, adj, {}, {},
+                        with_pin_of ? &guard : nullptr);
+    EXPECT_EQ(c.pin_of.size(), c.output.num_vertices());
+    return c;
+  };
+  const SpikeCase held = optimized(0, true), slid = optimized(0.08, true),
+                  no_pin_of = optimized(0.08, false);
+  // The pinned vertex's distance to its input vertex (-1: none).
+  auto pinned_offset = [](const SpikeCase& c) {
+    double offset = -1;
+    for (size_t v = 0; v < c.fixed.size(); ++v)
+      if (c.fixed[v] == kPinned) {
+        EXPECT_EQ(c.pin_of[v], c.spike);
+        const double* x = &c.output.points[3 * v];
+        const double* s = &c.input.points[3 * size_t(c.spike)];
+        offset = std::hypot(x[0] - s[0], x[1] - s[1], x[2] - s[2]);
+      }
+    return offset;
+  };
+  EXPECT_EQ(pinned_offset(held), 0.0);
+  EXPECT_EQ(pinned_offset(no_pin_of), 0.0);
+  const double moved = pinned_offset(slid);
+  EXPECT_GT(moved, 0.0) << "the slack should let the pinned vertex improve its triangles";
+  EXPECT_LE(moved, 0.08 * 0.25 * (1 + 1e-9));
+  // Still within 0.1 h of the spike, and at least as good a worst triangle.
+  EXPECT_LE(
+      distances_to_surface(slid.output, slid.input.points, true).per_point[size_t(slid.spike)],
+      0.08 * 0.25 * (1 + 1e-9));
+  EXPECT_GE(quality_stats(triangle_qualities(slid.output)).min,
+            quality_stats(triangle_qualities(held.output)).min - 1e-12);
+  EXPECT_LE(distances_to_surface(slid.input, slid.output.points).max, 1e-12);
+}
+
+TEST(OptimizeOnSurface, TheFidelityGuardKeepsSmoothingFromLeavingTheInput) {
+  // A bumpy fine grid, and a coarse grid on its vertices with the interior
+  // ones shifted off the regular places: smoothing moves them back, over
+  // the bumps. With the guard no move takes an input vertex beyond 0.1 h.
+  SurfaceMesh input = grid(20);
+  for (size_t v = 0; v < input.num_vertices(); ++v)
+    input.points[3 * v + 2] =
+        0.02 * std::sin(31 * input.points[3 * v]) * std::cos(23 * input.points[3 * v + 1]);
+  const TriangleAdjacency adj = build_adjacency(input);
+  const TriangleBvh bvh = build_triangle_bvh(input);
+  auto smoothed = [&](bool guarded) {
+    SurfaceMesh out = grid(4);
+    std::vector<uint8_t> fixed(out.num_vertices(), kFree);
+    std::vector<int32_t> home(out.num_vertices());
+    for (int j = 0; j <= 4; ++j)
+      for (int i = 0; i <= 4; ++i) {
+        const size_t v = size_t(j * 5 + i);
+        const bool inner = i > 0 && i < 4 && j > 0 && j < 4;
+        if (!inner) fixed[v] = kOnOpening;
+        const size_t w = size_t((5 * j + (inner ? (i + j) % 3 - 1 : 0)) * 21 + 5 * i +
+                                (inner ? (2 * i + j) % 3 - 1 : 0));
+        std::copy_n(&input.points[3 * w], 3, &out.points[3 * v]);
+        home[v] = closest_surface_point(input, bvh, &out.points[3 * v]).triangle;
+      }
+    const std::vector<double> h(input.num_vertices(), 0.25);
+    std::vector<double> size(out.num_vertices(), 0.25);
+    SurfaceOptimizeOptions o;
+    o.valence_passes = 0;  // moves and quality swaps only
+    std::vector<int32_t> pin_of(out.num_vertices(), -1);
+    FidelityGuard guard;
+    guard.pin_of = &pin_of;
+    guard.input_h = &h;
+    guard.limit = 0.1;
+    auto gaps = [&] { return distances_to_surface(out, input.points, true).per_point; };
+    const std::vector<double> before = gaps();
+    const auto st =
+        optimize_on_surface(out, home, fixed, size, input, adj, o, {}, guarded ? &guard : nullptr);
+    EXPECT_GT(st.moves, 0u);
+    EXPECT_LE(distances_to_surface(input, out.points).max, 1e-12);
+    // Input vertices within 0.1 h before and beyond after.
+    const std::vector<double> after = gaps();
+    size_t lost = 0;
+    for (size_t w = 0; w < after.size(); ++w) lost += before[w] <= 0.025 && after[w] > 0.025;
+    return lost;
+  };
+  const size_t lost_free = smoothed(false), lost_guarded = smoothed(true);
+  std::cout << "[ info ] input vertices pushed beyond 0.1 h: " << lost_free << " unguarded, "
+            << lost_guarded << " guarded\n";
+  EXPECT_GT(lost_free, 0u) << "the case should need the guard";
+  EXPECT_EQ(lost_guarded, 0u);
 }
 
 TEST(RemeshSurface, FidelityRoundsBringTheInputCloserWithoutLosingQuality) {
@@ -145,7 +260,7 @@ TEST(RemeshSurface, FidelityRoundsBringTheInputCloserWithoutLosingQuality) {
   RemeshStats off_stats, on_stats;
   o.fidelity_rounds = o.fidelity_size_rounds = 0;
   auto off = remesh_surface(in, o, &off_stats);
-  o.fidelity_rounds = 3;
+  o.fidelity_rounds = RemeshOptions{}.fidelity_rounds;
   auto on = remesh_surface(in, o, &on_stats);
   ASSERT_TRUE(off.ok()) << off.message();
   ASSERT_TRUE(on.ok()) << on.message();
@@ -162,7 +277,8 @@ TEST(RemeshSurface, FidelityRoundsBringTheInputCloserWithoutLosingQuality) {
             << on_stats.input_gap_vertices << " (" << on_stats.fidelity_pinned
             << " pinned), max gap " << off_stats.max_input_gap << " -> " << on_stats.max_input_gap
             << " h; gamma min " << q0.min << " -> " << q1.min << ", mean " << q0.mean << " -> "
-            << q1.mean << (on_stats.fidelity_reverted ? " (reverted)" : "") << "\n";
+            << q1.mean << (on_stats.fidelity_reverted ? " (reverted)" : "") << " rounds "
+            << on_stats.fidelity_rounds << "\n";
   EXPECT_FALSE(on_stats.fidelity_reverted);
   EXPECT_GT(on_stats.fidelity_pinned, 0u);
   EXPECT_LT(on_stats.input_gap_vertices, off_stats.input_gap_vertices / 2);
@@ -189,6 +305,7 @@ TEST(RemeshSurface, PinningIsUndoneWhenTheQualityFloorsCannotHold) {
   o.fidelity_floor_min = 1;
   o.fidelity_size_rounds = 0;
   o.fidelity_rounds = 0;
+  o.fidelity_pin_slack = 0;  // pins held exactly: no better place to find
   RemeshStats off_stats, undone_stats;
   auto off = remesh_surface(in, o, &off_stats);
   o.fidelity_rounds = 3;
