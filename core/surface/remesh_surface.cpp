@@ -328,13 +328,20 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     if (freed > 0) relax(before);
     return freed;
   };
+  // The last rounds retry every vertex left far, accepting poorer
+  // triangles around the pins (the floors still hold).
+  const int rounds =
+      options.fidelity_rounds + (options.fidelity_rounds > 0 ? options.fidelity_last_rounds : 0);
   for (int round = 0;; ++round) {
     const size_t far = measure_gaps();
     // Noise everywhere (more pins than a share of the output's vertices)
     // would cost more quality than the floors allow: not tried.
-    if (far == 0 || round >= options.fidelity_rounds ||
+    if (far == 0 || round >= rounds ||
         (round == 0 && double(far) > options.fidelity_max_share * double(out.mesh.num_vertices())))
       break;
+    const double min_quality = round >= options.fidelity_rounds ? options.fidelity_last_min_quality
+                                                                : options.fidelity_min_quality;
+    if (round == options.fidelity_rounds) std::fill(given_up.begin(), given_up.end(), 0);
     if (round == 0) {
       const QualityStats q0 = quality_stats(triangle_qualities(out.mesh));
       floor_min = std::min(q0.min, options.fidelity_floor_min);
@@ -350,13 +357,13 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     relax(before);
     // Quality first: pins left in poor triangles are freed and the mesh
     // relaxes around them again (pins only decrease, so this ends).
-    for (int step = 0; step < 8 && unpin_and_relax(options.fidelity_min_quality) > 0; ++step) {
+    for (int step = 0; step < 8 && unpin_and_relax(min_quality) > 0; ++step) {
     }
     // Then the quality floors: pins of ever better triangles are freed
     // until they hold; else the round is undone (the pins freed stay given
     // up, so the next round tries the others).
     bool ok = holds();
-    for (double strict = options.fidelity_min_quality + 0.05; !ok && strict < 1; strict += 0.05)
+    for (double strict = min_quality + 0.05; !ok && strict < 1; strict += 0.05)
       if (unpin_and_relax(strict) > 0) ok = holds();
     if (ok) {
       keep();

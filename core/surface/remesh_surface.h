@@ -58,8 +58,12 @@ struct RemeshOptions {
   /// fidelity_pin_slack times fidelity h of its input vertex.
   int fidelity_passes = 10;
   double fidelity_pin_slack = 0.8;
-  /// Pins left in a triangle with gamma_k below this are freed again.
+  /// Pins left in a triangle with gamma_k below this are freed again
+  /// (and given up on), except in fidelity_last_rounds more rounds that
+  /// retry every vertex left far with fidelity_last_min_quality.
   double fidelity_min_quality = 0.75;
+  int fidelity_last_rounds = 2;
+  double fidelity_last_min_quality = 0.6;
   /// After each round the worst and mean gamma_k must stay at least
   /// min(their values before pinning, these floors: the seed's Table 1
   /// frontal row): pins of ever better triangles are freed until they do,
