@@ -5,15 +5,11 @@
 #include "core/surface/optimize_surface.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <initializer_list>
-#include <memory>
 #include <numbers>
-#include <utility>
 
 #include "core/geom/closest_point.h"
-#include "core/geom/point_kdtree.h"
 #include "core/quality/triangle_quality.h"
 
 namespace vm {
@@ -77,20 +73,13 @@ class Optimizer {
  public:
   Optimizer(SurfaceMesh& m, std::vector<int32_t>& home, std::vector<uint8_t>& fixed,
             std::vector<double>& size, const SurfaceMesh& input, const TriangleAdjacency& input_adj,
-            const SurfaceOptimizeOptions& o, const FidelityGuard* fidelity)
+            const SurfaceOptimizeOptions& o, const PinSlack* pins)
       : m_(m), home_(home), fixed_(fixed), size_(size), in_(input), in_adj_(input_adj) {
     collapse_ratio_ = o.collapse_ratio;
-    if (fidelity) {
-      pin_of_ = fidelity->pin_of;
-      input_h_ = fidelity->input_h;
-      ignored_ = fidelity->ignored;
-      pin_slack_ = pin_of_ && input_h_ ? fidelity->pin_slack : 0;
-      if (input_h_ && fidelity->limit > 0) {
-        limit_ = fidelity->limit;
-        cloud_ = std::make_unique<PointCloud>(PointCloud{input.points});
-        tree_ = std::make_unique<PointKdTree>(3, *cloud_);
-        tree_->buildIndex();
-      }
+    if (pins) {
+      pin_of_ = pins->pin_of;
+      input_h_ = pins->input_h;
+      pin_slack_ = pin_of_ && input_h_ ? pins->slack : 0;
     }
     split_ratio_ = o.split_ratio;
     recent_.assign(m.num_vertices(), 1);
@@ -215,47 +204,6 @@ class Optimizer {
 
  private:
   bool movable(size_t v) const { return !fixed_[v] || (fixed_[v] == kPinned && pin_slack_ > 0); }
-
-  using Corners = std::array<const double*, 3>;
-
-  /// The fidelity guard (true when off): no input vertex within limit h of
-  /// the triangles `before` ends beyond limit h of the triangles `after`
-  /// (the triangles a change replaces, and those it puts in their place).
-  bool keeps_input(const std::vector<Corners>& before, const std::vector<Corners>& after) {
-    if (!tree_) return true;
-    double c[3] = {0, 0, 0}, r2 = 0;
-    for (const Corners& t : before)
-      for (const double* x : t)
-        for (int k = 0; k < 3; ++k) c[k] += x[k] / double(3 * before.size());
-    for (const auto* list : {&before, &after})
-      for (const Corners& t : *list)
-        for (const double* x : t) r2 = std::max(r2, dist2(c, x));
-    tree_->radiusSearch(c, r2, near_, nanoflann::SearchParams(32, 0, false));
-    auto gap2 = [](const double* w, const std::vector<Corners>& tris) {
-      double best = 1e300, q[3];
-      for (const Corners& t : tris)
-        best = std::min(best, closest_point_on_triangle(w, t[0], t[1], t[2], q));
-      return best;
-    };
-    for (const auto& [w, d2] : near_) {
-      if (ignored_ && (*ignored_)[w]) continue;
-      const double* x = &in_.points[3 * size_t(w)];
-      const double lim = limit_ * (*input_h_)[w];
-      if (gap2(x, before) <= lim * lim && gap2(x, after) > lim * lim) return false;
-    }
-    return true;
-  }
-  /// The triangles of `star` with vertex v at x (3 doubles).
-  void star_with(const std::vector<int32_t>& star, int32_t v, const double* x,
-                 std::vector<Corners>& out) const {
-    out.clear();
-    for (int32_t t : star) {
-      const int32_t* T = &m_.triangles[3 * size_t(t)];
-      Corners c;
-      for (int k = 0; k < 3; ++k) c[size_t(k)] = T[k] == v ? x : p(T[k]);
-      out.push_back(c);
-    }
-  }
   const double* p(int32_t v) const { return &m_.points[3 * size_t(v)]; }
   int32_t* tri(int32_t t) { return &m_.triangles[3 * size_t(t)]; }
   double gamma(int32_t a, int32_t b, int32_t c) const { return triangle_gamma(p(a), p(b), p(c)); }
@@ -548,7 +496,7 @@ class Optimizer {
     double projected[3];
     int32_t new_home = project_near(target, home_[size_t(v)], in_, in_adj_, projected);
     if (fixed_[size_t(v)] == kPinned) {
-      // Within pin_slack of its input vertex: the target pulled towards it
+      // Within the slack of its input vertex: the target pulled towards it
       // (short of the limit, which projecting a chord may overshoot).
       const int32_t w = (*pin_of_)[size_t(v)];
       const double* anchor = &in_.points[3 * size_t(w)];
@@ -591,11 +539,6 @@ class Optimizer {
     // Better worst triangle, or the same worst and a better mean.
     const bool better = after > before + 1e-9 || (after >= std::min(before, kSmoothingFloor) &&
                                                   after_sum > before_sum + kMinGain);
-    if (ok && better && tree_) {
-      star_with(star, v, old, before_);
-      star_with(star, v, pv, after_);
-      ok = keeps_input(before_, after_);
-    }
     if (!ok || !better) {
       std::copy(old, old + 3, pv);
       return false;
@@ -621,15 +564,10 @@ class Optimizer {
   int pass_ = 1;
   std::vector<double> q_, new_q_;  ///< gamma_k per triangle; of a tried star
   std::vector<int> recent_;        ///< per vertex: the last pass it changed in
-  // The fidelity guard's (see FidelityGuard): pin_of_ may be set alone.
+  // See PinSlack: pin_of_ is renumbered whenever given.
   std::vector<int32_t>* pin_of_ = nullptr;
   const std::vector<double>* input_h_ = nullptr;
-  const std::vector<uint8_t>* ignored_ = nullptr;
-  double pin_slack_ = 0, limit_ = 0;
-  std::unique_ptr<PointCloud> cloud_;
-  std::unique_ptr<PointKdTree> tree_;
-  std::vector<std::pair<uint32_t, double>> near_;
-  std::vector<Corners> before_, after_;
+  double pin_slack_ = 0;
 };
 
 }  // namespace
@@ -675,10 +613,9 @@ SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>
                                          const SurfaceMesh& input,
                                          const TriangleAdjacency& input_adj,
                                          const SurfaceOptimizeOptions& options,
-                                         const std::vector<uint8_t>& start,
-                                         const FidelityGuard* fidelity) {
+                                         const std::vector<uint8_t>& start, const PinSlack* pins) {
   SurfaceOptimizeStats stats;
-  Optimizer opt(mesh, home, fixed, size, input, input_adj, options, fidelity);
+  Optimizer opt(mesh, home, fixed, size, input, input_adj, options, pins);
   if (!start.empty()) opt.start_from(start);
   for (int pass = 0; pass < options.passes; ++pass) {
     size_t splits = pass < options.valence_passes ? opt.split_pass() : 0;

@@ -27,24 +27,16 @@ struct SurfaceOptimizeOptions {
   double split_ratio = 1.6;
 };
 
-/// Fidelity to the input while a pinned surface is optimized (see
-/// pin_to_input).
-struct FidelityGuard {
+/// Pinned vertices that may slide (see pin_to_input).
+struct PinSlack {
   /// Per output vertex, the input vertex it is pinned to (-1: none);
   /// renumbered and extended with the mesh.
   std::vector<int32_t>* pin_of = nullptr;
   /// Per input vertex, the size h there (> 0).
   const std::vector<double>* input_h = nullptr;
-  /// A smoothing move is refused if an input vertex within limit h of the
-  /// vertex's triangles ends beyond limit h of them (0: not checked). Swaps,
-  /// collapses and splits, there to repair shapes, are not checked.
-  double limit = 0;
-  /// Per input vertex (or null): 1 if it may end beyond the limit (given
-  /// up on).
-  const std::vector<uint8_t>* ignored = nullptr;
   /// A pinned vertex may move, like a free one, while it stays within
-  /// pin_slack h of its input vertex (0: never).
-  double pin_slack = 0;
+  /// slack h of its input vertex (0: never).
+  double slack = 0;
 };
 
 /// Values of the `fixed` flags of optimize_on_surface.
@@ -52,8 +44,8 @@ inline constexpr uint8_t kFree = 0;       ///< may move
 inline constexpr uint8_t kOnOpening = 1;  ///< on an opening: never moves
 inline constexpr uint8_t kOnFeature = 2;  ///< on a sharp crease: never moves
 /// Pinned to an input vertex the output must pass through (see
-/// pin_to_input): moves only within FidelityGuard::pin_slack of it, and
-/// its edges are not creases.
+/// pin_to_input): moves only within PinSlack::slack of it, and its edges
+/// are not creases.
 inline constexpr uint8_t kPinned = 3;
 
 struct SurfaceOptimizeStats {
@@ -73,10 +65,10 @@ struct SurfaceOptimizeStats {
 ///   opening) that keep the pair's worst gamma_k above a fraction of itself;
 /// - swaps that raise the smaller gamma_k of an edge's two triangles;
 /// - moves of each vertex not `fixed` (or pinned, within its slack) to the
-///   mean of the apexes that would make its triangles equilateral, projected onto `input` (the closest
-///   point found by a walk from `home[v]`, an input triangle near v, which is
-///   updated), when the star's worst gamma_k increases, or its mean
-///   increases while the worst stays above min(before, 0.8).
+///   mean of the apexes that would make its triangles equilateral, projected onto `input` (the
+///   closest point found by a walk from `home[v]`, an input triangle near v, which is updated),
+///   when the star's worst gamma_k increases, or its mean increases while the worst stays above
+///   min(before, 0.8).
 /// Vertices only move to points of the input surface; the boundary edges of
 /// `mesh` never change; no triangle turns by more than the normal guard.
 /// Split vertices are appended (free) and collapsed vertices removed: mesh,
@@ -87,15 +79,14 @@ struct SurfaceOptimizeStats {
 /// build_adjacency(input).
 /// `start` (empty, or one flag per vertex) limits the first pass to the
 /// flagged vertices and their triangles; later passes follow the changes.
-/// `fidelity` (null: none) keeps the input near the surface and lets
-/// pinned vertices slide (see FidelityGuard).
+/// `pins` (null: none) lets pinned vertices slide (see PinSlack).
 SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>& home,
                                          std::vector<uint8_t>& fixed, std::vector<double>& size,
                                          const SurfaceMesh& input,
                                          const TriangleAdjacency& input_adj,
                                          const SurfaceOptimizeOptions& options = {},
                                          const std::vector<uint8_t>& start = {},
-                                         const FidelityGuard* fidelity = nullptr);
+                                         const PinSlack* pins = nullptr);
 
 /// The point of `input` closest to q (3 doubles) among the triangles reached
 /// by a walk from triangle `start` over triangles no farther than `start`;

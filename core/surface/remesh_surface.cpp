@@ -14,6 +14,7 @@
 
 #include "core/geom/point_kdtree.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/mesh/self_intersection.h"
 #include "core/mesh/surface_distance.h"
 #include "core/param/fixed_boundary_map.h"
 #include "core/quality/triangle_quality.h"
@@ -243,13 +244,16 @@ Partition find_features(const SurfaceMesh& input, const RemeshOptions& options,
   return part;
 }
 
+/// A vertex whose star's normal sees a star triangle at a cosine below
+/// this is a needle (boundary layers cannot grow from it).
+constexpr double kNeedle = 0.05;
+
 /// Phase 6: output vertices pinned onto the input vertices farther than
 /// options.fidelity h from the output (pin_to_input), then a few
-/// optimization passes around them (guarded: no smoothing move takes an
-/// input vertex beyond the limit); pins that cost quality are freed, and a
-/// round is undone if the quality floors still fail. Updates out (mesh,
-/// home, input_gaps), fixed and out_size (one per output vertex) and the
-/// fidelity statistics.
+/// optimization passes around them; pins that cost quality are freed, and a
+/// round is undone if the quality floors still fail, or if it made a
+/// self-intersection or a needle. Updates out (mesh, home, input_gaps),
+/// fixed and out_size (one per output vertex) and the fidelity statistics.
 void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& adj,
                             const RemeshOptions& options, RemeshedSurface& out,
                             std::vector<uint8_t>& fixed, std::vector<double>& out_size,
@@ -260,12 +264,10 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
   again.valence_passes = std::min(again.valence_passes, options.fidelity_passes);
   std::vector<uint8_t> given_up(input.num_vertices(), 0);
   std::vector<int32_t> pin_of(fixed.size(), -1);  // per output vertex: its input vertex
-  FidelityGuard guard;
-  guard.pin_of = &pin_of;
-  guard.input_h = &h;
-  guard.ignored = &given_up;
-  guard.limit = options.fidelity;
-  guard.pin_slack = options.fidelity_pin_slack * options.fidelity;
+  PinSlack slack;
+  slack.pin_of = &pin_of;
+  slack.input_h = &h;
+  slack.slack = options.fidelity_pin_slack * options.fidelity;
   // The vertices whose flag differs from `before` (or are new) and their
   // neighbors: where a fidelity round changed the mesh.
   auto around_changes = [&](const std::vector<uint8_t>& before) {
@@ -289,13 +291,31 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     std::vector<int32_t> pin_of;
     size_t pinned = 0;
   } kept;
-  // The floors: the seed's, or the quality before pinning if lower.
+  // The floors: the seed's, or the quality before pinning if lower; and
+  // no more self-intersections or needles than before pinning.
   double floor_min = 0, floor_mean = 0;
+  size_t crossings = 0, needles = 0;
+  auto count_needles = [&] {
+    const std::vector<double> seen = star_visibility(out.mesh);
+    return size_t(std::count_if(seen.begin(), seen.end(), [](double c) { return c < kNeedle; }));
+  };
   auto holds = [&] {
     const QualityStats q = quality_stats(triangle_qualities(out.mesh));
     return q.min >= floor_min && q.mean >= floor_mean;
   };
+  auto clean = [&] {
+    return count_needles() <= needles && find_self_intersections(out.mesh, 0).pairs <= crossings;
+  };
   auto keep = [&] { kept = {out.mesh, out.home, fixed, pin_of, stats.fidelity_pinned}; };
+  auto restore = [&] {
+    out.mesh = kept.mesh;
+    out.home = kept.home;
+    fixed = kept.fixed;
+    pin_of = kept.pin_of;
+    out_size = output_sizes(input, out.home, h);
+    stats.fidelity_pinned = kept.pinned;
+    stats.fidelity_reverted = true;
+  };
   // The input vertices' distances to the output; returns how many are
   // beyond options.fidelity h.
   auto measure_gaps = [&] {
@@ -315,7 +335,7 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
   auto relax = [&](const std::vector<uint8_t>& before) {
     out_size = output_sizes(input, out.home, h);
     const auto more = optimize_on_surface(out.mesh, out.home, fixed, out_size, input, adj, again,
-                                          around_changes(before), &guard);
+                                          around_changes(before), &slack);
     stats.collapses += more.collapses;
     stats.swaps += more.swaps;
     stats.moves += more.moves;
@@ -346,6 +366,8 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
       const QualityStats q0 = quality_stats(triangle_qualities(out.mesh));
       floor_min = std::min(q0.min, options.fidelity_floor_min);
       floor_mean = std::min(q0.mean, options.fidelity_floor_mean);
+      crossings = find_self_intersections(out.mesh, 0).pairs;
+      needles = count_needles();
       keep();
     }
     const std::vector<uint8_t> before = fixed;
@@ -360,22 +382,16 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     for (int step = 0; step < 8 && unpin_and_relax(min_quality) > 0; ++step) {
     }
     // Then the quality floors: pins of ever better triangles are freed
-    // until they hold; else the round is undone (the pins freed stay given
-    // up, so the next round tries the others).
+    // until they hold; else, or if the round made a self-intersection or a
+    // needle, it is undone (the pins freed stay given up, so the next
+    // round tries the others).
     bool ok = holds();
     for (double strict = min_quality + 0.05; !ok && strict < 1; strict += 0.05)
       if (unpin_and_relax(strict) > 0) ok = holds();
-    if (ok) {
+    if (ok && clean())
       keep();
-      continue;
-    }
-    out.mesh = kept.mesh;
-    out.home = kept.home;
-    fixed = kept.fixed;
-    pin_of = kept.pin_of;
-    out_size = output_sizes(input, out.home, h);
-    stats.fidelity_pinned = kept.pinned;
-    stats.fidelity_reverted = true;
+    else
+      restore();
   }
 }
 

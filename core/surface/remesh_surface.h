@@ -52,10 +52,9 @@ struct RemeshOptions {
   /// above 1 - fidelity_size_drift.
   int fidelity_size_rounds = 2;
   double fidelity_size_share = 0.005, fidelity_noise_share = 0.2, fidelity_size_drift = 0.08;
-  /// Optimization passes after each fidelity round. Their smoothing moves
-  /// never take an input vertex beyond fidelity h of the output (unless
-  /// given up on), and a pinned vertex may slide on the input within
-  /// fidelity_pin_slack times fidelity h of its input vertex.
+  /// Optimization passes after each fidelity round, in which a pinned
+  /// vertex may slide on the input within fidelity_pin_slack times
+  /// fidelity h of its input vertex.
   int fidelity_passes = 10;
   double fidelity_pin_slack = 0.8;
   /// Pins left in a triangle with gamma_k below this are freed again
@@ -66,8 +65,9 @@ struct RemeshOptions {
   double fidelity_last_min_quality = 0.6;
   /// After each round the worst and mean gamma_k must stay at least
   /// min(their values before pinning, these floors: the seed's Table 1
-  /// frontal row): pins of ever better triangles are freed until they do,
-  /// else the round is undone.
+  /// frontal row): pins of ever better triangles are freed until they do.
+  /// A round that still fails them, or that made a self-intersection or a
+  /// needle (a vertex whose star no direction sees), is undone.
   double fidelity_floor_min = 0.55, fidelity_floor_mean = 0.978;
 };
 
