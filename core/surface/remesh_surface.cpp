@@ -244,8 +244,8 @@ Partition find_features(const SurfaceMesh& input, const RemeshOptions& options,
   return part;
 }
 
-/// A vertex whose star's normal sees a star triangle at a cosine below
-/// this is a needle (boundary layers cannot grow from it).
+/// A vertex whose star_visibility is below this is a needle (no boundary
+/// layer could grow from it).
 constexpr double kNeedle = 0.05;
 
 /// Phase 6: output vertices pinned onto the input vertices farther than
@@ -282,8 +282,8 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     }
     return flag;
   };
-  // The last surface that held the quality floors (first the one before
-  // pinning), returned if pinning ends up costing too much quality.
+  // The last surface that held the floors (first the one before pinning),
+  // restored when a round is undone.
   struct Kept {
     SurfaceMesh mesh;
     std::vector<int32_t> home;

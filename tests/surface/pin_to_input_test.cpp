@@ -146,6 +146,23 @@ TEST(PinToInput, UnpinPoorFreesPinsInPoorTrianglesAndRemembersThem) {
   EXPECT_EQ(std::count(skip.begin(), skip.end(), 1), 1);
 }
 
+TEST(PinToInput, StarVisibilityFindsNeedles) {
+  SurfaceMesh m = grid(4);  // spacing 0.25
+  const size_t center = 2 * 5 + 2;
+  for (double v : star_visibility(m)) EXPECT_NEAR(v, 1.0, 1e-12);
+  // A bump is seen from above; a needle ten spacings tall barely (its
+  // triangles stand almost upright); one folded back under its base by no
+  // direction.
+  m.points[3 * center + 2] = 0.05;
+  EXPECT_GT(star_visibility(m)[center], 0.9);
+  m.points[3 * center + 2] = 2.5;
+  EXPECT_LT(star_visibility(m)[center], 0.15);
+  EXPECT_GT(star_visibility(m)[center], 0.0);
+  m.points[3 * center] = 0.5 + 0.4;  // over and past its neighbor at x = 0.75
+  m.points[3 * center + 2] = 0.01;
+  EXPECT_LT(star_visibility(m)[center], 0.0);
+}
+
 TEST(PinToInput, PinnedVerticesSlideOnlyWithinTheSlack) {
   // The same pinned surface optimized three ways: pins held (no pin_of),
   // pins sliding within 0.08 h, and the same without pin_of.
