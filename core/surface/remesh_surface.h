@@ -49,9 +49,10 @@ struct RemeshOptions {
   /// size is made finer within h of each (at most halved, graded) and the
   /// surface meshed again, at most this many times.
   /// A round is kept only if the median edge over the asked size stays
-  /// above 1 - fidelity_size_drift.
-  int fidelity_size_rounds = 2;
-  double fidelity_size_share = 0.005, fidelity_noise_share = 0.2, fidelity_size_drift = 0.095;
+  /// above 1 - fidelity_size_drift. (A round remeshes the whole surface,
+  /// so a few far vertices on a large one are left: the share.)
+  int fidelity_size_rounds = 4;
+  double fidelity_size_share = 0.0005, fidelity_noise_share = 0.2, fidelity_size_drift = 0.095;
   /// Optimization passes after each fidelity round, in which a pinned
   /// vertex may slide on the input within fidelity_pin_slack times
   /// fidelity h of its input vertex.
