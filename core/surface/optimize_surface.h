@@ -65,10 +65,11 @@ struct SurfaceOptimizeStats {
 ///   opening) that keep the pair's worst gamma_k above a fraction of itself;
 /// - swaps that raise the smaller gamma_k of an edge's two triangles;
 /// - moves of each vertex not `fixed` (or pinned, within its slack) to the
-///   mean of the apexes that would make its triangles equilateral, projected onto `input` (the
-///   closest point found by a walk from `home[v]`, an input triangle near v, which is updated),
-///   when the star's worst gamma_k increases, or its mean increases while the worst stays above
-///   min(before, 0.8).
+///   mean of the apexes that would make its triangles equilateral,
+///   projected onto `input` (the closest point found by a walk from
+///   `home[v]`, an input triangle near v, which is updated), when the
+///   star's worst gamma_k increases, or its mean increases while the worst
+///   stays above min(before, 0.8).
 /// Vertices only move to points of the input surface; the boundary edges of
 /// `mesh` never change; no triangle turns by more than the normal guard.
 /// Split vertices are appended (free) and collapsed vertices removed: mesh,
