@@ -373,7 +373,14 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     const std::vector<uint8_t> before = fixed;
     const PinStats pinned = pin_to_input(out.mesh, out.home, fixed, pin_of, input, h,
                                          out.input_gaps, options.fidelity, given_up);
-    if (pinned.pinned == 0) break;
+    if (pinned.pinned == 0) {
+      // Nothing left to try at this quality: on to the last rounds.
+      if (round < options.fidelity_rounds) {
+        round = options.fidelity_rounds - 1;
+        continue;
+      }
+      break;
+    }
     ++stats.fidelity_rounds;
     stats.fidelity_pinned += pinned.pinned;
     relax(before);
