@@ -560,8 +560,11 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
   // Phase 7: where more than a few input vertices stay far from the output
   // (a bend tighter than h can follow, coarse facets), a finer size within
   // h of each (at most halved per round, graded), and phases 3-6 again on
-  // the same partition. Not
-  // when they are everywhere (noise: the surface smooths over it).
+  // the same partition. Not when they are everywhere (noise: the surface
+  // smooths over it).
+  const PointCloud cloud{input.points};
+  PointKdTree tree(3, cloud);
+  if (options.fidelity_size_rounds > 0) tree.buildIndex();
   for (int round = 0; round < options.fidelity_size_rounds && result.ok(); ++round) {
     const RemeshedSurface& r = result.value();
     t0 = std::chrono::steady_clock::now();
@@ -570,9 +573,6 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
       if (r.input_gaps[v] > options.fidelity * h[v]) far.push_back(int32_t(v));
     const double share = double(far.size()) / double(r.mesh.num_vertices());
     if (!(share > options.fidelity_size_share) || share > options.fidelity_noise_share) break;
-    const PointCloud cloud{input.points};
-    PointKdTree tree(3, cloud);
-    tree.buildIndex();
     std::vector<double> finer = h;
     std::vector<std::pair<uint32_t, double>> near;
     const nanoflann::SearchParams unsorted(32, 0, false);
