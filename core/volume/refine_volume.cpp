@@ -15,8 +15,8 @@
 // than boundary_spacing * h to a constrained face of those tetrahedra, or
 // closer than min_spacing * h to a vertex of its cavity (checked by the
 // kernel before it changes anything); else it is inserted at once
-// (constrained cavity) and queued. Metric
-// lengths use h linear along the edge between its ends.
+// (constrained cavity) and queued. Metric lengths use h linear along the
+// edge between its ends.
 #include "core/volume/refine_volume.h"
 
 #include <algorithm>
