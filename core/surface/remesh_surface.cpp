@@ -249,15 +249,17 @@ Partition find_features(const SurfaceMesh& input, const RemeshOptions& options,
 constexpr double kNeedle = 0.05;
 
 /// Phase 6: output vertices pinned onto the input vertices farther than
-/// options.fidelity h from the output (pin_to_input), then a few
+/// options.fidelity h from the output (pin_to_input; h: `asked`, the size
+/// asked for, one per input vertex, which finer sizes of the size rounds
+/// do not change), then a few
 /// optimization passes around them; pins that cost quality are freed, and a
 /// round is undone if the quality floors still fail, or if it made a
 /// self-intersection or a needle. Updates out (mesh, home, input_gaps),
 /// fixed and out_size (one per output vertex) and the fidelity statistics.
 void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& adj,
-                            const RemeshOptions& options, RemeshedSurface& out,
-                            std::vector<uint8_t>& fixed, std::vector<double>& out_size,
-                            RemeshStats& stats) {
+                            const RemeshOptions& options, const std::vector<double>& asked,
+                            RemeshedSurface& out, std::vector<uint8_t>& fixed,
+                            std::vector<double>& out_size, RemeshStats& stats) {
   const std::vector<double>& h = out.input_sizes;
   SurfaceOptimizeOptions again = options.optimize;
   again.passes = options.fidelity_passes;
@@ -317,14 +319,14 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     stats.fidelity_reverted = true;
   };
   // The input vertices' distances to the output; returns how many are
-  // beyond options.fidelity h.
+  // beyond options.fidelity h (the asked h).
   auto measure_gaps = [&] {
     out.input_gaps = distances_to_surface(out.mesh, input.points, true).per_point;
     stats.max_input_gap = 0;
     stats.input_gap_vertices = 0;
     size_t far = 0;
-    for (size_t v = 0; v < h.size(); ++v) {
-      const double rel = out.input_gaps[v] / h[v];
+    for (size_t v = 0; v < asked.size(); ++v) {
+      const double rel = out.input_gaps[v] / asked[v];
       stats.max_input_gap = std::max(stats.max_input_gap, rel);
       stats.input_gap_vertices += rel > kReportedGap;
       far += rel > options.fidelity;
@@ -371,7 +373,7 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
       keep();
     }
     const std::vector<uint8_t> before = fixed;
-    const PinStats pinned = pin_to_input(out.mesh, out.home, fixed, pin_of, input, h,
+    const PinStats pinned = pin_to_input(out.mesh, out.home, fixed, pin_of, input, asked,
                                          out.input_gaps, options.fidelity, given_up);
     if (pinned.pinned == 0) {
       // Nothing left to try at this quality: on to the last rounds.
@@ -403,10 +405,12 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
 }
 
 /// Phases 2-6 at the sizes `sizes` (one per input vertex) on the features
-/// of `part`; adds to `stats`.
+/// of `part`, fidelity measured against `asked` (one per input vertex);
+/// adds to `stats`.
 Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOptions& options,
-                                        std::vector<double> sizes, Partition& part,
-                                        RemeshStats& stats, const ProgressFn& progress) {
+                                        std::vector<double> sizes, const std::vector<double>& asked,
+                                        Partition& part, RemeshStats& stats,
+                                        const ProgressFn& progress) {
   using R = Result<RemeshedSurface>;
   RemeshedSurface out;
   out.input_sizes = std::move(sizes);
@@ -523,7 +527,7 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
 
   // Phase 6: fidelity.
   t0 = std::chrono::steady_clock::now();
-  pin_far_input_vertices(input, adj, options, out, fixed, out_size, stats);
+  pin_far_input_vertices(input, adj, options, asked, out, fixed, out_size, stats);
   stats.seconds_fidelity += seconds_since(t0);
   out.sizes = out_size;
   out.on_opening.resize(fixed.size());
@@ -532,12 +536,6 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
     out.on_opening[v] = fixed[v] == kOnOpening;
     out.on_feature[v] = fixed[v] == kOnFeature;
   }
-
-  // How well the edges follow the field.
-  const std::array<double, 3> ratios = edge_ratios(out, out_size);
-  stats.edge_ratio_p10 = ratios[0];
-  stats.edge_ratio_median = ratios[1];
-  stats.edge_ratio_p90 = ratios[2];
   return out;
 }
 
@@ -556,48 +554,85 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
   t0 = std::chrono::steady_clock::now();
   Partition part = find_features(input, options, h, stats);
   stats.seconds_partition = seconds_since(t0);
-  auto result = remesh_at_sizes(input, options, h, part, stats, progress);
+  auto result = remesh_at_sizes(input, options, h, asked, part, stats, progress);
   // Phase 7: where more than a few input vertices stay far from the output
   // (a bend tighter than h can follow, coarse facets), a finer size within
-  // h of each (at most halved per round, graded), and phases 3-6 again on
-  // the same partition. Not when they are everywhere (noise: the surface
+  // h of each (RemeshOptions::fidelity_size_rounds), and phases 3-6 again
+  // on the same partition. Not when they are everywhere (noise: the surface
   // smooths over it).
   const PointCloud cloud{input.points};
   PointKdTree tree(3, cloud);
   if (options.fidelity_size_rounds > 0) tree.buildIndex();
-  for (int round = 0; round < options.fidelity_size_rounds && result.ok(); ++round) {
-    const RemeshedSurface& r = result.value();
-    t0 = std::chrono::steady_clock::now();
+  // The input vertices beyond fidelity h, given their gaps.
+  auto far_vertices = [&](const std::vector<double>& gaps) {
     std::vector<int32_t> far;
-    for (size_t v = 0; v < h.size(); ++v)
-      if (r.input_gaps[v] > options.fidelity * h[v]) far.push_back(int32_t(v));
-    const double share = double(far.size()) / double(r.mesh.num_vertices());
-    if (!(share > options.fidelity_size_share) || share > options.fidelity_noise_share) break;
+    for (size_t v = 0; v < asked.size(); ++v)
+      if (gaps[v] > options.fidelity * asked[v]) far.push_back(int32_t(v));
+    return far;
+  };
+  // Each round refines the last one's sizes; the surface kept is the one
+  // with the fewest far vertices (meshing is not monotone: a round can
+  // leave a few more than the one before), `result` and `stats`.
+  std::vector<double> gaps =
+      result.ok() ? result.value().input_gaps : std::vector<double>(asked.size(), 0);
+  size_t vertices = result.ok() ? result.value().mesh.num_vertices() : 0;
+  size_t best_far = far_vertices(gaps).size();
+  RemeshStats latest = stats;
+  for (int round = 0; round < options.fidelity_size_rounds && result.ok(); ++round) {
+    t0 = std::chrono::steady_clock::now();
+    const std::vector<int32_t> far = far_vertices(gaps);
+    const double share = double(far.size()) / double(vertices);
+    if (far.empty() || share > options.fidelity_noise_share ||
+        (vertices > options.fidelity_small_surface && !(share > options.fidelity_size_share)))
+      break;
     std::vector<double> finer = h;
     std::vector<std::pair<uint32_t, double>> near;
     const nanoflann::SearchParams unsorted(32, 0, false);
     for (int32_t v : far) {
-      const double rel = r.input_gaps[size_t(v)] / h[size_t(v)];
-      const double target = std::max(
-          h[size_t(v)] * std::clamp(0.8 * options.fidelity / rel, 0.5, 0.8), options.size.size_min);
+      // A chord's gap from a bend grows as h^2.
+      const double rel = gaps[size_t(v)] / asked[size_t(v)];
+      const double target =
+          std::max(h[size_t(v)] * std::clamp(std::sqrt(0.8 * options.fidelity / rel), 0.5, 0.9),
+                   options.size.size_min);
       tree.radiusSearch(&input.points[3 * size_t(v)], h[size_t(v)] * h[size_t(v)], near, unsorted);
       for (const auto& item : near) finer[item.first] = std::min(finer[item.first], target);
     }
     limit_gradation(input, finer, options.size.gradation);
-    stats.seconds_fidelity += seconds_since(t0);
-    RemeshStats next = stats;
-    auto again = remesh_at_sizes(input, options, finer, part, next, progress);
+    latest.seconds_fidelity += seconds_since(t0);
+    RemeshStats next = latest;
+    auto again = remesh_at_sizes(input, options, finer, asked, part, next, progress);
     if (!again.ok() && again.status().message() == kCancelledMessage) return again.status();
-    // Kept only if the edges still follow the asked size (median within
-    // fidelity_size_drift of it); else the surface of the previous round.
+    // Only while the edges still follow the asked size (median within
+    // fidelity_size_drift of it).
     if (!again.ok() ||
         edge_ratios(again.value(), output_sizes(input, again.value().home, asked))[1] <
             1 - options.fidelity_size_drift)
       break;
     h = std::move(finer);
-    stats = next;
-    ++stats.fidelity_size_rounds;
-    result = std::move(again);
+    ++next.fidelity_size_rounds;
+    latest = next;
+    gaps = again.value().input_gaps;
+    vertices = again.value().mesh.num_vertices();
+    const size_t n_far = far_vertices(gaps).size();
+    if (n_far < best_far) {
+      best_far = n_far;
+      stats = next;
+      result = std::move(again);
+    }
+  }
+  // The time and rounds spent, kept or not.
+  stats.seconds_mesh = latest.seconds_mesh;
+  stats.seconds_optimize = latest.seconds_optimize;
+  stats.seconds_fidelity = latest.seconds_fidelity;
+  stats.fidelity_size_rounds = latest.fidelity_size_rounds;
+  if (result.ok()) {
+    // How well the edges follow the asked size (the finer sizes of the
+    // size rounds are the surface's own business).
+    const std::array<double, 3> ratios =
+        edge_ratios(result.value(), output_sizes(input, result.value().home, asked));
+    stats.edge_ratio_p10 = ratios[0];
+    stats.edge_ratio_median = ratios[1];
+    stats.edge_ratio_p90 = ratios[2];
   }
   if (stats_out) *stats_out = stats;
   return result;

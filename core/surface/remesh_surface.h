@@ -43,15 +43,19 @@ struct RemeshOptions {
   /// Pinning is not tried when more input vertices than this share of
   /// the output's vertices are far (noise everywhere).
   double fidelity_max_share = 0.3;
-  /// Size rounds: when the input vertices left beyond fidelity h are more
-  /// than fidelity_size_share of the output's vertices (and at most
-  /// fidelity_noise_share: beyond that they are noise, smoothed over), the
-  /// size is made finer within h of each (at most halved, graded) and the
-  /// surface meshed again, at most this many times.
-  /// A round is kept only if the median edge over the asked size stays
-  /// above 1 - fidelity_size_drift. (A round remeshes the whole surface,
-  /// so a few far vertices on a large one are left: the share.)
-  int fidelity_size_rounds = 4;
+  /// Size rounds: when input vertices are left beyond fidelity h, and at
+  /// most fidelity_noise_share of the output's vertices (beyond that they
+  /// are noise, smoothed over), the size is made finer within h of each (a
+  /// chord's gap grows as h^2: by the square root of the gap's excess,
+  /// 0.5 to 0.9 times per round, graded) and the surface meshed again, at
+  /// most this many times, from the last round's sizes. The limit stays
+  /// fidelity times the asked h. Rounds stop when the median edge over the
+  /// asked size falls below 1 - fidelity_size_drift; the surface kept is
+  /// the one with the fewest far vertices. A round remeshes the whole
+  /// surface: on outputs of more than fidelity_small_surface vertices,
+  /// only when more than fidelity_size_share of them are far.
+  int fidelity_size_rounds = 6;
+  size_t fidelity_small_surface = 30000;
   double fidelity_size_share = 0.0005, fidelity_noise_share = 0.2, fidelity_size_drift = 0.095;
   /// Optimization passes after each fidelity round, in which a pinned
   /// vertex may slide on the input within fidelity_pin_slack times
@@ -84,16 +88,16 @@ struct RemeshStats {
   size_t retries = 0;        ///< partitions redone because a patch failed to mesh
   size_t swaps = 0, moves = 0, collapses = 0;
   double size_min = 0, size_median = 0, size_max = 0;  ///< of the size field at input vertices
-  /// Output edge length / target size (mean of its ends' sizes): median and
-  /// 10th / 90th percentiles over the edges (1 = the field followed exactly).
+  /// Output edge length / asked size (mean of its ends' sizes, before any
+  /// size round): median and 10th / 90th percentiles over the edges (1 =
+  /// the field followed exactly).
   double edge_ratio_median = 0, edge_ratio_p10 = 0, edge_ratio_p90 = 0;
   /// Fidelity: pinning rounds done, output vertices pinned, and at the end
-  /// the largest input-vertex distance to the output over h, with the count
-  /// of input vertices beyond kReportedGap h.
+  /// the largest input-vertex distance to the output over the asked h,
+  /// with the count of input vertices beyond kReportedGap h.
   size_t fidelity_rounds = 0, fidelity_pinned = 0;
-  bool fidelity_reverted = false;
-  size_t fidelity_size_rounds =
-      0;  ///< meshings again at a finer size  ///< pinning was undone (it cost too much quality)
+  bool fidelity_reverted = false;   ///< a pinning round was undone
+  size_t fidelity_size_rounds = 0;  ///< meshings again at a finer size
   double max_input_gap = 0;
   size_t input_gap_vertices = 0;
   double seconds_size = 0, seconds_partition = 0, seconds_mesh = 0, seconds_optimize = 0,
