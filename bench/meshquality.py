@@ -164,6 +164,94 @@ def msh_quality(path):
     return r
 
 
+# ---------------------------------------------------------------- distances
+
+def read_stl_points(path):
+    """The distinct corner points of a binary or ASCII STL file, (n, 3)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    n = int(np.frombuffer(data, np.uint32, 1, 80)[0]) if len(data) >= 84 else -1
+    if n >= 0 and len(data) == 84 + 50 * n:
+        rec = np.dtype([("normal", "<f4", 3), ("v", "<f4", (3, 3)), ("attr", "<u2")])
+        pts = np.frombuffer(data, rec, n, 84)["v"].reshape(-1, 3).astype(np.float64)
+    else:
+        words = data.decode("ascii", "replace").split()
+        idx = [i for i, w in enumerate(words) if w == "vertex"]
+        pts = np.array([[float(words[i + 1]), float(words[i + 2]), float(words[i + 3])]
+                        for i in idx]).reshape(-1, 3)
+    return np.unique(pts, axis=0)
+
+
+def _closest_on_triangles(p, a, b, c):
+    """Closest points to p on triangles (a, b, c), all (m, 3) (Ericson,
+    Real-Time Collision Detection, 5.1.5, region by region)."""
+    ab, ac, ap = b - a, c - a, p - a
+    d1, d2 = np.einsum("ij,ij->i", ab, ap), np.einsum("ij,ij->i", ac, ap)
+    bp, cp = p - b, p - c
+    d3, d4 = np.einsum("ij,ij->i", ab, bp), np.einsum("ij,ij->i", ac, bp)
+    d5, d6 = np.einsum("ij,ij->i", ab, cp), np.einsum("ij,ij->i", ac, cp)
+    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        denom = va + vb + vc
+        v, w = vb / denom, vc / denom
+        out = a + ab * v[:, None] + ac * w[:, None]  # inside the face
+        # Edges, then vertices (later assignments take precedence).
+        t = d1 / (d1 - d3)
+        m = (vc <= 0) & (d1 >= 0) & (d3 <= 0)
+        out[m] = (a + ab * t[:, None])[m]
+        t = d2 / (d2 - d6)
+        m = (vb <= 0) & (d2 >= 0) & (d6 <= 0)
+        out[m] = (a + ac * t[:, None])[m]
+        t = (d4 - d3) / ((d4 - d3) + (d5 - d6))
+        m = (va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0)
+        out[m] = (b + (c - b) * t[:, None])[m]
+    out[(d1 <= 0) & (d2 <= 0)] = a[(d1 <= 0) & (d2 <= 0)]
+    out[(d3 >= 0) & (d4 <= d3)] = b[(d3 >= 0) & (d4 <= d3)]
+    out[(d6 >= 0) & (d5 <= d6)] = c[(d6 >= 0) & (d5 <= d6)]
+    return out
+
+
+def distances_within(points, xyz, tri, radius):
+    """Per point (n, 3), its distance to the nearest triangle (xyz (k, 3),
+    tri (m, 3) 0-based) when that is at most `radius`, else inf. Triangles
+    are binned in a grid of cells of at least `radius`; a point meets those
+    whose box, grown by `radius`, covers its cell."""
+    corners = xyz[tri]
+    lo, hi = corners.min(axis=1) - radius, corners.max(axis=1) + radius
+    cell = max(radius, float(np.median(hi - lo)))
+    origin = lo.min(axis=0)
+    clo = np.floor((lo - origin) / cell).astype(np.int64)
+    chi = np.floor((hi - origin) / cell).astype(np.int64)
+    dims = chi.max(axis=0) + 2
+    span = chi - clo
+    keys, owners = [], []
+    for dx in range(int(span[:, 0].max()) + 1):
+        for dy in range(int(span[:, 1].max()) + 1):
+            for dz in range(int(span[:, 2].max()) + 1):
+                m = (span[:, 0] >= dx) & (span[:, 1] >= dy) & (span[:, 2] >= dz)
+                c = clo[m] + [dx, dy, dz]
+                keys.append((c[:, 0] * dims[1] + c[:, 1]) * dims[2] + c[:, 2])
+                owners.append(np.nonzero(m)[0])
+    keys, owners = np.concatenate(keys), np.concatenate(owners)
+    order = np.argsort(keys, kind="stable")
+    keys, owners = keys[order], owners[order]
+    dist = np.full(len(points), np.inf)
+    pc = np.floor((points - origin) / cell).astype(np.int64)
+    inside = np.all((pc >= 0) & (pc < dims), axis=1)
+    idx = np.nonzero(inside)[0]
+    pk = (pc[idx, 0] * dims[1] + pc[idx, 1]) * dims[2] + pc[idx, 2]
+    first, last = np.searchsorted(keys, pk, "left"), np.searchsorted(keys, pk, "right")
+    count = last - first
+    pt = np.repeat(idx, count)
+    starts = np.repeat(first - np.cumsum(count) + count, count) + np.arange(count.sum())
+    tr = owners[starts]
+    q = _closest_on_triangles(points[pt], corners[tr, 0], corners[tr, 1], corners[tr, 2])
+    d = np.linalg.norm(points[pt] - q, axis=1)
+    np.minimum.at(dist, pt, d)
+    dist[dist > radius] = np.inf
+    return dist
+
+
 # ---------------------------------------------------------------- SVG plots
 
 PALETTE = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b",
