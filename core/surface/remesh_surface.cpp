@@ -354,6 +354,9 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
   // triangles around the pins (the floors still hold).
   const int rounds =
       options.fidelity_rounds + (options.fidelity_rounds > 0 ? options.fidelity_last_rounds : 0);
+  // No size round may follow on a large wall: its last rounds accept
+  // triangles down to the floor.
+  const bool large_wall = out.mesh.num_vertices() > options.fidelity_small_surface;
   for (int round = 0;; ++round) {
     const size_t far = measure_gaps();
     // Noise everywhere (more pins than a share of the output's vertices)
@@ -361,8 +364,10 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     if (far == 0 || round >= rounds ||
         (round == 0 && double(far) > options.fidelity_max_share * double(out.mesh.num_vertices())))
       break;
-    const double min_quality = round >= options.fidelity_rounds ? options.fidelity_last_min_quality
-                                                                : options.fidelity_min_quality;
+    const double min_quality =
+        round < options.fidelity_rounds ? options.fidelity_min_quality
+        : large_wall ? std::min(options.fidelity_last_min_quality, options.fidelity_floor_min)
+                     : options.fidelity_last_min_quality;
     if (round == options.fidelity_rounds) std::fill(given_up.begin(), given_up.end(), 0);
     if (round == 0) {
       const QualityStats q0 = quality_stats(triangle_qualities(out.mesh));

@@ -64,7 +64,9 @@ struct RemeshOptions {
   double fidelity_pin_slack = 0.8;
   /// Pins left in a triangle with gamma_k below this are freed again
   /// (and given up on), except in fidelity_last_rounds more rounds that
-  /// retry every vertex left far with fidelity_last_min_quality.
+  /// retry every vertex left far with fidelity_last_min_quality (with
+  /// fidelity_floor_min on walls of more than fidelity_small_surface
+  /// vertices, where no size round may follow).
   double fidelity_min_quality = 0.75;
   int fidelity_last_rounds = 2;
   double fidelity_last_min_quality = 0.6;

@@ -349,5 +349,29 @@ TEST(RemeshSurface, SizeRoundsRefineAroundWhatTheWallCannotFollow) {
   EXPECT_NEAR(on_stats.edge_ratio_median, median / h, 0.01);
 }
 
+TEST(RemeshSurface, LargeWallsPinDownToTheQualityFloor) {
+  // Without size rounds (a wall taken as large, few far vertices), the
+  // last pinning rounds accept triangles down to the seed's floor.
+  const SurfaceMesh in = testing::phantom(PhantomKind::kAneurysm, true, 0.1, 0.1);
+  RemeshOptions o;
+  o.size.mode = SizeMode::kUniform;
+  o.size.size = 0.3;
+  o.fidelity_size_rounds = 0;
+  RemeshStats small_stats, large_stats;
+  auto small = remesh_surface(in, o, &small_stats);
+  o.fidelity_small_surface = 0;
+  auto large = remesh_surface(in, o, &large_stats);
+  ASSERT_TRUE(small.ok()) << small.message();
+  ASSERT_TRUE(large.ok()) << large.message();
+  const QualityStats qs = quality_stats(triangle_qualities(small.value().mesh));
+  const QualityStats ql = quality_stats(triangle_qualities(large.value().mesh));
+  std::cout << "[ info ] far input vertices " << small_stats.input_gap_vertices << " -> "
+            << large_stats.input_gap_vertices << ", gamma_k min " << qs.min << " -> " << ql.min
+            << "\n";
+  EXPECT_LT(large_stats.input_gap_vertices, small_stats.input_gap_vertices);
+  EXPECT_GE(ql.min, o.fidelity_floor_min);
+  EXPECT_GE(ql.mean, o.fidelity_floor_mean);
+}
+
 }  // namespace
 }  // namespace vm
