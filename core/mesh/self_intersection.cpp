@@ -14,7 +14,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <unordered_set>
 
 #include "core/geom/predicates.h"
 #include "core/mesh/triangle_bvh.h"
@@ -282,37 +284,124 @@ bool triangles_intersect(const SurfaceMesh& mesh, int32_t t1, int32_t t2) {
   return PairTester::intersect(A, B);
 }
 
-SelfIntersectionReport find_self_intersections(const SurfaceMesh& mesh, size_t max_examples) {
-  SelfIntersectionReport report;
-  const size_t nt = mesh.num_triangles();
-  if (nt < 2) return report;
-  const PairTester tester(mesh);
-  std::vector<Tri> tris(nt);
-  std::vector<double> box(6 * nt);
-  for (size_t t = 0; t < nt; ++t) {
-    tris[t] = tester.tri(int32_t(t));
-    if (tris[t].drop < 0) ++report.degenerate_triangles;
-    for (int d = 0; d < 3; ++d) {
-      box[6 * t + size_t(d)] = std::min({tris[t].p[0][d], tris[t].p[1][d], tris[t].p[2][d]});
-      box[6 * t + 3 + size_t(d)] = std::max({tris[t].p[0][d], tris[t].p[1][d], tris[t].p[2][d]});
+namespace {
+
+// The triangles of a mesh prepared for pair tests (plane, box), and the
+// test of one pair, counted into a report.
+class PairCounter {
+ public:
+  PairCounter(const SurfaceMesh& mesh, SelfIntersectionReport& report, size_t max_examples)
+      : report_(report), max_examples_(max_examples) {
+    const PairTester tester(mesh);
+    const size_t nt = mesh.num_triangles();
+    tris_.resize(nt);
+    box_.resize(6 * nt);
+    for (size_t t = 0; t < nt; ++t) {
+      tris_[t] = tester.tri(int32_t(t));
+      if (tris_[t].drop < 0) ++report.degenerate_triangles;
+      for (int d = 0; d < 3; ++d) {
+        box_[6 * t + size_t(d)] = std::min({tris_[t].p[0][d], tris_[t].p[1][d], tris_[t].p[2][d]});
+        box_[6 * t + 3 + size_t(d)] =
+            std::max({tris_[t].p[0][d], tris_[t].p[1][d], tris_[t].p[2][d]});
+      }
     }
   }
-  auto test = [&](int32_t s, int32_t t) {
-    const Tri &A = tris[size_t(s)], &B = tris[size_t(t)];
+  const double* lo(int32_t t) const { return &box_[6 * size_t(t)]; }
+  const double* hi(int32_t t) const { return &box_[6 * size_t(t) + 3]; }
+  void test(int32_t s, int32_t t) {
+    const Tri &A = tris_[size_t(s)], &B = tris_[size_t(t)];
     if (A.drop < 0 || B.drop < 0) return;
-    if (!boxes_overlap(&box[6 * size_t(s)], &box[6 * size_t(s) + 3], &box[6 * size_t(t)],
-                       &box[6 * size_t(t) + 3]))
-      return;
-    ++report.tested_pairs;
+    if (!boxes_overlap(lo(s), hi(s), lo(t), hi(t))) return;
+    ++report_.tested_pairs;
     if (!PairTester::intersect(A, B)) return;
-    ++report.pairs;
-    if (report.examples.size() < max_examples)
-      report.examples.push_back({std::min(s, t), std::max(s, t)});
-  };
+    ++report_.pairs;
+    if (report_.examples.size() < max_examples_)
+      report_.examples.push_back({std::min(s, t), std::max(s, t)});
+  }
 
+ private:
+  SelfIntersectionReport& report_;
+  size_t max_examples_;
+  std::vector<Tri> tris_;
+  std::vector<double> box_;  // 6 per triangle: lo, hi
+};
+
+}  // namespace
+
+SelfIntersectionReport find_self_intersections(const SurfaceMesh& mesh, size_t max_examples) {
+  SelfIntersectionReport report;
+  if (mesh.num_triangles() < 2) return report;
+  PairCounter pairs(mesh, report, max_examples);
   const TriangleBvh bvh = build_triangle_bvh(mesh, 8);
   for_each_leaf_pair(
-      bvh, [&](int32_t i, int32_t j) { test(bvh.order[size_t(i)], bvh.order[size_t(j)]); });
+      bvh, [&](int32_t i, int32_t j) { pairs.test(bvh.order[size_t(i)], bvh.order[size_t(j)]); });
+  return report;
+}
+
+std::vector<uint8_t> changed_triangles(const SurfaceMesh& before, const SurfaceMesh& now) {
+  using Key = std::array<double, 9>;
+  auto key = [](const SurfaceMesh& m, size_t t) {
+    std::array<const double*, 3> c;
+    for (int k = 0; k < 3; ++k)
+      c[size_t(k)] = &m.points[3 * size_t(m.triangles[3 * t + size_t(k)])];
+    std::sort(c.begin(), c.end(), [](const double* a, const double* b) {
+      return std::lexicographical_compare(a, a + 3, b, b + 3);
+    });
+    Key out;
+    for (int k = 0; k < 3; ++k) std::copy(c[size_t(k)], c[size_t(k)] + 3, &out[3 * size_t(k)]);
+    return out;
+  };
+  struct Hash {
+    size_t operator()(const Key& k) const {
+      uint64_t h = 1469598103934665603ull;
+      for (double x : k) h = (h ^ std::bit_cast<uint64_t>(x)) * 1099511628211ull;
+      return size_t(h);
+    }
+  };
+  std::unordered_set<Key, Hash> old;
+  old.reserve(before.num_triangles());
+  for (size_t t = 0; t < before.num_triangles(); ++t) old.insert(key(before, t));
+  std::vector<uint8_t> changed(now.num_triangles());
+  for (size_t t = 0; t < now.num_triangles(); ++t) changed[t] = !old.contains(key(now, t));
+  return changed;
+}
+
+SelfIntersectionReport find_self_intersections_of(const SurfaceMesh& mesh,
+                                                  const std::vector<uint8_t>& flagged,
+                                                  size_t max_examples) {
+  SelfIntersectionReport report;
+  const size_t nt = mesh.num_triangles();
+  SurfaceMesh part;  // the flagged triangles (ids: position among them)
+  part.points = mesh.points;
+  std::vector<int32_t> id;
+  for (size_t t = 0; t < nt; ++t)
+    if (flagged[t]) {
+      id.push_back(int32_t(t));
+      part.triangles.insert(part.triangles.end(), &mesh.triangles[3 * t],
+                            &mesh.triangles[3 * t] + 3);
+    }
+  if (id.empty() || nt < 2) return report;
+  PairCounter pairs(mesh, report, max_examples);
+  const TriangleBvh bvh = build_triangle_bvh(part, 8);
+  // One query per triangle; a pair of two flagged ones from the smaller.
+  std::vector<int32_t> nodes;
+  for (int32_t t = 0; t < int32_t(nt); ++t) {
+    nodes.assign(1, 0);
+    while (!nodes.empty()) {
+      const TriangleBvh::Node& n = bvh.nodes[size_t(nodes.back())];
+      nodes.pop_back();
+      if (!boxes_overlap(n.lo, n.hi, pairs.lo(t), pairs.hi(t))) continue;
+      if (!TriangleBvh::is_leaf(n)) {
+        nodes.push_back(n.first);
+        nodes.push_back(n.first + 1);
+        continue;
+      }
+      for (int32_t i = n.first; i < n.first + n.count; ++i) {
+        const int32_t u = id[size_t(bvh.order[size_t(i)])];
+        if (u != t && (!flagged[size_t(t)] || t < u)) pairs.test(t, u);
+      }
+    }
+  }
   return report;
 }
 

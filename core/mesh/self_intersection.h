@@ -41,6 +41,19 @@ struct SelfIntersectionReport {
 /// Precondition: indices in range.
 SelfIntersectionReport find_self_intersections(const SurfaceMesh& mesh, size_t max_examples = 8);
 
+/// The pairs that find_self_intersections would report with at least one
+/// triangle flagged in `flagged` (one flag per triangle of `mesh`): those a
+/// local change of the flagged triangles may have made. Cost: a hierarchy
+/// over the flagged triangles and one query per triangle of the mesh.
+SelfIntersectionReport find_self_intersections_of(const SurfaceMesh& mesh,
+                                                  const std::vector<uint8_t>& flagged,
+                                                  size_t max_examples = 8);
+
+/// Flags for find_self_intersections_of after a change: per triangle of
+/// `now`, 1 unless `before` has a triangle with the same three corner
+/// positions (vertex numbers may differ, e.g. after a renumbering).
+std::vector<uint8_t> changed_triangles(const SurfaceMesh& before, const SurfaceMesh& now);
+
 /// The exact test of find_self_intersections for one pair of triangles t1,
 /// t2 of `mesh` (sharing by index as above). False if either is degenerate.
 bool triangles_intersect(const SurfaceMesh& mesh, int32_t t1, int32_t t2);

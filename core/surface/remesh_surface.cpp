@@ -305,8 +305,13 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     const QualityStats q = quality_stats(triangle_qualities(out.mesh));
     return q.min >= floor_min && q.mean >= floor_mean;
   };
+  // Pairs of unchanged triangles are the kept surface's: when it had
+  // none, only pairs with a changed triangle can be new.
   auto clean = [&] {
-    return count_needles() <= needles && find_self_intersections(out.mesh, 0).pairs <= crossings;
+    if (count_needles() > needles) return false;
+    if (crossings > 0) return find_self_intersections(out.mesh, 0).pairs <= crossings;
+    return find_self_intersections_of(out.mesh, changed_triangles(kept.mesh, out.mesh), 0).pairs ==
+           0;
   };
   auto keep = [&] { kept = {out.mesh, out.home, fixed, pin_of, stats.fidelity_pinned}; };
   auto restore = [&] {

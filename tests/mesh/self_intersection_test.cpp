@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <random>
@@ -168,6 +169,73 @@ TEST(SelfIntersection, MatchesAllPairsOnASmallMesh) {
     for (int32_t j = i + 1; j < 300; ++j) brute += triangles_intersect(m, i, j);
   EXPECT_GT(brute, 0u);
   EXPECT_EQ(find_self_intersections(m).pairs, brute);
+}
+
+TEST(SelfIntersection, FlaggedTrianglesGetExactlyTheirPairs) {
+  // Random triangles: the pairs holding a flagged triangle, each once, as
+  // the quadratic loop counts them; all flagged: every pair.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  SurfaceMesh m;
+  for (int t = 0; t < 300; ++t) {
+    const double c[3] = {4 * u(rng), 4 * u(rng), 4 * u(rng)};
+    for (int k = 0; k < 3; ++k)
+      m.points.insert(m.points.end(),
+                      {c[0] + 0.5 * u(rng), c[1] + 0.5 * u(rng), c[2] + 0.5 * u(rng)});
+    m.triangles.insert(m.triangles.end(), {3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  std::vector<uint8_t> flagged(300, 0);
+  for (size_t t = 0; t < 300; t += 7) flagged[t] = 1;
+  size_t brute = 0, all = 0;
+  for (int32_t i = 0; i < 300; ++i)
+    for (int32_t j = i + 1; j < 300; ++j) {
+      const bool hit = triangles_intersect(m, i, j);
+      all += hit;
+      brute += hit && (flagged[size_t(i)] || flagged[size_t(j)]);
+    }
+  EXPECT_GT(brute, 0u);
+  EXPECT_LT(brute, all);
+  const SelfIntersectionReport r = find_self_intersections_of(m, flagged, 1000);
+  EXPECT_EQ(r.pairs, brute);
+  for (const auto& e : r.examples) {
+    EXPECT_LT(e[0], e[1]);
+    EXPECT_TRUE(flagged[size_t(e[0])] || flagged[size_t(e[1])]);
+  }
+  EXPECT_EQ(find_self_intersections_of(m, std::vector<uint8_t>(300, 1)).pairs, all);
+  EXPECT_EQ(find_self_intersections_of(m, std::vector<uint8_t>(300, 0)).pairs, 0u);
+  // On a clean surface with one vertex pulled through: only the triangles
+  // around it need looking at.
+  SurfaceMesh t = testing::torus(40, 20, 3.0, 1.0);
+  t.points[0] -= 2.5;
+  std::vector<uint8_t> around(t.num_triangles(), 0);
+  for (size_t k = 0; k < t.num_triangles(); ++k)
+    for (int c = 0; c < 3; ++c) around[k] |= t.triangles[3 * k + size_t(c)] == 0;
+  EXPECT_EQ(find_self_intersections_of(t, around).pairs, find_self_intersections(t).pairs);
+}
+
+TEST(SelfIntersection, ChangedTrianglesAreThoseThatMoved) {
+  const SurfaceMesh before = testing::torus(12, 8, 3.0, 1.0);
+  // Renumbered (vertices reversed, triangles rotated and reordered): the
+  // same surface, nothing changed.
+  SurfaceMesh same;
+  const int32_t nv = int32_t(before.num_vertices());
+  for (int32_t v = nv - 1; v >= 0; --v)
+    same.points.insert(same.points.end(), &before.points[3 * size_t(v)],
+                       &before.points[3 * size_t(v)] + 3);
+  for (size_t t = before.num_triangles(); t-- > 0;) {
+    const int32_t* T = &before.triangles[3 * t];
+    same.triangles.insert(same.triangles.end(), {nv - 1 - T[1], nv - 1 - T[2], nv - 1 - T[0]});
+  }
+  const std::vector<uint8_t> none = changed_triangles(before, same);
+  EXPECT_EQ(std::count(none.begin(), none.end(), 1), 0);
+  // One vertex moved: exactly its triangles.
+  SurfaceMesh moved = before;
+  moved.points[3 * 5 + 2] += 0.1;
+  const std::vector<uint8_t> star = changed_triangles(before, moved);
+  for (size_t t = 0; t < moved.num_triangles(); ++t) {
+    const int32_t* T = &moved.triangles[3 * t];
+    EXPECT_EQ(star[t], T[0] == 5 || T[1] == 5 || T[2] == 5) << t;
+  }
 }
 
 TEST(SelfIntersection, LargeCleanSurfaceTestsFewPairs) {
