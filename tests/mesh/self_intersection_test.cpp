@@ -151,19 +151,25 @@ TEST(SelfIntersection, FindsKnownCrossings) {
   for (const auto& e : f.examples) EXPECT_TRUE(triangles_intersect(t, e[0], e[1]));
 }
 
-TEST(SelfIntersection, MatchesAllPairsOnASmallMesh) {
-  // Random triangles in a box: the hierarchy finds exactly the pairs the
-  // quadratic loop finds.
-  std::mt19937 rng(11);
+// n random triangles (no shared vertices) of size about 0.5 in a box of 4.
+SurfaceMesh triangle_soup(int n, unsigned seed) {
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(0, 1);
   SurfaceMesh m;
-  for (int t = 0; t < 300; ++t) {
+  for (int t = 0; t < n; ++t) {
     const double c[3] = {4 * u(rng), 4 * u(rng), 4 * u(rng)};
     for (int k = 0; k < 3; ++k)
       m.points.insert(m.points.end(),
                       {c[0] + 0.5 * u(rng), c[1] + 0.5 * u(rng), c[2] + 0.5 * u(rng)});
     m.triangles.insert(m.triangles.end(), {3 * t, 3 * t + 1, 3 * t + 2});
   }
+  return m;
+}
+
+TEST(SelfIntersection, MatchesAllPairsOnASmallMesh) {
+  // Random triangles in a box: the hierarchy finds exactly the pairs the
+  // quadratic loop finds.
+  const SurfaceMesh m = triangle_soup(300, 11);
   size_t brute = 0;
   for (int32_t i = 0; i < 300; ++i)
     for (int32_t j = i + 1; j < 300; ++j) brute += triangles_intersect(m, i, j);
@@ -174,16 +180,7 @@ TEST(SelfIntersection, MatchesAllPairsOnASmallMesh) {
 TEST(SelfIntersection, FlaggedTrianglesGetExactlyTheirPairs) {
   // Random triangles: the pairs holding a flagged triangle, each once, as
   // the quadratic loop counts them; all flagged: every pair.
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(0, 1);
-  SurfaceMesh m;
-  for (int t = 0; t < 300; ++t) {
-    const double c[3] = {4 * u(rng), 4 * u(rng), 4 * u(rng)};
-    for (int k = 0; k < 3; ++k)
-      m.points.insert(m.points.end(),
-                      {c[0] + 0.5 * u(rng), c[1] + 0.5 * u(rng), c[2] + 0.5 * u(rng)});
-    m.triangles.insert(m.triangles.end(), {3 * t, 3 * t + 1, 3 * t + 2});
-  }
+  const SurfaceMesh m = triangle_soup(300, 5);
   std::vector<uint8_t> flagged(300, 0);
   for (size_t t = 0; t < 300; t += 7) flagged[t] = 1;
   size_t brute = 0, all = 0;

@@ -20,6 +20,14 @@
 namespace vm {
 namespace {
 
+// Remeshing options at the uniform size h.
+RemeshOptions uniform_options(double h) {
+  RemeshOptions o;
+  o.size.mode = SizeMode::kUniform;
+  o.size.size = h;
+  return o;
+}
+
 // An n x n grid of squares on [0, 1]^2 at z = 0, two triangles each,
 // counterclockwise seen from +z.
 SurfaceMesh grid(int n) {
@@ -223,9 +231,7 @@ TEST(PinToInput, PinnedVerticesSlideOnlyWithinTheSlack) {
 
 TEST(RemeshSurface, FidelityRoundsBringTheInputCloserWithoutLosingQuality) {
   const SurfaceMesh in = testing::phantom(PhantomKind::kBifurcation, true, 0.1, 0.1);
-  RemeshOptions o;
-  o.size.mode = SizeMode::kUniform;
-  o.size.size = 0.3;
+  RemeshOptions o = uniform_options(0.3);
   RemeshStats off_stats, on_stats;
   o.fidelity_rounds = o.fidelity_size_rounds = 0;
   auto off = remesh_surface(in, o, &off_stats);
@@ -268,9 +274,7 @@ TEST(RemeshSurface, PinningIsUndoneWhenTheQualityFloorsCannotHold) {
   // Noise everywhere, pinned all the same (no share limit): the quality
   // drops below what it was, and the floors at 1 leave no room for that.
   const SurfaceMesh in = testing::phantom(PhantomKind::kBifurcation, true, 0.15, 0.3);
-  RemeshOptions o;
-  o.size.mode = SizeMode::kUniform;
-  o.size.size = 0.2;
+  RemeshOptions o = uniform_options(0.2);
   o.fidelity_max_share = 1;
   o.fidelity_floor_min = 1;
   o.fidelity_size_rounds = 0;
@@ -300,9 +304,7 @@ TEST(RemeshSurface, SizeRoundsRefineAroundWhatTheWallCannotFollow) {
   // follow, so pinning alone leaves input vertices far from it.
   const SurfaceMesh in = testing::phantom(PhantomKind::kAneurysm, true, 0.1, 0.1);
   const double h = 0.3;
-  RemeshOptions o;
-  o.size.mode = SizeMode::kUniform;
-  o.size.size = h;
+  RemeshOptions o = uniform_options(h);
   RemeshStats off_stats, on_stats;
   o.fidelity_size_rounds = 0;
   auto off = remesh_surface(in, o, &off_stats);
@@ -353,9 +355,7 @@ TEST(RemeshSurface, LargeWallsPinDownToTheQualityFloor) {
   // Without size rounds (a wall taken as large, few far vertices), the
   // last pinning rounds accept triangles down to the seed's floor.
   const SurfaceMesh in = testing::phantom(PhantomKind::kAneurysm, true, 0.1, 0.1);
-  RemeshOptions o;
-  o.size.mode = SizeMode::kUniform;
-  o.size.size = 0.3;
+  RemeshOptions o = uniform_options(0.3);
   o.fidelity_size_rounds = 0;
   RemeshStats small_stats, large_stats;
   auto small = remesh_surface(in, o, &small_stats);
