@@ -250,12 +250,12 @@ constexpr double kNeedle = 0.05;
 
 /// Phase 6: output vertices pinned onto the input vertices farther than
 /// options.fidelity h from the output (pin_to_input; h: `asked`, the size
-/// asked for, one per input vertex, which finer sizes of the size rounds
-/// do not change), then a few
-/// optimization passes around them; pins that cost quality are freed, and a
-/// round is undone if the quality floors still fail, or if it made a
-/// self-intersection or a needle. Updates out (mesh, home, input_gaps),
-/// fixed and out_size (one per output vertex) and the fidelity statistics.
+/// asked for, one per input vertex, which the finer sizes of size rounds do
+/// not change), then a few optimization passes around them; pins that cost
+/// quality are freed, and a round is undone if the quality floors still
+/// fail, or if it made a self-intersection or a needle. Updates out (mesh,
+/// home, input_gaps), fixed and out_size (one per output vertex) and the
+/// fidelity statistics.
 void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& adj,
                             const RemeshOptions& options, const std::vector<double>& asked,
                             RemeshedSurface& out, std::vector<uint8_t>& fixed,
