@@ -14,8 +14,8 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
+#include <cstring>
 #include <unordered_set>
 
 #include "core/geom/predicates.h"
@@ -354,7 +354,11 @@ std::vector<uint8_t> changed_triangles(const SurfaceMesh& before, const SurfaceM
   struct Hash {
     size_t operator()(const Key& k) const {
       uint64_t h = 1469598103934665603ull;
-      for (double x : k) h = (h ^ std::bit_cast<uint64_t>(x)) * 1099511628211ull;
+      for (double x : k) {
+        uint64_t bits;
+        std::memcpy(&bits, &x, sizeof bits);  // (no std::bit_cast in Emscripten's libc++)
+        h = (h ^ bits) * 1099511628211ull;
+      }
       return size_t(h);
     }
   };
