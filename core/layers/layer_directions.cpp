@@ -8,6 +8,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/mesh/star_visibility.h"
+
 namespace vm {
 using namespace layers;  // NOLINT: the layer stage's own vector helpers
 namespace {
@@ -76,32 +78,18 @@ Vec3 rim_direction(const SurfaceMesh& m, const LayerOpening& op, size_t i, const
   return inside;
 }
 
-// Phase 4: pushes d toward the worst-seen triangle normal of v's star until
-// every one is seen at >= the target; returns the best direction found and
-// its worst visibility.
+// Phase 4: see_star from d, kept in the opening's plane on a rim; returns
+// the best direction found and its worst visibility.
 std::pair<Vec3, double> make_visible(const TriangleAdjacency& adj, const std::vector<double>& tn,
                                      size_t v, Vec3 d, const LayerOpening* plane) {
-  auto worst = [&](const Vec3& x, int32_t* which) {
-    double w = 2;
-    for (int32_t i = adj.star_offsets[v]; i < adj.star_offsets[v + 1]; ++i) {
-      const int32_t t = adj.star[size_t(i)];
-      const double s = dot(x, at(tn, t));
-      if (s < w) w = s, *which = t;
-    }
-    return w;
-  };
-  int32_t t = -1;
-  double w = worst(d, &t);
-  Vec3 best = d;
-  double best_w = w;
-  for (int iter = 0; iter < 40 && best_w < kVisibilityTarget; ++iter) {
-    d = d + (kVisibilityTarget - w + 0.05) * at(tn, t);
-    if (plane) d = in_plane(d, *plane);
-    d = normalized(d);
-    w = worst(d, &t);
-    if (w > best_w) best = d, best_w = w;
-  }
-  return {best, best_w};
+  const int32_t first = adj.star_offsets[v];
+  const double w = see_star(&adj.star[size_t(first)], adj.star_offsets[v + 1] - first, tn.data(),
+                            d.data(), kVisibilityTarget, 40, [&](double* x) {
+                              if (!plane) return;
+                              const Vec3 p = in_plane({x[0], x[1], x[2]}, *plane);
+                              x[0] = p[0], x[1] = p[1], x[2] = p[2];
+                            });
+  return {d, w};
 }
 
 }  // namespace

@@ -4,12 +4,11 @@
 
 namespace vm {
 
-TriangleAdjacency build_adjacency(const SurfaceMesh& mesh) {
+TriangleAdjacency build_vertex_stars(const SurfaceMesh& mesh) {
   TriangleAdjacency adj;
   const size_t nv = mesh.num_vertices();
   const size_t nt = mesh.num_triangles();
   const auto& tri = mesh.triangles;
-  // Phase 1: vertex stars by counting sort.
   adj.star_offsets.assign(nv + 1, 0);
   for (int32_t v : tri) ++adj.star_offsets[v + 1];
   for (size_t v = 0; v < nv; ++v) adj.star_offsets[v + 1] += adj.star_offsets[v];
@@ -17,6 +16,13 @@ TriangleAdjacency build_adjacency(const SurfaceMesh& mesh) {
   std::vector<int32_t> fill(adj.star_offsets.begin(), adj.star_offsets.end() - 1);
   for (size_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) adj.star[fill[tri[3 * t + k]]++] = int32_t(t);
+  return adj;
+}
+
+TriangleAdjacency build_adjacency(const SurfaceMesh& mesh) {
+  const auto& tri = mesh.triangles;
+  // Phase 1: vertex stars by counting sort.
+  TriangleAdjacency adj = build_vertex_stars(mesh);
 
   // Phase 2: each edge once, from the first half-edge that meets it: the
   // triangles of the star of its smaller vertex that contain the other one.

@@ -24,6 +24,10 @@ struct TriangleAdjacency {
   std::vector<int32_t> nonmanifold_example;  ///< one edge (a, b) if any
 };
 
+/// Only the vertex stars of the adjacency (star_offsets, star), by a
+/// counting sort; `opposite` left empty.
+TriangleAdjacency build_vertex_stars(const SurfaceMesh& mesh);
+
 /// Builds the adjacency in time linear in the triangles for bounded vertex
 /// degree (each edge is found once, by scanning one vertex star). Precondition: no triangle has a
 /// repeated vertex.

@@ -9,6 +9,7 @@
 #include <array>
 
 #include "core/geom/vec3.h"
+#include "core/mesh/star_visibility.h"
 #include "core/mesh/surface_distance.h"
 #include "core/quality/triangle_quality.h"
 #include "core/surface/optimize_surface.h"
@@ -236,56 +237,6 @@ PinStats pin_to_input(SurfaceMesh& output, std::vector<int32_t>& home, std::vect
     st.pinned += done;
   }
   return st;
-}
-
-std::vector<double> star_visibility(const SurfaceMesh& output) {
-  const size_t nv = output.num_vertices(), nt = output.num_triangles();
-  std::vector<double> unit(3 * nt), sum(3 * nv, 0.0);
-  std::vector<int32_t> offset(nv + 1, 0), star(3 * nt);
-  for (size_t t = 0; t < nt; ++t) {
-    const int32_t* T = &output.triangles[3 * t];
-    double n[3];
-    normal(&output.points[3 * size_t(T[0])], &output.points[3 * size_t(T[1])],
-           &output.points[3 * size_t(T[2])], n);
-    const double len = v3::norm(n);
-    for (int k = 0; k < 3; ++k) {
-      unit[3 * t + size_t(k)] = len > 0 ? n[k] / len : 0;
-      for (int c = 0; c < 3; ++c) sum[3 * size_t(T[c]) + size_t(k)] += n[k];
-    }
-    for (int c = 0; c < 3; ++c) ++offset[size_t(T[c]) + 1];
-  }
-  for (size_t v = 0; v < nv; ++v) offset[v + 1] += offset[v];
-  std::vector<int32_t> fill(offset.begin(), offset.end() - 1);
-  for (size_t t = 0; t < nt; ++t)
-    for (int c = 0; c < 3; ++c)
-      star[size_t(fill[size_t(output.triangles[3 * t + size_t(c)])]++)] = int32_t(t);
-  // From the area-weighted normal, pushed towards the worst-seen triangle
-  // until every one is seen at kSeenTarget (or a few steps).
-  constexpr double kSeenTarget = 0.3;
-  std::vector<double> seen(nv, 1.0);
-  for (size_t v = 0; v < nv; ++v) {
-    double d[3] = {sum[3 * v], sum[3 * v + 1], sum[3 * v + 2]};
-    auto worst = [&](int32_t* which) {
-      const double len = v3::norm(d);
-      double w = 2;
-      for (int32_t i = offset[v]; i < offset[v + 1]; ++i) {
-        const double c = len > 0 ? v3::dot(d, &unit[3 * size_t(star[size_t(i)])]) / len : -1;
-        if (c < w) w = c, *which = star[size_t(i)];
-      }
-      return w;
-    };
-    int32_t t = -1;
-    double w = worst(&t), best = w;
-    for (int step = 0; step < 20 && best < kSeenTarget && t >= 0; ++step) {
-      const double len = v3::norm(d);
-      for (int k = 0; k < 3; ++k)
-        d[k] = d[k] / len + (kSeenTarget - w + 0.05) * unit[3 * size_t(t) + size_t(k)];
-      w = worst(&t);
-      best = std::max(best, w);
-    }
-    if (offset[v + 1] > offset[v]) seen[v] = best;
-  }
-  return seen;
 }
 
 size_t unpin_poor(const SurfaceMesh& output, std::vector<uint8_t>& fixed,

@@ -38,13 +38,6 @@ PinStats pin_to_input(SurfaceMesh& output, std::vector<int32_t>& home, std::vect
                       const std::vector<double>& h, const std::vector<double>& gaps, double limit,
                       const std::vector<uint8_t>& skip);
 
-/// Per vertex of `output`, how well one direction sees its star: the
-/// smallest cosine between a direction (the area-weighted normal, pushed
-/// towards the worst-seen triangle for a few steps) and a star triangle's
-/// normal. 1 on a plane, <= 0 for a needle or a fold no direction sees
-/// whole (no triangle: 1).
-std::vector<double> star_visibility(const SurfaceMesh& output);
-
 /// Frees (fixed = kFree, pin_of = -1) every pinned vertex of a triangle
 /// of `output` with gamma_k < min_gamma or with a folded corner
 /// (star_visibility < 0.25: about 75 degrees), and flags in `skip` (one per

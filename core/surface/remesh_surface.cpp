@@ -15,6 +15,7 @@
 #include "core/geom/point_kdtree.h"
 #include "core/mesh/boundary_loops.h"
 #include "core/mesh/self_intersection.h"
+#include "core/mesh/star_visibility.h"
 #include "core/mesh/surface_distance.h"
 #include "core/param/fixed_boundary_map.h"
 #include "core/quality/triangle_quality.h"

@@ -22,6 +22,21 @@ inline SurfaceMesh tetrahedron() {
   return m;
 }
 
+// An n x n grid of squares on [0, 1]^2 at z = 0, two triangles each,
+// counterclockwise seen from +z.
+inline SurfaceMesh square_grid(int n) {
+  SurfaceMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.points.insert(m.points.end(), {double(i) / n, double(j) / n, 0});
+  auto id = [&](int i, int j) { return int32_t(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
 /// Open cylinder (tube) of radius r, length len along z, n around, m along;
 /// outward oriented, 2 boundary loops.
 inline SurfaceMesh open_tube(int n, int m, double r = 1.0, double len = 4.0) {

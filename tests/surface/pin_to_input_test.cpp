@@ -28,21 +28,6 @@ RemeshOptions uniform_options(double h) {
   return o;
 }
 
-// An n x n grid of squares on [0, 1]^2 at z = 0, two triangles each,
-// counterclockwise seen from +z.
-SurfaceMesh grid(int n) {
-  SurfaceMesh m;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) m.points.insert(m.points.end(), {double(i) / n, double(j) / n, 0});
-  auto id = [&](int i, int j) { return int32_t(j * (n + 1) + i); };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.insert(m.triangles.end(), {id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return m;
-}
-
 // Every directed edge once, every edge at most twice: a consistently
 // oriented manifold.
 bool oriented_manifold(const SurfaceMesh& m) {
@@ -67,7 +52,7 @@ bool faces_up(const SurfaceMesh& m) {
 // A fine grid with one spike, remeshed as a coarse flat grid whose vertices
 // lie on the fine one.
 struct SpikeCase {
-  SurfaceMesh input = grid(20), output = grid(4);
+  SurfaceMesh input = testing::square_grid(20), output = testing::square_grid(4);
   int32_t spike = 8 * 21 + 7;  // input vertex (7, 8): (0.35, 0.4)
   std::vector<int32_t> home;
   std::vector<uint8_t> fixed;
@@ -153,23 +138,6 @@ TEST(PinToInput, UnpinPoorFreesPinsInPoorTrianglesAndRemembersThem) {
   EXPECT_EQ(std::count(c.fixed.begin(), c.fixed.end(), kPinned), 0);
   EXPECT_EQ(skip[size_t(c.spike)], 1);
   EXPECT_EQ(std::count(skip.begin(), skip.end(), 1), 1);
-}
-
-TEST(PinToInput, StarVisibilityFindsNeedles) {
-  SurfaceMesh m = grid(4);  // spacing 0.25
-  const size_t center = 2 * 5 + 2;
-  for (double v : star_visibility(m)) EXPECT_NEAR(v, 1.0, 1e-12);
-  // A bump is seen from above; a needle ten spacings tall barely (its
-  // triangles stand almost upright); one folded back under its base by no
-  // direction.
-  m.points[3 * center + 2] = 0.05;
-  EXPECT_GT(star_visibility(m)[center], 0.9);
-  m.points[3 * center + 2] = 2.5;
-  EXPECT_LT(star_visibility(m)[center], 0.15);
-  EXPECT_GT(star_visibility(m)[center], 0.0);
-  m.points[3 * center] = 0.5 + 0.4;  // over and past its neighbor at x = 0.75
-  m.points[3 * center + 2] = 0.01;
-  EXPECT_LT(star_visibility(m)[center], 0.0);
 }
 
 TEST(PinToInput, PinnedVerticesSlideOnlyWithinTheSlack) {
