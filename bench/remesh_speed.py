@@ -2,7 +2,8 @@
 """Speed benchmark of issue 3 (and, with --volume, of the volume issue):
 one input at one uniform size, medians of repeated runs, one at a time.
 
-  native  `vesselmesh mesh IN --surface-only -o OUT --size H`  (>= 5 runs):
+  native  `vesselmesh mesh IN --surface-only -o OUT --size H`  (>= 5 runs,
+          alternating with Gmsh's runs while both have runs left):
           wall time of the process and its peak RSS (GNU time %M)
   wasm    bench/wasm_mesh_bench.mjs: api.mesh(bytes, {size: H}) under Node
           in one process (>= 5 runs; module loaded once via wasmBinary),
@@ -44,37 +45,51 @@ TARGET_GMSH_RATIO = 3.0
 TARGET_WASM_RATIO = 1.6
 
 
-def bench_native(a, path, tmp):
-    out = os.path.join(tmp, "native.msh")
-    rep = os.path.join(tmp, "native.json")
-    cmd = [a.vesselmesh, "mesh", path, "-o", out, "--report", rep, "--quiet", "--size", repr(a.size)]
-    cmd += volume_flags(a)
-    runs = []
-    for i in range(a.runs):
-        r = benchutil.run_measured(cmd)
+class NativeBench:
+    """`vesselmesh mesh` runs, one at a time (run() may be interleaved with
+    Gmsh's so that both see the same machine); summary() aggregates them."""
+
+    def __init__(self, a, path, tmp):
+        self.a = a
+        self.out = os.path.join(tmp, "native.msh")
+        self.rep = os.path.join(tmp, "native.json")
+        self.cmd = [a.vesselmesh, "mesh", path, "-o", self.out, "--report", self.rep, "--quiet",
+                    "--size", repr(a.size)] + volume_flags(a)
+        self.runs, self.error, self.report = [], None, None
+
+    def run(self):
+        if self.error:
+            return
+        r = benchutil.run_measured(self.cmd)
         if r["rc"] != 0:
-            return dict(ok=False, error=r["stderr"].strip(), cmd=" ".join(cmd))
-        report = json.load(open(rep))
-        runs.append(dict(seconds=r["seconds"], cpu_seconds=r["cpu_seconds"], peak_rss_mb=r["peak_rss_mb"],
-                         core_seconds=report["seconds"],
-                         stages=report["output"].get("remesh", {}).get("seconds")))
-        print(f"  native run {i + 1}: {r['seconds']:.3f} s (CPU {r['cpu_seconds']:.2f} s), "
+            self.error = r["stderr"].strip()
+            return
+        self.report = json.load(open(self.rep))
+        self.runs.append(dict(seconds=r["seconds"], cpu_seconds=r["cpu_seconds"], peak_rss_mb=r["peak_rss_mb"],
+                              core_seconds=self.report["seconds"],
+                              stages=self.report["output"].get("remesh", {}).get("seconds")))
+        print(f"  native run {len(self.runs)}: {r['seconds']:.3f} s (CPU {r['cpu_seconds']:.2f} s), "
               f"{r['peak_rss_mb']:.0f} MB", flush=True)
-    o = report["output"]
-    tets = sum(g["elements"] for g in o.get("groups", []) if g["dim"] == 3)
-    # How finely the volume follows h: the median edge of the last run's
-    # tetrahedra (Gmsh's is measured the same way in gmsh_reference.py).
-    tet_edge = meshquality.msh_quality(out).get("median_tet_edge") if a.volume and tets else None
-    stages = {k: benchutil.median([x["stages"][k] for x in runs]) for k in (runs[0]["stages"] or {})}
-    return dict(ok=True, cmd=" ".join(cmd), runs=runs,
-                median_seconds=benchutil.median([x["seconds"] for x in runs]),
-                median_core_seconds=benchutil.median([x["core_seconds"] for x in runs]),
-                median_cpu_seconds=benchutil.median([x["cpu_seconds"] for x in runs]),
-                stage_medians=stages,
-                peak_rss_mb=max(x["peak_rss_mb"] for x in runs), triangles=o["triangles"],
-                quality=dict(min=o["quality"]["min"], mean=o["quality"]["mean"]), tets=tets,
-                median_tet_edge=tet_edge,
-                rss_source="GNU time" if os.access(benchutil.GNU_TIME, os.X_OK) else "wait4")
+
+    def summary(self):
+        a, runs = self.a, self.runs
+        if self.error or not runs:
+            return dict(ok=False, error=self.error or "no run", cmd=" ".join(self.cmd))
+        o = self.report["output"]
+        tets = sum(g["elements"] for g in o.get("groups", []) if g["dim"] == 3)
+        # How finely the volume follows h: the median edge of the last run's
+        # tetrahedra (Gmsh's is measured the same way in gmsh_reference.py).
+        tet_edge = meshquality.msh_quality(self.out).get("median_tet_edge") if a.volume and tets else None
+        stages = {k: benchutil.median([x["stages"][k] for x in runs]) for k in (runs[0]["stages"] or {})}
+        return dict(ok=True, cmd=" ".join(self.cmd), runs=runs,
+                    median_seconds=benchutil.median([x["seconds"] for x in runs]),
+                    median_core_seconds=benchutil.median([x["core_seconds"] for x in runs]),
+                    median_cpu_seconds=benchutil.median([x["cpu_seconds"] for x in runs]),
+                    stage_medians=stages,
+                    peak_rss_mb=max(x["peak_rss_mb"] for x in runs), triangles=o["triangles"],
+                    quality=dict(min=o["quality"]["min"], mean=o["quality"]["mean"]), tets=tets,
+                    median_tet_edge=tet_edge,
+                    rss_source="GNU time" if os.access(benchutil.GNU_TIME, os.X_OK) else "wait4")
 
 
 def volume_flags(a):
@@ -111,45 +126,59 @@ def bench_wasm(a, path, chromium=False):
     return res
 
 
-def bench_gmsh(a, path, tmp):
-    if not benchutil.have_gmsh(a.gmsh_python):
-        return dict(ok=False, error="gmsh Python module not importable")
-    out = os.path.join(tmp, "gmsh.json")
-    cmd = [a.gmsh_python, os.path.join(benchutil.BENCH, "gmsh_reference.py"), path, "--size", repr(a.size),
-           "--json", out] + (["--volume"] if a.volume else [])
-    runs = []
-    for i in range(a.gmsh_runs):
-        if os.path.exists(out):
-            os.remove(out)
-        r = benchutil.run_measured(cmd)
-        if not os.path.exists(out):
-            return dict(ok=False, error=r["stderr"].strip()[-500:])
-        g = json.load(open(out))
+class GmshBench:
+    """gmsh_reference.py runs, one at a time, like NativeBench."""
+
+    def __init__(self, a, path, tmp):
+        self.a = a
+        self.out = os.path.join(tmp, "gmsh.json")
+        self.cmd = [a.gmsh_python, os.path.join(benchutil.BENCH, "gmsh_reference.py"), path, "--size",
+                    repr(a.size), "--json", self.out] + (["--volume"] if a.volume else [])
+        self.runs = []
+        self.error = None if benchutil.have_gmsh(a.gmsh_python) else "gmsh Python module not importable"
+
+    def run(self):
+        if self.error:
+            return
+        if os.path.exists(self.out):
+            os.remove(self.out)
+        r = benchutil.run_measured(self.cmd)
+        if not os.path.exists(self.out):
+            self.error = r["stderr"].strip()[-500:]
+            return
+        g = json.load(open(self.out))
         if not g.get("ok"):
-            return dict(ok=False, error=g.get("error"))
+            self.error = g.get("error")
+            return
         g["process_seconds"] = r["seconds"]
         g["process_peak_rss_mb"] = r["peak_rss_mb"]
-        runs.append(g)
-        print(f"  gmsh run {i + 1}: " + ", ".join(f"{k} {v:.2f}" for k, v in g["seconds"].items()) +
+        self.runs.append(g)
+        print(f"  gmsh run {len(self.runs)}: " + ", ".join(f"{k} {v:.2f}" for k, v in g["seconds"].items()) +
               f" s (CPU {g['cpu_seconds']['total']:.2f} s; process {r['seconds']:.2f} s), "
               f"{r['peak_rss_mb']:.0f} MB", flush=True)
-    keys = list(runs[0]["seconds"])
-    med = {k: benchutil.median([g["seconds"][k] for g in runs]) for k in keys}
-    last = runs[-1]
-    res = dict(ok=True, cmd=" ".join(cmd), stage_medians=med, median_seconds=med["total"],
-               median_process_seconds=benchutil.median([g["process_seconds"] for g in runs]),
-               median_cpu_seconds=benchutil.median([g["cpu_seconds"]["total"] for g in runs]),
-               peak_rss_mb=max(g["process_peak_rss_mb"] for g in runs), triangles=last["triangles"],
-               quality=dict(min=last["gamma_k"]["min"], mean=last["gamma_k"]["mean"]),
-               runs=[dict(seconds=g["seconds"], process_seconds=g["process_seconds"],
-                          peak_rss_mb=g["process_peak_rss_mb"], triangles=g["triangles"],
-                          gamma_k=dict(min=g["gamma_k"]["min"], mean=g["gamma_k"]["mean"]),
-                          tets=g.get("tets"), median_tet_edge=g.get("median_tet_edge"),
-                          gamma_t=dict(min=g["gamma_t"]["min"], mean=g["gamma_t"]["mean"]) if g.get("gamma_t") else None)
-                     for g in runs])
-    if a.volume:
-        res.update(tets=last.get("tets"), gamma_t=dict(min=last["gamma_t"]["min"], mean=last["gamma_t"]["mean"]))
-    return res
+
+    def summary(self):
+        runs = self.runs
+        if self.error or not runs:
+            return dict(ok=False, error=self.error or "no run")
+        keys = list(runs[0]["seconds"])
+        med = {k: benchutil.median([g["seconds"][k] for g in runs]) for k in keys}
+        last = runs[-1]
+        res = dict(ok=True, cmd=" ".join(self.cmd), stage_medians=med, median_seconds=med["total"],
+                   median_process_seconds=benchutil.median([g["process_seconds"] for g in runs]),
+                   median_cpu_seconds=benchutil.median([g["cpu_seconds"]["total"] for g in runs]),
+                   peak_rss_mb=max(g["process_peak_rss_mb"] for g in runs), triangles=last["triangles"],
+                   quality=dict(min=last["gamma_k"]["min"], mean=last["gamma_k"]["mean"]),
+                   runs=[dict(seconds=g["seconds"], process_seconds=g["process_seconds"],
+                              peak_rss_mb=g["process_peak_rss_mb"], triangles=g["triangles"],
+                              gamma_k=dict(min=g["gamma_k"]["min"], mean=g["gamma_k"]["mean"]),
+                              tets=g.get("tets"), median_tet_edge=g.get("median_tet_edge"),
+                              gamma_t=dict(min=g["gamma_t"]["min"], mean=g["gamma_t"]["mean"])
+                              if g.get("gamma_t") else None)
+                         for g in runs])
+        if self.a.volume:
+            res.update(tets=last.get("tets"), gamma_t=dict(min=last["gamma_t"]["min"], mean=last["gamma_t"]["mean"]))
+        return res
 
 
 def main():
@@ -179,17 +208,25 @@ def main():
     res = dict(file=os.path.basename(path), size=a.size, volume=a.volume, machine_start=benchutil.machine())
     print(f"{res['file']} h = {a.size:g}, {what}; {res['machine_start']}", flush=True)
     with tempfile.TemporaryDirectory() as tmp:
-        print("native:", flush=True)
-        res["native"] = bench_native(a, path, tmp)
+        # Native and Gmsh runs alternate, so that a drift of the (shared)
+        # machine's speed during the benchmark weighs on both alike.
+        native = NativeBench(a, path, tmp)
+        gmsh = None if a.no_gmsh else GmshBench(a, path, tmp)
+        print("native" + ("" if gmsh is None else " and gmsh, alternating") + ":", flush=True)
+        for i in range(max(a.runs, 0 if gmsh is None else a.gmsh_runs)):
+            if i < a.runs:
+                native.run()
+            if gmsh is not None and i < a.gmsh_runs:
+                gmsh.run()
+        res["native"] = native.summary()
+        if gmsh is not None:
+            res["gmsh"] = gmsh.summary()
         if not a.no_wasm:
             print("wasm (node):", flush=True)
             res["wasm"] = bench_wasm(a, path)
             if a.chromium:
                 print("wasm (chromium):", flush=True)
                 res["chromium"] = bench_wasm(a, path, chromium=True)
-        if not a.no_gmsh:
-            print("gmsh:", flush=True)
-            res["gmsh"] = bench_gmsh(a, path, tmp)
     res["machine_end"] = benchutil.machine()
 
     n, w, g, c = res["native"], res.get("wasm"), res.get("gmsh"), res.get("chromium")
