@@ -298,6 +298,9 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
   // no more self-intersections or needles than before pinning.
   double floor_min = 0, floor_mean = 0;
   size_t crossings = 0, needles = 0;
+  // Self-intersecting pairs of the kept surface, when known exactly (-1:
+  // not counted).
+  int64_t kept_pairs = -1;
   auto count_needles = [&] {
     const std::vector<double> seen = star_visibility(out.mesh);
     return size_t(std::count_if(seen.begin(), seen.end(), [](double c) { return c < kNeedle; }));
@@ -380,6 +383,7 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
       floor_min = std::min(q0.min, options.fidelity_floor_min);
       floor_mean = std::min(q0.mean, options.fidelity_floor_mean);
       crossings = find_self_intersections(out.mesh, 0).pairs;
+      kept_pairs = int64_t(crossings);
       needles = count_needles();
       keep();
     }
@@ -408,11 +412,15 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     bool ok = holds();
     for (double strict = min_quality + 0.05; !ok && strict < 1; strict += 0.05)
       if (unpin_and_relax(strict) > 0) ok = holds();
-    if (ok && clean())
+    if (ok && clean()) {
       keep();
-    else
+      // clean() allows no new pair: exact when there was none.
+      kept_pairs = crossings == 0 ? 0 : -1;
+    } else {
       restore();
+    }
   }
+  stats.self_intersections = kept_pairs;
 }
 
 /// Phases 2-6 at the sizes `sizes` (one per input vertex) on the features
@@ -435,6 +443,7 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
   }
   stats.fidelity_rounds = stats.fidelity_pinned = 0;
   stats.fidelity_reverted = false;
+  stats.self_intersections = -1;
   if (!report_progress(progress, 0.1, "partitioning")) return R::Error(kCancelledMessage);
   auto t0 = std::chrono::steady_clock::now();
   const TriangleAdjacency& adj = part.adj;

@@ -102,6 +102,10 @@ struct RemeshStats {
   size_t fidelity_size_rounds = 0;  ///< meshings again at a finer size
   double max_input_gap = 0;
   size_t input_gap_vertices = 0;
+  /// Pairs of self-intersecting output triangles when the fidelity stage
+  /// has counted them exactly (it checks every pinning round against the
+  /// surface before it), else -1.
+  int64_t self_intersections = -1;
   double seconds_size = 0, seconds_partition = 0, seconds_mesh = 0, seconds_optimize = 0,
          seconds_fidelity = 0;
 };

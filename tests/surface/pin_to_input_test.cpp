@@ -230,6 +230,10 @@ TEST(RemeshSurface, FidelityRoundsBringTheInputCloserWithoutLosingQuality) {
   // Still on the input, and not crossing itself.
   EXPECT_LE(distances_to_surface(in, on.value().mesh.points).max, 1e-9);
   EXPECT_EQ(find_self_intersections(on.value().mesh, 0).pairs, 0u);
+  // The pinning rounds counted the pairs (exactly: there were none before
+  // them); without rounds nothing was counted.
+  EXPECT_EQ(on_stats.self_intersections, 0);
+  EXPECT_EQ(off_stats.self_intersections, -1);
 }
 
 }  // namespace
@@ -265,6 +269,9 @@ TEST(RemeshSurface, PinningIsUndoneWhenTheQualityFloorsCannotHold) {
   EXPECT_EQ(undone.value().mesh.triangles, off.value().mesh.triangles);
   EXPECT_EQ(undone_stats.input_gap_vertices, off_stats.input_gap_vertices);
   EXPECT_EQ(undone.value().input_gaps, off.value().input_gaps);
+  // Counted before the first round, and that surface is the one kept.
+  EXPECT_EQ(undone_stats.self_intersections,
+            int64_t(find_self_intersections(undone.value().mesh, 0).pairs));
 }
 
 TEST(RemeshSurface, SizeRoundsRefineAroundWhatTheWallCannotFollow) {
