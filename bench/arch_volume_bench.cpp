@@ -139,10 +139,11 @@ bool run_once(const Capped& in, double core, RunResult* out) {
   const vm::FillStats& fs = fill.stats;
   const vm::Delaunay3D::Stats& ks = rec.value().kernel.stats();
   std::fprintf(stderr,
-               "  kernel (recovery and refinement): %lld tets removed, %lld created, %lld checked "
-               "cavities, %lld walk steps\n",
+               "  kernel (recovery and refinement): %lld tets removed, %lld created, %lld shrunk "
+               "and %lld checked cavities, %lld walk steps\n",
                (long long)ks.cavity_tets, (long long)ks.boundary_faces,
-               (long long)ks.checked_cavities, (long long)ks.walk_steps);
+               (long long)ks.shrunk_cavities, (long long)ks.checked_cavities,
+               (long long)ks.walk_steps);
   out->fill_cpu = fill.cpu_s;
   out->fill_s = fs.seconds;
   out->refine_s = fs.refine_seconds;

@@ -440,12 +440,52 @@ bool Delaunay3D::bowyer_watson(int32_t t0, const double* p, int32_t pv, bool res
   }
   if (!kVerify) return true;
   // Star-shaped: p strictly inside every boundary face (its new
-  // tetrahedron positive).
-  for (int32_t e : boundary_) {
-    const int32_t* v = tet(e >> 2);
-    const int* f = kFaceOut[e & 3];
-    if (!(orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) > 0)) return false;
+  // tetrahedron positive); else shrunk until it is.
+  for (int32_t e : boundary_)
+    if (!sees_face(e, p)) return shrink_to_star(t0, p, in);
+  return true;
+}
+
+bool Delaunay3D::sees_face(int32_t e, const double* p) const {
+  const int32_t* v = tet(e >> 2);
+  const int* f = kFaceOut[e & 3];
+  return orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) > 0;
+}
+
+bool Delaunay3D::shrink_to_star(int32_t t0, const double* p, uint32_t in) {
+  // The tetrahedron holding p stays; when p lies on one of its faces the
+  // checked search decides (it keeps every tetrahedron whose closure holds p).
+  for (int k = 0; k < 4; ++k)
+    if (!sees_face(4 * t0 + k, p)) return false;
+  // A tetrahedron with a boundary face p does not see strictly leaves the
+  // cavity; its faces to the tetrahedra still in become boundary faces and
+  // are checked in turn. No constrained face is inside (the search did not
+  // cross any), and a region whose boundary faces all see p holds p's
+  // tetrahedron and is star-shaped from p.
+  const uint32_t out = in + 1;
+  std::vector<int32_t>& todo = queue_;
+  todo.assign(boundary_.begin(), boundary_.end());
+  while (!todo.empty()) {
+    const int32_t e = todo.back();
+    todo.pop_back();
+    const int32_t t = e >> 2;
+    if (stamp_[size_t(t)] != in || sees_face(e, p)) continue;
+    if (t == t0) return false;
+    stamp_[size_t(t)] = out;
+    for (int k = 0; k < 4; ++k) {
+      const int32_t across = link(4 * t + k);
+      if (stamp_[size_t(across >> 2)] == in) todo.push_back(across);
+    }
   }
+  size_t m = 0;
+  for (int32_t t : cavity_)
+    if (stamp_[size_t(t)] == in) cavity_[m++] = t;
+  cavity_.resize(m);
+  boundary_.clear();
+  for (int32_t t : cavity_)
+    for (int k = 0; k < 4; ++k)
+      if (stamp_[size_t(link(4 * t + k) >> 2)] != in) boundary_.push_back(4 * t + k);
+  ++stats_.shrunk_cavities;
   return true;
 }
 

@@ -206,6 +206,9 @@ class Delaunay3D {
     /// Constrained / non-Delaunay insertions whose Bowyer-Watson cavity
     /// was not star-shaped (or too large), so it was grown and shrunk.
     int64_t checked_cavities = 0;
+    /// Constrained / non-Delaunay insertions whose Bowyer-Watson cavity
+    /// was shrunk until star-shaped (no checked search needed).
+    int64_t shrunk_cavities = 0;
   };
   const Stats& stats() const { return stats_; }
 
@@ -228,6 +231,12 @@ class Delaunay3D {
   template <bool kVerify>
   bool bowyer_watson(int32_t t0, const double* p, int32_t pv, bool respect_constraints);
   bool find_cavity_checked(int32_t t0, const double* p, int32_t pv, bool respect_constraints);
+  /// Whether p is strictly inside encoded face e (its tetrahedron's side).
+  bool sees_face(int32_t e, const double* p) const;
+  /// Shrinks the verified Bowyer-Watson cavity (stamp `in`) until every
+  /// boundary face sees p; false (cavity_ left invalid) when p's
+  /// tetrahedron t0 would leave it or p is on a face of t0.
+  bool shrink_to_star(int32_t t0, const double* p, uint32_t in);
   void star(int32_t pv);
   int32_t new_tet_id();
   bool new_tet_valid(const std::array<int32_t, 4>& q, const std::vector<int32_t>& around) const;
