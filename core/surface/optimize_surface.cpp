@@ -98,15 +98,6 @@ class Optimizer {
   /// previous pass started.
   void next_pass() { ++pass_; }
 
-  /// Mean gamma_k of the live triangles.
-  double mean_quality() const {
-    double sum = 0;
-    size_t n = 0;
-    for (size_t t = 0; t < m_.num_triangles(); ++t)
-      if (m_.triangles[3 * t] >= 0) sum += q_[t], ++n;
-    return n > 0 ? sum / double(n) : 0;
-  }
-
   /// The first pass works only on the flagged vertices (one per vertex).
   void start_from(const std::vector<uint8_t>& flags) {
     for (size_t v = 0; v < recent_.size(); ++v) recent_[v] = flags[v] ? pass_ : pass_ - 2;
@@ -626,7 +617,6 @@ SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>
   SurfaceOptimizeStats stats;
   Optimizer opt(mesh, home, fixed, size, input, input_adj, options, pins);
   if (!start.empty()) opt.start_from(start);
-  double mean = opt.mean_quality();
   for (int pass = 0; pass < options.passes; ++pass) {
     size_t splits = pass < options.valence_passes ? opt.split_pass() : 0;
     size_t collapses = pass < options.valence_passes ? opt.collapse_pass() : 0;
@@ -638,9 +628,6 @@ SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>
     stats.swaps += swaps;
     stats.moves += moves;
     if (splits == 0 && collapses == 0 && swaps == 0 && moves == 0) break;
-    const double before = mean;
-    mean = opt.mean_quality();
-    if (mean - before < options.min_mean_gain) break;
     opt.next_pass();
   }
   if (stats.collapses > 0) opt.compact(fixed, size);

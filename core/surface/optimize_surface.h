@@ -25,11 +25,6 @@ struct SurfaceOptimizeOptions {
   /// their midpoint projected onto the input (when sizes are given; 0 = no
   /// split).
   double split_ratio = 1.6;
-  /// The passes stop after one that raised the mean gamma_k by less than
-  /// this (0: never early); the last passes of a converged mesh move most
-  /// vertices for a few 1e-5 of mean (aortic arch at h = 0.06: 1.6e-4 in
-  /// the 5th pass, 2.5e-5 in the 10th).
-  double min_mean_gain = 1e-4;
 };
 
 /// Pinned vertices that may slide (see pin_to_input).

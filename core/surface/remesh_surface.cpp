@@ -265,8 +265,6 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
   SurfaceOptimizeOptions again = options.optimize;
   again.passes = options.fidelity_passes;
   again.valence_passes = std::min(again.valence_passes, options.fidelity_passes);
-  // Local passes: their gain is diluted in the whole mesh's mean.
-  again.min_mean_gain = 0;
   std::vector<uint8_t> given_up(input.num_vertices(), 0);
   std::vector<int32_t> pin_of(fixed.size(), -1);  // per output vertex: its input vertex
   PinSlack slack;
