@@ -52,9 +52,11 @@ void for_each_edge(const std::vector<EdgeUse>& uses, F&& f) {
   }
 }
 
-size_t flip_pass(Mesh2D& m) {
+// One Lawson sweep over the edges; `uses`: edge_uses(m), recomputed here
+// when a flip changed the triangles (smoothing moves points only, so the
+// uses stay valid across it).
+size_t flip_pass(Mesh2D& m, std::vector<EdgeUse>& uses) {
   size_t flips = 0;
-  const std::vector<EdgeUse> uses = edge_uses(m);
   std::vector<uint8_t> touched(m.num_triangles(), 0);
   auto P = [&](int32_t v) { return &m.points[2 * size_t(v)]; };
   for_each_edge(uses, [&](const EdgeUse* use, size_t count) {
@@ -74,6 +76,7 @@ size_t flip_pass(Mesh2D& m) {
     touched[size_t(t)] = touched[size_t(u)] = 1;
     ++flips;
   });
+  if (flips > 0) uses = edge_uses(m);
   return flips;
 }
 
@@ -82,16 +85,17 @@ size_t flip_pass(Mesh2D& m) {
 Optimize2DStats optimize_mesh2d(Mesh2D& m, int passes) {
   Optimize2DStats stats;
   const size_t nv = m.num_vertices();
+  std::vector<EdgeUse> uses = edge_uses(m);
   for (int pass = 0; pass < passes; ++pass) {
     for (int sweep = 0; sweep < 8; ++sweep) {
-      size_t f = flip_pass(m);
+      size_t f = flip_pass(m, uses);
       stats.flips += f;
       if (f == 0) break;
     }
     // Boundary vertices: on an edge used by a single triangle.
     std::vector<uint8_t> fixed(nv, 0);
     std::vector<std::vector<int32_t>> neighbors(nv), star(nv);
-    for_each_edge(edge_uses(m), [&](const EdgeUse* use, size_t count) {
+    for_each_edge(uses, [&](const EdgeUse* use, size_t count) {
       const int32_t a = int32_t(use->key >> 32), b = int32_t(use->key & 0xffffffffu);
       if (count == 1) fixed[size_t(a)] = fixed[size_t(b)] = 1;
       neighbors[size_t(a)].push_back(b);
@@ -129,7 +133,7 @@ Optimize2DStats optimize_mesh2d(Mesh2D& m, int passes) {
       }
     }
   }
-  for (int sweep = 0; sweep < 8 && flip_pass(m) > 0; ++sweep) ++stats.flips;
+  for (int sweep = 0; sweep < 8 && flip_pass(m, uses) > 0; ++sweep) ++stats.flips;
   return stats;
 }
 
