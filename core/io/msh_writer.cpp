@@ -91,6 +91,19 @@ size_t element_count(const MshModel& m) {
   return n;
 }
 
+// An upper bound of the text's size, so that the buffer is allocated
+// once: a node line holds its tag and 3 shortest doubles (at most 24
+// characters each), an element line its tag, `element_extra` characters
+// (MSH 2.2: type, tag count and 2 tags, small integers) and its node tags.
+size_t text_size_bound(const MshModel& m, size_t element_extra) {
+  const size_t nn = m.points.size() / 3, ne = element_count(m);
+  const size_t node_tag = std::to_string(nn).size() + 1, elem_tag = std::to_string(ne).size() + 1;
+  size_t refs = 0;
+  for (const auto& b : m.blocks) refs += b.nodes.size();
+  return 4096 + 256 * (m.physicals.size() + m.blocks.size()) + nn * (2 * node_tag + 3 * 25) +
+         ne * (elem_tag + element_extra + 1) + refs * node_tag;
+}
+
 // " n1 n2 ...\n" with one-based node tags.
 void write_element_nodes(TextOut& out, const int32_t* nodes, size_t count) {
   for (size_t k = 0; k < count; ++k) {
@@ -111,9 +124,7 @@ void write_point(TextOut& out, const double* p) {
 std::string write41(const MshModel& m) {
   TextOut out;
   const size_t nn = m.points.size() / 3;
-  size_t total_nodes_refs = 0;
-  for (const auto& b : m.blocks) total_nodes_refs += b.nodes.size();
-  out.reserve(nn * 60 + total_nodes_refs * 8 + 4096);
+  out.reserve(text_size_bound(m, 0));
   write_header(out, m, "4.1");
 
   // Entities: bounding box of each block's nodes.
@@ -217,6 +228,7 @@ std::string write41(const MshModel& m) {
 
 std::string write22(const MshModel& m) {
   TextOut out;
+  out.reserve(text_size_bound(m, 24));
   const size_t nn = m.points.size() / 3;
   write_header(out, m, "2.2");
   out.str("$Nodes\n");
