@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs the benchmarks (native and wasm) on the reference surfaces when present
-# (read + analysis throughput, then the remeshing speed of bench/remesh_speed.py)
+# (read + analysis throughput, the 3D Delaunay kernel on random points, then
+# the remeshing speed of bench/remesh_speed.py)
 # and on a generated ~2M-triangle phantom. Build first (scripts/setup.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -12,6 +13,9 @@ echo "== native: read + weld + repair + analysis"
 echo
 echo "== wasm (node): read + weld + repair + analysis"
 node bench/wasm_bench.mjs "${files[@]}"
+echo
+echo "== native: 3D Delaunay kernel, random points (points/s)"
+./build/delaunay_bench --runs 3 --sizes 100000,1000000 --kinds cube,cylinder
 
 if [[ -f $data/aortic-arch.stl ]]; then
   echo
