@@ -8,9 +8,12 @@
 // cavity search: breadth-first over conflicting tetrahedra; in constrained /
 // non-Delaunay mode the same search not crossing constrained faces, bounded
 // and verified star-shaped (every boundary face strictly visible from the
-// point), else the "checked" search, which crosses only faces seen from the
-// point, stops at constrained faces and shrinks the cavity until every
-// boundary face is strictly visible; (3) star: one new tetrahedron per
+// point), else shrunk in place until it is (tetrahedra behind a boundary
+// face leave it), else, when that would drop the point's own tetrahedron,
+// too large, or holding a ghost or a constrained face, the "checked"
+// search, which crosses only faces seen from the point, stops at
+// constrained faces and shrinks the cavity until every boundary face is
+// strictly visible; (3) star: one new tetrahedron per
 // cavity boundary face, linked to the outside through the old face and to
 // each other through a small open-addressing hash on the boundary edges.
 #include "core/volume/delaunay3d.h"
@@ -397,9 +400,10 @@ bool Delaunay3D::bowyer_watson(int32_t t0, const double* p, int32_t pv, bool res
   // Bowyer-Watson's search from t0 (which holds p). Unverified (the
   // triangulation is Delaunay, nothing constrained): the conflict region,
   // always star-shaped. Verified: not crossing constrained faces, and any
-  // doubt (a ghost, a constrained face inside, too many tetrahedra, a
-  // boundary face not strictly visible from p) returns false, and the
-  // caller falls back to find_cavity_checked. When the conflict region is
+  // doubt (a ghost, a constrained face inside, too many tetrahedra)
+  // returns false, and the caller falls back to find_cavity_checked; a
+  // boundary face not strictly visible from p has the cavity shrunk in
+  // place (shrink_to_star) first. When the conflict region is
   // locally Delaunay it is star-shaped from p (p in ball(t) but not in
   // ball(n) across a locally Delaunay face puts p strictly on t's side, up
   // to ties), so this usually succeeds; when it does, the cavity is exactly
@@ -477,6 +481,12 @@ bool Delaunay3D::shrink_to_star(int32_t t0, const double* p, uint32_t in) {
       if (stamp_[size_t(across >> 2)] == in) todo.push_back(across);
     }
   }
+  keep_cavity(in);
+  ++stats_.shrunk_cavities;
+  return true;
+}
+
+void Delaunay3D::keep_cavity(uint32_t in) {
   size_t m = 0;
   for (int32_t t : cavity_)
     if (stamp_[size_t(t)] == in) cavity_[m++] = t;
@@ -485,8 +495,6 @@ bool Delaunay3D::shrink_to_star(int32_t t0, const double* p, uint32_t in) {
   for (int32_t t : cavity_)
     for (int k = 0; k < 4; ++k)
       if (stamp_[size_t(link(4 * t + k) >> 2)] != in) boundary_.push_back(4 * t + k);
-  ++stats_.shrunk_cavities;
-  return true;
 }
 
 bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
@@ -586,14 +594,7 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
       }
     }
   }
-  size_t m = 0;
-  for (int32_t t : cavity_)
-    if (stamp_[size_t(t)] == in) cavity_[m++] = t;
-  cavity_.resize(m);
-  boundary_.clear();
-  for (int32_t t : cavity_)
-    for (int k = 0; k < 4; ++k)
-      if (stamp_[size_t(tets_[size_t(t)].n[k] >> 2)] != in) boundary_.push_back(4 * t + k);
+  keep_cavity(in);
   return true;
 }
 

@@ -204,7 +204,9 @@ class Delaunay3D {
     int64_t boundary_faces = 0;  ///< tetrahedra created by insertions
     int64_t flips = 0;
     /// Constrained / non-Delaunay insertions whose Bowyer-Watson cavity
-    /// was not star-shaped (or too large), so it was grown and shrunk.
+    /// could not be shrunk in place (too large, a ghost or a constrained
+    /// face inside, or the point's tetrahedron dropped), so the checked
+    /// search grew and shrank another.
     int64_t checked_cavities = 0;
     /// Constrained / non-Delaunay insertions whose Bowyer-Watson cavity
     /// was shrunk until star-shaped (no checked search needed).
@@ -237,6 +239,9 @@ class Delaunay3D {
   /// boundary face sees p; false (cavity_ left invalid) when p's
   /// tetrahedron t0 would leave it or p is on a face of t0.
   bool shrink_to_star(int32_t t0, const double* p, uint32_t in);
+  /// Keeps the tetrahedra of cavity_ stamped `in` and collects their
+  /// boundary faces (neighbor not stamped `in`) into boundary_.
+  void keep_cavity(uint32_t in);
   void star(int32_t pv);
   int32_t new_tet_id();
   bool new_tet_valid(const std::array<int32_t, 4>& q, const std::vector<int32_t>& around) const;
