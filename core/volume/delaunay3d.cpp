@@ -419,6 +419,13 @@ bool Delaunay3D::bowyer_watson(int32_t t0, const double* p, int32_t pv, bool res
   for (size_t i = 0; i < cavity_.size(); ++i) {
     const int32_t t = cavity_[i];
     const unsigned cons = kVerify && respect_constraints ? tc_[size_t(t)] : 0u;
+    // The four neighbors' records and marks are fetched together (the
+    // search is bound by memory latency, and the tests below serialize).
+    for (int k = 0; k < 4; ++k) {
+      const int32_t n = link(4 * t + k) >> 2;
+      __builtin_prefetch(&tets_[size_t(n)]);
+      __builtin_prefetch(&stamp_[size_t(n)]);
+    }
     for (int k = 0; k < 4; ++k) {
       const int32_t e = 4 * t + k;
       const int32_t n = link(e) >> 2;
@@ -766,6 +773,10 @@ void Delaunay3D::tets_around_vertex(int32_t v, std::vector<int32_t>& out) const 
   stamp_[size_t(t0)] = mark;
   for (size_t i = 0; i < out.size(); ++i) {
     const TetRec& r = tets_[size_t(out[i])];
+    for (int j = 0; j < 4; ++j) {  // as in bowyer_watson
+      __builtin_prefetch(&tets_[size_t(r.n[j] >> 2)]);
+      __builtin_prefetch(&stamp_[size_t(r.n[j] >> 2)]);
+    }
     const int sv = slot_of(r.v, v);
     for (int j = 0; j < 4; ++j) {
       if (j == sv) continue;
