@@ -274,10 +274,9 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
           "): the size is too coarse for some feature; try a smaller --size or a larger "
           "--per-circumference");
     // Counted by the fidelity stage when it ran; else here.
-    r.fidelity.self_intersections =
-        r.remesh_stats.self_intersections >= 0
-            ? size_t(r.remesh_stats.self_intersections)
-            : find_self_intersections(r.output_surface, 0).pairs;
+    r.fidelity.self_intersections = r.remesh_stats.self_intersections >= 0
+                                        ? size_t(r.remesh_stats.self_intersections)
+                                        : find_self_intersections(r.output_surface, 0).pairs;
     if (r.fidelity.self_intersections > 0)
       r.warnings.push_back("the remeshed surface intersects itself (" +
                            std::to_string(r.fidelity.self_intersections) +
