@@ -8,6 +8,7 @@
 #include "core/phantom/vessel_phantom.h"
 #include "core/surface/remesh_surface.h"
 #include "tests/support/phantoms.h"
+#include "tests/support/remesh_options.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -30,10 +31,7 @@ TEST(ChordRadius, RemeshedBifurcationNearTheOpenings) {
   PhantomTruth truth;
   auto raw = make_vessel_phantom(po, &truth);
   ASSERT_TRUE(raw.ok()) << raw.message();
-  RemeshOptions ro;
-  ro.size.mode = SizeMode::kUniform;
-  ro.size.size = 0.15;
-  auto remeshed = remesh_surface(raw.value(), ro);
+  auto remeshed = remesh_surface(raw.value(), testing::uniform_remesh(0.15));
   ASSERT_TRUE(remeshed.ok()) << remeshed.message();
   const SurfaceMesh& wall = remeshed.value().mesh;
   const std::vector<double> radius = chord_radius(wall);

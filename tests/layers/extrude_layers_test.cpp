@@ -20,6 +20,7 @@
 #include "core/surface/caps.h"
 #include "core/surface/remesh_surface.h"
 #include "core/surface/vessel_radius.h"
+#include "tests/support/remesh_options.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -430,10 +431,7 @@ const SurfaceMesh& remeshed_bifurcation() {
     po.noise = 0.3;
     auto in = make_vessel_phantom(po);
     EXPECT_TRUE(in.ok()) << in.message();
-    RemeshOptions ro;
-    ro.size.mode = SizeMode::kUniform;
-    ro.size.size = 0.15;
-    auto out = remesh_surface(in.value(), ro);
+    auto out = remesh_surface(in.value(), testing::uniform_remesh(0.15));
     EXPECT_TRUE(out.ok()) << out.message();
     return out.ok() ? out.value().mesh : SurfaceMesh{};
   }();

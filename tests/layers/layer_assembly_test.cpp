@@ -20,6 +20,7 @@
 #include "core/surface/caps.h"
 #include "core/surface/remesh_surface.h"
 #include "core/volume/boundary_recovery.h"
+#include "tests/support/remesh_options.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -257,10 +258,7 @@ TEST(LayerAssembly, BifurcationPhantomLumenAndVesselWall) {
   po.noise = 0.3;
   auto raw = make_vessel_phantom(po);
   ASSERT_TRUE(raw.ok()) << raw.message();
-  RemeshOptions ro;
-  ro.size.mode = SizeMode::kUniform;
-  ro.size.size = 0.2;
-  auto remeshed = remesh_surface(raw.value(), ro);
+  auto remeshed = remesh_surface(raw.value(), testing::uniform_remesh(0.2));
   ASSERT_TRUE(remeshed.ok()) << remeshed.message();
   const SurfaceMesh& wall = remeshed.value().mesh;
   const std::vector<double> radius = chord_radius(wall);

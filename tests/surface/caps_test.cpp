@@ -22,6 +22,7 @@
 #include "core/quality/triangle_quality.h"
 #include "core/surface/remesh_surface.h"
 #include "tests/support/phantoms.h"
+#include "tests/support/remesh_options.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -301,10 +302,7 @@ TEST(Caps, RemeshedBifurcationGetsThreeNamedCaps) {
   ASSERT_TRUE(in.ok()) << in.message();
   ASSERT_EQ(truth.openings, 3);
   const double h = 0.2;
-  RemeshOptions ro;
-  ro.size.mode = SizeMode::kUniform;
-  ro.size.size = h;
-  auto remeshed = remesh_surface(in.value(), ro);
+  auto remeshed = remesh_surface(in.value(), testing::uniform_remesh(h));
   ASSERT_TRUE(remeshed.ok()) << remeshed.message();
   const SurfaceMesh& wall = remeshed.value().mesh;
   const std::vector<double> sizes(wall.num_vertices(), h);

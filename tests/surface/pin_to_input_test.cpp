@@ -15,18 +15,11 @@
 #include "core/surface/optimize_surface.h"
 #include "core/surface/remesh_surface.h"
 #include "tests/support/phantoms.h"
+#include "tests/support/remesh_options.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
 namespace {
-
-// Remeshing options at the uniform size h.
-RemeshOptions uniform_options(double h) {
-  RemeshOptions o;
-  o.size.mode = SizeMode::kUniform;
-  o.size.size = h;
-  return o;
-}
 
 // Every directed edge once, every edge at most twice: a consistently
 // oriented manifold.
@@ -199,7 +192,7 @@ TEST(PinToInput, PinnedVerticesSlideOnlyWithinTheSlack) {
 
 TEST(RemeshSurface, FidelityRoundsBringTheInputCloserWithoutLosingQuality) {
   const SurfaceMesh in = testing::phantom(PhantomKind::kBifurcation, true, 0.1, 0.1);
-  RemeshOptions o = uniform_options(0.3);
+  RemeshOptions o = testing::uniform_remesh(0.3);
   RemeshStats off_stats, on_stats;
   o.fidelity_rounds = o.fidelity_size_rounds = 0;
   auto off = remesh_surface(in, o, &off_stats);
@@ -246,7 +239,7 @@ TEST(RemeshSurface, PinningIsUndoneWhenTheQualityFloorsCannotHold) {
   // Noise everywhere, pinned all the same (no share limit): the quality
   // drops below what it was, and the floors at 1 leave no room for that.
   const SurfaceMesh in = testing::phantom(PhantomKind::kBifurcation, true, 0.15, 0.3);
-  RemeshOptions o = uniform_options(0.2);
+  RemeshOptions o = testing::uniform_remesh(0.2);
   o.fidelity_max_share = 1;
   o.fidelity_floor_min = 1;
   o.fidelity_size_rounds = 0;
@@ -279,7 +272,7 @@ TEST(RemeshSurface, SizeRoundsRefineAroundWhatTheWallCannotFollow) {
   // follow, so pinning alone leaves input vertices far from it.
   const SurfaceMesh in = testing::phantom(PhantomKind::kAneurysm, true, 0.1, 0.1);
   const double h = 0.3;
-  RemeshOptions o = uniform_options(h);
+  RemeshOptions o = testing::uniform_remesh(h);
   RemeshStats off_stats, on_stats;
   o.fidelity_size_rounds = 0;
   auto off = remesh_surface(in, o, &off_stats);
@@ -330,7 +323,7 @@ TEST(RemeshSurface, LargeWallsPinDownToTheQualityFloor) {
   // Without size rounds (a wall taken as large, few far vertices), the
   // last pinning rounds accept triangles down to the seed's floor.
   const SurfaceMesh in = testing::phantom(PhantomKind::kAneurysm, true, 0.1, 0.1);
-  RemeshOptions o = uniform_options(0.3);
+  RemeshOptions o = testing::uniform_remesh(0.3);
   o.fidelity_size_rounds = 0;
   RemeshStats small_stats, large_stats;
   auto small = remesh_surface(in, o, &small_stats);

@@ -20,6 +20,7 @@
 #include "core/surface/optimize_surface.h"
 #include "core/surface/resample_curve.h"
 #include "tests/support/phantoms.h"
+#include "tests/support/remesh_options.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -103,13 +104,6 @@ size_t inconsistent_edges(const SurfaceMesh& m) {
 }
 
 using testing::phantom;
-
-RemeshOptions uniform(double h) {
-  RemeshOptions o;
-  o.size.mode = SizeMode::kUniform;
-  o.size.size = h;
-  return o;
-}
 
 struct Expectations {
   bool check_size_and_quality = true;
@@ -214,7 +208,7 @@ TEST(RemeshSurface, NoisyBifurcationAtUniformSize) {
   const double h = 0.2;
   RemeshStats stats;
   auto t0 = std::chrono::steady_clock::now();
-  auto r = remesh_surface(in, uniform(h), &stats);
+  auto r = remesh_surface(in, testing::uniform_remesh(h), &stats);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ASSERT_TRUE(r.ok()) << r.message();
   check_remesh(in, r.value(), h, {}, "noisy bifurcation");
@@ -230,7 +224,7 @@ TEST(RemeshSurface, ClosedPhantomAtUniformSize) {
   ASSERT_GT(in.num_triangles(), 0u);
   ASSERT_TRUE(analyze_topology(in).closed);
   const double h = 0.2;
-  auto r = remesh_surface(in, uniform(h));
+  auto r = remesh_surface(in, testing::uniform_remesh(h));
   ASSERT_TRUE(r.ok()) << r.message();
   check_remesh(in, r.value(), h, {}, "closed tube");
 }
@@ -240,7 +234,7 @@ TEST(RemeshSurface, TorusKeepsItsGenus) {
   ASSERT_GT(in.num_triangles(), 0u);
   ASSERT_EQ(analyze_topology(in).genus, 1);
   const double h = 0.2;
-  auto r = remesh_surface(in, uniform(h));
+  auto r = remesh_surface(in, testing::uniform_remesh(h));
   ASSERT_TRUE(r.ok()) << r.message();
   check_remesh(in, r.value(), h, {}, "torus");
 }
@@ -261,7 +255,7 @@ TEST(RemeshSurface, OtherMapsAndMeshersKeepTheTopology) {
       {"lscm + adapt", ParamMethod::kLscm, Mesher2D::kAdapt},
   };
   for (const Variant& v : variants) {
-    RemeshOptions o = uniform(h);
+    RemeshOptions o = testing::uniform_remesh(h);
     o.param = v.param;
     o.patch.mesher = v.mesher;
     auto r = remesh_surface(in, o);
@@ -275,10 +269,10 @@ TEST(RemeshSurface, OtherMapsAndMeshersKeepTheTopology) {
 TEST(RemeshSurface, InvalidSizeIsAnError) {
   const SurfaceMesh tube = testing::open_tube(16, 8);
   for (double s : {0.0, -0.5}) {
-    auto r = remesh_surface(tube, uniform(s));
+    auto r = remesh_surface(tube, testing::uniform_remesh(s));
     EXPECT_FALSE(r.ok()) << "size " << s;
   }
-  RemeshOptions o = uniform(0.3);
+  RemeshOptions o = testing::uniform_remesh(0.3);
   o.size.size_min = 1;
   o.size.size_max = 0.5;
   EXPECT_FALSE(remesh_surface(tube, o).ok());
@@ -286,8 +280,8 @@ TEST(RemeshSurface, InvalidSizeIsAnError) {
 
 TEST(RemeshSurface, CancelledByProgress) {
   const SurfaceMesh tube = testing::open_tube(24, 12);
-  auto r =
-      remesh_surface(tube, uniform(0.3), nullptr, [](double, std::string_view) { return false; });
+  auto r = remesh_surface(tube, testing::uniform_remesh(0.3), nullptr,
+                          [](double, std::string_view) { return false; });
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.message(), kCancelledMessage);
 }

@@ -12,6 +12,7 @@
 #include "core/quality/triangle_quality.h"
 #include "core/surface/remesh_surface.h"
 #include "tests/support/icosphere.h"
+#include "tests/support/remesh_options.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -56,9 +57,7 @@ TEST(SharpFeatures, RemeshingKeepsTheRimsOfACappedCylinder) {
   // rims stay sharp, so every input vertex stays close to the output, and
   // the output vertices on the rims lie on the rim circles.
   const SurfaceMesh in = testing::capped_tube(64, 32, 1.0, 4.0);
-  RemeshOptions o;
-  o.size.mode = SizeMode::kUniform;
-  o.size.size = 0.2;
+  RemeshOptions o = testing::uniform_remesh(0.2);
   RemeshStats stats;
   auto r = remesh_surface(in, o, &stats);
   ASSERT_TRUE(r.ok()) << r.message();
