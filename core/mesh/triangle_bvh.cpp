@@ -13,8 +13,15 @@ TriangleBvh build_triangle_bvh(const SurfaceMesh& mesh, int leaf_size) {
   const size_t nt = mesh.num_triangles();
   if (nt == 0) return bvh;
   leaf_size = std::max(leaf_size, 1);
-  // Per-triangle box and centroid.
-  std::vector<double> lo(3 * nt), hi(3 * nt), centroid(3 * nt);
+  // Phase 1: per triangle its box and, beside its id, its box centre (the
+  // split key); the splits reorder these records in place, so the median
+  // searches read memory in order.
+  std::vector<double> lo(3 * nt), hi(3 * nt);
+  struct Item {
+    double c[3];
+    int32_t id;
+  };
+  std::vector<Item> items(nt);
   for (size_t t = 0; t < nt; ++t) {
     for (int d = 0; d < 3; ++d) {
       double a = std::numeric_limits<double>::infinity(), b = -a;
@@ -25,11 +32,12 @@ TriangleBvh build_triangle_bvh(const SurfaceMesh& mesh, int leaf_size) {
       }
       lo[3 * t + d] = a;
       hi[3 * t + d] = b;
-      centroid[3 * t + d] = 0.5 * (a + b);
+      items[t].c[d] = 0.5 * (a + b);
     }
+    items[t].id = int32_t(t);
   }
-  bvh.order.resize(nt);
-  for (size_t t = 0; t < nt; ++t) bvh.order[t] = int32_t(t);
+  // Phase 2: the tree, top-down: a node's triangles are split at the median
+  // centre along the longest side of their centres' box.
   bvh.nodes.reserve(2 * (nt / size_t(leaf_size) + 1));
   bvh.nodes.emplace_back();
   struct Task {
@@ -39,43 +47,62 @@ TriangleBvh build_triangle_bvh(const SurfaceMesh& mesh, int leaf_size) {
   while (!stack.empty()) {
     const Task task = stack.back();
     stack.pop_back();
-    // Box of the triangles and of their centroids.
-    double blo[3], bhi[3], clo[3], chi[3];
-    for (int d = 0; d < 3; ++d) {
-      blo[d] = clo[d] = std::numeric_limits<double>::infinity();
-      bhi[d] = chi[d] = -std::numeric_limits<double>::infinity();
-    }
-    for (int32_t i = task.first; i < task.first + task.count; ++i) {
-      const size_t t = size_t(bvh.order[size_t(i)]);
-      for (int d = 0; d < 3; ++d) {
-        blo[d] = std::min(blo[d], lo[3 * t + d]);
-        bhi[d] = std::max(bhi[d], hi[3 * t + d]);
-        clo[d] = std::min(clo[d], centroid[3 * t + d]);
-        chi[d] = std::max(chi[d], centroid[3 * t + d]);
-      }
-    }
-    TriangleBvh::Node& node = bvh.nodes[size_t(task.node)];
-    for (int d = 0; d < 3; ++d) node.lo[d] = blo[d], node.hi[d] = bhi[d];
     if (task.count <= leaf_size) {
-      node.first = task.first;
-      node.count = task.count;
+      bvh.nodes[size_t(task.node)].first = task.first;
+      bvh.nodes[size_t(task.node)].count = task.count;
       continue;
     }
+    double clo[3], chi[3];
+    for (int d = 0; d < 3; ++d) {
+      clo[d] = std::numeric_limits<double>::infinity();
+      chi[d] = -std::numeric_limits<double>::infinity();
+    }
+    const auto begin = items.begin() + task.first;
+    for (auto it = begin; it != begin + task.count; ++it)
+      for (int d = 0; d < 3; ++d) {
+        clo[d] = std::min(clo[d], it->c[d]);
+        chi[d] = std::max(chi[d], it->c[d]);
+      }
     int axis = 0;
     for (int d = 1; d < 3; ++d)
       if (chi[d] - clo[d] > chi[axis] - clo[axis]) axis = d;
     const int32_t half = task.count / 2;
-    auto begin = bvh.order.begin() + task.first;
-    std::nth_element(begin, begin + half, begin + task.count, [&](int32_t a, int32_t b) {
-      return centroid[3 * size_t(a) + size_t(axis)] < centroid[3 * size_t(b) + size_t(axis)];
-    });
+    std::nth_element(begin, begin + half, begin + task.count,
+                     [axis](const Item& a, const Item& b) { return a.c[axis] < b.c[axis]; });
     const int32_t left = int32_t(bvh.nodes.size());
-    bvh.nodes[size_t(task.node)].first = left;  // `node` may dangle after emplace_back
+    bvh.nodes[size_t(task.node)].first = left;
     bvh.nodes[size_t(task.node)].count = 0;
     bvh.nodes.emplace_back();
     bvh.nodes.emplace_back();
     stack.push_back({left, task.first, half});
     stack.push_back({left + 1, task.first + half, task.count - half});
+  }
+  bvh.order.resize(nt);
+  for (size_t i = 0; i < nt; ++i) bvh.order[i] = items[i].id;
+  // Phase 3: boxes, bottom-up (children come after their parent): a leaf's
+  // from its triangles, an inner node's from its two children.
+  for (size_t n = bvh.nodes.size(); n-- > 0;) {
+    TriangleBvh::Node& node = bvh.nodes[n];
+    for (int d = 0; d < 3; ++d) {
+      node.lo[d] = std::numeric_limits<double>::infinity();
+      node.hi[d] = -std::numeric_limits<double>::infinity();
+    }
+    if (TriangleBvh::is_leaf(node)) {
+      for (int32_t i = node.first; i < node.first + node.count; ++i) {
+        const size_t t = size_t(bvh.order[size_t(i)]);
+        for (int d = 0; d < 3; ++d) {
+          node.lo[d] = std::min(node.lo[d], lo[3 * t + d]);
+          node.hi[d] = std::max(node.hi[d], hi[3 * t + d]);
+        }
+      }
+    } else {
+      for (const TriangleBvh::Node* child :
+           {&bvh.nodes[size_t(node.first)], &bvh.nodes[size_t(node.first) + 1]})
+        for (int d = 0; d < 3; ++d) {
+          node.lo[d] = std::min(node.lo[d], child->lo[d]);
+          node.hi[d] = std::max(node.hi[d], child->hi[d]);
+        }
+    }
   }
   return bvh;
 }
