@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "bench/bench_util.h"
-#include "core/pipeline/job_options.h"
+#include "core/pipeline/option_table.h"
 #include "core/pipeline/mesh_job.h"
 #include "core/quality/tet_quality.h"
 #include "core/surface/caps.h"
@@ -83,7 +83,7 @@ bool make_capped(const std::string& stl, double size, Capped* out) {
   if (!f) return false;
   std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
   vm::MeshJobOptions o;
-  if (!vm::set_job_option(o, "size", std::to_string(size)).ok()) return false;
+  if (!vm::set_option_text(o, "size", std::to_string(size)).ok()) return false;
   o.viscous.layers = 0;
   o.volume = false;
   auto r = vm::run_mesh_job(bytes, o);

@@ -157,7 +157,7 @@ test('layers 0: no layer part; bad layer and wall input give readable errors and
 
   await page.getByTestId('layers').fill('1.5');
   await page.getByTestId('remesh').click();
-  await expect(error).toContainText('Boundary layer: the number of layers must be a whole number from 0 (none) to 100.');
+  await expect(error).toContainText('Boundary layer: the number of layers must be a number of layers from 0 (none) to 100.');
   await expect(page.getByTestId('layers')).toHaveAttribute('aria-invalid', 'true');
   await expect(page.getByTestId('remesh-result')).toBeHidden();
 
@@ -179,7 +179,7 @@ test('layers 0: no layer part; bad layer and wall input give readable errors and
   await page.getByTestId('wall-thickness').fill('1.5');
   await page.getByTestId('remesh').click();
   await expect(error).toContainText(
-    'Vessel wall: the thickness must be a fraction of the local vessel radius R between 0 and 1',
+    'Vessel wall: the thickness must be a fraction of the local vessel radius in (0, 1)',
   );
   await expect(page.getByTestId('wall-thickness')).toHaveAttribute('aria-invalid', 'true');
   await page.getByTestId('wall-thickness').fill('0.1');
@@ -194,7 +194,7 @@ test('layers 0: no layer part; bad layer and wall input give readable errors and
   await expect(page.getByTestId('first-layer')).toHaveValue(/^0\.\d+$/);
   await page.getByTestId('growth').fill('5');
   await page.getByTestId('remesh').click();
-  await expect(error).toContainText('Boundary layer: the growth ratio must be from 1 to 3.');
+  await expect(error).toContainText('Boundary layer: the growth must be a growth ratio from 1 to 3.');
   await page.getByTestId('growth').fill('1.2');
   await mesh(page);
   await expect(page.getByTestId('part-legend').locator('li')).toHaveText(['core', 'boundary layer']);

@@ -6,13 +6,14 @@
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
+#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "core/io/stl.h"
 #include "core/phantom/vessel_phantom.h"
-#include "core/pipeline/job_options.h"
 #include "core/pipeline/mesh_job.h"
+#include "core/pipeline/option_table.h"
 #include "core/pipeline/report_json.h"
 
 namespace {
@@ -42,12 +43,119 @@ vm::ProgressFn progress_from(val fn) {
   };
 }
 
-val error(const std::string& message) {
+/// {ok: false, error, kind, option?, cancelled?}: the error phrased with the
+/// JS API's option names.
+val error(const vm::Status& st) {
   val r = val::object();
   r.set("ok", false);
-  r.set("error", message);
-  if (message == vm::kCancelledMessage) r.set("cancelled", true);
+  r.set("error", vm::phrase_error(st, vm::kFaceJs));
+  static constexpr const char* kKinds[] = {"none", "bad_input", "bad_option", "cancelled",
+                                           "internal"};
+  r.set("kind", std::string(kKinds[int(st.kind())]));
+  if (st.kind() == vm::ErrorKind::kBadOption) {
+    if (const vm::OptionSpec* spec = vm::find_option(st.option()))
+      r.set("option", std::string(spec->js));
+  }
+  if (st.cancelled()) r.set("cancelled", true);
   return r;
+}
+
+/// One JS value of option `spec` as an OptionValue: numbers stay numbers,
+/// booleans booleans, lists arrays; per-opening options take {K: value} (or
+/// a plain value for all openings when optional).
+vm::Result<std::vector<vm::OptionValue>> values_from(const vm::OptionSpec& spec, const val& v) {
+  using R = vm::Result<std::vector<vm::OptionValue>>;
+  const std::string js(spec.js);
+  auto one = [&](const val& x, int opening) -> vm::Result<vm::OptionValue> {
+    vm::OptionValue o;
+    o.opening = opening;
+    const std::string type = x.typeOf().as<std::string>();
+    switch (spec.type) {
+      case vm::OptionType::kNumber:
+      case vm::OptionType::kInteger:
+        if (type != "number")
+          return vm::Status::BadOption(std::string(spec.id), "must be a number");
+        o.number = x.as<double>();
+        break;
+      case vm::OptionType::kFlag:
+        if (type != "boolean")
+          return vm::Status::BadOption(std::string(spec.id), "must be true or false");
+        o.flag = x.as<bool>();
+        break;
+      case vm::OptionType::kChoice:
+      case vm::OptionType::kText:
+        if (type != "string")
+          return vm::Status::BadOption(std::string(spec.id), "must be a string");
+        o.text = x.as<std::string>();
+        break;
+      case vm::OptionType::kNumbers: {
+        if (!x.isArray())
+          return vm::Status::BadOption(std::string(spec.id), "must be an array of numbers");
+        const size_t n = x["length"].as<size_t>();
+        for (size_t i = 0; i < n && i < 64; ++i) {
+          if (x[i].typeOf().as<std::string>() != "number")
+            return vm::Status::BadOption(std::string(spec.id), "must be an array of numbers");
+          o.numbers.push_back(x[i].as<double>());
+        }
+        if (n > 64) o.numbers.resize(65);
+        break;
+      }
+    }
+    vm::Status st = vm::check_option_value(spec, o);
+    if (!st.ok()) return st;
+    return o;
+  };
+  std::vector<vm::OptionValue> out;
+  auto add = [&](const val& x, int opening) -> vm::Status {
+    auto o = one(x, opening);
+    if (!o.ok()) return o.status();
+    out.push_back(std::move(o).value());
+    return vm::Status::Ok();
+  };
+  const bool keyed_object = spec.per_opening != vm::PerOpening::kNo &&
+                            v.typeOf().as<std::string>() == "object" && !v.isNull() && !v.isArray();
+  if (keyed_object) {
+    val keys = val::global("Object").call<val>("keys", v);
+    const size_t n = keys["length"].as<size_t>();
+    for (size_t i = 0; i < n; ++i) {
+      const std::string key = keys[i].as<std::string>();
+      char* end = nullptr;
+      const long k = std::strtol(key.c_str(), &end, 10);
+      if (key.empty() || *end != '\0' || k < 1 || k > 1000000)
+        return vm::Status::BadOption(std::string(spec.id),
+                                     "keys must be opening numbers >= 1 (got '" + key + "')");
+      if (vm::Status st = add(v[key], int(k)); !st.ok()) return st;
+    }
+  } else if (spec.repeatable && v.isArray()) {
+    const size_t n = v["length"].as<size_t>();
+    for (size_t i = 0; i < n; ++i)
+      if (vm::Status st = add(v[i], 0); !st.ok()) return st;
+  } else if (vm::Status st = add(v, 0); !st.ok()) {
+    return st;
+  }
+  return R(std::move(out));
+}
+
+/// Applies a JS options object to `target` (MeshJobOptions or
+/// PhantomOptions) for `command`; unknown keys are errors, undefined values
+/// are skipped.
+template <class Target>
+vm::Status apply_js_options(Target& target, const val& opts, vm::OptionCommand command) {
+  if (opts.isUndefined() || opts.isNull()) return vm::Status::Ok();
+  val keys = val::global("Object").call<val>("keys", opts);
+  const size_t n = keys["length"].as<size_t>();
+  for (size_t i = 0; i < n; ++i) {
+    const std::string key = keys[i].as<std::string>();
+    const val v = opts[key];
+    if (v.isUndefined()) continue;
+    const vm::OptionSpec* spec = vm::find_js_option(key, command);
+    if (!spec) return vm::Status::BadOption("", "unknown option '" + key + "'");
+    auto values = values_from(*spec, v);
+    if (!values.ok()) return values.status();
+    for (const vm::OptionValue& o : values.value())
+      if (vm::Status st = vm::apply_option(target, *spec, o); !st.ok()) return st;
+  }
+  return vm::Status::Ok();
 }
 
 void set_surface(val& r, const vm::SurfaceMesh& m, const std::vector<float>& quality) {
@@ -93,10 +201,13 @@ void set_volume(val& r, const vm::MeshJobResult& res) {
   r.set("volume", v);
 }
 
-val analyze(val stl, val progress) {
+/// options: the JS API's analyze options (the table's info options).
+val analyze(val stl, val opts, val progress) {
+  vm::MeshJobOptions options;
+  if (vm::Status st = apply_js_options(options, opts, vm::kCommandInfo); !st.ok()) return error(st);
   std::vector<uint8_t> bytes = bytes_from(stl);
-  auto prepared = vm::prepare_surface(bytes, {}, progress_from(progress));
-  if (!prepared.ok()) return error(prepared.message());
+  auto prepared = vm::prepare_surface(bytes, options.prepare, progress_from(progress));
+  if (!prepared.ok()) return error(prepared.status());
   val r = val::object();
   r.set("ok", true);
   r.set("analysisJson", vm::analysis_json(prepared.value()));
@@ -104,24 +215,14 @@ val analyze(val stl, val progress) {
   return r;
 }
 
-/// options: a plain object of option name -> text value (names of
-/// vm::set_job_option), plus booleans largestComponentOnly and remesh.
+/// options: the JS API's mesh options (the table's mesh options, by their
+/// JS keys, with JS types).
 val mesh(val stl, val opts, val progress) {
   vm::MeshJobOptions options;
-  for (std::string_view name : vm::job_option_names()) {
-    val v = opts[std::string(name)];
-    if (v.isUndefined()) continue;
-    vm::Status st = vm::set_job_option(options, name, v.as<std::string>());
-    if (!st.ok()) return error(st.message());
-  }
-  options.largest_component_only = opts["largestComponentOnly"].as<bool>();
-  options.remesh = opts["remesh"].as<bool>();
-  options.volume = !opts["surfaceOnly"].as<bool>();
-  options.tag_layer = opts["tagLayer"].as<bool>();
-  options.keep_prisms = opts["prisms"].as<bool>();
+  if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh); !st.ok()) return error(st);
   std::vector<uint8_t> bytes = bytes_from(stl);
   auto result = vm::run_mesh_job(bytes, options, progress_from(progress));
-  if (!result.ok()) return error(result.message());
+  if (!result.ok()) return error(result.status());
   const vm::MeshJobResult& res = result.value();
   val r = val::object();
   r.set("ok", true);
@@ -133,32 +234,20 @@ val mesh(val stl, val opts, val progress) {
   return r;
 }
 
-val make_phantom(std::string kind, double voxel, bool open_ends, double noise, double seed,
-                 double scale) {
+/// options: the JS API's makePhantom options.
+val make_phantom(val opts) {
   vm::PhantomOptions o;
-  if (kind == "tube")
-    o.kind = vm::PhantomKind::kTube;
-  else if (kind == "bifurcation")
-    o.kind = vm::PhantomKind::kBifurcation;
-  else if (kind == "aneurysm")
-    o.kind = vm::PhantomKind::kAneurysm;
-  else if (kind == "torus")
-    o.kind = vm::PhantomKind::kTorus;
-  else
-    return error("unknown phantom kind '" + kind + "'");
-  o.voxel = voxel;
-  o.open_ends = open_ends;
-  o.noise = noise;
-  o.seed = uint32_t(seed);
-  o.scale = scale;
+  if (vm::Status st = apply_js_options(o, opts, vm::kCommandPhantom); !st.ok()) return error(st);
   auto m = vm::make_vessel_phantom(o);
-  if (!m.ok()) return error(m.message());
-  std::vector<uint8_t> stl = vm::write_stl_binary(m.value(), "vesselmesh phantom " + kind);
+  if (!m.ok()) return error(m.status());
+  std::vector<uint8_t> stl = vm::write_stl_binary(m.value(), "vesselmesh phantom");
   val r = val::object();
   r.set("ok", true);
   r.set("stl", copy_out(stl.data(), stl.size(), "Uint8Array"));
   return r;
 }
+
+std::string option_table() { return vm::option_table_json(); }
 
 std::string version() { return kVersion; }
 
@@ -169,4 +258,5 @@ EMSCRIPTEN_BINDINGS(vesselmesh) {
   emscripten::function("mesh", &mesh);
   emscripten::function("makePhantom", &make_phantom);
   emscripten::function("version", &version);
+  emscripten::function("optionTable", &option_table);
 }

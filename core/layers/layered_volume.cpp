@@ -27,7 +27,6 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
                                               const RecoveredVolume& recovered,
                                               const VolumeMesh& core, bool tag_layer,
                                               bool keep_prisms) {
-  using R = Result<LayeredVolume>;
   LayeredVolume out;
   const VolumeMesh& rec = recovered.mesh;
   const LayerMesh* base = inner ? inner : outer;  // whose columns the core's boundary sits on
@@ -155,7 +154,7 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
     if (!layer) continue;
     for (size_t o = 0; o < layer->openings.size(); ++o) {
       const int32_t cap = cap_tag_of(caps, layer->openings[o]);
-      if (cap < 0) return R::Error("internal error: a layer opening has no cap");
+      if (cap < 0) return Status::Internal("a layer opening has no cap");
       std::vector<int32_t> ring = keep_prisms ? ring_quads(*layer, o) : ring_triangles(*layer, o);
       if (side == 1)
         for (int32_t& v : ring) v = outer_id(v);

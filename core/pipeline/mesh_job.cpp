@@ -32,13 +32,12 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 /// largest as inlet, then again naming the cap nearest that opening.
 Result<CappedSurface> cap_with_inlet(const MeshJobResult& r, const SurfaceMesh& surface,
                                      const std::vector<double>& sizes, int inlet) {
-  using R = Result<CappedSurface>;
   auto capped = cap_openings(surface, sizes);
   if (!capped.ok() || capped.value().caps.empty()) return capped;
   const auto& in = r.surface.topology.openings;
   if (inlet < 0 || size_t(inlet) >= in.size())
-    return R::Error("--inlet must be between 1 and the number of openings (" +
-                    std::to_string(in.size()) + ")");
+    return Status::BadOption("inlet", "must be between 1 and the number of openings (" +
+                                          std::to_string(in.size()) + ")");
   const auto& c = in[size_t(inlet)].centroid;
   int best = 0;
   double best_d2 = 1e300;
@@ -64,7 +63,7 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   // thickness relative to the local radius (half the lumen chord).
   std::optional<LayerMesh> inner, outer;
   if (options.viscous.layers > 0 || options.vessel.layers > 0) {
-    if (!report_progress(progress, 0.9, "boundary layers")) return Status::Error(kCancelledMessage);
+    if (!report_progress(progress, 0.9, "boundary layers")) return Status::Cancelled();
     const std::vector<double> radius = chord_radius(r.output_surface);
     for (bool out : {false, true}) {
       LayerSpec spec = out ? options.vessel : options.viscous;
@@ -76,7 +75,7 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
       if (!layer.ok())
         return Status::Error(std::string(out ? "vessel wall" : "boundary layer") + ": " +
                              layer.message() + " (a wall too irregular for layers: remesh it, or " +
-                             (out ? "drop --wall-thickness)" : "use --layers 0)"));
+                             (out ? "drop {wall_thickness})" : "use {layers} 0)"));
       (out ? outer : inner) = std::move(layer).value();
       (out ? st.vessel_wall : st.boundary_layer) = ls;
       (out ? st.wall_layers : st.viscous_layers) = spec.layers;
@@ -87,7 +86,7 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   // Stage 4: caps on the core's boundary (the viscous layer's front, else
   // the wall with its rims on their planes).
   t0 = std::chrono::steady_clock::now();
-  if (!report_progress(progress, 0.91, "caps")) return Status::Error(kCancelledMessage);
+  if (!report_progress(progress, 0.91, "caps")) return Status::Cancelled();
   SurfaceMesh core_surface = inner ? front_surface(*inner) : r.output_surface;
   if (!inner && outer)
     std::copy(outer->points.begin(), outer->points.begin() + long(core_surface.points.size()),
@@ -102,7 +101,7 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   st.seconds_caps = seconds_since(t0);
 
   t0 = std::chrono::steady_clock::now();
-  if (!report_progress(progress, 0.92, "tetrahedra")) return Status::Error(kCancelledMessage);
+  if (!report_progress(progress, 0.92, "tetrahedra")) return Status::Cancelled();
   auto recovered =
       recover_boundary(r.capped.mesh.points, r.capped.mesh.triangles, r.capped.triangle_tag);
   if (!recovered.ok()) return Status::Error("volume meshing failed: " + recovered.message());
@@ -139,8 +138,7 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   };
   auto filled = fill_volume(rec.kernel, size, fo, &fs, fill_progress);
   if (!filled.ok()) return Status::Error("volume meshing failed: " + filled.message());
-  if (fs.unused_vertices != 0)
-    return Status::Error("internal error: a surface vertex is not in the volume");
+  if (fs.unused_vertices != 0) return Status::Internal("a surface vertex is not in the volume");
   st.inserted_points = fs.inserted_vertices;
   st.seconds_refinement = seconds_since(t0);
   st.seconds_fill_refine = fs.refine_seconds;
@@ -168,8 +166,7 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   // the boundary (correct by construction, and slower).
   t0 = std::chrono::steady_clock::now();
   auto check = options.verify ? check_volume_mesh(r.volume) : check_volume_orientation(r.volume);
-  if (!check.ok())
-    return Status::Error("internal error, the volume mesh is invalid: " + check.message());
+  if (!check.ok()) return Status::Internal("the volume mesh is invalid: " + check.message());
   st.seconds_check = seconds_since(t0);
   r.tet_quality = tet_qualities(r.volume);
   r.tet_quality_stats = quality_stats(r.tet_quality, options.prepare.histogram_bins);
@@ -271,8 +268,8 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
           " -> " + std::to_string(out.genus) + ", openings " + std::to_string(in.openings.size()) +
           " -> " + std::to_string(out.openings.size()) + ", non-manifold edges " +
           std::to_string(out.nonmanifold_edges) +
-          "): the size is too coarse for some feature; try a smaller --size or a larger "
-          "--per-circumference");
+          "): the size is too coarse for some feature; try a smaller {size} or a larger "
+          "{per_circumference}");
     // Counted by the fidelity stage when it ran; else here.
     r.fidelity.self_intersections = r.remesh_stats.self_intersections >= 0
                                         ? size_t(r.remesh_stats.self_intersections)
@@ -284,7 +281,7 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
   }
 
   if (wall_sizes.empty()) wall_sizes = mean_edge_lengths(r.output_surface);
-  if (!report_progress(progress, 0.9, "quality")) return Status::Error(kCancelledMessage);
+  if (!report_progress(progress, 0.9, "quality")) return Status::Cancelled();
   r.output_quality = triangle_qualities(r.output_surface);
   r.output_quality_stats = quality_stats(r.output_quality, options.prepare.histogram_bins);
 
@@ -298,7 +295,7 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
     model.physicals.push_back({2, 1, "wall"});
     model.blocks.push_back({MshElementType::kTriangle, 1, 1, r.output_surface.triangles});
   }
-  if (!report_progress(progress, 0.99, "write")) return Status::Error(kCancelledMessage);
+  if (!report_progress(progress, 0.99, "write")) return Status::Cancelled();
   for (const MshPhysical& ph : model.physicals) {
     OutputGroup g{ph.dim, ph.name, 0};
     for (const MshBlock& b : model.blocks)

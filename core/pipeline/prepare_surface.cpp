@@ -14,7 +14,7 @@ std::string point_text(const std::array<double, 3>& p) {
   return buf;
 }
 
-Status cancelled() { return Status::Error(kCancelledMessage); }
+Status cancelled() { return Status::Cancelled(); }
 
 }  // namespace
 
@@ -110,7 +110,7 @@ Status check_meshable(const PreparedSurface& s, bool several_components_ok) {
     return Status::Error("cannot mesh: the surface has " + std::to_string(t.components) +
                          " connected components (the largest has " + num(t.component_triangles[0]) +
                          " of " + num(t.triangles) +
-                         " triangles); keep only the largest (--largest-component) or clean the "
+                         " triangles); keep only the largest ({largest_component}) or clean the "
                          "segmentation");
   }
   return Status::Ok();

@@ -430,7 +430,6 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
                                         std::vector<double> sizes, const std::vector<double>& asked,
                                         Partition& part, RemeshStats& stats,
                                         const ProgressFn& progress) {
-  using R = Result<RemeshedSurface>;
   RemeshedSurface out;
   out.input_sizes = std::move(sizes);
   const std::vector<double>& h = out.input_sizes;
@@ -444,7 +443,7 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
   stats.fidelity_rounds = stats.fidelity_pinned = 0;
   stats.fidelity_reverted = false;
   stats.self_intersections = -1;
-  if (!report_progress(progress, 0.1, "partitioning")) return R::Error(kCancelledMessage);
+  if (!report_progress(progress, 0.1, "partitioning")) return Status::Cancelled();
   auto t0 = std::chrono::steady_clock::now();
   const TriangleAdjacency& adj = part.adj;
   PatchMapFn map = [&](const SurfaceMesh& patch) -> Result<Parametrization> {
@@ -492,7 +491,7 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
       const MappedPatch& p = part.patches[i];
       if (!report_progress(progress, 0.2 + 0.6 * double(i) / double(stats.patches),
                            "meshing patches"))
-        return R::Error(kCancelledMessage);
+        return Status::Cancelled();
       auto boundary = patch_boundary(p, seams, ids);
       std::vector<double> local_h(p.vertex_of.size());
       for (size_t v = 0; v < local_h.size(); ++v) local_h[v] = h[size_t(p.vertex_of[v])];
@@ -533,7 +532,7 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
     t0 = std::chrono::steady_clock::now();
   }
   stats.seconds_mesh += seconds_since(t0);
-  if (!report_progress(progress, 0.85, "optimizing")) return R::Error(kCancelledMessage);
+  if (!report_progress(progress, 0.85, "optimizing")) return Status::Cancelled();
 
   // Phase 5: swaps and smoothing on the input surface.
   t0 = std::chrono::steady_clock::now();
@@ -621,7 +620,7 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
     latest.seconds_fidelity += seconds_since(t0);
     RemeshStats next = latest;
     auto again = remesh_at_sizes(input, options, finer, asked, part, next, progress);
-    if (!again.ok() && again.status().message() == kCancelledMessage) return again.status();
+    if (!again.ok() && again.cancelled()) return again.status();
     // Only while the edges still follow the asked size (median within
     // fidelity_size_drift of it).
     if (!again.ok() ||

@@ -104,7 +104,7 @@ Result<std::vector<double>> vertex_sizes(const SurfaceMesh& m, const SizeOptions
   using R = Result<std::vector<double>>;
   if (m.num_triangles() == 0) return R::Error("the surface is empty");
   if (!(o.size_min >= 0) || !(o.size_max > 0) || o.size_min > o.size_max)
-    return R::Error("--size-min must be >= 0 and at most --size-max");
+    return Status::BadOption("size_min", "must be >= 0 and at most {size_max}");
   if (!(o.gradation >= 0) || !std::isfinite(o.gradation))
     return R::Error("the gradation must be a finite number >= 0");
   if (!(o.curvature_points >= 0) || !std::isfinite(o.curvature_points))
@@ -114,11 +114,11 @@ Result<std::vector<double>> vertex_sizes(const SurfaceMesh& m, const SizeOptions
   // Phase 1: base size.
   if (o.mode == SizeMode::kUniform) {
     if (!(o.size > 0) || !std::isfinite(o.size))
-      return R::Error("--size must be a positive number");
+      return Status::BadOption("size", "must be a positive number");
     std::fill(h.begin(), h.end(), o.size);
   } else {
     if (!(o.per_circumference >= 3) || !std::isfinite(o.per_circumference))
-      return R::Error("--per-circumference must be a number >= 3");
+      return Status::BadOption("per_circumference", "must be a number >= 3");
     std::vector<double> r = vessel_radius(m);
     for (size_t v = 0; v < nv; ++v) h[v] = 2 * std::numbers::pi * r[v] / o.per_circumference;
   }

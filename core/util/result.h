@@ -1,6 +1,6 @@
-// Errors as values: Status and Result<T> carry a message instead of throwing.
-// Every fallible core function returns one of these; nothing in core throws
-// across a module boundary (see DESIGN.md, "Errors are values").
+// Errors are values: Status and Result<T> carry a kind and a message instead
+// of throwing. Every fallible core function returns one of these; nothing in
+// core throws across a module boundary (docs/ARCHITECTURE.md, "Errors").
 #pragma once
 
 #include <string>
@@ -9,26 +9,65 @@
 
 namespace vm {
 
-/// Outcome of an operation without a value. `ok()` or an error message.
+/// What went wrong, so that each caller (CLI, WebAssembly API, page) can
+/// answer in its own way (exit status, `cancelled: true`, ...).
+enum class ErrorKind {
+  kNone,       ///< not an error
+  kBadInput,   ///< the input cannot be meshed as asked, or a stage failed on it
+  kBadOption,  ///< an option's value is unusable; option() names it
+  kCancelled,  ///< the progress callback asked to stop
+  kInternal,   ///< a broken invariant: a bug, never the user's fault
+};
+
+/// Outcome of an operation without a value: `ok()` or an error with a kind
+/// and a message. Messages may name options as `{option_id}` (ids of the
+/// option table, core/pipeline/option_table.h); each interface phrases them
+/// in its own vocabulary (phrase_options).
 class Status {
  public:
   Status() = default;
   static Status Ok() { return Status(); }
+  /// A failure on this input (ErrorKind::kBadInput).
   static Status Error(std::string message) {
-    Status s;
-    s.message_ = std::move(message);
-    s.ok_ = false;
+    return Make(ErrorKind::kBadInput, std::move(message));
+  }
+  /// An unusable value of option `option_id`; the message says what it
+  /// needs, without the option's name ("needs a positive length").
+  static Status BadOption(std::string option_id, std::string message) {
+    Status s = Make(ErrorKind::kBadOption, std::move(message));
+    s.option_ = std::move(option_id);
     return s;
   }
-  bool ok() const { return ok_; }
+  static Status Cancelled() { return Make(ErrorKind::kCancelled, "cancelled"); }
+  static Status Internal(std::string message) {
+    return Make(ErrorKind::kInternal, "internal error: " + std::move(message));
+  }
+  bool ok() const { return kind_ == ErrorKind::kNone; }
+  bool cancelled() const { return kind_ == ErrorKind::kCancelled; }
+  ErrorKind kind() const { return kind_; }
   const std::string& message() const { return message_; }
+  /// The option id of a kBadOption error, else empty.
+  const std::string& option() const { return option_; }
+  /// The same error with `prefix` before its message (kind and option kept).
+  Status Prefixed(const std::string& prefix) const {
+    Status s = *this;
+    if (!ok()) s.message_ = prefix + s.message_;
+    return s;
+  }
 
  private:
-  bool ok_ = true;
+  static Status Make(ErrorKind kind, std::string message) {
+    Status s;
+    s.kind_ = kind;
+    s.message_ = std::move(message);
+    return s;
+  }
+  ErrorKind kind_ = ErrorKind::kNone;
   std::string message_;
+  std::string option_;
 };
 
-/// A value of type T or an error message.
+/// A value of type T or an error Status.
 template <class T>
 class Result {
  public:
@@ -46,6 +85,7 @@ class Result {
     return ok() ? kEmpty : std::get<Status>(v_).message();
   }
   Status status() const { return ok() ? Status::Ok() : std::get<Status>(v_); }
+  bool cancelled() const { return !ok() && std::get<Status>(v_).cancelled(); }
 
  private:
   std::variant<T, Status> v_;

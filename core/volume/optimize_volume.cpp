@@ -828,18 +828,18 @@ Status optimize_volume(TetMesh& mesh, const std::vector<double>& vertex_h,
   int step = 0;
   for (int pass = 0; pass < options.passes; ++pass) {
     if (!report_progress(progress, double(step++) / steps, "optimize volume"))
-      return Status::Error(kCancelledMessage);
+      return Status::Cancelled();
     auto t = clock::now();
     opt.flip_pass(options.flip_threshold, false);
     st.flip_seconds += seconds_since(t);
     if (!report_progress(progress, double(step++) / steps, "optimize volume"))
-      return Status::Error(kCancelledMessage);
+      return Status::Cancelled();
     t = clock::now();
     opt.smooth_pass();
     st.smooth_seconds += seconds_since(t);
   }
   if (!report_progress(progress, double(step++) / steps, "optimize volume"))
-    return Status::Error(kCancelledMessage);
+    return Status::Cancelled();
   auto t = clock::now();
   opt.flip_pass(options.flip_threshold, false);
   st.flip_seconds += seconds_since(t);

@@ -199,7 +199,7 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
     const std::vector<int32_t> order = brio_hilbert_order(apex);
     for (size_t oi = 0; oi < order.size(); ++oi) {
       if ((oi & 4095) == 0 && !report_progress(progress, 0.0, "refine volume"))
-        return Status::Error(kCancelledMessage);
+        return Status::Cancelled();
       const size_t i = size_t(order[oi]);
       const double* p = &apex[3 * i];
       const double hf = apex_h[i];
@@ -237,7 +237,7 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
     if ((qi & 1023) == 0) {
       last_fraction = std::max(last_fraction, double(qi) / double(queue.size() + 1));
       if (!report_progress(progress, last_fraction, "refine volume"))
-        return Status::Error(kCancelledMessage);
+        return Status::Cancelled();
     }
     if (st.inserted >= options.max_points) {
       st.hit_max_points = true;

@@ -52,7 +52,7 @@ Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& ve
     bsize.push_back(h);
   }
   st.boundary_vertices = bsize.size();
-  if (!report_progress(progress, 0.0, "size field")) return R::Error(kCancelledMessage);
+  if (!report_progress(progress, 0.0, "size field")) return Status::Cancelled();
 
   // Phase 2: size field; h at every kernel vertex.
   auto t = clock::now();
@@ -78,7 +78,7 @@ Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& ve
   Status s =
       refine_volume(kernel, field.value(), vertex_h, ro, &st.refine, sub_progress(0.02, 0.5));
   if (!s.ok())
-    return R::Error(s.message() == kCancelledMessage ? s.message() : "fill volume: " + s.message());
+    return s.cancelled() ? s : s.Prefixed("fill volume: ");
   st.refine_seconds = since(t);
 
   // Phase 4: the region as a TetMesh.
@@ -110,8 +110,7 @@ Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& ve
     s = optimize_volume(mesh.value(), h, options.optimize_options, &st.optimize,
                         sub_progress(0.5, 1.0));
     if (!s.ok())
-      return R::Error(s.message() == kCancelledMessage ? s.message()
-                                                       : "fill volume: " + s.message());
+      return s.cancelled() ? s : s.Prefixed("fill volume: ");
   }
   st.optimize_seconds = since(t);
 
@@ -140,7 +139,7 @@ Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& ve
   st.extract_seconds += since(t);
   st.tets = out.num_tets();
   st.seconds = since(t_start);
-  if (!report_progress(progress, 1.0, "optimize volume")) return R::Error(kCancelledMessage);
+  if (!report_progress(progress, 1.0, "optimize volume")) return Status::Cancelled();
   if (stats) *stats = st;
   return out;
 }

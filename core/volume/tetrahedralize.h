@@ -63,7 +63,7 @@ struct FillStats {
 /// triangles and prisms empty (the caller owns the surface and its tags).
 /// The kernel is left refined (the new points inserted) but not optimized.
 /// Errors: empty region, region not closed by constrained faces, bad sizes
-/// or options, cancelled (message kCancelledMessage).
+/// or options, cancelled (Status::Cancelled()).
 Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& vertex_size,
                                const FillOptions& options, FillStats* stats,
                                const ProgressFn& progress = {});

@@ -26,6 +26,10 @@ check "help" expect_exit 0 "usage:" "$VM" --help
 check "no arguments" expect_exit 2 "usage:" "$VM"
 check "unknown command" expect_exit 2 "unknown command 'frobnicate'" "$VM" frobnicate
 check "unknown option" expect_exit 2 "unknown option '--bogus'" "$VM" info x.stl --bogus
+check "option twice" expect_exit 2 "option '--size' is given more than once" "$VM" mesh x.stl -o x.msh --size 1 --size 2
+check "flag with a value" expect_exit 2 "option '--verify' takes no value" "$VM" mesh x.stl -o x.msh --verify=1
+check "option without value" expect_exit 2 "option '--size' needs a value" "$VM" mesh x.stl -o x.msh --size
+check "mesh option on info" expect_exit 2 "unknown option '--size'" "$VM" info x.stl --size 1
 check "missing file" expect_exit 1 "cannot open '$T/none.stl'" "$VM" info "$T/none.stl"
 : > "$T/empty.stl"
 check "empty file" expect_exit 1 "empty file" "$VM" info "$T/empty.stl"
@@ -33,7 +37,7 @@ printf 'this is not a mesh at all\n' > "$T/garbage.stl"
 check "garbage" expect_exit 1 "not an STL" "$VM" info "$T/garbage.stl"
 
 check "phantom" expect_exit 0 "wrote" "$VM" phantom "$T/bif.stl" --kind bifurcation --voxel 0.1 --noise 0.3
-check "phantom bad kind" expect_exit 2 "unknown phantom kind" "$VM" phantom "$T/x.stl" --kind blob
+check "phantom bad kind" expect_exit 2 "--kind needs bifurcation, tube, aneurysm or torus" "$VM" phantom "$T/x.stl" --kind blob
 head -c 1000 "$T/bif.stl" > "$T/truncated.stl"
 check "truncated" expect_exit 1 "truncated binary STL" "$VM" info "$T/truncated.stl"
 
@@ -45,7 +49,7 @@ check "info json quality" [ "$(json "$T/info.json" "0 <= d['quality']['min'] <= 
 check "info text" expect_exit 0 "openings:    3" "$VM" info "$T/bif.stl"
 
 check "mesh needs -o" expect_exit 2 "-o OUT.msh" "$VM" mesh "$T/bif.stl"
-check "mesh bad version" expect_exit 2 "use 4.1 or 2.2" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --msh-version 3
+check "mesh bad version" expect_exit 2 "--msh-version needs 4.1 or 2.2" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --msh-version 3
 check "mesh 4.1" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif41.msh" --report "$T/report.json" --verify
 check "mesh 2.2" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif22.msh" --msh-version 2.2
 check "msh 4.1 header" [ "$(sed -n 2p "$T/bif41.msh")" = "4.1 0 8" ]
@@ -54,12 +58,12 @@ check "mesh bad size" expect_exit 2 "--size needs a positive length" "$VM" mesh 
 check "mesh bad N" expect_exit 2 "--per-circumference needs" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --per-circumference 2
 check "mesh bad param" expect_exit 2 "lscm, harmonic or floater" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --param conformal
 check "mesh bad mesher" expect_exit 2 "frontal, delaunay or adapt" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --mesher2d quad
-check "mesh min > max" expect_exit 1 "at most --size-max" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size-min 2 --size-max 1
+check "mesh min > max" expect_exit 2 "--size-min must be >= 0 and at most --size-max" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size-min 2 --size-max 1
 check "mesh surface-only uniform" expect_exit 0 "remeshed:" "$VM" mesh "$T/bif.stl" -o "$T/u.msh" --surface-only --size 0.2 --param floater --mesher2d delaunay --report "$T/u.json"
 check "mesh bad fidelity" expect_exit 2 "--fidelity needs a fraction of h in [0, 1]" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --fidelity 3
 check "mesh fidelity 0" expect_exit 0 "remeshed:" "$VM" mesh "$T/bif.stl" -o "$T/f0.msh" --surface-only --size 0.2 --fidelity 0 --report "$T/f0.json"
 check "fidelity 0 pins nothing" [ "$(json "$T/f0.json" "d['output']['remesh']['fidelity']['pinned_vertices']")" = 0 ]
-check "mesh bad inlet" expect_exit 1 "--inlet must be between 1 and the number of openings (3)" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --inlet 7
+check "mesh bad inlet" expect_exit 2 "--inlet must be between 1 and the number of openings (3)" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --inlet 7
 check "mesh inlet not a number" expect_exit 2 "--inlet needs an opening number" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --inlet first
 check "mesh no-remesh" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/n.msh" --no-remesh --layers 0
 check "mesh with vessel wall" expect_exit 0 "vessel wall: 4 layers" "$VM" mesh "$T/bif.stl" -o "$T/w.msh" --size 0.25 --wall-thickness 0.1 --tag-layer --report "$T/w.json"

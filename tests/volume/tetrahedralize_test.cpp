@@ -228,7 +228,7 @@ TEST(FillVolume, ProgressCancelAndErrors) {
     auto cancelled = fill_volume(c.kernel, c.sizes, FillOptions{}, nullptr,
                                  [&](double f, std::string_view) { return f < stop_at; });
     EXPECT_FALSE(cancelled.ok());
-    EXPECT_EQ(cancelled.message(), kCancelledMessage);
+    EXPECT_TRUE(cancelled.cancelled());
   }
 
   testing::VolumeInput e;

@@ -33,6 +33,8 @@ export class VesselmeshClient {
   _onMessage(msg) {
     if (msg.type === 'ready') {
       this.version = msg.version;
+      /** The option table (see the API's optionTable), once ready. */
+      this.optionTable = msg.optionTable;
       this._readyResolve(msg.version);
       return;
     }
@@ -64,9 +66,10 @@ export class VesselmeshClient {
     });
   }
 
-  /** Reads, repairs and analyzes STL bytes (the bytes are copied, not moved). */
-  analyze(bytes, { onProgress } = {}) {
-    return this._call('analyze', [bytes, {}], onProgress);
+  /** Reads, repairs and analyzes a surface file's bytes (copied, not moved);
+   * options as in the API's analyze(). */
+  analyze(bytes, { onProgress, ...options } = {}) {
+    return this._call('analyze', [bytes, options], onProgress);
   }
 
   /**

@@ -1,6 +1,7 @@
 // Module Web Worker serving the vesselmesh API. Protocol:
 //   in:  { id, op: 'analyze' | 'mesh' | 'makePhantom', args: [bytes?, options] }
-//   out: { type: 'ready', version } | { type: 'error', error } once at start;
+//   out: { type: 'ready', version, optionTable } | { type: 'error', error } once
+//        at start;
 //        { id, type: 'progress', fraction, stage } during a job (at most one
 //        every 50 ms); { id, type: 'result', result } at the end, with the
 //        result's typed-array buffers (msh, stl, surface.*, volume.*)
@@ -10,7 +11,7 @@ import { createVesselmesh } from './vesselmesh.js';
 
 const apiPromise = createVesselmesh().then(
   (api) => {
-    self.postMessage({ type: 'ready', version: api.version });
+    self.postMessage({ type: 'ready', version: api.version, optionTable: api.optionTable });
     return api;
   },
   (error) => {

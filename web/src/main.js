@@ -144,7 +144,23 @@ function numberIn(id) {
   return input.validity.badInput || value === '' ? NaN : Number(value);
 }
 
-const isCount = (x, min) => Number.isInteger(x) && x >= min && x <= 100;
+/**
+ * Whether `x` is a valid value of the option with this id, by the core's
+ * option table (the worker sends it when ready): its range and, for
+ * integers, wholeness. True before the table has arrived (the core checks
+ * again).
+ */
+function fits(id, x) {
+  const spec = client.optionTable?.find((s) => s.id === id);
+  if (!spec) return true;
+  if (!Number.isFinite(x) || (spec.type === 'integer' && !Number.isInteger(x))) return false;
+  if (spec.min !== undefined && (spec.minExclusive ? x <= spec.min : x < spec.min)) return false;
+  if (spec.max !== undefined && (spec.maxExclusive ? x >= spec.max : x > spec.max)) return false;
+  return true;
+}
+
+/** What a valid value of the option with this id is, from the table. */
+const needs = (id) => client.optionTable?.find((s) => s.id === id)?.needs ?? 'a valid value';
 
 /** Why the core size field is unusable, or null (blank is the default). */
 function coreSizeProblem() {
@@ -155,7 +171,6 @@ function coreSizeProblem() {
 }
 
 const LAYER_FIELDS = ['layers', 'layer-thickness', 'first-layer', 'growth', 'wall-thickness', 'wall-layers'];
-const isFraction = (x) => x > 0 && x < 1;
 
 /** Why the boundary layer or vessel wall fields are unusable: every field
  * that applies is marked, the first problem returned (null when all are
@@ -168,36 +183,31 @@ function layerProblems() {
   const wall = $('wall-on').checked;
   // [field, applies, valid(value), message]
   const rules = [
-    [
-      'layers',
-      true,
-      (x) => isCount(x, 0),
-      'Boundary layer: the number of layers must be a whole number from 0 (none) to 100.',
-    ],
+    ['layers', true, (x) => fits('layers', x), `Boundary layer: the number of layers must be ${needs('layers')}.`],
     [
       'layer-thickness',
       layers && !first,
-      isFraction,
-      'Boundary layer: the total thickness must be a fraction of the local vessel radius R between 0 and 1 (e.g. 0.2).',
+      (x) => fits('layer_thickness', x),
+      `Boundary layer: the total thickness must be ${needs('layer_thickness')} (e.g. 0.2).`,
     ],
     [
       'first-layer',
       layers && first,
-      (x) => x > 0,
-      'Boundary layer: the first-layer height must be a positive length in model units.',
+      (x) => fits('first_layer', x),
+      `Boundary layer: the first-layer height must be ${needs('first_layer')} in model units.`,
     ],
-    ['growth', layers, (x) => x >= 1 && x <= 3, 'Boundary layer: the growth ratio must be from 1 to 3.'],
+    ['growth', layers, (x) => fits('growth', x), `Boundary layer: the growth must be ${needs('growth')}.`],
     [
       'wall-thickness',
       wall,
-      isFraction,
-      'Vessel wall: the thickness must be a fraction of the local vessel radius R between 0 and 1 (e.g. 0.1).',
+      (x) => fits('wall_thickness', x),
+      `Vessel wall: the thickness must be ${needs('wall_thickness')} (e.g. 0.1).`,
     ],
     [
       'wall-layers',
       wall,
-      (x) => isCount(x, 1),
-      'Vessel wall: the number of layers must be a whole number from 1 to 100.',
+      (x) => fits('wall_layers', x) && x >= 1,
+      'Vessel wall: the number of layers must be a whole number from 1 (with the wall on).',
     ],
   ];
   const problems = rules
@@ -262,9 +272,9 @@ function suggestedFirstLayer() {
   const radii = (current?.analysis.openings ?? []).map((o) => o.radius).sort((a, b) => a - b);
   if (!radii.length) return '';
   const f = numberIn('layer-thickness');
-  const total = (f > 0 && f < 1 ? f : 0.2) * radii[Math.floor(radii.length / 2)];
-  const n = isCount(numberIn('layers'), 1) ? numberIn('layers') : 4;
-  const g = numberIn('growth') >= 1 && numberIn('growth') <= 3 ? numberIn('growth') : 1;
+  const total = (fits('layer_thickness', f) ? f : 0.2) * radii[Math.floor(radii.length / 2)];
+  const n = fits('layers', numberIn('layers')) && numberIn('layers') >= 1 ? numberIn('layers') : 4;
+  const g = fits('growth', numberIn('growth')) ? numberIn('growth') : 1;
   let sum = 0;
   for (let k = 0; k < n; k++) sum += g ** k;
   return String(Number((total / sum).toPrecision(2)));

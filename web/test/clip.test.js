@@ -156,7 +156,7 @@ describe('clip: the volume of the bifurcation phantom', () => {
   before(async () => {
     const wasmBinary = readFileSync(new URL('../../wasm/dist/vesselmesh_core.wasm', import.meta.url));
     const api = await createVesselmesh({ wasmBinary });
-    const stl = api.makePhantom({ kind: 'bifurcation', voxel: 0.12 }).stl;
+    const stl = api.makePhantom({ noise: 0.3, kind: 'bifurcation', voxel: 0.12 }).stl;
     const r = api.mesh(stl, { size: 0.3 });
     assert.equal(r.ok, true, r.error);
     volume = r.volume;

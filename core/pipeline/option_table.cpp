@@ -1,0 +1,684 @@
+// The option table and the conversions around it (option_table.h).
+#include "core/pipeline/option_table.h"
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+
+#include "core/util/json_writer.h"
+
+namespace vm {
+namespace {
+
+constexpr std::string_view kParams[] = {"lscm", "harmonic", "floater"};
+constexpr std::string_view kMeshers[] = {"frontal", "delaunay", "adapt"};
+constexpr std::string_view kMshVersions[] = {"4.1", "2.2"};
+constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm", "torus"};
+
+constexpr double kInf = 1e308;
+
+using T = OptionType;
+
+// GCC 12 warns about every member a designated initializer leaves to its
+// default member initializer; that is the point of the syntax here.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
+// The table. Field order: id, cli, js, type, commands, faces, group, metavar,
+// min, max, min_exclusive, max_exclusive, choices, list_size, default_on,
+// default_text, unit, needs, doc.
+const OptionSpec kOptions[] = {
+    // ---- input (info and mesh)
+    {.id = "json",
+     .cli = "json",
+     .js = "",
+     .type = T::kFlag,
+     .commands = kCommandInfo,
+     .faces = kFaceCli,
+     .group = "output",
+     .doc = "print the analysis as JSON"},
+    {.id = "largest_component",
+     .cli = "largest-component",
+     .js = "largestComponentOnly",
+     .type = T::kFlag,
+     .group = "input",
+     .doc = "keep only the largest connected component instead of refusing several"},
+    // ---- size
+    {.id = "size",
+     .cli = "size",
+     .js = "size",
+     .group = "size",
+     .metavar = "H",
+     .min = 0,
+     .min_exclusive = true,
+     .unit = "length",
+     .needs = "a positive length",
+     .doc = "uniform target edge length"},
+    {.id = "per_circumference",
+     .cli = "per-circumference",
+     .js = "perCircumference",
+     .group = "size",
+     .metavar = "N",
+     .min = 3,
+     .default_text = "20",
+     .needs = "a number of edges per circumference >= 3",
+     .doc = "h = 2 pi R(x) / N, R the local vessel radius (the default size mode)"},
+    {.id = "size_min",
+     .cli = "size-min",
+     .js = "sizeMin",
+     .group = "size",
+     .metavar = "H",
+     .min = 0,
+     .default_text = "0",
+     .unit = "length",
+     .needs = "a length >= 0",
+     .doc = "smallest edge length"},
+    {.id = "size_max",
+     .cli = "size-max",
+     .js = "sizeMax",
+     .group = "size",
+     .metavar = "H",
+     .min = 0,
+     .min_exclusive = true,
+     .unit = "length",
+     .needs = "a positive length",
+     .doc = "largest edge length"},
+    {.id = "gradation",
+     .cli = "gradation",
+     .js = "gradation",
+     .group = "size",
+     .metavar = "G",
+     .min = 0,
+     .default_text = "0.2",
+     .needs = "a number >= 0 (size growth per unit length)",
+     .doc = "the size grows at most G per unit length"},
+    {.id = "curvature",
+     .cli = "curvature",
+     .js = "curvature",
+     .group = "size",
+     .metavar = "P",
+     .min = 0,
+     .default_text = "0",
+     .needs = "a number of points per radian >= 0",
+     .doc = "at least P edges per radian of curvature (0: off)"},
+    {.id = "feature_angle",
+     .cli = "feature-angle",
+     .js = "featureAngle",
+     .group = "size",
+     .metavar = "A",
+     .min = 0,
+     .max = 180,
+     .min_exclusive = true,
+     .default_text = "60",
+     .unit = "degrees",
+     .needs = "an angle in degrees in (0, 180] (180: no sharp features)",
+     .doc = "keep creases sharper than A degrees (180: none)"},
+    {.id = "fidelity",
+     .cli = "fidelity",
+     .js = "fidelity",
+     .group = "size",
+     .metavar = "F",
+     .min = 0,
+     .max = 1,
+     .default_text = "0.1",
+     .needs = "a fraction of h in [0, 1] (0: the wall may smooth over the input)",
+     .doc = "input vertices farther than F h from the wall get a wall vertex pinned on them "
+            "(0: bumps are smoothed over)"},
+    // ---- volume
+    {.id = "surface_only",
+     .cli = "surface-only",
+     .js = "surfaceOnly",
+     .type = T::kFlag,
+     .group = "volume",
+     .doc = "write the remeshed wall alone (no caps, layers or volume)"},
+    {.id = "inlet",
+     .cli = "inlet",
+     .js = "inlet",
+     .type = T::kInteger,
+     .group = "volume",
+     .metavar = "K",
+     .min = 1,
+     .needs = "an opening number >= 1 (as the analysis lists them)",
+     .doc = "opening K (largest first) is `inlet` instead of the largest"},
+    {.id = "core_size",
+     .cli = "core-size",
+     .js = "coreSize",
+     .group = "volume",
+     .metavar = "H",
+     .min = 0,
+     .default_text = "0",
+     .unit = "length",
+     .needs = "a length >= 0 (0: grow from the wall size)",
+     .doc = "target size in the core of the lumen (0: the uniform size, or grown from the wall's)"},
+    {.id = "verify",
+     .cli = "verify",
+     .js = "verify",
+     .type = T::kFlag,
+     .group = "volume",
+     .doc = "check conformity and the boundary before writing; measure the layer heights"},
+    // ---- layers
+    {.id = "layers",
+     .cli = "layers",
+     .js = "layers",
+     .type = T::kInteger,
+     .group = "layers",
+     .metavar = "N",
+     .min = 0,
+     .max = 100,
+     .default_text = "4",
+     .needs = "a number of layers from 0 (none) to 100",
+     .doc = "viscous layers grown inward (0: none)"},
+    {.id = "layer_thickness",
+     .cli = "layer-thickness",
+     .js = "layerThickness",
+     .group = "layers",
+     .metavar = "F",
+     .min = 0,
+     .max = 1,
+     .min_exclusive = true,
+     .max_exclusive = true,
+     .default_text = "0.2",
+     .unit = "fraction of R",
+     .needs = "a fraction of the local vessel radius in (0, 1)",
+     .doc = "total thickness of the viscous layers, F R"},
+    {.id = "first_layer",
+     .cli = "first-layer",
+     .js = "firstLayer",
+     .group = "layers",
+     .metavar = "H1",
+     .min = 0,
+     .min_exclusive = true,
+     .unit = "length",
+     .needs = "a positive height",
+     .doc = "first layer height instead of a total thickness"},
+    {.id = "growth",
+     .cli = "growth",
+     .js = "growth",
+     .group = "layers",
+     .metavar = "G",
+     .min = 1,
+     .max = 3,
+     .default_text = "1",
+     .needs = "a growth ratio from 1 to 3",
+     .doc = "height ratio of consecutive layers"},
+    {.id = "wall_thickness",
+     .cli = "wall-thickness",
+     .js = "wallThickness",
+     .group = "layers",
+     .metavar = "F",
+     .min = 0,
+     .max = 1,
+     .min_exclusive = true,
+     .max_exclusive = true,
+     .unit = "fraction of R",
+     .needs = "a fraction of the local vessel radius in (0, 1)",
+     .doc = "grow the vessel wall outward, F R thick (e.g. 0.1; 4 layers)"},
+    {.id = "wall_layers",
+     .cli = "wall-layers",
+     .js = "wallLayers",
+     .type = T::kInteger,
+     .group = "layers",
+     .metavar = "N",
+     .min = 0,
+     .max = 100,
+     .needs = "a number of layers from 0 (none) to 100",
+     .doc = "layers of the vessel wall (alone: a wall of 0.1 R; 0: no wall)"},
+    {.id = "tag_layer",
+     .cli = "tag-layer",
+     .js = "tagLayer",
+     .type = T::kFlag,
+     .group = "layers",
+     .doc = "the viscous layer as its own volume group `boundary_layer`"},
+    {.id = "prisms",
+     .cli = "prisms",
+     .js = "prisms",
+     .type = T::kFlag,
+     .group = "layers",
+     .doc = "keep the layers' prisms (MSH type 6) instead of 3 tetrahedra each"},
+    // ---- output
+    {.id = "output",
+     .cli = "output",
+     .js = "",
+     .type = T::kText,
+     .faces = kFaceCli,
+     .group = "output",
+     .metavar = "OUT.msh",
+     .needs = "a file name",
+     .doc = "the file to write (also -o)"},
+    {.id = "msh_version",
+     .cli = "msh-version",
+     .js = "mshVersion",
+     .type = T::kChoice,
+     .group = "output",
+     .metavar = "V",
+     .choices = kMshVersions,
+     .default_text = "4.1",
+     .needs = "4.1 or 2.2",
+     .doc = "Gmsh MSH format version"},
+    {.id = "report",
+     .cli = "report",
+     .js = "",
+     .type = T::kText,
+     .faces = kFaceCli,
+     .group = "output",
+     .metavar = "FILE.json",
+     .needs = "a file name",
+     .doc = "write the JSON report (the JS API returns it as `report`)"},
+    {.id = "quiet",
+     .cli = "quiet",
+     .js = "",
+     .type = T::kFlag,
+     .faces = kFaceCli,
+     .group = "output",
+     .doc = "print nothing but errors"},
+    // ---- advanced
+    {.id = "remesh",
+     .cli = "no-remesh",
+     .js = "remesh",
+     .type = T::kFlag,
+     .group = "advanced",
+     .default_on = true,
+     .doc = "remesh the surface (off: mesh the repaired input as it is)",
+     .off_doc = "mesh the repaired input as it is, without remeshing"},
+    {.id = "param",
+     .cli = "param",
+     .js = "param",
+     .type = T::kChoice,
+     .group = "advanced",
+     .metavar = "MAP",
+     .choices = kParams,
+     .default_text = "lscm",
+     .needs = "lscm, harmonic or floater",
+     .doc = "the map of each patch to the plane"},
+    {.id = "mesher2d",
+     .cli = "mesher2d",
+     .js = "mesher2d",
+     .type = T::kChoice,
+     .group = "advanced",
+     .metavar = "M",
+     .choices = kMeshers,
+     .default_text = "frontal",
+     .needs = "frontal, delaunay or adapt",
+     .doc = "the planar mesher"},
+    // ---- phantom
+    {.id = "kind",
+     .cli = "kind",
+     .js = "kind",
+     .type = T::kChoice,
+     .commands = kCommandPhantom,
+     .group = "phantom",
+     .metavar = "KIND",
+     .choices = kPhantomKinds,
+     .default_text = "bifurcation",
+     .needs = "bifurcation, tube, aneurysm or torus",
+     .doc = "the vessel model"},
+    {.id = "voxel",
+     .cli = "voxel",
+     .js = "voxel",
+     .commands = kCommandPhantom,
+     .group = "phantom",
+     .metavar = "V",
+     .min = 0,
+     .min_exclusive = true,
+     .default_text = "0.1",
+     .unit = "length",
+     .needs = "a positive voxel size",
+     .doc = "voxel edge (the parent vessel's radius is 1)"},
+    {.id = "noise",
+     .cli = "noise",
+     .js = "noise",
+     .commands = kCommandPhantom,
+     .group = "phantom",
+     .metavar = "A",
+     .min = 0,
+     .default_text = "0",
+     .needs = "a noise amplitude >= 0 (in voxels)",
+     .doc = "voxel-value noise, in voxels"},
+    {.id = "seed",
+     .cli = "seed",
+     .js = "seed",
+     .type = T::kInteger,
+     .commands = kCommandPhantom,
+     .group = "phantom",
+     .metavar = "N",
+     .min = 0,
+     .max = 4294967295.0,
+     .default_text = "1",
+     .needs = "an integer from 0 to 4294967295",
+     .doc = "noise seed"},
+    {.id = "scale",
+     .cli = "scale",
+     .js = "scale",
+     .commands = kCommandPhantom,
+     .group = "phantom",
+     .metavar = "S",
+     .min = 0,
+     .min_exclusive = true,
+     .default_text = "1",
+     .needs = "a positive scale factor",
+     .doc = "scale of the coordinates"},
+    {.id = "open_ends",
+     .cli = "closed",
+     .js = "openEnds",
+     .type = T::kFlag,
+     .commands = kCommandPhantom,
+     .group = "phantom",
+     .default_on = true,
+     .doc = "cut the vessel ends open (off: a closed surface with rounded ends)",
+     .off_doc = "a closed surface with rounded ends"},
+};
+
+#pragma GCC diagnostic pop
+
+std::string_view type_name(OptionType t) {
+  switch (t) {
+    case T::kNumber:
+      return "number";
+    case T::kInteger:
+      return "integer";
+    case T::kFlag:
+      return "flag";
+    case T::kChoice:
+      return "choice";
+    case T::kText:
+      return "text";
+    case T::kNumbers:
+      return "numbers";
+  }
+  return "";
+}
+
+bool parse_number(std::string_view text, double& out) {
+  // strtod needs a terminated string; from_chars(double) is missing in libc++ 14.
+  std::string s(text);
+  if (s.empty()) return false;
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return end == s.c_str() + s.size() && std::isfinite(out);
+}
+
+Status needs(const OptionSpec& spec) {
+  return Status::BadOption(std::string(spec.id), "needs " + std::string(spec.needs));
+}
+
+bool in_range(const OptionSpec& spec, double x) {
+  if (spec.min_exclusive ? !(x > spec.min) : !(x >= spec.min)) return false;
+  if (spec.max_exclusive ? !(x < spec.max) : !(x <= spec.max)) return false;
+  return spec.type != T::kInteger || x == std::floor(x);
+}
+
+std::string option_name(const OptionSpec& spec, OptionFace face) {
+  return face == kFaceCli ? "--" + std::string(spec.cli) : std::string(spec.js);
+}
+
+}  // namespace
+
+std::span<const OptionSpec> option_table() { return kOptions; }
+
+const OptionSpec* find_option(std::string_view id) {
+  for (const OptionSpec& s : kOptions)
+    if (s.id == id) return &s;
+  return nullptr;
+}
+
+const OptionSpec* find_cli_option(std::string_view cli, OptionCommand command) {
+  for (const OptionSpec& s : kOptions)
+    if ((s.faces & kFaceCli) && (s.commands & command) && s.cli == cli) return &s;
+  return nullptr;
+}
+
+const OptionSpec* find_js_option(std::string_view js, OptionCommand command) {
+  for (const OptionSpec& s : kOptions)
+    if ((s.faces & kFaceJs) && (s.commands & command) && s.js == js) return &s;
+  return nullptr;
+}
+
+Status check_option_value(const OptionSpec& spec, const OptionValue& v) {
+  if (v.opening < 0 || (v.opening > 0 && spec.per_opening == PerOpening::kNo) ||
+      (v.opening == 0 && spec.per_opening == PerOpening::kRequired))
+    return Status::BadOption(std::string(spec.id), "needs K=VALUE with K an opening number >= 1");
+  switch (spec.type) {
+    case T::kNumber:
+    case T::kInteger:
+      if (!std::isfinite(v.number) || !in_range(spec, v.number)) return needs(spec);
+      break;
+    case T::kChoice: {
+      bool found = false;
+      for (std::string_view c : spec.choices) found = found || c == v.text;
+      if (!found) return needs(spec);
+      break;
+    }
+    case T::kNumbers:
+      if (v.numbers.size() != size_t(spec.list_size)) return needs(spec);
+      for (double x : v.numbers)
+        if (!std::isfinite(x) || !in_range(spec, x)) return needs(spec);
+      break;
+    case T::kText:
+      if (v.text.empty()) return needs(spec);
+      break;
+    case T::kFlag:
+      break;
+  }
+  return Status::Ok();
+}
+
+Result<OptionValue> parse_option_text(const OptionSpec& spec, std::string_view text) {
+  OptionValue v;
+  if (spec.per_opening != PerOpening::kNo) {
+    const size_t eq = text.find('=');
+    double k = 0;
+    if (eq != std::string_view::npos && parse_number(text.substr(0, eq), k)) {
+      if (k < 1 || k != std::floor(k) || k > 1e6)
+        return Status::BadOption(std::string(spec.id),
+                                 "needs K=VALUE with K an opening number >= 1");
+      v.opening = int(k);
+      text = text.substr(eq + 1);
+    }
+  }
+  switch (spec.type) {
+    case T::kNumber:
+    case T::kInteger:
+      if (!parse_number(text, v.number)) return needs(spec);
+      break;
+    case T::kNumbers: {
+      size_t start = 0;
+      while (start <= text.size()) {
+        size_t comma = text.find(',', start);
+        if (comma == std::string_view::npos) comma = text.size();
+        double x = 0;
+        if (!parse_number(text.substr(start, comma - start), x)) return needs(spec);
+        v.numbers.push_back(x);
+        start = comma + 1;
+      }
+      break;
+    }
+    case T::kChoice:
+    case T::kText:
+      v.text = std::string(text);
+      break;
+    case T::kFlag:
+      v.flag = !spec.default_on;
+      break;
+  }
+  Status st = check_option_value(spec, v);
+  if (!st.ok()) return st;
+  return v;
+}
+
+Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue& v) {
+  const std::string_view id = spec.id;
+  SizeOptions& size = o.remesh_options.size;
+  const double x = v.number;
+  if (id == "size") {
+    size.mode = SizeMode::kUniform;
+    size.size = x;
+  } else if (id == "per_circumference") {
+    size.mode = SizeMode::kPerCircumference;
+    size.per_circumference = x;
+  } else if (id == "size_min") {
+    size.size_min = x;
+  } else if (id == "size_max") {
+    size.size_max = x;
+  } else if (id == "gradation") {
+    size.gradation = x;
+  } else if (id == "curvature") {
+    size.curvature_points = x;
+  } else if (id == "feature_angle") {
+    o.remesh_options.feature_angle_degrees = x;
+  } else if (id == "fidelity") {
+    o.remesh_options.fidelity = x;
+    o.remesh_options.fidelity_rounds = x > 0 ? RemeshOptions{}.fidelity_rounds : 0;
+    o.remesh_options.fidelity_size_rounds = x > 0 ? RemeshOptions{}.fidelity_size_rounds : 0;
+  } else if (id == "inlet") {
+    o.inlet = int(x) - 1;
+  } else if (id == "core_size") {
+    o.core_size = x;
+  } else if (id == "layers") {
+    o.viscous.layers = int(x);
+  } else if (id == "wall_layers") {
+    o.vessel.layers = int(x);
+  } else if (id == "layer_thickness") {
+    o.viscous.thickness_fraction = x;
+  } else if (id == "wall_thickness") {
+    o.vessel.thickness_fraction = x;
+    if (o.vessel.layers == 0) o.vessel.layers = 4;
+  } else if (id == "first_layer") {
+    o.viscous.first_height = x;
+  } else if (id == "growth") {
+    o.viscous.growth = x;
+  } else if (id == "param") {
+    o.remesh_options.param = v.text == "harmonic"  ? ParamMethod::kHarmonic
+                             : v.text == "floater" ? ParamMethod::kFloater
+                                                   : ParamMethod::kLscm;
+  } else if (id == "mesher2d") {
+    o.remesh_options.patch.mesher = v.text == "delaunay" ? Mesher2D::kDelaunay
+                                    : v.text == "adapt"  ? Mesher2D::kAdapt
+                                                         : Mesher2D::kFrontal;
+  } else if (id == "msh_version") {
+    o.msh_version = v.text == "2.2" ? MshVersion::k22 : MshVersion::k41;
+  } else if (id == "largest_component") {
+    o.largest_component_only = v.flag;
+  } else if (id == "remesh") {
+    o.remesh = v.flag;
+  } else if (id == "surface_only") {
+    o.volume = !v.flag;
+  } else if (id == "verify") {
+    o.verify = v.flag;
+  } else if (id == "tag_layer") {
+    o.tag_layer = v.flag;
+  } else if (id == "prisms") {
+    o.keep_prisms = v.flag;
+  } else if (spec.faces != kFaceCli || !(spec.commands & (kCommandInfo | kCommandMesh))) {
+    // Options of the CLI alone (paths, printing) are the CLI's business;
+    // any other id must have been handled above.
+    return Status::Internal("option " + std::string(id) + " is not applied to the job");
+  }
+  return Status::Ok();
+}
+
+Status apply_option(PhantomOptions& o, const OptionSpec& spec, const OptionValue& v) {
+  const std::string_view id = spec.id;
+  if (id == "kind") {
+    o.kind = v.text == "tube"       ? PhantomKind::kTube
+             : v.text == "aneurysm" ? PhantomKind::kAneurysm
+             : v.text == "torus"    ? PhantomKind::kTorus
+                                    : PhantomKind::kBifurcation;
+  } else if (id == "voxel") {
+    o.voxel = v.number;
+  } else if (id == "noise") {
+    o.noise = v.number;
+  } else if (id == "seed") {
+    o.seed = uint32_t(v.number);
+  } else if (id == "scale") {
+    o.scale = v.number;
+  } else if (id == "open_ends") {
+    o.open_ends = v.flag;
+  } else {
+    return Status::Internal("option " + std::string(id) + " is not a phantom option");
+  }
+  return Status::Ok();
+}
+
+Status set_option_text(MeshJobOptions& options, std::string_view id, std::string_view text) {
+  const OptionSpec* spec = find_option(id);
+  if (!spec) return Status::Internal("unknown option id " + std::string(id));
+  auto v = parse_option_text(*spec, text);
+  if (!v.ok()) return v.status();
+  return apply_option(options, *spec, v.value());
+}
+
+std::string phrase_options(std::string_view message, OptionFace face) {
+  std::string out;
+  out.reserve(message.size());
+  size_t i = 0;
+  while (i < message.size()) {
+    if (message[i] == '{') {
+      const size_t close = message.find('}', i);
+      if (close != std::string_view::npos) {
+        if (const OptionSpec* spec = find_option(message.substr(i + 1, close - i - 1))) {
+          out += option_name(*spec, face);
+          i = close + 1;
+          continue;
+        }
+      }
+    }
+    out += message[i++];
+  }
+  return out;
+}
+
+std::string phrase_error(const Status& status, OptionFace face) {
+  std::string message = phrase_options(status.message(), face);
+  if (status.kind() == ErrorKind::kBadOption) {
+    if (const OptionSpec* spec = find_option(status.option()))
+      return option_name(*spec, face) + " " + message;
+  }
+  return message;
+}
+
+std::string option_table_json() {
+  JsonWriter j;
+  j.begin_array();
+  for (const OptionSpec& s : kOptions) {
+    j.begin_object();
+    j.key("id").value(s.id);
+    j.key("cli").value(s.cli);
+    j.key("js").value(s.js);
+    j.key("type").value(type_name(s.type));
+    j.key("commands").begin_array();
+    for (auto [bit, name] : {std::pair{kCommandInfo, "info"}, std::pair{kCommandMesh, "mesh"},
+                             std::pair{kCommandPhantom, "phantom"}})
+      if (s.commands & bit) j.value(name);
+    j.end_array();
+    j.key("faces").begin_array();
+    if (s.faces & kFaceCli) j.value("cli");
+    if (s.faces & kFaceJs) j.value("js");
+    j.end_array();
+    j.key("group").value(s.group);
+    j.key("metavar").value(s.metavar);
+    if (s.min > -kInf) j.key("min").value(s.min);
+    if (s.max < kInf) j.key("max").value(s.max);
+    j.key("minExclusive").value(s.min_exclusive);
+    j.key("maxExclusive").value(s.max_exclusive);
+    j.key("choices").begin_array();
+    for (std::string_view c : s.choices) j.value(c);
+    j.end_array();
+    j.key("listSize").value(s.list_size);
+    j.key("defaultOn").value(s.default_on);
+    j.key("default").value(s.default_text);
+    j.key("unit").value(s.unit);
+    j.key("needs").value(s.needs);
+    j.key("doc").value(s.doc);
+    j.key("offDoc").value(s.off_doc);
+    j.key("repeatable").value(s.repeatable);
+    j.key("perOpening")
+        .value(s.per_opening == PerOpening::kNo         ? "no"
+               : s.per_opening == PerOpening::kOptional ? "optional"
+                                                        : "required");
+    j.end_object();
+  }
+  j.end_array();
+  return j.str();
+}
+
+}  // namespace vm

@@ -1,0 +1,138 @@
+// The option table: every user-settable option of vesselmesh, once, with its
+// type, range, default, unit and one line of documentation. The CLI parser
+// and help, the WebAssembly binding, the JavaScript API's type declarations
+// and the README's option list are all made from it (or checked against it),
+// so they cannot drift apart. See docs/ARCHITECTURE.md, "Options".
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/phantom/vessel_phantom.h"
+#include "core/pipeline/mesh_job.h"
+#include "core/util/result.h"
+
+namespace vm {
+
+enum class OptionType {
+  kNumber,   ///< a finite real number
+  kInteger,  ///< a whole number
+  kFlag,     ///< on/off (CLI: present or not; JS: a boolean)
+  kChoice,   ///< one word of `choices`
+  kText,     ///< free text (CLI-only paths, names)
+  kNumbers,  ///< `list_size` comma-separated numbers (JS: an array)
+};
+
+/// The commands (CLI subcommands, JS API calls) an option applies to.
+enum OptionCommand : uint8_t {
+  kCommandInfo = 1,     ///< `vesselmesh info`, JS analyze()
+  kCommandMesh = 2,     ///< `vesselmesh mesh`, JS mesh()
+  kCommandPhantom = 4,  ///< `vesselmesh phantom`, JS makePhantom()
+};
+
+/// The interfaces that expose an option.
+enum OptionFace : uint8_t { kFaceCli = 1, kFaceJs = 2, kFaceBoth = 3 };
+
+/// Whether an option's value may name one opening ("K=VALUE" on the CLI,
+/// `{K: value}` in JS; K numbers the openings as the analysis lists them).
+enum class PerOpening : uint8_t {
+  kNo,        ///< a plain value
+  kOptional,  ///< a plain value for all openings, or K=VALUE for one
+  kRequired,  ///< always K=VALUE
+};
+
+/// One option. Names: `id` is the canonical snake_case id used in core
+/// messages ("{id}") and reports; `cli` the CLI flag without dashes (for a
+/// flag that defaults to on, the flag that turns it off, e.g. "no-remesh");
+/// `js` the JS API's camelCase key.
+struct OptionSpec {
+  std::string_view id, cli, js;
+  OptionType type = OptionType::kNumber;
+  uint8_t commands = kCommandMesh;
+  uint8_t faces = kFaceBoth;
+  /// Help section: "input", "size", "layers", "volume", "output", "advanced",
+  /// "phantom".
+  std::string_view group;
+  std::string_view metavar;  ///< the value's placeholder in help ("H", "N")
+  /// Range of a number or integer; exclusive bounds when the flags say so.
+  double min = -1e308, max = 1e308;
+  bool min_exclusive = false, max_exclusive = false;
+  std::span<const std::string_view> choices;  ///< kChoice
+  int list_size = 0;                          ///< kNumbers
+  bool default_on = false;                    ///< kFlag: its default
+  /// The default as shown to users ("20", "0.2", "lscm"; empty: none/unset).
+  std::string_view default_text;
+  /// What a length is measured in: "length" (the model's unit), "fraction
+  /// of R" (the local vessel radius), "degrees", or empty.
+  std::string_view unit;
+  /// What a valid value is, completing "<option> needs ...".
+  std::string_view needs;
+  std::string_view doc;  ///< one line
+  /// A flag that defaults to on: what its CLI flag (which turns it off) does.
+  std::string_view off_doc;
+  bool repeatable = false;
+  PerOpening per_opening = PerOpening::kNo;
+};
+
+/// Every option, in help order.
+std::span<const OptionSpec> option_table();
+
+/// The option with this id, or nullptr.
+const OptionSpec* find_option(std::string_view id);
+/// The option with this CLI name (without dashes) taken by `command`, or
+/// nullptr.
+const OptionSpec* find_cli_option(std::string_view cli, OptionCommand command);
+/// The option with this JS key taken by `command`, or nullptr.
+const OptionSpec* find_js_option(std::string_view js, OptionCommand command);
+
+/// One value of an option, as parsed from text (CLI) or converted from a JS
+/// value: the field the type uses, and the opening it names (1-based; 0:
+/// all openings, or not per-opening).
+struct OptionValue {
+  double number = 0;
+  bool flag = false;
+  std::string text;
+  std::vector<double> numbers;
+  int opening = 0;
+};
+
+/// Parses the CLI text of one value of `spec` ("K=VALUE" for per-opening
+/// options); checks type and range. Flags take no text: use a value with
+/// `flag` = !spec.default_on.
+Result<OptionValue> parse_option_text(const OptionSpec& spec, std::string_view text);
+
+/// Checks a value's type-independent constraints (range, integer, choice,
+/// list size, opening number >= 1) against `spec`. Errors are kBadOption.
+Status check_option_value(const OptionSpec& spec, const OptionValue& value);
+
+/// Applies a checked value of an info or mesh option (commands kCommandInfo
+/// or kCommandMesh) to `options`. Options of other faces only (CLI paths)
+/// are ignored. Errors are kBadOption.
+Status apply_option(MeshJobOptions& options, const OptionSpec& spec, const OptionValue& value);
+
+/// Applies a checked value of a phantom option.
+Status apply_option(PhantomOptions& options, const OptionSpec& spec, const OptionValue& value);
+
+/// Parses `text` for option `id` and applies it (tests, benchmarks, tools):
+/// parse_option_text then apply_option. Unknown ids are kInternal errors.
+Status set_option_text(MeshJobOptions& options, std::string_view id, std::string_view text);
+
+/// `message` with every "{id}" of a known option replaced by its name on
+/// `face` ("--size" on the CLI, "size" in JS).
+std::string phrase_options(std::string_view message, OptionFace face);
+
+/// An error's message in the words of `face`: a kBadOption error becomes
+/// "<option name> <message>"; "{id}" references are phrased.
+std::string phrase_error(const Status& status, OptionFace face);
+
+/// The table as JSON (an array of objects with the fields of OptionSpec:
+/// id, cli, js, type, commands [names], faces [names], group, metavar, min,
+/// max, minExclusive, maxExclusive, choices, listSize, defaultOn, default,
+/// unit, needs, doc, offDoc, repeatable, perOpening), for the JS side, its type
+/// declarations and the README check.
+std::string option_table_json();
+
+}  // namespace vm
