@@ -15,6 +15,7 @@
 #include "core/io/stl.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/mesh_job.h"
+#include "core/pipeline/opening_names.h"
 #include "core/pipeline/report_json.h"
 #include "core/util/allocator_tuning.h"
 
@@ -87,13 +88,21 @@ bool write_file(const std::string& path, const void* data, size_t size, std::str
 
 void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
   const vm::TopologyReport& t = s.topology;
-  std::printf("file:        %s (%s STL, %zu triangles)\n", path.c_str(),
-              s.ascii ? "ASCII" : "binary", s.input_triangles);
+  const std::string u(vm::unit_symbol(s.unit.unit));
+  const char* unit = u.c_str();
+  std::printf("file:        %s (%s, %zu triangles)\n", path.c_str(), s.format.c_str(),
+              s.input_triangles);
+  std::printf(
+      "units:       %s%s\n", unit,
+      !s.unit.guessed ? " (given)"
+      : s.unit.certain
+          ? (" (guessed: " + s.unit.reason + ")").c_str()
+          : (" (guessed, unconfirmed: " + s.unit.reason + "; could be cm, say --units)").c_str());
   std::printf("welded:      %zu vertices, %zu triangles, %zu edges\n", t.vertices, t.triangles,
               t.edges);
-  std::printf("bounding box: [%g, %g, %g] - [%g, %g, %g] (diagonal %g)\n", s.box.min[0],
-              s.box.min[1], s.box.min[2], s.box.max[0], s.box.max[1], s.box.max[2],
-              s.box.diagonal());
+  std::printf("bounding box: [%g, %g, %g] - [%g, %g, %g] %s (diagonal %g %s)\n", s.box.min[0],
+              s.box.min[1], s.box.min[2], s.box.max[0], s.box.max[1], s.box.max[2], unit,
+              s.box.diagonal(), unit);
   std::printf("components:  %d\n", t.components);
   std::printf("closed:      %s\n", t.closed ? "yes" : "no");
   if (t.genus >= 0)
@@ -103,18 +112,27 @@ void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
   std::printf("euler char.: %ld\n", t.euler_characteristic);
   std::printf("non-manifold edges: %zu, vertices: %zu\n", t.nonmanifold_edges,
               t.nonmanifold_vertices);
-  std::printf("openings:    %zu\n", t.openings.size());
+  std::printf(
+      "openings:    %zu%s\n", t.openings.size(),
+      s.caps_removed ? (" (" + std::to_string(s.caps_removed) + " from caps)").c_str() : "");
+  auto names = vm::opening_names(s, {}, 0);
   for (size_t i = 0; i < t.openings.size(); ++i) {
     const vm::Opening& o = t.openings[i];
-    std::printf("  %zu: perimeter %g, radius %g, centroid (%g, %g, %g), %zu vertices\n", i + 1,
-                o.perimeter, o.radius, o.centroid[0], o.centroid[1], o.centroid[2], o.loop.size());
+    const vm::OpeningSource& src = s.opening_sources[i];
+    std::string from = src.cap ? ", from a cap" : "";
+    if (src.label >= 0) from += " (" + s.label_array + " " + std::to_string(src.label) + ")";
+    std::printf("  %zu: %s: perimeter %g %s, radius %g %s, centroid (%g, %g, %g), %zu vertices%s\n",
+                i + 1, names.ok() ? names.value()[i].c_str() : "?", o.perimeter, unit, o.radius,
+                unit, o.centroid[0], o.centroid[1], o.centroid[2], o.loop.size(), from.c_str());
   }
   std::printf("quality gamma_k: min %.4f, mean %.4f\n", s.quality_stats.min, s.quality_stats.mean);
-  for (const std::string& w : s.warnings) std::printf("warning: %s\n", w.c_str());
+  for (const std::string& w : s.warnings)
+    std::printf("warning: %s\n", vm::phrase_options(w, vm::kFaceCli).c_str());
 }
 
 void print_mesh_summary(const std::string& out, const vm::MeshJobResult& res) {
-  for (const std::string& w : res.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  for (const std::string& w : res.warnings)
+    std::fprintf(stderr, "warning: %s\n", vm::phrase_options(w, vm::kFaceCli).c_str());
   std::printf("wrote %s in %.3f s:", out.c_str(), res.seconds_total);
   for (const vm::OutputGroup& g : res.groups)
     std::printf(" %s %zu%s", g.name.c_str(), g.elements, &g == &res.groups.back() ? "\n" : ",");

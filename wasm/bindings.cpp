@@ -210,7 +210,7 @@ val analyze(val stl, val opts, val progress) {
   if (!prepared.ok()) return error(prepared.status());
   val r = val::object();
   r.set("ok", true);
-  r.set("analysisJson", vm::analysis_json(prepared.value()));
+  r.set("analysisJson", vm::analysis_json(prepared.value(), vm::kFaceJs));
   set_surface(r, prepared.value().mesh, prepared.value().quality);
   return r;
 }
@@ -228,7 +228,7 @@ val mesh(val stl, val opts, val progress) {
   r.set("ok", true);
   r.set("msh",
         copy_out(reinterpret_cast<const uint8_t*>(res.msh.data()), res.msh.size(), "Uint8Array"));
-  r.set("reportJson", vm::mesh_report_json(res));
+  r.set("reportJson", vm::mesh_report_json(res, vm::kFaceJs));
   set_surface(r, res.output_surface, res.output_quality);
   if (!res.volume.tets.empty()) set_volume(r, res);
   return r;

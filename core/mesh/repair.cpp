@@ -23,7 +23,8 @@ bool zero_area(const SurfaceMesh& m, size_t t) {
          u[0] * v[1] - u[1] * v[0] == 0;
 }
 
-void remove_unused_vertices(SurfaceMesh& mesh, RepairStats& stats) {
+/// Drops the vertices no triangle uses; returns old -> new index (-1: gone).
+std::vector<int32_t> remove_unused_vertices(SurfaceMesh& mesh, RepairStats& stats) {
   std::vector<int32_t> remap(mesh.num_vertices(), -1);
   for (int32_t v : mesh.triangles) remap[v] = 0;
   int32_t next = 0;
@@ -36,6 +37,22 @@ void remove_unused_vertices(SurfaceMesh& mesh, RepairStats& stats) {
   stats.unused_vertices_removed += remap.size() - size_t(next);
   mesh.points.resize(3 * size_t(next));
   for (int32_t& v : mesh.triangles) v = remap[v];
+  return remap;
+}
+
+/// Keeps the triangles with keep[t] != 0 (and their labels), in order.
+void keep_triangles(SurfaceMesh& mesh, const std::vector<uint8_t>& keep,
+                    std::vector<int32_t>* labels) {
+  auto& tri = mesh.triangles;
+  size_t out = 0;
+  for (size_t t = 0; t < keep.size(); ++t) {
+    if (!keep[t]) continue;
+    for (int k = 0; k < 3; ++k) tri[3 * out + k] = tri[3 * t + k];
+    if (labels) (*labels)[out] = (*labels)[t];
+    ++out;
+  }
+  tri.resize(3 * out);
+  if (labels) labels->resize(out);
 }
 
 // Union-find over triangles where each triangle also stores whether its
@@ -90,7 +107,8 @@ class ParityUnionFind {
 // keeps the surface closed: dropping t alone would open a slit. A few passes
 // handle chains; flat triangles left then (no single neighbor across the
 // long edge, or a flat neighbor) are dropped and counted as degenerate.
-void repair_collinear_triangles(SurfaceMesh& mesh, RepairStats& stats) {
+void repair_collinear_triangles(SurfaceMesh& mesh, RepairStats& stats,
+                                std::vector<int32_t>* labels) {
   auto& tri = mesh.triangles;
   for (int pass = 0; pass < 4; ++pass) {
     std::vector<int32_t> flat;
@@ -146,43 +164,39 @@ void repair_collinear_triangles(SurfaceMesh& mesh, RepairStats& stats) {
         if (v == b) tri[3 * neighbor + k] = c;
       }
       tri.insert(tri.end(), s2.begin(), s2.end());
+      if (labels) labels->push_back((*labels)[size_t(neighbor)]);
       touched[neighbor] = 1;
       remove[t] = 1;
       ++progress;
       ++stats.collinear_repaired;
     }
     remove.resize(mesh.num_triangles(), 0);
-    size_t out = 0;
-    for (size_t t = 0; t < mesh.num_triangles(); ++t) {
-      if (remove[t]) continue;
-      for (int k = 0; k < 3; ++k) tri[3 * out + k] = tri[3 * t + k];
-      ++out;
-    }
-    tri.resize(3 * out);
+    for (uint8_t& r : remove) r = !r;
+    keep_triangles(mesh, remove, labels);
     if (progress == 0 && !last_pass) pass = 2;  // go straight to the last pass
   }
 }
 
 }  // namespace
 
-void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats) {
+void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats,
+                                      std::vector<int32_t>* labels) {
   const size_t nt = mesh.num_triangles();
   auto& tri = mesh.triangles;
-  // Phase 1: drop triangles with a repeated vertex, compacting in place.
-  size_t kept = 0;
+  if (labels && labels->size() != nt) labels = nullptr;
+  // Phase 1: drop triangles with a repeated vertex.
+  std::vector<uint8_t> keep(nt, 1);
   for (size_t t = 0; t < nt; ++t) {
     int32_t a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
     if (a == b || b == c || a == c) {
       ++stats.degenerate_removed;
-      continue;
+      keep[t] = 0;
     }
-    tri[3 * kept] = a, tri[3 * kept + 1] = b, tri[3 * kept + 2] = c;
-    ++kept;
   }
-  tri.resize(3 * kept);
+  keep_triangles(mesh, keep, labels);
   // Phase 1b: flat triangles with three distinct collinear corners.
-  repair_collinear_triangles(mesh, stats);
-  kept = mesh.num_triangles();
+  repair_collinear_triangles(mesh, stats, labels);
+  const size_t kept = mesh.num_triangles();
   // Phase 2: duplicates share their smallest vertex; bucket the triangles by
   // it (counting sort) and compare within each bucket.
   const size_t nv = mesh.num_vertices();
@@ -215,17 +229,22 @@ void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats) {
       }
     }
   }
-  size_t out = 0;
-  for (size_t t = 0; t < kept; ++t) {
-    if (duplicate[t]) {
-      ++stats.duplicates_removed;
-      continue;
-    }
-    for (int k = 0; k < 3; ++k) tri[3 * out + k] = tri[3 * t + k];
-    ++out;
+  for (uint8_t& d : duplicate) {
+    stats.duplicates_removed += d;
+    d = !d;
   }
-  tri.resize(3 * out);
+  keep_triangles(mesh, duplicate, labels);
   remove_unused_vertices(mesh, stats);
+}
+
+std::vector<int32_t> remove_triangles(SurfaceMesh& mesh, const std::vector<uint8_t>& remove,
+                                      std::vector<int32_t>* labels) {
+  if (labels && labels->size() != mesh.num_triangles()) labels = nullptr;
+  std::vector<uint8_t> keep(mesh.num_triangles(), 1);
+  for (size_t t = 0; t < keep.size() && t < remove.size(); ++t) keep[t] = !remove[t];
+  keep_triangles(mesh, keep, labels);
+  RepairStats unused;
+  return remove_unused_vertices(mesh, unused);
 }
 
 void orient_consistently(SurfaceMesh& mesh, RepairStats& stats, TriangleAdjacency* adjacency) {

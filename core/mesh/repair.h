@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "core/mesh/adjacency.h"
 #include "core/mesh/surface_mesh.h"
@@ -24,8 +26,17 @@ struct RepairStats {
 /// distinct, exactly collinear corners) by splitting the neighbor across
 /// their long edge at the middle corner, so no slit opens; removes duplicates
 /// (same three vertices in any order); then drops the vertices no triangle
-/// uses (renumbering, order kept).
-void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats);
+/// uses (renumbering, order kept). `labels` (one per triangle, or null)
+/// follow their triangles; a triangle made by a split takes its neighbor's.
+void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats,
+                                      std::vector<int32_t>* labels = nullptr);
+
+/// Removes the triangles t with remove[t] != 0 (and their labels, when
+/// given: one per triangle) and the vertices left unused; returns the old ->
+/// new vertex index map (-1 for a removed vertex). Triangle and vertex order
+/// are kept.
+std::vector<int32_t> remove_triangles(SurfaceMesh& mesh, const std::vector<uint8_t>& remove,
+                                      std::vector<int32_t>* labels = nullptr);
 
 /// Flips triangles so that every manifold edge is traversed in opposite
 /// directions by its two triangles, per connected component, then orients

@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "core/mesh/adjacency.h"
+#include "core/mesh/boundary_loops.h"
 #include "core/mesh/topology.h"
 #include "core/phantom/marching_cubes.h"
 
@@ -251,6 +252,21 @@ void keep_largest_component(SurfaceMesh& mesh) {
   if (r.components > 0) mesh = extract_component(mesh, r, 0);
 }
 
+/// Closes every boundary loop by a fan from its centroid, outward oriented
+/// (each fan triangle runs against the loop's boundary half-edge).
+void close_by_fans(SurfaceMesh& mesh) {
+  const TriangleAdjacency adj = build_adjacency(mesh);
+  for (const std::vector<int32_t>& loop : boundary_loops(mesh, adj)) {
+    Vec c = {0, 0, 0};
+    for (int32_t v : loop)
+      for (int k = 0; k < 3; ++k) c[k] += mesh.points[3 * size_t(v) + k] / double(loop.size());
+    const int32_t center = int32_t(mesh.num_vertices());
+    mesh.points.insert(mesh.points.end(), c.begin(), c.end());
+    for (size_t i = 0; i < loop.size(); ++i)
+      mesh.triangles.insert(mesh.triangles.end(), {loop[(i + 1) % loop.size()], loop[i], center});
+  }
+}
+
 }  // namespace
 
 Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* truth) {
@@ -324,10 +340,11 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
   if (open)
     for (const EndCut& c : m.cuts) clip(mesh, c);
   keep_largest_component(mesh);
+  if (open && o.flat_caps) close_by_fans(mesh);
   for (double& x : mesh.points) x *= o.scale;
   if (truth) {
     truth->genus = m.genus;
-    truth->openings = open ? int(m.cuts.size()) : 0;
+    truth->openings = open && !o.flat_caps ? int(m.cuts.size()) : 0;
     truth->opening_radii.clear();
     truth->opening_centers.clear();
     if (open)

@@ -30,6 +30,10 @@ struct PhantomOptions {
   /// Open the vessel ends by clipping with planes (openings); when false the
   /// surface is closed (the tube ends are rounded).
   bool open_ends = true;
+  /// With open_ends: close each cut by a flat fan (a capped model, as
+  /// SimVascular and VMTK export them: planar caps meeting the wall at a
+  /// sharp rim). The surface is then closed.
+  bool flat_caps = false;
   /// Amplitude of the voxel-value noise, relative to the voxel size
   /// (0 = clean staircase). Deterministic for a given seed.
   double noise = 0.0;
@@ -40,9 +44,10 @@ struct PhantomOptions {
 
 /// What the generator knows about the model, for tests to compare against.
 struct PhantomTruth {
-  int openings = 0;  ///< boundary loops expected when open_ends
+  int openings = 0;  ///< boundary loops expected when open_ends (0 with flat_caps)
   int genus = 0;
-  /// Radius of each opening (same order as `opening_centers`), scaled.
+  /// Radius of each opening or flat cap (same order as `opening_centers`),
+  /// scaled.
   std::vector<double> opening_radii;
   std::vector<std::array<double, 3>> opening_centers;
 };

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <tuple>
 
 #include "core/layers/chord_radius.h"
 #include "core/layers/extrude_layers.h"
@@ -15,6 +16,7 @@
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/surface_distance.h"
 #include "core/mesh/volume_check.h"
+#include "core/pipeline/opening_names.h"
 #include "core/quality/tet_quality.h"
 #include "core/volume/boundary_recovery.h"
 #include "core/volume/tetrahedralize.h"
@@ -27,30 +29,52 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// Caps on the openings of `surface` with the inlet at the input's opening
-/// `inlet` (input openings are listed largest first): capped once with the
-/// largest as inlet, then again naming the cap nearest that opening.
-Result<CappedSurface> cap_with_inlet(const MeshJobResult& r, const SurfaceMesh& surface,
-                                     const std::vector<double>& sizes, int inlet) {
+/// For each cap, the input opening it closes: pairs taken by increasing
+/// distance between the cap's centroid and the opening's (the wall moved
+/// them little: remeshing keeps vertices on the input).
+std::vector<size_t> cap_openings_map(const CappedSurface& capped,
+                                     const std::vector<Opening>& openings) {
+  std::vector<std::tuple<double, size_t, size_t>> pairs;
+  for (size_t c = 0; c < capped.caps.size(); ++c)
+    for (size_t i = 0; i < openings.size(); ++i) {
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k)
+        d2 += std::pow(capped.caps[c].centroid[size_t(k)] - openings[i].centroid[size_t(k)], 2);
+      pairs.emplace_back(d2, c, i);
+    }
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<size_t> of_cap(capped.caps.size(), SIZE_MAX);
+  std::vector<uint8_t> taken(openings.size(), 0);
+  for (const auto& [d2, c, i] : pairs)
+    if (of_cap[c] == SIZE_MAX && !taken[i]) of_cap[c] = i, taken[i] = 1;
+  return of_cap;
+}
+
+/// Caps on the openings of `surface`, the chosen inlet first (tag 1), each
+/// named after the input opening it closes.
+Result<CappedSurface> cap_and_name(const MeshJobResult& r, const SurfaceMesh& surface,
+                                   const std::vector<double>& sizes, int inlet) {
   auto capped = cap_openings(surface, sizes);
   if (!capped.ok() || capped.value().caps.empty()) return capped;
-  const auto& in = r.surface.topology.openings;
-  if (inlet < 0 || size_t(inlet) >= in.size())
-    return Status::BadOption("inlet", "must be between 1 and the number of openings (" +
-                                          std::to_string(in.size()) + ")");
-  const auto& c = in[size_t(inlet)].centroid;
-  int best = 0;
-  double best_d2 = 1e300;
-  for (size_t i = 0; i < capped.value().caps.size(); ++i) {
-    const auto& o = capped.value().caps[i].centroid;
-    const double d2 = (o[0] - c[0]) * (o[0] - c[0]) + (o[1] - c[1]) * (o[1] - c[1]) +
-                      (o[2] - c[2]) * (o[2] - c[2]);
-    if (d2 < best_d2) best_d2 = d2, best = int(i);
+  const std::vector<Opening>& in = r.surface.topology.openings;
+  if (capped.value().caps.size() != in.size())
+    return Status::Internal("the wall has " + std::to_string(capped.value().caps.size()) +
+                            " openings, the input " + std::to_string(in.size()));
+  std::vector<size_t> of_cap = cap_openings_map(capped.value(), in);
+  const size_t inlet_cap =
+      size_t(std::find(of_cap.begin(), of_cap.end(), size_t(inlet)) - of_cap.begin());
+  if (inlet_cap != 0) {
+    // Caps come by decreasing area: caps[i] is the i-th largest, which
+    // inlet_index counts in.
+    CapOptions co;
+    co.inlet_index = int(inlet_cap);
+    capped = cap_openings(surface, sizes, co);
+    if (!capped.ok()) return capped;
+    of_cap = cap_openings_map(capped.value(), in);
   }
-  if (best == 0) return capped;
-  CapOptions co;
-  co.inlet_index = best;
-  return cap_openings(surface, sizes, co);
+  for (size_t c = 0; c < of_cap.size(); ++c)
+    capped.value().caps[c].name = r.opening_names[of_cap[c]];
+  return capped;
 }
 
 /// Stages 4 and 6: caps on the openings, then the tetrahedra of the lumen;
@@ -91,7 +115,7 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   if (!inner && outer)
     std::copy(outer->points.begin(), outer->points.begin() + long(core_surface.points.size()),
               core_surface.points.begin());
-  auto capped = cap_with_inlet(r, core_surface, wall_sizes, options.inlet);
+  auto capped = cap_and_name(r, core_surface, wall_sizes, options.inlet);
   if (!capped.ok()) return capped.status();
   r.capped = std::move(capped).value();
   for (const CapInfo& c : r.capped.caps)
@@ -228,17 +252,12 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
   r.surface = std::move(prepared).value();
   r.warnings = r.surface.warnings;
 
-  const TopologyReport& topo = r.surface.topology;
-  Status meshable = check_meshable(r.surface, options.largest_component_only);
+  Status meshable = check_meshable(r.surface);
   if (!meshable.ok()) return meshable;
-  if (options.largest_component_only && topo.components > 1) {
-    r.output_surface = extract_component(r.surface.mesh, topo, 0);
-    r.warnings.push_back("kept the largest of " + std::to_string(topo.components) +
-                         " components (" + std::to_string(topo.component_triangles[0]) +
-                         " triangles)");
-  } else {
-    r.output_surface = r.surface.mesh;
-  }
+  auto names = opening_names(r.surface, options.opening_names, options.inlet);
+  if (!names.ok()) return names.status();
+  r.opening_names = std::move(names).value();
+  r.output_surface = r.surface.mesh;
   std::vector<double> wall_sizes;  // target size per wall vertex
   if (options.remesh) {
     ProgressFn remesh_progress = [&](double f, std::string_view stage) {

@@ -31,15 +31,18 @@ inline LayerSpec no_vessel_wall() {
 struct MeshJobOptions {
   PrepareOptions prepare;
   MshVersion msh_version = MshVersion::k41;
-  /// Keep only the largest connected component instead of refusing inputs
-  /// with several components.
-  bool largest_component_only = false;
   /// Remesh the surface (else the repaired input surface is used).
   bool remesh = true;
   RemeshOptions remesh_options;
   /// Mesh the volume: caps on the openings and tetrahedra inside (else only
   /// the wall surface is written).
   bool volume = true;
+  /// Names of openings: (index into the prepared surface's openings, as the
+  /// analysis lists them, name). Others are named after the file's face
+  /// names, else inlet / outlet_k.
+  std::vector<std::pair<int, std::string>> opening_names;
+  /// The unit of the written mesh (kGuess: the input's).
+  LengthUnit output_units = LengthUnit::kGuess;
   /// Which opening becomes `inlet`: an index into the input's openings as
   /// `vesselmesh info` lists them (largest first); 0 = the largest.
   int inlet = 0;
@@ -113,6 +116,8 @@ struct MeshJobResult {
   /// written, with one tag per triangle: 0 wall, i inlet/outlets as caps).
   CappedSurface capped;
   VolumeMesh volume;
+  /// The group name of each opening of `surface` (its analysis order).
+  std::vector<std::string> opening_names;
   std::vector<std::string> surface_names;  ///< per triangle tag ("" = unused tag)
   std::vector<std::string> region_names;   ///< per tet region ("" = unused region)
   std::vector<float> tet_quality;          ///< gamma_t per tetrahedron

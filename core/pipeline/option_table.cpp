@@ -14,6 +14,9 @@ constexpr std::string_view kParams[] = {"lscm", "harmonic", "floater"};
 constexpr std::string_view kMeshers[] = {"frontal", "delaunay", "adapt"};
 constexpr std::string_view kMshVersions[] = {"4.1", "2.2"};
 constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm", "torus"};
+constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
+
+constexpr uint8_t kInfoMesh = kCommandInfo | kCommandMesh;
 
 constexpr double kInf = 1e308;
 
@@ -41,8 +44,28 @@ const OptionSpec kOptions[] = {
      .cli = "largest-component",
      .js = "largestComponentOnly",
      .type = T::kFlag,
+     .commands = kInfoMesh,
      .group = "input",
      .doc = "keep only the largest connected component instead of refusing several"},
+    {.id = "units",
+     .cli = "units",
+     .js = "units",
+     .type = T::kChoice,
+     .commands = kInfoMesh,
+     .group = "input",
+     .metavar = "U",
+     .choices = kUnits,
+     .needs = "mm, cm or m",
+     .doc = "the unit of the file's numbers (default: guessed from the vessel radii: below "
+            "0.05 metres, else millimetres)"},
+    {.id = "keep_caps",
+     .cli = "keep-caps",
+     .js = "keepCaps",
+     .type = T::kFlag,
+     .commands = kInfoMesh,
+     .group = "input",
+     .doc = "keep planar caps as wall (else each recognised cap is removed and its rim becomes "
+            "an opening)"},
     // ---- size
     {.id = "size",
      .cli = "size",
@@ -150,6 +173,17 @@ const OptionSpec kOptions[] = {
      .unit = "length",
      .needs = "a length >= 0 (0: grow from the wall size)",
      .doc = "target size in the core of the lumen (0: the uniform size, or grown from the wall's)"},
+    {.id = "name",
+     .cli = "name",
+     .js = "names",
+     .type = T::kText,
+     .group = "volume",
+     .metavar = "NAME",
+     .needs = "K=NAME with NAME 1-64 letters, digits, _ or -, starting with a letter",
+     .doc = "the group name of opening K (default: the file's face name, else inlet / "
+            "outlet_k)",
+     .repeatable = true,
+     .per_opening = PerOpening::kRequired},
     {.id = "verify",
      .cli = "verify",
      .js = "verify",
@@ -245,6 +279,15 @@ const OptionSpec kOptions[] = {
      .metavar = "OUT.msh",
      .needs = "a file name",
      .doc = "the file to write (also -o)"},
+    {.id = "output_units",
+     .cli = "output-units",
+     .js = "outputUnits",
+     .type = T::kChoice,
+     .group = "output",
+     .metavar = "U",
+     .choices = kUnits,
+     .needs = "mm, cm or m",
+     .doc = "convert the written mesh to this unit (default: the input's)"},
     {.id = "msh_version",
      .cli = "msh-version",
      .js = "mshVersion",
@@ -366,6 +409,13 @@ const OptionSpec kOptions[] = {
      .default_on = true,
      .doc = "cut the vessel ends open (off: a closed surface with rounded ends)",
      .off_doc = "a closed surface with rounded ends"},
+    {.id = "flat_caps",
+     .cli = "flat-caps",
+     .js = "flatCaps",
+     .type = T::kFlag,
+     .commands = kCommandPhantom,
+     .group = "phantom",
+     .doc = "close the cut ends by flat caps (a capped model, as SimVascular exports)"},
 };
 
 #pragma GCC diagnostic pop
@@ -412,6 +462,16 @@ std::string option_name(const OptionSpec& spec, OptionFace face) {
 }
 
 }  // namespace
+
+bool valid_group_name(std::string_view name) {
+  if (name.empty() || name.size() > 64) return false;
+  if (!((name[0] >= 'a' && name[0] <= 'z') || (name[0] >= 'A' && name[0] <= 'Z'))) return false;
+  for (char c : name)
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+          c == '-'))
+      return false;
+  return true;
+}
 
 std::span<const OptionSpec> option_table() { return kOptions; }
 
@@ -556,8 +616,17 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
                                                          : Mesher2D::kFrontal;
   } else if (id == "msh_version") {
     o.msh_version = v.text == "2.2" ? MshVersion::k22 : MshVersion::k41;
+  } else if (id == "units") {
+    o.prepare.units = parse_unit(v.text);
+  } else if (id == "output_units") {
+    o.output_units = parse_unit(v.text);
+  } else if (id == "keep_caps") {
+    o.prepare.keep_caps = v.flag;
+  } else if (id == "name") {
+    if (!valid_group_name(v.text)) return needs(spec);
+    o.opening_names.emplace_back(v.opening - 1, v.text);
   } else if (id == "largest_component") {
-    o.largest_component_only = v.flag;
+    o.prepare.largest_component_only = v.flag;
   } else if (id == "remesh") {
     o.remesh = v.flag;
   } else if (id == "surface_only") {
@@ -593,6 +662,8 @@ Status apply_option(PhantomOptions& o, const OptionSpec& spec, const OptionValue
     o.scale = v.number;
   } else if (id == "open_ends") {
     o.open_ends = v.flag;
+  } else if (id == "flat_caps") {
+    o.flat_caps = v.flag;
   } else {
     return Status::Internal("option " + std::string(id) + " is not a phantom option");
   }

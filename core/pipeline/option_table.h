@@ -77,6 +77,11 @@ struct OptionSpec {
   PerOpening per_opening = PerOpening::kNo;
 };
 
+/// Whether `name` may name a group (an opening): 1-64 letters, digits, `_`
+/// and `-`, starting with a letter (so it is also an OpenFOAM patch name and
+/// a file name).
+bool valid_group_name(std::string_view name);
+
 /// Every option, in help order.
 std::span<const OptionSpec> option_table();
 

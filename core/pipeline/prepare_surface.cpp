@@ -1,7 +1,10 @@
 // Pipeline stage 1 (DESIGN.md): read, weld, repair, analyze.
 #include "core/pipeline/prepare_surface.h"
 
+#include <algorithm>
 #include <cstdio>
+
+#include "core/layers/chord_radius.h"
 
 namespace vm {
 namespace {
@@ -16,6 +19,20 @@ std::string point_text(const std::array<double, 3>& p) {
 
 Status cancelled() { return Status::Cancelled(); }
 
+/// A typical vessel radius of the prepared surface: the median radius of
+/// its openings, else the median half chord across the lumen (closed
+/// surfaces), else a tenth of the bounding box (too large to measure).
+double median_vessel_radius(const PreparedSurface& s) {
+  std::vector<double> radii;
+  for (const Opening& op : s.topology.openings) radii.push_back(op.radius);
+  if (radii.empty() && s.mesh.num_triangles() <= 2'000'000 && s.topology.components == 1 &&
+      s.topology.nonmanifold_edges == 0)
+    radii = chord_radius(s.mesh);
+  if (radii.empty()) return 0.1 * s.box.diagonal();
+  std::nth_element(radii.begin(), radii.begin() + long(radii.size() / 2), radii.end());
+  return radii[radii.size() / 2];
+}
+
 }  // namespace
 
 Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
@@ -29,6 +46,9 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
   s.warnings = soup.value().warnings;
 
   if (!report_progress(progress, 0.25, "weld")) return cancelled();
+  s.format = s.ascii ? "ASCII STL" : "binary STL";
+  std::vector<int32_t> labels;  // per triangle, or empty
+  std::vector<std::pair<int32_t, std::string>> face_names;
   s.mesh = weld(soup.value(), options.weld, &s.weld);
   soup = Result<TriangleSoup>::Error("released");  // free the soup early
   if (s.weld.merged_by_tolerance > 0) {
@@ -37,7 +57,7 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
   }
 
   if (!report_progress(progress, 0.45, "repair")) return cancelled();
-  remove_degenerate_and_duplicates(s.mesh, s.repair);
+  remove_degenerate_and_duplicates(s.mesh, s.repair, &labels);
   if (s.repair.degenerate_removed > 0) {
     s.warnings.push_back(num(s.repair.degenerate_removed) + " zero-area triangles were removed");
   }
@@ -64,8 +84,57 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
                          " triangles were re-oriented (consistent, outward)");
   }
 
+  if (options.largest_component_only) {
+    const TopologyReport parts = analyze_topology(s.mesh, adjacency);
+    if (parts.components > 1) {
+      std::vector<uint8_t> other(s.mesh.num_triangles());
+      for (size_t t = 0; t < other.size(); ++t) other[t] = parts.triangle_component[t] != 0;
+      remove_triangles(s.mesh, other, &labels);
+      adjacency = build_adjacency(s.mesh);
+      s.warnings.push_back("kept the largest of " + std::to_string(parts.components) +
+                           " components (" + num(parts.component_triangles[0]) + " of " +
+                           num(parts.triangles) + " triangles)");
+    }
+  }
+
+  if (!report_progress(progress, 0.55, "caps")) return cancelled();
+  std::vector<int32_t> cap_of_vertex;  // recognised cap per vertex of the rims, else -1
+  CapRecognition caps;
+  if (!options.keep_caps && adjacency.num_nonmanifold_edges == 0 && s.repair.orientable) {
+    caps = recognize_caps(s.mesh, adjacency, labels, face_names, options.caps);
+    for (const std::string& note : caps.notes) s.warnings.push_back(note);
+  }
+  if (!caps.caps.empty()) {
+    std::vector<uint8_t> remove(s.mesh.num_triangles(), 0);
+    std::vector<int32_t> cap_of(s.mesh.num_vertices(), -1);
+    for (size_t c = 0; c < caps.caps.size(); ++c)
+      for (int32_t t : caps.caps[c].triangles) {
+        remove[size_t(t)] = 1;
+        for (int k = 0; k < 3; ++k)
+          cap_of[size_t(s.mesh.triangles[3 * size_t(t) + k])] = int32_t(c);
+      }
+    const std::vector<int32_t> remap = remove_triangles(s.mesh, remove, &labels);
+    cap_of_vertex.assign(s.mesh.num_vertices(), -1);
+    for (size_t v = 0; v < remap.size(); ++v)
+      if (remap[v] >= 0) cap_of_vertex[size_t(remap[v])] = cap_of[v];
+    s.caps_removed = caps.caps.size();
+    adjacency = build_adjacency(s.mesh);
+    s.warnings.push_back(num(caps.caps.size()) + " planar caps were recognised and removed: " +
+                         "their rims are openings now (keep them with {keep_caps})");
+  }
+
   if (!report_progress(progress, 0.6, "analyze")) return cancelled();
   s.topology = analyze_topology(s.mesh, adjacency);
+  for (const Opening& op : s.topology.openings) {
+    OpeningSource src;
+    const int32_t c = cap_of_vertex.empty() ? -1 : cap_of_vertex[size_t(op.loop[0])];
+    if (c >= 0) {
+      src.cap = true;
+      src.label = caps.caps[size_t(c)].label;
+      src.name = caps.caps[size_t(c)].name;
+    }
+    s.opening_sources.push_back(src);
+  }
   s.box = bounding_box(s.mesh.points);
   const TopologyReport& t = s.topology;
   if (t.nonmanifold_edges > 0) {
@@ -84,6 +153,11 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
                          num(t.component_triangles[0]) + " of " + num(t.triangles) + " triangles");
   }
 
+  s.unit = decide_unit(options.units, median_vessel_radius(s));
+  if (s.unit.guessed && s.unit.unit == LengthUnit::kM)
+    s.warnings.push_back("the model is in metres (" + s.unit.reason +
+                         "): lengths are read and written in metres; say otherwise with {units}");
+
   if (!report_progress(progress, 0.85, "quality")) return cancelled();
   s.quality = triangle_qualities(s.mesh);
   s.quality_stats = quality_stats(s.quality, options.histogram_bins);
@@ -91,7 +165,7 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
   return s;
 }
 
-Status check_meshable(const PreparedSurface& s, bool several_components_ok) {
+Status check_meshable(const PreparedSurface& s) {
   const TopologyReport& t = s.topology;
   if (t.nonmanifold_edges > 0) {
     return Status::Error("cannot mesh: the surface has " + num(t.nonmanifold_edges) +
@@ -106,7 +180,7 @@ Status check_meshable(const PreparedSurface& s, bool several_components_ok) {
   if (!s.repair.orientable) {
     return Status::Error("cannot mesh: the surface is not orientable");
   }
-  if (t.components > 1 && !several_components_ok) {
+  if (t.components > 1) {
     return Status::Error("cannot mesh: the surface has " + std::to_string(t.components) +
                          " connected components (the largest has " + num(t.component_triangles[0]) +
                          " of " + num(t.triangles) +

@@ -11,6 +11,8 @@
 #include "core/mesh/surface_mesh.h"
 #include "core/mesh/topology.h"
 #include "core/mesh/weld.h"
+#include "core/prepare/recognize_caps.h"
+#include "core/prepare/units.h"
 #include "core/quality/triangle_quality.h"
 #include "core/util/progress.h"
 #include "core/util/result.h"
@@ -20,7 +22,23 @@ namespace vm {
 struct PrepareOptions {
   StlReadOptions read;
   WeldOptions weld;
+  /// Keep only the largest connected component (the others are removed
+  /// and reported) instead of refusing inputs with several components.
+  bool largest_component_only = false;
+  /// Keep planar caps as part of the wall (else each recognised cap is
+  /// removed and its rim becomes an opening).
+  bool keep_caps = false;
+  CapRecognitionOptions caps;
+  /// The unit of the file's numbers; kGuess: guessed from the vessel radii.
+  LengthUnit units = LengthUnit::kGuess;
   int histogram_bins = 20;
+};
+
+/// Where an opening of the prepared surface comes from.
+struct OpeningSource {
+  bool cap = false;    ///< a recognised cap, removed (else open in the file)
+  int32_t label = -1;  ///< the cap's face label, or -1
+  std::string name;    ///< the cap's name in the file, or ""
 };
 
 /// The welded, repaired surface and everything known about it.
@@ -34,6 +52,15 @@ struct PreparedSurface {
   BoundingBox box;
   std::vector<float> quality;  ///< gamma_k per triangle of `mesh`
   QualityStats quality_stats;
+  /// What the file was ("binary STL", ...).
+  std::string format;
+  /// The face label array the file had ("ModelFaceID", ...; "" for none).
+  std::string label_array;
+  /// One per opening of `topology` (same order).
+  std::vector<OpeningSource> opening_sources;
+  size_t caps_removed = 0;
+  /// The model's length unit and how it was decided.
+  ModelUnit unit;
   /// Human-readable notes on the safe repairs applied and on properties that
   /// later stages will refuse (non-manifold edges, several components).
   std::vector<std::string> warnings;
@@ -45,9 +72,8 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
                                         const PrepareOptions& options = {},
                                         const ProgressFn& progress = {});
 
-/// Checks that a prepared surface can be meshed: manifold, orientable, and
-/// one component unless `several_components_ok` (the caller then keeps the
-/// largest). The error message says what is wrong, where, and what to do.
-Status check_meshable(const PreparedSurface& surface, bool several_components_ok = false);
+/// Checks that a prepared surface can be meshed: manifold, orientable, one
+/// component. The error message says what is wrong, where, and what to do.
+Status check_meshable(const PreparedSurface& surface);
 
 }  // namespace vm

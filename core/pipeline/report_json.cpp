@@ -2,6 +2,7 @@
 
 #include <tuple>
 
+#include "core/pipeline/opening_names.h"
 #include "core/util/json_writer.h"
 
 namespace vm {
@@ -17,16 +18,29 @@ void write_quality(JsonWriter& j, const QualityStats& q) {
   j.end_object();
 }
 
+void write_warnings(JsonWriter& j, const std::vector<std::string>& warnings, OptionFace face) {
+  j.key("warnings").begin_array();
+  for (const std::string& w : warnings) j.value(phrase_options(w, face));
+  j.end_array();
+}
+
 }  // namespace
 
-std::string analysis_json(const PreparedSurface& s) {
+std::string analysis_json(const PreparedSurface& s, OptionFace face) {
   const TopologyReport& t = s.topology;
   JsonWriter j;
   j.begin_object();
   j.key("vertices").value(t.vertices);
   j.key("triangles").value(t.triangles);
   j.key("input_triangles").value(s.input_triangles);
-  j.key("format").value(s.ascii ? "ascii" : "binary");
+  j.key("format").value(s.format);
+  j.key("label_array").value(s.label_array);
+  j.key("units").begin_object();
+  j.key("unit").value(unit_symbol(s.unit.unit));
+  j.key("guessed").value(s.unit.guessed);
+  j.key("certain").value(s.unit.certain);
+  j.key("reason").value(s.unit.reason);
+  j.end_object();
   j.key("bounding_box").begin_object();
   j.key("min").array(s.box.min);
   j.key("max").array(s.box.max);
@@ -34,9 +48,15 @@ std::string analysis_json(const PreparedSurface& s) {
   j.end_object();
   j.key("components").value(t.components);
   j.key("component_triangles").array(t.component_triangles);
+  auto names = opening_names(s, {}, 0);
   j.key("openings").begin_array();
-  for (const Opening& op : t.openings) {
+  for (size_t i = 0; i < t.openings.size(); ++i) {
+    const Opening& op = t.openings[i];
+    const OpeningSource& src = s.opening_sources[i];
     j.begin_object();
+    j.key("source").value(src.cap ? "cap" : "file");
+    j.key("label").value(src.label);
+    j.key("name").value(names.ok() ? names.value()[i] : std::string());
     j.key("perimeter").value(op.perimeter);
     j.key("radius").value(op.radius);
     j.key("centroid").array(op.centroid);
@@ -45,6 +65,7 @@ std::string analysis_json(const PreparedSurface& s) {
     j.end_object();
   }
   j.end_array();
+  j.key("caps_removed").value(s.caps_removed);
   j.key("closed").value(t.closed);
   if (t.genus >= 0)
     j.key("genus").value(t.genus);
@@ -67,15 +88,15 @@ std::string analysis_json(const PreparedSurface& s) {
   j.end_object();
   j.key("quality");
   write_quality(j, s.quality_stats);
-  j.key("warnings").array(s.warnings);
+  write_warnings(j, s.warnings, face);
   j.end_object();
   return j.str();
 }
 
-std::string mesh_report_json(const MeshJobResult& r) {
+std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
   JsonWriter j;
   j.begin_object();
-  j.key("input").raw(analysis_json(r.surface));
+  j.key("input").raw(analysis_json(r.surface, face));
   j.key("output").begin_object();
   j.key("vertices").value(r.output_surface.num_vertices());
   j.key("triangles").value(r.output_surface.num_triangles());
@@ -192,7 +213,7 @@ std::string mesh_report_json(const MeshJobResult& r) {
   }
   j.end_array();
   j.end_object();
-  j.key("warnings").array(r.warnings);
+  write_warnings(j, r.warnings, face);
   j.key("seconds").value(r.seconds_total);
   j.end_object();
   return j.str();

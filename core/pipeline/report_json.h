@@ -5,20 +5,24 @@
 #include <string>
 
 #include "core/pipeline/mesh_job.h"
+#include "core/pipeline/option_table.h"
 #include "core/pipeline/prepare_surface.h"
 
 namespace vm {
 
-/// Keys: vertices, triangles, input_triangles, format ("binary"|"ascii"),
+/// Keys: vertices, triangles, input_triangles, format (what the file was:
+/// "binary STL", ...), label_array, units {unit, guessed, certain, reason},
 /// bounding_box {min, max, diagonal}, components, openings [{perimeter,
-/// radius, centroid, normal, vertices}], closed, genus (null if undefined),
-/// euler_characteristic, boundary_edges, nonmanifold_edges,
-/// nonmanifold_vertices, repairs {...}, quality {min, mean, max, histogram},
-/// warnings [..].
-std::string analysis_json(const PreparedSurface& surface);
+/// radius, centroid, normal, vertices, source ("file" | "cap"), label,
+/// name (the group name it gets by default)}], caps_removed, closed, genus
+/// (null if undefined), euler_characteristic, boundary_edges,
+/// nonmanifold_edges, nonmanifold_vertices, repairs {...}, quality {min,
+/// mean, max, histogram}, warnings [..]. Options in warnings are named in
+/// the words of `face`.
+std::string analysis_json(const PreparedSurface& surface, OptionFace face = kFaceCli);
 
 /// Keys: input (analysis_json), output {vertices, triangles, quality,
 /// groups [...]}, warnings, seconds.
-std::string mesh_report_json(const MeshJobResult& result);
+std::string mesh_report_json(const MeshJobResult& result, OptionFace face = kFaceCli);
 
 }  // namespace vm

@@ -86,7 +86,7 @@ TEST(MeshJob, SeveralComponentsAreRefusedUnlessLargestIsKept) {
   EXPECT_NE(r.message().find("{largest_component}"), std::string::npos) << r.message();
 
   MeshJobOptions o;
-  o.largest_component_only = true;
+  o.prepare.largest_component_only = true;
   o.remesh = false;
   r = run_mesh_job(bytes, o);
   ASSERT_TRUE(r.ok()) << r.message();
@@ -342,8 +342,10 @@ TEST(ReportJson, HasTheDocumentedKeys) {
   ASSERT_TRUE(r.ok());
   std::string a = analysis_json(r.value().surface);
   for (const char* key : {"\"vertices\":96", "\"triangles\":160", "\"components\":1",
-                          "\"openings\":[{\"perimeter\":", "\"genus\":0", "\"nonmanifold_edges\":0",
-                          "\"quality\":{\"min\":", "\"closed\":false", "\"format\":\"binary\""})
+                          "\"openings\":[{\"source\":\"file\",\"label\":-1,\"name\":\"inlet\"",
+                          "\"genus\":0", "\"nonmanifold_edges\":0", "\"quality\":{\"min\":",
+                          "\"closed\":false", "\"format\":\"binary STL\"", "\"caps_removed\":0",
+                          "\"units\":{\"unit\":\"mm\",\"guessed\":true,\"certain\":false"})
     EXPECT_NE(a.find(key), std::string::npos) << key << " in " << a;
   EXPECT_EQ(count(a, "\"radius\":"), 2u);
   std::string m = mesh_report_json(r.value());

@@ -1,0 +1,350 @@
+// Planar caps of a capped vessel model (recognize_caps.h).
+#include "core/prepare/recognize_caps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <queue>
+#include <tuple>
+
+#include "core/geom/vec3.h"
+
+namespace vm {
+namespace {
+
+using Vec = std::array<double, 3>;
+
+const double* point(const SurfaceMesh& m, int32_t v) { return &m.points[3 * size_t(v)]; }
+
+/// Unit normal and area of triangle t.
+std::pair<Vec, double> triangle_normal(const SurfaceMesh& m, size_t t) {
+  const int32_t* c = &m.triangles[3 * t];
+  double u[3], w[3];
+  Vec n;
+  v3::sub(point(m, c[1]), point(m, c[0]), u);
+  v3::sub(point(m, c[2]), point(m, c[0]), w);
+  v3::cross(u, w, n.data());
+  const double len = v3::norm(n.data());
+  if (len > 0)
+    for (double& x : n) x /= len;
+  return {n, 0.5 * len};
+}
+
+double angle_cos(double degrees) { return std::cos(degrees * std::numbers::pi / 180); }
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+/// Phase 2's view of one candidate region.
+struct Region {
+  std::vector<int32_t> triangles;
+  std::vector<int32_t> rim_half_edges;  ///< half-edges of region triangles across the rim
+  Vec normal{}, centroid{};
+  double area = 0;
+};
+
+/// Shared data of the tests.
+struct Context {
+  const SurfaceMesh& mesh;
+  const TriangleAdjacency& adj;
+  const std::vector<Vec>& normals;
+  const std::vector<double>& areas;
+  const CapRecognitionOptions& options;
+  double total_area = 0;
+};
+
+/// Fills rim, area, mean normal and centroid; false when the region touches
+/// an opening or a non-manifold edge.
+bool describe(const Context& ctx, const std::vector<uint8_t>& in_region, Region& r) {
+  r.rim_half_edges.clear();
+  Vec weighted{};
+  r.area = 0;
+  r.centroid = {};
+  for (int32_t t : r.triangles) {
+    const double a = ctx.areas[size_t(t)];
+    r.area += a;
+    for (int k = 0; k < 3; ++k) {
+      weighted[size_t(k)] += a * ctx.normals[size_t(t)][size_t(k)];
+      for (int c = 0; c < 3; ++c)
+        r.centroid[size_t(k)] += a / 3 * point(ctx.mesh, ctx.mesh.triangles[3 * size_t(t) + c])[k];
+      const int32_t h = 3 * t + k;
+      const int32_t o = ctx.adj.opposite[size_t(h)];
+      if (o < 0) return false;  // an opening or a non-manifold edge
+      if (!in_region[size_t(o / 3)]) r.rim_half_edges.push_back(h);
+    }
+  }
+  if (r.area <= 0) return false;
+  for (double& x : r.centroid) x /= r.area;
+  const double len = v3::norm(weighted.data());
+  if (len <= 0) return false;
+  for (int k = 0; k < 3; ++k) r.normal[size_t(k)] = weighted[size_t(k)] / len;
+  return true;
+}
+
+/// The region's vertices, rim vertices and Euler characteristic.
+struct RegionTopology {
+  std::vector<int32_t> vertices, rim_vertices;
+  long euler = 0;
+  int rim_loops = 0;
+};
+
+RegionTopology region_topology(const Context& ctx, const Region& r) {
+  const SurfaceMesh& m = ctx.mesh;
+  RegionTopology topo;
+  for (int32_t t : r.triangles)
+    for (int c = 0; c < 3; ++c) topo.vertices.push_back(m.triangles[3 * size_t(t) + c]);
+  std::sort(topo.vertices.begin(), topo.vertices.end());
+  topo.vertices.erase(std::unique(topo.vertices.begin(), topo.vertices.end()), topo.vertices.end());
+  // Edges: interior ones are counted twice among the half-edges.
+  const size_t half_edges = 3 * r.triangles.size();
+  const size_t edges = (half_edges + r.rim_half_edges.size()) / 2;
+  topo.euler = long(topo.vertices.size()) - long(edges) + long(r.triangles.size());
+  // Rim loops: follow rim half-edges from vertex to vertex.
+  std::vector<std::pair<int32_t, int32_t>> next;  // from -> to
+  for (int32_t h : r.rim_half_edges) next.emplace_back(half_edge_from(m, h), half_edge_to(m, h));
+  std::sort(next.begin(), next.end());
+  for (auto& e : next) topo.rim_vertices.push_back(e.first);
+  // A vertex with two outgoing rim edges: the rim touches itself.
+  for (size_t i = 1; i < next.size(); ++i)
+    if (next[i].first == next[i - 1].first) {
+      topo.rim_loops = -1;
+      return topo;
+    }
+  std::vector<uint8_t> seen(next.size(), 0);
+  for (size_t i = 0; i < next.size(); ++i) {
+    if (seen[i]) continue;
+    ++topo.rim_loops;
+    size_t j = i;
+    while (!seen[j]) {
+      seen[j] = 1;
+      auto it = std::lower_bound(next.begin(), next.end(), std::pair{next[j].second, INT32_MIN});
+      if (it == next.end() || it->first != next[j].second) {
+        topo.rim_loops = -1;
+        return topo;
+      }
+      j = size_t(it - next.begin());
+    }
+  }
+  return topo;
+}
+
+/// Why the region is not a planar disk, or "" when it is (planarity first:
+/// a labelled wall is not planar, and that needs no note).
+std::string planar_disk_problem(const Context& ctx, const Region& r, const RegionTopology& topo) {
+  const CapRecognitionOptions& o = ctx.options;
+  const double cos_limit = angle_cos(o.planar_angle_degrees);
+  for (int32_t t : r.triangles)
+    if (ctx.areas[size_t(t)] > 0 &&
+        v3::dot(ctx.normals[size_t(t)].data(), r.normal.data()) < cos_limit)
+      return "not planar";
+  const double radius = std::sqrt(r.area / std::numbers::pi);
+  for (int32_t v : topo.vertices) {
+    double d[3];
+    v3::sub(point(ctx.mesh, v), r.centroid.data(), d);
+    if (std::abs(v3::dot(d, r.normal.data())) > o.planar_distance * radius) return "not planar";
+  }
+  if (r.area > o.max_area_fraction * ctx.total_area) return "too large a share of the surface";
+  if (topo.rim_loops != 1 || topo.euler != 1) return "not a disk";
+  if (int(topo.rim_vertices.size()) < o.min_rim_vertices) return "too small";
+  return "";
+}
+
+/// Shape tests of an unlabelled candidate: sharp rim, wall at a right angle
+/// going straight back like a vessel of the cap's radius.
+bool looks_like_a_vessel_end(const Context& ctx, const std::vector<uint8_t>& in_region,
+                             const Region& r, const RegionTopology& topo) {
+  const SurfaceMesh& m = ctx.mesh;
+  const CapRecognitionOptions& o = ctx.options;
+  // Sharp rim all around, and the mean angle of the wall to the cap plane.
+  const double sharp = angle_cos(o.rim_angle_degrees);
+  double sin_sum = 0;
+  for (int32_t h : r.rim_half_edges) {
+    const size_t other = size_t(ctx.adj.opposite[size_t(h)] / 3);
+    const double c = v3::dot(ctx.normals[size_t(h / 3)].data(), ctx.normals[other].data());
+    if (c > sharp) return false;
+    sin_sum += std::sqrt(
+        std::max(0.0, 1 - std::pow(v3::dot(ctx.normals[other].data(), r.normal.data()), 2)));
+  }
+  const double mean_angle =
+      std::asin(std::min(1.0, sin_sum / double(r.rim_half_edges.size()))) * 180 / std::numbers::pi;
+  if (mean_angle < o.wall_angle_degrees) return false;
+  // The rim's mean radius about the centroid.
+  double rim_radius = 0;
+  for (int32_t v : topo.rim_vertices) {
+    double d[3];
+    v3::sub(point(m, v), r.centroid.data(), d);
+    rim_radius += v3::norm(d);
+  }
+  rim_radius /= double(topo.rim_vertices.size());
+  // Geodesic distances from the rim over the wall, up to one rim radius.
+  std::vector<double> dist(m.num_vertices(), -1);
+  using Item = std::pair<double, int32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  for (int32_t v : topo.rim_vertices) dist[size_t(v)] = 0, queue.push({0, v});
+  std::vector<double> rate, radius_ratio;
+  while (!queue.empty()) {
+    auto [d, v] = queue.top();
+    queue.pop();
+    if (d > dist[size_t(v)]) continue;
+    if (d > 0.25 * rim_radius) {
+      double p[3];
+      v3::sub(point(m, v), r.centroid.data(), p);
+      const double depth = -v3::dot(p, r.normal.data());
+      for (int k = 0; k < 3; ++k) p[k] += depth * r.normal[size_t(k)];
+      rate.push_back(depth / d);
+      radius_ratio.push_back(v3::norm(p) / rim_radius);
+    }
+    for (int32_t i = ctx.adj.star_offsets[size_t(v)]; i < ctx.adj.star_offsets[size_t(v) + 1];
+         ++i) {
+      const int32_t t = ctx.adj.star[size_t(i)];
+      if (in_region[size_t(t)]) continue;
+      for (int c = 0; c < 3; ++c) {
+        const int32_t w = m.triangles[3 * size_t(t) + size_t(c)];
+        double e[3];
+        v3::sub(point(m, w), point(m, v), e);
+        const double dw = d + v3::norm(e);
+        if (dw <= rim_radius && (dist[size_t(w)] < 0 || dw < dist[size_t(w)])) {
+          dist[size_t(w)] = dw;
+          queue.push({dw, w});
+        }
+      }
+    }
+  }
+  if (rate.size() < 3) return false;
+  const double ratio = median(radius_ratio);
+  return median(rate) >= o.min_depth_rate && ratio >= o.min_radius_ratio &&
+         ratio <= o.max_radius_ratio;
+}
+
+/// Connected parts of the triangles with in_set != 0, joined across manifold
+/// edges whose both triangles pass `joins(t, s)`.
+template <class Joins>
+std::vector<std::vector<int32_t>> grow_regions(const Context& ctx,
+                                               const std::vector<uint8_t>& in_set, Joins joins) {
+  std::vector<std::vector<int32_t>> regions;
+  std::vector<uint8_t> done(in_set.size(), 0);
+  for (size_t seed = 0; seed < in_set.size(); ++seed) {
+    if (!in_set[seed] || done[seed]) continue;
+    std::vector<int32_t> region = {int32_t(seed)};
+    done[seed] = 1;
+    for (size_t i = 0; i < region.size(); ++i) {
+      const int32_t t = region[i];
+      for (int k = 0; k < 3; ++k) {
+        const int32_t o = ctx.adj.opposite[size_t(3 * t + k)];
+        if (o < 0) continue;
+        const int32_t s = o / 3;
+        if (!in_set[size_t(s)] || done[size_t(s)] || !joins(int32_t(seed), t, s)) continue;
+        done[size_t(s)] = 1;
+        region.push_back(s);
+      }
+    }
+    regions.push_back(std::move(region));
+  }
+  return regions;
+}
+
+std::string label_text(int32_t label, std::span<const std::pair<int32_t, std::string>> names) {
+  for (const auto& [l, n] : names)
+    if (l == label && !n.empty()) return "face " + std::to_string(label) + " (" + n + ")";
+  return "face " + std::to_string(label);
+}
+
+}  // namespace
+
+CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
+                              std::span<const int32_t> labels,
+                              std::span<const std::pair<int32_t, std::string>> label_names,
+                              const CapRecognitionOptions& options) {
+  CapRecognition out;
+  const size_t nt = mesh.num_triangles();
+  std::vector<Vec> normals(nt);
+  std::vector<double> areas(nt);
+  double total = 0;
+  for (size_t t = 0; t < nt; ++t) {
+    std::tie(normals[t], areas[t]) = triangle_normal(mesh, t);
+    total += areas[t];
+  }
+  Context ctx{mesh, adj, normals, areas, options, total};
+  const bool labelled = labels.size() == nt && nt > 0;
+
+  // Phase 1: candidates.
+  std::vector<std::vector<int32_t>> candidates;
+  const std::vector<uint8_t> all(nt, 1);
+  if (labelled) {
+    candidates = grow_regions(ctx, all, [&](int32_t, int32_t t, int32_t s) {
+      return labels[size_t(t)] == labels[size_t(s)];
+    });
+  } else {
+    const double flat = angle_cos(options.planar_angle_degrees);
+    candidates = grow_regions(ctx, all, [&](int32_t seed, int32_t, int32_t s) {
+      return v3::dot(normals[size_t(seed)].data(), normals[size_t(s)].data()) >= flat;
+    });
+  }
+
+  // Phase 2: tests.
+  std::vector<uint8_t> in_region(nt, 0);
+  std::vector<int32_t> owner(mesh.num_vertices(), -1);
+  std::vector<std::vector<int32_t>> kept_vertices;
+  for (auto& triangles : candidates) {
+    if (!labelled && triangles.size() < 2) continue;
+    Region r;
+    r.triangles = std::move(triangles);
+    for (int32_t t : r.triangles) in_region[size_t(t)] = 1;
+    const int32_t label = labelled ? labels[size_t(r.triangles[0])] : -1;
+    bool ok = describe(ctx, in_region, r);
+    RegionTopology topo;
+    std::string problem;
+    if (ok) {
+      topo = region_topology(ctx, r);
+      problem = planar_disk_problem(ctx, r, topo);
+      ok = problem.empty() && (labelled || looks_like_a_vessel_end(ctx, in_region, r, topo));
+    }
+    for (int32_t t : r.triangles) in_region[size_t(t)] = 0;
+    // A labelled face that is planar but not a disk is worth a word; walls
+    // (not planar) are expected.
+    if (labelled && !ok && !problem.empty() && problem != "not planar" &&
+        problem != "too large a share of the surface")
+      out.notes.push_back(label_text(label, label_names) + " is planar but " + problem +
+                          ": kept as wall");
+    if (!ok) continue;
+    RecognizedCap cap;
+    cap.triangles = std::move(r.triangles);
+    cap.label = label;
+    for (const auto& [l, n] : label_names)
+      if (l == label) cap.name = n;
+    cap.area = r.area;
+    cap.radius = std::sqrt(r.area / std::numbers::pi);
+    cap.centroid = r.centroid;
+    cap.normal = r.normal;
+    out.caps.push_back(std::move(cap));
+    kept_vertices.push_back(std::move(topo.vertices));
+  }
+
+  // Phase 3: caps sharing a vertex cannot both become openings.
+  std::vector<uint8_t> drop(out.caps.size(), 0);
+  for (size_t c = 0; c < out.caps.size(); ++c)
+    for (int32_t v : kept_vertices[c]) {
+      if (owner[size_t(v)] >= 0 && owner[size_t(v)] != int32_t(c))
+        drop[c] = drop[size_t(owner[size_t(v)])] = 1;
+      owner[size_t(v)] = int32_t(c);
+    }
+  size_t n = 0;
+  for (size_t c = 0; c < out.caps.size(); ++c) {
+    if (drop[c]) {
+      out.notes.push_back("a flat end at " + std::to_string(out.caps[c].centroid[0]) + ", " +
+                          std::to_string(out.caps[c].centroid[1]) + ", " +
+                          std::to_string(out.caps[c].centroid[2]) +
+                          " touches another one: both kept as wall");
+      continue;
+    }
+    if (n != c) out.caps[n] = std::move(out.caps[c]);
+    ++n;
+  }
+  out.caps.resize(n);
+  return out;
+}
+
+}  // namespace vm

@@ -1,0 +1,84 @@
+// Recognising the planar caps of a capped vessel model (what SimVascular,
+// VMTK and CAD-like segmentation exports hand over: a closed surface whose
+// inlets and outlets are flat disks), so that each can be removed and its rim
+// become an opening that vesselmesh caps itself, with the boundary layer's
+// rings in the cap plane (Marchandise et al., section 2: planar sections for
+// the flow conditions).
+//
+// Phases: (1) candidate regions, from the face labels when the file has them
+// (each connected part of a label), else grown across flat edges from seed
+// triangles, bounded by sharp edges; (2) tests of each candidate: a disk
+// (one component, one boundary loop, Euler characteristic 1), planar, a
+// minority of the surface; without labels also a rim that is sharp all
+// around, a wall meeting it at roughly a right angle and going straight
+// back from it like a vessel of the cap's radius (which a voxel staircase's
+// terrace does not); (3) caps touching each other or an opening are
+// dropped.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/mesh/adjacency.h"
+#include "core/mesh/surface_mesh.h"
+
+namespace vm {
+
+struct CapRecognitionOptions {
+  /// Every triangle normal of a cap lies within this angle of the cap's mean
+  /// normal (degrees).
+  double planar_angle_degrees = 10;
+  /// Every cap vertex lies within this fraction of the cap's equivalent
+  /// radius sqrt(area / pi) from the cap's plane.
+  double planar_distance = 0.03;
+  /// A cap covers at most this fraction of the surface's area.
+  double max_area_fraction = 0.3;
+  /// Without labels: every rim edge turns the normal by more than this
+  /// (degrees) ...
+  double rim_angle_degrees = 40;
+  /// ... the wall meets the cap at a mean angle of at least this (degrees;
+  /// 90 = a right angle) ...
+  double wall_angle_degrees = 55;
+  /// ... and, within one cap radius of the rim (geodesically), the wall goes
+  /// back from the cap plane at least this fast (depth gained per unit of
+  /// geodesic distance, median; 1 = straight back) ...
+  double min_depth_rate = 0.5;
+  /// ... at a distance from the cap's axis within these multiples of the
+  /// rim's mean radius (median).
+  double min_radius_ratio = 0.6, max_radius_ratio = 1.6;
+  /// A cap has at least this many rim vertices.
+  int min_rim_vertices = 3;
+};
+
+/// One recognised cap.
+struct RecognizedCap {
+  std::vector<int32_t> triangles;  ///< triangle indices of the input
+  int32_t label = -1;              ///< its face label, or -1 (found by shape)
+  std::string name;                ///< the label's name in the file, or ""
+  double area = 0;                 ///< model units squared
+  double radius = 0;               ///< equivalent radius sqrt(area / pi)
+  std::array<double, 3> centroid{};
+  std::array<double, 3> normal{};  ///< unit, out of the surface
+};
+
+struct CapRecognition {
+  std::vector<RecognizedCap> caps;
+  /// Why candidates that looked like caps were not taken (a labelled region
+  /// that is not planar, two caps sharing a vertex...), for warnings.
+  std::vector<std::string> notes;
+};
+
+/// Finds the caps of `mesh` (manifold edges expected; consistently outward
+/// oriented, as prepare_surface leaves it). `labels`: one face label per
+/// triangle, or empty; `label_names`: names of labels where the file gives
+/// them. `adj` is build_adjacency(mesh).
+CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
+                              std::span<const int32_t> labels,
+                              std::span<const std::pair<int32_t, std::string>> label_names,
+                              const CapRecognitionOptions& options = {});
+
+}  // namespace vm
