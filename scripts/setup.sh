@@ -6,6 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake ninja-build libeigen3-dev libnanoflann-dev libgtest-dev
+  libxxhash-dev zlib1g-dev
   emscripten chromium gmsh python3-gmsh nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
