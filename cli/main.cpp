@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <new>
@@ -12,18 +13,20 @@
 #include <vector>
 
 #include "cli/args.h"
+#include "core/io/provenance.h"
 #include "core/io/stl.h"
+#include "core/io/zip_writer.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/mesh_job.h"
 #include "core/pipeline/opening_names.h"
 #include "core/pipeline/report_json.h"
+#include "core/pipeline/write_outputs.h"
 #include "core/util/allocator_tuning.h"
+#include "core/util/version.h"
 
 namespace {
 
 using vm::cli::Args;
-
-constexpr const char* kVersion = "0.1.0";
 
 constexpr const char* kIntro =
     R"(vesselmesh: quality meshes for cardiovascular flow simulation
@@ -194,6 +197,68 @@ int cmd_info(int argc, char** argv) {
   return 0;
 }
 
+/// Where and how `mesh` writes: the format (--format, else the output's
+/// extension; a folder for mesh-complete unless the name ends in .zip).
+struct Destination {
+  vm::OutputFormat format = vm::OutputFormat::kMsh;
+  bool zip = false, folder = false;
+};
+
+std::optional<Destination> destination(const std::string& path, const vm::MeshJobOptions& options,
+                                       std::string& error) {
+  Destination d;
+  const bool ends_zip = path.size() > 4 && path.compare(path.size() - 4, 4, ".zip") == 0;
+  const bool dir = !path.empty() && (path.back() == '/' || std::filesystem::is_directory(path));
+  if (options.format) {
+    d.format = *options.format;
+  } else if (dir) {
+    d.format = vm::OutputFormat::kMeshComplete;
+  } else {
+    auto f = vm::format_for_path(path);
+    if (!f.ok()) {
+      error = vm::phrase_error(f.status(), vm::kFaceCli);
+      return std::nullopt;
+    }
+    d.format = f.value();
+  }
+  if (d.format == vm::OutputFormat::kMeshComplete) {
+    d.zip = ends_zip;
+    d.folder = !ends_zip;
+  }
+  if (!options.volume &&
+      (d.format == vm::OutputFormat::kVtu || d.format == vm::OutputFormat::kMeshComplete)) {
+    error = std::string(vm::format_name(d.format)) +
+            " holds a volume mesh: with --surface-only write .msh, .vtp or .stl";
+    return std::nullopt;
+  }
+  return d;
+}
+
+/// Writes the files of `d` at `path`: one file, a zip, or a folder.
+bool write_outputs(const std::string& path, const Destination& d,
+                   const std::vector<vm::OutputFile>& files, std::string& error) {
+  if (d.zip) {
+    auto zip = vm::write_zip(files);
+    if (!zip.ok()) {
+      error = zip.message();
+      return false;
+    }
+    return write_file(path, zip.value().data(), zip.value().size(), error);
+  }
+  if (!d.folder) return write_file(path, files[0].bytes.data(), files[0].bytes.size(), error);
+  for (const vm::OutputFile& f : files) {
+    const std::filesystem::path target = std::filesystem::path(path) / f.path;
+    std::error_code ec;
+    std::filesystem::create_directories(target.parent_path(), ec);
+    if (ec) {
+      error = "cannot create the folder '" + target.parent_path().string() + "': " + ec.message();
+      return false;
+    }
+    if (!write_file(target.string(), f.bytes.data(), f.bytes.size(), error)) return false;
+  }
+  return true;
+}
+
 int cmd_mesh(int argc, char** argv) {
   Args a = vm::cli::parse_args(argc, argv, 2, vm::kCommandMesh);
   if (!a.error.empty()) return usage_error(a.error);
@@ -203,12 +268,21 @@ int cmd_mesh(int argc, char** argv) {
   vm::MeshJobOptions options;
   if (std::string e = vm::cli::apply_all(a, options); !e.empty()) return usage_error(e);
   std::string err;
+  const auto dest = destination(out->text, options, err);
+  if (!dest) return usage_error(err);
   auto bytes = read_file(a.positional[0], err);
   if (!bytes) return fail(err);
   auto r = vm::run_mesh_job(*bytes, options);
   if (!r.ok()) return fail(a.positional[0], r.status());
   const vm::MeshJobResult& res = r.value();
-  if (!write_file(out->text, res.msh.data(), res.msh.size(), err)) return fail(err);
+  vm::WriteOptions wo;
+  wo.msh_version = options.msh_version;
+  wo.units = options.output_units;
+  wo.provenance =
+      vm::provenance_text(vm::kVersion, vm::input_hash(*bytes), vm::options_provenance(a.values));
+  auto files = vm::write_outputs(res, dest->format, wo);
+  if (!files.ok()) return fail(a.positional[0], files.status());
+  if (!write_outputs(out->text, *dest, files.value(), err)) return fail(err);
   if (const vm::OptionValue* rep = a.get("report")) {
     std::string json = vm::mesh_report_json(res) + "\n";
     if (!write_file(rep->text, json.data(), json.size(), err)) return fail(err);
@@ -262,7 +336,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (cmd == "--version") {
-      std::printf("vesselmesh %s\n", kVersion);
+      std::printf("vesselmesh %s\n", vm::kVersion);
       return 0;
     }
     if (cmd == "info") return cmd_info(argc, argv);

@@ -7,20 +7,23 @@
 #include <emscripten/val.h>
 
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/io/provenance.h"
 #include "core/io/stl.h"
+#include "core/io/zip_writer.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/mesh_job.h"
 #include "core/pipeline/option_table.h"
 #include "core/pipeline/report_json.h"
+#include "core/pipeline/write_outputs.h"
+#include "core/util/version.h"
 
 namespace {
 
 using emscripten::val;
-
-constexpr const char* kVersion = "0.1.0";
 
 std::vector<uint8_t> bytes_from(const val& array) {
   const size_t n = array["length"].as<size_t>();
@@ -136,11 +139,14 @@ vm::Result<std::vector<vm::OptionValue>> values_from(const vm::OptionSpec& spec,
   return R(std::move(out));
 }
 
+using Applied = std::vector<std::pair<const vm::OptionSpec*, vm::OptionValue>>;
+
 /// Applies a JS options object to `target` (MeshJobOptions or
 /// PhantomOptions) for `command`; unknown keys are errors, undefined values
-/// are skipped.
+/// are skipped. The values applied are appended to `applied` when given.
 template <class Target>
-vm::Status apply_js_options(Target& target, const val& opts, vm::OptionCommand command) {
+vm::Status apply_js_options(Target& target, const val& opts, vm::OptionCommand command,
+                            Applied* applied = nullptr) {
   if (opts.isUndefined() || opts.isNull()) return vm::Status::Ok();
   val keys = val::global("Object").call<val>("keys", opts);
   const size_t n = keys["length"].as<size_t>();
@@ -152,8 +158,10 @@ vm::Status apply_js_options(Target& target, const val& opts, vm::OptionCommand c
     if (!spec) return vm::Status::BadOption("", "unknown option '" + key + "'");
     auto values = values_from(*spec, v);
     if (!values.ok()) return values.status();
-    for (const vm::OptionValue& o : values.value())
+    for (const vm::OptionValue& o : values.value()) {
       if (vm::Status st = vm::apply_option(target, *spec, o); !st.ok()) return st;
+      if (applied) applied->emplace_back(spec, o);
+    }
   }
   return vm::Status::Ok();
 }
@@ -215,22 +223,90 @@ val analyze(val stl, val opts, val progress) {
   return r;
 }
 
+/// The last meshed result, kept so that export() can write it in another
+/// format without meshing again, with its input's provenance.
+struct LastMesh {
+  vm::MeshJobResult result;
+  std::string provenance;
+};
+std::optional<LastMesh> last_mesh;
+
+/// The files of the last result in `format` as one file (a zip for
+/// mesh-complete): {file, fileName} on `r`; false with `r` an error.
+bool set_file(val& r, vm::OutputFormat format, const vm::MeshJobOptions& options) {
+  vm::WriteOptions wo;
+  wo.msh_version = options.msh_version;
+  wo.units = options.output_units;
+  wo.provenance = last_mesh->provenance;
+  auto files = vm::write_outputs(last_mesh->result, format, wo);
+  if (!files.ok()) {
+    r = error(files.status());
+    return false;
+  }
+  std::string bytes, name;
+  if (format == vm::OutputFormat::kMeshComplete) {
+    auto zip = vm::write_zip(files.value());
+    if (!zip.ok()) {
+      r = error(zip.status());
+      return false;
+    }
+    bytes = std::move(zip).value();
+    name = "mesh-complete.zip";
+  } else {
+    bytes = std::move(files.value()[0].bytes);
+    name = files.value()[0].path;
+  }
+  r.set("file",
+        copy_out(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), "Uint8Array"));
+  r.set("fileName", name);
+  r.set("format", std::string(vm::format_name(format)));
+  return true;
+}
+
 /// options: the JS API's mesh options (the table's mesh options, by their
 /// JS keys, with JS types).
 val mesh(val stl, val opts, val progress) {
+  last_mesh.reset();  // its memory, before meshing again
   vm::MeshJobOptions options;
-  if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh); !st.ok()) return error(st);
+  Applied applied;
+  if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh, &applied); !st.ok())
+    return error(st);
   std::vector<uint8_t> bytes = bytes_from(stl);
   auto result = vm::run_mesh_job(bytes, options, progress_from(progress));
   if (!result.ok()) return error(result.status());
-  const vm::MeshJobResult& res = result.value();
+  last_mesh = LastMesh{
+      std::move(result).value(),
+      vm::provenance_text(vm::kVersion, vm::input_hash(bytes), vm::options_provenance(applied))};
+  const vm::MeshJobResult& res = last_mesh->result;
   val r = val::object();
   r.set("ok", true);
-  r.set("msh",
-        copy_out(reinterpret_cast<const uint8_t*>(res.msh.data()), res.msh.size(), "Uint8Array"));
+  if (!set_file(r, options.format.value_or(vm::OutputFormat::kMsh), options)) return r;
   r.set("reportJson", vm::mesh_report_json(res, vm::kFaceJs));
   set_surface(r, res.output_surface, res.output_quality);
   if (!res.volume.tets.empty()) set_volume(r, res);
+  return r;
+}
+
+/// The last meshed result in another format, without meshing again.
+/// options: format (required), mshVersion, outputUnits.
+val export_mesh(val opts) {
+  if (!last_mesh) return error(vm::Status::Error("nothing to export: mesh a surface first"));
+  vm::MeshJobOptions options;
+  if (!opts.isUndefined() && !opts.isNull()) {
+    val keys = val::global("Object").call<val>("keys", opts);
+    for (size_t i = 0; i < keys["length"].as<size_t>(); ++i) {
+      const std::string key = keys[i].as<std::string>();
+      if (key != "format" && key != "mshVersion" && key != "outputUnits")
+        return error(vm::Status::BadOption(
+            "", "unknown export option '" + key + "' (format, mshVersion, outputUnits)"));
+    }
+  }
+  if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh); !st.ok()) return error(st);
+  if (!options.format)
+    return error(vm::Status::BadOption("format", "is needed: msh, vtu, vtp, stl or mesh-complete"));
+  val r = val::object();
+  r.set("ok", true);
+  set_file(r, *options.format, options);
   return r;
 }
 
@@ -249,7 +325,7 @@ val make_phantom(val opts) {
 
 std::string option_table() { return vm::option_table_json(); }
 
-std::string version() { return kVersion; }
+std::string version() { return vm::kVersion; }
 
 }  // namespace
 
@@ -259,4 +335,5 @@ EMSCRIPTEN_BINDINGS(vesselmesh) {
   emscripten::function("makePhantom", &make_phantom);
   emscripten::function("version", &version);
   emscripten::function("optionTable", &option_table);
+  emscripten::function("exportMesh", &export_mesh);
 }

@@ -71,6 +71,16 @@ void write_header(TextOut& out, const MshModel& m, const char* version) {
   out.str("$MeshFormat\n");
   out.str(version);
   out.str(" 0 8\n$EndMeshFormat\n");
+  if (!m.comment.empty()) {
+    // A section Gmsh and meshio skip (they ignore unknown sections): one
+    // line, no '$' that could end it early.
+    std::string line = m.comment;
+    for (char& c : line)
+      if (c == '\n' || c == '\r' || c == '$') c = ' ';
+    out.str("$Comments\n");
+    out.str(line);
+    out.str("\n$EndComments\n");
+  }
   out.str("$PhysicalNames\n");
   out.integer(m.physicals.size());
   out.ch('\n');
@@ -100,8 +110,8 @@ size_t text_size_bound(const MshModel& m, size_t element_extra) {
   const size_t node_tag = std::to_string(nn).size() + 1, elem_tag = std::to_string(ne).size() + 1;
   size_t refs = 0;
   for (const auto& b : m.blocks) refs += b.nodes.size();
-  return 4096 + 256 * (m.physicals.size() + m.blocks.size()) + nn * (2 * node_tag + 3 * 25) +
-         ne * (elem_tag + element_extra + 1) + refs * node_tag;
+  return 4096 + m.comment.size() + 256 * (m.physicals.size() + m.blocks.size()) +
+         nn * (2 * node_tag + 3 * 25) + ne * (elem_tag + element_extra + 1) + refs * node_tag;
 }
 
 // " n1 n2 ...\n" with one-based node tags.

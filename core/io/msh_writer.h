@@ -35,6 +35,9 @@ struct MshBlock {
 /// Everything written to a file. points: 3 doubles per node; node i is
 /// written with tag i + 1.
 struct MshModel {
+  /// Provenance (one line), written in a $Comments section after the
+  /// header when not empty; readers skip sections they do not know.
+  std::string comment;
   std::vector<double> points;
   std::vector<MshPhysical> physicals;
   std::vector<MshBlock> blocks;

@@ -17,6 +17,7 @@
 #include "core/mesh/surface_distance.h"
 #include "core/mesh/volume_check.h"
 #include "core/pipeline/opening_names.h"
+#include "core/pipeline/write_outputs.h"
 #include "core/quality/tet_quality.h"
 #include "core/volume/boundary_recovery.h"
 #include "core/volume/tetrahedralize.h"
@@ -201,45 +202,9 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   return Status::Ok();
 }
 
-/// The MSH model of a meshed volume: one physical surface per triangle tag
-/// (wall, inlet, outlet_k), the physical volume `lumen`.
-MshModel volume_model(const MeshJobResult& r) {
-  MshModel model;
-  model.points = r.volume.points;
-  // One entity per (group, element type); entity tags count up per dimension.
-  int entity[4] = {0, 0, 0, 0};
-  auto add_block = [&](MshElementType type, int physical, const std::vector<int32_t>& nodes,
-                       const std::vector<int32_t>& tags, int32_t tag) {
-    const size_t n = size_t(nodes_per_element(type));
-    MshBlock b{type, ++entity[element_dimension(type)], physical, {}};
-    for (size_t e = 0; e < tags.size(); ++e)
-      if (tags[e] == tag) b.nodes.insert(b.nodes.end(), &nodes[n * e], &nodes[n * e] + n);
-    if (b.nodes.empty())
-      --entity[element_dimension(type)];
-    else
-      model.blocks.push_back(std::move(b));
-  };
-  for (size_t tag = 0; tag < r.surface_names.size(); ++tag) {
-    if (r.surface_names[tag].empty()) continue;
-    model.physicals.push_back({2, int(tag) + 1, r.surface_names[tag]});
-    add_block(MshElementType::kTriangle, int(tag) + 1, r.volume.triangles, r.volume.triangle_tag,
-              int32_t(tag));
-    add_block(MshElementType::kQuad, int(tag) + 1, r.volume.quads, r.volume.quad_tag, int32_t(tag));
-  }
-  for (size_t region = 0; region < r.region_names.size(); ++region) {
-    if (r.region_names[region].empty()) continue;
-    model.physicals.push_back({3, int(region) + 1, r.region_names[region]});
-    add_block(MshElementType::kTetrahedron, int(region) + 1, r.volume.tets, r.volume.tet_region,
-              int32_t(region));
-    add_block(MshElementType::kPrism, int(region) + 1, r.volume.prisms, r.volume.prism_region,
-              int32_t(region));
-  }
-  return model;
-}
-
 }  // namespace
 
-Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
+Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes,
                                    const MeshJobOptions& options, const ProgressFn& progress) {
   auto t0 = std::chrono::steady_clock::now();
   MeshJobResult r;
@@ -247,7 +212,7 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
   ProgressFn sub = [&](double f, std::string_view stage) {
     return report_progress(progress, 0.2 * f, stage);
   };
-  Result<PreparedSurface> prepared = prepare_surface(stl_bytes, options.prepare, sub);
+  Result<PreparedSurface> prepared = prepare_surface(file_bytes, options.prepare, sub);
   if (!prepared.ok()) return prepared.status();
   r.surface = std::move(prepared).value();
   r.warnings = r.surface.warnings;
@@ -304,27 +269,11 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
   r.output_quality = triangle_qualities(r.output_surface);
   r.output_quality_stats = quality_stats(r.output_quality, options.prepare.histogram_bins);
 
-  MshModel model;
   if (options.volume) {
     Status st = mesh_volume(r, options, wall_sizes, progress);
     if (!st.ok()) return st;
-    model = volume_model(r);
-  } else {
-    model.points = r.output_surface.points;
-    model.physicals.push_back({2, 1, "wall"});
-    model.blocks.push_back({MshElementType::kTriangle, 1, 1, r.output_surface.triangles});
   }
-  if (!report_progress(progress, 0.99, "write")) return Status::Cancelled();
-  for (const MshPhysical& ph : model.physicals) {
-    OutputGroup g{ph.dim, ph.name, 0};
-    for (const MshBlock& b : model.blocks)
-      if (b.physical_tag == ph.tag && element_dimension(b.type) == ph.dim)
-        g.elements += b.nodes.size() / size_t(nodes_per_element(b.type));
-    r.groups.push_back(g);
-  }
-  Result<std::string> text = write_msh(model, options.msh_version);
-  if (!text.ok()) return text.status();
-  r.msh = std::move(text).value();
+  r.groups = output_groups(r);
   report_progress(progress, 1.0, "done");
   r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;

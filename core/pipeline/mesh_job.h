@@ -1,14 +1,16 @@
-// The whole job: STL bytes + options in, MSH text + report out.
-// Stages so far: prepare, surface remeshing (conformal maps), write the
-// remeshed surface as `wall`; caps, layers and volume plug in here later.
+// The whole job: a surface file's bytes and options in, the meshed result
+// and its report out (write_outputs.h writes its files): preparation,
+// surface remeshing by conformal maps, boundary layers, caps, volume.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "core/io/msh_writer.h"
+#include "core/io/output_file.h"
 #include "core/layers/layer_mesh.h"
 #include "core/mesh/volume_mesh.h"
 #include "core/pipeline/prepare_surface.h"
@@ -30,6 +32,10 @@ inline LayerSpec no_vessel_wall() {
 
 struct MeshJobOptions {
   PrepareOptions prepare;
+  /// How the result is to be written (write_outputs.h; the job itself
+  /// writes nothing): the format (none: from the output's file name, else
+  /// MSH), the MSH version, the unit.
+  std::optional<OutputFormat> format;
   MshVersion msh_version = MshVersion::k41;
   /// Remesh the surface (else the repaired input surface is used).
   bool remesh = true;
@@ -101,12 +107,11 @@ struct OutputGroup {
 };
 
 struct MeshJobResult {
-  std::string msh;                    ///< the MSH file contents
   PreparedSurface surface;            ///< the input as read and analyzed
   SurfaceMesh output_surface;         ///< the surface written (wall)
   std::vector<float> output_quality;  ///< gamma_k per output triangle
   QualityStats output_quality_stats;
-  std::vector<OutputGroup> groups;  ///< physical groups written
+  std::vector<OutputGroup> groups;  ///< physical groups of the files (output_groups)
   bool remeshed = false;
   RemeshStats remesh_stats;        ///< when remeshed
   TopologyReport output_topology;  ///< when remeshed (checked equal to the input's)
@@ -133,7 +138,7 @@ struct MeshJobResult {
   double seconds_total = 0;
 };
 
-Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> stl_bytes,
+Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes,
                                    const MeshJobOptions& options = {},
                                    const ProgressFn& progress = {});
 

@@ -3,8 +3,10 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
+#include "core/pipeline/write_outputs.h"
 #include "core/util/json_writer.h"
 
 namespace vm {
@@ -15,6 +17,7 @@ constexpr std::string_view kMeshers[] = {"frontal", "delaunay", "adapt"};
 constexpr std::string_view kMshVersions[] = {"4.1", "2.2"};
 constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm", "torus"};
 constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
+constexpr std::string_view kFormats[] = {"msh", "vtu", "vtp", "stl", "mesh-complete"};
 
 constexpr uint8_t kInfoMesh = kCommandInfo | kCommandMesh;
 
@@ -279,6 +282,16 @@ const OptionSpec kOptions[] = {
      .metavar = "OUT.msh",
      .needs = "a file name",
      .doc = "the file to write (also -o)"},
+    {.id = "format",
+     .cli = "format",
+     .js = "format",
+     .type = T::kChoice,
+     .group = "output",
+     .metavar = "F",
+     .choices = kFormats,
+     .needs = "msh, vtu, vtp, stl or mesh-complete",
+     .doc = "the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip "
+            "or a folder for mesh-complete; JS: msh)"},
     {.id = "output_units",
      .cli = "output-units",
      .js = "outputUnits",
@@ -618,6 +631,10 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
     o.msh_version = v.text == "2.2" ? MshVersion::k22 : MshVersion::k41;
   } else if (id == "units") {
     o.prepare.units = parse_unit(v.text);
+  } else if (id == "format") {
+    auto f = parse_format(v.text);
+    if (!f.ok()) return needs(spec);
+    o.format = f.value();
   } else if (id == "output_units") {
     o.output_units = parse_unit(v.text);
   } else if (id == "keep_caps") {
@@ -676,6 +693,41 @@ Status set_option_text(MeshJobOptions& options, std::string_view id, std::string
   auto v = parse_option_text(*spec, text);
   if (!v.ok()) return v.status();
   return apply_option(options, *spec, v.value());
+}
+
+std::string option_value_text(const OptionSpec& spec, const OptionValue& v) {
+  std::string text = v.opening > 0 ? std::to_string(v.opening) + "=" : "";
+  switch (spec.type) {
+    case T::kNumber:
+    case T::kInteger: {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.17g", v.number);
+      return text + buf;
+    }
+    case T::kFlag:
+      return text + (v.flag ? "true" : "false");
+    case T::kNumbers:
+      for (size_t i = 0; i < v.numbers.size(); ++i) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%s%.17g", i ? "," : "", v.numbers[i]);
+        text += buf;
+      }
+      return text;
+    case T::kChoice:
+    case T::kText:
+      break;
+  }
+  return text + v.text;
+}
+
+std::string options_provenance(std::span<const std::pair<const OptionSpec*, OptionValue>> values) {
+  std::string out;
+  for (const auto& [spec, value] : values) {
+    if (spec->faces == kFaceCli) continue;  // paths and printing change no mesh
+    if (!out.empty()) out += " ";
+    out += std::string(spec->id) + "=" + option_value_text(*spec, value);
+  }
+  return out;
 }
 
 std::string phrase_options(std::string_view message, OptionFace face) {

@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/phantom/vessel_phantom.h"
@@ -124,6 +125,14 @@ Status apply_option(PhantomOptions& options, const OptionSpec& spec, const Optio
 /// Parses `text` for option `id` and applies it (tests, benchmarks, tools):
 /// parse_option_text then apply_option. Unknown ids are kInternal errors.
 Status set_option_text(MeshJobOptions& options, std::string_view id, std::string_view text);
+
+/// The canonical text of a value ("0.2", "true", "2=aorta", "1,0,0,...").
+std::string option_value_text(const OptionSpec& spec, const OptionValue& value);
+
+/// The options a job was given, as provenance: "id=value" separated by
+/// spaces, in the order given, the same text whatever the interface
+/// (options of one interface only, such as output paths, are left out).
+std::string options_provenance(std::span<const std::pair<const OptionSpec*, OptionValue>> values);
 
 /// `message` with every "{id}" of a known option replaced by its name on
 /// `face` ("--size" on the CLI, "size" in JS).

@@ -9,6 +9,7 @@
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/option_table.h"
 #include "core/pipeline/report_json.h"
+#include "core/pipeline/write_outputs.h"
 #include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
 
@@ -65,7 +66,11 @@ TEST(MeshJob, WithoutRemeshingWritesTheInputAsTheWallGroup) {
     o.msh_version = version;
     auto r = run_mesh_job(write_stl_binary(tube), o);
     ASSERT_TRUE(r.ok()) << r.message();
-    const std::string& msh = r.value().msh;
+    WriteOptions wo;
+    wo.msh_version = version;
+    auto files = write_outputs(r.value(), OutputFormat::kMsh, wo);
+    ASSERT_TRUE(files.ok()) << files.message();
+    const std::string& msh = files.value()[0].bytes;
     EXPECT_EQ(
         msh.rfind(version == MshVersion::k41 ? "$MeshFormat\n4.1 0 8\n" : "$MeshFormat\n2.2 0 8\n",
                   0),

@@ -80,6 +80,11 @@ export class VesselmeshClient {
     return this._call('mesh', [bytes, options], onProgress);
   }
 
+  /** The last mesh in another format (API export()): no meshing again. */
+  export(format, options = {}) {
+    return this._call('export', [format, options]);
+  }
+
   /** Generates a phantom STL; options as in the API's makePhantom(). */
   makePhantom(options = {}) {
     return this._call('makePhantom', [options]);

@@ -3,11 +3,12 @@
 // from the worker to the page moved, not copied (a volume of 1M tetrahedra
 // is ~60 MB). The sender's arrays are detached afterwards.
 
-/** @returns {ArrayBuffer[]} the buffers of msh, stl, surface.* and volume.* */
+/** @returns {ArrayBuffer[]} the buffers of file, msh, stl, surface.* and volume.* */
 export function transferables(result) {
   const buffers = new Set();
   const add = (a) => ArrayBuffer.isView(a) && buffers.add(a.buffer);
   if (result && result.ok) {
+    add(result.file);
     add(result.msh);
     add(result.stl);
     for (const part of [result.surface, result.volume]) {

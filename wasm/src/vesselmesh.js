@@ -83,10 +83,12 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * fills the lumen with tetrahedra (unless surfaceOnly). Options: the
      * option table's mesh options by their JS keys (README, "Options";
      * vesselmesh.d.ts). Returns the MSH file bytes, the report, the wall
-     * surface and the volume (see vesselmesh.d.ts, MeshVolume).
-     * @returns {{ok: true, msh: Uint8Array, report: object, surface: object,
-     *   volume?: object} | {ok: false, error: string}} (no volume when
-     *   surfaceOnly)
+     * surface and the volume (see vesselmesh.d.ts, MeshVolume). `file` is
+     * the written file in `format` (default msh, then also as `msh`; a zip
+     * for mesh-complete), `fileName` a name for it.
+     * @returns {{ok: true, file: Uint8Array, fileName: string, format: string,
+     *   msh?: Uint8Array, report: object, surface: object, volume?: object}
+     *   | {ok: false, error: string}} (no volume when surfaceOnly)
      */
     mesh(bytesIn, { onProgress, ...options } = {}) {
       const bytes = asBytes(bytesIn);
@@ -96,10 +98,25 @@ export async function createVesselmesh({ wasmBinary } = {}) {
       const raw = core.mesh(bytes, options, progress);
       if (!raw.ok) return failure(raw);
       return withSurface(raw, {
-        msh: raw.msh,
+        file: raw.file,
+        fileName: raw.fileName,
+        format: raw.format,
+        ...(raw.format === 'msh' && { msh: raw.file }),
         report: JSON.parse(raw.reportJson),
         ...(raw.volume && { volume: raw.volume }),
       });
+    },
+
+    /**
+     * The last meshed result in another format, without meshing again:
+     * 'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete' (a zip of the
+     * folder), with mshVersion and outputUnits as in mesh().
+     * @returns {{ok: true, file: Uint8Array, fileName: string, format: string}
+     *   | {ok: false, error: string}}
+     */
+    export(format, options = {}) {
+      const raw = core.exportMesh({ ...options, format });
+      return raw.ok ? raw : failure(raw);
     },
 
     /**

@@ -1,10 +1,11 @@
 // Module Web Worker serving the vesselmesh API. Protocol:
-//   in:  { id, op: 'analyze' | 'mesh' | 'makePhantom', args: [bytes?, options] }
+//   in:  { id, op: 'analyze' | 'mesh' | 'makePhantom' | 'export', args: [bytes?, options] }
+//        (export: args [format, options]: the last mesh in another format)
 //   out: { type: 'ready', version, optionTable } | { type: 'error', error } once
 //        at start;
 //        { id, type: 'progress', fraction, stage } during a job (at most one
 //        every 50 ms); { id, type: 'result', result } at the end, with the
-//        result's typed-array buffers (msh, stl, surface.*, volume.*)
+//        result's typed-array buffers (file, msh, stl, surface.*, volume.*)
 //        transferred, not copied.
 import { transferables } from './transfer.js';
 import { createVesselmesh } from './vesselmesh.js';
@@ -46,6 +47,9 @@ self.onmessage = async (event) => {
       break;
     case 'makePhantom':
       result = api.makePhantom(args[0]);
+      break;
+    case 'export':
+      result = api.export(args[0], args[1]);
       break;
     default:
       result = { ok: false, error: `unknown operation '${op}'` };

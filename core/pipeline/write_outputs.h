@@ -1,0 +1,55 @@
+// The files of a meshed result, in the format asked: Gmsh MSH (4.1 or 2.2),
+// VTK (the volume as VTU, the boundary faces with their ids as VTP), the
+// remeshed wall as STL, or SimVascular's `mesh-complete` folder for svFSI.
+// Every file records its provenance where the format allows, and may be
+// converted to another length unit.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/io/msh_writer.h"
+#include "core/io/output_file.h"
+#include "core/pipeline/mesh_job.h"
+#include "core/prepare/units.h"
+#include "core/util/result.h"
+
+namespace vm {
+
+/// "msh", "vtu", "vtp", "stl", "mesh-complete".
+std::string_view format_name(OutputFormat format);
+/// The format of a name as format_name gives it.
+Result<OutputFormat> parse_format(std::string_view name);
+/// The format a file name asks for by its extension (.msh, .vtu, .vtp,
+/// .stl, .zip: mesh-complete), case-insensitive. Errors list the extensions.
+Result<OutputFormat> format_for_path(std::string_view path);
+
+struct WriteOptions {
+  MshVersion msh_version = MshVersion::k41;
+  /// The unit to write in (kGuess: the input's, no conversion).
+  LengthUnit units = LengthUnit::kGuess;
+  /// One line of provenance (provenance_text), written where the format
+  /// has room for it: an MSH $Comments section, an XML comment in VTK
+  /// files, the mesh-complete sidecar, the STL header (truncated to 80
+  /// bytes).
+  std::string provenance;
+};
+
+/// The physical groups a result's files have, with their element counts:
+/// one per used surface tag (dimension 2), then one per used region (3);
+/// surface only: `wall`.
+std::vector<OutputGroup> output_groups(const MeshJobResult& result);
+
+/// The MSH model of a result (the volume with its groups, or the wall as
+/// `wall` when surface only), its points scaled by `scale`.
+MshModel msh_model(const MeshJobResult& result, double scale = 1);
+
+/// The result's files in `format`: one file named "mesh.<ext>" for the
+/// single-file formats, the folder's files (paths relative to it) for
+/// mesh-complete. Errors: a volume format (VTU, mesh-complete) for a
+/// surface-only result; a writer's error.
+Result<std::vector<OutputFile>> write_outputs(const MeshJobResult& result, OutputFormat format,
+                                              const WriteOptions& options = {});
+
+}  // namespace vm
