@@ -470,6 +470,16 @@ bool in_range(const OptionSpec& spec, double x) {
   return spec.type != T::kInteger || x == std::floor(x);
 }
 
+/// The shortest of %.15g .. %.17g that reads back to x exactly.
+std::string shortest_text(double x) {
+  char buf[32];
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+    if (std::strtod(buf, nullptr) == x) break;
+  }
+  return buf;
+}
+
 std::string option_name(const OptionSpec& spec, OptionFace face) {
   return face == kFaceCli ? "--" + std::string(spec.cli) : std::string(spec.js);
 }
@@ -699,18 +709,14 @@ std::string option_value_text(const OptionSpec& spec, const OptionValue& v) {
   std::string text = v.opening > 0 ? std::to_string(v.opening) + "=" : "";
   switch (spec.type) {
     case T::kNumber:
-    case T::kInteger: {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%.17g", v.number);
-      return text + buf;
-    }
+    case T::kInteger:
+      return text + shortest_text(v.number);
     case T::kFlag:
       return text + (v.flag ? "true" : "false");
     case T::kNumbers:
       for (size_t i = 0; i < v.numbers.size(); ++i) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%s%.17g", i ? "," : "", v.numbers[i]);
-        text += buf;
+        if (i) text += ',';
+        text += shortest_text(v.numbers[i]);
       }
       return text;
     case T::kChoice:

@@ -119,6 +119,44 @@ PY
 check "two components refused" expect_exit 1 "2 connected components" "$VM" mesh "$T/two.stl" -o "$T/two.msh"
 check "largest component" expect_exit 0 "wrote" "$VM" mesh "$T/two.stl" -o "$T/two.msh" --largest-component
 
+# Capped models, units, names and output formats.
+check "phantom flat caps" expect_exit 0 "wrote" "$VM" phantom "$T/capped.stl" --kind bifurcation --voxel 0.12 --noise 0.3 --flat-caps
+"$VM" info "$T/capped.stl" --json > "$T/capped.json"
+check "caps become openings" [ "$(json "$T/capped.json" "[o['source'] for o in d['openings']], d['caps_removed'], d['closed']")" = "['cap', 'cap', 'cap'] 3 False" ]
+check "info text says from a cap" expect_exit 0 "from a cap" "$VM" info "$T/capped.stl"
+check "keep caps" [ "$("$VM" info "$T/capped.stl" --keep-caps --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(len(d['openings']), d['closed'])")" = "0 True" ]
+check "units guessed mm, unconfirmed" [ "$(json "$T/info.json" "d['units']['unit'], d['units']['guessed'], d['units']['certain']")" = "mm True False" ]
+check "units given" [ "$("$VM" info "$T/bif.stl" --units cm --json | python3 -c "import json,sys; print(json.load(sys.stdin)['units'])")" = "{'unit': 'cm', 'guessed': False, 'certain': True, 'reason': ''}" ]
+check "bad units" expect_exit 2 "--units needs mm, cm or m" "$VM" info "$T/bif.stl" --units inch
+"$VM" phantom "$T/small.stl" --kind tube --voxel 0.2 --scale 0.002 > /dev/null
+check "metres guessed" expect_exit 0 "units:       m (guessed" "$VM" info "$T/small.stl"
+check "mesh named capped" expect_exit 0 "wrote" "$VM" mesh "$T/capped.stl" -o "$T/capped.msh" --size 0.3 --layers 2 --name 2=left --name 1=aorta --report "$T/capped-report.json"
+check "named groups" [ "$(json "$T/capped-report.json" "sorted(g['name'] for g in d['output']['groups'])")" = "['aorta', 'left', 'lumen', 'outlet_1', 'wall']" ]
+check "name reserved" expect_exit 2 "--name cannot be 'lumen'" "$VM" mesh "$T/capped.stl" -o "$T/x.msh" --name 1=lumen
+check "name invalid" expect_exit 2 "--name needs K=NAME with NAME 1-64 letters" "$VM" mesh "$T/capped.stl" -o "$T/x.msh" --name 1=9lives
+check "name without K" expect_exit 2 "--name needs K=VALUE" "$VM" mesh "$T/capped.stl" -o "$T/x.msh" --name left
+check "name out of range" expect_exit 2 "--name names opening 5, but there are 3 openings" "$VM" mesh "$T/capped.stl" -o "$T/x.msh" --name 5=x
+check "name twice" expect_exit 2 "'a' names openings 1 and 2" "$VM" mesh "$T/capped.stl" -o "$T/x.msh" --name 1=a --name 2=a
+for f in vtu vtp stl zip; do
+  check "mesh to .$f" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/out.$f" --size 0.3 --layers 1
+done
+check "mesh-complete folder" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/mc/" --size 0.3 --layers 1
+check "mesh-complete files" [ -f "$T/mc/mesh-complete.mesh.vtu" -a -f "$T/mc/mesh-complete.exterior.vtp" -a -f "$T/mc/mesh-surfaces/outlet_2.vtp" -a -f "$T/mc/mesh-complete.names.json" ]
+check "zip is valid" python3 -m zipfile -t "$T/out.zip"
+check "unknown extension" expect_exit 2 "cannot tell the output format from" "$VM" mesh "$T/bif.stl" -o "$T/out.xyz"
+check "volume format needs a volume" expect_exit 2 "vtu holds a volume mesh" "$VM" mesh "$T/bif.stl" -o "$T/out.vtu" --surface-only
+check "format option wins" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/wall.dat" --format stl --surface-only --size 0.3
+check "provenance in msh" grep -q "^vesselmesh .*; input xxh128:[0-9a-f]\{32\}; options: size=0.3" "$T/capped.msh"
+"$VM" mesh "$T/bif.stl" -o "$T/m.msh" --size 0.3 --layers 0 --surface-only --output-units m --units mm > /dev/null
+check "output units convert" [ "$(python3 -c "
+lines = open('$T/m.msh').read().split('\n')
+box = [abs(float(x)) for x in lines[lines.index('\$Entities') + 2].split()[1:7]]
+print(0.001 < max(box) < 0.02)")" = True ]
+if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import vtk, meshio" 2>/dev/null; then
+  "$VM" mesh "$T/bif.stl" -o "$T/same.msh" --size 0.3 --layers 1 > /dev/null
+  check "VTK and meshio read our VTU/VTP/mesh-complete" /usr/bin/python3 "$(dirname "$0")/../../validation/check_vtk_outputs.py" --msh "$T/same.msh" --vtu "$T/out.vtu" --vtp "$T/out.vtp" --mesh-complete "$T/out.zip"
+fi
+
 # Gmsh reads both versions: the named groups, the element counts of the
 # report, and no inverted tetrahedron (signed volumes from the nodes).
 check "report volume groups" [ "$(json "$T/report.json" "','.join(g['name'] for g in d['output']['groups'])")" = "wall,inlet,outlet_1,outlet_2,lumen" ]

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "core/mesh/enclosed_volume.h"
@@ -361,6 +363,55 @@ TEST(ReportJson, HasTheDocumentedKeys) {
         "\"input_gap_vertices\":", "\"pinned_vertices\":", "\"pinning_rounds\":",
         "\"pinning_reverted\":", "\"size_rounds\":", "\"fidelity\":"})
     EXPECT_NE(m.find(key), std::string::npos) << key << " in " << m;
+}
+
+}  // namespace
+}  // namespace vm
+
+namespace vm {
+namespace {
+
+TEST(MeshJob, ACappedModelGetsItsCapsBackAsNamedOpenings) {
+  PhantomOptions po;
+  po.kind = PhantomKind::kBifurcation;
+  po.voxel = 0.12;
+  po.noise = 0.3;
+  po.flat_caps = true;
+  auto phantom = make_vessel_phantom(po);
+  ASSERT_TRUE(phantom.ok());
+  const std::vector<uint8_t> bytes = write_stl_binary(phantom.value());
+  MeshJobOptions o;
+  ASSERT_TRUE(set_option_text(o, "size", "0.3").ok());
+  ASSERT_TRUE(set_option_text(o, "layers", "2").ok());
+  ASSERT_TRUE(set_option_text(o, "name", "2=left").ok());
+  auto r = run_mesh_job(bytes, o);
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(r.value().surface.caps_removed, 3u);
+  ASSERT_EQ(r.value().surface.topology.openings.size(), 3u);
+  for (const OpeningSource& s : r.value().surface.opening_sources) EXPECT_TRUE(s.cap);
+  EXPECT_EQ(r.value().opening_names, (std::vector<std::string>{"inlet", "left", "outlet_1"}));
+  std::vector<std::string> groups;
+  for (const OutputGroup& g : r.value().groups) groups.push_back(g.name);
+  std::sort(groups.begin(), groups.end());
+  EXPECT_EQ(groups, (std::vector<std::string>{"inlet", "left", "lumen", "outlet_1", "wall"}));
+  // The caps' names follow the openings they close: the `left` cap is the
+  // one nearest opening 2.
+  const auto& opening = r.value().surface.topology.openings[1].centroid;
+  for (const CapInfo& c : r.value().capped.caps) {
+    const double d = std::hypot(c.centroid[0] - opening[0], c.centroid[1] - opening[1],
+                                c.centroid[2] - opening[2]);
+    if (c.name == "left")
+      EXPECT_LT(d, r.value().surface.topology.openings[1].radius);
+    else
+      EXPECT_GT(d, r.value().surface.topology.openings[1].radius);
+  }
+  // Kept caps: a closed wall, no opening group.
+  ASSERT_TRUE(set_option_text(o, "keep_caps", "").ok());
+  o.opening_names.clear();
+  auto kept = run_mesh_job(bytes, o);
+  ASSERT_TRUE(kept.ok()) << kept.message();
+  EXPECT_EQ(kept.value().surface.topology.openings.size(), 0u);
+  EXPECT_EQ(kept.value().groups.size(), 2u);  // wall, lumen
 }
 
 }  // namespace

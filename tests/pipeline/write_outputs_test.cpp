@@ -1,0 +1,133 @@
+#include "core/pipeline/write_outputs.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/io/stl.h"
+#include "core/pipeline/option_table.h"
+#include "tests/support/test_meshes.h"
+#include "tests/support/vtk_xml_reader.h"
+
+namespace vm {
+namespace {
+
+/// A meshed open tube (uniform size, 2 layers), in mm, once; and the same
+/// surface only.
+const MeshJobResult& tube(bool volume) {
+  auto make = [](bool with_volume) {
+    MeshJobOptions o;
+    EXPECT_TRUE(set_option_text(o, "size", "0.4").ok());
+    EXPECT_TRUE(set_option_text(o, "layers", "2").ok());
+    EXPECT_TRUE(set_option_text(o, "units", "mm").ok());
+    o.volume = with_volume;
+    auto r = run_mesh_job(write_stl_binary(testing::open_tube(24, 8, 1.0, 4.0)), o);
+    EXPECT_TRUE(r.ok()) << r.message();
+    return r.ok() ? std::move(r).value() : MeshJobResult{};
+  };
+  static const MeshJobResult with = make(true), without = make(false);
+  return volume ? with : without;
+}
+
+size_t total(const std::vector<OutputGroup>& groups, int dim) {
+  size_t n = 0;
+  for (const OutputGroup& g : groups) n += g.dim == dim ? g.elements : 0;
+  return n;
+}
+
+TEST(WriteOutputs, FormatsByNameAndExtension) {
+  EXPECT_EQ(format_for_path("a/b/Mesh.VTU").value(), OutputFormat::kVtu);
+  EXPECT_EQ(format_for_path("x.zip").value(), OutputFormat::kMeshComplete);
+  EXPECT_EQ(format_for_path("x.msh").value(), OutputFormat::kMsh);
+  auto bad = format_for_path("dir.v2/mesh");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.message().find(".msh (Gmsh), .vtu"), std::string::npos) << bad.message();
+  EXPECT_NE(phrase_options(bad.message(), kFaceCli).find("--format"), std::string::npos);
+  for (auto f : {OutputFormat::kMsh, OutputFormat::kVtu, OutputFormat::kVtp, OutputFormat::kStl,
+                 OutputFormat::kMeshComplete})
+    EXPECT_EQ(parse_format(format_name(f)).value(), f);
+}
+
+TEST(WriteOutputs, GroupsCountTheElementsOfEachTag) {
+  const MeshJobResult& r = tube(true);
+  const auto groups = output_groups(r);
+  ASSERT_EQ(groups.size(), 4u);  // wall, inlet, outlet_1, lumen
+  EXPECT_EQ(groups[0].name, "wall");
+  EXPECT_EQ(groups[3].name, "lumen");
+  EXPECT_EQ(total(groups, 2), r.volume.num_triangles());
+  EXPECT_EQ(total(groups, 3), r.volume.num_tets());
+  EXPECT_EQ(output_groups(tube(false)).size(), 1u);
+}
+
+TEST(WriteOutputs, MshHasTheProvenanceAndTheUnitAsked) {
+  const MeshJobResult& r = tube(true);
+  WriteOptions o;
+  o.provenance = "vesselmesh test; input xxh128:0; options: size=0.4";
+  o.units = LengthUnit::kM;
+  auto files = write_outputs(r, OutputFormat::kMsh, o);
+  ASSERT_TRUE(files.ok()) << files.message();
+  ASSERT_EQ(files.value().size(), 1u);
+  const std::string& msh = files.value()[0].bytes;
+  EXPECT_EQ(files.value()[0].path, "mesh.msh");
+  EXPECT_NE(msh.find("$Comments\n" + o.provenance + "\n$EndComments\n"), std::string::npos);
+  // In metres: the model (mm) is 1000 times smaller.
+  const MshModel mm = msh_model(r), m = msh_model(r, 1e-3);
+  ASSERT_EQ(mm.points.size(), m.points.size());
+  for (size_t i = 0; i < mm.points.size(); i += 97)
+    EXPECT_DOUBLE_EQ(m.points[i], 1e-3 * mm.points[i]);
+  double max_coordinate = 0;
+  for (double x : mm.points) max_coordinate = std::max(max_coordinate, std::abs(x));
+  EXPECT_NEAR(max_coordinate, 4.0, 1e-9);
+}
+
+TEST(WriteOutputs, VtkFilesCarryIdsAndProvenance) {
+  const MeshJobResult& r = tube(true);
+  WriteOptions o;
+  o.provenance = "made by a test";
+  auto vtu = write_outputs(r, OutputFormat::kVtu, o);
+  ASSERT_TRUE(vtu.ok()) << vtu.message();
+  auto grid = testing::read_vtk_xml(vtu.value()[0].bytes);
+  ASSERT_TRUE(grid.ok()) << grid.message();
+  EXPECT_EQ(grid.value().comment, " made by a test ");
+  EXPECT_EQ(grid.value().piece_count("NumberOfCells"), r.volume.num_tets());
+  auto vtp = write_outputs(r, OutputFormat::kVtp, o);
+  ASSERT_TRUE(vtp.ok()) << vtp.message();
+  auto poly = testing::read_vtk_xml(vtp.value()[0].bytes);
+  ASSERT_TRUE(poly.ok()) << poly.message();
+  const auto ids = poly.value().values<int32_t>("CellData", "ModelFaceID");
+  ASSERT_EQ(ids.size(), r.volume.num_triangles());
+  for (size_t t = 0; t < ids.size(); ++t) ASSERT_EQ(ids[t], r.volume.triangle_tag[t] + 1);
+  const auto elements = poly.value().values<int32_t>("CellData", "GlobalElementID");
+  ASSERT_EQ(elements.size(), ids.size());
+  for (int32_t e : elements) ASSERT_GE(e, 1);
+}
+
+TEST(WriteOutputs, MeshCompleteAndTheWallAlone) {
+  auto folder = write_outputs(tube(true), OutputFormat::kMeshComplete);
+  ASSERT_TRUE(folder.ok()) << folder.message();
+  std::vector<std::string> paths;
+  for (const OutputFile& f : folder.value()) paths.push_back(f.path);
+  for (const char* p :
+       {"mesh-complete.mesh.vtu", "mesh-complete.exterior.vtp", "mesh-surfaces/wall.vtp",
+        "mesh-surfaces/inlet.vtp", "mesh-surfaces/outlet_1.vtp", "mesh-complete.names.json"})
+    EXPECT_NE(std::find(paths.begin(), paths.end(), p), paths.end()) << p;
+  auto stl = write_outputs(tube(true), OutputFormat::kStl);
+  ASSERT_TRUE(stl.ok());
+  const std::string& bytes = stl.value()[0].bytes;
+  auto soup = read_stl(std::span(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()));
+  ASSERT_TRUE(soup.ok()) << soup.message();
+  EXPECT_EQ(soup.value().num_triangles(), tube(true).output_surface.num_triangles());
+}
+
+TEST(WriteOutputs, VolumeFormatsNeedAVolume) {
+  for (auto f : {OutputFormat::kVtu, OutputFormat::kMeshComplete}) {
+    auto r = write_outputs(tube(false), f);
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.message().find("surface only ({surface_only})"), std::string::npos) << r.message();
+  }
+  for (auto f : {OutputFormat::kMsh, OutputFormat::kVtp, OutputFormat::kStl})
+    EXPECT_TRUE(write_outputs(tube(false), f).ok());
+}
+
+}  // namespace
+}  // namespace vm
