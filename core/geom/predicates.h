@@ -3,7 +3,7 @@
 // floating-point evaluation accepted when it exceeds Shewchuk's forward
 // error bound, else an exact evaluation in expansion arithmetic. The sign is
 // always the sign of the exact determinant for the given doubles. Shared by
-// the 2D meshers (issue 3) and the 3D Delaunay stage (issue 4).
+// the 2D meshers and the 3D Delaunay stage.
 //
 // insphere_sos adds symbolic perturbation (Edelsbrunner and Muecke,
 // "Simulation of Simplicity", ACM TOG 9, 1990; in the lifted form of

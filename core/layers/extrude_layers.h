@@ -1,4 +1,4 @@
-// Boundary-layer extrusion (DESIGN.md pipeline step 5): the advancing-layer
+// Boundary-layer extrusion (docs/ARCHITECTURE.md, stage 4): the advancing-layer
 // method of Marchandise et al., section 2.2 ("from each surface node a
 // direction is picked ... using Gouraud shading ... the nodes are connected
 // to form layers of prisms that are subsequently subdivided into

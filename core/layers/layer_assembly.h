@@ -1,5 +1,5 @@
-// Pieces the caller assembles a layered volume from (DESIGN.md pipeline
-// step 5 and output conventions; Marchandise et al., section 2.2: the
+// Pieces the caller assembles a layered volume from (docs/
+// ARCHITECTURE.md, stages 4 and 7; Marchandise et al., section 2.2: the
 // prisms are split into tetrahedra, the remaining lumen is filled with
 // tetrahedra bounded by the front and the caps).
 #pragma once

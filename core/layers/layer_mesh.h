@@ -1,4 +1,4 @@
-// Data of the boundary-layer stage (DESIGN.md pipeline step 5; Marchandise
+// Data of the boundary-layer stage (docs/ARCHITECTURE.md, stage 4; Marchandise
 // et al., section 2.2: an advancing-layer mesh grown from the remeshed wall,
 // inward for the viscous layer, outward for the vessel wall, prisms split
 // into tetrahedra). Plain structs; the algorithm is in extrude_layers.h.

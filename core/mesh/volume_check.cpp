@@ -1,4 +1,4 @@
-// Volume mesh checks (DESIGN.md output contract), in phases: element
+// Volume mesh checks (docs/ARCHITECTURE.md, stage 7), in phases: element
 // positivity; every element face listed with its orientation parity and
 // sorted, so the uses of a face are adjacent; conformity and boundary
 // matching on the sorted list; the surface triangles matched against the

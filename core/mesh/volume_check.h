@@ -1,5 +1,5 @@
-// Validity checks of a volume mesh before it is written (DESIGN.md output
-// contract: no inverted element, conforming, every boundary face a surface
+// Validity checks of a volume mesh before it is written (docs/
+// ARCHITECTURE.md, stage 7: no inverted element, conforming, every boundary face a surface
 // triangle, every surface triangle on the boundary or an interface).
 #pragma once
 

@@ -1,5 +1,5 @@
-// The whole job (DESIGN.md pipeline): stage 1 (prepare), stages 2-3 (surface
-// remeshing) and stage 7 (write); the surface is written as the `wall` group.
+// The whole job, stages 1 to 7 of docs/ARCHITECTURE.md: prepare, size field
+// and surface remeshing, boundary layers, caps, volume, assembly and checks.
 #include "core/pipeline/mesh_job.h"
 
 #include <algorithm>
@@ -78,13 +78,13 @@ Result<CappedSurface> cap_and_name(const MeshJobResult& r, const SurfaceMesh& su
   return capped;
 }
 
-/// Stages 4 and 6: caps on the openings, then the tetrahedra of the lumen;
-/// checks the result before anything is written.
+/// Stages 4 to 7: boundary layers, caps on the openings, the tetrahedra of
+/// the lumen, assembly; checks the result before anything is written.
 Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
                    const std::vector<double>& wall_sizes, const ProgressFn& progress) {
   VolumeStats& st = r.volume_stats;
   auto t0 = std::chrono::steady_clock::now();
-  // Stage 5: boundary layers, inward (viscous) and outward (vessel wall),
+  // Stage 4: boundary layers, inward (viscous) and outward (vessel wall),
   // thickness relative to the local radius (half the lumen chord).
   std::optional<LayerMesh> inner, outer;
   if (options.viscous.layers > 0 || options.vessel.layers > 0) {
@@ -108,7 +108,7 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   }
   st.seconds_layers = seconds_since(t0);
 
-  // Stage 4: caps on the core's boundary (the viscous layer's front, else
+  // Stage 5: caps on the core's boundary (the viscous layer's front, else
   // the wall with its rims on their planes).
   t0 = std::chrono::steady_clock::now();
   if (!report_progress(progress, 0.91, "caps")) return Status::Cancelled();

@@ -85,7 +85,7 @@ struct VolumeStats {
   double seconds_fill_refine = 0, seconds_fill_optimize = 0;
 };
 
-/// How faithful the remeshed surface is to its input (issue 3's checks).
+/// How faithful the remeshed surface is to its input.
 struct SurfaceFidelity {
   /// Largest distance of an output vertex to the input surface, relative to
   /// the input's bounding-box diagonal (0 up to rounding: vertices lie on it).

@@ -1,4 +1,5 @@
-// Pipeline stage 1 (DESIGN.md): read, weld, repair, analyze.
+// Stage 1 of the pipeline (docs/ARCHITECTURE.md): read, weld, repair,
+// recognise caps, analyze, decide the unit.
 #include "core/pipeline/prepare_surface.h"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 // Boundary recovery: the tetrahedralization of the region bounded by a
 // closed triangulated surface, in which every surface triangle is a union of
-// faces of the mesh (DESIGN.md pipeline step 6, before refinement).
+// faces of the mesh (docs/ARCHITECTURE.md, stage 6, before refinement).
 //
 // Method (after George, Hecht and Saltel, "Automatic mesh generator with
 // specified boundary", CMAME 92, 1991, and Si, "TetGen, a Delaunay-based

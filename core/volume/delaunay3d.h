@@ -1,5 +1,5 @@
 // Incremental 3D Delaunay triangulation over flat arrays (the kernel of the
-// volume stage, DESIGN.md pipeline step 6).
+// volume stage, docs/ARCHITECTURE.md, stage 6).
 //
 // - Insertion: Bowyer ("Computing Dirichlet tessellations", Comput. J. 24,
 //   1981) and Watson ("Computing the n-dimensional Delaunay tessellation with

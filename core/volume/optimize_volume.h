@@ -1,6 +1,6 @@
 // Sliver removal and quality improvement of a tetrahedral mesh, measured by
-// gamma_t of the seed paper (Marchandise et al., section 3; DESIGN.md
-// pipeline step 6 "then sliver removal (flips, smoothing)").
+// gamma_t of the seed paper (Marchandise et al., section 3; docs/
+// ARCHITECTURE.md, stage 6: sliver removal by flips and smoothing).
 //
 // - Topological improvement (Shewchuk, "Two discrete optimization
 //   algorithms for the topological improvement of tetrahedral meshes",

@@ -1,4 +1,4 @@
-// Volume refinement to a size field (DESIGN.md pipeline step 6, issue 4):
+// Volume refinement to a size field (docs/ARCHITECTURE.md, stage 6):
 // points are inserted inside the tagged region of a constrained Delaunay
 // kernel until its edges are no longer than about h(x), the boundary (its
 // constrained faces and their vertices) staying exactly as it is.

@@ -1,5 +1,6 @@
-// Volume size function of the tetrahedral fill (DESIGN.md pipeline step 6:
-// "refinement to h(x) graded from the layer top to the core size"):
+// Volume size function of the tetrahedral fill (docs/
+// ARCHITECTURE.md, stage 6: refinement to h(x) graded from the layer top to
+// the core size):
 //
 //   h(x) = min(H, min_i (h_i + g |x - x_i|))
 //

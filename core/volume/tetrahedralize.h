@@ -1,5 +1,5 @@
-// The volume stage of the pipeline after boundary recovery (DESIGN.md step
-// 6; Marchandise et al., section 2.2: "a three-dimensional Delaunay mesh
+// The volume stage of the pipeline after boundary recovery (docs/
+// ARCHITECTURE.md, stage 6; Marchandise et al., section 2.2: "a three-dimensional Delaunay mesh
 // generator is called to fill the remaining of the lumen volume with
 // isotropic tetrahedra", measured by gamma_t of section 3): the size field
 // graded from the surface (size_field3d.h), refinement of the recovered
