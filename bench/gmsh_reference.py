@@ -10,7 +10,7 @@ vesselmesh is compared with (issue 3, and the volume issue after it).
 
 One thread (General.NumThreads = 1, Mesh.MaxNumThreads1D/2D/3D = 1). Wall time
 per stage. Quality computed here from node coordinates with the seed's
-formulas (bench/meshquality.py), the same measure as vesselmesh's report:
+formulas (validation/meshquality.py), the same measure as vesselmesh's report:
 gamma_k over the triangles of the input surface's patches (caps excluded),
 gamma_t over the tetrahedra. Gmsh 4.8's Python API has no
 getElementQualities; with a newer Gmsh its 'gamma' is reported beside ours
@@ -29,6 +29,8 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+# The quality measures live with the validation (validation/meshquality.py).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "validation"))
 import meshquality  # noqa: E402
 
 DEFAULT_ANGLE = 40.0

@@ -7,7 +7,7 @@ mode (--per-circumference 20), runs
   vesselmesh mesh IN --surface-only -o OUT --report R.json --param P --mesher2d M
 for P in lscm|harmonic|floater and M in frontal|delaunay|adapt (uniform: all 9;
 N = 20: lscm x 3 meshers, or all 9 with --all-adaptive), recomputes gamma_k
-from the written MSH (bench/meshquality.py, the seed's formula; cross-checked
+from the written MSH (validation/meshquality.py, the seed's formula; cross-checked
 with the report JSON), and runs Gmsh 4.8's own pipeline at the same uniform
 size (bench/gmsh_reference.py, with the HXT volume unless --no-gmsh-volume)
 when the gmsh module is importable. Writes a Markdown report with Table
@@ -27,6 +27,8 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+# The quality measures live with the validation (validation/meshquality.py).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "validation"))
 import benchutil  # noqa: E402
 import meshquality  # noqa: E402
 
@@ -182,7 +184,7 @@ def write_report(args, results, gmsh_ok, started):
               f"machine: indicative only; see bench/remesh_speed.py for medians.")
     md.append("")
     md.append("γ_k = 4 sin a sin b sin c / (sin a + sin b + sin c) (1 equilateral), recomputed from the "
-              "written MSH nodes for ours and from Gmsh's nodes for Gmsh (bench/meshquality.py); ours is "
+              "written MSH nodes for ours and from Gmsh's nodes for Gmsh (validation/meshquality.py); ours is "
               "cross-checked with the `--report` JSON. Gmsh's rows: its own STL remeshing "
               f"(`classifySurfaces` angle {results.get('gmsh_angle', 40)}°, boundary, forReparametrization, "
               "curveAngle 180°; `createGeometry`; MeshSizeMin = MeshSizeMax = h; Mesh.Algorithm 6; one "

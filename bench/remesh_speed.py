@@ -38,6 +38,8 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+# The quality measures live with the validation (validation/meshquality.py).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "validation"))
 import benchutil  # noqa: E402
 import meshquality  # noqa: E402
 

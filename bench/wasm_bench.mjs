@@ -8,6 +8,7 @@ import { basename } from 'node:path';
 import { performance } from 'node:perf_hooks';
 
 import { createVesselmesh } from '../wasm/src/vesselmesh.js';
+import { median } from './benchutil.mjs';
 
 const args = process.argv.slice(2);
 let runs = 7;
@@ -29,11 +30,6 @@ if (voxel > 0) {
   inputs.push({ name: `generated-bifurcation (voxel ${voxel})`, bytes: p.stl });
 }
 
-const median = (v) => {
-  const s = [...v].sort((a, b) => a - b);
-  const n = s.length;
-  return n % 2 ? s[(n - 1) / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
-};
 
 console.log(`${'input'.padEnd(44)} ${'triangles'.padStart(10)} ${'median s'.padStart(10)} ${'Mtri/s'.padStart(12)}`);
 for (const input of inputs) {

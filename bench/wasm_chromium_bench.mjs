@@ -14,12 +14,12 @@ import { basename, extname, join, normalize } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 import { chromium } from 'playwright-core';
-import { parseBenchArgs } from './wasm_bench_args.mjs';
+import { median, parseBenchArgs } from './benchutil.mjs';
 
 const ROOT = fileURLToPath(new URL('..', import.meta.url));
 const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.wasm': 'application/wasm' };
 
-const { file, runs, options } = parseBenchArgs(process.argv.slice(2), 'wasm_chromium_bench.mjs');
+const { file, runs, options } = await parseBenchArgs(process.argv.slice(2), 'wasm_chromium_bench.mjs');
 
 // The repository's files under / (no directory listing), and a blank page.
 const server = createServer((req, res) => {
@@ -83,10 +83,6 @@ try {
   await browser.close();
   server.close();
 }
-if (result.ok) {
-  const s = [...result.seconds].sort((a, b) => a - b);
-  const n = s.length;
-  result.median_seconds = n % 2 ? s[(n - 1) / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
-}
+if (result.ok) result.median_seconds = median(result.seconds);
 console.log(JSON.stringify({ file: basename(file), options, runs, ...result }));
 process.exit(result.ok ? 0 : 1);

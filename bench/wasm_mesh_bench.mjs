@@ -13,18 +13,13 @@
 import { readFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import { performance } from 'node:perf_hooks';
-import { parseBenchArgs } from './wasm_bench_args.mjs';
+import { median, parseBenchArgs } from './benchutil.mjs';
 
 const baselineRss = process.memoryUsage().rss;
 const { createVesselmesh } = await import('../wasm/src/vesselmesh.js');
 
-const { file, runs, options } = parseBenchArgs(process.argv.slice(2), 'wasm_mesh_bench.mjs');
+const { file, runs, options } = await parseBenchArgs(process.argv.slice(2), 'wasm_mesh_bench.mjs');
 
-const median = (v) => {
-  const s = [...v].sort((a, b) => a - b);
-  const n = s.length;
-  return n % 2 ? s[(n - 1) / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
-};
 
 const t0 = performance.now();
 const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
