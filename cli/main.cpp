@@ -176,8 +176,8 @@ bool parse_double(const std::string& s, double& out) {
 
 void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
   const vm::TopologyReport& t = s.topology;
-  std::printf("file:        %s (%s STL, %zu triangles)\n", path.c_str(),
-              s.ascii ? "ASCII" : "binary", s.input_triangles);
+  std::printf("file:        %s (%s, %zu triangles)\n", path.c_str(), s.format.c_str(),
+              s.input_triangles);
   std::printf("welded:      %zu vertices, %zu triangles, %zu edges\n", t.vertices, t.triangles,
               t.edges);
   std::printf("bounding box: [%g, %g, %g] - [%g, %g, %g] (diagonal %g)\n", s.box.min[0],

@@ -27,6 +27,7 @@ std::string analysis_json(const PreparedSurface& s) {
   j.key("triangles").value(t.triangles);
   j.key("input_triangles").value(s.input_triangles);
   j.key("format").value(s.ascii ? "ascii" : "binary");
+  j.key("file_format").value(s.format);
   j.key("bounding_box").begin_object();
   j.key("min").array(s.box.min);
   j.key("max").array(s.box.max);
