@@ -155,7 +155,7 @@ Status Reader::values(uint64_t count, const LegacyType& t, const std::string& wh
   }
   if (binary_) {
     cur_.skip_line_end();
-    uint64_t nbytes = t.kind == Kind::kBit ? (count + 7) / 8 : count;
+    uint64_t nbytes = t.kind == Kind::kBit ? count / 8 + (count % 8 != 0) : count;
     if (t.kind != Kind::kBit && count > cur_.remaining() / t.size) {
       return fail(what + ": the file ends at byte " + num(cur_.size()) + " but " + num(count) +
                   " values of " + num(t.size) + " bytes are announced (the data is cut short or " +
