@@ -227,7 +227,10 @@ Status Reader::read_element(const Element& e) {
   for (const Property& p : e.properties)
     min_bytes += p.is_list() ? p.count_type->size : p.type->size;
   if (format_ == Format::kAscii) min_bytes = 2 * e.properties.size();
-  if (e.count > (cur_.remaining() + 1) / min_bytes) {
+  // (ascii: the last token needs no separator).
+  const uint64_t room =
+      format_ == Format::kAscii ? (cur_.remaining() + 1) / min_bytes : cur_.remaining() / min_bytes;
+  if (e.count > room) {
     return Status::Error("PLY element '" + e.name + "' (header line " + num(e.header_line) +
                          ") declares " + num(e.count) + " elements of at least " + num(min_bytes) +
                          " bytes but only " + num(cur_.remaining()) +
@@ -311,8 +314,11 @@ Status Reader::read_element(const Element& e) {
                              "' has a negative length");
       }
       const uint64_t len = uint64_t(iv);
-      const uint64_t item_min = format_ == Format::kAscii ? 2 : p.type->size;
-      if (len > (cur_.remaining() + 1) / item_min) {
+      // Binary: the items must fit in the bytes left (they may be skipped
+      // whole); ascii: one token of at least 2 bytes each but the last.
+      const uint64_t room =
+          format_ == Format::kAscii ? (cur_.remaining() + 1) / 2 : cur_.remaining() / p.type->size;
+      if (len > room) {
         return Status::Error("PLY data ends in element '" + e.name + "' number " + num(n) + " of " +
                              num(e.count) + ": its list '" + p.name + "' announces " + num(len) +
                              " items");

@@ -54,8 +54,9 @@ class TextCursor {
   size_t line() const { return line_; }
   size_t pos() const { return pos_; }
   size_t size() const { return n_; }
-  /// Moves `count` bytes forward. Precondition: pos() + count <= size().
-  void skip(size_t count) { pos_ += count; }
+  /// Moves `count` bytes forward (callers check remaining() first; the
+  /// cursor never moves past the end).
+  void skip(size_t count) { pos_ += count < n_ - pos_ ? count : n_ - pos_; }
   const uint8_t* data_at_pos() const { return reinterpret_cast<const uint8_t*>(p_ + pos_); }
   size_t remaining() const { return n_ - pos_; }
 

@@ -143,7 +143,7 @@ class VtpWriter {
   template <class T>
   Bytes raw(const std::vector<T>& v) const {
     Bytes b(v.size() * sizeof(T));
-    std::memcpy(b.data(), v.data(), b.size());
+    if (!v.empty()) std::memcpy(b.data(), v.data(), b.size());
     if (s_.big_endian)
       for (size_t i = 0; i < b.size(); i += sizeof(T))
         std::reverse(b.begin() + long(i), b.begin() + long(i + sizeof(T)));
