@@ -118,13 +118,16 @@ bool looks_like_obj(std::span<const uint8_t> b) {
 }
 
 Format sniff(std::span<const uint8_t> bytes) {
+  // The binary STL size law first: its 80-byte header is free text (it may
+  // start like another format), and text never satisfies the law (bytes
+  // 80-83 of text read as a count above 0x09090909, a file of gigabytes).
+  if (bytes.size() >= 84 && 84 + 50 * uint64_t(read_u32le(bytes.data() + 80)) == bytes.size())
+    return Format::kStl;
   std::string_view s = content_start(bytes);
   if (s.starts_with("<?xml") || s.starts_with("<VTKFile")) return Format::kVtkXml;
   if (istarts_with(s, "# vtk DataFile")) return Format::kVtkLegacy;
   if (s.starts_with("ply") && s.size() > 3 && (s[3] == '\n' || s[3] == '\r')) return Format::kPly;
   if (istarts_with(s, "solid")) return Format::kStl;
-  if (bytes.size() >= 84 && 84 + 50 * uint64_t(read_u32le(bytes.data() + 80)) == bytes.size())
-    return Format::kStl;
   if (looks_like_binary_stl(bytes)) return Format::kStl;
   if (looks_like_obj(bytes)) return Format::kObj;
   return Format::kUnknown;

@@ -162,6 +162,15 @@ TEST(ReadSurface, ClearlyStlKeepsStlMessages) {
   EXPECT_HAS(error_of(Bytes(zeroed.begin(), zeroed.begin() + 700)), "truncated binary STL");
 }
 
+TEST(ReadSurface, BinaryStlWhoseHeaderLooksLikeAnotherFormat) {
+  for (const char* header : {"<?xml version", "ply\nformat", "# vtk DataFile", "v 1 2 3\n"}) {
+    Bytes stl = write_stl_binary(float_tube(), header);
+    auto r = read_surface(stl);
+    ASSERT_TRUE(r.ok()) << r.message();
+    EXPECT_EQ(r.value().format, "binary STL");
+  }
+}
+
 TEST(ReadSurface, GzipErrors) {
   // The inner file's own error, prefixed.
   EXPECT_EQ(error_of(testing::gzip(to_bytes("hello"))),
