@@ -77,7 +77,7 @@ test('bad inputs give readable errors and the page keeps working', async ({ page
   await expect(error).toContainText('empty.stl: empty file');
 
   await upload(page, 'garbage.stl', Buffer.from('this is not a mesh\n'));
-  await expect(error).toContainText('garbage.stl: not an STL file');
+  await expect(error).toContainText('garbage.stl: not a surface file this tool reads');
 
   const truncated = openBoxBinary().subarray(0, 300);
   await upload(page, 'truncated.stl', truncated);

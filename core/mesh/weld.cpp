@@ -216,21 +216,13 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts, double t
   return parent;
 }
 
-}  // namespace
-
-SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options, WeldStats* stats) {
-  const size_t corners = soup.coords.size() / 3;
-  const float* c = soup.coords.data();
-  // Phase 1: exact duplicates.
-  std::vector<int32_t> corner_to_unique(corners);
-  std::vector<int32_t> unique_corner;  // first corner of each unique point
-  if (!weld_exact(c, corners, locality_cell_size(soup), corner_to_unique, unique_corner))
-    weld_exact(c, corners, 0.0, corner_to_unique, unique_corner);
-  std::vector<double> pts(3 * unique_corner.size());
-  for (size_t u = 0; u < unique_corner.size(); ++u)
-    for (int k = 0; k < 3; ++k) pts[3 * u + k] = c[3 * size_t(unique_corner[u]) + k];
-
-  // Phase 2: near duplicates.
+// Phases 2 and 3, shared by both weld() overloads: merges the distinct
+// points `pts` closer than the tolerance and builds the mesh whose corner i
+// is unique point corner_to_unique[i].
+SurfaceMesh merge_and_index(const std::vector<double>& pts,
+                            const std::vector<int32_t>& corner_to_unique,
+                            const WeldOptions& options, WeldStats* stats) {
+  const size_t corners = corner_to_unique.size();
   double tol = options.relative_tolerance * bounding_box(pts).diagonal();
   size_t merged = 0;
   std::vector<int32_t> rep = merge_close_points(pts, tol, &merged);
@@ -255,6 +247,64 @@ SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options, WeldStats
     stats->merged_by_tolerance = merged;
   }
   return mesh;
+}
+
+}  // namespace
+
+SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options, WeldStats* stats) {
+  const size_t corners = soup.coords.size() / 3;
+  const float* c = soup.coords.data();
+  // Phase 1: exact duplicates.
+  std::vector<int32_t> corner_to_unique(corners);
+  std::vector<int32_t> unique_corner;  // first corner of each unique point
+  if (!weld_exact(c, corners, locality_cell_size(soup), corner_to_unique, unique_corner))
+    weld_exact(c, corners, 0.0, corner_to_unique, unique_corner);
+  std::vector<double> pts(3 * unique_corner.size());
+  for (size_t u = 0; u < unique_corner.size(); ++u)
+    for (int k = 0; k < 3; ++k) pts[3 * u + k] = c[3 * size_t(unique_corner[u]) + k];
+  unique_corner = {};
+  return merge_and_index(pts, corner_to_unique, options, stats);
+}
+
+SurfaceMesh weld(const std::vector<double>& points, const std::vector<int32_t>& triangles,
+                 const WeldOptions& options, WeldStats* stats) {
+  const size_t corners = triangles.size();
+  // Points in order of first use by a corner (unused points are dropped).
+  std::vector<int32_t> first_use(points.size() / 3, -1);
+  std::vector<int32_t> used;
+  for (size_t i = 0; i < corners; ++i) {
+    int32_t p = triangles[i];
+    if (first_use[p] < 0) {
+      first_use[p] = int32_t(used.size());
+      used.push_back(p);
+    }
+  }
+  // Phase 1: exact duplicates among the used points (-0 equals +0).
+  auto bits = [](double x) {
+    if (x == 0.0) x = 0.0;
+    uint64_t u;
+    std::memcpy(&u, &x, 8);
+    return u;
+  };
+  IndexHashTable table(used.size());
+  std::vector<double> pts;
+  pts.reserve(3 * used.size());
+  std::vector<int32_t> used_to_unique(used.size());
+  for (size_t u = 0; u < used.size(); ++u) {
+    const double* p = &points[3 * size_t(used[u])];
+    int32_t candidate = int32_t(pts.size() / 3);
+    int32_t found =
+        table.find_or_insert(hash3(bits(p[0]), bits(p[1]), bits(p[2])), candidate, [&](int32_t s) {
+          const double* q = &pts[3 * size_t(s)];
+          return q[0] == p[0] && q[1] == p[1] && q[2] == p[2];
+        });
+    if (found == candidate) pts.insert(pts.end(), p, p + 3);
+    used_to_unique[u] = found;
+  }
+  std::vector<int32_t> corner_to_unique(corners);
+  for (size_t i = 0; i < corners; ++i)
+    corner_to_unique[i] = used_to_unique[size_t(first_use[triangles[i]])];
+  return merge_and_index(pts, corner_to_unique, options, stats);
 }
 
 }  // namespace vm

@@ -1,4 +1,5 @@
-// Welding an STL triangle soup into an indexed surface.
+// Welding an STL triangle soup, or the indexed points of another surface
+// format, into an indexed surface.
 #pragma once
 
 #include "core/io/stl.h"
@@ -24,5 +25,18 @@ struct WeldStats {
 /// the tolerance size for the near-coincident ones).
 SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options = {},
                  WeldStats* stats = nullptr);
+
+/// The same for an indexed surface as the non-STL readers give it (see
+/// surface_file.h): points (3 doubles each) that are bit-identical (-0 and
+/// +0 alike) become one vertex, then points closer than the tolerance
+/// (relative to the bounding-box diagonal of the used points). Points no
+/// triangle uses are dropped. Vertices come in order of first use by a
+/// corner, so the result equals the soup weld of the same triangles when the
+/// coordinates are floats; triangles keep their order and corner order.
+/// stats->corners is triangles.size(), exact_unique the distinct used points.
+/// Precondition: triangles.size() % 3 == 0 and every index is in
+/// [0, points.size() / 3).
+SurfaceMesh weld(const std::vector<double>& points, const std::vector<int32_t>& triangles,
+                 const WeldOptions& options = {}, WeldStats* stats = nullptr);
 
 }  // namespace vm

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <optional>
 #include <tuple>
 
@@ -51,31 +52,34 @@ std::vector<size_t> cap_openings_map(const CappedSurface& capped,
   return of_cap;
 }
 
-/// Caps on the openings of `surface`, the chosen inlet first (tag 1), each
-/// named after the input opening it closes.
+/// Caps on the openings of `surface`, each named after the input opening it
+/// closes; tags in the order of the names: the chosen inlet first (tag 1),
+/// then the others in the analysis' order.
 Result<CappedSurface> cap_and_name(const MeshJobResult& r, const SurfaceMesh& surface,
                                    const std::vector<double>& sizes, int inlet) {
-  auto capped = cap_openings(surface, sizes);
-  if (!capped.ok() || capped.value().caps.empty()) return capped;
+  auto result = cap_openings(surface, sizes);
+  if (!result.ok() || result.value().caps.empty()) return result;
+  CappedSurface& capped = result.value();
   const std::vector<Opening>& in = r.surface.topology.openings;
-  if (capped.value().caps.size() != in.size())
-    return Status::Internal("the wall has " + std::to_string(capped.value().caps.size()) +
+  if (capped.caps.size() != in.size())
+    return Status::Internal("the wall has " + std::to_string(capped.caps.size()) +
                             " openings, the input " + std::to_string(in.size()));
-  std::vector<size_t> of_cap = cap_openings_map(capped.value(), in);
-  const size_t inlet_cap =
-      size_t(std::find(of_cap.begin(), of_cap.end(), size_t(inlet)) - of_cap.begin());
-  if (inlet_cap != 0) {
-    // Caps come by decreasing area: caps[i] is the i-th largest, which
-    // inlet_index counts in.
-    CapOptions co;
-    co.inlet_index = int(inlet_cap);
-    capped = cap_openings(surface, sizes, co);
-    if (!capped.ok()) return capped;
-    of_cap = cap_openings_map(capped.value(), in);
+  const std::vector<size_t> of_cap = cap_openings_map(capped, in);
+  std::vector<size_t> order(of_cap.size());  // caps in their new tag order
+  std::iota(order.begin(), order.end(), 0);
+  auto rank = [&](size_t c) { return of_cap[c] == size_t(inlet) ? 0 : of_cap[c] + 1; };
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return rank(a) < rank(b); });
+  std::vector<CapInfo> caps;
+  std::vector<int32_t> new_tag(capped.caps.size() + 1, 0);
+  for (size_t k = 0; k < order.size(); ++k) {
+    caps.push_back(std::move(capped.caps[order[k]]));
+    new_tag[size_t(caps.back().tag)] = int32_t(k + 1);
+    caps.back().tag = int32_t(k + 1);
+    caps.back().name = r.opening_names[of_cap[order[k]]];
   }
-  for (size_t c = 0; c < of_cap.size(); ++c)
-    capped.value().caps[c].name = r.opening_names[of_cap[c]];
-  return capped;
+  capped.caps = std::move(caps);
+  for (int32_t& tag : capped.triangle_tag) tag = new_tag[size_t(tag)];
+  return result;
 }
 
 /// Stages 4 to 7: boundary layers, caps on the openings, the tetrahedra of

@@ -40,18 +40,27 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
                                         const PrepareOptions& options, const ProgressFn& progress) {
   PreparedSurface s;
   if (!report_progress(progress, 0.0, "read")) return cancelled();
-  Result<TriangleSoup> soup = read_stl(stl_bytes, options.read);
-  if (!soup.ok()) return soup.status();
-  s.ascii = soup.value().ascii;
-  s.input_triangles = soup.value().num_triangles();
-  s.warnings = soup.value().warnings;
+  SurfaceReadOptions read_options;
+  read_options.max_triangles = options.read.max_triangles;
+  Result<SurfaceFile> file = read_surface(stl_bytes, read_options);
+  if (!file.ok()) return file.status();
+  s.ascii = file.value().soup.ascii;
+  s.format = file.value().format;
+  s.input_triangles = file.value().num_triangles();
+  s.warnings = file.value().warnings;
 
   if (!report_progress(progress, 0.25, "weld")) return cancelled();
-  s.format = s.ascii ? "ASCII STL" : "binary STL";
-  std::vector<int32_t> labels;  // per triangle, or empty
-  std::vector<std::pair<int32_t, std::string>> face_names;
-  s.mesh = weld(soup.value(), options.weld, &s.weld);
-  soup = Result<TriangleSoup>::Error("released");  // free the soup early
+  // Face labels (per triangle) follow the triangles through every step.
+  std::vector<int32_t> labels = std::move(file.value().face_labels);
+  const std::vector<std::pair<int32_t, std::string>> face_names =
+      std::move(file.value().face_names);
+  s.label_array = file.value().label_array;
+  if (!file.value().soup.coords.empty()) {
+    s.mesh = weld(file.value().soup, options.weld, &s.weld);
+  } else {
+    s.mesh = weld(file.value().points, file.value().triangles, options.weld, &s.weld);
+  }
+  file = Result<SurfaceFile>::Error("released");  // free the file's arrays early
   if (s.weld.merged_by_tolerance > 0) {
     s.warnings.push_back(num(s.weld.merged_by_tolerance) +
                          " nearly coincident vertices were merged");

@@ -1,4 +1,4 @@
-// Stage 1 of the pipeline: read an STL, weld, repair and analyze it.
+// Stage 1 of the pipeline: read a surface file, weld, repair and analyze it.
 #pragma once
 
 #include <cstdint>
@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/io/read_surface.h"
 #include "core/io/stl.h"
 #include "core/mesh/repair.h"
 #include "core/mesh/surface_mesh.h"
@@ -44,7 +45,8 @@ struct OpeningSource {
 /// The welded, repaired surface and everything known about it.
 struct PreparedSurface {
   SurfaceMesh mesh;
-  bool ascii = false;
+  bool ascii = false;          ///< ASCII STL
+  std::string format;          ///< what was read (SurfaceFile::format), e.g. "binary STL"
   size_t input_triangles = 0;  ///< triangles in the file
   WeldStats weld;
   RepairStats repair;
@@ -66,7 +68,8 @@ struct PreparedSurface {
   std::vector<std::string> warnings;
 };
 
-/// Reads `stl_bytes` and prepares the surface. Errors are the reader's, or
+/// Reads `stl_bytes` (any format read_surface reads, despite the name) and
+/// prepares the surface. Errors are the reader's, or
 /// "no triangle left" when every triangle was degenerate.
 Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
                                         const PrepareOptions& options = {},

@@ -34,7 +34,7 @@ check "missing file" expect_exit 1 "cannot open '$T/none.stl'" "$VM" info "$T/no
 : > "$T/empty.stl"
 check "empty file" expect_exit 1 "empty file" "$VM" info "$T/empty.stl"
 printf 'this is not a mesh at all\n' > "$T/garbage.stl"
-check "garbage" expect_exit 1 "not an STL" "$VM" info "$T/garbage.stl"
+check "garbage" expect_exit 1 "not a surface file this tool reads" "$VM" info "$T/garbage.stl"
 
 check "phantom" expect_exit 0 "wrote" "$VM" phantom "$T/bif.stl" --kind bifurcation --voxel 0.1 --noise 0.3
 check "phantom bad kind" expect_exit 2 "--kind needs bifurcation, tube, aneurysm or torus" "$VM" phantom "$T/x.stl" --kind blob

@@ -76,3 +76,41 @@ TEST(Weld, FarFromTheOriginStillWelds) {
 
 }  // namespace
 }  // namespace vm
+
+namespace vm {
+namespace {
+
+TEST(WeldIndexed, SameAsTheSoupWeldForFloatCoordinates) {
+  SurfaceMesh tube = testing::open_tube(16, 6);
+  for (double& x : tube.points) x = double(float(x));
+  WeldStats soup_stats, stats;
+  SurfaceMesh a = weld(soup_of(tube), {}, &soup_stats);
+  SurfaceMesh b = weld(tube.points, tube.triangles, {}, &stats);
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(stats.corners, soup_stats.corners);
+  EXPECT_EQ(stats.exact_unique, soup_stats.exact_unique);
+}
+
+TEST(WeldIndexed, MergesDuplicatesDropsUnusedKeepsOrder) {
+  // Point 1 unused; point 4 duplicates point 0 bit for bit (with -0); point
+  // 5 is point 2 moved by 1e-12 (within 1e-7 of the diagonal).
+  std::vector<double> pts = {0, 0,    0, 9, 9,         9, 1, 0, 0, 0, 1,
+                             0, -0.0, 0, 0, 1 + 1e-12, 0, 0, 0, 0, 1};
+  std::vector<int32_t> tri = {3, 0, 2, 4, 5, 6};
+  WeldStats stats;
+  SurfaceMesh m = weld(pts, tri, {}, &stats);
+  // First use: 3 -> 0, 0 -> 1, 2 -> 2, 6 -> 3.
+  EXPECT_EQ(m.points, (std::vector<double>{0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}));
+  EXPECT_EQ(m.triangles, (std::vector<int32_t>{0, 1, 2, 1, 2, 3}));
+  EXPECT_EQ(stats.corners, 6u);
+  EXPECT_EQ(stats.exact_unique, 5u);
+  EXPECT_EQ(stats.merged_by_tolerance, 1u);
+  // Doubles keep their precision: 1e-12 apart stays apart without tolerance.
+  WeldOptions exact;
+  exact.relative_tolerance = 0;
+  EXPECT_EQ(weld(pts, tri, exact).num_vertices(), 5u);
+}
+
+}  // namespace
+}  // namespace vm

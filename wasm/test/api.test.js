@@ -196,7 +196,7 @@ describe('analyze', () => {
   test('bad inputs give specific errors', () => {
     const cases = [
       [new Uint8Array(0), /empty file/],
-      [ascii('hello, not a mesh\n'), /not an STL/],
+      [ascii('hello, not a mesh\n'), /not a surface file this tool reads/],
       [ascii('solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex nan 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid x\n'), /NaN/],
     ];
     const p = api.makePhantom({ noise: 0.3, voxel: 0.2 });

@@ -1,0 +1,210 @@
+// Format sniffing: the reader is chosen by the first bytes of the content
+// (magic numbers and keywords of each format), never by a file name, so a
+// misnamed file is still read and bytes of no known format get a message
+// listing what is supported instead of a misleading STL error.
+#include "core/io/read_surface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <string_view>
+
+#include "core/io/inflate.h"
+#include "core/io/obj_reader.h"
+#include "core/io/ply_reader.h"
+#include "core/io/text_scan.h"
+#include "core/io/vtk_legacy_reader.h"
+#include "core/io/vtk_xml_reader.h"
+
+namespace vm {
+namespace {
+
+constexpr const char* kSupported =
+    "binary or ASCII STL, VTK XML PolyData .vtp, legacy VTK .vtk, Wavefront .obj, PLY; any of "
+    "them gzip-compressed";
+
+enum class Format { kVtkXml, kVtkLegacy, kPly, kStl, kObj, kUnknown };
+
+std::string_view as_text(std::span<const uint8_t> b) {
+  return std::string_view(reinterpret_cast<const char*>(b.data()), b.size());
+}
+
+bool istarts_with(std::string_view s, std::string_view prefix) {
+  if (s.size() < prefix.size()) return false;
+  for (size_t i = 0; i < prefix.size(); ++i) {
+    char a = s[i], b = prefix[i];
+    if (a >= 'A' && a <= 'Z') a = char(a - 'A' + 'a');
+    if (b >= 'A' && b <= 'Z') b = char(b - 'A' + 'a');
+    if (a != b) return false;
+  }
+  return true;
+}
+
+// The text after an optional UTF-8 byte order mark and leading whitespace.
+std::string_view content_start(std::span<const uint8_t> bytes) {
+  std::string_view s = as_text(bytes);
+  if (s.starts_with("\xEF\xBB\xBF")) s.remove_prefix(3);
+  while (!s.empty() && is_text_space(s.front())) s.remove_prefix(1);
+  return s;
+}
+
+uint32_t read_u32le(const uint8_t* p) {
+  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+
+float read_f32le(const uint8_t* p) {
+  uint32_t u = read_u32le(p);
+  float f;
+  std::memcpy(&f, &u, 4);
+  return f;
+}
+
+// A binary STL that does not match the size law (truncated, or with bytes
+// after its triangles): binary content, a positive count, and triangles
+// whose normals are zero or unit vectors and whose corners are finite, as
+// STL writers make them (random bytes almost never pass).
+bool looks_like_binary_stl(std::span<const uint8_t> b) {
+  if (b.size() < 84 + 50) return false;
+  uint32_t count = read_u32le(b.data() + 80);
+  if (count == 0) return false;
+  size_t check = std::min<size_t>(std::min<size_t>((b.size() - 84) / 50, count), 8);
+  for (size_t t = 0; t < check; ++t) {
+    const uint8_t* p = b.data() + 84 + 50 * t;
+    double n2 = 0;
+    for (int k = 0; k < 12; ++k) {
+      float x = read_f32le(p + 4 * k);
+      if (!std::isfinite(x) || std::fabs(x) > 1e30f) return false;
+      if (k < 3) n2 += double(x) * x;
+    }
+    if (n2 != 0 && std::fabs(n2 - 1) > 1e-3) return false;
+  }
+  return true;
+}
+
+bool is_obj_keyword(std::string_view w) {
+  static constexpr std::string_view kKeywords[] = {"v", "vn",     "vt",     "vp", "f", "g",
+                                                   "o", "mtllib", "usemtl", "s",  "l", "p"};
+  for (std::string_view k : kKeywords)
+    if (w == k) return true;
+  return false;
+}
+
+// Text whose first statements (up to 5 lines that are neither empty nor
+// comments, within the first 64 KiB) are all OBJ keywords.
+bool looks_like_obj(std::span<const uint8_t> b) {
+  std::string_view s = as_text(b.first(std::min<size_t>(b.size(), 65536)));
+  if (s.starts_with("\xEF\xBB\xBF")) s.remove_prefix(3);
+  for (char c : s) {
+    unsigned char u = static_cast<unsigned char>(c);
+    if (u == 0 || (u < 32 && !is_text_space(c))) return false;
+  }
+  int statements = 0;
+  size_t pos = 0;
+  while (pos < s.size() && statements < 5) {
+    size_t e = s.find('\n', pos);
+    bool last = e == std::string_view::npos;
+    std::string_view line = s.substr(pos, last ? std::string_view::npos : e - pos);
+    pos = last ? s.size() : e + 1;
+    size_t i = 0;
+    while (i < line.size() && is_text_space(line[i])) ++i;
+    if (i == line.size() || line[i] == '#') continue;
+    size_t j = i;
+    while (j < line.size() && !is_text_space(line[j])) ++j;
+    if (!is_obj_keyword(line.substr(i, j - i))) return false;
+    ++statements;
+  }
+  return statements > 0;
+}
+
+Format sniff(std::span<const uint8_t> bytes) {
+  // The binary STL size law first: its 80-byte header is free text (it may
+  // start like another format), and text never satisfies the law (bytes
+  // 80-83 of text read as a count above 0x09090909, a file of gigabytes).
+  if (bytes.size() >= 84 && 84 + 50 * uint64_t(read_u32le(bytes.data() + 80)) == bytes.size())
+    return Format::kStl;
+  std::string_view s = content_start(bytes);
+  if (s.starts_with("<?xml") || s.starts_with("<VTKFile")) return Format::kVtkXml;
+  if (istarts_with(s, "# vtk DataFile")) return Format::kVtkLegacy;
+  if (s.starts_with("ply") && s.size() > 3 && (s[3] == '\n' || s[3] == '\r')) return Format::kPly;
+  if (istarts_with(s, "solid")) return Format::kStl;
+  if (looks_like_binary_stl(bytes)) return Format::kStl;
+  if (looks_like_obj(bytes)) return Format::kObj;
+  return Format::kUnknown;
+}
+
+std::string hint(std::span<const uint8_t> b) {
+  std::string_view s = as_text(b);
+  if (s.starts_with("\x89PNG")) return " (a PNG image)";
+  if (s.starts_with("\xFF\xD8\xFF")) return " (a JPEG image)";
+  if (s.starts_with("%PDF")) return " (a PDF document)";
+  if (s.starts_with("PK\x03\x04")) return " (a ZIP archive: extract the surface file from it)";
+  if (s.size() >= 132 && s.substr(128, 4) == "DICM") {
+    return " (a DICOM image: segment it and export the surface first)";
+  }
+  return "";
+}
+
+Result<SurfaceFile> read_stl_file(std::span<const uint8_t> bytes,
+                                  const SurfaceReadOptions& options) {
+  StlReadOptions o;
+  o.max_triangles = options.max_triangles;
+  Result<TriangleSoup> soup = read_stl(bytes, o);
+  if (!soup.ok()) return soup.status();
+  SurfaceFile file;
+  file.soup = std::move(soup.value());
+  file.warnings = file.soup.warnings;
+  file.format = file.soup.ascii ? "ASCII STL" : "binary STL";
+  file.format_id = "stl";
+  return file;
+}
+
+Result<SurfaceFile> read_sniffed(std::span<const uint8_t> bytes,
+                                 const SurfaceReadOptions& options) {
+  switch (sniff(bytes)) {
+    case Format::kVtkXml:
+      return read_vtk_xml(bytes, options);
+    case Format::kVtkLegacy:
+      return read_vtk_legacy(bytes, options);
+    case Format::kPly:
+      return read_ply(bytes, options);
+    case Format::kStl:
+      return read_stl_file(bytes, options);
+    case Format::kObj:
+      return read_obj(bytes, options);
+    case Format::kUnknown:
+      break;
+  }
+  return Status::Error(std::string("not a surface file this tool reads (") + kSupported +
+                       "): it starts with '" + printable_prefix(bytes, 16) + "'" + hint(bytes));
+}
+
+bool is_gzip(std::span<const uint8_t> b) { return b.size() >= 2 && b[0] == 0x1f && b[1] == 0x8b; }
+
+}  // namespace
+
+Result<SurfaceFile> read_surface(std::span<const uint8_t> bytes,
+                                 const SurfaceReadOptions& options) {
+  if (bytes.empty()) return Status::Error("empty file");
+  if (!is_gzip(bytes)) return read_sniffed(bytes, options);
+  const std::string prefix = "gzip-compressed file: ";
+  std::vector<std::string> gzip_warnings;
+  Result<std::vector<uint8_t>> inner =
+      inflate_gzip(bytes, options.max_decompressed_bytes, &gzip_warnings);
+  if (!inner.ok()) return Status::Error(prefix + inner.message());
+  if (inner.value().empty()) return Status::Error(prefix + "it holds an empty file");
+  if (is_gzip(inner.value())) {
+    return Status::Error(prefix +
+                         "it holds another gzip stream (compressed twice): decompress "
+                         "it once first");
+  }
+  Result<SurfaceFile> r = read_sniffed(inner.value(), options);
+  if (!r.ok()) return Status::Error(prefix + r.message());
+  SurfaceFile& file = r.value();
+  file.gzip = true;
+  file.format = "gzip, " + file.format;
+  file.warnings.insert(file.warnings.end(), gzip_warnings.begin(), gzip_warnings.end());
+  return r;
+}
+
+}  // namespace vm

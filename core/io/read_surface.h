@@ -1,0 +1,36 @@
+// Reading any surface file the tool supports, the reader chosen by the bytes
+// (never by the file name): binary or ASCII STL, VTK XML PolyData (.vtp),
+// legacy VTK (.vtk), Wavefront OBJ, PLY, and any of them gzip-compressed.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "core/io/surface_file.h"
+#include "core/util/result.h"
+
+namespace vm {
+
+struct SurfaceReadOptions {
+  /// Files with more triangles are refused ("too large") before any
+  /// allocation proportional to the claimed size (see StlReadOptions).
+  size_t max_triangles = 25'000'000;
+  /// Limit of gzip/zlib output (the whole decompressed file, and the sum of
+  /// the compressed arrays of a VTK XML file): a "zip bomb" is refused.
+  size_t max_decompressed_bytes = size_t(2) << 30;
+};
+
+/// Reads a surface file held in memory. The format is sniffed from the
+/// content: gzip magic (1f 8b: decompressed, then sniffed once more), "<?xml"
+/// or "<VTKFile" (VTK XML PolyData), "# vtk DataFile" (legacy VTK), a "ply"
+/// line (PLY), "solid" or the binary STL size law (STL, see read_stl), lines
+/// of OBJ statements (v, vn, vt, f, g, o, #, mtllib, usemtl, s, ...). Anything
+/// else: "not a surface file this tool reads (binary or ASCII STL, VTK XML
+/// PolyData .vtp, legacy VTK .vtk, Wavefront .obj, PLY; any of them
+/// gzip-compressed): it starts with '...'". Errors of a recognised format are
+/// that reader's, prefixed "gzip-compressed file: " when it was compressed.
+Result<SurfaceFile> read_surface(std::span<const uint8_t> bytes,
+                                 const SurfaceReadOptions& options = {});
+
+}  // namespace vm

@@ -1,0 +1,235 @@
+#include "core/io/read_surface.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+
+#include "core/mesh/weld.h"
+#include "core/pipeline/prepare_surface.h"
+#include "tests/io/surface_writers.h"
+#include "tests/support/test_meshes.h"
+
+namespace vm {
+namespace {
+
+using testing::Bytes;
+using testing::to_bytes;
+
+#define EXPECT_HAS(haystack, needle) \
+  EXPECT_NE((haystack).find(needle), std::string::npos) << (haystack)
+
+constexpr const char* kNotASurface =
+    "not a surface file this tool reads (binary or ASCII STL, VTK XML PolyData .vtp, legacy VTK "
+    ".vtk, Wavefront .obj, PLY; any of them gzip-compressed): it starts with '";
+
+// A tube whose coordinates are floats, so that every format (STL included)
+// holds exactly the same numbers.
+SurfaceMesh float_tube() {
+  SurfaceMesh m = testing::open_tube(12, 4);
+  for (double& x : m.points) x = double(float(x));
+  return m;
+}
+
+struct Sample {
+  std::string name;
+  Bytes bytes;
+  std::string format, id;
+};
+
+std::vector<Sample> samples(const SurfaceMesh& mesh) {
+  testing::CellMesh cells = testing::cells_of(mesh);
+  std::vector<Sample> s;
+  s.push_back({"binary stl", write_stl_binary(mesh), "binary STL", "stl"});
+  s.push_back({"ascii stl", to_bytes(testing::ascii_stl(mesh)), "ASCII STL", "stl"});
+  testing::VtpStyle v;
+  s.push_back({"vtp ascii", to_bytes(testing::vtp(cells, v)), "VTK XML PolyData (ascii)", "vtp"});
+  v.encoding = testing::VtpStyle::kAppendedRaw;
+  v.zlib = true;
+  s.push_back({"vtp appended raw zlib", to_bytes(testing::vtp(cells, v)),
+               "VTK XML PolyData (appended raw, zlib)", "vtp"});
+  v.encoding = testing::VtpStyle::kAppendedBase64;
+  v.float64_points = false;
+  s.push_back({"vtp appended base64 zlib", to_bytes(testing::vtp(cells, v)),
+               "VTK XML PolyData (appended base64, zlib)", "vtp"});
+  v.encoding = testing::VtpStyle::kBinary;
+  v.zlib = false;
+  v.big_endian = true;
+  s.push_back({"vtp binary big endian", to_bytes(testing::vtp(cells, v)),
+               "VTK XML PolyData (binary, big endian)", "vtp"});
+  testing::VtkStyle k;
+  s.push_back({"vtk ascii", to_bytes(testing::vtk_legacy(cells, k)), "legacy VTK (ASCII)", "vtk"});
+  k.binary = true;
+  k.layout51 = true;
+  s.push_back(
+      {"vtk binary", to_bytes(testing::vtk_legacy(cells, k)), "legacy VTK (binary)", "vtk"});
+  s.push_back({"obj", to_bytes(testing::obj(cells)), "Wavefront OBJ", "obj"});
+  s.push_back({"ply ascii", to_bytes(testing::ply(cells, testing::PlyFormat::kAscii)),
+               "PLY (ascii)", "ply"});
+  s.push_back({"ply little", to_bytes(testing::ply(cells, testing::PlyFormat::kLittle)),
+               "PLY (binary little endian)", "ply"});
+  s.push_back({"ply big", to_bytes(testing::ply(cells, testing::PlyFormat::kBig)),
+               "PLY (binary big endian)", "ply"});
+  size_t n = s.size();
+  for (size_t i = 0; i < n; ++i) {
+    s.push_back({"gzip " + s[i].name, testing::gzip(s[i].bytes), "gzip, " + s[i].format, s[i].id});
+  }
+  return s;
+}
+
+SurfaceMesh welded(const SurfaceFile& f) {
+  if (!f.soup.coords.empty()) return weld(f.soup);
+  return weld(f.points, f.triangles);
+}
+
+TEST(ReadSurface, EveryFormatGivesTheSameTriangles) {
+  SurfaceMesh mesh = float_tube();
+  auto reference = read_surface(write_stl_binary(mesh));
+  ASSERT_TRUE(reference.ok()) << reference.message();
+  SurfaceMesh want = welded(reference.value());
+  ASSERT_EQ(want.num_vertices(), mesh.num_vertices());
+  ASSERT_EQ(want.num_triangles(), mesh.num_triangles());
+  for (size_t c = 0; c < mesh.triangles.size(); ++c)  // same corners, renumbered
+    for (int k = 0; k < 3; ++k)
+      ASSERT_EQ(want.points[3 * size_t(want.triangles[c]) + size_t(k)],
+                mesh.points[3 * size_t(mesh.triangles[c]) + size_t(k)]);
+  for (const Sample& s : samples(mesh)) {
+    SCOPED_TRACE(s.name);
+    auto r = read_surface(s.bytes);
+    ASSERT_TRUE(r.ok()) << r.message();
+    EXPECT_EQ(r.value().format, s.format);
+    EXPECT_EQ(r.value().format_id, s.id);
+    EXPECT_EQ(r.value().gzip, s.name.starts_with("gzip"));
+    EXPECT_EQ(r.value().num_triangles(), mesh.num_triangles());
+    SurfaceMesh got = welded(r.value());
+    EXPECT_EQ(got.points, want.points);
+    EXPECT_EQ(got.triangles, want.triangles);
+  }
+}
+
+TEST(ReadSurface, PreparedSurfaceIsTheSameFromEveryFormat) {
+  SurfaceMesh mesh = float_tube();
+  auto stl = prepare_surface(write_stl_binary(mesh));
+  ASSERT_TRUE(stl.ok()) << stl.message();
+  for (const Sample& s : samples(mesh)) {
+    SCOPED_TRACE(s.name);
+    auto p = prepare_surface(s.bytes);
+    ASSERT_TRUE(p.ok()) << p.message();
+    EXPECT_EQ(p.value().format, s.format);
+    EXPECT_EQ(p.value().mesh.points, stl.value().mesh.points);
+    EXPECT_EQ(p.value().mesh.triangles, stl.value().mesh.triangles);
+    EXPECT_EQ(p.value().topology.openings.size(), 2u);
+    EXPECT_EQ(p.value().topology.genus, 0);
+  }
+}
+
+std::string error_of(const Bytes& b, const SurfaceReadOptions& o = {}) {
+  auto r = read_surface(b, o);
+  EXPECT_FALSE(r.ok());
+  return r.message();
+}
+
+TEST(ReadSurface, PngIsNotASurface) {
+  const uint8_t png[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13,
+                         'I',  'H', 'D', 'R', 0,    0,    1,    0,    0, 0, 1, 0};
+  Bytes b(png, png + sizeof(png));
+  b.resize(2000, 0x55);
+  EXPECT_EQ(error_of(b), std::string(kNotASurface) +
+                             "\\x89PNG\\r\\n\\x1a\\n\\x00\\x00\\x00\\rIHDR...' (a PNG image)");
+}
+
+TEST(ReadSurface, RandomBytesAndTextAreNotASurface) {
+  std::mt19937 rng(7);
+  for (size_t n : {1u, 50u, 84u, 134u, 1000u, 4096u, 100000u}) {
+    Bytes b(n);
+    for (uint8_t& x : b) x = uint8_t(rng());
+    if (b[0] == 0x1f) b[0] = 0;
+    std::string msg = error_of(b);
+    EXPECT_EQ(msg.rfind(kNotASurface, 0), 0u) << msg;
+  }
+  EXPECT_EQ(error_of(to_bytes("this is not a mesh\n")),
+            std::string(kNotASurface) + "this is not a me...'");
+  EXPECT_EQ(error_of({}), "empty file");
+}
+
+TEST(ReadSurface, ClearlyStlKeepsStlMessages) {
+  EXPECT_HAS(error_of(to_bytes("solid x\nfacet normal 0 0 1\nouter loop\n")), "ASCII STL, line");
+  Bytes stl = write_stl_binary(float_tube());
+  EXPECT_HAS(error_of(Bytes(stl.begin(), stl.begin() + 1000)), "truncated binary STL");
+  // A binary STL with its normals zeroed is still recognised when truncated.
+  Bytes zeroed = stl;
+  for (size_t t = 0; t < 20; ++t) std::fill_n(zeroed.begin() + long(84 + 50 * t), 12, 0);
+  EXPECT_HAS(error_of(Bytes(zeroed.begin(), zeroed.begin() + 700)), "truncated binary STL");
+}
+
+TEST(ReadSurface, BinaryStlWhoseHeaderLooksLikeAnotherFormat) {
+  for (const char* header : {"<?xml version", "ply\nformat", "# vtk DataFile", "v 1 2 3\n"}) {
+    Bytes stl = write_stl_binary(float_tube(), header);
+    auto r = read_surface(stl);
+    ASSERT_TRUE(r.ok()) << r.message();
+    EXPECT_EQ(r.value().format, "binary STL");
+  }
+}
+
+TEST(ReadSurface, GzipErrors) {
+  // The inner file's own error, prefixed.
+  EXPECT_EQ(error_of(testing::gzip(to_bytes("hello"))),
+            "gzip-compressed file: " + std::string(kNotASurface) + "hello'");
+  EXPECT_EQ(error_of(testing::gzip(testing::gzip(to_bytes("v 0 0 0\n")))),
+            "gzip-compressed file: it holds another gzip stream (compressed twice): decompress "
+            "it once first");
+  Bytes big = write_stl_binary(testing::open_tube(200, 200));
+  SurfaceReadOptions o;
+  o.max_decompressed_bytes = 100000;
+  EXPECT_HAS(error_of(testing::gzip(big), o),
+             "gzip-compressed file: decompressed data exceeds the limit of 100000 bytes "
+             "(compression ratio over ");
+  Bytes gz = testing::gzip(big);
+  EXPECT_HAS(error_of(Bytes(gz.begin(), gz.begin() + 5000)),
+             "gzip-compressed file: gzip data ends before the end of the compressed stream");
+}
+
+TEST(ReadSurface, MisnamedContentIsStillRecognised) {
+  // Sniffing ignores names and leading whitespace / byte order marks.
+  std::string v = "\xEF\xBB\xBF\n  " + testing::vtp(testing::cells_of(float_tube()));
+  auto r = read_surface(to_bytes(v));
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(r.value().format_id, "vtp");
+  r =
+      read_surface(to_bytes("# exported\n\nmtllib a.mtl\no thing\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                            "f 1 2 3\n"));
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(r.value().format_id, "obj");
+  EXPECT_EQ(r.value().face_names, (std::vector<std::pair<int32_t, std::string>>{{1, "thing"}}));
+}
+
+// Every sample cut short and with bytes changed: a result or a message,
+// never a crash (this runs under ASan/UBSan in the sanitizer build).
+TEST(ReadSurface, CorruptionsNeverCrash) {
+  SurfaceMesh mesh = testing::open_tube(5, 2);
+  std::mt19937 rng(11);
+  for (const Sample& s : samples(mesh)) {
+    SCOPED_TRACE(s.name);
+    for (size_t n = 0; n < s.bytes.size(); n += 1 + s.bytes.size() / 97) {
+      auto r = read_surface(Bytes(s.bytes.begin(), s.bytes.begin() + long(n)));
+      if (!r.ok()) {
+        EXPECT_FALSE(r.message().empty());
+      }
+    }
+    for (int trial = 0; trial < 300; ++trial) {
+      Bytes b = s.bytes;
+      for (int k = 0; k < 1 + trial % 4; ++k) b[rng() % b.size()] = uint8_t(rng());
+      auto r = read_surface(b);
+      if (!r.ok()) {
+        EXPECT_FALSE(r.message().empty());
+      } else {
+        const SurfaceFile& f = r.value();
+        for (int32_t i : f.triangles) ASSERT_LT(size_t(i), f.points.size() / 3);
+        ASSERT_TRUE(f.face_labels.empty() || f.face_labels.size() == f.num_triangles());
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace vm
