@@ -52,7 +52,7 @@ def analysis(vesselmesh, path):
     d = json.loads(run.stdout)
     counts = {k: d[k] for k in KEYS if k != "openings"}
     counts["openings"] = len(d["openings"])
-    return counts, d.get("file_format", d.get("format"))
+    return counts, d["format"]
 
 
 def triangles_of(poly):

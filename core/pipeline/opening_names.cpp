@@ -49,7 +49,7 @@ Result<std::vector<std::string>> opening_names(
   for (size_t i = 0; i < n; ++i)
     for (size_t j = 0; j < i; ++j)
       if (names[i] == names[j])
-        return Status::BadOption("name", "'" + names[i] + "' names openings " +
+        return Status::BadOption("name", "gives '" + names[i] + "' to openings " +
                                              std::to_string(j + 1) + " and " +
                                              std::to_string(i + 1) + ": each name once");
   return names;

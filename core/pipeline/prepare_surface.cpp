@@ -36,13 +36,13 @@ double median_vessel_radius(const PreparedSurface& s) {
 
 }  // namespace
 
-Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
+Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
                                         const PrepareOptions& options, const ProgressFn& progress) {
   PreparedSurface s;
   if (!report_progress(progress, 0.0, "read")) return cancelled();
   SurfaceReadOptions read_options;
   read_options.max_triangles = options.read.max_triangles;
-  Result<SurfaceFile> file = read_surface(stl_bytes, read_options);
+  Result<SurfaceFile> file = read_surface(file_bytes, read_options);
   if (!file.ok()) return file.status();
   s.ascii = file.value().soup.ascii;
   s.format = file.value().format;

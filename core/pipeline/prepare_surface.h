@@ -54,8 +54,6 @@ struct PreparedSurface {
   BoundingBox box;
   std::vector<float> quality;  ///< gamma_k per triangle of `mesh`
   QualityStats quality_stats;
-  /// What the file was ("binary STL", ...).
-  std::string format;
   /// The face label array the file had ("ModelFaceID", ...; "" for none).
   std::string label_array;
   /// One per opening of `topology` (same order).
@@ -68,10 +66,10 @@ struct PreparedSurface {
   std::vector<std::string> warnings;
 };
 
-/// Reads `stl_bytes` (any format read_surface reads, despite the name) and
-/// prepares the surface. Errors are the reader's, or
-/// "no triangle left" when every triangle was degenerate.
-Result<PreparedSurface> prepare_surface(std::span<const uint8_t> stl_bytes,
+/// Reads a surface file's bytes (any format read_surface reads) and
+/// prepares the surface. Errors are the reader's, or "no triangle left"
+/// when every triangle was degenerate.
+Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
                                         const PrepareOptions& options = {},
                                         const ProgressFn& progress = {});
 

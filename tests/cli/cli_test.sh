@@ -136,7 +136,7 @@ check "name reserved" expect_exit 2 "--name cannot be 'lumen'" "$VM" mesh "$T/ca
 check "name invalid" expect_exit 2 "--name needs K=NAME with NAME 1-64 letters" "$VM" mesh "$T/capped.stl" -o "$T/x.msh" --name 1=9lives
 check "name without K" expect_exit 2 "--name needs K=VALUE" "$VM" mesh "$T/capped.stl" -o "$T/x.msh" --name left
 check "name out of range" expect_exit 2 "--name names opening 5, but there are 3 openings" "$VM" mesh "$T/capped.stl" -o "$T/x.msh" --name 5=x
-check "name twice" expect_exit 2 "'a' names openings 1 and 2" "$VM" mesh "$T/capped.stl" -o "$T/x.msh" --name 1=a --name 2=a
+check "name twice" expect_exit 2 "--name gives 'a' to openings 1 and 2" "$VM" mesh "$T/capped.stl" -o "$T/x.msh" --name 1=a --name 2=a
 for f in vtu vtp stl zip; do
   check "mesh to .$f" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/out.$f" --size 0.3 --layers 1
 done

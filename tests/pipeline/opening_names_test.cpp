@@ -46,7 +46,8 @@ TEST(OpeningNames, RefusalsNameTheOption) {
   EXPECT_FALSE(prefixed.ok());
   auto twice = opening_names(with_openings(3), {{0, "a"}, {2, "a"}}, 0);
   ASSERT_FALSE(twice.ok());
-  EXPECT_EQ(twice.message(), "'a' names openings 1 and 3: each name once");
+  EXPECT_EQ(phrase_error(twice.status(), kFaceCli),
+            "--name gives 'a' to openings 1 and 3: each name once");
   // A user name equal to a default another opening takes.
   auto clash = opening_names(with_openings(3), {{2, "outlet_1"}}, 0);
   EXPECT_FALSE(clash.ok());

@@ -7,6 +7,12 @@ export type ProgressCallback = (fraction: number, stage: string) => boolean | vo
 /** Options of analyze(). */
 export interface AnalyzeOptions {
   onProgress?: ProgressCallback;
+  /** keep only the largest connected component instead of refusing several Default false. */
+  largestComponentOnly?: boolean;
+  /** the unit of the file's numbers (default: guessed from the vessel radii: below 0.05 metres, else millimetres) Needs mm, cm or m. */
+  units?: 'mm' | 'cm' | 'm';
+  /** keep planar caps as wall (else each recognised cap is removed and its rim becomes an opening) Default false. */
+  keepCaps?: boolean;
 }
 
 /** Options of mesh(). */
@@ -14,6 +20,10 @@ export interface MeshOptions {
   onProgress?: ProgressCallback;
   /** keep only the largest connected component instead of refusing several Default false. */
   largestComponentOnly?: boolean;
+  /** the unit of the file's numbers (default: guessed from the vessel radii: below 0.05 metres, else millimetres) Needs mm, cm or m. */
+  units?: 'mm' | 'cm' | 'm';
+  /** keep planar caps as wall (else each recognised cap is removed and its rim becomes an opening) Default false. */
+  keepCaps?: boolean;
   /** uniform target edge length In the model's unit. Needs a positive length. */
   size?: number;
   /** h = 2 pi R(x) / N, R the local vessel radius (the default size mode) Needs a number of edges per circumference >= 3. Default 20. */
@@ -36,6 +46,8 @@ export interface MeshOptions {
   inlet?: number;
   /** target size in the core of the lumen (0: the uniform size, or grown from the wall's) In the model's unit. Needs a length >= 0 (0: grow from the wall size). Default 0. */
   coreSize?: number;
+  /** the group name of opening K (default: the file's face name, else inlet / outlet_k) Needs K=NAME with NAME 1-64 letters, digits, _ or -, starting with a letter. */
+  names?: Record<number, string> | string[];
   /** check conformity and the boundary before writing; measure the layer heights Default false. */
   verify?: boolean;
   /** viscous layers grown inward (0: none) Needs a number of layers from 0 (none) to 100. Default 4. */
@@ -54,6 +66,10 @@ export interface MeshOptions {
   tagLayer?: boolean;
   /** keep the layers' prisms (MSH type 6) instead of 3 tetrahedra each Default false. */
   prisms?: boolean;
+  /** the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip or a folder for mesh-complete; JS: msh) Needs msh, vtu, vtp, stl or mesh-complete. */
+  format?: 'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete';
+  /** convert the written mesh to this unit (default: the input's) Needs mm, cm or m. */
+  outputUnits?: 'mm' | 'cm' | 'm';
   /** Gmsh MSH format version Needs 4.1 or 2.2. Default 4.1. */
   mshVersion?: '4.1' | '2.2';
   /** remesh the surface (off: mesh the repaired input as it is) Default true. */
@@ -78,6 +94,8 @@ export interface PhantomOptions {
   scale?: number;
   /** cut the vessel ends open (off: a closed surface with rounded ends) Default true. */
   openEnds?: boolean;
+  /** close the cut ends by flat caps (a capped model, as SimVascular exports) Default false. */
+  flatCaps?: boolean;
 }
 
 /** A failure: nothing throws for a user error. */
@@ -150,6 +168,8 @@ export interface OptionSpec {
   perOpening: 'no' | 'optional' | 'required';
 }
 
+export type OutputFormat = NonNullable<MeshOptions['format']>;
+
 export interface VesselmeshApi {
   version: string;
   optionTable: OptionSpec[];
@@ -163,8 +183,24 @@ export interface VesselmeshApi {
     bytes: Uint8Array | ArrayBuffer | ArrayBufferView,
     options?: MeshOptions,
   ):
-    | { ok: true; msh: Uint8Array; report: Record<string, unknown>; surface: Surface; volume?: MeshVolume }
+    | {
+        ok: true;
+        /** The file in `format` (a zip for 'mesh-complete'), and a name for it. */
+        file: Uint8Array;
+        fileName: string;
+        format: OutputFormat;
+        /** The same bytes as `file` when the format is 'msh'. */
+        msh?: Uint8Array;
+        report: Record<string, unknown>;
+        surface: Surface;
+        volume?: MeshVolume;
+      }
     | Failure;
+  /** The last meshed result in another format, without meshing again. */
+  export(
+    format: OutputFormat,
+    options?: Pick<MeshOptions, 'mshVersion' | 'outputUnits'>,
+  ): { ok: true; file: Uint8Array; fileName: string; format: OutputFormat } | Failure;
   /** A synthetic segmentation-like vessel surface as binary STL. */
   makePhantom(options?: PhantomOptions): { ok: true; stl: Uint8Array } | Failure;
 }

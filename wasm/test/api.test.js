@@ -159,7 +159,7 @@ describe('analyze', () => {
     const r = api.analyze(p.stl);
     assert.equal(r.ok, true, r.error);
     const { analysis: a, surface: s } = r;
-    assert.equal(a.format, 'binary');
+    assert.equal(a.format, 'binary STL');
     assert.equal(a.openings.length, 3);
     assert.equal(a.genus, 0);
     assert.equal(a.components, 1);
@@ -179,7 +179,7 @@ describe('analyze', () => {
   test('ASCII STL of a closed tetrahedron, re-oriented outward', () => {
     const r = api.analyze(ascii(TETRA));
     assert.equal(r.ok, true, r.error);
-    assert.equal(r.analysis.format, 'ascii');
+    assert.equal(r.analysis.format, 'ASCII STL');
     assert.equal(r.analysis.vertices, 4);
     assert.equal(r.analysis.triangles, 4);
     assert.equal(r.analysis.closed, true);

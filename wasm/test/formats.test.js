@@ -1,0 +1,184 @@
+// Node tests of the built module: the files pipelines exchange. Surface
+// formats in (a VTP with face labels), capped models opened, units, named
+// openings, and every output format, written again without meshing.
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { before, describe, test } from 'node:test';
+
+import { createVesselmesh } from '../src/vesselmesh.js';
+
+let api;
+before(async () => {
+  const wasmBinary = readFileSync(new URL('../dist/vesselmesh_core.wasm', import.meta.url));
+  api = await createVesselmesh({ wasmBinary });
+});
+
+const text = (bytes) => new TextDecoder().decode(bytes);
+
+/**
+ * An ASCII VTK XML PolyData of a closed tube of radius 1 and length 4 with
+ * flat ends: the wall labelled ModelFaceID 1, the ends 2 and 3 (as
+ * SimVascular writes capped models), n segments around, m along.
+ */
+function cappedTubeVtp(n = 24, m = 8) {
+  const points = [];
+  for (let j = 0; j <= m; j++) {
+    for (let i = 0; i < n; i++) {
+      const a = (2 * Math.PI * i) / n;
+      points.push(Math.cos(a), Math.sin(a), (4 * j) / m);
+    }
+  }
+  const bottom = points.length / 3;
+  points.push(0, 0, 0, 0, 0, 4);
+  const polys = [];
+  const labels = [];
+  for (let j = 0; j < m; j++) {
+    for (let i = 0; i < n; i++) {
+      const a = j * n + i;
+      const b = j * n + ((i + 1) % n);
+      polys.push([a, b, b + n, a + n]); // a quad: polygons are split by the reader
+      labels.push(1);
+    }
+  }
+  for (let i = 0; i < n; i++) {
+    polys.push([(i + 1) % n, i, bottom]);
+    labels.push(2);
+    polys.push([m * n + i, m * n + ((i + 1) % n), bottom + 1]);
+    labels.push(3);
+  }
+  const offsets = [];
+  let end = 0;
+  for (const p of polys) offsets.push((end += p.length));
+  return new TextEncoder().encode(`<?xml version="1.0"?>
+<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">
+  <PolyData>
+    <Piece NumberOfPoints="${points.length / 3}" NumberOfPolys="${polys.length}">
+      <CellData>
+        <DataArray type="Int32" Name="ModelFaceID" format="ascii">${labels.join(' ')}</DataArray>
+      </CellData>
+      <Points>
+        <DataArray type="Float64" NumberOfComponents="3" format="ascii">${points.join(' ')}</DataArray>
+      </Points>
+      <Polys>
+        <DataArray type="Int64" Name="connectivity" format="ascii">${polys.flat().join(' ')}</DataArray>
+        <DataArray type="Int64" Name="offsets" format="ascii">${offsets.join(' ')}</DataArray>
+      </Polys>
+    </Piece>
+  </PolyData>
+</VTKFile>
+`);
+}
+
+describe('files in', () => {
+  test('a labelled VTP: its caps become openings, the unit is given or guessed', () => {
+    const vtp = cappedTubeVtp();
+    const a = api.analyze(vtp);
+    assert.equal(a.ok, true, a.error);
+    assert.match(a.analysis.format, /^VTK XML PolyData/);
+    assert.equal(a.analysis.label_array, 'ModelFaceID');
+    assert.equal(a.analysis.caps_removed, 2);
+    assert.equal(a.analysis.closed, false);
+    assert.deepEqual(a.analysis.openings.map((o) => o.source), ['cap', 'cap']);
+    assert.deepEqual(a.analysis.openings.map((o) => o.label).sort(), [2, 3]);
+    assert.deepEqual(a.analysis.openings.map((o) => o.name), ['inlet', 'outlet_1']);
+    // A 24-gon of radius 1: the opening's equivalent radius is a little less.
+    const { unit, guessed, certain, reason } = a.analysis.units;
+    assert.deepEqual([unit, guessed, certain], ['mm', true, false]);
+    assert.ok(Math.abs(Number(reason.match(/radius ([\d.]+)/)[1]) - 0.99) < 0.01, reason);
+    const kept = api.analyze(vtp, { keepCaps: true, units: 'cm' });
+    assert.equal(kept.ok, true, kept.error);
+    assert.equal(kept.analysis.openings.length, 0);
+    assert.equal(kept.analysis.closed, true);
+    assert.equal(kept.analysis.units.unit, 'cm');
+    assert.equal(kept.analysis.units.guessed, false);
+  });
+
+  test('a flat-capped phantom in metres: 3 openings from caps, metres guessed', () => {
+    const p = api.makePhantom({ kind: 'bifurcation', voxel: 0.12, noise: 0.3, flatCaps: true, scale: 0.003 });
+    assert.equal(p.ok, true, p.error);
+    const a = api.analyze(p.stl);
+    assert.equal(a.ok, true, a.error);
+    assert.equal(a.analysis.openings.length, 3);
+    assert.equal(a.analysis.units.unit, 'm');
+    assert.equal(a.analysis.units.certain, true);
+    assert.match(a.analysis.warnings.join('\n'), /planar caps were recognised.*keepCaps/);
+    assert.match(a.analysis.warnings.join('\n'), /in metres.*say otherwise with units/);
+  });
+
+  test('what is not a surface is refused with the formats it could be', () => {
+    const png = new Uint8Array([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0, 0, 0, 13, 0x49, 0x48, 0x44, 0x52]);
+    const r = api.analyze(png);
+    assert.equal(r.ok, false);
+    assert.equal(r.kind, 'bad_input');
+    assert.match(r.error, /not a surface file this tool reads \(binary or ASCII STL, VTK XML PolyData/);
+    assert.match(r.error, /PNG/);
+  });
+});
+
+describe('names and files out', () => {
+  let tube;
+  before(() => {
+    tube = cappedTubeVtp();
+  });
+
+  test('named openings become the groups; bad names are refused in JS words', () => {
+    const m = api.mesh(tube, { size: 0.4, layers: 1, names: { 2: 'distal', 1: 'proximal' } });
+    assert.equal(m.ok, true, m.error);
+    assert.deepEqual(m.volume.surfaceNames, ['wall', 'proximal', 'distal']);
+    assert.deepEqual(
+      m.report.output.groups.map((g) => g.name),
+      ['wall', 'proximal', 'distal', 'lumen'],
+    );
+    for (const [names, pattern] of [
+      [{ 1: 'lumen' }, /^names cannot be 'lumen'/],
+      [{ 3: 'x' }, /^names names opening 3, but there are 2 openings$/],
+      [{ 1: '9x' }, /^names needs K=NAME with NAME 1-64 letters/],
+      [{ 1: 'a', 2: 'a' }, /^names gives 'a' to openings 1 and 2: each name once$/],
+      [{ 0: 'a' }, /^names keys must be opening numbers >= 1/],
+      ['a', /^names needs K=VALUE with K an opening number >= 1$/],
+    ]) {
+      const r = api.mesh(tube, { size: 0.4, names });
+      assert.equal(r.ok, false, JSON.stringify(names));
+      assert.match(r.error, pattern);
+      assert.equal(r.kind, 'bad_option');
+    }
+  });
+
+  test('every format, from mesh() and again from export() without meshing', () => {
+    const m = api.mesh(tube, { size: 0.4, layers: 1, format: 'vtu' });
+    assert.equal(m.ok, true, m.error);
+    assert.equal(m.format, 'vtu');
+    assert.equal(m.fileName, 'mesh.vtu');
+    assert.equal(m.msh, undefined);
+    assert.match(text(m.file.subarray(0, 300)), /<!-- vesselmesh [\d.]+; input xxh128:[0-9a-f]{32}; options: size=0.4 layers=1 format=vtu -->/);
+    assert.match(text(m.file.subarray(0, 400)), /<VTKFile type="UnstructuredGrid"/);
+    const tets = m.volume.tets.length / 4;
+    assert.match(text(m.file.subarray(0, 600)), new RegExp(`NumberOfCells="${tets}"`));
+    const msh = api.export('msh', { mshVersion: '2.2', outputUnits: 'm' });
+    assert.equal(msh.ok, true, msh.error);
+    assert.equal(msh.fileName, 'mesh.msh');
+    assert.ok(text(msh.file).startsWith('$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Comments\nvesselmesh'));
+    const vtp = api.export('vtp');
+    assert.match(text(vtp.file.subarray(0, 400)), /<VTKFile type="PolyData"/);
+    const stl = api.export('stl');
+    assert.equal(stl.file.length, 84 + 50 * m.surface.triangles.length / 3);
+    const zip = api.export('mesh-complete');
+    assert.equal(zip.ok, true, zip.error);
+    assert.equal(zip.fileName, 'mesh-complete.zip');
+    assert.deepEqual([...zip.file.subarray(0, 4)], [0x50, 0x4b, 0x03, 0x04]);
+    for (const name of ['mesh-complete.mesh.vtu', 'mesh-complete.exterior.vtp', 'mesh-surfaces/inlet.vtp']) {
+      assert.ok(text(zip.file).includes(name), name);
+    }
+    assert.match(api.export('obj').error, /^format needs msh, vtu, vtp, stl or mesh-complete$/);
+    assert.match(api.export('msh', { size: 1 }).error, /unknown export option 'size'/);
+  });
+
+  test('a surface-only result has no volume format', () => {
+    const m = api.mesh(tube, { size: 0.4, surfaceOnly: true, format: 'stl' });
+    assert.equal(m.ok, true, m.error);
+    assert.equal(m.fileName, 'mesh.stl');
+    const vtu = api.export('vtu');
+    assert.equal(vtu.ok, false);
+    assert.match(vtu.error, /surface only \(surfaceOnly\): write it as \.msh, \.vtp or \.stl/);
+  });
+});
