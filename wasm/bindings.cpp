@@ -16,6 +16,7 @@
 #include "core/io/zip_writer.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/mesh_job.h"
+#include "core/pipeline/opening_names.h"
 #include "core/pipeline/option_table.h"
 #include "core/pipeline/report_json.h"
 #include "core/pipeline/write_outputs.h"
@@ -209,13 +210,18 @@ void set_volume(val& r, const vm::MeshJobResult& res) {
   r.set("volume", v);
 }
 
+/// The last analyzed surface, for openingNames().
+std::optional<vm::PreparedSurface> last_analysis;
+
 /// options: the JS API's analyze options (the table's info options).
 val analyze(val stl, val opts, val progress) {
+  last_analysis.reset();
   vm::MeshJobOptions options;
   if (vm::Status st = apply_js_options(options, opts, vm::kCommandInfo); !st.ok()) return error(st);
   std::vector<uint8_t> bytes = bytes_from(stl);
   auto prepared = vm::prepare_surface(bytes, options.prepare, progress_from(progress));
   if (!prepared.ok()) return error(prepared.status());
+  last_analysis = prepared.value();
   val r = val::object();
   r.set("ok", true);
   r.set("analysisJson", vm::analysis_json(prepared.value(), vm::kFaceJs));
@@ -310,6 +316,24 @@ val export_mesh(val opts) {
   return r;
 }
 
+/// The group names the openings of the last analyzed surface would get with
+/// these mesh options (names, inlet; others ignored): {ok, names} or the
+/// error meshing would give.
+val opening_names(val opts) {
+  if (!last_analysis)
+    return error(vm::Status::Error("nothing analyzed yet: analyze a surface first"));
+  vm::MeshJobOptions options;
+  if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh); !st.ok()) return error(st);
+  auto names = vm::opening_names(*last_analysis, options.opening_names, options.inlet);
+  if (!names.ok()) return error(names.status());
+  val r = val::object();
+  r.set("ok", true);
+  val list = val::array();
+  for (const std::string& n : names.value()) list.call<void>("push", n);
+  r.set("names", list);
+  return r;
+}
+
 /// options: the JS API's makePhantom options.
 val make_phantom(val opts) {
   vm::PhantomOptions o;
@@ -336,4 +360,5 @@ EMSCRIPTEN_BINDINGS(vesselmesh) {
   emscripten::function("version", &version);
   emscripten::function("optionTable", &option_table);
   emscripten::function("exportMesh", &export_mesh);
+  emscripten::function("openingNames", &opening_names);
 }

@@ -85,6 +85,11 @@ export class VesselmeshClient {
     return this._call('export', [format, options]);
   }
 
+  /** The names the last analyzed surface's openings get (API openingNames()). */
+  openingNames(options = {}) {
+    return this._call('openingNames', [options]);
+  }
+
   /** Generates a phantom STL; options as in the API's makePhantom(). */
   makePhantom(options = {}) {
     return this._call('makePhantom', [options]);

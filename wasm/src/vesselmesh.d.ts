@@ -201,6 +201,8 @@ export interface VesselmeshApi {
     format: OutputFormat,
     options?: Pick<MeshOptions, 'mshVersion' | 'outputUnits'>,
   ): { ok: true; file: Uint8Array; fileName: string; format: OutputFormat } | Failure;
+  /** The group names the last analyzed surface's openings get with these options, or the error mesh() would give. */
+  openingNames(options?: Pick<MeshOptions, 'names' | 'inlet'>): { ok: true; names: string[] } | Failure;
   /** A synthetic segmentation-like vessel surface as binary STL. */
   makePhantom(options?: PhantomOptions): { ok: true; stl: Uint8Array } | Failure;
 }

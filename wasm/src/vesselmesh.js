@@ -120,6 +120,17 @@ export async function createVesselmesh({ wasmBinary } = {}) {
     },
 
     /**
+     * The group names the openings of the last analyzed surface get with
+     * these mesh options (`names`, `inlet`), as mesh() would name them, or
+     * the error mesh() would give (a bad or repeated name).
+     * @returns {{ok: true, names: string[]} | {ok: false, error: string}}
+     */
+    openingNames(options = {}) {
+      const raw = core.openingNames(options);
+      return raw.ok ? raw : failure(raw);
+    },
+
+    /**
      * Generates a synthetic segmentation-like vessel surface as binary STL.
      * @returns {{ok: true, stl: Uint8Array} | {ok: false, error: string}}
      */

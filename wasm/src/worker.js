@@ -1,5 +1,6 @@
 // Module Web Worker serving the vesselmesh API. Protocol:
-//   in:  { id, op: 'analyze' | 'mesh' | 'makePhantom' | 'export', args: [bytes?, options] }
+//   in:  { id, op: 'analyze' | 'mesh' | 'makePhantom' | 'export' | 'openingNames',
+//          args: [bytes?, options] }
 //        (export: args [format, options]: the last mesh in another format)
 //   out: { type: 'ready', version, optionTable } | { type: 'error', error } once
 //        at start;
@@ -50,6 +51,9 @@ self.onmessage = async (event) => {
       break;
     case 'export':
       result = api.export(args[0], args[1]);
+      break;
+    case 'openingNames':
+      result = api.openingNames(args[0]);
       break;
     default:
       result = { ok: false, error: `unknown operation '${op}'` };

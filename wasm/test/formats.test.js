@@ -144,6 +144,16 @@ describe('names and files out', () => {
     }
   });
 
+  test('openingNames() previews the names mesh() will give, or its refusal', () => {
+    assert.equal(api.analyze(tube).ok, true);
+    assert.deepEqual(api.openingNames().names, ['inlet', 'outlet_1']);
+    assert.deepEqual(api.openingNames({ inlet: 2 }).names, ['outlet_1', 'inlet']);
+    assert.deepEqual(api.openingNames({ names: { 1: 'aorta' } }).names, ['aorta', 'outlet_1']);
+    const bad = api.openingNames({ names: { 1: 'wall' } });
+    assert.equal(bad.ok, false);
+    assert.equal(bad.option, 'names');
+  });
+
   test('every format, from mesh() and again from export() without meshing', () => {
     const m = api.mesh(tube, { size: 0.4, layers: 1, format: 'vtu' });
     assert.equal(m.ok, true, m.error);
