@@ -13,15 +13,23 @@ import subprocess
 import sys
 import tempfile
 
-# Known facts about the reference inputs (their README and issue 2).
+# Known facts about the reference inputs (their README).
 EXPECTED = {
     "abdominal-aorta-closed.stl": dict(triangles=12932, openings=0, genus=0, closed=True),
     "abdominal-aorta-open.stl": dict(triangles=11887, openings=3, genus=0, closed=False),
     "aortic-arch.stl": dict(triangles=41176, vertices=20730, openings=5, genus=0, closed=False),
     "bifurcation.stl": dict(triangles=16448, openings=3, genus=0, closed=False),
-    "carotid-metres.stl": dict(triangles=11594, openings=3, genus=0, closed=False),
-    "coronary-closed-ascii.stl": dict(triangles=14336, openings=0, genus=0, closed=True, format="ascii"),
-    "femoral-bypass.stl": dict(triangles=46522, openings=2, genus=1, closed=False),
+    "carotid-metres.stl": dict(triangles=11594, openings=3, genus=0, closed=False, unit="m"),
+    # Flat caps without labels (1 inlet + 6 outlets): recognised by shape.
+    "coronary-closed-ascii.stl": dict(triangles=14336, openings=7, caps=7, genus=0, closed=False,
+                                      format="ASCII STL"),
+    # SimVascular models: ModelFaceID 1-2 walls, 3-5 planar caps.
+    "simvascular-aorta-capped.vtp": dict(triangles=16698, openings=3, caps=3, genus=0, closed=False,
+                                         format="VTK XML PolyData (appended base64, zlib)",
+                                         labels="ModelFaceID"),
+    "simvascular-rom-capped.vtp": dict(triangles=18584, openings=3, caps=3, genus=0, closed=False,
+                                       format="VTK XML PolyData (appended base64, zlib)",
+                                       labels="ModelFaceID"),
 }
 # Opening perimeters from the data README (largest first), 2% tolerance.
 PERIMETERS = {
@@ -34,7 +42,11 @@ SIZES = {
     "abdominal-aorta-closed.stl": 1.4, "abdominal-aorta-open.stl": 1.4, "aortic-arch.stl": 0.18,
     "bifurcation.stl": 0.085, "carotid-metres.stl": 0.00042, "femoral-bypass.stl": 0.3,
     "coronary-closed-ascii.stl": 0.6,
+    # 2 pi R / 20 of the median opening (R 0.556).
+    "simvascular-aorta-capped.vtp": 0.17, "simvascular-rom-capped.vtp": 0.17,
 }
+# Outputs read by VTK and meshio (validation/check_vtk_outputs.py) on these.
+VTK_OUTPUT_FILES = ["bifurcation.stl", "coronary-closed-ascii.stl", "simvascular-aorta-capped.vtp"]
 # Seed Table 1 (iliac bifurcation, conformal map): each of our 2D meshers must
 # do at least as well as the corresponding row, on every file in both size
 # modes (frontal) or in uniform mode (the comparison meshers).
@@ -154,7 +166,7 @@ def check_remesh(fname, path, tmp, args, d, have_gmsh, mode, mesher="frontal"):
             check(fname, abs(med / h - 1) <= 0.1, f"remesh {tag}: median edge {med:.4g} within 10% of h {h} (Gmsh)")
 
 
-# Issue 4's volume quality target (gamma_t of the isotropic core).
+# The volume quality target (gamma_t of the isotropic core).
 TET_TARGET = dict(min=0.2, mean=0.67)
 
 
@@ -247,7 +259,7 @@ def check_volume(fname, path, tmp, args, d, have_gmsh, label, flags, layers):
     o = rep["output"]
     v = o["volume"]
     q = v["core_quality"]
-    caps = (["inlet"] + [f"outlet_{k}" for k in range(1, len(d["openings"]))]) if d["openings"] else []
+    caps = [o["name"] for o in d["openings"]]
     want = ["wall"] + caps
     if "vessel" in layers:
         want += ["outer_wall"] + [f"wall_{c}" for c in caps]
@@ -287,6 +299,27 @@ def check_volume(fname, path, tmp, args, d, have_gmsh, label, flags, layers):
     check(fname, g["planar"] <= 1e-9, f"{label}: caps planar ({g['planar']:.1e} of the diagonal)")
 
 
+def check_vtk_outputs(fname, path, tmp, args):
+    """The same mesh as MSH, VTU, VTP and a mesh-complete zip, read by VTK and
+    meshio and compared with the MSH (validation/check_vtk_outputs.py)."""
+    base = os.path.join(tmp, fname + ".formats")
+    outs = [base + ext for ext in (".msh", ".vtu", ".vtp", ".zip")]
+    for out in outs:
+        r = subprocess.run([args.vesselmesh, "mesh", path, "-o", out, "--quiet", "--layers", "2",
+                            "--size", str(SIZES[fname])], capture_output=True, text=True)
+        check(fname, r.returncode == 0, f"mesh -o {os.path.basename(out)} exit 0 {r.stderr.strip()}")
+        if r.returncode != 0:
+            return
+    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "check_vtk_outputs.py")
+    r = subprocess.run([sys.executable, script, "--msh", outs[0], "--vtu", outs[1], "--vtp", outs[2],
+                        "--mesh-complete", outs[3]], capture_output=True, text=True)
+    lines = [l for l in r.stdout.splitlines() if l.startswith(("PASS", "FAIL"))]
+    failed = [l for l in lines if l.startswith("FAIL")]
+    check(fname, r.returncode == 0 and not failed and lines,
+          f"VTU, VTP and mesh-complete read by VTK and meshio agree with the MSH "
+          f"({len(lines) - len(failed)} of {len(lines)} checks){': ' + failed[0] if failed else ''}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--data", required=True)
@@ -323,7 +356,15 @@ def main():
             check(fname, d["closed"] == exp["closed"], f"closed {d['closed']} == {exp['closed']}")
             check(fname, d["components"] == 1, f"components {d['components']} == 1")
             check(fname, d["nonmanifold_edges"] == 0, "no non-manifold edge")
-            check(fname, d["format"] == exp.get("format", "binary"), f"format {d['format']}")
+            check(fname, d["format"] == exp.get("format", "binary STL"), f"format {d['format']}")
+            check(fname, d["caps_removed"] == exp.get("caps", 0)
+                  and all(o["source"] == ("cap" if exp.get("caps") else "file") for o in d["openings"]),
+                  f"{d['caps_removed']} caps recognised and opened == {exp.get('caps', 0)}")
+            check(fname, d["label_array"] == exp.get("labels", ""), f"face labels '{d['label_array']}'")
+            u = d["units"]
+            want_unit = exp.get("unit", "mm")
+            check(fname, u["unit"] == want_unit and u["guessed"] and u["certain"] == (want_unit == "m"),
+                  f"units {u['unit']} (guessed, {'certain' if u['certain'] else 'unconfirmed'}: {u['reason']})")
             for got, want in zip([o["perimeter"] for o in d["openings"]], PERIMETERS.get(fname, [])):
                 check(fname, abs(got - want) <= 0.02 * want, f"opening perimeter {got:.3f} ~ {want}")
             q = d["quality"]
@@ -336,6 +377,8 @@ def main():
             check_volume(fname, path, tmp, args, d, have_gmsh, "volume (boundary layer)", [], ["viscous"])
             check_volume(fname, path, tmp, args, d, have_gmsh, "volume (layer + vessel wall)",
                          ["--wall-thickness", "0.1"], ["viscous", "vessel"])
+            if fname in VTK_OUTPUT_FILES:
+                check_vtk_outputs(fname, path, tmp, args)
             for version in ("4.1", "2.2"):
                 out = os.path.join(tmp, f"{fname}.{version}.msh")
                 r = subprocess.run([args.vesselmesh, "mesh", path, "-o", out, "--no-remesh",
