@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/io/float_bits.h"
 #include "core/io/inflate.h"
 #include "core/io/obj_reader.h"
 #include "core/io/ply_reader.h"
@@ -49,31 +50,20 @@ std::string_view content_start(std::span<const uint8_t> bytes) {
   return s;
 }
 
-uint32_t read_u32le(const uint8_t* p) {
-  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-}
-
-float read_f32le(const uint8_t* p) {
-  uint32_t u = read_u32le(p);
-  float f;
-  std::memcpy(&f, &u, 4);
-  return f;
-}
-
 // A binary STL that does not match the size law (truncated, or with bytes
 // after its triangles): binary content, a positive count, and triangles
 // whose normals are zero or unit vectors and whose corners are finite, as
 // STL writers make them (random bytes almost never pass).
 bool looks_like_binary_stl(std::span<const uint8_t> b) {
   if (b.size() < 84 + 50) return false;
-  uint32_t count = read_u32le(b.data() + 80);
+  uint32_t count = load_u32le(b.data() + 80);
   if (count == 0) return false;
   size_t check = std::min<size_t>(std::min<size_t>((b.size() - 84) / 50, count), 8);
   for (size_t t = 0; t < check; ++t) {
     const uint8_t* p = b.data() + 84 + 50 * t;
     double n2 = 0;
     for (int k = 0; k < 12; ++k) {
-      float x = read_f32le(p + 4 * k);
+      float x = load_f32le(p + 4 * k);
       if (!std::isfinite(x) || std::fabs(x) > 1e30f) return false;
       if (k < 3) n2 += double(x) * x;
     }
@@ -121,7 +111,7 @@ Format sniff(std::span<const uint8_t> bytes) {
   // The binary STL size law first: its 80-byte header is free text (it may
   // start like another format), and text never satisfies the law (bytes
   // 80-83 of text read as a count above 0x09090909, a file of gigabytes).
-  if (bytes.size() >= 84 && 84 + 50 * uint64_t(read_u32le(bytes.data() + 80)) == bytes.size())
+  if (bytes.size() >= 84 && 84 + 50 * uint64_t(load_u32le(bytes.data() + 80)) == bytes.size())
     return Format::kStl;
   std::string_view s = content_start(bytes);
   if (s.starts_with("<?xml") || s.starts_with("<VTKFile")) return Format::kVtkXml;

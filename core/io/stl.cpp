@@ -9,22 +9,14 @@
 #include <cstring>
 #include <string_view>
 
+#include "core/io/float_bits.h"
+#include "core/io/text_scan.h"
+
 namespace vm {
 namespace {
 
 constexpr size_t kHeaderBytes = 84;
 constexpr size_t kTriangleBytes = 50;
-
-uint32_t read_u32(const uint8_t* p) {
-  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-}
-
-float read_f32(const uint8_t* p) {
-  uint32_t u = read_u32(p);
-  float f;
-  std::memcpy(&f, &u, 4);
-  return f;
-}
 
 std::string trim(std::string_view s) {
   size_t b = 0, e = s.size();
@@ -49,99 +41,10 @@ Status check_finite(const std::vector<float>& coords, size_t first) {
 
 // ---- ASCII -----------------------------------------------------------------
 
-class AsciiCursor {
- public:
-  explicit AsciiCursor(std::span<const uint8_t> bytes)
-      : p_(reinterpret_cast<const char*>(bytes.data())), end_(p_ + bytes.size()) {}
-
-  /// Next whitespace-separated token; empty at end of input.
-  std::string_view next() {
-    while (p_ < end_ && is_space(*p_)) {
-      if (*p_ == '\n') ++line_;
-      ++p_;
-    }
-    const char* b = p_;
-    while (p_ < end_ && !is_space(*p_)) ++p_;
-    return std::string_view(b, p_ - b);
-  }
-  /// Rest of the current line (for solid names).
-  std::string_view rest_of_line() {
-    const char* b = p_;
-    while (p_ < end_ && *p_ != '\n') ++p_;
-    return std::string_view(b, p_ - b);
-  }
-  size_t line() const { return line_; }
-
- private:
-  static bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
-  }
-  const char* p_;
-  const char* end_;
-  size_t line_ = 1;
-};
-
-// Plain decimals ([-+]digits[.digits][e[-+]digits], at most 19 significant
-// digits): mantissa as an integer scaled by an exact power of ten. The
-// double result is within an ulp or two of the true value, so the float
-// stored is the correctly rounded one except in rare ties. Returns false for
-// anything else (inf, nan, hex, long mantissas), which strtod then handles.
-bool parse_decimal_fast(std::string_view tok, double& out) {
-  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                      1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                      1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-  size_t i = 0, n = tok.size();
-  bool negative = false;
-  if (i < n && (tok[i] == '-' || tok[i] == '+')) negative = tok[i++] == '-';
-  uint64_t mantissa = 0;
-  int digits = 0, scale = 0;
-  bool any = false;
-  for (; i < n && tok[i] >= '0' && tok[i] <= '9'; ++i, any = true) {
-    if (mantissa == 0 && tok[i] == '0') continue;
-    if (++digits > 19) return false;
-    mantissa = mantissa * 10 + uint64_t(tok[i] - '0');
-  }
-  if (i < n && tok[i] == '.') {
-    for (++i; i < n && tok[i] >= '0' && tok[i] <= '9'; ++i, any = true) {
-      --scale;
-      if (mantissa == 0 && tok[i] == '0') continue;
-      if (++digits > 19) return false;
-      mantissa = mantissa * 10 + uint64_t(tok[i] - '0');
-    }
-  }
-  if (!any) return false;
-  if (i < n && (tok[i] == 'e' || tok[i] == 'E')) {
-    ++i;
-    bool eneg = false;
-    if (i < n && (tok[i] == '-' || tok[i] == '+')) eneg = tok[i++] == '-';
-    if (i == n) return false;
-    int e = 0;
-    for (; i < n && tok[i] >= '0' && tok[i] <= '9'; ++i) {
-      if (e > 1000) return false;
-      e = e * 10 + (tok[i] - '0');
-    }
-    scale += eneg ? -e : e;
-  }
-  if (i != n || scale < -22 || scale > 22) return false;
-  double v = double(mantissa);
-  v = scale < 0 ? v / kPow10[-scale] : v * kPow10[scale];
-  out = negative ? -v : v;
-  return true;
-}
-
+/// A coordinate: the correctly rounded double of the text, as a float.
 bool parse_float(std::string_view tok, float& out) {
-  double fast;
-  if (parse_decimal_fast(tok, fast)) {
-    out = static_cast<float>(fast);
-    return true;
-  }
-  char buf[64];
-  if (tok.empty() || tok.size() >= sizeof(buf)) return false;
-  std::memcpy(buf, tok.data(), tok.size());
-  buf[tok.size()] = '\0';
-  char* endp = nullptr;
-  double v = std::strtod(buf, &endp);
-  if (endp != buf + tok.size()) return false;
+  double v = 0;
+  if (!parse_double(tok, v)) return false;
   out = static_cast<float>(v);
   return true;
 }
@@ -159,7 +62,7 @@ bool iequals(std::string_view a, std::string_view b) {
 Result<TriangleSoup> read_ascii(std::span<const uint8_t> bytes, const StlReadOptions& options) {
   TriangleSoup soup;
   soup.ascii = true;
-  AsciiCursor cur(bytes);
+  TextCursor cur(bytes);
   auto fail = [&](const std::string& what) {
     return Result<TriangleSoup>::Error("ASCII STL, line " + std::to_string(cur.line()) + ": " +
                                        what);
@@ -247,7 +150,7 @@ Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes, const StlReadOptio
   bool binary_law = false;
   uint64_t count = 0;
   if (bytes.size() >= kHeaderBytes) {
-    count = read_u32(bytes.data() + 80);
+    count = load_u32le(bytes.data() + 80);
     binary_law = kHeaderBytes + kTriangleBytes * count == bytes.size();
   }
   bool text = looks_like_text(bytes);
@@ -295,7 +198,7 @@ Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes, const StlReadOptio
   const uint8_t* p = bytes.data() + kHeaderBytes;
   float* out = soup.coords.data();
   for (uint64_t t = 0; t < count; ++t, p += kTriangleBytes, out += 9) {
-    for (int k = 0; k < 9; ++k) out[k] = read_f32(p + 12 + 4 * k);
+    for (int k = 0; k < 9; ++k) out[k] = load_f32le(p + 12 + 4 * k);
   }
   Status finite = check_finite(soup.coords, 0);
   if (!finite.ok()) return finite;
