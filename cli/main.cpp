@@ -122,7 +122,9 @@ void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
   for (size_t i = 0; i < t.openings.size(); ++i) {
     const vm::Opening& o = t.openings[i];
     const vm::OpeningSource& src = s.opening_sources[i];
-    std::string from = src.cap ? ", from a cap" : "";
+    std::string from = src.kind == vm::OpeningSource::kFile
+                           ? std::string()
+                           : std::string(", from a ") + vm::opening_source_name(src.kind);
     if (src.label >= 0) from += " (" + s.label_array + " " + std::to_string(src.label) + ")";
     std::printf("  %zu: %s: perimeter %g %s, radius %g %s, centroid (%g, %g, %g), %zu vertices%s\n",
                 i + 1, names.ok() ? names.value()[i].c_str() : "?", o.perimeter, unit, o.radius,

@@ -36,55 +36,70 @@ double median_vessel_radius(const PreparedSurface& s) {
 
 }  // namespace
 
-Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
-                                        const PrepareOptions& options, const ProgressFn& progress) {
-  PreparedSurface s;
-  if (!report_progress(progress, 0.0, "read")) return cancelled();
+namespace {
+
+/// What the phases pass on besides the surface: face labels (one per
+/// triangle, or empty), the file's face names, the adjacency of the current
+/// mesh, and where openings come from: per vertex an index into `sources`
+/// (-1: an opening of the file, or no opening).
+struct Work {
+  std::vector<int32_t> labels;
+  std::vector<std::pair<int32_t, std::string>> face_names;
+  TriangleAdjacency adjacency;
+  std::vector<OpeningSource> sources;
+  std::vector<int32_t> source_of_vertex;
+
+  /// After vertices were renumbered (old -> new, -1 removed).
+  void remap_vertices(const std::vector<int32_t>& remap, size_t new_count) {
+    if (source_of_vertex.empty()) return;
+    std::vector<int32_t> moved(new_count, -1);
+    for (size_t v = 0; v < remap.size() && v < source_of_vertex.size(); ++v)
+      if (remap[v] >= 0) moved[size_t(remap[v])] = source_of_vertex[v];
+    source_of_vertex = std::move(moved);
+  }
+};
+
+/// Phase 1: read the file, weld its corners or points.
+Status read_and_weld(PreparedSurface& s, Work& w, std::span<const uint8_t> bytes,
+                     const PrepareOptions& options) {
   SurfaceReadOptions read_options;
   read_options.max_triangles = options.read.max_triangles;
-  Result<SurfaceFile> file = read_surface(file_bytes, read_options);
+  Result<SurfaceFile> file = read_surface(bytes, read_options);
   if (!file.ok()) return file.status();
-  s.ascii = file.value().soup.ascii;
-  s.format = file.value().format;
-  s.input_triangles = file.value().num_triangles();
-  s.warnings = file.value().warnings;
-
-  if (!report_progress(progress, 0.25, "weld")) return cancelled();
-  // Face labels (per triangle) follow the triangles through every step.
-  std::vector<int32_t> labels = std::move(file.value().face_labels);
-  const std::vector<std::pair<int32_t, std::string>> face_names =
-      std::move(file.value().face_names);
-  s.label_array = file.value().label_array;
-  if (!file.value().soup.coords.empty()) {
-    s.mesh = weld(file.value().soup, options.weld, &s.weld);
-  } else {
-    s.mesh = weld(file.value().points, file.value().triangles, options.weld, &s.weld);
-  }
-  file = Result<SurfaceFile>::Error("released");  // free the file's arrays early
-  if (s.weld.merged_by_tolerance > 0) {
+  SurfaceFile& f = file.value();
+  s.ascii = f.soup.ascii;
+  s.format = f.format;
+  s.input_triangles = f.num_triangles();
+  s.warnings = f.warnings;
+  w.labels = std::move(f.face_labels);
+  w.face_names = std::move(f.face_names);
+  s.label_array = f.label_array;
+  if (!f.soup.coords.empty())
+    s.mesh = weld(f.soup, options.weld, &s.weld);
+  else
+    s.mesh = weld(f.points, f.triangles, options.weld, &s.weld);
+  if (s.weld.merged_by_tolerance > 0)
     s.warnings.push_back(num(s.weld.merged_by_tolerance) +
                          " nearly coincident vertices were merged");
-  }
+  return Status::Ok();
+}
 
-  if (!report_progress(progress, 0.45, "repair")) return cancelled();
-  remove_degenerate_and_duplicates(s.mesh, s.repair, &labels);
-  if (s.repair.degenerate_removed > 0) {
+/// Phase 2: safe repairs (degenerate and duplicate triangles), outward
+/// orientation.
+Status repair(PreparedSurface& s, Work& w) {
+  remove_degenerate_and_duplicates(s.mesh, s.repair, &w.labels);
+  if (s.repair.degenerate_removed > 0)
     s.warnings.push_back(num(s.repair.degenerate_removed) + " zero-area triangles were removed");
-  }
-  if (s.repair.collinear_repaired > 0) {
+  if (s.repair.collinear_repaired > 0)
     s.warnings.push_back(num(s.repair.collinear_repaired) +
                          " flat triangles (collinear corners) were removed by "
                          "splitting their neighbors");
-  }
-  if (s.repair.duplicates_removed > 0) {
+  if (s.repair.duplicates_removed > 0)
     s.warnings.push_back(num(s.repair.duplicates_removed) + " duplicate triangles were removed");
-  }
-  if (s.mesh.num_triangles() == 0) {
+  if (s.mesh.num_triangles() == 0)
     return Status::Error("no triangle left: all " + num(s.input_triangles) +
                          " triangles of the file have zero area");
-  }
-  TriangleAdjacency adjacency;
-  orient_consistently(s.mesh, s.repair, &adjacency);
+  orient_consistently(s.mesh, s.repair, &w.adjacency);
   if (!s.repair.orientable) {
     s.warnings.push_back("the surface is not orientable: it cannot bound a volume");
   } else if (s.repair.flipped == s.mesh.num_triangles()) {
@@ -93,81 +108,91 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
     s.warnings.push_back(num(s.repair.flipped) +
                          " triangles were re-oriented (consistent, outward)");
   }
+  return Status::Ok();
+}
 
-  if (options.largest_component_only) {
-    const TopologyReport parts = analyze_topology(s.mesh, adjacency);
-    if (parts.components > 1) {
-      std::vector<uint8_t> other(s.mesh.num_triangles());
-      for (size_t t = 0; t < other.size(); ++t) other[t] = parts.triangle_component[t] != 0;
-      remove_triangles(s.mesh, other, &labels);
-      adjacency = build_adjacency(s.mesh);
-      s.warnings.push_back("kept the largest of " + std::to_string(parts.components) +
-                           " components (" + num(parts.component_triangles[0]) + " of " +
-                           num(parts.triangles) + " triangles)");
+/// Phase 3: only the largest component, when asked.
+void keep_largest_component(PreparedSurface& s, Work& w) {
+  const TopologyReport parts = analyze_topology(s.mesh, w.adjacency);
+  if (parts.components <= 1) return;
+  std::vector<uint8_t> other(s.mesh.num_triangles());
+  for (size_t t = 0; t < other.size(); ++t) other[t] = parts.triangle_component[t] != 0;
+  remove_triangles(s.mesh, other, &w.labels);
+  w.adjacency = build_adjacency(s.mesh);
+  s.warnings.push_back("kept the largest of " + std::to_string(parts.components) + " components (" +
+                       num(parts.component_triangles[0]) + " of " + num(parts.triangles) +
+                       " triangles)");
+}
+
+/// Phase 5: planar caps removed, their rims openings of source "cap".
+void open_caps(PreparedSurface& s, Work& w, const PrepareOptions& options) {
+  if (options.keep_caps || w.adjacency.num_nonmanifold_edges > 0 || !s.repair.orientable) return;
+  const CapRecognition caps =
+      recognize_caps(s.mesh, w.adjacency, w.labels, w.face_names, options.caps);
+  for (const std::string& note : caps.notes) s.warnings.push_back(note);
+  if (caps.caps.empty()) return;
+  std::vector<uint8_t> remove(s.mesh.num_triangles(), 0);
+  w.source_of_vertex.resize(s.mesh.num_vertices(), -1);
+  for (const RecognizedCap& cap : caps.caps) {
+    const int32_t source = int32_t(w.sources.size());
+    w.sources.push_back({OpeningSource::kCap, cap.label, cap.name});
+    for (int32_t t : cap.triangles) {
+      remove[size_t(t)] = 1;
+      for (int k = 0; k < 3; ++k)
+        w.source_of_vertex[size_t(s.mesh.triangles[3 * size_t(t) + k])] = source;
     }
   }
+  const std::vector<int32_t> remap = remove_triangles(s.mesh, remove, &w.labels);
+  w.remap_vertices(remap, s.mesh.num_vertices());
+  s.caps_removed = caps.caps.size();
+  w.adjacency = build_adjacency(s.mesh);
+  s.warnings.push_back(num(caps.caps.size()) + " planar caps were recognised and removed: " +
+                       "their rims are openings now (keep them with {keep_caps})");
+}
 
-  if (!report_progress(progress, 0.55, "caps")) return cancelled();
-  std::vector<int32_t> cap_of_vertex;  // recognised cap per vertex of the rims, else -1
-  CapRecognition caps;
-  if (!options.keep_caps && adjacency.num_nonmanifold_edges == 0 && s.repair.orientable) {
-    caps = recognize_caps(s.mesh, adjacency, labels, face_names, options.caps);
-    for (const std::string& note : caps.notes) s.warnings.push_back(note);
-  }
-  if (!caps.caps.empty()) {
-    std::vector<uint8_t> remove(s.mesh.num_triangles(), 0);
-    std::vector<int32_t> cap_of(s.mesh.num_vertices(), -1);
-    for (size_t c = 0; c < caps.caps.size(); ++c)
-      for (int32_t t : caps.caps[c].triangles) {
-        remove[size_t(t)] = 1;
-        for (int k = 0; k < 3; ++k)
-          cap_of[size_t(s.mesh.triangles[3 * size_t(t) + k])] = int32_t(c);
-      }
-    const std::vector<int32_t> remap = remove_triangles(s.mesh, remove, &labels);
-    cap_of_vertex.assign(s.mesh.num_vertices(), -1);
-    for (size_t v = 0; v < remap.size(); ++v)
-      if (remap[v] >= 0) cap_of_vertex[size_t(remap[v])] = cap_of[v];
-    s.caps_removed = caps.caps.size();
-    adjacency = build_adjacency(s.mesh);
-    s.warnings.push_back(num(caps.caps.size()) + " planar caps were recognised and removed: " +
-                         "their rims are openings now (keep them with {keep_caps})");
-  }
-
-  if (!report_progress(progress, 0.6, "analyze")) return cancelled();
-  s.topology = analyze_topology(s.mesh, adjacency);
+/// Phase 8: topology, where each opening comes from, what later stages
+/// will refuse.
+void analyze(PreparedSurface& s, const Work& w) {
+  s.topology = analyze_topology(s.mesh, w.adjacency);
   for (const Opening& op : s.topology.openings) {
-    OpeningSource src;
-    const int32_t c = cap_of_vertex.empty() ? -1 : cap_of_vertex[size_t(op.loop[0])];
-    if (c >= 0) {
-      src.cap = true;
-      src.label = caps.caps[size_t(c)].label;
-      src.name = caps.caps[size_t(c)].name;
-    }
-    s.opening_sources.push_back(src);
+    const int32_t src = w.source_of_vertex.empty() ? -1 : w.source_of_vertex[size_t(op.loop[0])];
+    s.opening_sources.push_back(src >= 0 ? w.sources[size_t(src)] : OpeningSource{});
   }
   s.box = bounding_box(s.mesh.points);
   const TopologyReport& t = s.topology;
-  if (t.nonmanifold_edges > 0) {
+  if (t.nonmanifold_edges > 0)
     s.warnings.push_back(num(t.nonmanifold_edges) +
-                         " non-manifold edges (shared by 3 or more triangles), "
-                         "e.g. near " +
+                         " non-manifold edges (shared by 3 or more triangles), e.g. near " +
                          point_text(t.nonmanifold_edge_example));
-  }
-  if (t.nonmanifold_vertices > 0) {
+  if (t.nonmanifold_vertices > 0)
     s.warnings.push_back(num(t.nonmanifold_vertices) +
-                         " non-manifold vertices (surface sheets touching at "
-                         "a single vertex)");
-  }
-  if (t.components > 1) {
+                         " non-manifold vertices (surface sheets touching at a single vertex)");
+  if (t.components > 1)
     s.warnings.push_back(std::to_string(t.components) + " connected components; the largest has " +
                          num(t.component_triangles[0]) + " of " + num(t.triangles) + " triangles");
-  }
+}
 
+}  // namespace
+
+Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
+                                        const PrepareOptions& options, const ProgressFn& progress) {
+  PreparedSurface s;
+  Work w;
+  if (!report_progress(progress, 0.0, "read")) return cancelled();
+  if (Status st = read_and_weld(s, w, file_bytes, options); !st.ok()) return st;
+  if (!report_progress(progress, 0.3, "repair")) return cancelled();
+  if (Status st = repair(s, w); !st.ok()) return st;
+  if (options.largest_component_only) keep_largest_component(s, w);
+  // Phase 4: smoothing of staircases (smooth_surface.h) goes here.
+  if (!report_progress(progress, 0.5, "caps")) return cancelled();
+  open_caps(s, w, options);
+  // Phase 6: clipping (clip_surface.h), phase 7: flow extensions go here.
+  if (!report_progress(progress, 0.6, "analyze")) return cancelled();
+  analyze(s, w);
   s.unit = decide_unit(options.units, median_vessel_radius(s));
   if (s.unit.guessed && s.unit.unit == LengthUnit::kM)
     s.warnings.push_back("the model is in metres (" + s.unit.reason +
                          "): lengths are read and written in metres; say otherwise with {units}");
-
   if (!report_progress(progress, 0.85, "quality")) return cancelled();
   s.quality = triangle_qualities(s.mesh);
   s.quality_stats = quality_stats(s.quality, options.histogram_bins);

@@ -37,10 +37,16 @@ struct PrepareOptions {
 
 /// Where an opening of the prepared surface comes from.
 struct OpeningSource {
-  bool cap = false;    ///< a recognised cap, removed (else open in the file)
-  int32_t label = -1;  ///< the cap's face label, or -1
-  std::string name;    ///< the cap's name in the file, or ""
+  /// Open in the file, a recognised cap removed, a cut made by clipping.
+  enum Kind { kFile, kCap, kClip } kind = kFile;
+  int32_t label = -1;  ///< a cap's face label, or -1
+  std::string name;    ///< a cap's name in the file, or ""
 };
+
+/// "file", "cap", "clip".
+inline const char* opening_source_name(OpeningSource::Kind kind) {
+  return kind == OpeningSource::kCap ? "cap" : kind == OpeningSource::kClip ? "clip" : "file";
+}
 
 /// The welded, repaired surface and everything known about it.
 struct PreparedSurface {

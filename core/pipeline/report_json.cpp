@@ -54,7 +54,7 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
     const Opening& op = t.openings[i];
     const OpeningSource& src = s.opening_sources[i];
     j.begin_object();
-    j.key("source").value(src.cap ? "cap" : "file");
+    j.key("source").value(opening_source_name(src.kind));
     j.key("label").value(src.label);
     j.key("name").value(names.ok() ? names.value()[i] : std::string());
     j.key("perimeter").value(op.perimeter);

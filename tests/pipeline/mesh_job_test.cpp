@@ -388,7 +388,7 @@ TEST(MeshJob, ACappedModelGetsItsCapsBackAsNamedOpenings) {
   ASSERT_TRUE(r.ok()) << r.message();
   EXPECT_EQ(r.value().surface.caps_removed, 3u);
   ASSERT_EQ(r.value().surface.topology.openings.size(), 3u);
-  for (const OpeningSource& s : r.value().surface.opening_sources) EXPECT_TRUE(s.cap);
+  for (const OpeningSource& s : r.value().surface.opening_sources) EXPECT_EQ(s.kind, OpeningSource::kCap);
   EXPECT_EQ(r.value().opening_names, (std::vector<std::string>{"inlet", "left", "outlet_1"}));
   std::vector<std::string> groups;
   for (const OutputGroup& g : r.value().groups) groups.push_back(g.name);
