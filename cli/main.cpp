@@ -136,6 +136,8 @@ void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
 }
 
 void print_mesh_summary(const std::string& out, const vm::MeshJobResult& res) {
+  const std::string unit_text(vm::unit_symbol(res.surface.unit.unit));
+  const char* unit = unit_text.c_str();
   for (const std::string& w : res.warnings)
     std::fprintf(stderr, "warning: %s\n", vm::phrase_options(w, vm::kFaceCli).c_str());
   std::printf("wrote %s in %.3f s:", out.c_str(), res.seconds_total);
@@ -166,10 +168,10 @@ void print_mesh_summary(const std::string& out, const vm::MeshJobResult& res) {
   if (res.remeshed) {
     const vm::RemeshStats& st = res.remesh_stats;
     std::printf(
-        "remeshed: %zu patches, %zu seam points, size %.4g..%.4g (median %.4g); "
+        "remeshed: %zu patches, %zu seam points, size %.4g..%.4g %s (median %.4g %s); "
         "time: size %.2f s, partition %.2f s, meshing %.2f s, optimization %.2f s\n",
-        st.patches, st.seam_points, st.size_min, st.size_max, st.size_median, st.seconds_size,
-        st.seconds_partition, st.seconds_mesh, st.seconds_optimize);
+        st.patches, st.seam_points, st.size_min, st.size_max, unit, st.size_median, unit,
+        st.seconds_size, st.seconds_partition, st.seconds_mesh, st.seconds_optimize);
   }
 }
 

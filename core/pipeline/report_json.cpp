@@ -98,6 +98,8 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
   j.begin_object();
   j.key("input").raw(analysis_json(r.surface, face));
   j.key("output").begin_object();
+  // Lengths of the report are in the input's unit.
+  j.key("unit").value(unit_symbol(r.surface.unit.unit));
   j.key("vertices").value(r.output_surface.num_vertices());
   j.key("triangles").value(r.output_surface.num_triangles());
   j.key("quality");
