@@ -61,6 +61,20 @@ const OptionSpec kOptions[] = {
      .needs = "mm, cm or m",
      .doc = "the unit of the file's numbers (default: guessed from the vessel radii: below "
             "0.05 metres, else millimetres)"},
+    {.id = "flow_extension",
+     .cli = "flow-extension",
+     .js = "flowExtension",
+     .commands = kInfoMesh,
+     .group = "input",
+     .metavar = "L",
+     .min = 0,
+     .max = 100,
+     .default_text = "0",
+     .unit = "local radii",
+     .needs = "a length in local radii from 0 (none) to 100, or K=L for opening K",
+     .doc = "extend the openings (K=L: opening K) straight along their normals by L local radii",
+     .repeatable = true,
+     .per_opening = PerOpening::kOptional},
     {.id = "keep_caps",
      .cli = "keep-caps",
      .js = "keepCaps",
@@ -647,6 +661,11 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
     o.format = f.value();
   } else if (id == "output_units") {
     o.output_units = parse_unit(v.text);
+  } else if (id == "flow_extension") {
+    if (v.opening > 0)
+      o.prepare.flow_extensions.emplace_back(v.opening - 1, x);
+    else
+      o.prepare.flow_extension = x;
   } else if (id == "keep_caps") {
     o.prepare.keep_caps = v.flag;
   } else if (id == "name") {

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "core/layers/chord_radius.h"
+#include "core/prepare/flow_extensions.h"
 
 namespace vm {
 namespace {
@@ -48,6 +49,10 @@ struct Work {
   TriangleAdjacency adjacency;
   std::vector<OpeningSource> sources;
   std::vector<int32_t> source_of_vertex;
+  /// Set by flow extensions: per vertex, the opening it bounds in the
+  /// order before extension (-1: none), which the analysis keeps (an
+  /// extension keeps an opening's area, but ties could reorder).
+  std::vector<int32_t> order_of_vertex;
 
   /// After vertices were renumbered (old -> new, -1 removed).
   void remap_vertices(const std::vector<int32_t>& remap, size_t new_count) {
@@ -150,10 +155,64 @@ void open_caps(PreparedSurface& s, Work& w, const PrepareOptions& options) {
                        "their rims are openings now (keep them with {keep_caps})");
 }
 
+/// Phase 7: flow extensions at the openings asked for, their new ends
+/// keeping where the openings came from.
+Status extend_openings(PreparedSurface& s, Work& w, const PrepareOptions& options) {
+  if (options.flow_extension <= 0 && options.flow_extensions.empty()) return Status::Ok();
+  const TopologyReport before = analyze_topology(s.mesh, w.adjacency);
+  const size_t n = before.openings.size();
+  std::vector<double> lengths(n, options.flow_extension);
+  for (const auto& [k, length] : options.flow_extensions) {
+    if (k < 0 || size_t(k) >= n)
+      return Status::BadOption(
+          "flow_extension",
+          "names opening " + std::to_string(k + 1) + ", but there " +
+              (n == 1 ? std::string("is 1 opening") : "are " + num(n) + " openings"));
+    lengths[size_t(k)] = length;
+  }
+  std::vector<int32_t> opening_of_new_vertex;
+  const size_t first_new = s.mesh.num_vertices();
+  auto added =
+      add_flow_extensions(s.mesh, &w.labels, before.openings, lengths, &opening_of_new_vertex);
+  if (!added.ok()) return added.status();
+  // The new ends take their opening's source, with the extension's length.
+  w.source_of_vertex.resize(first_new, -1);
+  std::vector<int32_t> source_of_opening(n, -1);
+  for (const FlowExtension& e : added.value()) {
+    const int32_t old = w.source_of_vertex[size_t(before.openings[e.opening].loop[0])];
+    OpeningSource src = old >= 0 ? w.sources[size_t(old)] : OpeningSource{};
+    src.extension = e.length;
+    source_of_opening[e.opening] = int32_t(w.sources.size());
+    w.sources.push_back(src);
+  }
+  for (int32_t o : opening_of_new_vertex)
+    w.source_of_vertex.push_back(source_of_opening[size_t(o)]);
+  w.order_of_vertex.assign(s.mesh.num_vertices(), -1);
+  for (size_t o = 0; o < n; ++o)
+    for (int32_t v : before.openings[o].loop) w.order_of_vertex[size_t(v)] = int32_t(o);
+  for (size_t i = 0; i < opening_of_new_vertex.size(); ++i)
+    w.order_of_vertex[first_new + i] = opening_of_new_vertex[i];
+  w.adjacency = build_adjacency(s.mesh);
+  std::string where;
+  for (const FlowExtension& e : added.value())
+    where += (where.empty() ? "" : ", ") + std::to_string(e.opening + 1) + " (" +
+             std::to_string(e.rings) + " rings)";
+  if (!added.value().empty())
+    s.warnings.push_back("flow extensions added at opening " + where +
+                         ": straight along each opening's normal, ending in a circle of its area");
+  return Status::Ok();
+}
+
 /// Phase 8: topology, where each opening comes from, what later stages
 /// will refuse.
 void analyze(PreparedSurface& s, const Work& w) {
   s.topology = analyze_topology(s.mesh, w.adjacency);
+  if (!w.order_of_vertex.empty())
+    std::stable_sort(s.topology.openings.begin(), s.topology.openings.end(),
+                     [&](const Opening& a, const Opening& b) {
+                       return w.order_of_vertex[size_t(a.loop[0])] <
+                              w.order_of_vertex[size_t(b.loop[0])];
+                     });
   for (const Opening& op : s.topology.openings) {
     const int32_t src = w.source_of_vertex.empty() ? -1 : w.source_of_vertex[size_t(op.loop[0])];
     s.opening_sources.push_back(src >= 0 ? w.sources[size_t(src)] : OpeningSource{});
@@ -186,7 +245,8 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   // Phase 4: smoothing of staircases (smooth_surface.h) goes here.
   if (!report_progress(progress, 0.5, "caps")) return cancelled();
   open_caps(s, w, options);
-  // Phase 6: clipping (clip_surface.h), phase 7: flow extensions go here.
+  // Phase 6: clipping (clip_surface.h) goes here.
+  if (Status st = extend_openings(s, w, options); !st.ok()) return st;
   if (!report_progress(progress, 0.6, "analyze")) return cancelled();
   analyze(s, w);
   s.unit = decide_unit(options.units, median_vessel_radius(s));

@@ -26,6 +26,11 @@ struct PrepareOptions {
   /// Keep only the largest connected component (the others are removed
   /// and reported) instead of refusing inputs with several components.
   bool largest_component_only = false;
+  /// Flow extensions, in local radii of each opening (0: none): the length
+  /// for every opening, then per opening (index in the analysis' order,
+  /// before extension) where given.
+  double flow_extension = 0;
+  std::vector<std::pair<int, double>> flow_extensions;
   /// Keep planar caps as part of the wall (else each recognised cap is
   /// removed and its rim becomes an opening).
   bool keep_caps = false;
@@ -41,6 +46,9 @@ struct OpeningSource {
   enum Kind { kFile, kCap, kClip } kind = kFile;
   int32_t label = -1;  ///< a cap's face label, or -1
   std::string name;    ///< a cap's name in the file, or ""
+  /// Length of the flow extension added at this opening (model units; 0:
+  /// none): the opening is then the extension's circular end.
+  double extension = 0;
 };
 
 /// "file", "cap", "clip".

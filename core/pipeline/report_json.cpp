@@ -56,6 +56,7 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
     j.begin_object();
     j.key("source").value(opening_source_name(src.kind));
     j.key("label").value(src.label);
+    j.key("extension").value(src.extension);
     j.key("name").value(names.ok() ? names.value()[i] : std::string());
     j.key("perimeter").value(op.perimeter);
     j.key("radius").value(op.radius);

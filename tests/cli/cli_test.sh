@@ -157,6 +157,22 @@ if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import vtk, meshio" 2>/dev/
   check "VTK and meshio read our VTU/VTP/mesh-complete" /usr/bin/python3 "$(dirname "$0")/../../validation/check_vtk_outputs.py" --msh "$T/same.msh" --vtu "$T/out.vtu" --vtp "$T/out.vtp" --mesh-complete "$T/out.zip"
 fi
 
+# Flow extensions: each opening moved out along its normal by L radii.
+"$VM" info "$T/bif.stl" --flow-extension 4 --json > "$T/ext.json"
+check "flow extension moves the openings" [ "$(python3 -c "
+import json, math
+a, b = json.load(open('$T/info.json')), json.load(open('$T/ext.json'))
+ok = len(a['openings']) == len(b['openings']) == 3
+for o, e in zip(a['openings'], b['openings']):
+    moved = [e['centroid'][k] - o['centroid'][k] for k in range(3)]
+    want = [4 * o['radius'] * o['normal'][k] for k in range(3)]
+    ok = ok and math.dist(moved, want) < 1e-6 * o['radius'] and abs(e['extension'] - 4 * o['radius']) < 1e-9
+print(ok)")" = True ]
+check "flow extension per opening" expect_exit 0 "flow extensions added at opening 2" "$VM" info "$T/bif.stl" --flow-extension 2=3
+check "flow extension bad" expect_exit 2 "--flow-extension needs a length in local radii" "$VM" info "$T/bif.stl" --flow-extension -1
+check "flow extension opening out of range" expect_exit 2 "--flow-extension names opening 9, but there are 3 openings" "$VM" info "$T/bif.stl" --flow-extension 9=2
+check "mesh with flow extensions" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/ext.msh" --flow-extension 3 --size 0.3 --layers 2 --verify
+
 # Gmsh reads both versions: the named groups, the element counts of the
 # report, and no inverted tetrahedron (signed volumes from the nodes).
 check "report volume groups" [ "$(json "$T/report.json" "','.join(g['name'] for g in d['output']['groups'])")" = "wall,inlet,outlet_1,outlet_2,lumen" ]

@@ -218,7 +218,7 @@ describe('analyze', () => {
     assert.ok(seen.length >= 4);
     for (let i = 1; i < seen.length; i++) assert.ok(seen[i][0] >= seen[i - 1][0]);
     assert.equal(seen.at(-1)[0], 1);
-    assert.ok(seen.some(([, stage]) => stage === 'weld'));
+    assert.ok(seen.some(([, stage]) => stage === 'repair'));
     let calls = 0;
     const c = api.analyze(stl, { onProgress: () => ++calls < 2 });
     assert.deepEqual([c.ok, c.cancelled, c.error], [false, true, 'cancelled']);

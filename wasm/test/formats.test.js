@@ -115,6 +115,24 @@ describe('files in', () => {
   });
 });
 
+describe('flow extensions', () => {
+  test('each opening moved out along its normal, in local radii; per opening with {K: L}', () => {
+    const stl = api.makePhantom({ kind: 'bifurcation', voxel: 0.12, noise: 0.3 }).stl;
+    const plain = api.analyze(stl).analysis.openings;
+    const ext = api.analyze(stl, { flowExtension: { 2: 3 } });
+    assert.equal(ext.ok, true, ext.error);
+    const [a, b] = [plain[1], ext.analysis.openings[1]];
+    const moved = [0, 1, 2].map((k) => b.centroid[k] - a.centroid[k]);
+    const want = [0, 1, 2].map((k) => 3 * a.radius * a.normal[k]);
+    assert.ok(Math.hypot(...moved.map((m, k) => m - want[k])) < 1e-6, JSON.stringify({ moved, want }));
+    assert.ok(Math.abs(b.extension - 3 * a.radius) < 1e-9);
+    assert.equal(ext.analysis.openings[0].extension, 0);
+    const m = api.mesh(stl, { flowExtension: 2, size: 0.3, layers: 1 });
+    assert.equal(m.ok, true, m.error);
+    assert.match(api.analyze(stl, { flowExtension: -1 }).error, /^flowExtension needs a length in local radii/);
+  });
+});
+
 describe('names and files out', () => {
   let tube;
   before(() => {
