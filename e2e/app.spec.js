@@ -54,10 +54,10 @@ for (const version of ['4.1', '2.2']) {
     await openApp(page);
     await upload(page, 'tetra.stl', Buffer.from(TETRA_ASCII));
     await expect(page.getByTestId('stat-triangles')).toHaveText('4');
-    await page.getByTestId('msh-version').selectOption(version);
+    await page.getByTestId('export-format').selectOption(`msh-${version}`);
     const [download] = await Promise.all([
       page.waitForEvent('download'),
-      page.getByTestId('export-msh').click(),
+      page.getByTestId('export').click(),
     ]);
     expect(download.suggestedFilename()).toBe('tetra.msh');
     const chunks = [];
@@ -104,12 +104,12 @@ test('several components: export refused, then allowed with the largest only', a
   const tetra = TETRA_ASCII.replace('solid tet\n', '').replace('endsolid tet\n', '').replace(/vertex (\S+)/g, (_, x) => `vertex ${Number(x) + 10}`);
   await upload(page, 'two.stl', Buffer.from(`solid two\n${facets}${tetra}endsolid two\n`));
   await expect(page.getByTestId('stat-components')).toHaveText('2');
-  await page.getByTestId('export-msh').click();
+  await page.getByTestId('export').click();
   await expect(page.getByTestId('error')).toContainText('2 connected components');
   await page.getByTestId('largest-only').check();
   const [download] = await Promise.all([
     page.waitForEvent('download'),
-    page.getByTestId('export-msh').click(),
+    page.getByTestId('export').click(),
   ]);
   expect(download.suggestedFilename()).toBe('two.msh');
 });

@@ -9,7 +9,7 @@ test('no request leaves the origin, and the app works offline once loaded', asyn
   await expect(page.getByTestId('stat-triangles')).toHaveText('4');
   const [download] = await Promise.all([
     page.waitForEvent('download'),
-    page.getByTestId('export-msh').click(),
+    page.getByTestId('export').click(),
   ]);
   expect(download.suggestedFilename()).toBe('tetra.msh');
   await page.getByTestId('load-sample').click();

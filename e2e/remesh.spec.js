@@ -38,7 +38,7 @@ test('remesh the sample: quality shown beside the input, the views, export', asy
   // remeshed wall, the caps and the tetrahedra).
   const [download] = await Promise.all([
     page.waitForEvent('download'),
-    page.getByTestId('export-msh').click(),
+    page.getByTestId('export').click(),
   ]);
   const chunks = [];
   for await (const chunk of await download.createReadStream()) chunks.push(chunk);

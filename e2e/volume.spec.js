@@ -17,7 +17,7 @@ async function meshSample(page) {
 async function downloadText(page) {
   const [download] = await Promise.all([
     page.waitForEvent('download'),
-    page.getByTestId('export-msh').click(),
+    page.getByTestId('export').click(),
   ]);
   const chunks = [];
   for await (const chunk of await download.createReadStream()) chunks.push(chunk);

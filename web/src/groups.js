@@ -1,7 +1,8 @@
-// Colors of the physical groups (surfaces: wall, inlet, outlet_k, and with a
-// vessel wall outer_wall, wall_inlet, wall_outlet_k; volumes: lumen,
-// boundary_layer, vessel_wall, also the colors of the faces cut by the
-// clipping plane) and of the volume's parts, and their legends.
+// Colors of the physical groups (surfaces: wall, inlet, outlet_k or the
+// names given to the openings, and with a vessel wall outer_wall,
+// wall_inlet, wall_outlet_k; volumes: lumen, boundary_layer, vessel_wall,
+// also the colors of the faces cut by the clipping plane) and of the
+// volume's parts, and their legends.
 const FIXED = {
   wall: [0.8, 0.8, 0.78],
   inlet: [0.16, 0.42, 0.85],
@@ -20,14 +21,23 @@ const OUTLETS = [
 ];
 const OTHER = [0.6, 0.6, 0.6];
 
-/** RGB (0..1) of the group `name`; a wall ring (wall_inlet, wall_outlet_k)
- * is its cap's color, paler. */
+/** A palette color for a name the user gave an opening (the same each time). */
+function namedColor(name) {
+  let h = 0;
+  for (const ch of name) h = (h * 31 + ch.codePointAt(0)) >>> 0;
+  return OUTLETS[h % OUTLETS.length];
+}
+
+/** RGB (0..1) of the group `name`; a wall ring (wall_inlet, wall_outlet_k,
+ * wall_NAME) is its cap's color, paler; a cap the user named gets a palette
+ * color. */
 export function groupColor(name) {
   if (FIXED[name]) return FIXED[name];
   const ring = /^wall_(.+)$/.exec(name);
   if (ring) return groupColor(ring[1]).map((c) => 0.5 * c + 0.5);
   const outlet = /^outlet_(\d+)$/.exec(name);
-  return outlet ? OUTLETS[(Number(outlet[1]) - 1) % OUTLETS.length] : OTHER;
+  if (outlet) return OUTLETS[(Number(outlet[1]) - 1) % OUTLETS.length];
+  return name ? namedColor(name) : OTHER;
 }
 
 /** The volume's parts (volume.tetPart values): name and color. */

@@ -1,13 +1,16 @@
-// The vesselmesh page: load an STL (drop, file picker or generated sample),
-// analyze it in the worker, show it, mesh it (surface, caps, boundary layer,
-// vessel wall, tetrahedra), inspect the volume with a clipping plane, export
-// MSH. All meshing happens
-// in the Web Worker behind VesselmeshClient, so the page stays responsive.
+// The vesselmesh page: load a surface file (drop, file picker or generated
+// sample), analyze it in the worker (units, caps), show it, name its
+// openings, mesh it (surface, caps, boundary layer, vessel wall,
+// tetrahedra), inspect the volume with a clipping plane, export it (MSH,
+// VTU, VTP, STL, SimVascular mesh-complete). All meshing happens in the Web
+// Worker behind VesselmeshClient, so the page stays responsive.
 import { VesselmeshClient } from '../../wasm/src/client.js';
 import { qualityGradientCss } from './colormap.js';
+import { EXPORT_FORMATS, exportFileName, exportFormat } from './files.js';
 import { drawGroupLegend, drawPartLegend, PARTS } from './groups.js';
 import { drawHistogram } from './histogram.js';
-import { chosenInlet, hideAnalysis, showAnalysis, showCaps } from './panel.js';
+import { OpeningsTable } from './openings.js';
+import { hideAnalysis, showAnalysis } from './panel.js';
 import { Viewer } from './viewer.js';
 import { withPrismsSplit } from './prisms.js';
 import { VolumeView } from './volume-view.js';
@@ -30,9 +33,19 @@ const volumeView = new VolumeView(viewer, ({ triangles, cut, cutByPart, ms }) =>
     `(${count(cut)} cut faces${parts.length ? `: ${parts.join(', ')}` : ''}) in ${ms.toFixed(1)} ms`;
 });
 const volumeOption = $('show').querySelector('option[value=volume]');
-let current = null; // { name, bytes, analysis, surface }
+let current = null; // { name, bytes, prep, analysis, surface }; prep: the analyze options
 let remeshed = null; // { key, result } of the last remeshing of `current`
-let busy = false;
+let busy = false; // a worker job runs (the progress bar is shown)
+let acting = false; // a Mesh or Export press is being handled
+let meshJobs = 0;
+// What the worker holds: the surface openingNames() names (its last
+// analysis) and the result export() writes (its last mesh). A failed or
+// cancelled job loses them (a cancel restarts the worker).
+const held = { analysis: null, mesh: null };
+const openings = new OpeningsTable($('openings'), {
+  openingNames,
+  onHover: (loop) => viewer.highlightLoop(loop, current.surface.positions),
+});
 
 $('legend').querySelector('.ramp').style.background = qualityGradientCss();
 
@@ -46,12 +59,16 @@ function clearError() {
   $('error').textContent = '';
 }
 
+// Controls that start a job, off while one runs.
+const BUSY_CONTROLS = ['load-sample', 'export', 'file-input', 'remesh', 'units', 'keep-caps', 'largest-only'];
+
 function setBusy(on, stage = '') {
   busy = on;
   $('progress').hidden = !on;
   $('progress-bar').value = 0;
   $('progress-stage').textContent = stage;
-  for (const id of ['load-sample', 'export-msh', 'file-input', 'remesh']) $(id).disabled = on;
+  for (const id of BUSY_CONTROLS) $(id).disabled = on;
+  for (const button of $('units-prompt').querySelectorAll('button')) button.disabled = on;
 }
 
 function onProgress(fraction, stage) {
@@ -70,30 +87,110 @@ async function run(stage, job) {
   }
 }
 
-async function loadBytes(name, bytes) {
-  const result = await run('read', () => client.analyze(bytes, { onProgress }));
-  if (!result.ok) {
-    showError(result.cancelled ? 'Cancelled.' : `${name}: ${result.error}`);
+/** Analyzes `bytes` in the worker with the analyze options `prep`; the
+ * result, or null with the error shown. */
+async function analyze(name, bytes, prep) {
+  held.analysis = null;
+  const result = await run('read', () => client.analyze(bytes, { ...prep, onProgress }));
+  if (!result.ok) showError(result.cancelled ? 'Cancelled.' : `${name}: ${result.error}`);
+  return result.ok ? result : null;
+}
+
+/** Whether the worker's last analysis is `current`'s (analyzes it again when
+ * a failed or cancelled job lost it). */
+async function ensureAnalyzed() {
+  if (held.analysis === current) return true;
+  if (busy || !(await analyze(current.name, current.bytes, current.prep))) return false;
+  held.analysis = current;
+  return true;
+}
+
+/** The core's names of the openings (openings.js asks as the user types). */
+async function openingNames(options) {
+  const here = current;
+  if (!(await ensureAnalyzed()) || here !== current) return { ok: false, error: 'not analyzed' };
+  return client.openingNames(options);
+}
+
+/** The analyze options chosen in the panel (units, caps, components). */
+function prepOptions() {
+  const prep = {};
+  if ($('units').value) prep.units = $('units').value;
+  if ($('keep-caps').checked) prep.keepCaps = true;
+  if ($('largest-only').checked) prep.largestComponentOnly = true;
+  return prep;
+}
+
+/** Sets the analyze options' controls to `prep`. */
+function showPrep(prep) {
+  $('units').value = prep.units ?? '';
+  $('keep-caps').checked = Boolean(prep.keepCaps);
+  $('largest-only').checked = Boolean(prep.largestComponentOnly);
+}
+
+/**
+ * Analyzes and shows a file with the analyze options `prep`; `edits` are
+ * opening names the user typed, kept when the same surface is analyzed
+ * again in another unit. On failure the previous file stays.
+ */
+async function loadBytes(name, bytes, prep = {}, edits = []) {
+  showPrep(prep);
+  const result = await analyze(name, bytes, prep);
+  if (!result) {
+    if (current) showPrep(current.prep);
     return;
   }
-  current = { name, bytes, analysis: result.analysis, surface: result.surface };
+  current = { name, bytes, prep, analysis: result.analysis, surface: result.surface };
+  held.analysis = current;
   remeshed = null;
   $('remesh-result').hidden = true;
   $('drop-hint').hidden = true;
   $('legend').hidden = false;
-  const hover = (loop) => viewer.highlightLoop(loop, current.surface.positions);
-  showAnalysis(name, result.analysis, hover);
+  const { analysis } = current;
+  showAnalysis(name, analysis, prep);
+  showUnit(analysis.units.unit);
+  const scale = analysis.bounding_box.diagonal;
+  openings.show(analysis.openings, { unit: analysis.units.unit, labelArray: analysis.label_array, scale }, edits);
   show('input');
-  if (result.analysis.components > 1) {
+  if (analysis.components > 1) {
     showError(
-      `${name} has ${result.analysis.components} connected components. ` +
-        'Export refuses it unless "Keep the largest component only" is checked.',
+      `${name} has ${analysis.components} connected components. ` +
+        'Meshing refuses it unless "Keep the largest component only" is checked.',
     );
   }
 }
 
+/** Analyzes the current file again with the analyze options of the panel. */
+async function reanalyze() {
+  if (!current) return;
+  if (busy || acting) {
+    showPrep(current.prep); // a job runs: the controls show what it uses
+    return;
+  }
+  const prep = prepOptions();
+  // Only the unit changed: the same openings, so the typed names stay.
+  const surface = (p) => JSON.stringify({ ...p, units: undefined });
+  const same = surface(prep) === surface(current.prep);
+  await loadBytes(current.name, current.bytes, prep, same ? openings.edits() : []);
+}
+
+/** The unit of the current model on every length label of the panel. */
+function showUnit(unit) {
+  for (const label of document.querySelectorAll('[data-unit-label]')) label.textContent = unit;
+  $('output-units').options[0].textContent = `same as input (${unit})`;
+  showSizeLabel();
+}
+
+/** The unit lengths are given in, in messages. */
+const unitName = () => current?.analysis.units.unit ?? 'model units';
+
+/** 'N', or 'h (mm)' for a uniform size. */
+function showSizeLabel() {
+  $('size-label').textContent = $('size-mode').value === 'size' ? `h (${unitName()})` : 'N';
+}
+
 async function loadFile(file) {
-  if (busy) return;
+  if (busy || acting) return;
   if (file.size > MAX_FILE_BYTES) {
     showError(`${file.name}: file too large (${(file.size / 2 ** 30).toFixed(1)} GB; the limit in a browser tab is 1.5 GB).`);
     return;
@@ -109,7 +206,7 @@ async function loadFile(file) {
 }
 
 async function loadSample() {
-  if (busy) return;
+  if (busy || acting) return;
   const made = await run('generating sample', () =>
     client.makePhantom({ kind: 'bifurcation', voxel: 0.08, noise: 0.3 }),
   );
@@ -120,8 +217,8 @@ async function loadSample() {
   await loadBytes('sample-bifurcation.stl', made.stl);
 }
 
-function download(name, bytes) {
-  const url = URL.createObjectURL(new Blob([bytes], { type: 'text/plain' }));
+function download(name, bytes, type) {
+  const url = URL.createObjectURL(new Blob([bytes], { type }));
   const a = document.createElement('a');
   a.href = url;
   a.download = name;
@@ -167,7 +264,7 @@ function coreSizeProblem() {
   const input = $('core-size');
   const value = input.value.trim();
   const bad = input.validity.badInput || (value !== '' && !(Number(value) >= 0));
-  return check(input, !bad, 'Core size must be a length ≥ 0 in model units, or blank for the default.');
+  return check(input, !bad, `Core size must be a length ≥ 0 in ${unitName()}, or blank for the default.`);
 }
 
 const LAYER_FIELDS = ['layers', 'layer-thickness', 'first-layer', 'growth', 'wall-thickness', 'wall-layers'];
@@ -194,7 +291,7 @@ function layerProblems() {
       'first-layer',
       layers && first,
       (x) => fits('first_layer', x),
-      `Boundary layer: the first-layer height must be ${needs('first_layer')} in model units.`,
+      `Boundary layer: the first-layer height must be ${needs('first_layer')} in ${unitName()}.`,
     ],
     ['growth', layers, (x) => fits('growth', x), `Boundary layer: the growth must be ${needs('growth')}.`],
     [
@@ -216,12 +313,12 @@ function layerProblems() {
   return problems.find(Boolean) ?? null;
 }
 
-/** The mesh options chosen in the panel (without progress). */
-function meshOptions() {
+/** The mesh options chosen in the panel with the opening `names` (without
+ * progress and the file to write). */
+function meshOptions(names) {
   const mode = $('size-mode').value;
   const options = {
-    mshVersion: $('msh-version').value,
-    largestComponentOnly: $('largest-only').checked,
+    ...current.prep,
     [mode]: Number($('size-value').value),
     param: $('param').value,
     mesher2d: $('mesher2d').value,
@@ -230,8 +327,9 @@ function meshOptions() {
   if (!$('fidelity-on').checked) options.fidelity = 0;
   const coreSize = $('core-size').value.trim();
   if (coreSize !== '') options.coreSize = Number(coreSize);
-  const inlet = chosenInlet();
+  const inlet = openings.chosenInlet();
   if (inlet !== undefined) options.inlet = inlet;
+  if (Object.keys(names).length) options.names = names;
   if (!options.surfaceOnly) {
     options.layers = numberIn('layers');
     if (options.layers > 0) {
@@ -435,51 +533,107 @@ function showMeshResult(result) {
   } else {
     volumeOption.remove();
   }
-  showCaps(current.analysis.openings, out.caps);
+  openings.showCaps(out.caps);
   $('remesh-result').hidden = false;
   $('show').value = volume ? 'volume' : 'output';
   show($('show').value);
 }
 
-/** Meshes `current` with the panel's options, reusing the last result. */
-async function meshCurrent() {
+/** The panel's mesh options once every field and opening name is valid
+ * (the core checked the names), else null with the problem shown. */
+async function checkedMeshOptions() {
   const problem = [coreSizeProblem(), layerProblems()].find(Boolean);
   if (problem) {
     showError(problem);
     return null;
   }
-  const options = meshOptions();
-  const key = JSON.stringify(options);
-  if (remeshed?.key === key) return remeshed.result;
-  const result = await run('mesh', () => client.mesh(current.bytes, { ...options, onProgress }));
+  if (!(await ensureAnalyzed())) return null;
+  const naming = await openings.check();
+  if (naming.problem) {
+    showError(`Opening ${naming.problem.k}: ${naming.problem.message}`);
+    openings.focusName(naming.problem.k);
+    return null;
+  }
+  return meshOptions(naming.names);
+}
+
+/** Meshes `current` with `options` and `write` (the file to write: format,
+ * mshVersion, outputUnits); shows and returns the result, or null. */
+async function meshWith(options, write = {}) {
+  held.mesh = null;
+  document.body.dataset.meshJobs = String(++meshJobs);
+  const result = await run('mesh', () => client.mesh(current.bytes, { ...options, ...write, onProgress }));
   if (!result.ok) {
     showError(result.cancelled ? 'Cancelled.' : `${current.name}: ${result.error}`);
     return null;
   }
   // Kept prisms are shown as the tetrahedra they split into.
   if (result.volume) result.volume = withPrismsSplit(result.volume);
-  remeshed = { key, result };
+  remeshed = { key: JSON.stringify(options), result };
+  held.mesh = remeshed;
   showMeshResult(result);
   return result;
 }
 
-async function remesh() {
-  if (!current || busy) return;
-  await meshCurrent();
+/** Runs a Mesh or Export press, one at a time. */
+async function act(job) {
+  if (!current || busy || acting) return;
+  acting = true;
+  try {
+    await job();
+  } finally {
+    acting = false;
+  }
 }
 
-async function exportMsh() {
-  if (!current || busy) return;
-  const result = await meshCurrent();
-  if (result) download(current.name.replace(/\.stl$/i, '') + '.msh', result.msh);
+/** Meshes with the panel's options, unless the shown result has them. */
+async function remesh() {
+  const options = await checkedMeshOptions();
+  if (options && remeshed?.key !== JSON.stringify(options)) await meshWith(options);
+}
+
+/** The chosen file format and units to write: export() and mesh() options. */
+function writeOptions() {
+  const { format, mshVersion } = exportFormat($('export-format').value);
+  const outputUnits = $('output-units').value;
+  return { format, ...(mshVersion && { mshVersion }), ...(outputUnits && { outputUnits }) };
+}
+
+/**
+ * Downloads the mesh in the chosen format: written again from the worker's
+ * last mesh when it has the panel's options (no meshing), else meshed first.
+ */
+async function exportFile() {
+  const options = await checkedMeshOptions();
+  if (!options) return;
+  const { format, ...write } = writeOptions();
+  let file;
+  if (remeshed?.key === JSON.stringify(options) && held.mesh === remeshed) {
+    const result = await run('export', () => client.export(format, write));
+    if (!result.ok) showError(`${current.name}: ${result.error}`);
+    file = result.ok && result.file;
+  } else {
+    file = (await meshWith(options, { format, ...write }))?.file;
+  }
+  const chosen = exportFormat($('export-format').value);
+  if (file) download(exportFileName(current.name, chosen.value), file, chosen.mime);
+}
+
+/** The export formats that apply: a surface-only mesh has no volume formats. */
+function syncExportFormats() {
+  const surfaceOnly = $('surface-only').checked;
+  for (const option of $('export-format').options) {
+    option.disabled = surfaceOnly && exportFormat(option.value).volume === true;
+  }
+  if ($('export-format').selectedOptions[0]?.disabled) $('export-format').value = EXPORT_FORMATS[0].value;
+  $('export-hint').hidden = !surfaceOnly;
 }
 
 $('size-mode').addEventListener('change', (e) => {
   const uniform = e.target.value === 'size';
-  $('size-label').textContent = uniform ? 'h' : 'N';
+  showSizeLabel();
   // A sensible start: 2 pi R / 20 of the median opening, or a 50th of the box.
-  const openings = current?.analysis.openings ?? [];
-  const radii = openings.map((o) => o.radius).sort((a, b) => a - b);
+  const radii = (current?.analysis.openings ?? []).map((o) => o.radius).sort((a, b) => a - b);
   const diag = current?.analysis.bounding_box.diagonal ?? 1;
   const h = radii.length ? (2 * Math.PI * radii[Math.floor(radii.length / 2)]) / 20 : diag / 50;
   $('size-value').value = uniform ? Number(h.toPrecision(2)) : 20;
@@ -510,19 +664,32 @@ $('layer-mode').addEventListener('change', (e) => {
   syncLayerFields();
 });
 $('wall-on').addEventListener('change', syncLayerFields);
-$('surface-only').addEventListener('change', syncLayerFields);
+$('surface-only').addEventListener('change', () => {
+  syncLayerFields();
+  syncExportFormats();
+});
 $('tet-histogram-all').addEventListener('change', () => {
   if (remeshed?.result.volume) drawTetHistogram(remeshed.result);
 });
-$('remesh').addEventListener('click', remesh);
+$('remesh').addEventListener('click', () => act(remesh));
 $('file-input').addEventListener('change', (e) => {
   const file = e.target.files[0];
   e.target.value = '';
   if (file) loadFile(file);
 });
 $('load-sample').addEventListener('click', loadSample);
-$('export-msh').addEventListener('click', exportMsh);
-$('cancel').addEventListener('click', () => client.cancel());
+$('export').addEventListener('click', () => act(exportFile));
+for (const id of ['units', 'keep-caps', 'largest-only']) $(id).addEventListener('change', reanalyze);
+for (const button of $('units-prompt').querySelectorAll('button')) {
+  button.addEventListener('click', () => {
+    $('units').value = button.dataset.unit;
+    reanalyze();
+  });
+}
+$('cancel').addEventListener('click', () => {
+  client.cancel(); // a new worker: it holds no analysis nor mesh
+  held.analysis = held.mesh = null;
+});
 $('fit-view').addEventListener('click', () => viewer.fitView());
 $('wireframe').addEventListener('change', (e) => viewer.setWireframe(e.target.checked));
 
@@ -543,5 +710,8 @@ client.ready.then(
   () => document.body.setAttribute('data-ready', 'true'),
   (e) => showError(`The mesher could not start: ${e.message}`),
 );
+$('export-format').replaceChildren(...EXPORT_FORMATS.map(({ value, label }) => new Option(label, value)));
+document.body.dataset.meshJobs = '0';
 hideAnalysis();
 syncLayerFields();
+syncExportFormats();

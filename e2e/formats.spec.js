@@ -1,0 +1,217 @@
+import { readFileSync } from 'node:fs';
+
+import { expect, test } from '@playwright/test';
+
+import { createVesselmesh } from '../wasm/src/vesselmesh.js';
+import { cappedTubeVtp, exportDownload, openApp, screenshots, upload } from './helpers.js';
+
+// The files a vascular pipeline exchanges: a capped SimVascular-like VTP
+// whose caps become named openings, every export format written from one
+// mesh, names checked by the core as they are typed, and the model's unit.
+
+test.use({ viewport: { width: 1440, height: 900 } });
+
+/** Opens the app and records page errors and console errors. */
+async function open(page) {
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
+  const foreign = await openApp(page);
+  return { errors, foreign };
+}
+
+async function pickVtp(page) {
+  await page.getByTestId('file-input').setInputFiles({
+    name: 'model.vtp',
+    mimeType: 'application/xml',
+    buffer: cappedTubeVtp(),
+  });
+  await expect(page.getByTestId('stat-openings')).toHaveText('2');
+}
+
+/** Small and quick: a uniform size of 0.4 and one boundary layer. */
+async function coarse(page) {
+  await page.getByTestId('size-mode').selectOption('size');
+  await page.getByTestId('size-value').fill('0.4');
+  await page.getByTestId('layers').fill('1');
+}
+
+const meshJobs = (page) => page.locator('body').getAttribute('data-mesh-jobs');
+
+/** The largest z of the MSH 4.1 file's volume entity (its bounding box). */
+function mshMaxZ(text) {
+  const lines = text.split('\n');
+  const counts = lines[lines.indexOf('$Entities') + 1].split(' ').map(Number);
+  const surfaces = counts[2];
+  const volume = lines[lines.indexOf('$Entities') + 2 + surfaces].split(' ').map(Number);
+  return volume[6];
+}
+
+test('a capped VTP: caps become openings, one named, the mesh exported as VTU then MSH without meshing again', async ({
+  page,
+}) => {
+  const { errors, foreign } = await open(page);
+  await pickVtp(page);
+  await expect(page.getByTestId('stat-format')).toHaveText('VTK XML PolyData (ascii)');
+  await expect(page.getByTestId('stat-caps')).toHaveText('2 removed (faces labelled by ModelFaceID)');
+  const rows = page.getByTestId('opening-item');
+  await expect(rows).toHaveCount(2);
+  await expect(rows.getByTestId('opening-source')).toHaveText(['cap, ModelFaceID 2', 'cap, ModelFaceID 3']);
+  await expect(rows.nth(0)).toContainText('radius 0.9943 mm');
+  await expect(page.getByTestId('warnings')).toContainText('2 planar caps were recognised and removed');
+  await expect(page.getByTestId('warnings')).toContainText('keepCaps');
+  const names = page.getByTestId('opening-name');
+  await expect(names.nth(0)).toHaveValue('inlet');
+  await expect(names.nth(1)).toHaveValue('outlet_1');
+  await expect(names.nth(0)).toHaveAccessibleName('Group name of opening 1');
+
+  // Hovering a row still highlights its rim; naming opening 2.
+  await rows.nth(1).hover();
+  await expect(rows.nth(1)).toHaveClass(/active/);
+  await names.nth(1).fill('distal');
+  await expect(names.nth(1)).toHaveAttribute('aria-invalid', 'false');
+  await coarse(page);
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('remesh-result')).toBeVisible({ timeout: 60_000 });
+  expect(await meshJobs(page)).toBe('1');
+  await expect(rows.nth(1)).toHaveAttribute('data-cap', 'distal');
+  await expect(rows.nth(0)).toHaveAttribute('data-cap', 'inlet');
+  await expect(page.getByTestId('group-legend').locator('li')).toHaveText(['wall', 'inlet', 'distal']);
+  await expect(page.locator('#out-caps')).toHaveText('inlet, distal');
+
+  // Export: the VTU, then the MSH, both written from the mesh shown.
+  await page.getByTestId('export-format').selectOption('vtu');
+  const vtu = await exportDownload(page);
+  expect(vtu.name).toBe('model.vtu');
+  expect(vtu.bytes.toString()).toContain('<VTKFile type="UnstructuredGrid"');
+  await page.getByTestId('export-format').selectOption('msh-4.1');
+  const msh = await exportDownload(page);
+  expect(msh.name).toBe('model.msh');
+  const text = msh.bytes.toString();
+  expect(text.startsWith('$MeshFormat\n4.1 0 8\n')).toBe(true);
+  expect(text).toContain('"distal"');
+  expect(mshMaxZ(text)).toBeCloseTo(4, 6);
+  // In centimetres, the boundary faces, the wall, the SimVascular folder.
+  await page.getByTestId('output-units').selectOption('cm');
+  expect(mshMaxZ((await exportDownload(page)).bytes.toString())).toBeCloseTo(0.4, 6);
+  await page.getByTestId('export-format').selectOption('vtp');
+  const vtp = await exportDownload(page);
+  expect(vtp.name).toBe('model-boundary.vtp');
+  expect(vtp.bytes.toString()).toContain('<VTKFile type="PolyData"');
+  await page.getByTestId('export-format').selectOption('stl');
+  expect((await exportDownload(page)).name).toBe('model-wall.stl');
+  await page.getByTestId('export-format').selectOption('mesh-complete');
+  const zip = await exportDownload(page);
+  expect(zip.name).toBe('model-mesh-complete.zip');
+  expect([...zip.bytes.subarray(0, 4)]).toEqual([0x50, 0x4b, 0x03, 0x04]);
+  expect(zip.bytes.toString('latin1')).toContain('mesh-surfaces/distal.vtp');
+  expect(await meshJobs(page)).toBe('1');
+  await screenshots(page, 'formats', rows.nth(1));
+
+  // Another name: the shown mesh no longer matches, so Export meshes first.
+  await names.nth(1).fill('iliac');
+  await page.getByTestId('export-format').selectOption('msh-2.2');
+  const renamed = await exportDownload(page);
+  expect(renamed.bytes.toString().startsWith('$MeshFormat\n2.2 0 8\n')).toBe(true);
+  expect(renamed.bytes.toString()).toContain('"iliac"');
+  expect(await meshJobs(page)).toBe('2');
+  await expect(rows.nth(1)).toHaveAttribute('data-cap', 'iliac');
+  expect(errors).toEqual([]);
+  expect(foreign).toEqual([]);
+});
+
+test('names the core refuses are marked at their input and nothing is meshed', async ({ page }) => {
+  const { errors } = await open(page);
+  await pickVtp(page);
+  const names = page.getByTestId('opening-name');
+  const refusals = page.getByTestId('opening-name-error');
+
+  // The inlet choice renames the openings left to their default.
+  await page.getByTestId('inlet-choice').nth(1).check();
+  await expect(names.nth(0)).toHaveValue('outlet_1');
+  await expect(names.nth(1)).toHaveValue('inlet');
+  await page.getByTestId('inlet-choice').nth(0).check();
+  await expect(names.nth(0)).toHaveValue('inlet');
+
+  await names.nth(1).fill('wall');
+  await expect(names.nth(1)).toHaveAttribute('aria-invalid', 'true');
+  await expect(refusals.nth(1)).toHaveText(
+    "names cannot be 'wall': wall, lumen, outer_wall, boundary_layer, vessel_wall and wall_* name other groups",
+  );
+  await expect(refusals.nth(0)).toBeHidden();
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('error')).toContainText("Opening 2: names cannot be 'wall'");
+  await page.getByTestId('export').click();
+  await expect(page.getByTestId('error')).toContainText("Opening 2: names cannot be 'wall'");
+  await screenshots(page, 'formats-names', names.nth(1));
+
+  await names.nth(1).fill('9x');
+  await expect(refusals.nth(1)).toHaveText(
+    'names needs K=NAME with NAME 1-64 letters, digits, _ or -, starting with a letter',
+  );
+  // Each name once: the second of two equal names is refused.
+  await names.nth(1).fill('distal');
+  await expect(names.nth(1)).toHaveAttribute('aria-invalid', 'false');
+  await names.nth(0).fill('distal');
+  await expect(refusals.nth(1)).toHaveText("names gives 'distal' to openings 1 and 2: each name once");
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('error')).toContainText('Opening 2: names gives');
+  expect(await meshJobs(page)).toBe('0');
+  await expect(page.getByTestId('remesh-result')).toBeHidden();
+
+  // Cleared, a name takes its default back once the input is left.
+  await names.nth(0).fill('');
+  await names.nth(0).blur();
+  await expect(names.nth(0)).toHaveValue('inlet');
+  await expect(names.nth(1)).toHaveAttribute('aria-invalid', 'false');
+  await expect(refusals).toHaveText(['', '']);
+  expect(errors).toEqual([]);
+});
+
+test('units: metres guessed plainly, an unsure guess asked and changed; caps kept as wall', async ({ page }) => {
+  const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
+  const api = await createVesselmesh({ wasmBinary });
+  const phantom = (scale) => Buffer.from(api.makePhantom({ kind: 'tube', voxel: 0.12, flatCaps: true, scale }).stl);
+  const { errors } = await open(page);
+  const units = page.getByTestId('stat-units');
+  const prompt = page.getByTestId('units-prompt');
+
+  // A model in metres: said plainly, no question; every length in m.
+  await upload(page, 'metres.stl', phantom(0.003));
+  await expect(units).toHaveText('m (guessed from the median vessel radius 0.00327)');
+  await expect(prompt).toBeHidden();
+  await expect(page.getByTestId('stat-bbox')).toContainText(' m, diagonal 0.03497 m');
+  await expect(page.getByTestId('opening-item').first()).toContainText('radius 0.003273 m');
+  await expect(page.getByTestId('warnings')).toContainText('the model is in metres');
+  await page.getByTestId('size-mode').selectOption('size');
+  await expect(page.locator('#size-label')).toHaveText('h (m)');
+
+  // The same shape in millimetres or centimetres: the page asks.
+  await upload(page, 'unsure.stl', phantom(1));
+  await expect(prompt).toBeVisible();
+  await expect(prompt).toContainText('Units: mm? The numbers could also be centimetres (median vessel radius 1.09).');
+  await expect(units).toHaveText('mm? (a guess from the median vessel radius 1.09)');
+  await expect(page.getByTestId('units')).toHaveValue('');
+  await screenshots(page, 'formats-units', prompt);
+  await prompt.getByRole('button', { name: 'cm', exact: true }).click();
+  await expect(units).toHaveText('cm');
+  await expect(prompt).toBeHidden();
+  await expect(page.getByTestId('units')).toHaveValue('cm');
+  await expect(page.getByTestId('opening-item').first()).toContainText('radius 1.091 cm');
+  await expect(page.getByRole('combobox', { name: 'Output units' })).toContainText('same as input (cm)');
+  // Back to the guess: asked again; confirmed as mm, the question goes.
+  await page.getByTestId('units').selectOption('');
+  await expect(prompt).toBeVisible();
+  await prompt.getByRole('button', { name: 'mm', exact: true }).click();
+  await expect(units).toHaveText('mm');
+  await expect(prompt).toBeHidden();
+
+  // The flat caps kept as wall: a closed surface, no opening.
+  await expect(page.getByTestId('stat-caps')).toHaveText('2 removed');
+  await page.getByTestId('keep-caps').check();
+  await expect(page.getByTestId('stat-openings')).toHaveText('0');
+  await expect(page.getByTestId('stat-caps')).toHaveText('kept as wall');
+  await expect(page.getByTestId('stat-closed')).toHaveText('yes');
+  await expect(units).toHaveText('mm');
+  expect(errors).toEqual([]);
+});

@@ -1,0 +1,200 @@
+// The openings table: one row per opening of the analysis (largest first,
+// numbered as the API's `inlet` and `names` number them) with the inlet
+// choice, the group name its cap gets (prefilled with the core's default
+// name; a name the user types is checked by the core as they type), where
+// the opening comes from (an open end of the file, or a cap the core
+// removed), its size, and after meshing the name of the cap that covers it.
+// Hovering a row, or focusing it or its name, highlights the rim in the view.
+import { point, withUnit } from './units.js';
+
+const CHECK_DELAY_MS = 250;
+
+/** 'open end', 'cap', 'cap, ModelFaceID 3'. */
+function sourceText(opening, labelArray) {
+  if (opening.source !== 'cap') return 'open end';
+  return opening.label >= 0 && labelArray ? `cap, ${labelArray} ${opening.label}` : 'cap';
+}
+
+function element(tag, props = {}, testId = null) {
+  const node = Object.assign(document.createElement(tag), props);
+  if (testId) node.setAttribute('data-testid', testId);
+  return node;
+}
+
+export class OpeningsTable {
+  /**
+   * @param {HTMLOListElement} list
+   * @param {object} hooks
+   * @param {(options: {names: object, inlet?: number}) => Promise<object>} hooks.openingNames the
+   *   core's names of the openings with these options: {ok, names} or its refusal {ok: false, error, option}
+   * @param {(loop: number[] | null) => void} hooks.onHover the rim to highlight, or null
+   */
+  constructor(list, { openingNames, onHover }) {
+    this.list = list;
+    this.openingNames = openingNames;
+    this.onHover = onHover;
+    this.rows = [];
+    this.seq = 0; // the newest check; older ones are dropped
+    this.timer = null;
+    this.checking = Promise.resolve({ names: {}, problem: null });
+  }
+
+  /**
+   * One row per opening (lengths in `unit`, coordinates near 0 at `scale`
+   * shown as 0, cap labels from the face array `labelArray`); `edits` (name
+   * per row index) restores names the user typed (when the openings are the
+   * same ones again). Checks the names.
+   */
+  show(openings, { unit, labelArray, scale }, edits = []) {
+    this.seq++;
+    this.rows = openings.map((o, i) => this._row(o, i, { unit, labelArray, scale }));
+    this.list.replaceChildren(...this.rows.map((r) => r.li));
+    this.rows.forEach((row, i) => {
+      if (edits[i]) [row.input.value, row.edited] = [edits[i], true];
+    });
+    if (this.rows.length) this.check();
+  }
+
+  _row(o, i, { unit, labelArray, scale }) {
+    const k = i + 1;
+    const title = `Opening ${k}: ${o.vertices.length} rim vertices`;
+    const li = element('li', { tabIndex: 0, title }, 'opening-item');
+    li.dataset.source = o.source;
+    const radio = element('input', { type: 'radio', name: 'inlet', value: String(k), checked: i === 0 }, 'inlet-choice');
+    const choice = element('label', { className: 'inlet-choice', title: 'Cap this opening as the inlet' });
+    choice.append(radio, ' inlet');
+    const input = element('input', { type: 'text', className: 'opening-name', spellcheck: false }, 'opening-name');
+    // The analysis' default name until the core has checked the table.
+    Object.assign(input, { autocomplete: 'off', value: o.name ?? '', placeholder: o.name ?? '' });
+    input.setAttribute('aria-label', `Group name of opening ${k}`);
+    input.setAttribute('aria-describedby', `opening-name-error-${k}`);
+    const cap = element('span', { className: 'cap-name' }, 'opening-cap');
+    const source = element('span', { className: 'source', textContent: sourceText(o, labelArray) }, 'opening-source');
+    const size = `perimeter ${withUnit(o.perimeter, unit)}, radius ${withUnit(o.radius, unit)}`;
+    const at = `at ${point(o.centroid, scale)} ${unit}`;
+    const info = element('div', { className: 'opening-info' });
+    info.append(source, `: ${size}, ${at}`);
+    const error = element('div', { className: 'name-error', id: `opening-name-error-${k}` }, 'opening-name-error');
+    const head = element('div', { className: 'opening-head' });
+    head.append(choice, input, cap);
+    li.append(head, info, error);
+    const row = { k, li, input, error, cap, opening: o, edited: false };
+    this._listen(row, radio);
+    return row;
+  }
+
+  _listen(row, radio) {
+    const { li, input } = row;
+    const on = () => {
+      li.classList.add('active');
+      this.onHover(row.opening.vertices);
+    };
+    const off = () => {
+      li.classList.remove('active');
+      this.onHover(null);
+    };
+    li.addEventListener('mouseenter', on);
+    li.addEventListener('mouseleave', () => {
+      if (!li.contains(document.activeElement)) off(); // still highlighted while its name is edited
+    });
+    li.addEventListener('focusin', on);
+    li.addEventListener('focusout', (e) => {
+      if (!li.contains(e.relatedTarget)) off();
+    });
+    input.addEventListener('input', () => {
+      row.edited = input.value.trim() !== '';
+      this._schedule();
+    });
+    input.addEventListener('blur', () => this.check()); // a cleared name gets its default back
+    input.addEventListener('keydown', (e) => {
+      if (e.key === 'Enter') this.check();
+    });
+    radio.addEventListener('change', () => this.check()); // the default names follow the inlet
+  }
+
+  _schedule() {
+    clearTimeout(this.timer);
+    this.timer = setTimeout(() => this.check(), CHECK_DELAY_MS);
+  }
+
+  /** The chosen inlet (1-based into analysis.openings), or undefined. */
+  chosenInlet() {
+    const radio = this.list.querySelector('input[name=inlet]:checked');
+    return radio ? Number(radio.value) : undefined;
+  }
+
+  /** The names the user typed, by row index ('' where none). */
+  edits() {
+    return this.rows.map((r) => (r.edited ? r.input.value.trim() : ''));
+  }
+
+  /**
+   * Checks the typed names now (the core's openingNames): each typed name
+   * is tried with the accepted ones before it, so a refusal lands on the row
+   * that causes it; rows left to the default show the core's default name.
+   * Resolves { names: {K: name} of the accepted typed names, problem: {k,
+   * message} of the first refused row, or null }.
+   */
+  check() {
+    clearTimeout(this.timer);
+    this.checking = this._check(++this.seq);
+    return this.checking;
+  }
+
+  async _check(seq) {
+    const inlet = this.chosenInlet();
+    const ask = (names) => this.openingNames({ names, ...(inlet !== undefined && { inlet }) });
+    let accepted = {};
+    const refusals = new Map();
+    for (const row of this.rows.filter((r) => r.edited)) {
+      const trial = { ...accepted, [row.k]: row.input.value.trim() };
+      const result = await ask(trial);
+      if (seq !== this.seq) return this.checking;
+      if (result.ok) accepted = trial;
+      else if (result.option === 'names') refusals.set(row, result.error);
+      else return { names: trial, problem: null }; // not checkable now: mesh() checks them
+    }
+    const all = await ask(accepted);
+    if (seq !== this.seq) return this.checking;
+    this._mark(refusals, all.ok ? all.names : null);
+    const [first] = refusals;
+    return { names: accepted, problem: first ? { k: first[0].k, message: first[1] } : null };
+  }
+
+  /** Marks refused rows; gives the others their default name (not the one being typed in). */
+  _mark(refusals, names) {
+    for (const row of this.rows) {
+      const message = refusals.get(row) ?? '';
+      row.input.setAttribute('aria-invalid', String(Boolean(message)));
+      row.error.textContent = message;
+      if (!names || row.edited) continue;
+      row.input.placeholder = names[row.k - 1];
+      if (document.activeElement !== row.input) row.input.value = names[row.k - 1];
+    }
+  }
+
+  /** Moves the focus to opening k's name (e.g. to correct it). */
+  focusName(k) {
+    this.rows[k - 1]?.input.focus();
+  }
+
+  /**
+   * Names each opening after the cap of the mesh that covers it (the nearest
+   * cap centroid): data-cap and a label "→ inlet". No caps: names cleared.
+   * @param {{name: string, centroid: number[]}[]} caps report.output.caps
+   */
+  showCaps(caps = []) {
+    for (const { li, cap: label, opening } of this.rows) {
+      const c = opening.centroid;
+      let best = null;
+      let bestD = Infinity;
+      for (const cap of caps) {
+        const d = Math.hypot(...cap.centroid.map((x, k) => x - c[k]));
+        if (d < bestD) [best, bestD] = [cap, d];
+      }
+      const name = best ? best.name : '';
+      li.dataset.cap = name;
+      label.textContent = name ? `→ ${name}` : '';
+    }
+  }
+}

@@ -1,0 +1,44 @@
+// The length unit of the loaded model as the page says it: the summary's
+// text, the question asked when the core's guess is not certain, and lengths
+// with their unit.
+
+const WORDS = { mm: 'millimetres', cm: 'centimetres', m: 'metres' };
+// The other unit a guess could be (the core guesses mm for vessel radii that
+// could as well be centimetres).
+const ALTERNATIVE = { mm: 'cm', cm: 'mm', m: 'mm' };
+
+/** A length as the panel shows it: 4 significant digits, no trailing zeros
+ * after the decimal point (2500, 6.25, 0.003273, 1.235e+5). */
+export const length = (x) =>
+  Number(x)
+    .toPrecision(4)
+    .replace(/(\.\d*?)0+($|e)/, '$1$2')
+    .replace(/\.($|e)/, '$1');
+
+/** A length and its unit: '6.265 mm'. */
+export const withUnit = (x, unit) => `${length(x)} ${unit}`;
+
+/** A point as '(x, y, z)', coordinates within 1e-6 `scale` of 0 shown as 0
+ * (rounding noise of a centred model: -8.86e-18). */
+export const point = (p, scale = 0) => `(${p.map((x) => length(Math.abs(x) <= 1e-6 * scale ? 0 : x)).join(', ')})`;
+
+/**
+ * The summary's text of analysis.units {unit, guessed, certain, reason}:
+ * 'mm' (given), 'm (guessed from the median vessel radius 0.00327)',
+ * 'mm? (not sure: median vessel radius 0.994)'.
+ */
+export function unitsText({ unit, guessed, certain, reason }) {
+  if (!guessed) return unit;
+  if (certain) return `${unit} (guessed from the ${reason})`;
+  return `${unit}? (a guess from the ${reason})`;
+}
+
+/**
+ * The question to ask when the unit was guessed without certainty, or null:
+ * 'Units: mm? The numbers could also be centimetres (median vessel radius 0.994).'
+ */
+export function unitsQuestion({ unit, guessed, certain, reason }) {
+  if (!guessed || certain) return null;
+  const other = WORDS[ALTERNATIVE[unit]] ?? 'another unit';
+  return `Units: ${unit}? The numbers could also be ${other}${reason ? ` (${reason})` : ''}.`;
+}
