@@ -229,10 +229,8 @@ std::optional<Destination> destination(const std::string& path, const vm::MeshJo
     d.zip = ends_zip;
     d.folder = !ends_zip;
   }
-  if (!options.volume &&
-      (d.format == vm::OutputFormat::kVtu || d.format == vm::OutputFormat::kMeshComplete)) {
-    error = std::string(vm::format_name(d.format)) +
-            " holds a volume mesh: with --surface-only write .msh, .vtp or .stl";
+  if (vm::Status st = vm::check_format(d.format, options); !st.ok()) {
+    error = vm::phrase_error(st, vm::kFaceCli);
     return std::nullopt;
   }
   return d;

@@ -233,17 +233,24 @@ val analyze(val stl, val opts, val progress) {
 /// format without meshing again, with its input's provenance.
 struct LastMesh {
   vm::MeshJobResult result;
-  std::string provenance;
+  std::string input_hash;
+  Applied options;  ///< as given to mesh(), for provenance
 };
 std::optional<LastMesh> last_mesh;
 
 /// The files of the last result in `format` as one file (a zip for
 /// mesh-complete): {file, fileName} on `r`; false with `r` an error.
-bool set_file(val& r, vm::OutputFormat format, const vm::MeshJobOptions& options) {
+/// `extra`: export()'s own options, recorded after mesh()'s in the
+/// provenance (a later value of an option wins).
+bool set_file(val& r, vm::OutputFormat format, const vm::MeshJobOptions& options,
+              const Applied& extra = {}) {
   vm::WriteOptions wo;
   wo.msh_version = options.msh_version;
   wo.units = options.output_units;
-  wo.provenance = last_mesh->provenance;
+  Applied all = last_mesh->options;
+  all.insert(all.end(), extra.begin(), extra.end());
+  wo.provenance =
+      vm::provenance_text(vm::kVersion, last_mesh->input_hash, vm::options_provenance(all));
   auto files = vm::write_outputs(last_mesh->result, format, wo);
   if (!files.ok()) {
     r = error(files.status());
@@ -277,16 +284,16 @@ val mesh(val stl, val opts, val progress) {
   Applied applied;
   if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh, &applied); !st.ok())
     return error(st);
+  const vm::OutputFormat format = options.format.value_or(vm::OutputFormat::kMsh);
+  if (vm::Status st = vm::check_format(format, options); !st.ok()) return error(st);
   std::vector<uint8_t> bytes = bytes_from(stl);
   auto result = vm::run_mesh_job(bytes, options, progress_from(progress));
   if (!result.ok()) return error(result.status());
-  last_mesh = LastMesh{
-      std::move(result).value(),
-      vm::provenance_text(vm::kVersion, vm::input_hash(bytes), vm::options_provenance(applied))};
+  last_mesh = LastMesh{std::move(result).value(), vm::input_hash(bytes), std::move(applied)};
   const vm::MeshJobResult& res = last_mesh->result;
   val r = val::object();
   r.set("ok", true);
-  if (!set_file(r, options.format.value_or(vm::OutputFormat::kMsh), options)) return r;
+  if (!set_file(r, format, options)) return r;
   r.set("reportJson", vm::mesh_report_json(res, vm::kFaceJs));
   set_surface(r, res.output_surface, res.output_quality);
   if (!res.volume.tets.empty()) set_volume(r, res);
@@ -307,12 +314,14 @@ val export_mesh(val opts) {
             "", "unknown export option '" + key + "' (format, mshVersion, outputUnits)"));
     }
   }
-  if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh); !st.ok()) return error(st);
+  Applied applied;
+  if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh, &applied); !st.ok())
+    return error(st);
   if (!options.format)
     return error(vm::Status::BadOption("format", "is needed: msh, vtu, vtp, stl or mesh-complete"));
   val r = val::object();
   r.set("ok", true);
-  set_file(r, *options.format, options);
+  set_file(r, *options.format, options, applied);
   return r;
 }
 

@@ -85,6 +85,14 @@ Result<OutputFormat> format_for_path(std::string_view path) {
       ".zip (SimVascular mesh-complete), or say {format}");
 }
 
+Status check_format(OutputFormat format, const MeshJobOptions& options) {
+  if (!options.volume && (format == OutputFormat::kVtu || format == OutputFormat::kMeshComplete))
+    return Status::BadOption("format", "cannot be " + std::string(format_name(format)) +
+                                           ": it holds a volume mesh, and {surface_only} writes "
+                                           "the wall alone; use msh, vtp or stl");
+  return Status::Ok();
+}
+
 std::vector<OutputGroup> output_groups(const MeshJobResult& r) {
   std::vector<OutputGroup> groups;
   if (surface_only(r)) {
@@ -141,15 +149,14 @@ MshModel msh_model(const MeshJobResult& r, double scale) {
 
 Result<std::vector<OutputFile>> write_outputs(const MeshJobResult& r, OutputFormat format,
                                               const WriteOptions& options) {
-  using R = Result<std::vector<OutputFile>>;
   const LengthUnit from = r.surface.unit.unit;
   const double scale = options.units == LengthUnit::kGuess
                            ? 1
                            : metres_per_unit(from) / metres_per_unit(options.units);
   if (surface_only(r) && (format == OutputFormat::kVtu || format == OutputFormat::kMeshComplete))
-    return R::Error(std::string(format_name(format)) +
-                    " holds a volume mesh, and this one is surface only ({surface_only}): write "
-                    "it as .msh, .vtp or .stl");
+    return Status::BadOption("format", "cannot be " + std::string(format_name(format)) +
+                                           ": it holds a volume mesh, and this one is surface "
+                                           "only ({surface_only}); use msh, vtp or stl");
   VtkWriteOptions vtk;
   vtk.comment = options.provenance;
   std::vector<OutputFile> files;

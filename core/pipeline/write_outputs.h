@@ -36,6 +36,12 @@ struct WriteOptions {
   std::string provenance;
 };
 
+/// Whether a job with these settings can be written in `format`: the volume
+/// formats (VTU, mesh-complete) need a volume. Checked before meshing, so
+/// that a job never runs only to fail at writing. Error: kBadOption on
+/// `format`.
+Status check_format(OutputFormat format, const MeshJobOptions& options);
+
 /// The physical groups a result's files have, with their element counts:
 /// one per used surface tag (dimension 2), then one per used region (3);
 /// surface only: `wall`.

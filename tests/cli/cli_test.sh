@@ -144,7 +144,7 @@ check "mesh-complete folder" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$
 check "mesh-complete files" [ -f "$T/mc/mesh-complete.mesh.vtu" -a -f "$T/mc/mesh-complete.exterior.vtp" -a -f "$T/mc/mesh-surfaces/outlet_2.vtp" -a -f "$T/mc/mesh-complete.names.json" ]
 check "zip is valid" python3 -m zipfile -t "$T/out.zip"
 check "unknown extension" expect_exit 2 "cannot tell the output format from" "$VM" mesh "$T/bif.stl" -o "$T/out.xyz"
-check "volume format needs a volume" expect_exit 2 "vtu holds a volume mesh" "$VM" mesh "$T/bif.stl" -o "$T/out.vtu" --surface-only
+check "volume format needs a volume" expect_exit 2 "--format cannot be vtu: it holds a volume mesh, and --surface-only writes the wall alone" "$VM" mesh "$T/bif.stl" -o "$T/out.vtu" --surface-only
 check "format option wins" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/wall.dat" --format stl --surface-only --size 0.3
 check "provenance in msh" grep -q "^vesselmesh .*; input xxh128:[0-9a-f]\{32\}; options: size=0.3" "$T/capped.msh"
 "$VM" mesh "$T/bif.stl" -o "$T/m.msh" --size 0.3 --layers 0 --surface-only --output-units m --units mm > /dev/null

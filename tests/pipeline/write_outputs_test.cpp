@@ -123,7 +123,13 @@ TEST(WriteOutputs, VolumeFormatsNeedAVolume) {
   for (auto f : {OutputFormat::kVtu, OutputFormat::kMeshComplete}) {
     auto r = write_outputs(tube(false), f);
     ASSERT_FALSE(r.ok());
+    EXPECT_EQ(r.status().option(), "format");
     EXPECT_NE(r.message().find("surface only ({surface_only})"), std::string::npos) << r.message();
+    MeshJobOptions o;
+    o.volume = false;
+    EXPECT_FALSE(check_format(f, o).ok());
+    o.volume = true;
+    EXPECT_TRUE(check_format(f, o).ok());
   }
   for (auto f : {OutputFormat::kMsh, OutputFormat::kVtp, OutputFormat::kStl})
     EXPECT_TRUE(write_outputs(tube(false), f).ok());

@@ -207,6 +207,20 @@ describe('names and files out', () => {
     assert.equal(m.fileName, 'mesh.stl');
     const vtu = api.export('vtu');
     assert.equal(vtu.ok, false);
-    assert.match(vtu.error, /surface only \(surfaceOnly\): write it as \.msh, \.vtp or \.stl/);
+    assert.equal(vtu.error, 'format cannot be vtu: it holds a volume mesh, and this one is surface only (surfaceOnly); use msh, vtp or stl');
+    // Asked before meshing, it is refused before meshing (nothing runs).
+    let calls = 0;
+    const early = api.mesh(tube, { surfaceOnly: true, format: 'mesh-complete', onProgress: () => ++calls });
+    assert.equal(early.kind, 'bad_option');
+    assert.equal(early.option, 'format');
+    assert.equal(calls, 0);
+  });
+
+  test('export() records its own options in the provenance', () => {
+    assert.equal(api.mesh(tube, { size: 0.4, layers: 0 }).ok, true);
+    const msh = api.export('msh', { outputUnits: 'cm' });
+    const comment = text(msh.file.subarray(0, 300)).split('\n')[4];
+    assert.match(comment, /options: size=0\.4 layers=0 .*output_units=cm/);
+    assert.match(comment, / format=msh/);
   });
 });
