@@ -14,12 +14,15 @@
 #include "core/io/provenance.h"
 #include "core/io/stl.h"
 #include "core/io/zip_writer.h"
+#include "core/layers/layer_thickness.h"
+#include "core/mesh/prism_split.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/mesh_job.h"
 #include "core/pipeline/opening_names.h"
 #include "core/pipeline/option_table.h"
 #include "core/pipeline/report_json.h"
 #include "core/pipeline/write_outputs.h"
+#include "core/quality/tet_quality.h"
 #include "core/util/version.h"
 
 namespace {
@@ -200,6 +203,30 @@ void set_volume(val& r, const vm::MeshJobResult& res) {
     v.set("quads", copy_out(reinterpret_cast<const uint32_t*>(m.quads.data()), m.quads.size(),
                             "Uint32Array"));
     v.set("quadTag", copy_out(m.quad_tag.data(), m.quad_tag.size(), "Int32Array"));
+    // For a view of tetrahedra only: each prism's 3 tetrahedra (the core's
+    // split rule, so neighbours agree) with their gamma_t, each quad's 2
+    // triangles.
+    std::vector<int32_t> split(12 * m.num_prisms());
+    std::vector<float> quality(3 * m.num_prisms());
+    for (size_t p = 0; p < m.num_prisms(); ++p) {
+      const auto tets = vm::split_prism(&m.prisms[6 * p]);
+      for (size_t k = 0; k < 3; ++k) {
+        std::copy(tets[k].begin(), tets[k].end(), &split[12 * p + 4 * k]);
+        auto point = [&](int32_t i) { return &m.points[3 * size_t(tets[k][size_t(i)])]; };
+        quality[3 * p + k] = float(vm::tet_gamma(point(0), point(1), point(2), point(3)));
+      }
+    }
+    std::vector<int32_t> quad_triangles(6 * m.num_quads());
+    for (size_t q = 0; q < m.num_quads(); ++q) {
+      const auto tris = vm::split_quad(&m.quads[4 * q]);
+      for (size_t k = 0; k < 2; ++k)
+        std::copy(tris[k].begin(), tris[k].end(), &quad_triangles[6 * q + 3 * k]);
+    }
+    v.set("prismTets",
+          copy_out(reinterpret_cast<const uint32_t*>(split.data()), split.size(), "Uint32Array"));
+    v.set("prismTetQuality", copy_out(quality.data(), quality.size(), "Float32Array"));
+    v.set("quadTriangles", copy_out(reinterpret_cast<const uint32_t*>(quad_triangles.data()),
+                                    quad_triangles.size(), "Uint32Array"));
   }
   val names = val::array();
   for (const std::string& n : res.surface_names) names.call<void>("push", n);
@@ -343,6 +370,18 @@ val opening_names(val opts) {
   return r;
 }
 
+/// The cumulative height fractions of the layers (N + 1 values, 0 to 1)
+/// for these mesh options (layers, growth; others ignored).
+val layer_fractions(val opts) {
+  vm::MeshJobOptions options;
+  if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh); !st.ok()) return error(st);
+  const std::vector<double> f = vm::layer_fractions(options.viscous);
+  val r = val::object();
+  r.set("ok", true);
+  r.set("fractions", copy_out(f.data(), f.size(), "Float64Array"));
+  return r;
+}
+
 /// options: the JS API's makePhantom options.
 val make_phantom(val opts) {
   vm::PhantomOptions o;
@@ -370,4 +409,5 @@ EMSCRIPTEN_BINDINGS(vesselmesh) {
   emscripten::function("optionTable", &option_table);
   emscripten::function("exportMesh", &export_mesh);
   emscripten::function("openingNames", &opening_names);
+  emscripten::function("layerFractions", &layer_fractions);
 }

@@ -21,4 +21,10 @@ std::array<std::array<int32_t, 4>, 3> split_prism(const int32_t v[6]) {
   return {{{r[0], r[1], r[2], r[4]}, {r[0], r[4], r[2], r[5]}, {r[0], r[4], r[5], r[3]}}};
 }
 
+std::array<std::array<int32_t, 3>, 2> split_quad(const int32_t q[4]) {
+  const int32_t m = std::min({q[0], q[1], q[2], q[3]});
+  if (m == q[0] || m == q[2]) return {{{q[0], q[1], q[2]}, {q[0], q[2], q[3]}}};
+  return {{{q[1], q[2], q[3]}, {q[1], q[3], q[0]}}};
+}
+
 }  // namespace vm

@@ -18,4 +18,9 @@ namespace vm {
 /// Precondition: the six ids are distinct.
 std::array<std::array<int32_t, 4>, 3> split_prism(const int32_t v[6]);
 
+/// The two triangles of quad q (4 vertex ids, a cycle) cut by the diagonal
+/// from its smallest id, as split_prism cuts the prisms' side faces, in the
+/// quad's orientation.
+std::array<std::array<int32_t, 3>, 2> split_quad(const int32_t q[4]);
+
 }  // namespace vm

@@ -90,6 +90,11 @@ export class VesselmeshClient {
     return this._call('openingNames', [options]);
   }
 
+  /** The layers' cumulative height fractions (API layerFractions()). */
+  layerFractions(options = {}) {
+    return this._call('layerFractions', [options]);
+  }
+
   /** Generates a phantom STL; options as in the API's makePhantom(). */
   makePhantom(options = {}) {
     return this._call('makePhantom', [options]);

@@ -140,6 +140,10 @@ export interface MeshVolume {
   prismRegion?: Int32Array;
   quads?: Uint32Array;
   quadTag?: Int32Array;
+  /** With prisms, for a view of tetrahedra only: each prism's 3 tetrahedra (12 indices), their gamma_t, each quad's 2 triangles (6 indices). */
+  prismTets?: Uint32Array;
+  prismTetQuality?: Float32Array;
+  quadTriangles?: Uint32Array;
   /** 'wall', 'inlet', 'outlet_1', ...; '' for an unused tag. */
   surfaceNames: string[];
   /** 'lumen', 'boundary_layer' or '', 'vessel_wall' or ''. */
@@ -207,6 +211,8 @@ export interface VesselmeshApi {
   ): { ok: true; file: Uint8Array; fileName: string; format: OutputFormat } | Failure;
   /** The group names the last analyzed surface's openings get with these options, or the error mesh() would give. */
   openingNames(options?: Pick<MeshOptions, 'names' | 'inlet'>): { ok: true; names: string[] } | Failure;
+  /** The layers' cumulative height fractions (layers + 1 values from 0 to 1). */
+  layerFractions(options?: Pick<MeshOptions, 'layers' | 'growth'>): { ok: true; fractions: Float64Array } | Failure;
   /** A synthetic segmentation-like vessel surface as binary STL. */
   makePhantom(options?: PhantomOptions): { ok: true; stl: Uint8Array } | Failure;
 }

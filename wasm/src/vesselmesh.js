@@ -131,6 +131,17 @@ export async function createVesselmesh({ wasmBinary } = {}) {
     },
 
     /**
+     * The cumulative height fractions of the boundary layer's layers for
+     * these options (`layers`, `growth`): layers + 1 values from 0 to 1, the
+     * first layer's height being fractions[1] times the total thickness.
+     * @returns {{ok: true, fractions: Float64Array} | {ok: false, error: string}}
+     */
+    layerFractions(options = {}) {
+      const raw = core.layerFractions(options);
+      return raw.ok ? raw : failure(raw);
+    },
+
+    /**
      * Generates a synthetic segmentation-like vessel surface as binary STL.
      * @returns {{ok: true, stl: Uint8Array} | {ok: false, error: string}}
      */

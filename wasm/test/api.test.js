@@ -641,6 +641,13 @@ describe('mesh: boundary layers and vessel wall', () => {
     assert.match(api.mesh(tube, { prisms: 'yes' }).error, /^prisms must be true or false$/);
   });
 
+  test('layerFractions: the cumulative heights the core grows layers by', () => {
+    assert.deepEqual([...api.layerFractions({ layers: 4 }).fractions], [0, 0.25, 0.5, 0.75, 1]);
+    const f = api.layerFractions({ layers: 3, growth: 2 }).fractions;
+    assert.deepEqual([...f].map((x) => Number(x.toFixed(12))), [0, 1 / 7, 3 / 7, 1].map((x) => Number(x.toFixed(12))));
+    assert.equal(api.layerFractions({ growth: 9 }).option, 'growth');
+  });
+
   test('layers: 0 gives no layer part; firstLayer + growth sets the heights', () => {
     const m = api.mesh(tube, { layers: 0 });
     assert.equal(m.ok, true, m.error);

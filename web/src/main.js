@@ -362,20 +362,19 @@ function syncLayerFields() {
 
 /**
  * A first-layer height to start from: the first of the current number of
- * layers, growing by the current ratio, that add up to the current total
- * thickness fraction (0.2 if unusable) of the median opening's radius;
- * '' without openings.
+ * layers, growing by the current ratio (the core's layer fractions), that
+ * add up to the current total thickness fraction (0.2 if unusable) of the
+ * median opening's radius; '' without openings.
  */
-function suggestedFirstLayer() {
+async function suggestedFirstLayer() {
   const radii = (current?.analysis.openings ?? []).map((o) => o.radius).sort((a, b) => a - b);
   if (!radii.length) return '';
   const f = numberIn('layer-thickness');
   const total = (fits('layer_thickness', f) ? f : 0.2) * radii[Math.floor(radii.length / 2)];
-  const n = fits('layers', numberIn('layers')) && numberIn('layers') >= 1 ? numberIn('layers') : 4;
-  const g = fits('growth', numberIn('growth')) ? numberIn('growth') : 1;
-  let sum = 0;
-  for (let k = 0; k < n; k++) sum += g ** k;
-  return String(Number((total / sum).toPrecision(2)));
+  const layers = fits('layers', numberIn('layers')) && numberIn('layers') >= 1 ? numberIn('layers') : 4;
+  const growth = fits('growth', numberIn('growth')) ? numberIn('growth') : 1;
+  const r = await client.layerFractions({ layers, growth });
+  return r.ok ? String(Number((total * r.fractions[1]).toPrecision(2))) : '';
 }
 
 /** The clipping options chosen in the panel. */
@@ -659,7 +658,9 @@ for (const id of ['core-size', ...LAYER_FIELDS]) {
 $('layers').addEventListener('input', syncLayerFields);
 $('layer-mode').addEventListener('change', (e) => {
   if (e.target.value === 'first' && $('first-layer').value.trim() === '') {
-    $('first-layer').value = suggestedFirstLayer();
+    suggestedFirstLayer().then((h) => {
+      if ($('first-layer').value.trim() === '') $('first-layer').value = h;
+    });
   }
   syncLayerFields();
 });
