@@ -268,7 +268,11 @@ CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& 
     total += areas[t];
   }
   Context ctx{mesh, adj, normals, areas, options, total};
-  const bool labelled = labels.size() == nt && nt > 0;
+  // Labels tell faces apart only when there are two or more (a file with
+  // one group for the whole surface says nothing about caps).
+  const bool labelled =
+      labels.size() == nt && nt > 0 &&
+      std::any_of(labels.begin(), labels.end(), [&](int32_t l) { return l != labels[0]; });
 
   // Phase 1: candidates.
   std::vector<std::vector<int32_t>> candidates;

@@ -74,7 +74,8 @@ struct CapRecognition {
 
 /// Finds the caps of `mesh` (manifold edges expected; consistently outward
 /// oriented, as prepare_surface leaves it). `labels`: one face label per
-/// triangle, or empty; `label_names`: names of labels where the file gives
+/// triangle, or empty (a single label for all is as good as none: the
+/// caps are then found by shape); `label_names`: names of labels where the file gives
 /// them. `adj` is build_adjacency(mesh).
 CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
                               std::span<const int32_t> labels,

@@ -45,6 +45,13 @@ TEST(RecognizeCaps, LabelledFacesWithTheirNames) {
   EXPECT_TRUE(r.notes.empty());
 }
 
+TEST(RecognizeCaps, OneLabelForEverythingMeansCapsByShape) {
+  // An OBJ with a single group, a VTP whose ModelFaceID is 1 everywhere.
+  const SurfaceMesh tube = testing::capped_tube(32, 16, 1.0, 6.0);
+  const std::vector<int32_t> one(tube.num_triangles(), 1);
+  EXPECT_EQ(recognize(tube, one).caps.size(), 2u);
+}
+
 TEST(RecognizeCaps, EachPartOfALabelIsACandidateAndWallBandsNeedNoNote) {
   const SurfaceMesh tube = testing::capped_tube(24, 8, 2.0, 5.0);
   std::vector<int32_t> labels(tube.num_triangles(), 1);
