@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <numeric>
 #include <optional>
@@ -14,12 +15,15 @@
 #include "core/layers/extrude_layers.h"
 #include "core/layers/layered_volume.h"
 #include "core/mesh/edge_lengths.h"
+#include "core/mesh/enclosed_volume.h"
+#include "core/mesh/prism_split.h"
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/surface_distance.h"
 #include "core/mesh/volume_check.h"
 #include "core/pipeline/opening_names.h"
 #include "core/pipeline/write_outputs.h"
 #include "core/quality/tet_quality.h"
+#include "core/surface/element_estimate.h"
 #include "core/volume/boundary_recovery.h"
 #include "core/volume/tetrahedralize.h"
 
@@ -84,8 +88,50 @@ Result<CappedSurface> cap_and_name(const MeshJobResult& r, const SurfaceMesh& su
 
 /// Stages 4 to 7: boundary layers, caps on the openings, the tetrahedra of
 /// the lumen, assembly; checks the result before anything is written.
+/// The element budget of the volume: the tetrahedra estimated from the
+/// volume `wall` encloses (its `openings` closed by fans) and the size in
+/// the core: the one asked, else the uniform size, else the median of
+/// `wall_sizes` (an overestimate for a size growing into the core); no
+/// check when none is known yet (empty `wall_sizes`, radius-based sizes).
+Status check_volume_budget(const SurfaceMesh& wall, const std::vector<Opening>& openings,
+                           const MeshJobOptions& options, std::vector<double> wall_sizes) {
+  const SizeOptions& so = options.remesh_options.size;
+  double h = options.core_size > 0                             ? options.core_size
+             : options.remesh && so.mode == SizeMode::kUniform ? so.size
+                                                               : 0;
+  if (h == 0 && !wall_sizes.empty()) {
+    std::nth_element(wall_sizes.begin(), wall_sizes.begin() + long(wall_sizes.size() / 2),
+                     wall_sizes.end());
+    h = wall_sizes[wall_sizes.size() / 2];
+  }
+  if (!(h > 0)) return Status::Ok();
+  SurfaceMesh closed = wall;
+  for (const Opening& op : openings) {
+    const int32_t c = int32_t(closed.num_vertices());
+    closed.points.insert(closed.points.end(), op.centroid.begin(), op.centroid.end());
+    for (size_t i = 0; i < op.loop.size(); ++i)
+      closed.triangles.insert(closed.triangles.end(),
+                              {op.loop[(i + 1) % op.loop.size()], op.loop[i], c});
+  }
+  const double estimate = estimate_tetrahedra(std::abs(enclosed_volume(closed)), h);
+  if (estimate <= options.max_elements) return Status::Ok();
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "makes about %.3g tetrahedra in the lumen, more than the element budget "
+                "({max_elements} %.0f) allows: ask for larger elements",
+                estimate, options.max_elements);
+  return Status::BadOption(options.core_size > 0           ? "core_size"
+                           : so.mode == SizeMode::kUniform ? "size"
+                                                           : "per_circumference",
+                           buf);
+}
+
 Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
                    const std::vector<double>& wall_sizes, const ProgressFn& progress) {
+  const std::vector<Opening>& openings =
+      r.remeshed ? r.output_topology.openings : r.surface.topology.openings;
+  if (Status st = check_volume_budget(r.output_surface, openings, options, wall_sizes); !st.ok())
+    return st;
   VolumeStats& st = r.volume_stats;
   auto t0 = std::chrono::steady_clock::now();
   // Stage 4: boundary layers, inward (viscous) and outward (vessel wall),
@@ -199,6 +245,19 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   st.seconds_check = seconds_since(t0);
   r.tet_quality = tet_qualities(r.volume);
   r.tet_quality_stats = quality_stats(r.tet_quality, options.prepare.histogram_bins);
+  for (size_t t = 0; t < r.volume.num_tets(); ++t) {
+    if (r.tet_part[t] == 2) continue;  // the vessel wall
+    const int32_t* v = &r.volume.tets[4 * t];
+    auto p = [&](int k) { return &r.volume.points[3 * size_t(v[k])]; };
+    st.lumen_volume += tet_volume6(p(0), p(1), p(2), p(3)) / 6;
+  }
+  for (size_t q = 0; q < r.volume.num_prisms(); ++q) {
+    if (r.volume.prism_region[q] == kRegionVesselWall) continue;
+    for (const auto& tet : split_prism(&r.volume.prisms[6 * q])) {
+      auto p = [&](int k) { return &r.volume.points[3 * size_t(tet[size_t(k)])]; };
+      st.lumen_volume += tet_volume6(p(0), p(1), p(2), p(3)) / 6;
+    }
+  }
   r.core_quality_stats =
       quality_stats(std::vector<float>(r.tet_quality.begin() + long(core_first),
                                        r.tet_quality.begin() + long(core_first + core_count)),
@@ -227,14 +286,21 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes,
   if (!names.ok()) return names.status();
   r.opening_names = std::move(names).value();
   r.output_surface = r.surface.mesh;
+  if (options.volume) {
+    // Known sizes are checked against the budget before remeshing.
+    Status budget = check_volume_budget(r.output_surface, r.surface.topology.openings, options, {});
+    if (!budget.ok()) return budget;
+  }
   std::vector<double> wall_sizes;  // target size per wall vertex
   if (options.remesh) {
     ProgressFn remesh_progress = [&](double f, std::string_view stage) {
       return report_progress(progress, 0.2 + 0.7 * f, stage);
     };
     const TopologyReport in = analyze_topology(r.output_surface);
+    RemeshOptions remesh_options = options.remesh_options;
+    remesh_options.max_triangles = options.max_elements;
     auto remeshed =
-        remesh_surface(r.output_surface, options.remesh_options, &r.remesh_stats, remesh_progress);
+        remesh_surface(r.output_surface, remesh_options, &r.remesh_stats, remesh_progress);
     if (!remeshed.ok()) return remeshed.status();
     wall_sizes = remeshed.value().sizes;
     const SurfaceMesh input = std::move(r.output_surface);

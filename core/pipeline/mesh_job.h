@@ -67,6 +67,9 @@ struct MeshJobOptions {
   /// Keep the layers' prisms (MSH type 6; their faces at the openings as
   /// quads, type 3) instead of splitting them into tetrahedra.
   bool keep_prisms = false;
+  /// The element budget: a job whose wall triangles or tetrahedra are
+  /// estimated beyond it is refused before meshing them.
+  double max_elements = 15e6;
   /// Check the volume mesh fully before writing it (conformity, boundary =
   /// surface triangles), not only that no element is inverted.
   bool verify = false;
@@ -74,6 +77,9 @@ struct MeshJobOptions {
 
 /// Counts and timings of the volume stages.
 struct VolumeStats {
+  /// Volume of the lumen (core and viscous layer; the vessel wall apart),
+  /// model units cubed: the sum of its elements' volumes.
+  double lumen_volume = 0;
   LayerStats boundary_layer, vessel_wall;   ///< when grown
   int viscous_layers = 0, wall_layers = 0;  ///< layers grown (0: none)
   size_t front_steiner_points = 0;          ///< recovery's points on the layer front

@@ -201,6 +201,18 @@ const OptionSpec kOptions[] = {
             "outlet_k)",
      .repeatable = true,
      .per_opening = PerOpening::kRequired},
+    {.id = "max_elements",
+     .cli = "max-elements",
+     .js = "maxElements",
+     .type = T::kInteger,
+     .group = "volume",
+     .metavar = "N",
+     .min = 1000,
+     .max = 1e9,
+     .default_text = "15000000",
+     .needs = "a number of elements from 1000 to 1000000000",
+     .doc = "the element budget: sizes that would make more wall triangles or tetrahedra are "
+            "refused before meshing (the default fits a 4 GB browser tab)"},
     {.id = "verify",
      .cli = "verify",
      .js = "verify",
@@ -628,6 +640,8 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
     o.remesh_options.fidelity_size_rounds = x > 0 ? RemeshOptions{}.fidelity_size_rounds : 0;
   } else if (id == "inlet") {
     o.inlet = int(x) - 1;
+  } else if (id == "max_elements") {
+    o.max_elements = x;
   } else if (id == "core_size") {
     o.core_size = x;
   } else if (id == "layers") {

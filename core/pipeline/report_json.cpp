@@ -167,6 +167,7 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
     j.key("volume").begin_object();
     j.key("vertices").value(r.volume.num_vertices());
     j.key("tetrahedra").value(r.volume.num_tets());
+    j.key("lumen_volume").value(r.volume_stats.lumen_volume);
     j.key("boundary_triangles").value(r.volume.num_triangles());
     j.key("steiner_points").value(vs.steiner_points);
     j.key("inserted_points").value(vs.inserted_points);

@@ -10,6 +10,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <unordered_map>
 
 #include "core/geom/point_kdtree.h"
@@ -19,6 +20,7 @@
 #include "core/mesh/surface_distance.h"
 #include "core/param/fixed_boundary_map.h"
 #include "core/quality/triangle_quality.h"
+#include "core/surface/element_estimate.h"
 #include "core/surface/pin_to_input.h"
 #include "core/surface/resample_curve.h"
 #include "core/surface/sharp_features.h"
@@ -570,6 +572,18 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
   std::vector<double> h = std::move(sizes).value();
   const std::vector<double> asked = h;
   stats.seconds_size = seconds_since(t0);
+  if (options.max_triangles > 0) {
+    const double estimate = estimate_triangles(input, h);
+    if (estimate > options.max_triangles) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf,
+                    "makes about %.3g triangles on the wall, more than the element budget "
+                    "({max_elements} %.0f) allows: ask for larger elements",
+                    estimate, options.max_triangles);
+      return Status::BadOption(
+          options.size.mode == SizeMode::kUniform ? "size" : "per_circumference", buf);
+    }
+  }
   t0 = std::chrono::steady_clock::now();
   Partition part = find_features(input, options, h, stats);
   stats.seconds_partition = seconds_since(t0);

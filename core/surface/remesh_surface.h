@@ -76,6 +76,9 @@ struct RemeshOptions {
   /// A round that still fails them, or that made a self-intersection or a
   /// needle (a vertex whose star no direction sees), is undone.
   double fidelity_floor_min = 0.55, fidelity_floor_mean = 0.978;
+  /// The element budget: a size field that would make more triangles than
+  /// this (estimate_triangles) is refused before meshing (0: no limit).
+  double max_triangles = 0;
 };
 
 /// The input-vertex distance to the output (over h) the statistics count.

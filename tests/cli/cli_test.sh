@@ -173,6 +173,13 @@ check "flow extension bad" expect_exit 2 "--flow-extension needs a length in loc
 check "flow extension opening out of range" expect_exit 2 "--flow-extension names opening 9, but there are 3 openings" "$VM" info "$T/bif.stl" --flow-extension 9=2
 check "mesh with flow extensions" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/ext.msh" --flow-extension 3 --size 0.3 --layers 2 --verify
 
+# The element budget: absurd sizes are refused before meshing, naming the option.
+check "tiny size refused" expect_exit 2 "--size makes about" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size 1e-30
+check "tiny size refused, surface only" expect_exit 2 "triangles on the wall, more than the element budget (--max-elements 15000000)" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size 1e-30 --surface-only
+check "huge N refused" expect_exit 2 "--per-circumference makes about" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --per-circumference 1e6
+check "tiny core refused" expect_exit 2 "--core-size makes about" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --core-size 1e-4
+check "budget option" expect_exit 2 "--max-elements needs" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --max-elements 10
+
 # Gmsh reads both versions: the named groups, the element counts of the
 # report, and no inverted tetrahedron (signed volumes from the nodes).
 check "report volume groups" [ "$(json "$T/report.json" "','.join(g['name'] for g in d['output']['groups'])")" = "wall,inlet,outlet_1,outlet_2,lumen" ]

@@ -349,7 +349,7 @@ TEST(ReportJson, HasTheDocumentedKeys) {
   ASSERT_TRUE(r.ok());
   std::string a = analysis_json(r.value().surface);
   for (const char* key : {"\"vertices\":96", "\"triangles\":160", "\"components\":1",
-                          "\"openings\":[{\"source\":\"file\",\"label\":-1,\"name\":\"inlet\"",
+                          "\"openings\":[{\"source\":\"file\",\"label\":-1,\"extension\":0,\"name\":\"inlet\"",
                           "\"genus\":0", "\"nonmanifold_edges\":0", "\"quality\":{\"min\":",
                           "\"closed\":false", "\"format\":\"binary STL\"", "\"caps_removed\":0",
                           "\"units\":{\"unit\":\"mm\",\"guessed\":true,\"certain\":false"})
@@ -388,7 +388,8 @@ TEST(MeshJob, ACappedModelGetsItsCapsBackAsNamedOpenings) {
   ASSERT_TRUE(r.ok()) << r.message();
   EXPECT_EQ(r.value().surface.caps_removed, 3u);
   ASSERT_EQ(r.value().surface.topology.openings.size(), 3u);
-  for (const OpeningSource& s : r.value().surface.opening_sources) EXPECT_EQ(s.kind, OpeningSource::kCap);
+  for (const OpeningSource& s : r.value().surface.opening_sources)
+    EXPECT_EQ(s.kind, OpeningSource::kCap);
   EXPECT_EQ(r.value().opening_names, (std::vector<std::string>{"inlet", "left", "outlet_1"}));
   std::vector<std::string> groups;
   for (const OutputGroup& g : r.value().groups) groups.push_back(g.name);
@@ -412,6 +413,48 @@ TEST(MeshJob, ACappedModelGetsItsCapsBackAsNamedOpenings) {
   ASSERT_TRUE(kept.ok()) << kept.message();
   EXPECT_EQ(kept.value().surface.topology.openings.size(), 0u);
   EXPECT_EQ(kept.value().groups.size(), 2u);  // wall, lumen
+}
+
+}  // namespace
+}  // namespace vm
+
+namespace vm {
+namespace {
+
+TEST(MeshJob, SizesBeyondTheElementBudgetAreRefusedBeforeMeshing) {
+  const std::vector<uint8_t> stl = write_stl_binary(testing::open_tube(24, 8, 1.0, 4.0));
+  struct Case {
+    const char* option;
+    const char* value;
+    const char* blamed;
+    const char* what;
+  };
+  // A uniform or core size is checked before remeshing (tetrahedra); the
+  // wall's triangles once the size field is known.
+  for (const Case& c : {Case{"size", "1e-30", "size", "tetrahedra in the lumen"},
+                        Case{"surface_only", "", "size", "triangles on the wall"},
+                        Case{"per_circumference", "1e7", "per_circumference", "triangles"},
+                        Case{"core_size", "1e-4", "core_size", "tetrahedra in the lumen"}}) {
+    MeshJobOptions o;
+    if (c.option == std::string("surface_only")) {
+      ASSERT_TRUE(set_option_text(o, "size", "1e-30").ok());
+    }
+    ASSERT_TRUE(set_option_text(o, c.option, c.value).ok());
+    int calls = 0;
+    auto r = run_mesh_job(stl, o, [&](double f, std::string_view) { return ++calls, f < 0.5; });
+    ASSERT_FALSE(r.ok()) << c.option;
+    EXPECT_EQ(r.status().kind(), ErrorKind::kBadOption) << r.message();
+    EXPECT_EQ(r.status().option(), c.blamed);
+    EXPECT_NE(r.message().find(c.what), std::string::npos) << r.message();
+    EXPECT_NE(phrase_error(r.status(), kFaceCli).find("(--max-elements 15000000)"),
+              std::string::npos);
+  }
+  // A smaller budget refuses what the default allows.
+  MeshJobOptions o;
+  ASSERT_TRUE(set_option_text(o, "size", "0.2").ok());
+  EXPECT_TRUE(run_mesh_job(stl, o).ok());
+  ASSERT_TRUE(set_option_text(o, "max_elements", "1000").ok());
+  EXPECT_EQ(run_mesh_job(stl, o).status().option(), "size");
 }
 
 }  // namespace

@@ -52,6 +52,8 @@ export interface MeshOptions {
   coreSize?: number;
   /** the group name of opening K (default: the file's face name, else inlet / outlet_k) Needs K=NAME with NAME 1-64 letters, digits, _ or -, starting with a letter. */
   names?: Record<number, string> | string[];
+  /** the element budget: sizes that would make more wall triangles or tetrahedra are refused before meshing (the default fits a 4 GB browser tab) Needs a number of elements from 1000 to 1000000000. Default 15000000. */
+  maxElements?: number;
   /** check conformity and the boundary before writing; measure the layer heights Default false. */
   verify?: boolean;
   /** viscous layers grown inward (0: none) Needs a number of layers from 0 (none) to 100. Default 4. */

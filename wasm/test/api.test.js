@@ -641,6 +641,23 @@ describe('mesh: boundary layers and vessel wall', () => {
     assert.match(api.mesh(tube, { prisms: 'yes' }).error, /^prisms must be true or false$/);
   });
 
+  test('sizes beyond the element budget are refused as values, never thrown', () => {
+    const stl = api.makePhantom({ kind: 'tube', voxel: 0.3 }).stl;
+    for (const [options, option] of [
+      [{ size: 1e-30 }, 'size'],
+      [{ size: 1e-10, surfaceOnly: true }, 'size'],
+      [{ sizeMax: 1e-300, size: 1e-300 }, 'size'],
+      [{ perCircumference: 1e6 }, 'perCircumference'],
+      [{ coreSize: 1e-5 }, 'coreSize'],
+    ]) {
+      const r = api.mesh(stl, options);
+      assert.equal(r.ok, false, JSON.stringify(options));
+      assert.equal(r.kind, 'bad_option');
+      assert.equal(r.option, option);
+      assert.match(r.error, /element budget \(maxElements 15000000\)/);
+    }
+  });
+
   test('layerFractions: the cumulative heights the core grows layers by', () => {
     assert.deepEqual([...api.layerFractions({ layers: 4 }).fractions], [0, 0.25, 0.5, 0.75, 1]);
     const f = api.layerFractions({ layers: 3, growth: 2 }).fractions;
