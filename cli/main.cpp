@@ -346,7 +346,11 @@ int main(int argc, char** argv) {
     if (cmd == "phantom") return cmd_phantom(argc, argv);
     if (cmd == "options") return cmd_options(argc, argv);
   } catch (const std::bad_alloc&) {
-    return fail("out of memory: the input is too large for this machine");
+    return fail(
+        "out of memory: this job needs more memory than the machine has; lower the element "
+        "budget (--max-elements) or ask for larger elements");
+  } catch (const std::exception& e) {
+    return fail(std::string("internal error: ") + e.what() + " (please report it)");
   }
   return usage_error("unknown command '" + cmd + "'");
 }
