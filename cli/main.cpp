@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <exception>
 #include <new>
 #include <optional>
 #include <string>
