@@ -1,14 +1,11 @@
 // Closest point on a triangle by Voronoi regions (Ericson 2005, 5.1.5).
 #include "core/geom/closest_point.h"
 
+#include "core/geom/vec3.h"
+
 namespace vm {
-namespace {
 
-inline double dot(const double* u, const double* v) {
-  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-}
-
-}  // namespace
+using v3::dot;
 
 double closest_point_on_triangle(const double* p, const double* a, const double* b, const double* c,
                                  double* out) {

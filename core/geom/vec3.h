@@ -1,8 +1,49 @@
-// Small 3-vector helpers over raw double pointers (3 doubles each), for the
-// hot loops of the quality measures and the volume optimizer.
+// The core's small 3-vector: Vec3 (x y z as std::array) with its
+// operators, and the same helpers over raw double pointers (3 doubles each)
+// for the hot loops of the quality measures and the volume optimizer.
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vm {
+
+using Vec3 = std::array<double, 3>;
+
+/// Point v of a flat point array (3 doubles per point).
+inline Vec3 at(const std::vector<double>& pts, int32_t v) {
+  return {pts[3 * size_t(v)], pts[3 * size_t(v) + 1], pts[3 * size_t(v) + 2]};
+}
+/// Sets point v of a flat point array.
+inline void put(std::vector<double>& pts, int32_t v, const Vec3& p) {
+  for (int k = 0; k < 3; ++k) pts[3 * size_t(v) + size_t(k)] = p[size_t(k)];
+}
+inline Vec3 operator+(const Vec3& a, const Vec3& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+inline Vec3 operator-(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+inline Vec3 operator*(double s, const Vec3& a) { return {s * a[0], s * a[1], s * a[2]}; }
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+/// "(x, y, z)" with 6 significant digits, for messages that say where.
+std::string point_text(const Vec3& p);
+
+/// a / |a|, or a unchanged when it is zero.
+inline Vec3 normalized(const Vec3& a) {
+  const double n = norm(a);
+  return n > 0 ? (1 / n) * a : a;
+}
+
+}  // namespace vm
 
 namespace vm::v3 {
 

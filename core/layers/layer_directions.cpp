@@ -48,7 +48,7 @@ void gouraud_normals(const SurfaceMesh& m, double sign, std::vector<double>& vn,
   }
   for (size_t v = 0; v < m.num_vertices(); ++v) {
     const Vec3 n = normalized(at(vn, int32_t(v)));
-    layers::put(vn, int32_t(v), n);
+    put(vn, int32_t(v), n);
   }
 }
 
@@ -116,7 +116,7 @@ Result<LayerDirections> layer_directions(const SurfaceMesh& wall, const Triangle
       if (!(norm(d) > 0.5))
         return R::Error("no in-plane direction at rim vertex " + std::to_string(v) + " " +
                         where(wall, v) + " (degenerate rim)");
-      layers::put(dir, v, d);
+      put(dir, v, d);
     }
   }
 
@@ -129,7 +129,7 @@ Result<LayerDirections> layer_directions(const SurfaceMesh& wall, const Triangle
       for (int32_t i = rings.offsets[v]; i < rings.offsets[v + 1]; ++i)
         mean = mean + at(dir, rings.ids[size_t(i)]);
       const Vec3 d = normalized(at(dir, int32_t(v)) + normalized(mean));
-      if (norm(d) > 0.5) layers::put(next, int32_t(v), d);
+      if (norm(d) > 0.5) put(next, int32_t(v), d);
     }
     dir.swap(next);
     next = dir;
@@ -182,7 +182,7 @@ Result<LayerDirections> layer_directions(const SurfaceMesh& wall, const Triangle
                       (plane ? " from within its cap plane (the wall meets the plane at a grazing "
                                "angle there)"
                              : " (a needle-like spike or fold of the wall)"));
-    layers::put(dir, int32_t(v), d);
+    put(dir, int32_t(v), d);
     out.min_visibility = std::min(out.min_visibility, w);
   }
   return out;

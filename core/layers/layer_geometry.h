@@ -1,6 +1,5 @@
 // Small geometry helpers shared by the boundary-layer phases (Marchandise et
-// al., section 2.2): 3-vectors over flat point arrays and the vertex
-// 1-rings of a triangle surface.
+// al., section 2.2): the vertex 1-rings of a triangle surface.
 #pragma once
 
 #include <array>
@@ -8,36 +7,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/surface_mesh.h"
 
 namespace vm::layers {
 
-using Vec3 = std::array<double, 3>;
-
-inline Vec3 at(const std::vector<double>& pts, int32_t v) {
-  return {pts[3 * size_t(v)], pts[3 * size_t(v) + 1], pts[3 * size_t(v) + 2]};
-}
-inline void put(std::vector<double>& pts, int32_t v, const Vec3& p) {
-  for (int k = 0; k < 3; ++k) pts[3 * size_t(v) + size_t(k)] = p[k];
-}
-inline Vec3 operator+(const Vec3& a, const Vec3& b) {
-  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
-}
-inline Vec3 operator-(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-inline Vec3 operator*(double s, const Vec3& a) { return {s * a[0], s * a[1], s * a[2]}; }
-inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
-/// a / |a|, or a unchanged when it is zero.
-inline Vec3 normalized(const Vec3& a) {
-  const double n = norm(a);
-  return n > 0 ? (1 / n) * a : a;
-}
+// The vector helpers are the core's (vm::Vec3, core/geom/vec3.h).
+using vm::Vec3;
 
 /// Vertex 1-rings, CSR: the neighbors of v are ids[offsets[v] .. offsets[v + 1]).
 struct VertexRings {

@@ -10,21 +10,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
 
 namespace vm {
 namespace {
 
-struct Vec3 {
-  double x, y, z;
-};
 Vec3 sub(const double* a, const double* b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 
 const double* point(const SurfaceMesh& m, int32_t v) { return &m.points[3 * size_t(v)]; }
 
@@ -55,12 +48,12 @@ bool shape_gradients(const SurfaceMesh& m, size_t t, Vec3 grad[3], double& area)
   double twice_area = norm(n);
   if (!(twice_area > 0)) return false;
   area = 0.5 * twice_area;
-  Vec3 un = {n.x / twice_area, n.y / twice_area, n.z / twice_area};
+  Vec3 un = {n[0] / twice_area, n[1] / twice_area, n[2] / twice_area};
   // grad phi_i = (n x e_i) / (2 area).
   const Vec3 e[3] = {e0, e1, e2};
   for (int i = 0; i < 3; ++i) {
     Vec3 g = cross(un, e[i]);
-    grad[i] = {g.x / twice_area, g.y / twice_area, g.z / twice_area};
+    grad[i] = {g[0] / twice_area, g[1] / twice_area, g[2] / twice_area};
   }
   return true;
 }
@@ -162,7 +155,7 @@ double dirichlet_energy(const SurfaceMesh& m, const std::vector<double>& f) {
     Vec3 grad = {0, 0, 0};
     for (int i = 0; i < 3; ++i) {
       double fi = f[size_t(m.triangles[3 * t + i])];
-      grad = {grad.x + fi * g[i].x, grad.y + fi * g[i].y, grad.z + fi * g[i].z};
+      grad = {grad[0] + fi * g[i][0], grad[1] + fi * g[i][1], grad[2] + fi * g[i][2]};
     }
     e += 0.5 * dot(grad, grad) * area;
   }
@@ -190,16 +183,17 @@ double conformal_energy(const SurfaceMesh& m, const std::vector<double>& uv) {
     Vec3 n = cross(sub(point(m, m.triangles[3 * t + 1]), point(m, m.triangles[3 * t])),
                    sub(point(m, m.triangles[3 * t + 2]), point(m, m.triangles[3 * t])));
     double nn = norm(n);
-    n = {n.x / nn, n.y / nn, n.z / nn};
+    n = {n[0] / nn, n[1] / nn, n[2] / nn};
     Vec3 gu = {0, 0, 0}, gv = {0, 0, 0};
     for (int i = 0; i < 3; ++i) {
       size_t vi = size_t(m.triangles[3 * t + i]);
-      gu = {gu.x + uv[2 * vi] * g[i].x, gu.y + uv[2 * vi] * g[i].y, gu.z + uv[2 * vi] * g[i].z};
-      gv = {gv.x + uv[2 * vi + 1] * g[i].x, gv.y + uv[2 * vi + 1] * g[i].y,
-            gv.z + uv[2 * vi + 1] * g[i].z};
+      gu = {gu[0] + uv[2 * vi] * g[i][0], gu[1] + uv[2 * vi] * g[i][1],
+            gu[2] + uv[2 * vi] * g[i][2]};
+      gv = {gv[0] + uv[2 * vi + 1] * g[i][0], gv[1] + uv[2 * vi + 1] * g[i][1],
+            gv[2] + uv[2 * vi + 1] * g[i][2]};
     }
     Vec3 r = cross(n, gu);  // grad u rotated by +90 degrees in the plane
-    Vec3 d = {r.x - gv.x, r.y - gv.y, r.z - gv.z};
+    Vec3 d = {r[0] - gv[0], r[1] - gv[1], r[2] - gv[2]};
     e += 0.5 * dot(d, d) * area;
   }
   return e;

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
 #include "core/mesh/topology.h"
@@ -18,13 +19,12 @@
 namespace vm {
 namespace {
 
-using Vec = std::array<double, 3>;
+using Vec = Vec3;
 
 Vec lerp(const Vec& a, const Vec& b, double t) {
   return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
 }
-double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec sub(const Vec& a, const Vec& b) { return a - b; }
 Vec unit(const Vec& a) {
   double n = std::sqrt(dot(a, a));
   return {a[0] / n, a[1] / n, a[2] / n};

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "core/geom/vec3.h"
 #include "core/layers/chord_radius.h"
 #include "core/prepare/flow_extensions.h"
 
@@ -12,12 +13,6 @@ namespace vm {
 namespace {
 
 std::string num(size_t n) { return std::to_string(n); }
-
-std::string point_text(const std::array<double, 3>& p) {
-  char buf[96];
-  std::snprintf(buf, sizeof(buf), "(%.6g, %.6g, %.6g)", p[0], p[1], p[2]);
-  return buf;
-}
 
 Status cancelled() { return Status::Cancelled(); }
 

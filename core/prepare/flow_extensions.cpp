@@ -19,34 +19,20 @@
 namespace vm {
 namespace {
 
-using Vec = std::array<double, 3>;
-
-Vec at(const SurfaceMesh& m, int32_t v) {
-  return {m.points[3 * size_t(v)], m.points[3 * size_t(v) + 1], m.points[3 * size_t(v) + 2]};
-}
-Vec add(const Vec& a, const Vec& b, double s = 1) {
-  return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]};
-}
-Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec& a, const Vec& b) { return v3::dot(a.data(), b.data()); }
-double length(const Vec& a) { return v3::norm(a.data()); }
-Vec unit(const Vec& a) {
-  const double n = length(a);
-  return n > 0 ? Vec{a[0] / n, a[1] / n, a[2] / n} : Vec{0, 0, 0};
-}
-
-std::string point_text(const Vec& p) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", p[0], p[1], p[2]);
-  return buf;
+Vec3 at(const SurfaceMesh& m, int32_t v) { return vm::at(m.points, v); }
+Vec3 add(const Vec3& a, const Vec3& b, double s = 1) { return a + s * b; }
+double length(const Vec3& a) { return norm(a); }
+Vec3 unit(const Vec3& a) {
+  const double n = norm(a);
+  return n > 0 ? Vec3{a[0] / n, a[1] / n, a[2] / n} : Vec3{0, 0, 0};
 }
 
 /// Hermite curve from p0 (tangent t0) to p1 (tangent t1) at s in [0, 1].
-Vec hermite(const Vec& p0, const Vec& t0, const Vec& p1, const Vec& t1, double s) {
+Vec3 hermite(const Vec3& p0, const Vec3& t0, const Vec3& p1, const Vec3& t1, double s) {
   const double s2 = s * s, s3 = s2 * s;
   const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2,
                h11 = s3 - s2;
-  Vec p;
+  Vec3 p;
   for (size_t k = 0; k < 3; ++k) p[k] = h00 * p0[k] + h10 * t0[k] + h01 * p1[k] + h11 * t1[k];
   return p;
 }
@@ -56,10 +42,10 @@ Vec hermite(const Vec& p0, const Vec& t0, const Vec& p1, const Vec& t1, double s
 /// edge, the direction perpendicular to that edge, away from the triangle
 /// (exact for a cylinder cut straight); a vertex takes the mean of its two
 /// rim edges', turned toward the normal where it points back.
-std::vector<Vec> rim_directions(const SurfaceMesh& m, const TriangleAdjacency& stars,
-                                const std::vector<int32_t>& loop, const Vec& normal) {
+std::vector<Vec3> rim_directions(const SurfaceMesh& m, const TriangleAdjacency& stars,
+                                 const std::vector<int32_t>& loop, const Vec3& normal) {
   const size_t n = loop.size();
-  std::vector<Vec> edge_dir(n);
+  std::vector<Vec3> edge_dir(n);
   for (size_t i = 0; i < n; ++i) {
     const int32_t a = loop[i], b = loop[(i + 1) % n];
     edge_dir[i] = normal;
@@ -67,18 +53,16 @@ std::vector<Vec> rim_directions(const SurfaceMesh& m, const TriangleAdjacency& s
       const int32_t* t = &m.triangles[3 * size_t(stars.star[size_t(s)])];
       if (t[0] != b && t[1] != b && t[2] != b) continue;
       const int32_t o = t[0] != a && t[0] != b ? t[0] : t[1] != a && t[1] != b ? t[1] : t[2];
-      const Vec pa = at(m, a), edge = sub(at(m, b), pa), inward = sub(at(m, o), pa);
-      Vec tn, d;
-      v3::cross(edge.data(), inward.data(), tn.data());
-      v3::cross(edge.data(), tn.data(), d.data());
+      const Vec3 pa = at(m, a), edge = (at(m, b) - pa), inward = (at(m, o) - pa);
+      Vec3 d = cross(edge, cross(edge, inward));
       if (dot(d, inward) > 0)
         for (double& x : d) x = -x;
       if (length(d) > 0) edge_dir[i] = unit(d);
     }
   }
-  std::vector<Vec> dirs(n);
+  std::vector<Vec3> dirs(n);
   for (size_t i = 0; i < n; ++i) {
-    Vec d = unit(add(edge_dir[(i + n - 1) % n], edge_dir[i]));
+    Vec3 d = unit(add(edge_dir[(i + n - 1) % n], edge_dir[i]));
     if (length(d) == 0) d = normal;
     // A wall that leaves the rim backwards or sideways would fold the
     // extension: keep the direction within 60 degrees of the normal.
@@ -105,7 +89,7 @@ Result<std::vector<FlowExtension>> add_flow_extensions(SurfaceMesh& mesh,
     const Opening& op = openings[o];
     const std::vector<int32_t>& loop = op.loop;
     const size_t n = loop.size();
-    const Vec c = op.centroid, axis = op.normal;
+    const Vec3 c = op.centroid, axis = op.normal;
     const double height = lengths[o] * op.radius;
     // A polygon of n points on a circle of this radius has the opening's
     // area, so the opening keeps its equivalent radius (and its place in
@@ -113,14 +97,14 @@ Result<std::vector<FlowExtension>> add_flow_extensions(SurfaceMesh& mesh,
     const double angle = 2 * std::numbers::pi / double(n);
     const double radius = op.radius * std::sqrt(angle / std::sin(angle));
     // Phase 1: directions and the end circle's points.
-    std::vector<Vec> dirs = rim_directions(mesh, stars, loop, axis);
-    std::vector<Vec> rim(n), ring_dir(n);
+    std::vector<Vec3> dirs = rim_directions(mesh, stars, loop, axis);
+    std::vector<Vec3> rim(n), ring_dir(n);
     double edge = 0;
     for (size_t i = 0; i < n; ++i) {
       rim[i] = at(mesh, loop[i]);
-      edge += length(sub(at(mesh, loop[(i + 1) % n]), rim[i])) / double(n);
-      const Vec r = sub(rim[i], c);
-      const Vec in_plane = add(r, axis, -dot(r, axis));
+      edge += length(at(mesh, loop[(i + 1) % n]) - rim[i]) / double(n);
+      const Vec3 r = (rim[i] - c);
+      const Vec3 in_plane = add(r, axis, -dot(r, axis));
       if (length(in_plane) < 1e-6 * op.radius)
         return R::Error("opening " + std::to_string(o + 1) + " at " + point_text(c) +
                         " folds back onto its axis: it cannot be extended; extend it less "
@@ -131,8 +115,7 @@ Result<std::vector<FlowExtension>> add_flow_extensions(SurfaceMesh& mesh,
     // The end is a regular polygon (so it has the opening's area and
     // centroid exactly), its corners at equal angles turned to follow the
     // rim's as closely as possible (the circular mean of the differences).
-    Vec e1 = ring_dir[0], e2;
-    v3::cross(axis.data(), e1.data(), e2.data());
+    const Vec3 e1 = ring_dir[0], e2 = cross(axis, e1);
     std::vector<double> phi(n);
     for (size_t i = 0; i < n; ++i) phi[i] = std::atan2(dot(ring_dir[i], e2), dot(ring_dir[i], e1));
     // The loop's sense of rotation about the axis (clockwise for an
@@ -149,13 +132,11 @@ Result<std::vector<FlowExtension>> add_flow_extensions(SurfaceMesh& mesh,
     for (size_t i = 0; i < n; ++i) {
       const double theta = turn + step * double(i);
       ring_dir[i] =
-          add(Vec{e1[0] * std::cos(theta), e1[1] * std::cos(theta), e1[2] * std::cos(theta)}, e2,
+          add(Vec3{e1[0] * std::cos(theta), e1[1] * std::cos(theta), e1[2] * std::cos(theta)}, e2,
               std::sin(theta));
       // The join leaves the rim in the wall's meridian plane (axis, radial
       // direction): a circumferential component would twist the extension.
-      Vec around;
-      v3::cross(axis.data(), unit(sub(rim[i], add(c, axis, dot(sub(rim[i], c), axis)))).data(),
-                around.data());
+      const Vec3 around = cross(axis, unit(rim[i] - add(c, axis, dot(rim[i] - c, axis))));
       dirs[i] = unit(add(dirs[i], around, -dot(dirs[i], around)));
     }
     // Phase 2: rings. The cross-section blends over the first half of the
@@ -167,11 +148,11 @@ Result<std::vector<FlowExtension>> add_flow_extensions(SurfaceMesh& mesh,
     for (size_t j = 1; j <= rings; ++j) {
       const double z = height * double(j) / double(rings);
       for (size_t i = 0; i < n; ++i) {
-        const Vec mid = add(add(c, axis, half), ring_dir[i], radius);
-        Vec p;
+        const Vec3 mid = add(add(c, axis, half), ring_dir[i], radius);
+        Vec3 p;
         if (z <= half) {
-          const double chord = length(sub(mid, rim[i]));
-          Vec t0 = dirs[i], t1 = axis;
+          const double chord = length((mid - rim[i]));
+          Vec3 t0 = dirs[i], t1 = axis;
           for (double& x : t0) x *= chord;
           for (double& x : t1) x *= chord;
           p = hermite(rim[i], t0, mid, t1, z / half);
@@ -219,7 +200,7 @@ Result<std::vector<FlowExtension>> add_flow_extensions(SurfaceMesh& mesh,
     const SelfIntersectionReport crossing = find_self_intersections_of(mesh, flagged, 1);
     if (crossing.pairs > 0) {
       const int32_t t = std::max(crossing.examples[0][0], crossing.examples[0][1]);
-      const Vec p = at(mesh, mesh.triangles[3 * size_t(t)]);
+      const Vec3 p = at(mesh, mesh.triangles[3 * size_t(t)]);
       return R::Error("a flow extension runs into the surface near " + point_text(p) +
                       ": make it shorter ({flow_extension} K=L for that opening) or cut the "
                       "vessel end first");

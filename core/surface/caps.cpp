@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "core/geom/predicates.h"
+#include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
 #include "core/mesh/enclosed_volume.h"
@@ -26,17 +27,8 @@
 namespace vm {
 namespace {
 
-using Vec3 = std::array<double, 3>;
-
-Vec3 point(const std::vector<double>& pts, int32_t v) {
-  return {pts[3 * size_t(v)], pts[3 * size_t(v) + 1], pts[3 * size_t(v) + 2]};
-}
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+Vec3 point(const std::vector<double>& pts, int32_t v) { return at(pts, v); }
+Vec3 sub(const Vec3& a, const Vec3& b) { return a - b; }
 
 Vec3 triangle_normal(const std::vector<double>& pts, const int32_t* v) {
   const Vec3 a = point(pts, v[0]);

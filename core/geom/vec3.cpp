@@ -1,0 +1,14 @@
+// Text of a point for messages (vec3.h).
+#include "core/geom/vec3.h"
+
+#include <cstdio>
+
+namespace vm {
+
+std::string point_text(const Vec3& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", p[0], p[1], p[2]);
+  return buf;
+}
+
+}  // namespace vm
