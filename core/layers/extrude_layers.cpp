@@ -22,16 +22,12 @@
 #include "core/mesh/surface_distance.h"
 #include "core/quality/triangle_quality.h"
 #include "core/surface/caps.h"
+#include "core/util/stage_timer.h"
 
 namespace vm {
 using namespace layers;  // NOLINT: the layer stage's own vector helpers
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 constexpr double kMinFactor = 1e-3;
 // Columns are lengthened for their lean by at most 1 / kMinLean.
@@ -104,7 +100,7 @@ double fan_closed_volume(const SurfaceMesh& wall, const std::vector<LayerOpening
 Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<double>& radius,
                                  const LayerSpec& spec, LayerStats* stats_out) {
   using R = Result<LayerMesh>;
-  const auto t_start = Clock::now();
+  const auto t_start = StageClock::now();
   LayerStats stats;
   const size_t nv = wall_in.num_vertices(), nt = wall_in.num_triangles();
 
@@ -129,7 +125,7 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
   if (Status s = check_wall(wall_in, adj); !s.ok()) return s;
 
   // Phase 1: openings, their planes, rims onto the planes.
-  auto t0 = Clock::now();
+  auto t0 = StageClock::now();
   SurfaceMesh wall = wall_in;
   std::vector<LayerOpening> openings;
   std::vector<OpeningPlane> planes;
@@ -205,7 +201,7 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
   }
 
   // Phase 3: gap limit.
-  t0 = Clock::now();
+  t0 = StageClock::now();
   const std::vector<double> fraction = layer_fractions(spec);
   std::vector<double> cosine(nv), needed(nv);
   for (size_t v = 0; v < nv; ++v) {
@@ -235,7 +231,7 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
   size_t failing = 0, crossing = 0;
   for (int round = 1; round <= spec.max_rounds && !valid; ++round) {
     stats.rounds = round;
-    t0 = Clock::now();
+    t0 = StageClock::now();
     failing = validity.shrink_invalid(factor, by_validity, &stats.min_volume_ratio);
     if (failing > 0) grade_reduction(wall, rings, column, spec.gradation, kMinFactor, factor);
     stats.seconds_validity += seconds_since(t0);
@@ -244,7 +240,7 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
       valid = true;
       break;
     }
-    t0 = Clock::now();
+    t0 = StageClock::now();
     const std::vector<int32_t> involved =
         layer_intersections(wall, cols, factor, spec.layers, openings, spec.outward);
     stats.seconds_verify += seconds_since(t0);
@@ -305,7 +301,7 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
   m.openings = std::move(openings);
 
   // Statistics.
-  t0 = Clock::now();
+  t0 = StageClock::now();
   std::vector<double> vertex_area(nv, 0.0);
   double qmin = 1, qsum = 0, wmin = 1;
   for (size_t t = 0; t < nt; ++t) {

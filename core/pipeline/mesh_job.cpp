@@ -24,16 +24,13 @@
 #include "core/pipeline/write_outputs.h"
 #include "core/quality/tet_quality.h"
 #include "core/surface/element_estimate.h"
+#include "core/util/stage_timer.h"
 #include "core/volume/boundary_recovery.h"
 #include "core/volume/tetrahedralize.h"
 
 namespace vm {
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 /// For each cap, the input opening it closes: pairs taken by increasing
 /// distance between the cap's centroid and the opening's (the wall moved

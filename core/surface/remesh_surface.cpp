@@ -24,13 +24,10 @@
 #include "core/surface/pin_to_input.h"
 #include "core/surface/resample_curve.h"
 #include "core/surface/sharp_features.h"
+#include "core/util/stage_timer.h"
 
 namespace vm {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 uint64_t edge_key(int32_t a, int32_t b) {
   if (a > b) std::swap(a, b);

@@ -22,6 +22,7 @@
 #include "core/geom/predicates.h"
 #include "core/geom/vec3.h"
 #include "core/quality/tet_quality.h"
+#include "core/util/stage_timer.h"
 
 namespace vm {
 namespace {
@@ -821,9 +822,6 @@ Status optimize_volume(TetMesh& mesh, const std::vector<double>& vertex_h,
   Optimizer opt(mesh, vertex_h, options, st);
   opt.compute_all_qualities();
   st.before = opt.stats();
-  auto seconds_since = [](clock::time_point a) {
-    return std::chrono::duration<double>(clock::now() - a).count();
-  };
   const int steps = 2 * options.passes + 1;
   int step = 0;
   for (int pass = 0; pass < options.passes; ++pass) {

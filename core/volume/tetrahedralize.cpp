@@ -11,6 +11,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/util/stage_timer.h"
 #include "core/volume/size_field3d.h"
 #include "core/volume/spatial_sort.h"
 #include "core/volume/tet_mesh.h"
@@ -23,9 +24,6 @@ Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& ve
   using R = Result<VolumeMesh>;
   using clock = std::chrono::steady_clock;
   const auto t_start = clock::now();
-  auto since = [](clock::time_point a) {
-    return std::chrono::duration<double>(clock::now() - a).count();
-  };
   FillStats st;
   // Phase 1: checks; the region's vertices.
   const size_t n0 = kernel.num_vertices();
@@ -63,7 +61,7 @@ Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& ve
   if (!field.ok()) return R::Error("fill volume: " + field.message());
   std::vector<double> vertex_h(n0);
   for (size_t v = 0; v < n0; ++v) vertex_h[v] = field.value()(kernel.point(int32_t(v)));
-  st.size_field_seconds = since(t);
+  st.size_field_seconds = seconds_since(t);
 
   // Phase 3: refinement.
   t = clock::now();
@@ -77,9 +75,8 @@ Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& ve
   };
   Status s =
       refine_volume(kernel, field.value(), vertex_h, ro, &st.refine, sub_progress(0.02, 0.5));
-  if (!s.ok())
-    return s.cancelled() ? s : s.Prefixed("fill volume: ");
-  st.refine_seconds = since(t);
+  if (!s.ok()) return s.cancelled() ? s : s.Prefixed("fill volume: ");
+  st.refine_seconds = seconds_since(t);
 
   // Phase 4: the region as a TetMesh.
   t = clock::now();
@@ -101,7 +98,7 @@ Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& ve
   }
   auto mesh = TetMesh::from_kernel(kernel, tag, vmap, nv, std::move(fixed));
   if (!mesh.ok()) return R::Error("fill volume: " + mesh.message());
-  st.extract_seconds = since(t);
+  st.extract_seconds = seconds_since(t);
   st.inserted_vertices = added.size();
 
   // Phase 5: optimization.
@@ -109,10 +106,9 @@ Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& ve
   if (options.optimize) {
     s = optimize_volume(mesh.value(), h, options.optimize_options, &st.optimize,
                         sub_progress(0.5, 1.0));
-    if (!s.ok())
-      return s.cancelled() ? s : s.Prefixed("fill volume: ");
+    if (!s.ok()) return s.cancelled() ? s : s.Prefixed("fill volume: ");
   }
-  st.optimize_seconds = since(t);
+  st.optimize_seconds = seconds_since(t);
 
   // Phase 6: extraction.
   t = clock::now();
@@ -136,9 +132,9 @@ Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& ve
     for (int32_t& v : out.tets) v = renumber[size_t(v)];
   }
   out.tet_region.assign(out.tets.size() / 4, 0);
-  st.extract_seconds += since(t);
+  st.extract_seconds += seconds_since(t);
   st.tets = out.num_tets();
-  st.seconds = since(t_start);
+  st.seconds = seconds_since(t_start);
   if (!report_progress(progress, 1.0, "optimize volume")) return Status::Cancelled();
   if (stats) *stats = st;
   return out;
