@@ -12,7 +12,9 @@
 #include "core/mesh/surface_mesh.h"
 #include "core/mesh/topology.h"
 #include "core/mesh/weld.h"
+#include "core/prepare/clip_surface.h"
 #include "core/prepare/recognize_caps.h"
+#include "core/prepare/smooth_surface.h"
 #include "core/prepare/units.h"
 #include "core/quality/triangle_quality.h"
 #include "core/util/progress.h"
@@ -26,6 +28,16 @@ struct PrepareOptions {
   /// Keep only the largest connected component (the others are removed
   /// and reported) instead of refusing inputs with several components.
   bool largest_component_only = false;
+  /// Smoothing before cap recognition: kAuto smooths voxel staircases only
+  /// (detected by their facet normals), a count of passes smooths any
+  /// surface, kOff never.
+  Smoothing smoothing;
+  /// Clipping after cap recognition: at the vessel ends of a closed
+  /// surface (clip_auto, clip_distance local radii in from each tip), and
+  /// by the given planes (each removes the side its normal points to).
+  bool clip_auto = false;
+  double clip_distance = 1;
+  std::vector<ClipPlane> clip_planes;
   /// Keep planar caps as part of the wall (else each recognised cap is
   /// removed and its rim becomes an opening).
   bool keep_caps = false;
