@@ -438,6 +438,13 @@ const OptionSpec kOptions[] = {
      .default_text = "0",
      .needs = "a noise amplitude >= 0 (in voxels)",
      .doc = "voxel-value noise, in voxels"},
+    {.id = "binary",
+     .cli = "binary",
+     .js = "binary",
+     .type = T::kFlag,
+     .commands = kCommandPhantom,
+     .group = "phantom",
+     .doc = "the raw staircase of a binary voxel mask (thresholded per voxel, not smoothed)"},
     {.id = "seed",
      .cli = "seed",
      .js = "seed",
@@ -744,6 +751,8 @@ Status apply_option(PhantomOptions& o, const OptionSpec& spec, const OptionValue
     o.voxel = v.number;
   } else if (id == "noise") {
     o.noise = v.number;
+  } else if (id == "binary") {
+    o.binary = v.flag;
   } else if (id == "seed") {
     o.seed = uint32_t(v.number);
   } else if (id == "scale") {
