@@ -60,6 +60,18 @@ inline const char* opening_source_name(OpeningSource::Kind kind) {
   return kind == OpeningSource::kCap ? "cap" : kind == OpeningSource::kClip ? "clip" : "file";
 }
 
+/// Phase 4's outcome: what the surface was found to be and how it was
+/// smoothed.
+struct SmoothingOutcome {
+  Smoothing::Mode mode = Smoothing::Mode::kAuto;  ///< as asked
+  StaircaseReport staircase;                      ///< detection (every mode)
+  bool applied = false;                           ///< vertices were moved
+  /// The clamp's voxel (model units): the staircase's largest voxel side,
+  /// or, smoothing a surface that is not one, its median edge length.
+  double voxel = 0;
+  SmoothReport report;  ///< when applied
+};
+
 /// The welded, repaired surface and everything known about it.
 struct PreparedSurface {
   SurfaceMesh mesh;
@@ -77,6 +89,7 @@ struct PreparedSurface {
   /// One per opening of `topology` (same order).
   std::vector<OpeningSource> opening_sources;
   size_t caps_removed = 0;
+  SmoothingOutcome smoothing;
   /// The model's length unit and how it was decided.
   ModelUnit unit;
   /// Human-readable notes on the safe repairs applied and on properties that
