@@ -96,6 +96,26 @@ TEST(PrepareSmoothing, ASmoothSurfaceIsLeftAloneUnlessPassesAreAsked) {
                           "median edge length"));
 }
 
+TEST(PrepareSmoothing, NoBumpOfANoisyMaskIsTakenForACap) {
+  // A binary mask with voxel noise: single-voxel bumps whose flat tops,
+  // unsmoothed, pass for planar caps (bogus openings, then failing layers).
+  PhantomOptions o;
+  o.kind = PhantomKind::kTube;
+  o.voxel = 0.12;
+  o.noise = 0.3;
+  o.binary = true;
+  auto phantom = make_vessel_phantom(o);
+  ASSERT_TRUE(phantom.ok());
+  const auto stl = write_stl_binary(phantom.value());
+  auto smoothed = prepare_surface(stl);
+  auto raw = prepare_surface(stl, smoothing("off"));
+  ASSERT_TRUE(smoothed.ok() && raw.ok());
+  EXPECT_TRUE(smoothed.value().smoothing.applied);
+  EXPECT_EQ(smoothed.value().caps_removed, 0u);
+  EXPECT_EQ(smoothed.value().topology.openings.size(), 2u);
+  EXPECT_GT(raw.value().caps_removed, 0u);
+}
+
 TEST(PrepareSmoothing, TheAnalysisReportsIt) {
   auto r = prepare_surface(binary_stl(PhantomKind::kTube, 0.16));
   ASSERT_TRUE(r.ok());
