@@ -131,6 +131,19 @@ void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
                 i + 1, names.ok() ? names.value()[i].c_str() : "?", o.perimeter, unit, o.radius,
                 unit, o.centroid[0], o.centroid[1], o.centroid[2], o.loop.size(), from.c_str());
   }
+  const vm::SmoothingOutcome& sm = s.smoothing;
+  char staircase[96] = "not a voxel staircase";
+  if (sm.staircase.staircase)
+    std::snprintf(staircase, sizeof(staircase), "a voxel staircase, voxel %.4g %s",
+                  sm.staircase.voxel, unit);
+  if (sm.applied)
+    std::printf("smoothing:   %d passes (%s), vertices moved at most %g %s (%.2f of the %s)\n",
+                sm.report.passes, staircase, sm.report.max_displacement, unit,
+                0.5 * sm.report.max_displacement_ratio,
+                sm.staircase.staircase ? "voxel" : "median edge");
+  else
+    std::printf("smoothing:   none (%s%s)\n", staircase,
+                sm.mode == vm::Smoothing::Mode::kOff ? ", --smooth off" : "");
   std::printf("quality gamma_k: min %.4f, mean %.4f\n", s.quality_stats.min, s.quality_stats.mean);
   for (const std::string& w : s.warnings)
     std::printf("warning: %s\n", vm::phrase_options(w, vm::kFaceCli).c_str());

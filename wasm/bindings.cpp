@@ -6,6 +6,7 @@
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <optional>
 #include <string>
@@ -91,6 +92,13 @@ vm::Result<std::vector<vm::OptionValue>> values_from(const vm::OptionSpec& spec,
         break;
       case vm::OptionType::kChoice:
       case vm::OptionType::kText:
+        // A whole number stands for its text ({smooth: 5} as '5').
+        if (type == "number" && spec.type == vm::OptionType::kText &&
+            std::abs(x.as<double>()) < 1e15 &&
+            x.as<double>() == double(int64_t(x.as<double>()))) {
+          o.text = std::to_string(int64_t(x.as<double>()));
+          break;
+        }
         if (type != "string")
           return vm::Status::BadOption(std::string(spec.id), "must be a string");
         o.text = x.as<std::string>();

@@ -1,9 +1,10 @@
 // Synthetic segmentation-like vessels: an implicit model (sphere sweeps along
 // smooth centerlines, branches joined by a smooth minimum, an optional bulb)
-// sampled on a voxel grid with optional value noise, extracted by marching
-// cubes (marching_cubes.h) and cut open by planes across the vessel ends, so
-// the result has the staircase, oversampling and slivers of real
-// segmentation output.
+// sampled on a voxel grid with optional value noise, optionally thresholded
+// to a binary mask (the raw staircase of an unsmoothed segmentation),
+// extracted by marching cubes (marching_cubes.h) and cut open by planes
+// across the vessel ends, so the result has the staircase, oversampling and
+// slivers of real segmentation output.
 #include "core/phantom/vessel_phantom.h"
 
 #include <algorithm>
@@ -334,6 +335,9 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
         out[i] += float(o.noise * o.voxel * (2 * u - 1));
       }
     }
+    // A binary mask: inside -1, outside +1 (each crossing at its edge's middle).
+    if (o.binary)
+      for (size_t i = 0; i < np; ++i) out[i] = out[i] < 0 ? -1.0f : 1.0f;
   };
   SurfaceMesh mesh = marching_cubes(g, plane_fn);
   const bool open = o.open_ends && !m.cuts.empty();

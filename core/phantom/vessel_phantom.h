@@ -38,6 +38,13 @@ struct PhantomOptions {
   /// (0 = clean staircase). Deterministic for a given seed.
   double noise = 0.0;
   uint32_t seed = 1;
+  /// The raw staircase of a binary voxel mask: the (noisy) field is
+  /// thresholded per voxel to inside / outside before marching cubes, so
+  /// every vertex sits at the middle of a grid edge and the facet normals
+  /// lie on a few directions (the axes, their diagonals), with the voxel's
+  /// constant step (what marching cubes on an unsmoothed segmentation
+  /// gives). False: the field itself, a staircase smoothed by interpolation.
+  bool binary = false;
   /// Uniform scale applied to the output coordinates (e.g. 10 for "mm").
   double scale = 1.0;
 };

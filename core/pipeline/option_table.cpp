@@ -17,6 +17,7 @@ constexpr std::string_view kMeshers[] = {"frontal", "delaunay", "adapt"};
 constexpr std::string_view kMshVersions[] = {"4.1", "2.2"};
 constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm", "torus"};
 constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
+constexpr std::string_view kOffAuto[] = {"off", "auto"};
 constexpr std::string_view kFormats[] = {"msh", "vtu", "vtp", "stl", "mesh-complete"};
 
 constexpr uint8_t kInfoMesh = kCommandInfo | kCommandMesh;
@@ -83,6 +84,53 @@ const OptionSpec kOptions[] = {
      .group = "input",
      .doc = "keep planar caps as wall (else each recognised cap is removed and its rim becomes "
             "an opening)"},
+    {.id = "smooth",
+     .cli = "smooth",
+     .js = "smooth",
+     .type = T::kText,
+     .commands = kInfoMesh,
+     .group = "input",
+     .metavar = "auto|off|N",
+     .default_text = "auto",
+     .needs = "auto, off or a number of smoothing passes from 1 to 1000",
+     .doc = "smooth the surface before meshing (volume-preserving, within half a voxel): auto "
+            "smooths voxel staircases only; N passes on any surface"},
+    {.id = "clip",
+     .cli = "clip",
+     .js = "clip",
+     .type = T::kChoice,
+     .commands = kInfoMesh,
+     .group = "input",
+     .metavar = "off|auto",
+     .choices = kOffAuto,
+     .default_text = "off",
+     .needs = "off or auto",
+     .doc = "auto: cut each vessel end of a closed surface open, perpendicular to the vessel"},
+    {.id = "clip_distance",
+     .cli = "clip-distance",
+     .js = "clipDistance",
+     .commands = kInfoMesh,
+     .group = "input",
+     .metavar = "D",
+     .min = 0,
+     .min_exclusive = true,
+     .default_text = "1",
+     .unit = "local radii",
+     .needs = "a positive number of local vessel radii",
+     .doc = "with clip auto: cut D local radii in from each vessel end's tip"},
+    {.id = "clip_plane",
+     .cli = "clip-plane",
+     .js = "clipPlanes",
+     .type = T::kNumbers,
+     .commands = kInfoMesh,
+     .group = "input",
+     .metavar = "X,Y,Z,NX,NY,NZ",
+     .list_size = 6,
+     .unit = "length",
+     .needs = "6 numbers X,Y,Z,NX,NY,NZ: a point of the cut and the normal pointing out of the "
+              "part to keep",
+     .doc = "cut the surface open with this plane (the side the normal points to is removed)",
+     .repeatable = true},
     // ---- size
     {.id = "size",
      .cli = "size",
@@ -416,6 +464,13 @@ const OptionSpec kOptions[] = {
      .default_text = "0",
      .needs = "a noise amplitude >= 0 (in voxels)",
      .doc = "voxel-value noise, in voxels"},
+    {.id = "binary",
+     .cli = "binary",
+     .js = "binary",
+     .type = T::kFlag,
+     .commands = kCommandPhantom,
+     .group = "phantom",
+     .doc = "the raw staircase of a binary voxel mask (thresholded per voxel, not smoothed)"},
     {.id = "seed",
      .cli = "seed",
      .js = "seed",
@@ -680,6 +735,19 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
       o.prepare.flow_extensions.emplace_back(v.opening - 1, x);
     else
       o.prepare.flow_extension = x;
+  } else if (id == "smooth") {
+    auto mode = parse_smoothing(v.text);
+    if (!mode) return needs(spec);
+    o.prepare.smoothing = *mode;
+  } else if (id == "clip") {
+    o.prepare.clip_auto = v.text == "auto";
+  } else if (id == "clip_distance") {
+    o.prepare.clip_distance = x;
+  } else if (id == "clip_plane") {
+    const double n = std::hypot(v.numbers[3], v.numbers[4], v.numbers[5]);
+    if (!(n > 0)) return needs(spec);
+    o.prepare.clip_planes.push_back({{v.numbers[0], v.numbers[1], v.numbers[2]},
+                                     {v.numbers[3] / n, v.numbers[4] / n, v.numbers[5] / n}});
   } else if (id == "keep_caps") {
     o.prepare.keep_caps = v.flag;
   } else if (id == "name") {
@@ -716,6 +784,8 @@ Status apply_option(PhantomOptions& o, const OptionSpec& spec, const OptionValue
     o.voxel = v.number;
   } else if (id == "noise") {
     o.noise = v.number;
+  } else if (id == "binary") {
+    o.binary = v.flag;
   } else if (id == "seed") {
     o.seed = uint32_t(v.number);
   } else if (id == "scale") {

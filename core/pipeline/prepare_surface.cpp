@@ -1,5 +1,5 @@
 // Stage 1 of the pipeline (docs/ARCHITECTURE.md): read, weld, repair,
-// recognise caps, analyze, decide the unit.
+// smooth voxel staircases, recognise caps, analyze, decide the unit.
 #include "core/pipeline/prepare_surface.h"
 
 #include <algorithm>
@@ -48,6 +48,8 @@ struct Work {
   /// order before extension (-1: none), which the analysis keeps (an
   /// extension keeps an opening's area, but ties could reorder).
   std::vector<int32_t> order_of_vertex;
+  /// Where phase 4's note goes among the warnings (none: npos).
+  size_t smoothing_note = std::string::npos;
 
   /// After vertices were renumbered (old -> new, -1 removed).
   void remap_vertices(const std::vector<int32_t>& remap, size_t new_count) {
@@ -122,6 +124,71 @@ void keep_largest_component(PreparedSurface& s, Work& w) {
   s.warnings.push_back("kept the largest of " + std::to_string(parts.components) + " components (" +
                        num(parts.component_triangles[0]) + " of " + num(parts.triangles) +
                        " triangles)");
+}
+
+/// "0.12", or "0.7 x 0.7 x 1.5" for a voxel of unequal sides.
+std::string voxel_text(const std::array<double, 3>& spacing) {
+  char buf[96];
+  const double lo = std::min({spacing[0], spacing[1], spacing[2]});
+  const double hi = std::max({spacing[0], spacing[1], spacing[2]});
+  if (hi - lo <= 1e-3 * hi)
+    std::snprintf(buf, sizeof(buf), "%.4g", hi);
+  else
+    std::snprintf(buf, sizeof(buf), "%.4g x %.4g x %.4g", spacing[0], spacing[1], spacing[2]);
+  return buf;
+}
+
+/// Phase 4: smoothing, per options.smoothing: auto smooths voxel staircases
+/// (the passes from the voxel), N passes any surface, off nothing. The
+/// staircase test runs in every mode, for the report.
+void smooth(PreparedSurface& s, Work& w, const PrepareOptions& options) {
+  SmoothingOutcome& out = s.smoothing;
+  out.mode = options.smoothing.mode;
+  out.staircase = detect_staircase(s.mesh);
+  if (out.mode == Smoothing::Mode::kOff) return;
+  const bool staircase = out.staircase.staircase;
+  if (out.mode == Smoothing::Mode::kAuto && !staircase) return;
+  if (w.adjacency.num_nonmanifold_edges > 0 || !s.repair.orientable) {
+    s.warnings.push_back(
+        std::string(staircase ? "the surface is a voxel staircase but it" : "the surface") +
+        " was not smoothed: it has non-manifold edges or is not orientable");
+    return;
+  }
+  SmoothOptions o;
+  std::array<double, 3> spacing = out.staircase.spacing;
+  if (!staircase) {
+    const double edge = median_edge_length(s.mesh);
+    spacing = {edge, edge, edge};
+  }
+  out.voxel = std::max({spacing[0], spacing[1], spacing[2]});
+  if (!(out.voxel > 0)) return;
+  for (int k = 0; k < 3; ++k) o.max_displacement[size_t(k)] = 0.5 * spacing[size_t(k)];
+  // Planar caps (flat regions of a few voxels' area, not facing the grid of
+  // a staircase) keep their plane and rims, for phase 5 to find them.
+  o.flat_min_area = 16 * out.voxel * out.voxel;
+  if (staircase) o.grid = spacing;
+  o.passes = out.mode == Smoothing::Mode::kPasses ? options.smoothing.passes
+                                                  : staircase_passes(s.mesh, out.voxel);
+  out.report = smooth_surface(s.mesh, w.adjacency, o);
+  out.applied = true;
+  w.smoothing_note = s.warnings.size();  // written once the unit is known
+}
+
+/// What phase 4 did, in words, lengths in `unit`.
+std::string smoothing_note(const SmoothingOutcome& out, const std::string& unit) {
+  const bool staircase = out.staircase.staircase;
+  const std::string passes = std::to_string(out.report.passes);
+  const std::string voxel =
+      voxel_text(staircase ? out.staircase.spacing : std::array{out.voxel, out.voxel, out.voxel}) +
+      " " + unit;
+  if (out.mode == Smoothing::Mode::kAuto)
+    return "the surface is a voxel staircase (voxel " + voxel + "): smoothed with " + passes +
+           " passes, every vertex within half a voxel; turn it off with {smooth} off";
+  if (staircase)
+    return "the surface is a voxel staircase (voxel " + voxel + "): smoothed with " + passes +
+           " passes ({smooth} " + passes + "), every vertex within half a voxel";
+  return "smoothed with " + passes + " passes ({smooth} " + passes +
+         "), every vertex within half the median edge length (" + voxel + ")";
 }
 
 /// Phase 5: planar caps removed, their rims openings of source "cap".
@@ -237,7 +304,8 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   if (!report_progress(progress, 0.3, "repair")) return cancelled();
   if (Status st = repair(s, w); !st.ok()) return st;
   if (options.largest_component_only) keep_largest_component(s, w);
-  // Phase 4: smoothing of staircases (smooth_surface.h) goes here.
+  if (!report_progress(progress, 0.4, "smooth")) return cancelled();
+  smooth(s, w, options);
   if (!report_progress(progress, 0.5, "caps")) return cancelled();
   open_caps(s, w, options);
   // Phase 6: clipping (clip_surface.h) goes here.
@@ -245,6 +313,9 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   if (!report_progress(progress, 0.6, "analyze")) return cancelled();
   analyze(s, w);
   s.unit = decide_unit(options.units, median_vessel_radius(s));
+  if (w.smoothing_note != std::string::npos)
+    s.warnings.insert(s.warnings.begin() + long(w.smoothing_note),
+                      smoothing_note(s.smoothing, std::string(unit_symbol(s.unit.unit))));
   if (s.unit.guessed && s.unit.unit == LengthUnit::kM)
     s.warnings.push_back("the model is in metres (" + s.unit.reason +
                          "): lengths are read and written in metres; say otherwise with {units}");

@@ -12,7 +12,9 @@
 #include "core/mesh/surface_mesh.h"
 #include "core/mesh/topology.h"
 #include "core/mesh/weld.h"
+#include "core/prepare/clip_surface.h"
 #include "core/prepare/recognize_caps.h"
+#include "core/prepare/smooth_surface.h"
 #include "core/prepare/units.h"
 #include "core/quality/triangle_quality.h"
 #include "core/util/progress.h"
@@ -31,6 +33,16 @@ struct PrepareOptions {
   /// before extension) where given.
   double flow_extension = 0;
   std::vector<std::pair<int, double>> flow_extensions;
+  /// Smoothing before cap recognition: kAuto smooths voxel staircases only
+  /// (detected by their facet normals), a count of passes smooths any
+  /// surface, kOff never.
+  Smoothing smoothing;
+  /// Clipping after cap recognition: at the vessel ends of a closed
+  /// surface (clip_auto, clip_distance local radii in from each tip), and
+  /// by the given planes (each removes the side its normal points to).
+  bool clip_auto = false;
+  double clip_distance = 1;
+  std::vector<ClipPlane> clip_planes;
   /// Keep planar caps as part of the wall (else each recognised cap is
   /// removed and its rim becomes an opening).
   bool keep_caps = false;
@@ -56,6 +68,18 @@ inline const char* opening_source_name(OpeningSource::Kind kind) {
   return kind == OpeningSource::kCap ? "cap" : kind == OpeningSource::kClip ? "clip" : "file";
 }
 
+/// Phase 4's outcome: what the surface was found to be and how it was
+/// smoothed.
+struct SmoothingOutcome {
+  Smoothing::Mode mode = Smoothing::Mode::kAuto;  ///< as asked
+  StaircaseReport staircase;                      ///< detection (every mode)
+  bool applied = false;                           ///< vertices were moved
+  /// The clamp's voxel (model units): the staircase's largest voxel side,
+  /// or, smoothing a surface that is not one, its median edge length.
+  double voxel = 0;
+  SmoothReport report;  ///< when applied
+};
+
 /// The welded, repaired surface and everything known about it.
 struct PreparedSurface {
   SurfaceMesh mesh;
@@ -73,6 +97,7 @@ struct PreparedSurface {
   /// One per opening of `topology` (same order).
   std::vector<OpeningSource> opening_sources;
   size_t caps_removed = 0;
+  SmoothingOutcome smoothing;
   /// The model's length unit and how it was decided.
   ModelUnit unit;
   /// Human-readable notes on the safe repairs applied and on properties that

@@ -18,6 +18,32 @@ void write_quality(JsonWriter& j, const QualityStats& q) {
   j.end_object();
 }
 
+void write_smoothing(JsonWriter& j, const SmoothingOutcome& s) {
+  const StaircaseReport& st = s.staircase;
+  j.begin_object();
+  j.key("mode").value(smoothing_mode_name(s.mode));
+  j.key("staircase").value(st.staircase);
+  j.key("direction_fraction").value(st.direction_fraction);
+  j.key("lattice_fraction").value(st.lattice_fraction);
+  j.key("terraces").value(st.terraces);
+  if (st.staircase)
+    j.key("voxel").value(st.voxel);
+  else
+    j.key("voxel").null();
+  j.key("spacing").array(st.spacing);
+  j.key("applied").value(s.applied);
+  j.key("passes").value(s.applied ? s.report.passes : 0);
+  j.key("clamp_voxel").value(s.voxel);
+  j.key("flat_regions").value(s.report.flat_regions);
+  j.key("max_displacement").value(s.report.max_displacement);
+  j.key("max_displacement_voxels").value(0.5 * s.report.max_displacement_ratio);
+  j.key("volume_change")
+      .value(s.applied && s.report.volume_before != 0
+                 ? s.report.volume_after / s.report.volume_before - 1
+                 : 0.0);
+  j.end_object();
+}
+
 void write_warnings(JsonWriter& j, const std::vector<std::string>& warnings, OptionFace face) {
   j.key("warnings").begin_array();
   for (const std::string& w : warnings) j.value(phrase_options(w, face));
@@ -67,6 +93,8 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
   }
   j.end_array();
   j.key("caps_removed").value(s.caps_removed);
+  j.key("smoothing");
+  write_smoothing(j, s.smoothing);
   j.key("closed").value(t.closed);
   if (t.genus >= 0)
     j.key("genus").value(t.genus);

@@ -14,7 +14,13 @@ namespace vm {
 /// "binary STL", ...), label_array, units {unit, guessed, certain, reason},
 /// bounding_box {min, max, diagonal}, components, openings [{perimeter,
 /// radius, centroid, normal, vertices, source ("file" | "cap"), label,
-/// name (the group name it gets by default)}], caps_removed, closed, genus
+/// name (the group name it gets by default)}], caps_removed, smoothing
+/// {mode (auto | off | passes), staircase, direction_fraction,
+/// lattice_fraction, terraces, voxel (null unless a staircase), spacing [3],
+/// applied, passes, clamp_voxel (displacements are limited to half of it),
+/// flat_regions (planar caps kept flat), max_displacement,
+/// max_displacement_voxels (in units of clamp_voxel's sides), volume_change
+/// (relative)}, closed, genus
 /// (null if undefined), euler_characteristic, boundary_edges,
 /// nonmanifold_edges, nonmanifold_vertices, repairs {...}, quality {min,
 /// mean, max, histogram}, warnings [..]. Options in warnings are named in

@@ -119,6 +119,19 @@ PY
 check "two components refused" expect_exit 1 "2 connected components" "$VM" mesh "$T/two.stl" -o "$T/two.msh"
 check "largest component" expect_exit 0 "wrote" "$VM" mesh "$T/two.stl" -o "$T/two.msh" --largest-component
 
+# Voxel staircases: the raw marching cubes of a binary mask, smoothed by default.
+check "phantom binary" expect_exit 0 "wrote" "$VM" phantom "$T/stair.stl" --kind tube --voxel 0.16 --binary
+"$VM" info "$T/stair.stl" --json > "$T/stair.json"
+check "info json staircase smoothed" [ "$(json "$T/stair.json" "d['smoothing']['mode'], d['smoothing']['staircase'], round(d['smoothing']['voxel'], 6), d['smoothing']['applied'], d['smoothing']['passes'] >= 24, 0 < d['smoothing']['max_displacement_voxels'] <= 0.5")" = "auto True 0.16 True True True" ]
+check "info text staircase" expect_exit 0 "smoothing:   " "$VM" info "$T/stair.stl"
+check "info warns smoothing" expect_exit 0 "the surface is a voxel staircase (voxel 0.16 mm): smoothed with" "$VM" info "$T/stair.stl"
+check "info json smooth off" [ "$("$VM" info "$T/stair.stl" --smooth off --json | python3 -c "import json,sys; s=json.load(sys.stdin)['smoothing']; print(s['mode'], s['staircase'], s['applied'])")" = "off True False" ]
+check "info json smooth passes" [ "$("$VM" info "$T/stair.stl" --smooth 3 --json | python3 -c "import json,sys; s=json.load(sys.stdin)['smoothing']; print(s['mode'], s['applied'], s['passes'])")" = "passes True 3" ]
+check "noisy phantom not a staircase" [ "$(json "$T/info.json" "d['smoothing']['staircase'], d['smoothing']['applied']")" = "False False" ]
+check "smooth 0 refused" expect_exit 2 "--smooth needs auto, off or a number of smoothing passes from 1 to 1000" "$VM" info "$T/stair.stl" --smooth 0
+check "smooth x refused" expect_exit 2 "--smooth needs auto, off or a number" "$VM" mesh "$T/stair.stl" -o "$T/x.msh" --smooth x
+check "binary is a phantom flag" expect_exit 2 "option '--binary' takes no value" "$VM" phantom "$T/x.stl" --binary=1
+
 # Capped models, units, names and output formats.
 check "phantom flat caps" expect_exit 0 "wrote" "$VM" phantom "$T/capped.stl" --kind bifurcation --voxel 0.12 --noise 0.3 --flat-caps
 "$VM" info "$T/capped.stl" --json > "$T/capped.json"

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/mesh/topology.h"
@@ -110,6 +111,72 @@ TEST(Phantom, RefusesBadOptions) {
   o.voxel = 0.1;
   o.noise = -1;
   EXPECT_FALSE(make_vessel_phantom(o).ok());
+}
+
+}  // namespace
+}  // namespace vm
+
+namespace vm {
+namespace {
+
+TEST(Phantom, BinaryIsTheRawStaircaseOfTheMask) {
+  PhantomOptions o;
+  o.kind = PhantomKind::kBifurcation;
+  o.voxel = 0.15;
+  o.binary = true;
+  PhantomTruth truth;
+  auto r = make_vessel_phantom(o, &truth);
+  ASSERT_TRUE(r.ok()) << r.message();
+  const SurfaceMesh& m = r.value();
+  const TopologyReport t = analyze_topology(m);
+  EXPECT_EQ(t.components, 1);
+  EXPECT_EQ(t.nonmanifold_edges, 0u);
+  EXPECT_EQ(t.genus, 0);
+  EXPECT_EQ(int(t.openings.size()), truth.openings);
+  // Every vertex but those of the end cuts in the middle of a grid edge:
+  // its coordinates on the lattice of half voxels.
+  const double half = 0.5 * o.voxel;
+  size_t on_lattice = 0;
+  for (size_t reference = 0; reference < 10; ++reference) {  // one of them not on a cut
+    size_t on_this = 0;
+    for (size_t v = 0; v < m.num_vertices(); ++v) {
+      bool on = true;
+      for (size_t k = 0; k < 3; ++k) {
+        const double u = (m.points[3 * v + k] - m.points[3 * reference + k]) / half;
+        on = on && std::fabs(u - std::round(u)) < 1e-6;
+      }
+      on_this += on;
+    }
+    on_lattice = std::max(on_lattice, on_this);
+  }
+  EXPECT_GT(double(on_lattice), 0.9 * double(m.num_vertices()));
+  // Facets on the axes and their diagonals (the rest: marching cubes' fans
+  // of non-planar sections), none oblique to them by a few degrees.
+  double area = 0, on_grid = 0;
+  for (size_t f = 0; f < m.num_triangles(); ++f) {
+    const double* a = &m.points[3 * size_t(m.triangles[3 * f])];
+    const double* b = &m.points[3 * size_t(m.triangles[3 * f + 1])];
+    const double* c = &m.points[3 * size_t(m.triangles[3 * f + 2])];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const double len = std::hypot(n[0], n[1], n[2]);
+    area += len;
+    // Sorted absolute components of a grid direction: (0,0,1), (0,1,1)/sqrt2, (1,1,1)/sqrt3.
+    double s[3] = {std::fabs(n[0]) / len, std::fabs(n[1]) / len, std::fabs(n[2]) / len};
+    std::sort(s, s + 3);
+    const double r2 = 1 / std::sqrt(2.0), r3 = 1 / std::sqrt(3.0);
+    const bool grid = std::hypot(s[0], s[1], s[2] - 1) < 1e-9 ||
+                      std::hypot(s[0], s[1] - r2, s[2] - r2) < 1e-9 ||
+                      std::hypot(s[0] - r3, s[1] - r3, s[2] - r3) < 1e-9;
+    on_grid += grid ? len : 0;
+  }
+  EXPECT_GT(on_grid / area, 0.85);
+  // Not the field's own surface.
+  o.binary = false;
+  auto field = make_vessel_phantom(o);
+  ASSERT_TRUE(field.ok());
+  EXPECT_NE(field.value().points, m.points);
 }
 
 }  // namespace

@@ -21,8 +21,8 @@ std::string valid_text(const OptionSpec& s) {
     case OptionType::kChoice:
       t = std::string(s.choices.front());
       break;
-    case OptionType::kText:
-      t = "a";
+    case OptionType::kText:  // the default where there is one ("auto" for smooth)
+      t.assign(s.default_text.empty() ? std::string_view("a") : s.default_text);
       break;
     case OptionType::kNumbers:
       for (int i = 0; i < s.list_size; ++i) t += (i ? "," : "") + std::to_string(s.min + 1);
