@@ -13,6 +13,14 @@ export interface AnalyzeOptions {
   units?: 'mm' | 'cm' | 'm';
   /** keep planar caps as wall (else each recognised cap is removed and its rim becomes an opening) Default false. */
   keepCaps?: boolean;
+  /** smooth the surface before meshing (volume-preserving, within half a voxel): auto smooths voxel staircases only; N passes on any surface Needs auto, off or a number of smoothing passes from 1 to 1000. Default auto. */
+  smooth?: string;
+  /** auto: cut each vessel end of a closed surface open, perpendicular to the vessel Needs off or auto. Default off. */
+  clip?: 'off' | 'auto';
+  /** with clip auto: cut D local radii in from each vessel end's tip Needs a positive number of local vessel radii. Default 1. */
+  clipDistance?: number;
+  /** cut the surface open with this plane (the side the normal points to is removed) In the model's unit. Needs 6 numbers X,Y,Z,NX,NY,NZ: a point of the cut and the normal pointing out of the part to keep. */
+  clipPlanes?: number[] | number[][];
 }
 
 /** Options of mesh(). */
@@ -24,6 +32,14 @@ export interface MeshOptions {
   units?: 'mm' | 'cm' | 'm';
   /** keep planar caps as wall (else each recognised cap is removed and its rim becomes an opening) Default false. */
   keepCaps?: boolean;
+  /** smooth the surface before meshing (volume-preserving, within half a voxel): auto smooths voxel staircases only; N passes on any surface Needs auto, off or a number of smoothing passes from 1 to 1000. Default auto. */
+  smooth?: string;
+  /** auto: cut each vessel end of a closed surface open, perpendicular to the vessel Needs off or auto. Default off. */
+  clip?: 'off' | 'auto';
+  /** with clip auto: cut D local radii in from each vessel end's tip Needs a positive number of local vessel radii. Default 1. */
+  clipDistance?: number;
+  /** cut the surface open with this plane (the side the normal points to is removed) In the model's unit. Needs 6 numbers X,Y,Z,NX,NY,NZ: a point of the cut and the normal pointing out of the part to keep. */
+  clipPlanes?: number[] | number[][];
   /** uniform target edge length In the model's unit. Needs a positive length. */
   size?: number;
   /** h = 2 pi R(x) / N, R the local vessel radius (the default size mode) Needs a number of edges per circumference >= 3. Default 20. */
