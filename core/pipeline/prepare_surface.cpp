@@ -229,8 +229,10 @@ Status clip(PreparedSurface& s, Work& w, const PrepareOptions& options) {
             "{clip} auto found no vessel end to cut: no end of the surface is a tube with a "
             "rounded or flat end; give the cuts with {clip_plane}");
       for (const NotAVesselEnd& r : ends.rejected)
-        s.warnings.push_back("the bulge at " + point_text(r.where) + " is not a vessel end (" +
-                             r.why + "): not cut");
+        s.warnings.push_back("the extremity at " + point_text(r.where) +
+                             " was not cut: it is no vessel end (" + r.why +
+                             "; an aneurysm dome, or a vessel too short to cut); cut it with "
+                             "{clip_plane} if it is one");
     }
   }
   for (const ClipPlane& plane : options.clip_planes) {

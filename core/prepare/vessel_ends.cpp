@@ -228,6 +228,7 @@ Section EndAnalysis::section(const Vec& q, const Vec& a) {
 std::vector<Sample> EndAnalysis::march(const Vec& tip, const Vec& a0, double R, double straight,
                                        double deepest) {
   constexpr double kStep = 0.25;
+  const double kTurn = 6 * std::numbers::pi / 180;
   std::vector<Sample> out;
   Vec dir = a0, last = tip;
   for (int i = 1; i * kStep <= deepest + 1e-9; ++i) {
@@ -237,13 +238,23 @@ std::vector<Sample> EndAnalysis::march(const Vec& tip, const Vec& a0, double R, 
     s.dir = dir;
     s.section = section(s.point, dir);
     last = s.z > straight && s.section.found ? s.section.shape.centroid : s.point;
+    const bool turn = s.z >= straight;
     out.push_back(std::move(s));
-    // The axis: from the centroid one radius back to this one.
-    if (s.z >= straight && out.size() > 4 && out.back().section.found &&
-        out[out.size() - 5].section.found) {
+    // The axis: from the centroid one radius back to this one, turning by
+    // at most kTurn a step (a bend of radius 2.4 R is followed; the corner
+    // from an aneurysm's neck into its parent vessel is not).
+    if (turn && out.size() > 4 && out.back().section.found && out[out.size() - 5].section.found) {
       const Vec d =
-          sub(out[out.size() - 5].section.shape.centroid, out.back().section.shape.centroid);
-      if (dot(d, d) > 0) dir = unit(d);
+          unit(sub(out[out.size() - 5].section.shape.centroid, out.back().section.shape.centroid));
+      const double c = dot(d, dir);
+      if (c >= std::cos(kTurn)) {
+        dir = d;
+      } else if (dot(d, d) > 0) {
+        const Vec across = unit(axpy(-c, dir, d));
+        dir = unit(axpy(
+            std::sin(kTurn), across,
+            Vec{std::cos(kTurn) * dir[0], std::cos(kTurn) * dir[1], std::cos(kTurn) * dir[2]}));
+      }
     }
   }
   return out;
@@ -314,20 +325,27 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   // Step 2: rings, their knee, a first radius and axis.
   std::vector<Ring> ring;
   if (!rings(ring)) return reject("too small to be a vessel");
-  // The knee: the first ring that the next 1.5 of its radii (and at least
-  // the next two rings) outgrow by less than 10%.
+  // The knee: the first ring past which the radius grows by less than 0.3
+  // per unit of geodesic distance over the next half radius (about 1 over
+  // a flat end, cos(s / R) over a rounded one, 0 along the vessel).
+  auto radius_at = [&](double s) {
+    for (size_t j = 1; j < ring.size(); ++j)
+      if (ring[j].s >= s) {
+        const double t = (s - ring[j - 1].s) / (ring[j].s - ring[j - 1].s);
+        return ring[j - 1].radius + t * (ring[j].radius - ring[j - 1].radius);
+      }
+    return ring.back().radius;
+  };
   size_t knee = ring.size() - 1;
-  for (size_t k = 0; k < ring.size(); ++k) {
-    double ahead = ring[k].radius;
-    for (size_t j = k + 1;
-         j < ring.size() && (j <= k + 2 || ring[j].s <= ring[k].s + 1.5 * ring[k].radius); ++j)
-      ahead = std::max(ahead, ring[j].radius);
-    if (ring[k].radius >= 0.9 * ahead) {
+  for (size_t k = 1; k < ring.size(); ++k) {
+    const double ahead = 0.5 * ring[k].radius;
+    if (radius_at(ring[k].s + ahead) - ring[k].radius < 0.3 * ahead) {
       knee = k;
-      r0_ = ahead;
       break;
     }
   }
+  for (size_t j = knee; j < ring.size() && ring[j].s <= ring[knee].s + 0.5 * ring[knee].radius; ++j)
+    r0_ = std::max(r0_, ring[j].radius);
   if (r0_ <= 0) r0_ = ring[knee].radius;
   std::vector<Vec> centres;
   for (size_t k = knee; k < ring.size() && ring[k].s <= ring[knee].s + 2 * r0_; ++k)
@@ -343,7 +361,8 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   // Step 3: sections perpendicular to the axis marched from the tip, every
   // quarter radius down to `deepest` radii in.
   double R = r0_;
-  const double deepest = std::max(o.tube_length, D) + 1.5;
+  // Deep enough for a cap ending 3.5 radii in and the tube behind it.
+  const double deepest = std::max({o.tube_length + 2.5, D, 4.5}) + 1.5;
   grow(ring[knee].s + (deepest + 1 + std::numbers::pi) * 1.2 * R);
   // The tip: the farthest point near the candidate along the axis.
   double h = -1e300;
@@ -368,8 +387,19 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
     std::vector<double> radii;
     for (const Sample& s : samples)
       if (s.z >= 1 && s.section.found) radii.push_back(s.section.shape.radius);
-    if (radii.size() < 6) return reject("no tube behind it");
+    // A first radius far off (from rings on a lopsided end): march again at
+    // the scale of the sections (or a larger one if few sections were
+    // found: all of them were on the end) before judging them.
+    if (radii.size() < 6) {
+      if (round >= 3) return reject("no tube behind it");
+      R *= 1.5;
+      continue;
+    }
     const double R_new = median(radii);
+    if (round < 3 && std::abs(R_new - R) > 0.1 * R) {
+      R = R_new;
+      continue;
+    }
     // The cap ends where full round sections begin and go on for a radius
     // (at about 1 for a rounded end, 0.5 for a flat one, deeper for a flat
     // oblique one).
@@ -379,7 +409,7 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
              roundness(s->section) >= 0.6;
     };
     z_cap = -1;
-    for (double z = 0.5; z <= 3 + 1e-9; z += 0.25)
+    for (double z = 0.5; z <= 3.5 + 1e-9; z += 0.25)
       if (full(z) && full(z + 0.5) && full(z + 1)) {
         z_cap = z;
         break;

@@ -18,10 +18,14 @@
 // (3) Refinement by plane sections marched in from the tip every quarter
 //     radius: straight along the axis over the cap, then following the
 //     section centroids (so a curved vessel is followed; depths are
-//     measured along this path). The cap ends where full round sections of
-//     radius about R begin; the axis at the end comes from the sections just
-//     behind it, R is the median section radius, the tip is the end's
-//     farthest point along the axis; a few rounds until they settle.
+//     measured along this path; the path turns by at most 6 degrees a
+//     step, so it follows bends of radius 2.4 R or more but not the corner
+//     from an aneurysm's neck into its parent vessel). The cap ends where
+//     full round sections of radius about R begin (at most 3.5 R in); the
+//     axis at the end comes from the sections just behind it, R is the
+//     median section radius, the tip is the end's farthest point along the
+//     axis; a few rounds until they settle (the first ones also fix the
+//     scale when the rings' radius was far off).
 // (4) Tests that the end is a vessel's end and not a bulge (an aneurysm dome
 //     is a geodesic maximum too, with a round section at its equator, but
 //     no tube behind it): every section from the cap's end to `tube_length`
