@@ -16,8 +16,11 @@
 // vessel end that bends back is removed whole; other vessels crossing the
 // plane elsewhere are not touched), is removed; (4) the triangles the loop
 // crosses are split at new vertices on the plane, so the opening is an
-// exactly planar loop. After all planes, the largest component (by area) is
-// kept.
+// exactly planar loop. A vertex on the plane that the loop would meet twice
+// (the surface touching the plane there from two sides) is left off the
+// plane (moved back by a small fraction of its shortest edge if it lay
+// exactly on it), so the opening never pinches. After all planes, the
+// largest component (by area) is kept.
 #pragma once
 
 #include <array>
