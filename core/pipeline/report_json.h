@@ -13,8 +13,10 @@ namespace vm {
 /// Keys: vertices, triangles, input_triangles, format (what the file was:
 /// "binary STL", ...), label_array, units {unit, guessed, certain, reason},
 /// bounding_box {min, max, diagonal}, components, openings [{perimeter,
-/// radius, centroid, normal, vertices, source ("file" | "cap"), label,
-/// name (the group name it gets by default)}], caps_removed, closed, genus
+/// radius, centroid, normal, vertices, source ("file" | "cap" | "clip"),
+/// label, name (the group name it gets by default)}], caps_removed, clips
+/// [{point, normal (the plane), centroid, radius, perimeter, area_removed}],
+/// closed, genus
 /// (null if undefined), euler_characteristic, boundary_edges,
 /// nonmanifold_edges, nonmanifold_vertices, repairs {...}, quality {min,
 /// mean, max, histogram}, warnings [..]. Options in warnings are named in

@@ -131,6 +131,7 @@ check "phantom closed" expect_exit 0 "wrote" "$VM" phantom "$T/closed.stl" --kin
 check "closed surface warned about" expect_exit 0 "cut its vessel ends open with --clip auto (or give --clip-plane)" "$VM" info "$T/closed.stl"
 "$VM" info "$T/closed.stl" --clip auto --json > "$T/clipped.json"
 check "clip auto opens 3 ends" [ "$(json "$T/clipped.json" "[o['source'] for o in d['openings']], d['closed'], d['genus'], d['components']")" = "['clip', 'clip', 'clip'] False 0 1" ]
+check "clips reported" [ "$(json "$T/clipped.json" "len(d['clips']), all(c['radius'] > 0.4 and c['area_removed'] > 0 for c in d['clips'])")" = "3 True" ]
 check "info text says from a clip" expect_exit 0 "from a clip" "$VM" info "$T/closed.stl" --clip auto --clip-distance 1.5
 check "clip plane bad value" expect_exit 2 "--clip-plane needs 6 numbers" "$VM" info "$T/closed.stl" --clip-plane 1,2,3
 check "clip plane zero normal" expect_exit 2 "--clip-plane needs 6 numbers" "$VM" info "$T/closed.stl" --clip-plane 0,0,0,0,0,0
