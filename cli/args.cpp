@@ -150,6 +150,17 @@ std::string options_help() {
   return out;
 }
 
+namespace {
+
+/// A Markdown table cell: a '|' (in "auto|off", say) would end the cell.
+std::string cell(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
+}
+
+}  // namespace
+
 std::string options_markdown() {
   std::string out;
   for (const auto& [command, command_name] : kCommands) {
@@ -167,8 +178,8 @@ std::string options_markdown() {
         const std::string value = s.type == OptionType::kFlag ? "flag" : std::string(s.needs);
         std::string def(s.default_text);
         if (s.type == OptionType::kFlag) def = s.default_on ? "on" : "off";
-        out += "| " + cli + " | " + js + " | " + value + " | " + def + " | " + std::string(s.doc) +
-               (s.repeatable ? "; repeatable" : "") + " |\n";
+        out += "| " + cell(cli) + " | " + cell(js) + " | " + cell(value) + " | " + cell(def) +
+               " | " + cell(std::string(s.doc) + (s.repeatable ? "; repeatable" : "")) + " |\n";
       }
   }
   return out;

@@ -141,7 +141,11 @@ vm::Result<std::vector<vm::OptionValue>> values_from(const vm::OptionSpec& spec,
                                      "keys must be opening numbers >= 1 (got '" + key + "')");
       if (vm::Status st = add(v[key], int(k)); !st.ok()) return st;
     }
-  } else if (spec.repeatable && v.isArray()) {
+  } else if (spec.repeatable && v.isArray() &&
+             !(spec.type == vm::OptionType::kNumbers &&
+               (v["length"].as<size_t>() == 0 || v[0].typeOf().as<std::string>() == "number"))) {
+    // A list of values; for a list option, one list stands alone too.
+
     const size_t n = v["length"].as<size_t>();
     for (size_t i = 0; i < n; ++i)
       if (vm::Status st = add(v[i], 0); !st.ok()) return st;

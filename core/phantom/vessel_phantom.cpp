@@ -76,6 +76,7 @@ struct Model {
   Vec bulb_center{};
   double bulb_radius = 0;
   std::vector<EndCut> cuts;  ///< used when open_ends
+  std::vector<EndCut> ends;  ///< the rounded free ends: tip, outward direction, radius
   int genus = 0;
 };
 
@@ -140,6 +141,8 @@ Model build_model(PhantomKind kind) {
     bool free_end = bi > 0 || m.branches.size() == 1;
     if (free_start) m.cuts.push_back(cut_at(b, in, in + 1));
     if (free_end) m.cuts.push_back(cut_at(b, last - in, last - in - 1));
+    if (free_start) m.ends.push_back(cut_at(b, 0, 1));
+    if (free_end) m.ends.push_back(cut_at(b, last, last - 1));
   }
   return m;
 }
@@ -351,6 +354,16 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
     truth->openings = open && !o.flat_caps ? int(m.cuts.size()) : 0;
     truth->opening_radii.clear();
     truth->opening_centers.clear();
+    truth->end_tips.clear();
+    truth->end_directions.clear();
+    truth->end_radii.clear();
+    for (const EndCut& e : m.ends) {
+      const Vec tip = {e.center[0] + e.radius * e.normal[0], e.center[1] + e.radius * e.normal[1],
+                       e.center[2] + e.radius * e.normal[2]};
+      truth->end_tips.push_back({tip[0] * o.scale, tip[1] * o.scale, tip[2] * o.scale});
+      truth->end_directions.push_back(e.normal);
+      truth->end_radii.push_back(e.radius * o.scale);
+    }
     if (open)
       for (const EndCut& c : m.cuts) {
         truth->opening_radii.push_back(c.radius * o.scale);

@@ -57,6 +57,13 @@ struct PhantomTruth {
   /// scaled.
   std::vector<double> opening_radii;
   std::vector<std::array<double, 3>> opening_centers;
+  /// The free vessel ends of the model, whether cut open or not (same order
+  /// as the cuts), scaled: the tip of the rounded end (the centerline's end
+  /// plus its radius along the centerline), the unit direction out of the
+  /// vessel there, and the radius.
+  std::vector<std::array<double, 3>> end_tips;
+  std::vector<std::array<double, 3>> end_directions;
+  std::vector<double> end_radii;
 };
 
 /// Builds the phantom. The result is a closed or open, oriented (outward),

@@ -8,6 +8,7 @@
 #include "core/geom/vec3.h"
 #include "core/layers/chord_radius.h"
 #include "core/prepare/flow_extensions.h"
+#include "core/prepare/vessel_ends.h"
 
 namespace vm {
 namespace {
@@ -265,6 +266,107 @@ Status extend_openings(PreparedSurface& s, Work& w, const PrepareOptions& option
   return Status::Ok();
 }
 
+std::string length_text(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.4g", x);
+  return buf;
+}
+
+/// Cuts the surface with one plane; the new opening's vertices get a source
+/// of kind "clip". Returns the error of clip_surface, if any.
+Status clip_one(PreparedSurface& s, Work& w, const ClipPlane& plane) {
+  Result<ClipResult> r = clip_surface(s.mesh, w.labels, std::span(&plane, 1));
+  if (!r.ok()) return r.status();
+  ClipResult& c = r.value();
+  std::vector<int32_t> sources(c.mesh.num_vertices(), -1);
+  for (size_t v = 0; v < sources.size(); ++v) {
+    const int32_t in = c.input_vertex[v];
+    if (in >= 0 && size_t(in) < w.source_of_vertex.size())
+      sources[v] = w.source_of_vertex[size_t(in)];
+  }
+  const int32_t source = int32_t(w.sources.size());
+  w.sources.push_back({OpeningSource::kClip, -1, ""});
+  for (size_t v = 0; v < sources.size(); ++v)
+    if (c.cut_of_vertex[v] == 0) sources[v] = source;
+  w.source_of_vertex = std::move(sources);
+  s.mesh = std::move(c.mesh);
+  w.labels = std::move(c.labels);
+  s.clips.push_back(c.cuts[0]);
+  if (c.components_dropped > 0)
+    s.warnings.push_back("the cut at " + point_text(plane.point) + " left " +
+                         std::to_string(c.components_dropped) + " separate pieces (" +
+                         num(c.triangles_dropped) + " triangles): removed");
+  w.adjacency = build_adjacency(s.mesh);
+  return Status::Ok();
+}
+
+/// Phase 6: cuts across the vessel ends of a closed surface ({clip} auto)
+/// and by the planes given ({clip_plane}); each cut's rim is an opening of
+/// source "clip".
+Status clip(PreparedSurface& s, Work& w, const PrepareOptions& options) {
+  const bool manifold = w.adjacency.num_nonmanifold_edges == 0 && s.repair.orientable;
+  auto closed = [&] {
+    return std::none_of(w.adjacency.opposite.begin(), w.adjacency.opposite.end(),
+                        [](int32_t o) { return o == TriangleAdjacency::kBoundary; });
+  };
+  if (options.clip_auto) {
+    if (!manifold) {
+      s.warnings.push_back("{clip} auto cut nothing: the surface is not manifold and orientable");
+    } else if (!closed()) {
+      s.warnings.push_back(
+          "{clip} auto cut nothing: the surface is open already (it cuts the vessel ends of "
+          "closed surfaces; give {clip_plane} to cut elsewhere)");
+    } else {
+      VesselEndOptions eo;
+      eo.clip_distance = options.clip_distance;
+      const VesselEnds ends = find_vessel_ends(s.mesh, eo);
+      std::string cut;
+      size_t count = 0;
+      for (const VesselEnd& e : ends.ends) {
+        if (Status st = clip_one(s, w, e.plane); !st.ok()) {
+          s.warnings.push_back("the vessel end at " + point_text(e.tip) +
+                               " was not cut: " + st.message());
+          continue;
+        }
+        const ClipCut& c = s.clips.back();
+        cut += (count++ ? "; " : "") + point_text(c.centroid) + " radius " + length_text(c.radius);
+        if (e.cut_depth != options.clip_distance)
+          cut += " (" + length_text(e.cut_depth) +
+                 " radii in: the end is flat and oblique, a cut nearer its tip would cross it)";
+      }
+      if (count > 0)
+        s.warnings.push_back("cut " + num(count) + (count == 1 ? " vessel end" : " vessel ends") +
+                             " open ({clip} auto, " + length_text(options.clip_distance) +
+                             (options.clip_distance == 1 ? " local radius" : " local radii") +
+                             " in from each tip; change with {clip_distance}): at " + cut);
+      else
+        s.warnings.push_back(
+            "{clip} auto found no vessel end to cut: no end of the surface is a tube with a "
+            "rounded or flat end; give the cuts with {clip_plane}");
+      for (const NotAVesselEnd& r : ends.rejected)
+        s.warnings.push_back("the extremity at " + point_text(r.where) +
+                             " was not cut: it is no vessel end (" + r.why +
+                             "; an aneurysm dome, or a vessel too short to cut); cut it with "
+                             "{clip_plane} if it is one");
+    }
+  }
+  for (const ClipPlane& plane : options.clip_planes) {
+    if (!manifold)
+      return Status::Error("cannot cut with the plane at " + point_text(plane.point) +
+                           ": the surface is not manifold and orientable");
+    if (Status st = clip_one(s, w, plane); !st.ok()) return st;
+    const ClipCut& c = s.clips.back();
+    s.warnings.push_back("cut by the plane at " + point_text(plane.point) + ": an opening at " +
+                         point_text(c.centroid) + " of radius " + length_text(c.radius) + " (" +
+                         length_text(c.area_removed) + " of area removed)");
+  }
+  if (!options.clip_auto && s.caps_removed == 0 && manifold && closed())
+    s.warnings.push_back(
+        "the surface is closed: it has no opening to be an inlet or outlet; cut its vessel ends "
+        "open with {clip} auto (or give {clip_plane})");
+  return Status::Ok();
+}
+
 /// Phase 8: topology, where each opening comes from, what later stages
 /// will refuse.
 void analyze(PreparedSurface& s, const Work& w) {
@@ -308,7 +410,9 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   smooth(s, w, options);
   if (!report_progress(progress, 0.5, "caps")) return cancelled();
   open_caps(s, w, options);
-  // Phase 6: clipping (clip_surface.h) goes here.
+  if (!report_progress(progress, 0.55, "clip")) return cancelled();
+  if (Status st = clip(s, w, options); !st.ok()) return st;
+  if (!report_progress(progress, 0.6, "extend")) return cancelled();
   if (Status st = extend_openings(s, w, options); !st.ok()) return st;
   if (!report_progress(progress, 0.6, "analyze")) return cancelled();
   analyze(s, w);

@@ -98,6 +98,9 @@ struct PreparedSurface {
   std::vector<OpeningSource> opening_sources;
   size_t caps_removed = 0;
   SmoothingOutcome smoothing;
+  /// The cuts made by clipping, in order (each is an opening of source
+  /// "clip" unless a later cut removed it).
+  std::vector<ClipCut> clips;
   /// The model's length unit and how it was decided.
   ModelUnit unit;
   /// Human-readable notes on the safe repairs applied and on properties that

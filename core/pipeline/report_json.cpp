@@ -95,6 +95,18 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
   j.key("caps_removed").value(s.caps_removed);
   j.key("smoothing");
   write_smoothing(j, s.smoothing);
+  j.key("clips").begin_array();
+  for (const ClipCut& c : s.clips) {
+    j.begin_object();
+    j.key("point").array(c.plane.point);
+    j.key("normal").array(c.plane.normal);
+    j.key("centroid").array(c.centroid);
+    j.key("radius").value(c.radius);
+    j.key("perimeter").value(c.perimeter);
+    j.key("area_removed").value(c.area_removed);
+    j.end_object();
+  }
+  j.end_array();
   j.key("closed").value(t.closed);
   if (t.genus >= 0)
     j.key("genus").value(t.genus);

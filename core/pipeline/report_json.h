@@ -13,9 +13,10 @@ namespace vm {
 /// Keys: vertices, triangles, input_triangles, format (what the file was:
 /// "binary STL", ...), label_array, units {unit, guessed, certain, reason},
 /// bounding_box {min, max, diagonal}, components, openings [{perimeter,
-/// radius, centroid, normal, vertices, source ("file" | "cap"), label,
-/// name (the group name it gets by default)}], caps_removed, smoothing
-/// {mode (auto | off | passes), staircase, direction_fraction,
+/// radius, centroid, normal, vertices, source ("file" | "cap" | "clip"),
+/// label, name (the group name it gets by default)}], caps_removed, clips
+/// [{point, normal (the plane), centroid, radius, perimeter, area_removed}],
+/// smoothing {mode (auto | off | passes), staircase, direction_fraction,
 /// lattice_fraction, terraces, voxel (null unless a staircase), spacing [3],
 /// applied, passes, clamp_voxel (displacements are limited to half of it),
 /// flat_regions (planar caps kept flat), max_displacement,

@@ -138,6 +138,22 @@ check "phantom flat caps" expect_exit 0 "wrote" "$VM" phantom "$T/capped.stl" --
 check "caps become openings" [ "$(json "$T/capped.json" "[o['source'] for o in d['openings']], d['caps_removed'], d['closed']")" = "['cap', 'cap', 'cap'] 3 False" ]
 check "info text says from a cap" expect_exit 0 "from a cap" "$VM" info "$T/capped.stl"
 check "keep caps" [ "$("$VM" info "$T/capped.stl" --keep-caps --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(len(d['openings']), d['closed'])")" = "0 True" ]
+# Closed segmentations (rounded ends): cut open at their vessel ends, or by
+# planes.
+check "phantom closed" expect_exit 0 "wrote" "$VM" phantom "$T/closed.stl" --kind aneurysm --voxel 0.12 --noise 0.3 --closed
+check "closed surface warned about" expect_exit 0 "cut its vessel ends open with --clip auto (or give --clip-plane)" "$VM" info "$T/closed.stl"
+"$VM" info "$T/closed.stl" --clip auto --json > "$T/clipped.json"
+check "clip auto opens 3 ends" [ "$(json "$T/clipped.json" "[o['source'] for o in d['openings']], d['closed'], d['genus'], d['components']")" = "['clip', 'clip', 'clip'] False 0 1" ]
+check "clips reported" [ "$(json "$T/clipped.json" "len(d['clips']), all(c['radius'] > 0.4 and c['area_removed'] > 0 for c in d['clips'])")" = "3 True" ]
+check "info text says from a clip" expect_exit 0 "from a clip" "$VM" info "$T/closed.stl" --clip auto --clip-distance 1.5
+check "clip plane bad value" expect_exit 2 "--clip-plane needs 6 numbers" "$VM" info "$T/closed.stl" --clip-plane 1,2,3
+check "clip plane zero normal" expect_exit 2 "--clip-plane needs 6 numbers" "$VM" info "$T/closed.stl" --clip-plane 0,0,0,0,0,0
+check "clip bad value" expect_exit 2 "--clip needs off or auto" "$VM" info "$T/closed.stl" --clip sometimes
+check "clip distance bad value" expect_exit 2 "--clip-distance needs a positive number" "$VM" info "$T/closed.stl" --clip auto --clip-distance 0
+check "clip plane that misses" expect_exit 1 "the plane at (0, 30, 3) does not cut the surface within" "$VM" info "$T/closed.stl" --clip-plane 0,30,3,0,0,1
+check "clip plane cuts one end" [ "$("$VM" info "$T/closed.stl" --clip-plane 0,0,-5.5,0,0,-1 --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(len(d['openings']), d['openings'][0]['source'], round(d['openings'][0]['centroid'][2], 6))")" = "1 clip -5.5" ]
+check "mesh clip auto" expect_exit 0 "wrote" "$VM" mesh "$T/closed.stl" --clip auto -o "$T/clipped.msh" --size 0.3 --layers 1 --verify --report "$T/clipped-report.json"
+check "clipped groups" [ "$(json "$T/clipped-report.json" "','.join(g['name'] for g in d['output']['groups'])")" = "wall,inlet,outlet_1,outlet_2,lumen" ]
 check "units guessed mm, unconfirmed" [ "$(json "$T/info.json" "d['units']['unit'], d['units']['guessed'], d['units']['certain']")" = "mm True False" ]
 check "units given" [ "$("$VM" info "$T/bif.stl" --units cm --json | python3 -c "import json,sys; print(json.load(sys.stdin)['units'])")" = "{'unit': 'cm', 'guessed': False, 'certain': True, 'reason': ''}" ]
 check "bad units" expect_exit 2 "--units needs mm, cm or m" "$VM" info "$T/bif.stl" --units inch

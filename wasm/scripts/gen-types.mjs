@@ -37,7 +37,7 @@ function optionType(spec) {
 }
 
 function docComment(spec) {
-  const parts = [spec.doc];
+  const parts = [/[.)]$/.test(spec.doc) ? spec.doc : `${spec.doc}.`];
   if (spec.unit === 'length') parts.push('In the model\'s unit.');
   if (spec.needs) parts.push(`Needs ${spec.needs}.`);
   if (spec.default) parts.push(`Default ${spec.default}.`);

@@ -7,19 +7,19 @@ export type ProgressCallback = (fraction: number, stage: string) => boolean | vo
 /** Options of analyze(). */
 export interface AnalyzeOptions {
   onProgress?: ProgressCallback;
-  /** keep only the largest connected component instead of refusing several Default false. */
+  /** keep only the largest connected component instead of refusing several. Default false. */
   largestComponentOnly?: boolean;
   /** the unit of the file's numbers (default: guessed from the vessel radii: below 0.05 metres, else millimetres) Needs mm, cm or m. */
   units?: 'mm' | 'cm' | 'm';
-  /** extend the openings (K=L: opening K) straight along their normals by L local radii Needs a length in local radii from 0 (none) to 100, or K=L for opening K. Default 0. */
+  /** extend the openings (K=L: opening K) straight along their normals by L local radii. Needs a length in local radii from 0 (none) to 100, or K=L for opening K. Default 0. */
   flowExtension?: number | Record<number, number> | number[];
   /** keep planar caps as wall (else each recognised cap is removed and its rim becomes an opening) Default false. */
   keepCaps?: boolean;
-  /** smooth the surface before meshing (volume-preserving, within half a voxel): auto smooths voxel staircases only; N passes on any surface Needs auto, off or a number of smoothing passes from 1 to 1000. Default auto. */
+  /** smooth the surface before meshing (volume-preserving, within half a voxel): auto smooths voxel staircases only; N passes on any surface. Needs auto, off or a number of smoothing passes from 1 to 1000. Default auto. */
   smooth?: string;
-  /** auto: cut each vessel end of a closed surface open, perpendicular to the vessel Needs off or auto. Default off. */
+  /** auto: cut each vessel end of a closed surface open, perpendicular to the vessel. Needs off or auto. Default off. */
   clip?: 'off' | 'auto';
-  /** with clip auto: cut D local radii in from each vessel end's tip Needs a positive number of local vessel radii. Default 1. */
+  /** with clip auto: cut D local radii in from each vessel end's tip. Needs a positive number of local vessel radii. Default 1. */
   clipDistance?: number;
   /** cut the surface open with this plane (the side the normal points to is removed) In the model's unit. Needs 6 numbers X,Y,Z,NX,NY,NZ: a point of the cut and the normal pointing out of the part to keep. */
   clipPlanes?: number[] | number[][];
@@ -28,31 +28,31 @@ export interface AnalyzeOptions {
 /** Options of mesh(). */
 export interface MeshOptions {
   onProgress?: ProgressCallback;
-  /** keep only the largest connected component instead of refusing several Default false. */
+  /** keep only the largest connected component instead of refusing several. Default false. */
   largestComponentOnly?: boolean;
   /** the unit of the file's numbers (default: guessed from the vessel radii: below 0.05 metres, else millimetres) Needs mm, cm or m. */
   units?: 'mm' | 'cm' | 'm';
-  /** extend the openings (K=L: opening K) straight along their normals by L local radii Needs a length in local radii from 0 (none) to 100, or K=L for opening K. Default 0. */
+  /** extend the openings (K=L: opening K) straight along their normals by L local radii. Needs a length in local radii from 0 (none) to 100, or K=L for opening K. Default 0. */
   flowExtension?: number | Record<number, number> | number[];
   /** keep planar caps as wall (else each recognised cap is removed and its rim becomes an opening) Default false. */
   keepCaps?: boolean;
-  /** smooth the surface before meshing (volume-preserving, within half a voxel): auto smooths voxel staircases only; N passes on any surface Needs auto, off or a number of smoothing passes from 1 to 1000. Default auto. */
+  /** smooth the surface before meshing (volume-preserving, within half a voxel): auto smooths voxel staircases only; N passes on any surface. Needs auto, off or a number of smoothing passes from 1 to 1000. Default auto. */
   smooth?: string;
-  /** auto: cut each vessel end of a closed surface open, perpendicular to the vessel Needs off or auto. Default off. */
+  /** auto: cut each vessel end of a closed surface open, perpendicular to the vessel. Needs off or auto. Default off. */
   clip?: 'off' | 'auto';
-  /** with clip auto: cut D local radii in from each vessel end's tip Needs a positive number of local vessel radii. Default 1. */
+  /** with clip auto: cut D local radii in from each vessel end's tip. Needs a positive number of local vessel radii. Default 1. */
   clipDistance?: number;
   /** cut the surface open with this plane (the side the normal points to is removed) In the model's unit. Needs 6 numbers X,Y,Z,NX,NY,NZ: a point of the cut and the normal pointing out of the part to keep. */
   clipPlanes?: number[] | number[][];
-  /** uniform target edge length In the model's unit. Needs a positive length. */
+  /** uniform target edge length. In the model's unit. Needs a positive length. */
   size?: number;
   /** h = 2 pi R(x) / N, R the local vessel radius (the default size mode) Needs a number of edges per circumference >= 3. Default 20. */
   perCircumference?: number;
-  /** smallest edge length In the model's unit. Needs a length >= 0. Default 0. */
+  /** smallest edge length. In the model's unit. Needs a length >= 0. Default 0. */
   sizeMin?: number;
-  /** largest edge length In the model's unit. Needs a positive length. */
+  /** largest edge length. In the model's unit. Needs a positive length. */
   sizeMax?: number;
-  /** the size grows at most G per unit length Needs a number >= 0 (size growth per unit length). Default 0.2. */
+  /** the size grows at most G per unit length. Needs a number >= 0 (size growth per unit length). Default 0.2. */
   gradation?: number;
   /** at least P edges per radian of curvature (0: off) Needs a number of points per radian >= 0. Default 0. */
   curvature?: number;
@@ -62,7 +62,7 @@ export interface MeshOptions {
   fidelity?: number;
   /** write the remeshed wall alone (no caps, layers or volume) Default false. */
   surfaceOnly?: boolean;
-  /** opening K (largest first) is `inlet` instead of the largest Needs an opening number >= 1 (as the analysis lists them). */
+  /** opening K (largest first) is `inlet` instead of the largest. Needs an opening number >= 1 (as the analysis lists them). */
   inlet?: number;
   /** target size in the core of the lumen (0: the uniform size, or grown from the wall's) In the model's unit. Needs a length >= 0 (0: grow from the wall size). Default 0. */
   coreSize?: number;
@@ -70,51 +70,51 @@ export interface MeshOptions {
   names?: Record<number, string> | string[];
   /** the element budget: sizes that would make more wall triangles or tetrahedra are refused before meshing (the default fits a 4 GB browser tab) Needs a number of elements from 1000 to 1000000000. Default 15000000. */
   maxElements?: number;
-  /** check conformity and the boundary before writing; measure the layer heights Default false. */
+  /** check conformity and the boundary before writing; measure the layer heights. Default false. */
   verify?: boolean;
   /** viscous layers grown inward (0: none) Needs a number of layers from 0 (none) to 100. Default 4. */
   layers?: number;
-  /** total thickness of the viscous layers, F R Needs a fraction of the local vessel radius in (0, 1). Default 0.2. */
+  /** total thickness of the viscous layers, F R. Needs a fraction of the local vessel radius in (0, 1). Default 0.2. */
   layerThickness?: number;
-  /** first layer height instead of a total thickness In the model's unit. Needs a positive height. */
+  /** first layer height instead of a total thickness. In the model's unit. Needs a positive height. */
   firstLayer?: number;
-  /** height ratio of consecutive layers Needs a growth ratio from 1 to 3. Default 1. */
+  /** height ratio of consecutive layers. Needs a growth ratio from 1 to 3. Default 1. */
   growth?: number;
   /** grow the vessel wall outward, F R thick (e.g. 0.1; 4 layers) Needs a fraction of the local vessel radius in (0, 1). */
   wallThickness?: number;
   /** layers of the vessel wall (alone: a wall of 0.1 R; 0: no wall) Needs a number of layers from 0 (none) to 100. */
   wallLayers?: number;
-  /** the viscous layer as its own volume group `boundary_layer` Default false. */
+  /** the viscous layer as its own volume group `boundary_layer`. Default false. */
   tagLayer?: boolean;
-  /** keep the layers' prisms (MSH type 6) instead of 3 tetrahedra each Default false. */
+  /** keep the layers' prisms (MSH type 6) instead of 3 tetrahedra each. Default false. */
   prisms?: boolean;
   /** the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip or a folder for mesh-complete; JS: msh) Needs msh, vtu, vtp, stl or mesh-complete. */
   format?: 'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete';
   /** convert the written mesh to this unit (default: the input's) Needs mm, cm or m. */
   outputUnits?: 'mm' | 'cm' | 'm';
-  /** Gmsh MSH format version Needs 4.1 or 2.2. Default 4.1. */
+  /** Gmsh MSH format version. Needs 4.1 or 2.2. Default 4.1. */
   mshVersion?: '4.1' | '2.2';
   /** remesh the surface (off: mesh the repaired input as it is) Default true. */
   remesh?: boolean;
-  /** the map of each patch to the plane Needs lscm, harmonic or floater. Default lscm. */
+  /** the map of each patch to the plane. Needs lscm, harmonic or floater. Default lscm. */
   param?: 'lscm' | 'harmonic' | 'floater';
-  /** the planar mesher Needs frontal, delaunay or adapt. Default frontal. */
+  /** the planar mesher. Needs frontal, delaunay or adapt. Default frontal. */
   mesher2d?: 'frontal' | 'delaunay' | 'adapt';
 }
 
 /** Options of makePhantom(). */
 export interface PhantomOptions {
-  /** the vessel model Needs bifurcation, tube, aneurysm or torus. Default bifurcation. */
+  /** the vessel model. Needs bifurcation, tube, aneurysm or torus. Default bifurcation. */
   kind?: 'bifurcation' | 'tube' | 'aneurysm' | 'torus';
   /** voxel edge (the parent vessel's radius is 1) In the model's unit. Needs a positive voxel size. Default 0.1. */
   voxel?: number;
-  /** voxel-value noise, in voxels Needs a noise amplitude >= 0 (in voxels). Default 0. */
+  /** voxel-value noise, in voxels. Needs a noise amplitude >= 0 (in voxels). Default 0. */
   noise?: number;
   /** the raw staircase of a binary voxel mask (thresholded per voxel, not smoothed) Default false. */
   binary?: boolean;
-  /** noise seed Needs an integer from 0 to 4294967295. Default 1. */
+  /** noise seed. Needs an integer from 0 to 4294967295. Default 1. */
   seed?: number;
-  /** scale of the coordinates Needs a positive scale factor. Default 1. */
+  /** scale of the coordinates. Needs a positive scale factor. Default 1. */
   scale?: number;
   /** cut the vessel ends open (off: a closed surface with rounded ends) Default true. */
   openEnds?: boolean;

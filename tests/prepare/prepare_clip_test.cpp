@@ -1,0 +1,120 @@
+// Phase 6 of the preparation (core/pipeline/prepare_surface.cpp): closed
+// surfaces cut open at their vessel ends, and cuts by given planes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "core/io/stl.h"
+#include "core/phantom/vessel_phantom.h"
+#include "core/pipeline/prepare_surface.h"
+#include "tests/support/test_meshes.h"
+
+namespace vm {
+namespace {
+
+std::vector<uint8_t> closed_phantom_stl(PhantomKind kind, double noise, bool flat_caps = false) {
+  PhantomOptions o;
+  o.kind = kind;
+  o.voxel = 0.1;
+  o.noise = noise;
+  o.open_ends = flat_caps;
+  o.flat_caps = flat_caps;
+  auto m = make_vessel_phantom(o);
+  EXPECT_TRUE(m.ok()) << m.message();
+  return write_stl_binary(m.ok() ? m.value() : SurfaceMesh{});
+}
+
+bool has_warning(const PreparedSurface& s, const std::string& text) {
+  return std::any_of(s.warnings.begin(), s.warnings.end(),
+                     [&](const std::string& w) { return w.find(text) != std::string::npos; });
+}
+
+void expect_clip_openings(const PreparedSurface& s, size_t count) {
+  ASSERT_EQ(s.topology.openings.size(), count);
+  ASSERT_EQ(s.opening_sources.size(), count);
+  for (const OpeningSource& src : s.opening_sources) EXPECT_EQ(src.kind, OpeningSource::kClip);
+  EXPECT_EQ(s.topology.genus, 0);
+  EXPECT_EQ(s.topology.components, 1);
+  EXPECT_EQ(s.topology.nonmanifold_edges, 0u);
+  EXPECT_FALSE(s.topology.closed);
+  EXPECT_TRUE(check_meshable(s).ok());
+  EXPECT_EQ(s.clips.size(), count);
+}
+
+TEST(PrepareClip, ClipAutoOpensEveryVesselEndOfAClosedSurface) {
+  PrepareOptions o;
+  o.clip_auto = true;
+  for (double noise : {0.0, 0.3}) {
+    SCOPED_TRACE(noise);
+    auto r = prepare_surface(closed_phantom_stl(PhantomKind::kAneurysm, noise), o);
+    ASSERT_TRUE(r.ok()) << r.message();
+    expect_clip_openings(r.value(), 3);
+    EXPECT_TRUE(has_warning(r.value(), "cut 3 vessel ends open ({clip} auto, 1 local radius in"));
+    EXPECT_FALSE(has_warning(r.value(), "the surface is closed"));
+    // The parent vessel (radius 1) is the largest opening.
+    EXPECT_NEAR(r.value().topology.openings[0].radius, 1.0, 0.05);
+  }
+  auto tube = prepare_surface(closed_phantom_stl(PhantomKind::kTube, 0), o);
+  ASSERT_TRUE(tube.ok()) << tube.message();
+  expect_clip_openings(tube.value(), 2);
+}
+
+TEST(PrepareClip, FlatEndsKeptAsWallAreCutToo) {
+  PrepareOptions o;
+  o.clip_auto = true;
+  o.keep_caps = true;
+  auto r = prepare_surface(closed_phantom_stl(PhantomKind::kBifurcation, 0.3, true), o);
+  ASSERT_TRUE(r.ok()) << r.message();
+  expect_clip_openings(r.value(), 3);
+  EXPECT_EQ(r.value().caps_removed, 0u);
+}
+
+TEST(PrepareClip, AClosedSurfaceWithoutClippingIsWarnedAbout) {
+  auto r = prepare_surface(closed_phantom_stl(PhantomKind::kBifurcation, 0));
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_TRUE(r.value().topology.closed);
+  EXPECT_TRUE(has_warning(r.value(),
+                          "the surface is closed: it has no opening to be an inlet or outlet; cut "
+                          "its vessel ends open with {clip} auto (or give {clip_plane})"));
+  // A torus has no vessel end: clip auto says so and cuts nothing.
+  PrepareOptions o;
+  o.clip_auto = true;
+  auto ring = prepare_surface(closed_phantom_stl(PhantomKind::kTorus, 0), o);
+  ASSERT_TRUE(ring.ok()) << ring.message();
+  EXPECT_TRUE(ring.value().topology.closed);
+  EXPECT_TRUE(has_warning(ring.value(), "{clip} auto found no vessel end to cut"));
+}
+
+TEST(PrepareClip, PlanesCutAnySurfaceAndTheirOpeningsSayClip) {
+  // A capped tube: the caps become openings, then a plane cuts off the top.
+  const SurfaceMesh tube = testing::capped_tube(32, 16, 1.0, 6.0);
+  PrepareOptions o;
+  o.clip_planes = {{{0, 0, 4.2}, {0, 0, 1}}};
+  auto r = prepare_surface(write_stl_binary(tube), o);
+  ASSERT_TRUE(r.ok()) << r.message();
+  const PreparedSurface& s = r.value();
+  ASSERT_EQ(s.topology.openings.size(), 2u);
+  int caps = 0, clips = 0;
+  for (size_t i = 0; i < 2; ++i) {
+    const OpeningSource::Kind kind = s.opening_sources[i].kind;
+    caps += kind == OpeningSource::kCap;
+    clips += kind == OpeningSource::kClip;
+    if (kind == OpeningSource::kClip) {
+      EXPECT_NEAR(s.topology.openings[i].centroid[2], 4.2, 1e-9);
+    }
+  }
+  EXPECT_EQ(caps, 1);
+  EXPECT_EQ(clips, 1);
+  EXPECT_TRUE(has_warning(s, "cut by the plane at (0, 0, 4.2)"));
+  // A plane that misses: an error with its point.
+  o.clip_planes = {{{0, 30, 3}, {0, 0, 1}}};
+  auto miss = prepare_surface(write_stl_binary(tube), o);
+  ASSERT_FALSE(miss.ok());
+  EXPECT_NE(miss.message().find("the plane at (0, 30, 3) does not cut the surface within"),
+            std::string::npos)
+      << miss.message();
+}
+
+}  // namespace
+}  // namespace vm
