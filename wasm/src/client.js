@@ -90,6 +90,11 @@ export class VesselmeshClient {
     return this._call('openingNames', [options]);
   }
 
+  /** The cut across the vessel nearest a point of the last analyzed surface (API cutAt()). */
+  cutAt(point) {
+    return this._call('cutAt', [Array.from(point)]);
+  }
+
   /** The layers' cumulative height fractions (API layerFractions()). */
   layerFractions(options = {}) {
     return this._call('layerFractions', [options]);

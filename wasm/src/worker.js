@@ -1,6 +1,6 @@
 // Module Web Worker serving the vesselmesh API. Protocol:
 //   in:  { id, op: 'analyze' | 'mesh' | 'makePhantom' | 'export' | 'openingNames' |
-//          'layerFractions',
+//          'cutAt' | 'layerFractions',
 //          args: [bytes?, options] }
 //        (export: args [format, options]: the last mesh in another format)
 //   out: { type: 'ready', version, optionTable } | { type: 'error', error } once
@@ -55,6 +55,9 @@ self.onmessage = async (event) => {
       break;
     case 'openingNames':
       result = api.openingNames(args[0]);
+      break;
+    case 'cutAt':
+      result = api.cutAt(args[0]);
       break;
     case 'layerFractions':
       result = api.layerFractions(args[0]);
