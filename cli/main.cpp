@@ -166,9 +166,12 @@ void print_mesh_summary(const std::string& out, const vm::MeshJobResult& res) {
   std::printf("wrote %s in %.3f s:", out.c_str(), res.seconds_total);
   for (const vm::OutputGroup& g : res.groups)
     std::printf(" %s %zu%s", g.name.c_str(), g.elements, &g == &res.groups.back() ? "\n" : ",");
-  std::printf("wall: %zu vertices, %zu triangles, gamma_k min %.4f mean %.4f\n",
+  std::printf("wall: %zu vertices, %zu triangles, gamma_k min %.4f mean %.4f",
               res.output_surface.num_vertices(), res.output_surface.num_triangles(),
               res.output_quality_stats.min, res.output_quality_stats.mean);
+  if (res.remeshed)
+    std::printf("; volume %+.2f%% of the input's", 100 * res.fidelity.volume_change);
+  std::printf("\n");
   if (!res.volume.tets.empty()) {
     const vm::VolumeStats& vs = res.volume_stats;
     std::printf(

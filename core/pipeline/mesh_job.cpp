@@ -83,6 +83,43 @@ Result<CappedSurface> cap_and_name(const MeshJobResult& r, const SurfaceMesh& su
   return result;
 }
 
+/// The volume a wall encloses with each opening closed by a fan from its
+/// centroid (model units cubed; positive for an outward wall).
+double volume_inside(const SurfaceMesh& wall, const std::vector<Opening>& openings) {
+  SurfaceMesh closed = wall;
+  for (const Opening& op : openings) {
+    const int32_t c = int32_t(closed.num_vertices());
+    closed.points.insert(closed.points.end(), op.centroid.begin(), op.centroid.end());
+    for (size_t i = 0; i < op.loop.size(); ++i)
+      closed.triangles.insert(closed.triangles.end(),
+                              {op.loop[(i + 1) % op.loop.size()], op.loop[i], c});
+  }
+  return enclosed_volume(closed);
+}
+
+/// Refuses a remeshed wall whose volume differs from its input's by more
+/// than options.max_volume_change: the size is too coarse for the vessels.
+/// The loss of a polygonal section goes as h^2, so the size suggested is
+/// scaled by sqrt(2% / change) (20 edges a circumference lose about 1.6%).
+Status check_volume_change(const SurfaceFidelity& f, const MeshJobOptions& options) {
+  const double change = std::abs(f.volume_change);
+  if (!(change > options.max_volume_change)) return Status::Ok();
+  const SizeOptions& so = options.remesh_options.size;
+  const double scale = 0.8 * std::sqrt(0.02 / change);
+  const bool uniform = so.mode == SizeMode::kUniform;
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "%.4g makes a wall that encloses %.3g%% %s volume than the input (%.4g "
+                "against %.4g): the size is too coarse for the vessels; use %s %.3g or %s (or "
+                "accept the change with {max_volume_change} %.2g)",
+                uniform ? so.size : so.per_circumference, 100 * change,
+                f.volume_change < 0 ? "less" : "more", f.output_volume, f.input_volume,
+                uniform ? "{size}" : "{per_circumference}",
+                uniform ? so.size * scale : std::ceil(so.per_circumference / scale),
+                uniform ? "smaller" : "more", std::ceil(100 * change + 1) / 100);
+  return Status::BadOption(uniform ? "size" : "per_circumference", buf);
+}
+
 /// Stages 4 to 7: boundary layers, caps on the openings, the tetrahedra of
 /// the lumen, assembly; checks the result before anything is written.
 /// The element budget of the volume: the tetrahedra estimated from the
@@ -102,15 +139,7 @@ Status check_volume_budget(const SurfaceMesh& wall, const std::vector<Opening>& 
     h = wall_sizes[wall_sizes.size() / 2];
   }
   if (!(h > 0)) return Status::Ok();
-  SurfaceMesh closed = wall;
-  for (const Opening& op : openings) {
-    const int32_t c = int32_t(closed.num_vertices());
-    closed.points.insert(closed.points.end(), op.centroid.begin(), op.centroid.end());
-    for (size_t i = 0; i < op.loop.size(); ++i)
-      closed.triangles.insert(closed.triangles.end(),
-                              {op.loop[(i + 1) % op.loop.size()], op.loop[i], c});
-  }
-  const double estimate = estimate_tetrahedra(std::abs(enclosed_volume(closed)), h);
+  const double estimate = estimate_tetrahedra(std::abs(volume_inside(wall, openings)), h);
   if (estimate <= options.max_elements) return Status::Ok();
   char buf[200];
   std::snprintf(buf, sizeof buf,
@@ -321,6 +350,12 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes,
           std::to_string(out.nonmanifold_edges) +
           "): the size is too coarse for some feature; try a smaller {size} or a larger "
           "{per_circumference}");
+    // Never a wall that loses the vessels' volume (a size too coarse).
+    r.fidelity.input_volume = volume_inside(input, in.openings);
+    r.fidelity.output_volume = volume_inside(r.output_surface, out.openings);
+    r.fidelity.volume_change =
+        r.fidelity.input_volume != 0 ? r.fidelity.output_volume / r.fidelity.input_volume - 1 : 0;
+    if (Status st = check_volume_change(r.fidelity, options); !st.ok()) return st;
     // Counted by the fidelity stage when it ran; else here.
     r.fidelity.self_intersections = r.remesh_stats.self_intersections >= 0
                                         ? size_t(r.remesh_stats.self_intersections)

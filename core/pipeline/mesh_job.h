@@ -70,6 +70,9 @@ struct MeshJobOptions {
   /// The element budget: a job whose wall triangles or tetrahedra are
   /// estimated beyond it is refused before meshing them.
   double max_elements = 15e6;
+  /// The remeshed wall may enclose at most this fraction more or less
+  /// volume than its input; beyond, the size is refused as too coarse.
+  double max_volume_change = 0.05;
   /// Check the volume mesh fully before writing it (conformity, boundary =
   /// surface triangles), not only that no element is inverted.
   bool verify = false;
@@ -103,6 +106,9 @@ struct SurfaceFidelity {
   size_t input_gap_vertices = 0;
   /// Pairs of output triangles that intersect (0 for a valid surface).
   size_t self_intersections = 0;
+  /// Volumes enclosed by the input and the remeshed wall, each opening
+  /// closed by a fan (model units cubed), and the relative change.
+  double input_volume = 0, output_volume = 0, volume_change = 0;
 };
 
 /// One physical group of the written file and its element count.

@@ -274,6 +274,17 @@ const OptionSpec kOptions[] = {
      .needs = "a number of elements from 1000 to 1000000000",
      .doc = "the element budget: sizes that would make more wall triangles or tetrahedra are "
             "refused before meshing (the default fits a 4 GB browser tab)"},
+    {.id = "max_volume_change",
+     .cli = "max-volume-change",
+     .js = "maxVolumeChange",
+     .group = "size",
+     .metavar = "F",
+     .min = 0,
+     .max = 1,
+     .default_text = "0.05",
+     .needs = "a fraction from 0 to 1",
+     .doc = "the remeshed wall may enclose at most this fraction more or less volume than the "
+            "input; beyond, the size is refused as too coarse for the vessels"},
     {.id = "verify",
      .cli = "verify",
      .js = "verify",
@@ -708,6 +719,8 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
     o.remesh_options.fidelity_size_rounds = x > 0 ? RemeshOptions{}.fidelity_size_rounds : 0;
   } else if (id == "inlet") {
     o.inlet = int(x) - 1;
+  } else if (id == "max_volume_change") {
+    o.max_volume_change = x;
   } else if (id == "max_elements") {
     o.max_elements = x;
   } else if (id == "core_size") {

@@ -178,6 +178,9 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
     j.key("max_vertex_offset").value(r.fidelity.max_vertex_offset);
     j.key("max_input_gap").value(r.fidelity.max_input_gap);
     j.key("self_intersections").value(r.fidelity.self_intersections);
+    j.key("input_volume").value(r.fidelity.input_volume);
+    j.key("output_volume").value(r.fidelity.output_volume);
+    j.key("volume_change").value(r.fidelity.volume_change);
     j.key("input_gap_vertices").value(r.fidelity.input_gap_vertices);
     j.key("pinned_vertices").value(st.fidelity_pinned);
     j.key("pinning_rounds").value(st.fidelity_rounds);

@@ -215,6 +215,9 @@ check "tiny size refused" expect_exit 2 "--size makes about" "$VM" mesh "$T/bif.
 check "tiny size refused, surface only" expect_exit 2 "triangles on the wall, more than the element budget (--max-elements 15000000)" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size 1e-30 --surface-only
 check "huge N refused" expect_exit 2 "--per-circumference makes about" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --per-circumference 1e6
 check "tiny core refused" expect_exit 2 "--core-size makes about" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --core-size 1e-4
+check "coarse size refused" expect_exit 2 "--size 5 makes a wall that encloses" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size 5 --layers 0
+check "coarse size accepted when asked" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size 5 --surface-only --max-volume-change 1
+check "volume change printed" expect_exit 0 "of the input's" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --surface-only
 check "budget option" expect_exit 2 "--max-elements needs" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --max-elements 10
 
 # Gmsh reads both versions: the named groups, the element counts of the

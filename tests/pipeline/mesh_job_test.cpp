@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -455,6 +457,44 @@ TEST(MeshJob, SizesBeyondTheElementBudgetAreRefusedBeforeMeshing) {
   EXPECT_TRUE(run_mesh_job(stl, o).ok());
   ASSERT_TRUE(set_option_text(o, "max_elements", "1000").ok());
   EXPECT_EQ(run_mesh_job(stl, o).status().option(), "size");
+}
+
+TEST(MeshJob, AWallThatLosesTheVesselsVolumeIsRefusedNamingTheSizeToUse) {
+  // A tube of radius 1: 4 edges a circumference lose a third of its volume.
+  const std::vector<uint8_t> stl = write_stl_binary(testing::open_tube(48, 32, 1.0, 4.0));
+  MeshJobOptions o;
+  o.volume = false;
+  ASSERT_TRUE(set_option_text(o, "per_circumference", "5").ok());
+  auto coarse = run_mesh_job(stl, o);
+  ASSERT_FALSE(coarse.ok());
+  EXPECT_EQ(coarse.status().kind(), ErrorKind::kBadOption);
+  EXPECT_EQ(coarse.status().option(), "per_circumference");
+  const std::string cli = phrase_error(coarse.status(), kFaceCli);
+  EXPECT_NE(cli.find("--per-circumference 5 makes a wall that encloses"), std::string::npos)
+      << cli;
+  EXPECT_NE(cli.find("less volume than the input"), std::string::npos) << cli;
+  EXPECT_NE(cli.find("(or accept the change with --max-volume-change"), std::string::npos) << cli;
+  // The size it names is fine.
+  const size_t at = cli.find("use --per-circumference ");
+  ASSERT_NE(at, std::string::npos) << cli;
+  const std::string suggested = cli.substr(at + 24, cli.find(' ', at + 24) - (at + 24));
+  ASSERT_TRUE(set_option_text(o, "per_circumference", suggested).ok());
+  auto fine = run_mesh_job(stl, o);
+  ASSERT_TRUE(fine.ok()) << suggested << ": " << fine.message();
+  EXPECT_LT(std::abs(fine.value().fidelity.volume_change), 0.05);
+  // The default loses about 1.6%, reported; a larger allowance accepts the
+  // coarse size, whose loss is then reported.
+  MeshJobOptions d;
+  d.volume = false;
+  auto by_default = run_mesh_job(stl, d);
+  ASSERT_TRUE(by_default.ok()) << by_default.message();
+  EXPECT_NEAR(by_default.value().fidelity.volume_change, -0.016, 0.01);
+  EXPECT_NEAR(by_default.value().fidelity.input_volume, std::numbers::pi * 4, 0.02 * 4);
+  ASSERT_TRUE(set_option_text(o, "per_circumference", "5").ok());
+  ASSERT_TRUE(set_option_text(o, "max_volume_change", "0.6").ok());
+  auto accepted = run_mesh_job(stl, o);
+  ASSERT_TRUE(accepted.ok()) << accepted.message();
+  EXPECT_LT(accepted.value().fidelity.volume_change, -0.05);
 }
 
 }  // namespace

@@ -74,6 +74,8 @@ export interface MeshOptions {
   names?: Record<number, string> | string[];
   /** the element budget: sizes that would make more wall triangles or tetrahedra are refused before meshing (the default fits a 4 GB browser tab) Needs a number of elements from 1000 to 1000000000. Default 15000000. */
   maxElements?: number;
+  /** the remeshed wall may enclose at most this fraction more or less volume than the input; beyond, the size is refused as too coarse for the vessels. Needs a fraction from 0 to 1. Default 0.05. */
+  maxVolumeChange?: number;
   /** check conformity and the boundary before writing; measure the layer heights. Default false. */
   verify?: boolean;
   /** viscous layers grown inward (0: none) Needs a number of layers from 0 (none) to 100. Default 4. */

@@ -690,6 +690,19 @@ describe('mesh: boundary layers and vessel wall', () => {
     }
   });
 
+  test('a size too coarse for the vessels is refused naming the size to use', () => {
+    const stl = api.makePhantom({ kind: 'bifurcation', voxel: 0.12 }).stl;
+    const r = api.mesh(stl, { size: 5, layers: 0 });
+    assert.equal(r.ok, false);
+    assert.equal(r.kind, 'bad_option');
+    assert.equal(r.option, 'size');
+    assert.match(r.error, /^size 5 makes a wall that encloses [\d.]+% less volume than the input .*use size [\d.]+ or smaller \(or accept the change with maxVolumeChange [\d.]+\)$/);
+    const ok = api.mesh(stl, { surfaceOnly: true });
+    const f = ok.report.output.remesh.fidelity;
+    assert.ok(f.volume_change < 0 && f.volume_change > -0.05, `${f.volume_change}`);
+    assert.ok(Math.abs(f.output_volume / f.input_volume - 1 - f.volume_change) < 1e-9);
+  });
+
   test('layerFractions: the cumulative heights the core grows layers by', () => {
     assert.deepEqual([...api.layerFractions({ layers: 4 }).fractions], [0, 0.25, 0.5, 0.75, 1]);
     const f = api.layerFractions({ layers: 3, growth: 2 }).fractions;
