@@ -95,6 +95,12 @@ export class VesselmeshClient {
     return this._call('layerFractions', [options]);
   }
 
+  /** The cut perpendicular to the vessel through the last analyzed
+   * surface's point nearest `point` [x, y, z] (API cutAt()). */
+  cutAt(point) {
+    return this._call('cutAt', [point]);
+  }
+
   /** Generates a phantom STL; options as in the API's makePhantom(). */
   makePhantom(options = {}) {
     return this._call('makePhantom', [options]);
