@@ -116,11 +116,12 @@ test('a closed bifurcation: proposed cuts made into openings, one replaced by a 
 
   // Moved along the vessel by the keyboard (a quarter radius), and tilted.
   const centre = added.locator('td').nth(1);
-  const before = coordinates(await centre.textContent());
+  const beforeText = await centre.textContent();
+  const before = coordinates(beforeText);
   await page.getByRole('slider', { name: 'Along the vessel (local radii)' }).focus();
   await page.keyboard.press('ArrowRight');
   await expect(page.locator('#cut-move-value')).toHaveText('+0.25 R');
-  await expect(centre).not.toHaveText(await centre.textContent());
+  await expect(centre).not.toHaveText(beforeText);
   const after = coordinates(await centre.textContent());
   const moved = Math.hypot(...after.map((v, i) => v - before[i]));
   expect(moved).toBeGreaterThan(0.05);

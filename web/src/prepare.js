@@ -402,7 +402,7 @@ export class Prepare {
   _row(cut, i, applied) {
     const k = i + 1;
     const tr = element('tr', {}, 'cut-row');
-    tr.dataset.state = applied ? 'applied' : 'new';
+    tr.dataset.state = applied ? 'made' : 'new';
     tr.dataset.source = cut.source;
     tr.classList.toggle('selected', i === this.selected);
     const pick = element('button', { type: 'button', className: 'cut-select', textContent: String(k) }, 'cut-select');
