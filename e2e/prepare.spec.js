@@ -130,8 +130,15 @@ test('a closed bifurcation: proposed cuts made into openings, one replaced by a 
   await expect(page.locator('#cut-tilt-a-value')).toHaveText('10°');
   await screenshots(page, 'prepare-added-cut', page.getByTestId('prepare'));
 
+  // Meshing now would not use the listed cuts: refused, said beside them.
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('prepare-error')).toContainText('not made yet');
+  await expect(page.getByTestId('apply-cuts')).toBeFocused();
+  expect(await page.locator('body').getAttribute('data-mesh-jobs')).toBe('0');
+
   await page.getByTestId('apply-cuts').click();
   await expect(cuts.nth(2)).toHaveAttribute('data-state', 'made');
+  await expect(page.getByTestId('prepare-error')).toBeHidden();
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
   const inletZ = coordinates(await page.getByTestId('opening-item').first().textContent())[2];
   expect(inletZ).toBeGreaterThan(-4);

@@ -595,6 +595,13 @@ async function checkedMeshOptions() {
     showError(problem);
     return null;
   }
+  const cuts = prepare.pendingProblem();
+  if (cuts) {
+    showError(cuts);
+    prepare.showError(cuts);
+    prepare.focusApply();
+    return null;
+  }
   if (!(await ensureAnalyzed())) return null;
   const naming = await openings.check();
   if (naming.problem) {

@@ -117,9 +117,10 @@ export class Prepare {
       });
     });
     view.addEventListener('pointerup', (e) => {
-      if (!this.adding || !down || e.target.tagName !== 'CANVAS') return;
+      if (!down || e.target.tagName !== 'CANVAS') return;
       if (Math.hypot(e.clientX - down.x, e.clientY - down.y) > CLICK_SLOP_PX) return;
-      this._addAt(e.clientX, e.clientY);
+      if (this.adding) this._addAt(e.clientX, e.clientY);
+      else this._selectNear(e.clientX, e.clientY);
     });
     document.addEventListener('keydown', (e) => {
       if (e.key === 'Escape' && this.adding) this.setAdding(false);
@@ -233,6 +234,32 @@ export class Prepare {
     $('pick-info').textContent = at
       ? `Click to cut at ${point(at, this.scale)} ${this.unit}`
       : 'Not on the surface';
+  }
+
+  /** Selects the cut whose centre is drawn within CLICK_SLOP_PX * 4 of
+   * (x, y), the nearest, if any. */
+  _selectNear(x, y) {
+    if (!this.visible || this.busy) return;
+    let best = -1;
+    let bestD = 4 * CLICK_SLOP_PX;
+    this.cuts.forEach((cut, i) => {
+      const at = this.viewer.screenPoint(cut.point);
+      const d = at ? Math.hypot(at[0] - x, at[1] - y) : Infinity;
+      if (d < bestD) [best, bestD] = [i, d];
+    });
+    if (best >= 0) this.select(best);
+  }
+
+  /** Why meshing now would not use the listed cuts (they changed since the
+   * surface was cut, by the user), or null. */
+  pendingProblem() {
+    if (this.fromProposals || samePlanes(this.cuts.map(cutPlane), this.applied)) return null;
+    return 'Cuts: the listed cuts are not made yet. Press “Cut these open” (or undo the changes) before meshing.';
+  }
+
+  /** Moves the focus to the button that makes the cuts. */
+  focusApply() {
+    $('apply-cuts').focus();
   }
 
   /** Selects cut i (-1: none) for moving and tilting. */
