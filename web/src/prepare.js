@@ -371,9 +371,13 @@ export class Prepare {
   _showEditValues() {
     const cut = this.cuts[this.selected];
     if (!cut) return;
-    $('cut-move-value').textContent = `${cut.offset > 0 ? '+' : ''}${length(cut.offset)} R`;
-    $('cut-tilt-a-value').textContent = `${cut.tilt[0]}°`;
-    $('cut-tilt-b-value').textContent = `${cut.tilt[1]}°`;
+    const moved = `${cut.offset > 0 ? '+' : ''}${length(cut.offset)}`;
+    $('cut-move-value').textContent = `${moved} R`;
+    $('cut-move').setAttribute('aria-valuetext', `${moved} local radii`);
+    for (const [k, id] of ['cut-tilt-a', 'cut-tilt-b'].entries()) {
+      $(`${id}-value`).textContent = `${cut.tilt[k]}°`;
+      $(id).setAttribute('aria-valuetext', `${cut.tilt[k]} degrees`);
+    }
   }
 
   _draw() {
