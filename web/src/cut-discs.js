@@ -61,7 +61,7 @@ function disc({ point, normal, radius }, number, selected) {
     new THREE.LineBasicMaterial({ color, depthTest: false }),
   );
   stick.renderOrder = 3;
-  const tag = label(String(number), 0.7 * radius, color);
+  const tag = label(String(number), radius, color);
   tag.position.set(r * 1.15, 0, 0);
   group.add(face, rim, stick, tag);
   group.position.set(...point);
