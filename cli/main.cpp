@@ -3,10 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <exception>
 #include <new>
 #include <optional>
 #include <string>
@@ -130,6 +130,15 @@ void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
     std::printf("  %zu: %s: perimeter %g %s, radius %g %s, centroid (%g, %g, %g), %zu vertices%s\n",
                 i + 1, names.ok() ? names.value()[i].c_str() : "?", o.perimeter, unit, o.radius,
                 unit, o.centroid[0], o.centroid[1], o.centroid[2], o.loop.size(), from.c_str());
+  }
+  if (!s.clip_proposals.empty()) {
+    std::printf("vessel ends: %zu (the cuts --clip auto would make)\n", s.clip_proposals.size());
+    for (size_t i = 0; i < s.clip_proposals.size(); ++i) {
+      const vm::VesselEnd& e = s.clip_proposals[i];
+      const auto& [q, n] = e.plane;
+      std::printf("  %zu: radius %g %s: --clip-plane %g,%g,%g,%.4f,%.4f,%.4f\n", i + 1,
+                  e.cut_radius, unit, q[0], q[1], q[2], n[0], n[1], n[2]);
+    }
   }
   const vm::SmoothingOutcome& sm = s.smoothing;
   char staircase[96] = "not a voxel staircase";

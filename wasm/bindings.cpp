@@ -6,6 +6,7 @@
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "core/io/stl.h"
 #include "core/io/zip_writer.h"
 #include "core/layers/layer_thickness.h"
+#include "core/mesh/adjacency.h"
 #include "core/mesh/prism_split.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/mesh_job.h"
@@ -23,6 +25,7 @@
 #include "core/pipeline/option_table.h"
 #include "core/pipeline/report_json.h"
 #include "core/pipeline/write_outputs.h"
+#include "core/prepare/cut_across_vessel.h"
 #include "core/quality/tet_quality.h"
 #include "core/util/version.h"
 
@@ -94,8 +97,7 @@ vm::Result<std::vector<vm::OptionValue>> values_from(const vm::OptionSpec& spec,
       case vm::OptionType::kText:
         // A whole number stands for its text ({smooth: 5} as '5').
         if (type == "number" && spec.type == vm::OptionType::kText &&
-            std::abs(x.as<double>()) < 1e15 &&
-            x.as<double>() == double(int64_t(x.as<double>()))) {
+            std::abs(x.as<double>()) < 1e15 && x.as<double>() == double(int64_t(x.as<double>()))) {
           o.text = std::to_string(int64_t(x.as<double>()));
           break;
         }
@@ -382,6 +384,32 @@ val opening_names(val opts) {
   return r;
 }
 
+/// The cut across the vessel at the surface point of the last analyzed
+/// surface nearest `point` ([x, y, z], model coordinates):
+/// {ok, point, normal (toward the side removed), radius, areaRemoved}.
+val cut_at(val point) {
+  if (!last_analysis)
+    return error(vm::Status::Error("nothing analyzed yet: analyze a surface first"));
+  if (!point.isArray() || point["length"].as<size_t>() != 3)
+    return error(vm::Status::Error("cutAt needs a point [x, y, z]"));
+  std::array<double, 3> p{};
+  for (size_t k = 0; k < 3; ++k) {
+    if (point[k].typeOf().as<std::string>() != "number" || !std::isfinite(point[k].as<double>()))
+      return error(vm::Status::Error("cutAt needs a point [x, y, z] of 3 finite numbers"));
+    p[k] = point[k].as<double>();
+  }
+  const vm::SurfaceMesh& mesh = last_analysis->mesh;
+  auto cut = vm::cut_across_vessel(mesh, vm::build_adjacency(mesh), p);
+  if (!cut.ok()) return error(cut.status());
+  val r = val::object();
+  r.set("ok", true);
+  r.set("point", copy_out(cut.value().plane.point.data(), 3, "Float64Array"));
+  r.set("normal", copy_out(cut.value().plane.normal.data(), 3, "Float64Array"));
+  r.set("radius", cut.value().radius);
+  r.set("areaRemoved", cut.value().area_removed);
+  return r;
+}
+
 /// The cumulative height fractions of the layers (N + 1 values, 0 to 1)
 /// for these mesh options (layers, growth; others ignored).
 val layer_fractions(val opts) {
@@ -421,5 +449,6 @@ EMSCRIPTEN_BINDINGS(vesselmesh) {
   emscripten::function("optionTable", &option_table);
   emscripten::function("exportMesh", &export_mesh);
   emscripten::function("openingNames", &opening_names);
+  emscripten::function("cutAt", &cut_at);
   emscripten::function("layerFractions", &layer_fractions);
 }

@@ -131,6 +131,19 @@ const OptionSpec kOptions[] = {
               "part to keep",
      .doc = "cut the surface open with this plane (the side the normal points to is removed)",
      .repeatable = true},
+    {.id = "clip_at",
+     .cli = "clip-at",
+     .js = "clipAt",
+     .type = T::kNumbers,
+     .commands = kInfoMesh,
+     .group = "input",
+     .metavar = "X,Y,Z",
+     .list_size = 3,
+     .unit = "length",
+     .needs = "3 numbers X,Y,Z: a point on or near the vessel to cut across",
+     .doc = "cut across the vessel at the surface point nearest X,Y,Z, perpendicular to the "
+            "vessel, removing the side with less surface",
+     .repeatable = true},
     // ---- size
     {.id = "size",
      .cli = "size",
@@ -748,6 +761,8 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
     if (!(n > 0)) return needs(spec);
     o.prepare.clip_planes.push_back({{v.numbers[0], v.numbers[1], v.numbers[2]},
                                      {v.numbers[3] / n, v.numbers[4] / n, v.numbers[5] / n}});
+  } else if (id == "clip_at") {
+    o.prepare.clip_at.push_back({v.numbers[0], v.numbers[1], v.numbers[2]});
   } else if (id == "keep_caps") {
     o.prepare.keep_caps = v.flag;
   } else if (id == "name") {

@@ -7,6 +7,7 @@
 
 #include "core/geom/vec3.h"
 #include "core/layers/chord_radius.h"
+#include "core/prepare/cut_across_vessel.h"
 #include "core/prepare/flow_extensions.h"
 #include "core/prepare/vessel_ends.h"
 
@@ -360,10 +361,31 @@ Status clip(PreparedSurface& s, Work& w, const PrepareOptions& options) {
                          point_text(c.centroid) + " of radius " + length_text(c.radius) + " (" +
                          length_text(c.area_removed) + " of area removed)");
   }
-  if (!options.clip_auto && s.caps_removed == 0 && manifold && closed())
+  for (const std::array<double, 3>& at_point : options.clip_at) {
+    if (!manifold)
+      return Status::Error("cannot cut across the vessel at " + point_text(at_point) +
+                           ": the surface is not manifold and orientable");
+    Result<VesselCut> across = cut_across_vessel(s.mesh, w.adjacency, at_point);
+    if (!across.ok()) return across.status();
+    if (Status st = clip_one(s, w, across.value().plane); !st.ok()) return st;
+    const ClipCut& c = s.clips.back();
+    s.warnings.push_back("cut across the vessel at " + point_text(at_point) + ": an opening at " +
+                         point_text(c.centroid) + " of radius " + length_text(c.radius) + " (" +
+                         length_text(c.area_removed) + " of area removed)");
+  }
+  if (!options.clip_auto && s.caps_removed == 0 && manifold && closed()) {
+    VesselEndOptions eo;
+    eo.clip_distance = options.clip_distance;
+    s.clip_proposals = find_vessel_ends(s.mesh, eo).ends;
+    const size_t n = s.clip_proposals.size();
     s.warnings.push_back(
-        "the surface is closed: it has no opening to be an inlet or outlet; cut its vessel ends "
-        "open with {clip} auto (or give {clip_plane})");
+        "the surface is closed: it has no opening to be an inlet or outlet; " +
+        (n == 0 ? std::string("no vessel end was found to cut: give the cuts with {clip_plane} or "
+                              "{clip_at}")
+                : num(n) + (n == 1 ? " vessel end was" : " vessel ends were") +
+                      " found: cut them open with {clip} auto (or give {clip_plane} or "
+                      "{clip_at})"));
+  }
   return Status::Ok();
 }
 

@@ -13,6 +13,7 @@
 #include "core/mesh/topology.h"
 #include "core/mesh/weld.h"
 #include "core/prepare/clip_surface.h"
+#include "core/prepare/vessel_ends.h"
 #include "core/prepare/recognize_caps.h"
 #include "core/prepare/smooth_surface.h"
 #include "core/prepare/units.h"
@@ -43,6 +44,9 @@ struct PrepareOptions {
   bool clip_auto = false;
   double clip_distance = 1;
   std::vector<ClipPlane> clip_planes;
+  /// ... and across the vessel at the surface points nearest these (model
+  /// coordinates), removing the side with less surface.
+  std::vector<std::array<double, 3>> clip_at;
   /// Keep planar caps as part of the wall (else each recognised cap is
   /// removed and its rim becomes an opening).
   bool keep_caps = false;
@@ -101,6 +105,9 @@ struct PreparedSurface {
   /// The cuts made by clipping, in order (each is an opening of source
   /// "clip" unless a later cut removed it).
   std::vector<ClipCut> clips;
+  /// A closed surface not clipped: the cuts {clip} auto would make, one per
+  /// vessel end found.
+  std::vector<VesselEnd> clip_proposals;
   /// The model's length unit and how it was decided.
   ModelUnit unit;
   /// Human-readable notes on the safe repairs applied and on properties that

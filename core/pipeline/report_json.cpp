@@ -95,6 +95,17 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
   j.key("caps_removed").value(s.caps_removed);
   j.key("smoothing");
   write_smoothing(j, s.smoothing);
+  j.key("clip_proposals").begin_array();
+  for (const VesselEnd& e : s.clip_proposals) {
+    j.begin_object();
+    j.key("point").array(e.plane.point);
+    j.key("normal").array(e.plane.normal);
+    j.key("radius").value(e.cut_radius);
+    j.key("tip").array(e.tip);
+    j.key("depth").value(e.cut_depth);
+    j.end_object();
+  }
+  j.end_array();
   j.key("clips").begin_array();
   for (const ClipCut& c : s.clips) {
     j.begin_object();

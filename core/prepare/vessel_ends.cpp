@@ -238,8 +238,8 @@ std::vector<Sample> EndAnalysis::march(const Vec& tip, const Vec& a0, double R, 
     // at most kTurn a step (a bend of radius 2.4 R is followed; the corner
     // from an aneurysm's neck into its parent vessel is not).
     if (turn && out.size() > 4 && out.back().section.found && out[out.size() - 5].section.found) {
-      const Vec d =
-          normalized(sub(out[out.size() - 5].section.shape.centroid, out.back().section.shape.centroid));
+      const Vec d = normalized(
+          sub(out[out.size() - 5].section.shape.centroid, out.back().section.shape.centroid));
       const double c = dot(d, dir);
       if (c >= std::cos(kTurn)) {
         dir = d;

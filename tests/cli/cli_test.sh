@@ -141,7 +141,15 @@ check "keep caps" [ "$("$VM" info "$T/capped.stl" --keep-caps --json | python3 -
 # Closed segmentations (rounded ends): cut open at their vessel ends, or by
 # planes.
 check "phantom closed" expect_exit 0 "wrote" "$VM" phantom "$T/closed.stl" --kind aneurysm --voxel 0.12 --noise 0.3 --closed
-check "closed surface warned about" expect_exit 0 "cut its vessel ends open with --clip auto (or give --clip-plane)" "$VM" info "$T/closed.stl"
+check "closed surface warned about" expect_exit 0 "3 vessel ends were found: cut them open with --clip auto (or give --clip-plane or --clip-at)" "$VM" info "$T/closed.stl"
+check "info proposes the cuts" expect_exit 0 "vessel ends: 3 (the cuts --clip auto would make)" "$VM" info "$T/closed.stl"
+# Each proposal is a --clip-plane that cuts one end open.
+plane=$("$VM" info "$T/closed.stl" | sed -n 's/.*--clip-plane \([^ ]*\)$/\1/p' | head -1)
+check "a proposed plane cuts one end" [ "$("$VM" info "$T/closed.stl" --clip-plane "$plane" --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(len(d['openings']), d['openings'][0]['source'], len(d['clip_proposals']))")" = "1 clip 0" ]
+# --clip-at: across the vessel at the wall point nearest the one given.
+at=$("$VM" info "$T/closed.stl" --json | python3 -c "import json,sys; p=json.load(sys.stdin)['clip_proposals'][0]; print(','.join(str(p['point'][k] - 2 * p['radius'] * p['normal'][k]) for k in range(3)))")
+check "clip at a point cuts one end" expect_exit 0 "cut across the vessel at" "$VM" info "$T/closed.stl" --clip-at "$at"
+check "clip at bad value" expect_exit 2 "--clip-at needs 3 numbers" "$VM" info "$T/closed.stl" --clip-at 1,2
 "$VM" info "$T/closed.stl" --clip auto --json > "$T/clipped.json"
 check "clip auto opens 3 ends" [ "$(json "$T/clipped.json" "[o['source'] for o in d['openings']], d['closed'], d['genus'], d['components']")" = "['clip', 'clip', 'clip'] False 0 1" ]
 check "clips reported" [ "$(json "$T/clipped.json" "len(d['clips']), all(c['radius'] > 0.4 and c['area_removed'] > 0 for c in d['clips'])")" = "3 True" ]

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <string>
 
+#include "core/geom/vec3.h"
 #include "core/io/stl.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/prepare_surface.h"
@@ -75,8 +76,21 @@ TEST(PrepareClip, AClosedSurfaceWithoutClippingIsWarnedAbout) {
   ASSERT_TRUE(r.ok()) << r.message();
   EXPECT_TRUE(r.value().topology.closed);
   EXPECT_TRUE(has_warning(r.value(),
-                          "the surface is closed: it has no opening to be an inlet or outlet; cut "
-                          "its vessel ends open with {clip} auto (or give {clip_plane})"));
+                          "the surface is closed: it has no opening to be an inlet or outlet; 3 "
+                          "vessel ends were found: cut them open with {clip} auto (or give "
+                          "{clip_plane} or {clip_at})"));
+  // The proposals are the cuts clip auto makes.
+  PrepareOptions cut;
+  cut.clip_auto = true;
+  auto opened = prepare_surface(closed_phantom_stl(PhantomKind::kBifurcation, 0), cut);
+  ASSERT_TRUE(opened.ok()) << opened.message();
+  ASSERT_EQ(r.value().clip_proposals.size(), 3u);
+  EXPECT_TRUE(opened.value().clip_proposals.empty());
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(r.value().clip_proposals[i].plane.point, opened.value().clips[i].plane.point);
+    EXPECT_GT(dot(r.value().clip_proposals[i].plane.normal, opened.value().clips[i].plane.normal),
+              1 - 1e-12);
+  }
   // A torus has no vessel end: clip auto says so and cuts nothing.
   PrepareOptions o;
   o.clip_auto = true;
@@ -84,6 +98,29 @@ TEST(PrepareClip, AClosedSurfaceWithoutClippingIsWarnedAbout) {
   ASSERT_TRUE(ring.ok()) << ring.message();
   EXPECT_TRUE(ring.value().topology.closed);
   EXPECT_TRUE(has_warning(ring.value(), "{clip} auto found no vessel end to cut"));
+}
+
+TEST(PrepareClip, ClipAtCutsAcrossTheVesselAtAPoint) {
+  // A closed straight tube along z from 0 to 8: a click beside it at z = 6
+  // cuts off the top end, perpendicular to the tube.
+  PrepareOptions o;
+  o.keep_caps = true;
+  o.clip_at = {{1.4, 0.2, 6.0}};
+  auto r = prepare_surface(write_stl_binary(testing::capped_tube(40, 64, 1.0, 8.0)), o);
+  ASSERT_TRUE(r.ok()) << r.message();
+  const PreparedSurface& s = r.value();
+  ASSERT_EQ(s.topology.openings.size(), 1u);
+  EXPECT_EQ(s.opening_sources[0].kind, OpeningSource::kClip);
+  EXPECT_NEAR(s.topology.openings[0].centroid[2], 6.0, 0.13);
+  EXPECT_NEAR(std::abs(s.topology.openings[0].normal[2]), 1.0, 1e-6);
+  EXPECT_TRUE(has_warning(s, "cut across the vessel at (1.4, 0.2, 6): an opening at"));
+  EXPECT_TRUE(s.clip_proposals.empty());
+  // Far from any tube (the flat end's centre): refused, saying where.
+  o.clip_at = {{0, 0, 8.5}};
+  auto flat = prepare_surface(write_stl_binary(testing::capped_tube(40, 64, 1.0, 8.0)), o);
+  ASSERT_FALSE(flat.ok());
+  EXPECT_NE(flat.message().find("cannot cut across the vessel at (0, 0, 8)"), std::string::npos)
+      << flat.message();
 }
 
 TEST(PrepareClip, PlanesCutAnySurfaceAndTheirOpeningsSayClip) {

@@ -174,6 +174,8 @@ export function typesFor(table) {
     '  ): { ok: true; file: Uint8Array; fileName: string; format: OutputFormat } | Failure;',
     "  /** The group names the last analyzed surface's openings get with these options, or the error mesh() would give. */",
     "  openingNames(options?: Pick<MeshOptions, 'names' | 'inlet'>): { ok: true; names: string[] } | Failure;",
+    '  /** The cut across the vessel at the point of the last analyzed surface nearest `point`: the normal points to the side with less surface, which clipPlanes [...point, ...normal] removes. */',
+    '  cutAt(point: ArrayLike<number>): { ok: true; point: number[]; normal: number[]; radius: number; areaRemoved: number } | Failure;',
     "  /** The layers' cumulative height fractions (layers + 1 values from 0 to 1). */",
     "  layerFractions(options?: Pick<MeshOptions, 'layers' | 'growth'>): { ok: true; fractions: Float64Array } | Failure;",
     '  /** A synthetic segmentation-like vessel surface as binary STL. */',

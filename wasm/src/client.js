@@ -90,15 +90,14 @@ export class VesselmeshClient {
     return this._call('openingNames', [options]);
   }
 
+  /** The cut across the vessel nearest a point of the last analyzed surface (API cutAt()). */
+  cutAt(point) {
+    return this._call('cutAt', [Array.from(point)]);
+  }
+
   /** The layers' cumulative height fractions (API layerFractions()). */
   layerFractions(options = {}) {
     return this._call('layerFractions', [options]);
-  }
-
-  /** The cut perpendicular to the vessel through the last analyzed
-   * surface's point nearest `point` [x, y, z] (API cutAt()). */
-  cutAt(point) {
-    return this._call('cutAt', [point]);
   }
 
   /** Generates a phantom STL; options as in the API's makePhantom(). */

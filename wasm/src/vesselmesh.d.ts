@@ -23,6 +23,8 @@ export interface AnalyzeOptions {
   clipDistance?: number;
   /** cut the surface open with this plane (the side the normal points to is removed) In the model's unit. Needs 6 numbers X,Y,Z,NX,NY,NZ: a point of the cut and the normal pointing out of the part to keep. */
   clipPlanes?: number[] | number[][];
+  /** cut across the vessel at the surface point nearest X,Y,Z, perpendicular to the vessel, removing the side with less surface. In the model's unit. Needs 3 numbers X,Y,Z: a point on or near the vessel to cut across. */
+  clipAt?: number[] | number[][];
 }
 
 /** Options of mesh(). */
@@ -44,6 +46,8 @@ export interface MeshOptions {
   clipDistance?: number;
   /** cut the surface open with this plane (the side the normal points to is removed) In the model's unit. Needs 6 numbers X,Y,Z,NX,NY,NZ: a point of the cut and the normal pointing out of the part to keep. */
   clipPlanes?: number[] | number[][];
+  /** cut across the vessel at the surface point nearest X,Y,Z, perpendicular to the vessel, removing the side with less surface. In the model's unit. Needs 3 numbers X,Y,Z: a point on or near the vessel to cut across. */
+  clipAt?: number[] | number[][];
   /** uniform target edge length. In the model's unit. Needs a positive length. */
   size?: number;
   /** h = 2 pi R(x) / N, R the local vessel radius (the default size mode) Needs a number of edges per circumference >= 3. Default 20. */
@@ -231,6 +235,8 @@ export interface VesselmeshApi {
   ): { ok: true; file: Uint8Array; fileName: string; format: OutputFormat } | Failure;
   /** The group names the last analyzed surface's openings get with these options, or the error mesh() would give. */
   openingNames(options?: Pick<MeshOptions, 'names' | 'inlet'>): { ok: true; names: string[] } | Failure;
+  /** The cut across the vessel at the point of the last analyzed surface nearest `point`: the normal points to the side with less surface, which clipPlanes [...point, ...normal] removes. */
+  cutAt(point: ArrayLike<number>): { ok: true; point: number[]; normal: number[]; radius: number; areaRemoved: number } | Failure;
   /** The layers' cumulative height fractions (layers + 1 values from 0 to 1). */
   layerFractions(options?: Pick<MeshOptions, 'layers' | 'growth'>): { ok: true; fractions: Float64Array } | Failure;
   /** A synthetic segmentation-like vessel surface as binary STL. */

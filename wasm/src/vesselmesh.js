@@ -120,6 +120,19 @@ export async function createVesselmesh({ wasmBinary } = {}) {
     },
 
     /**
+     * The cut across the vessel at the point of the last analyzed surface
+     * nearest `point` ([x, y, z]): perpendicular to the vessel, through the
+     * centre of its section, the normal toward the side with less surface
+     * (the side a cut by clipPlanes [...point, ...normal] removes).
+     * @returns {{ok: true, point: number[], normal: number[], radius: number,
+     *   areaRemoved: number} | {ok: false, error: string}}
+     */
+    cutAt(point) {
+      const raw = core.cutAt(Array.from(point ?? []));
+      return raw.ok ? { ...raw, point: Array.from(raw.point), normal: Array.from(raw.normal) } : failure(raw);
+    },
+
+    /**
      * The group names the openings of the last analyzed surface get with
      * these mesh options (`names`, `inlet`), as mesh() would name them, or
      * the error mesh() would give (a bad or repeated name).

@@ -1,6 +1,6 @@
 // Module Web Worker serving the vesselmesh API. Protocol:
 //   in:  { id, op: 'analyze' | 'mesh' | 'makePhantom' | 'export' | 'openingNames' |
-//          'layerFractions' | 'cutAt',
+//          'cutAt' | 'layerFractions',
 //          args: [bytes?, options] }
 //        (export: args [format, options]: the last mesh in another format)
 //   out: { type: 'ready', version, optionTable } | { type: 'error', error } once
@@ -56,11 +56,11 @@ self.onmessage = async (event) => {
     case 'openingNames':
       result = api.openingNames(args[0]);
       break;
+    case 'cutAt':
+      result = api.cutAt(args[0]);
+      break;
     case 'layerFractions':
       result = api.layerFractions(args[0]);
-      break;
-    case 'cutAt':
-      result = api.cutAt ? api.cutAt(args[0]) : { ok: false, error: 'cutAt is not in this build of the mesher' };
       break;
     default:
       result = { ok: false, error: `unknown operation '${op}'` };

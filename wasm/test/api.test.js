@@ -153,6 +153,38 @@ endsolid tet
 `;
 
 describe('analyze', () => {
+  test('a closed surface: the vessel ends proposed as cuts, cutAt and clipPlanes/clipAt open it', () => {
+    const p = api.makePhantom({ kind: 'bifurcation', voxel: 0.12, noise: 0.3, openEnds: false });
+    const r = api.analyze(p.stl);
+    assert.equal(r.ok, true, r.error);
+    assert.equal(r.analysis.closed, true);
+    assert.equal(r.analysis.openings.length, 0);
+    const proposals = r.analysis.clip_proposals;
+    assert.equal(proposals.length, 3);
+    assert.match(r.analysis.warnings.join('\n'), /3 vessel ends were found: cut them open with clip auto \(or give clipPlanes or clipAt\)/);
+    // A click 2 radii in from the first proposal, beside the vessel: the
+    // cut is across the same vessel, parallel to the proposal, facing its end.
+    const e = proposals[0];
+    const click = e.point.map((x, k) => x - 2 * e.radius * e.normal[k] + 1.5 * e.radius * (k === 0 ? 1 : 0));
+    const c = api.cutAt(click);
+    assert.equal(c.ok, true, c.error);
+    assert.ok(dot(c.normal, e.normal) > Math.cos((10 * Math.PI) / 180), `${c.normal} vs ${e.normal}`);
+    assert.ok(Math.abs(c.radius - e.radius) < 0.15 * e.radius, `${c.radius} vs ${e.radius}`);
+    assert.ok(c.areaRemoved > 0);
+    // The plane as clipPlanes: one opening from a clip there; clipAt the same.
+    for (const options of [{ clipPlanes: [...c.point, ...c.normal] }, { clipAt: [click] }]) {
+      const cut = api.analyze(p.stl, options);
+      assert.equal(cut.ok, true, cut.error);
+      assert.equal(cut.analysis.openings.length, 1);
+      assert.equal(cut.analysis.openings[0].source, 'clip');
+      assert.ok(distance(cut.analysis.openings[0].centroid, c.point) < 0.1 * c.radius);
+      assert.deepEqual(cut.analysis.clip_proposals, []);
+    }
+    const bad = api.cutAt([1, 2]);
+    assert.equal(bad.ok, false);
+    assert.match(bad.error, /cutAt needs a point \[x, y, z\]/);
+  });
+
   test('a generated bifurcation: counts, openings, arrays consistent', () => {
     const p = api.makePhantom({ noise: 0.3, kind: 'bifurcation', voxel: 0.12 });
     assert.equal(p.ok, true);
