@@ -155,7 +155,7 @@ test('a closed bifurcation: proposed cuts made into openings, one replaced by a 
   expect(errors).toEqual([]);
 });
 
-test('a click off the surface is said next to the cuts, and the page keeps working', async ({ page }) => {
+test('a click off the surface, or where no vessel can be cut, is said next to the cuts; the page keeps working', async ({ page }) => {
   const errors = await open(page);
   await upload(page, 'closed-bifurcation.stl', bifurcation({ openEnds: false }));
   await expect(page.getByTestId('cut-row')).toHaveCount(3);
@@ -166,6 +166,13 @@ test('a click off the surface is said next to the cuts, and the page keeps worki
   await page.mouse.click(box.x + box.width - 10, box.y + box.height / 2);
   await expect(page.getByTestId('prepare-error')).toContainText('No surface there');
   await expect(page.getByTestId('cut-row')).toHaveCount(3);
+  // On the rounded tip the section is no vessel's: the core's refusal is said there too.
+  const [x, y] = await pointAt(page, ([, , z]) => z < -6 && z > -6.5);
+  await page.mouse.click(x, y);
+  await expect(page.getByTestId('prepare-error')).toContainText('cannot cut across the vessel');
+  await expect(page.getByTestId('cut-row')).toHaveCount(3);
+  await expect(page.getByTestId('add-cut')).toHaveAttribute('aria-pressed', 'true');
+  await screenshots(page, 'prepare-error', page.getByTestId('prepare'));
   // Escape stops adding; the cuts are still made.
   await page.keyboard.press('Escape');
   await expect(page.getByTestId('add-cut')).toHaveAttribute('aria-pressed', 'false');
