@@ -214,5 +214,15 @@ test('smoothing says what it found; flow extensions of 3 radii move every cap ou
     await expect(row.getByTestId('opening-shift')).toContainText('its cap');
   }
   await screenshots(page, 'prepare-flow-extensions', rows.first());
+
+  // Per opening: none at opening 2, the others still 3 radii ({1: 3, 3: 3}).
+  await page.getByRole('spinbutton', { name: 'Flow extension of opening 2, in local radii (0: none)' }).fill('0');
+  await page.getByTestId('remesh').click();
+  await expect(page.locator('body')).toHaveAttribute('data-mesh-jobs', '2');
+  await expect(page.getByTestId('progress')).toBeHidden({ timeout: 90_000 });
+  await expect(rows.nth(1).getByTestId('opening-shift')).toHaveText('');
+  expect(Number(await rows.nth(1).getAttribute('data-cap-shift'))).toBeLessThan(0.1);
+  expect(Number(await rows.nth(0).getAttribute('data-cap-shift'))).toBeGreaterThan(2);
+  await expect(rows.nth(2).getByTestId('opening-shift')).toContainText('its cap');
   expect(errors).toEqual([]);
 });
