@@ -192,8 +192,13 @@ test('smoothing says what it found; flow extensions of 3 radii move every cap ou
   await expect(note).toContainText('smoothed in');
   await page.getByRole('combobox', { name: 'Smoothing' }).selectOption('off');
   await expect(note).toContainText('not smoothed');
+  await page.getByRole('combobox', { name: 'Smoothing' }).selectOption('passes');
+  await expect(note).toContainText('smoothed in 10 passes');
+  await page.getByRole('spinbutton', { name: 'Passes' }).fill('5');
+  await page.getByRole('spinbutton', { name: 'Passes' }).blur();
+  await expect(note).toContainText('smoothed in 5 passes');
   await page.getByRole('combobox', { name: 'Smoothing' }).selectOption('auto');
-  await expect(note).toContainText('smoothed in');
+  await expect(note).toContainText('smoothed in 24 passes');
   await expect(page.getByTestId('cut-row')).toHaveCount(0);
 
   const rows = page.getByTestId('opening-item');
