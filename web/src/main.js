@@ -1,6 +1,7 @@
 // The vesselmesh page: load a surface file (drop, file picker or generated
-// sample), analyze it in the worker (units, caps), show it, name its
-// openings, mesh it (surface, caps, boundary layer, vessel wall,
+// sample), analyze it in the worker (units, caps), show it, prepare it
+// (smoothing, cuts: prepare.js), name its openings and set their flow
+// extensions, mesh it (surface, caps, boundary layer, vessel wall,
 // tetrahedra), inspect the volume with a clipping plane, export it (MSH,
 // VTU, VTP, STL, SimVascular mesh-complete). All meshing happens in the Web
 // Worker behind VesselmeshClient, so the page stays responsive.
@@ -11,6 +12,7 @@ import { drawGroupLegend, drawPartLegend, PARTS } from './groups.js';
 import { drawHistogram } from './histogram.js';
 import { OpeningsTable } from './openings.js';
 import { hideAnalysis, showAnalysis } from './panel.js';
+import { Prepare } from './prepare.js';
 import { Viewer } from './viewer.js';
 import { withPrismsSplit } from './prisms.js';
 import { VolumeView } from './volume-view.js';
@@ -38,6 +40,7 @@ let remeshed = null; // { key, result } of the last remeshing of `current`
 let busy = false; // a worker job runs (the progress bar is shown)
 let acting = false; // a Mesh or Export press is being handled
 let meshJobs = 0;
+let shown = null; // what the view shows: 'input', 'output' or 'volume'
 // What the worker holds: the surface openingNames() names (its last
 // analysis) and the result export() writes (its last mesh). A failed or
 // cancelled job loses them (a cancel restarts the worker).
@@ -45,6 +48,21 @@ const held = { analysis: null, mesh: null };
 const openings = new OpeningsTable($('openings'), {
   openingNames,
   onHover: (loop) => viewer.highlightLoop(loop, current.surface.positions),
+  allExtensions: $('flow-all'),
+});
+const prepare = new Prepare({
+  viewer,
+  cutAt: async (point) => {
+    if (busy || acting) return { ok: false, error: 'a job is running; try again when it ends' };
+    if (!(await ensureAnalyzed())) return { ok: false, error: 'the surface could not be analyzed' };
+    return client.cutAt(point);
+  },
+  reanalyze: () => reanalyze({ onError: () => {} }),
+  showInput: () => {
+    if (!current || shown === 'input') return;
+    $('show').value = 'input';
+    show('input', { fit: false });
+  },
 });
 
 $('legend').querySelector('.ramp').style.background = qualityGradientCss();
@@ -60,7 +78,17 @@ function clearError() {
 }
 
 // Controls that start a job, off while one runs.
-const BUSY_CONTROLS = ['load-sample', 'export', 'file-input', 'remesh', 'units', 'keep-caps', 'largest-only'];
+const BUSY_CONTROLS = [
+  'load-sample',
+  'export',
+  'file-input',
+  'remesh',
+  'units',
+  'keep-caps',
+  'largest-only',
+  'smooth',
+  'smooth-passes',
+];
 
 function setBusy(on, stage = '') {
   busy = on;
@@ -69,6 +97,7 @@ function setBusy(on, stage = '') {
   $('progress-stage').textContent = stage;
   for (const id of BUSY_CONTROLS) $(id).disabled = on;
   for (const button of $('units-prompt').querySelectorAll('button')) button.disabled = on;
+  prepare.setBusy(on);
 }
 
 function onProgress(fraction, stage) {
@@ -88,19 +117,22 @@ async function run(stage, job) {
 }
 
 /** Analyzes `bytes` in the worker with the analyze options `prep`; the
- * result, or null with the error shown. */
-async function analyze(name, bytes, prep) {
+ * result, or its error message given to `onError` (default: shown at the
+ * top) and returned as { ok: false, message }. */
+async function analyze(name, bytes, prep, onError = showError) {
   held.analysis = null;
   const result = await run('read', () => client.analyze(bytes, { ...prep, onProgress }));
-  if (!result.ok) showError(result.cancelled ? 'Cancelled.' : `${name}: ${result.error}`);
-  return result.ok ? result : null;
+  if (result.ok) return result;
+  const message = result.cancelled ? 'Cancelled.' : `${name}: ${result.error}`;
+  onError(message);
+  return { ok: false, message };
 }
 
 /** Whether the worker's last analysis is `current`'s (analyzes it again when
  * a failed or cancelled job lost it). */
 async function ensureAnalyzed() {
   if (held.analysis === current) return true;
-  if (busy || !(await analyze(current.name, current.bytes, current.prep))) return false;
+  if (busy || !(await analyze(current.name, current.bytes, current.prep)).ok) return false;
   held.analysis = current;
   return true;
 }
@@ -112,9 +144,10 @@ async function openingNames(options) {
   return client.openingNames(options);
 }
 
-/** The analyze options chosen in the panel (units, caps, components). */
+/** The analyze options chosen in the panel (units, caps, components,
+ * smoothing, the cuts made). */
 function prepOptions() {
-  const prep = {};
+  const prep = prepare.prepOptions();
   if ($('units').value) prep.units = $('units').value;
   if ($('keep-caps').checked) prep.keepCaps = true;
   if ($('largest-only').checked) prep.largestComponentOnly = true;
@@ -126,19 +159,22 @@ function showPrep(prep) {
   $('units').value = prep.units ?? '';
   $('keep-caps').checked = Boolean(prep.keepCaps);
   $('largest-only').checked = Boolean(prep.largestComponentOnly);
+  prepare.showPrep(prep);
 }
 
 /**
  * Analyzes and shows a file with the analyze options `prep`; `edits` are
  * opening names the user typed, kept when the same surface is analyzed
- * again in another unit. On failure the previous file stays.
+ * again in another unit; `fresh` for a new file. On failure the previous
+ * file stays, and the error message (given to `onError`) is returned; null
+ * on success.
  */
-async function loadBytes(name, bytes, prep = {}, edits = []) {
+async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, onError = showError } = {}) {
   showPrep(prep);
-  const result = await analyze(name, bytes, prep);
-  if (!result) {
+  const result = await analyze(name, bytes, prep, onError);
+  if (!result.ok) {
     if (current) showPrep(current.prep);
-    return;
+    return result.message;
   }
   current = { name, bytes, prep, analysis: result.analysis, surface: result.surface };
   held.analysis = current;
@@ -151,27 +187,32 @@ async function loadBytes(name, bytes, prep = {}, edits = []) {
   showUnit(analysis.units.unit);
   const scale = analysis.bounding_box.diagonal;
   openings.show(analysis.openings, { unit: analysis.units.unit, labelArray: analysis.label_array, scale }, edits);
-  show('input');
+  prepare.show(analysis, { fresh });
+  $('flow-error').hidden = true;
+  // The same surface again (other options): the view keeps its camera.
+  show('input', { fit: fresh || shown === null });
   if (analysis.components > 1) {
     showError(
       `${name} has ${analysis.components} connected components. ` +
         'Meshing refuses it unless "Keep the largest component only" is checked.',
     );
   }
+  return null;
 }
 
-/** Analyzes the current file again with the analyze options of the panel. */
-async function reanalyze() {
-  if (!current) return;
+/** Analyzes the current file again with the analyze options of the panel;
+ * the error message (given to `onError`), or null. */
+async function reanalyze({ onError = showError } = {}) {
+  if (!current) return null;
   if (busy || acting) {
     showPrep(current.prep); // a job runs: the controls show what it uses
-    return;
+    return 'a job is running; try again when it ends.';
   }
   const prep = prepOptions();
   // Only the unit changed: the same openings, so the typed names stay.
   const surface = (p) => JSON.stringify({ ...p, units: undefined });
   const same = surface(prep) === surface(current.prep);
-  await loadBytes(current.name, current.bytes, prep, same ? openings.edits() : []);
+  return loadBytes(current.name, current.bytes, prep, same ? openings.edits() : [], { onError });
 }
 
 /** The unit of the current model on every length label of the panel. */
@@ -202,7 +243,7 @@ async function loadFile(file) {
     showError(`${file.name}: cannot read the file (${e.message}).`);
     return;
   }
-  await loadBytes(file.name, bytes);
+  await loadBytes(file.name, bytes, {}, [], { fresh: true });
 }
 
 async function loadSample() {
@@ -214,7 +255,7 @@ async function loadSample() {
     showError(made.cancelled ? 'Cancelled.' : `sample: ${made.error}`);
     return;
   }
-  await loadBytes('sample-bifurcation.stl', made.stl);
+  await loadBytes('sample-bifurcation.stl', made.stl, {}, [], { fresh: true });
 }
 
 function download(name, bytes, type) {
@@ -327,6 +368,8 @@ function meshOptions(names) {
   if (!$('fidelity-on').checked) options.fidelity = 0;
   const coreSize = $('core-size').value.trim();
   if (coreSize !== '') options.coreSize = Number(coreSize);
+  const flow = openings.flowExtensions();
+  if (Object.keys(flow).length) options.flowExtension = flow;
   const inlet = openings.chosenInlet();
   if (inlet !== undefined) options.inlet = inlet;
   if (Object.keys(names).length) options.names = names;
@@ -418,18 +461,21 @@ function drawLegend(volume) {
   $('legend').hidden = color !== 'quality';
 }
 
-/** Shows 'input', 'output' (the remeshed wall) or 'volume' (clipped). */
-function show(which) {
+/** Shows 'input', 'output' (the remeshed wall) or 'volume' (clipped); a
+ * surface is fitted in the view unless fit is false. */
+function show(which, { fit = true } = {}) {
   const volume = which === 'volume' ? remeshed?.result.volume : null;
   $('volume-view').hidden = !volume;
   $('group-legend').hidden = !volume;
   $('part-legend').hidden = true;
   $('legend').hidden = false;
   if (volume) {
+    prepare.setVisible(false);
     try {
       volumeView.set(volumeOptions());
       volumeView.show(volume);
       drawLegend(volume);
+      shown = 'volume';
       return;
     } catch (e) {
       showError(`Cannot show the volume: ${e.message}`);
@@ -440,7 +486,10 @@ function show(which) {
     }
   }
   volumeView.hide();
-  viewer.setSurface(which === 'output' && remeshed ? remeshed.result.surface : current.surface);
+  const output = which === 'output' && remeshed;
+  viewer.setSurface(output ? remeshed.result.surface : current.surface, { fit });
+  shown = output ? 'output' : 'input';
+  prepare.setVisible(!output);
 }
 
 /** The gamma_t histogram: of the core (the layers' elements are flat by
@@ -532,7 +581,7 @@ function showMeshResult(result) {
   } else {
     volumeOption.remove();
   }
-  openings.showCaps(out.caps);
+  openings.showCaps(out.caps, unitName());
   $('remesh-result').hidden = false;
   $('show').value = volume ? 'volume' : 'output';
   show($('show').value);
@@ -541,9 +590,16 @@ function showMeshResult(result) {
 /** The panel's mesh options once every field and opening name is valid
  * (the core checked the names), else null with the problem shown. */
 async function checkedMeshOptions() {
-  const problem = [coreSizeProblem(), layerProblems()].find(Boolean);
+  const problem = [coreSizeProblem(), layerProblems(), openings.extensionProblem()].find(Boolean);
   if (problem) {
     showError(problem);
+    return null;
+  }
+  const cuts = prepare.pendingProblem();
+  if (cuts) {
+    showError(cuts);
+    prepare.showError(cuts);
+    prepare.focusApply();
     return null;
   }
   if (!(await ensureAnalyzed())) return null;
@@ -561,9 +617,15 @@ async function checkedMeshOptions() {
 async function meshWith(options, write = {}) {
   held.mesh = null;
   document.body.dataset.meshJobs = String(++meshJobs);
+  $('flow-error').hidden = true;
   const result = await run('mesh', () => client.mesh(current.bytes, { ...options, ...write, onProgress }));
   if (!result.ok) {
     showError(result.cancelled ? 'Cancelled.' : `${current.name}: ${result.error}`);
+    // A refused flow extension is also said next to the extension fields.
+    if (result.option === 'flowExtension' || /flow extension|flowExtension/i.test(result.error)) {
+      $('flow-error').textContent = result.error;
+      $('flow-error').hidden = false;
+    }
     return null;
   }
   // Kept prisms are shown as the tetrahedra they split into.

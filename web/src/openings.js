@@ -3,14 +3,17 @@
 // choice, the group name its cap gets (prefilled with the core's default
 // name; a name the user types is checked by the core as they type), where
 // the opening comes from (an open end of the file, or a cap the core
-// removed), its size, and after meshing the name of the cap that covers it.
-// Hovering a row, or focusing it or its name, highlights the rim in the view.
+// removed, or a cut), its size, its flow extension (in local radii; the
+// "all openings" field sets every row), and after meshing the name of the
+// cap that covers it. Hovering a row, or focusing it or its name,
+// highlights the rim in the view.
 import { point, withUnit } from './units.js';
 
 const CHECK_DELAY_MS = 250;
 
-/** 'open end', 'cap', 'cap, ModelFaceID 3'. */
+/** 'open end', 'cut', 'cap', 'cap, ModelFaceID 3'. */
 function sourceText(opening, labelArray) {
+  if (opening.source === 'clip') return 'cut';
   if (opening.source !== 'cap') return 'open end';
   return opening.label >= 0 && labelArray ? `cap, ${labelArray} ${opening.label}` : 'cap';
 }
@@ -28,9 +31,15 @@ export class OpeningsTable {
    * @param {(options: {names: object, inlet?: number}) => Promise<object>} hooks.openingNames the
    *   core's names of the openings with these options: {ok, names} or its refusal {ok: false, error, option}
    * @param {(loop: number[] | null) => void} hooks.onHover the rim to highlight, or null
+   * @param {HTMLInputElement} hooks.allExtensions the flow extension of every opening
    */
-  constructor(list, { openingNames, onHover }) {
+  constructor(list, { openingNames, onHover, allExtensions }) {
     this.list = list;
+    this.allExtensions = allExtensions;
+    allExtensions.addEventListener('input', () => {
+      for (const row of this.rows) row.extension.value = allExtensions.value;
+      this.extensionProblem();
+    });
     this.openingNames = openingNames;
     this.onHover = onHover;
     this.rows = [];
@@ -69,6 +78,15 @@ export class OpeningsTable {
     input.setAttribute('aria-label', `Group name of opening ${k}`);
     input.setAttribute('aria-describedby', `opening-name-error-${k}`);
     const cap = element('span', { className: 'cap-name' }, 'opening-cap');
+    const extension = element('input', { type: 'number', min: '0', max: '100', step: 'any' }, 'opening-extension');
+    extension.value = this.allExtensions.value;
+    extension.setAttribute('aria-label', `Flow extension of opening ${k}, in local radii (0: none)`);
+    extension.addEventListener('input', () => extension.setAttribute('aria-invalid', 'false'));
+    const flowLabel = element('label', { title: 'Flow extension, in local radii (0: none)' });
+    flowLabel.append('flow extension ', extension, ' R');
+    const shift = element('span', { className: 'cap-shift' }, 'opening-shift');
+    const flow = element('div', { className: 'flow-ext' });
+    flow.append(flowLabel, shift);
     const source = element('span', { className: 'source', textContent: sourceText(o, labelArray) }, 'opening-source');
     const size = `perimeter ${withUnit(o.perimeter, unit)}, radius ${withUnit(o.radius, unit)}`;
     const at = `at ${point(o.centroid, scale)} ${unit}`;
@@ -77,8 +95,8 @@ export class OpeningsTable {
     const error = element('div', { className: 'name-error', id: `opening-name-error-${k}` }, 'opening-name-error');
     const head = element('div', { className: 'opening-head' });
     head.append(choice, input, cap);
-    li.append(head, info, error);
-    const row = { k, li, input, error, cap, opening: o, edited: false };
+    li.append(head, info, flow, error);
+    const row = { k, li, input, error, cap, extension, shift, opening: o, edited: false };
     this._listen(row, radio);
     return row;
   }
@@ -121,6 +139,30 @@ export class OpeningsTable {
   chosenInlet() {
     const radio = this.list.querySelector('input[name=inlet]:checked');
     return radio ? Number(radio.value) : undefined;
+  }
+
+  /** The flow extensions typed: {K: L} of the openings with L > 0. */
+  flowExtensions() {
+    const out = {};
+    for (const row of this.rows) {
+      const value = Number(row.extension.value);
+      if (value > 0) out[row.k] = value;
+    }
+    return out;
+  }
+
+  /** Why a flow extension typed is unusable (rows marked), or null. */
+  extensionProblem() {
+    const ok = (input) => {
+      const v = input.value.trim();
+      return !input.validity.badInput && (v === '' || (Number(v) >= 0 && Number(v) <= 100));
+    };
+    let problem = null;
+    for (const input of [this.allExtensions, ...this.rows.map((r) => r.extension)]) {
+      input.setAttribute('aria-invalid', String(!ok(input)));
+      problem ??= ok(input) ? null : input.getAttribute('aria-label') ?? 'Flow extension, all openings';
+    }
+    return problem && `${problem}: a length from 0 to 100 local radii.`;
   }
 
   /** The names the user typed, by row index ('' where none). */
@@ -179,22 +221,28 @@ export class OpeningsTable {
   }
 
   /**
-   * Names each opening after the cap of the mesh that covers it (the nearest
-   * cap centroid): data-cap and a label "→ inlet". No caps: names cleared.
+   * Names each opening after the cap of the mesh that covers it (the cap of
+   * its name, else the nearest cap centroid): data-cap and a label "→
+   * inlet"; data-cap-shift is how far the cap lies from the opening (a flow
+   * extension moved it), said when more than a tenth of the opening's
+   * radius. No caps: names cleared.
    * @param {{name: string, centroid: number[]}[]} caps report.output.caps
+   * @param {string} unit
    */
-  showCaps(caps = []) {
-    for (const { li, cap: label, opening } of this.rows) {
+  showCaps(caps = [], unit = '') {
+    for (const { li, cap: label, opening, input, shift: said } of this.rows) {
       const c = opening.centroid;
-      let best = null;
-      let bestD = Infinity;
-      for (const cap of caps) {
-        const d = Math.hypot(...cap.centroid.map((x, k) => x - c[k]));
-        if (d < bestD) [best, bestD] = [cap, d];
+      const distance = (cap) => Math.hypot(...cap.centroid.map((x, k) => x - c[k]));
+      let best = caps.find((cap) => cap.name === input.value.trim()) ?? null;
+      if (!best) {
+        for (const cap of caps) if (!best || distance(cap) < distance(best)) best = cap;
       }
       const name = best ? best.name : '';
+      const shift = best ? distance(best) : 0;
       li.dataset.cap = name;
+      li.dataset.capShift = best ? String(shift) : '';
       label.textContent = name ? `→ ${name}` : '';
+      said.textContent = shift > 0.1 * opening.radius ? `: its cap ${withUnit(shift, unit)} out` : '';
     }
   }
 }

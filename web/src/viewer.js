@@ -1,6 +1,8 @@
 // three.js view: one content at a time (a triangle surface colored per
 // triangle by quality, or the clipped volume of volume-view.js), orbit
-// controls, fit-to-view, a wireframe overlay and highlighted loops.
+// controls, fit-to-view, a wireframe overlay, highlighted loops, overlays
+// that outlive the content (the cut discs) and picking a point on the
+// surface.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 
@@ -29,6 +31,8 @@ export class Viewer {
     this.sphere = null; // bounding sphere of the content
     this.wire = null; // the surface's wireframe overlay
     this.loop = null;
+    this.solid = null; // the surface's triangles (picking)
+    this.raycaster = new THREE.Raycaster();
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
   }
@@ -47,8 +51,9 @@ export class Viewer {
     this.renderer.render(this.scene, this.camera);
   }
 
-  /** Shows a surface: positions (3V floats), triangles (3T indices), quality (T). */
-  setSurface({ positions, triangles, quality }) {
+  /** Shows a surface: positions (3V floats), triangles (3T indices), quality
+   * (T); the view is fitted to it unless fit is false. */
+  setSurface({ positions, triangles, quality }, { fit = true } = {}) {
     const nt = triangles.length / 3;
     const pos = new Float32Array(9 * nt);
     const col = new Float32Array(9 * nt);
@@ -81,8 +86,9 @@ export class Viewer {
     wire.visible = this.wireframe ?? false;
     const group = new THREE.Group();
     group.add(solid, wire);
-    this.setContent(group, geometry.boundingSphere);
+    this.setContent(group, geometry.boundingSphere, { fit });
     this.wire = wire;
+    this.solid = solid;
   }
 
   /**
@@ -106,7 +112,7 @@ export class Viewer {
         obj.material?.dispose();
       });
     }
-    this.content = this.sphere = this.wire = null;
+    this.content = this.sphere = this.wire = this.solid = null;
     this.highlightLoop(null);
   }
 
@@ -141,6 +147,44 @@ export class Viewer {
       this.scene.add(this.loop);
     }
     this.render();
+  }
+
+  /** Adds an object drawn over any content (kept when the content changes). */
+  addOverlay(object) {
+    this.scene.add(object);
+    this.render();
+  }
+
+  /** Removes an overlay added with addOverlay (the caller disposes it). */
+  removeOverlay(object) {
+    this.scene.remove(object);
+    this.render();
+  }
+
+  /**
+   * The point of the shown surface (setSurface) under the page coordinates
+   * (clientX, clientY), as [x, y, z], or null (no surface there, or another
+   * content shown).
+   */
+  pick(clientX, clientY) {
+    if (!this.solid) return null;
+    const rect = this.renderer.domElement.getBoundingClientRect();
+    const ndc = new THREE.Vector2(
+      ((clientX - rect.left) / rect.width) * 2 - 1,
+      -((clientY - rect.top) / rect.height) * 2 + 1,
+    );
+    this.raycaster.setFromCamera(ndc, this.camera);
+    const [hit] = this.raycaster.intersectObject(this.solid, false);
+    return hit ? hit.point.toArray() : null;
+  }
+
+  /** The page coordinates of the model point p ([x, y, z]), or null when it
+   * is behind the camera. */
+  screenPoint(p) {
+    const v = new THREE.Vector3(...p).project(this.camera);
+    if (v.z > 1) return null;
+    const rect = this.renderer.domElement.getBoundingClientRect();
+    return [rect.left + ((v.x + 1) / 2) * rect.width, rect.top + ((1 - v.y) / 2) * rect.height];
   }
 
   fitView() {

@@ -1,0 +1,462 @@
+// The Prepare step of the panel, for surfaces that need it before meshing:
+// smoothing (auto, off or N passes, with the analysis' note on a voxel
+// staircase), and cuts. A closed surface gets the core's proposed cuts at
+// its vessel ends (analysis.clip_proposals); the user removes cuts, adds
+// one by clicking on a vessel (the core's cutAt: the section perpendicular
+// to the vessel there), moves the selected one along the vessel and tilts
+// it, then "Cut these open" analyzes the surface again with the cuts as
+// clipPlanes, so the openings they make are listed (and named) before
+// meshing; meshing uses the same planes (the analyze options). Errors are
+// shown here, next to the controls.
+import { CutDiscs } from './cut-discs.js';
+import { alongVessel, cutPlane, keepSide } from './cut-geometry.js';
+import { length, point, withUnit } from './units.js';
+
+const $ = (id) => document.getElementById(id);
+// A move along the vessel asks the core again at most this far (local
+// radii), so the cut follows a bending vessel.
+const MOVE_STEP = 0.5;
+// A press on the view that moves less than this is a click (else an orbit).
+const CLICK_SLOP_PX = 5;
+
+const samePlanes = (a, b) => JSON.stringify(a) === JSON.stringify(b);
+
+function element(tag, props = {}, testId = null) {
+  const node = Object.assign(document.createElement(tag), props);
+  if (testId) node.setAttribute('data-testid', testId);
+  return node;
+}
+
+/** The analysis' smoothing note, or '' when there is nothing to say. */
+export function smoothingNote(s, unit) {
+  if (!s) return '';
+  const moved = s.applied
+    ? `, every vertex within ${length(s.max_displacement_voxels)} voxel of where it was` +
+      (Math.abs(s.volume_change) >= 5e-5 ? `, volume ${s.volume_change > 0 ? '+' : ''}${(100 * s.volume_change).toFixed(2)}%` : '')
+    : '';
+  if (s.staircase) {
+    const found = `Voxel staircase detected (voxel ${withUnit(s.voxel, unit)})`;
+    return s.applied ? `${found}: smoothed in ${s.passes} passes${moved}.` : `${found}: not smoothed (smoothing off).`;
+  }
+  if (s.applied) return `Smoothed in ${s.passes} passes, by at most ${withUnit(s.max_displacement, unit)}.`;
+  return '';
+}
+
+export class Prepare {
+  /**
+   * @param {object} hooks
+   * @param {import('./viewer.js').Viewer} hooks.viewer
+   * @param {(point: number[]) => Promise<object>} hooks.cutAt the core's cut
+   *   across the vessel at the analyzed surface's point nearest `point`:
+   *   {ok, point, normal, radius} or {ok: false, error}
+   * @param {() => Promise<string|null>} hooks.reanalyze analyzes the surface
+   *   again with prepOptions(); resolves the error, or null
+   * @param {() => void} hooks.showInput shows the analyzed surface in the view
+   */
+  constructor({ viewer, cutAt, reanalyze, showInput }) {
+    Object.assign(this, { viewer, cutAt, reanalyze, showInput });
+    this.discs = new CutDiscs(viewer);
+    this.cuts = []; // {point, normal, radius, tilt: [a, b] degrees, offset: radii moved, source}
+    this.selected = -1;
+    this.applied = []; // the clipPlanes of the shown analysis
+    this.proposals = [];
+    this.fromProposals = false; // the cuts are the proposals, untouched
+    this.adding = false;
+    this.busy = false;
+    this.visible = true; // the analyzed surface is the one shown
+    this.moving = null; // the running move along the vessel
+    this.unit = 'mm';
+    this.scale = 0;
+    this._listen();
+  }
+
+  _listen() {
+    $('smooth').addEventListener('change', () => {
+      $('smooth-passes-field').hidden = $('smooth').value !== 'passes';
+      if ($('smooth').value !== 'passes' || this._passes() !== null) this._reanalyze();
+    });
+    $('smooth-passes').addEventListener('change', () => {
+      if (this._passes() !== null) this._reanalyze();
+    });
+    $('add-cut').addEventListener('click', () => this.setAdding(!this.adding));
+    $('cut-center').addEventListener('click', () => {
+      const rect = this.viewer.renderer.domElement.getBoundingClientRect();
+      this._addAt(rect.left + rect.width / 2, rect.top + rect.height / 2);
+    });
+    $('propose-cuts').addEventListener('click', () => this._useProposals());
+    $('apply-cuts').addEventListener('click', () => this.apply());
+    $('cut-move').addEventListener('input', () => this._moveTo(Number($('cut-move').value)));
+    for (const [id, k] of [
+      ['cut-tilt-a', 0],
+      ['cut-tilt-b', 1],
+    ]) {
+      $(id).addEventListener('input', () => {
+        const cut = this.cuts[this.selected];
+        if (!cut) return;
+        cut.tilt = [...cut.tilt];
+        cut.tilt[k] = Number($(id).value);
+        this._edited();
+      });
+    }
+    $('cut-deselect').addEventListener('click', () => this.select(-1));
+
+    // A click (not a drag) on the view adds a cut there while adding.
+    const view = $('viewer');
+    let down = null;
+    view.addEventListener('pointerdown', (e) => {
+      down = { x: e.clientX, y: e.clientY };
+    });
+    // While adding, where the cut would go is said as the pointer moves.
+    let frame = 0;
+    view.addEventListener('pointermove', (e) => {
+      if (!this.adding || frame) return;
+      const { clientX: x, clientY: y } = e;
+      frame = requestAnimationFrame(() => {
+        frame = 0;
+        if (this.adding) this._showPick(this.viewer.pick(x, y));
+      });
+    });
+    view.addEventListener('pointerup', (e) => {
+      if (!down || e.target.tagName !== 'CANVAS') return;
+      if (Math.hypot(e.clientX - down.x, e.clientY - down.y) > CLICK_SLOP_PX) return;
+      if (this.adding) this._addAt(e.clientX, e.clientY);
+      else this._selectNear(e.clientX, e.clientY);
+    });
+    document.addEventListener('keydown', (e) => {
+      if (e.key === 'Escape' && this.adding) this.setAdding(false);
+    });
+  }
+
+  /** The passes typed, or null (marked invalid) when not 1-1000. */
+  _passes() {
+    const input = $('smooth-passes');
+    const n = Number(input.value);
+    const ok = input.value.trim() !== '' && Number.isInteger(n) && n >= 1 && n <= 1000;
+    input.setAttribute('aria-invalid', String(!ok));
+    if (!ok) this.showError('Smoothing: the number of passes must be a whole number from 1 to 1000.');
+    return ok ? n : null;
+  }
+
+  /** The analyze options of this step: smooth, clipPlanes (the applied cuts). */
+  prepOptions() {
+    const prep = {};
+    const mode = $('smooth').value;
+    if (mode === 'off') prep.smooth = 'off';
+    if (mode === 'passes' && this._passes() !== null) prep.smooth = this._passes();
+    if (this.applied.length) prep.clipPlanes = this.applied;
+    return prep;
+  }
+
+  /** Sets the controls to the analyze options `prep` (those of the shown
+   * analysis, or those being tried). */
+  showPrep(prep) {
+    const smooth = prep.smooth ?? 'auto';
+    $('smooth').value = typeof smooth === 'number' ? 'passes' : smooth;
+    if (typeof smooth === 'number') $('smooth-passes').value = String(smooth);
+    $('smooth-passes-field').hidden = $('smooth').value !== 'passes';
+    this.applied = prep.clipPlanes ?? [];
+    this._render();
+  }
+
+  /**
+   * Shows the step for a new analysis: `fresh` for a new file (the cuts
+   * start from the proposals), else the cuts stay (the proposals are
+   * taken again when the cuts were the untouched proposals).
+   */
+  show(analysis, { fresh = false } = {}) {
+    this.analysis = analysis;
+    this.unit = analysis.units.unit;
+    this.scale = analysis.bounding_box.diagonal;
+    this.proposals = (analysis.clip_proposals ?? []).map((p) => ({
+      point: p.point,
+      normal: p.normal,
+      radius: p.radius,
+      tilt: [0, 0],
+      offset: 0,
+      source: 'proposal',
+    }));
+    if (fresh) {
+      this.cuts = [];
+      this.selected = -1;
+      this.fromProposals = false;
+      this.clearError();
+    }
+    if ((fresh || this.fromProposals) && !this.applied.length) {
+      this.cuts = this.proposals.map((p) => ({ ...p }));
+      this.fromProposals = this.cuts.length > 0;
+      this.selected = -1;
+    }
+    $('smoothing-note').textContent = smoothingNote(analysis.smoothing, this.unit);
+    this.setAdding(false);
+    this._render();
+  }
+
+  /** Whether the analyzed surface is the one in the view (the discs show
+   * only on it). */
+  setVisible(on) {
+    this.visible = on;
+    if (!on) this.setAdding(false);
+    this._draw();
+  }
+
+  /** Off while a worker job runs. */
+  setBusy(on) {
+    this.busy = on;
+    this._render();
+  }
+
+  showError(message) {
+    $('prepare-error').textContent = message;
+    $('prepare-error').hidden = false;
+  }
+
+  clearError() {
+    $('prepare-error').hidden = true;
+    $('prepare-error').textContent = '';
+  }
+
+  /** Turns the "click on a vessel to add a cut" mode on or off. */
+  setAdding(on) {
+    this.adding = on && !this.busy;
+    if (this.adding) this.showInput();
+    $('add-cut').setAttribute('aria-pressed', String(this.adding));
+    $('add-cut').textContent = this.adding ? 'Click on a vessel… (Esc: stop)' : 'Add a cut';
+    $('cut-center').hidden = !this.adding;
+    $('viewer').classList.toggle('picking', this.adding);
+    $('pick-info').hidden = !this.adding;
+    $('pick-info').textContent = this.adding ? 'Click on a vessel where it should end' : '';
+  }
+
+  /** Says where a click would cut (the surface point `at`), or that the
+   * pointer is off the surface. */
+  _showPick(at) {
+    $('pick-info').hidden = false;
+    $('pick-info').textContent = at
+      ? `Click to cut at ${point(at, this.scale)} ${this.unit}`
+      : 'Not on the surface';
+  }
+
+  /** Selects the cut whose centre is drawn within CLICK_SLOP_PX * 4 of
+   * (x, y), the nearest, if any. */
+  _selectNear(x, y) {
+    if (!this.visible || this.busy) return;
+    let best = -1;
+    let bestD = 4 * CLICK_SLOP_PX;
+    this.cuts.forEach((cut, i) => {
+      const at = this.viewer.screenPoint(cut.point);
+      const d = at ? Math.hypot(at[0] - x, at[1] - y) : Infinity;
+      if (d < bestD) [best, bestD] = [i, d];
+    });
+    if (best >= 0) this.select(best);
+  }
+
+  /** Why meshing now would not use the listed cuts (they changed since the
+   * surface was cut, by the user), or null. */
+  pendingProblem() {
+    if (this.fromProposals || samePlanes(this.cuts.map(cutPlane), this.applied)) return null;
+    return 'Cuts: the listed cuts are not made yet. Press “Cut these open” (or undo the changes) before meshing.';
+  }
+
+  /** Moves the focus to the button that makes the cuts. */
+  focusApply() {
+    $('apply-cuts').focus();
+  }
+
+  /** Selects cut i (-1: none) for moving and tilting. */
+  select(i) {
+    this.selected = i;
+    this._render();
+    if (i >= 0) {
+      $('cut-move').value = String(this.cuts[i].offset);
+      [$('cut-tilt-a').value, $('cut-tilt-b').value] = this.cuts[i].tilt.map(String);
+      this._showEditValues();
+    }
+  }
+
+  /** Analyzes the surface again with the listed cuts as clipPlanes. */
+  async apply() {
+    if (this.busy) return;
+    const before = this.applied;
+    this.applied = this.cuts.map(cutPlane);
+    this.clearError();
+    const error = await this.reanalyze();
+    if (error) {
+      this.applied = before;
+      this.showError(`The cuts could not be made: ${error}`);
+    }
+    this._render();
+  }
+
+  async _reanalyze() {
+    this.clearError();
+    const error = await this.reanalyze();
+    if (error) this.showError(error);
+  }
+
+  _useProposals() {
+    this.cuts = this.proposals.map((p) => ({ ...p }));
+    this.fromProposals = true;
+    this.selected = -1;
+    this._render();
+  }
+
+  _remove(i) {
+    this.cuts.splice(i, 1);
+    if (this.selected === i) this.selected = -1;
+    else if (this.selected > i) this.selected--;
+    this.fromProposals = false;
+    this._render();
+    // The focus stays in the table: on the next row's remove button, or the add button.
+    const buttons = $('cuts').querySelectorAll('button.cut-remove');
+    (buttons[Math.min(i, buttons.length - 1)] ?? $('add-cut')).focus();
+  }
+
+  /** Adds the cut across the vessel at the surface point under (x, y). */
+  async _addAt(x, y) {
+    const at = this.viewer.pick(x, y);
+    if (!at) {
+      this.showError('No surface there: click on a vessel of the surface.');
+      return;
+    }
+    this.clearError();
+    const found = await this.cutAt(at);
+    if (!found.ok) {
+      this.showError(`No cut at ${point(at, this.scale)} ${this.unit}: ${found.error}`);
+      return;
+    }
+    const { point: p, normal, radius } = found;
+    this.cuts.push({ point: p, normal, radius, tilt: [0, 0], offset: 0, source: 'added' });
+    this.fromProposals = false;
+    this.setAdding(false);
+    this.select(this.cuts.length - 1);
+  }
+
+  /** Moves the selected cut to `target` radii from where it was placed,
+   * asking the core every MOVE_STEP radii (the latest target wins). */
+  _moveTo(target) {
+    this.moveTarget = target;
+    this.moving ??= this._move().finally(() => {
+      this.moving = null;
+    });
+  }
+
+  async _move() {
+    const i = this.selected;
+    this.clearError();
+    while (this.cuts[i] && i === this.selected && this.cuts[i].offset !== this.moveTarget) {
+      const cut = this.cuts[i];
+      const left = this.moveTarget - cut.offset;
+      const step = Math.sign(left) * Math.min(MOVE_STEP, Math.abs(left));
+      const found = await this.cutAt(alongVessel(cut, step));
+      if (!found.ok) {
+        this.showError(`Cut ${i + 1} cannot move further: ${found.error}`);
+        if (i === this.selected) $('cut-move').value = String(cut.offset);
+        this.moveTarget = cut.offset;
+        break;
+      }
+      const moved = keepSide(found, cut);
+      this.cuts[i] = { ...cut, point: moved.point, normal: moved.normal, radius: moved.radius, offset: cut.offset + step };
+      this.fromProposals = false;
+      this._edited();
+    }
+  }
+
+  /** A cut changed: the table, the discs and the edit fields follow. */
+  _edited() {
+    this.fromProposals = false;
+    this._render();
+    this._showEditValues();
+  }
+
+  _showEditValues() {
+    const cut = this.cuts[this.selected];
+    if (!cut) return;
+    const moved = `${cut.offset > 0 ? '+' : ''}${length(cut.offset)}`;
+    $('cut-move-value').textContent = `${moved} R`;
+    $('cut-move').setAttribute('aria-valuetext', `${moved} local radii`);
+    for (const [k, id] of ['cut-tilt-a', 'cut-tilt-b'].entries()) {
+      $(`${id}-value`).textContent = `${cut.tilt[k]}°`;
+      $(id).setAttribute('aria-valuetext', `${cut.tilt[k]} degrees`);
+    }
+  }
+
+  _draw() {
+    this.discs.show(this.cuts, this.selected, this.visible);
+  }
+
+  _render() {
+    const planes = this.cuts.map(cutPlane);
+    const pending = !samePlanes(planes, this.applied);
+    const appliedKeys = new Set(this.applied.map((p) => JSON.stringify(p)));
+    const rows = this.cuts.map((cut, i) => this._row(cut, i, appliedKeys.has(JSON.stringify(planes[i]))));
+    $('cuts').querySelector('tbody').replaceChildren(...rows);
+    $('cuts').hidden = rows.length === 0;
+    $('cuts-hint').textContent = this._hint(pending);
+    const apply = $('apply-cuts');
+    apply.textContent = this.applied.length && !this.cuts.length ? 'Remove the cuts' : 'Cut these open';
+    apply.hidden = !pending;
+    apply.disabled = this.busy;
+    $('add-cut').disabled = this.busy;
+    $('cut-center').disabled = this.busy;
+    const proposals = this.proposals.length > 0 && !samePlanes(planes, this.proposals.map(cutPlane));
+    $('propose-cuts').hidden = !proposals;
+    $('propose-cuts').disabled = this.busy;
+    const cut = this.cuts[this.selected];
+    $('cut-edit').hidden = !cut;
+    $('cut-edit').disabled = this.busy;
+    if (cut) $('cut-edit-title').textContent = `Cut ${this.selected + 1}`;
+    this._draw();
+  }
+
+  _hint(pending) {
+    const a = this.analysis;
+    if (!a) return '';
+    const n = this.cuts.length;
+    const cuts = (k) => `${k} cut${k === 1 ? '' : 's'}`;
+    if (pending && n) {
+      const closed = a.closed && !a.openings.length;
+      const why = closed ? 'The surface is closed: it must be cut open where the vessels end. ' : '';
+      const found = this.fromProposals ? `${cuts(n)} proposed at the vessel ends. ` : '';
+      return `${why}${found}Press “Cut these open” to make the openings (${cuts(n)}), or edit the cuts first.`;
+    }
+    if (pending) return 'No cuts: press “Remove the cuts” to analyze the surface uncut.';
+    if (n) return `${cuts(n)} made: each is an opening below. Add, move or remove cuts, then cut again.`;
+    if (a.closed && !a.openings.length && this.proposals.length) {
+      return `The surface is closed: use the ${cuts(this.proposals.length)} proposed at its vessel ends, or add cuts.`;
+    }
+    if (a.closed && !a.openings.length) {
+      return 'The surface is closed and no vessel ends were found: add a cut on each vessel where it should end.';
+    }
+    return 'To cut a vessel shorter, or open a closed end, add a cut on it.';
+  }
+
+  _row(cut, i, applied) {
+    const k = i + 1;
+    const tr = element('tr', {}, 'cut-row');
+    tr.dataset.state = applied ? 'made' : 'new';
+    tr.dataset.source = cut.source;
+    tr.classList.toggle('selected', i === this.selected);
+    const pick = element('button', { type: 'button', className: 'cut-select', textContent: String(k) }, 'cut-select');
+    pick.setAttribute('aria-pressed', String(i === this.selected));
+    pick.setAttribute('aria-label', `Select cut ${k} to move or tilt it`);
+    pick.disabled = this.busy;
+    pick.addEventListener('click', () => this.select(i === this.selected ? -1 : i));
+    const remove = element('button', { type: 'button', className: 'cut-remove', textContent: 'Remove' }, 'cut-remove');
+    remove.setAttribute('aria-label', `Remove cut ${k}`);
+    remove.disabled = this.busy;
+    remove.addEventListener('click', () => this._remove(i));
+    const cells = [
+      pick,
+      element('span', { textContent: point(cut.point, this.scale) }),
+      element('span', { textContent: length(cut.radius) }),
+      element('span', { className: 'cut-state', textContent: applied ? 'made' : 'new' }),
+      remove,
+    ];
+    for (const content of cells) {
+      const td = document.createElement('td');
+      td.append(content);
+      tr.append(td);
+    }
+    return tr;
+  }
+}
