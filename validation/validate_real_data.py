@@ -358,6 +358,35 @@ def check_clip(fname, path, tmp, args, have_gmsh):
               f"clip: opening perimeter {got:.2f} ~ {want} (VMTK's clip of the same end)")
     check_volume(fname, path, tmp, args, d, have_gmsh, "volume (clip auto)", exp["flags"],
                  ["viscous"])
+    check_clip_at(fname, path, args, [f for f in exp["flags"] if f == "--keep-caps"])
+
+
+def check_clip_at(fname, path, args, flags):
+    """Cuts across a vessel at a point (--clip-at), 2 and 4 radii in from
+    each vessel end info proposes, beside the vessel: one opening from a
+    clip, of about the end's radius, perpendicular to the vessel there."""
+    import math
+    r = subprocess.run([args.vesselmesh, "info", path, "--json"] + flags, capture_output=True, text=True)
+    ends = json.loads(r.stdout)["clip_proposals"] if r.returncode == 0 else []
+    check(fname, r.returncode == 0 and len(ends) > 0, f"clip at: {len(ends)} vessel ends proposed")
+    cut = 0
+    for depth in (2, 4):
+        for e in ends:
+            n, radius = e["normal"], e["radius"]
+            side = [n[1], -n[0], 0]
+            length = math.hypot(*side) or 1
+            at = [e["point"][k] - depth * radius * n[k] + 1.2 * radius * side[k] / length for k in range(3)]
+            c = subprocess.run([args.vesselmesh, "info", path, "--json", "--clip-at", ",".join(map(str, at))] + flags,
+                               capture_output=True, text=True)
+            if c.returncode != 0:
+                print(f"  clip at {depth} radii in: refused: {c.stderr.strip()[:200]}")
+                continue
+            o = json.loads(c.stdout)["openings"]
+            along = abs(sum(a * b for a, b in zip(o[0]["normal"], n))) if len(o) == 1 else 0
+            cut += len(o) == 1 and o[0]["source"] == "clip" and abs(o[0]["radius"] / radius - 1) < 0.2 and along > 0.8
+    check(fname, cut >= 0.8 * 2 * len(ends),
+          f"clip at: {cut} of {2 * len(ends)} clicks 2 and 4 radii in cut across the vessel (radius within 20%, "
+          f"within 37 degrees of the end's axis)")
 
 
 def check_vtk_outputs(fname, path, tmp, args):

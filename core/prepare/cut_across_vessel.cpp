@@ -98,6 +98,20 @@ bool section_through(const SurfaceMesh& m, const TriangleAdjacency& adj, const V
   return best < 1e300;
 }
 
+/// The closed loop of the section through q normal to a that winds around
+/// q, the smallest if several; false when there is none.
+bool section_around(const SurfaceMesh& m, const TriangleAdjacency& adj, const Vec3& q,
+                    const Vec3& a, std::vector<double>& field, CurveShape& shape) {
+  for (size_t v = 0; v < m.num_vertices(); ++v) field[v] = dot(at(m.points, int32_t(v)) - q, a);
+  double best = 1e300;
+  for (const LevelLoop& loop : level_loops(m, adj, field, 0.0)) {
+    if (!loop.closed || loop.size() < 3 || winding_number(loop.points, q, a) == 0) continue;
+    const CurveShape s = curve_shape(loop.points);
+    if (s.radius < best) best = s.radius, shape = s;
+  }
+  return best < 1e300;
+}
+
 double roundness_of(const CurveShape& s) {
   return s.max_distance > 0 ? s.min_distance / s.max_distance : 0;
 }
@@ -170,6 +184,45 @@ Result<VesselCut> cut_across_vessel(const SurfaceMesh& mesh, const TriangleAdjac
     return refuse("the section there is not round (from its centre, its nearest point is " +
                   std::to_string(shape.min_distance) + " and its farthest " +
                   std::to_string(shape.max_distance) + " away)");
+
+  // Phase 4b: a tube on both sides. The sections half a radius away wind
+  // around the axis with about the same radius (not a vessel's rounded end,
+  // not across a branching); their centroids lie on the vessel's axis, so
+  // the line through them corrects an axis tilted by the normals of a
+  // nearby end or bend (a tilted plane cuts a tube in parallel ellipses
+  // whose centres still follow the tube).
+  for (int round = 0;; ++round) {
+    Vec3 centres[2];
+    for (int k = 0; k < 2; ++k) {
+      const Vec3 q = shape.centroid + ((k ? 0.5 : -0.5) * shape.radius) * axis;
+      CurveShape near_shape;
+      const bool found = section_around(mesh, adj, q, axis, field, near_shape);
+      if (!found || std::abs(near_shape.radius / shape.radius - 1) > 0.35 ||
+          norm(near_shape.centroid - q) > 0.5 * shape.radius)
+        return refuse("the vessel is no tube there (half a radius along it, at " + point_text(q) +
+                      ", its section is " +
+                      (found ? "of radius " + std::to_string(near_shape.radius) + " against " +
+                                   std::to_string(shape.radius) + ", or off the axis"
+                             : std::string("missing: the vessel ends")) +
+                      ")");
+      centres[k] = near_shape.centroid;
+    }
+    Vec3 along = normalized(centres[1] - centres[0]);
+    if (dot(along, axis) < 0) along = -1.0 * along;
+    const double cos_tilt = dot(along, axis);
+    if (cos_tilt > std::cos(3 * std::numbers::pi / 180)) break;
+    if (round == 3 && cos_tilt > std::cos(10 * std::numbers::pi / 180)) break;
+    if (round == 3)
+      return refuse(
+          "the vessel's axis there is not found (the sections half a radius away "
+          "lean " +
+          std::to_string(
+              int(std::lround(std::acos(std::min(1.0, cos_tilt)) * 180 / std::numbers::pi))) +
+          " degrees from the cut: a bend, or a vessel's end)");
+    axis = along;
+    if (!section_through(mesh, adj, p, axis, field, shape))
+      return refuse("the section there is not a closed loop (it reaches an opening)");
+  }
 
   // Phase 5: remove the side with less surface.
   ClipOptions options;

@@ -82,6 +82,21 @@ TEST(CutAcrossVessel, ABranchOfTheBifurcationIsCutAcross) {
   }
 }
 
+TEST(CutAcrossVessel, NotOnAVesselsRoundedEnd) {
+  const Phantom p = closed_phantom(PhantomKind::kBifurcation, 0);
+  for (size_t e = 0; e < 3; ++e) {
+    SCOPED_TRACE(e);
+    const Vec3 out = p.truth.end_directions[e];
+    const double R = p.truth.end_radii[e];
+    for (double depth : {0.2, 0.6}) {
+      const Vec3 click = p.truth.end_tips[e] - (depth * R) * out + R * perpendicular(out);
+      auto cut = cut_across_vessel(p.mesh, p.adj, click);
+      ASSERT_FALSE(cut.ok()) << depth << ": radius " << cut.value().radius;
+      EXPECT_NE(cut.message().find("cannot cut across the vessel at ("), std::string::npos);
+    }
+  }
+}
+
 TEST(CutAcrossVessel, AnAneurysmDomeIsNoVessel) {
   const Phantom p = closed_phantom(PhantomKind::kAneurysm, 0);
   // The dome: the phantom's aneurysm is a bulb of radius 0.95 about
