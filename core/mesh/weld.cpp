@@ -224,6 +224,21 @@ SurfaceMesh merge_and_index(const std::vector<double>& pts,
                             const WeldOptions& options, WeldStats* stats) {
   const size_t corners = corner_to_unique.size();
   double tol = options.relative_tolerance * bounding_box(pts).diagonal();
+  // No far point may inflate the tolerance past the mesh's own scale: at
+  // most a small fraction of the median edge.
+  std::vector<double> edges;
+  edges.reserve(corners);
+  for (size_t c = 0; c + 2 < corners; c += 3)
+    for (size_t k = 0; k < 3; ++k) {
+      const double* a = &pts[3 * size_t(corner_to_unique[c + k])];
+      const double* b = &pts[3 * size_t(corner_to_unique[c + (k + 1) % 3])];
+      const double d = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+      if (d > 0) edges.push_back(d);
+    }
+  if (!edges.empty()) {
+    std::nth_element(edges.begin(), edges.begin() + long(edges.size() / 2), edges.end());
+    tol = std::min(tol, options.edge_fraction * edges[edges.size() / 2]);
+  }
   size_t merged = 0;
   std::vector<int32_t> rep = merge_close_points(pts, tol, &merged);
 

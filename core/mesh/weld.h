@@ -11,6 +11,10 @@ struct WeldOptions {
   /// Corners closer than tolerance * (bounding-box diagonal) become one
   /// vertex. 0 welds only bit-identical coordinates.
   double relative_tolerance = 1e-7;
+  /// ... and never farther apart than this fraction of the median edge, so
+  /// that a far stray point, which inflates the bounding box, cannot
+  /// collapse the surface.
+  double edge_fraction = 1e-4;
 };
 
 struct WeldStats {

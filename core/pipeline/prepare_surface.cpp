@@ -110,7 +110,8 @@ Status repair(PreparedSurface& s, Work& w) {
     s.warnings.push_back("the normals pointed inward: all triangles were reversed to face out");
   } else if (s.repair.flipped > 0) {
     s.warnings.push_back(num(s.repair.flipped) +
-                         " triangles were re-oriented (consistent, outward)");
+                         (s.repair.flipped == 1 ? " triangle was" : " triangles were") +
+                         " re-oriented (consistent, outward)");
   }
   return Status::Ok();
 }
@@ -126,6 +127,47 @@ void keep_largest_component(PreparedSurface& s, Work& w) {
   s.warnings.push_back("kept the largest of " + std::to_string(parts.components) + " components (" +
                        num(parts.component_triangles[0]) + " of " + num(parts.triangles) +
                        " triangles)");
+}
+
+/// Phase 3, always: specks, separate pieces with less than 1% of the
+/// largest piece's triangles or area (stray triangles, segmentation
+/// islands), are removed, saying where.
+void drop_specks(PreparedSurface& s, Work& w) {
+  const TopologyReport parts = analyze_topology(s.mesh, w.adjacency);
+  if (parts.components <= 1) return;
+  std::vector<double> area(size_t(parts.components), 0);
+  std::vector<Vec3> where(size_t(parts.components), Vec3{0, 0, 0});
+  for (size_t t = 0; t < s.mesh.num_triangles(); ++t) {
+    const int32_t* c = &s.mesh.triangles[3 * t];
+    const Vec3 a = at(s.mesh.points, c[0]), b = at(s.mesh.points, c[1]),
+               d = at(s.mesh.points, c[2]);
+    const size_t k = size_t(parts.triangle_component[t]);
+    area[k] += 0.5 * norm(cross(b - a, d - a));
+    where[k] = a;
+  }
+  std::vector<uint8_t> speck(size_t(parts.components), 0);
+  size_t count = 0, triangles = 0;
+  std::string example;
+  for (size_t k = 1; k < speck.size(); ++k)
+    if (parts.component_triangles[k] < 0.01 * double(parts.component_triangles[0]) ||
+        area[k] < 0.01 * area[0]) {
+      speck[k] = 1;
+      ++count;
+      triangles += parts.component_triangles[k];
+      if (example.empty()) example = point_text(where[k]);
+    }
+  if (count == 0) return;
+  std::vector<uint8_t> remove(s.mesh.num_triangles());
+  for (size_t t = 0; t < remove.size(); ++t) remove[t] = speck[size_t(parts.triangle_component[t])];
+  remove_triangles(s.mesh, remove, &w.labels);
+  w.adjacency = build_adjacency(s.mesh);
+  s.specks_removed = count;
+  s.warnings.push_back(count == 1
+                           ? "removed a small separate piece (" + num(triangles) +
+                                 (triangles == 1 ? " triangle" : " triangles") +
+                                 ", under 1% of the surface) at " + example
+                           : "removed " + num(count) + " small separate pieces (" + num(triangles) +
+                                 " triangles, each under 1% of the surface), e.g. at " + example);
 }
 
 /// "0.12", or "0.7 x 0.7 x 1.5" for a voxel of unequal sides.
@@ -427,6 +469,7 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   if (Status st = read_and_weld(s, w, file_bytes, options); !st.ok()) return st;
   if (!report_progress(progress, 0.3, "repair")) return cancelled();
   if (Status st = repair(s, w); !st.ok()) return st;
+  drop_specks(s, w);
   if (options.largest_component_only) keep_largest_component(s, w);
   if (!report_progress(progress, 0.4, "smooth")) return cancelled();
   smooth(s, w, options);

@@ -105,6 +105,8 @@ struct PreparedSurface {
   /// The cuts made by clipping, in order (each is an opening of source
   /// "clip" unless a later cut removed it).
   std::vector<ClipCut> clips;
+  /// Separate pieces under 1% of the largest (triangles or area) removed.
+  size_t specks_removed = 0;
   /// A closed surface not clipped: the cuts {clip} auto would make, one per
   /// vessel end found.
   std::vector<VesselEnd> clip_proposals;

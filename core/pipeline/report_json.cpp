@@ -95,6 +95,7 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
   j.key("caps_removed").value(s.caps_removed);
   j.key("smoothing");
   write_smoothing(j, s.smoothing);
+  j.key("specks_removed").value(s.specks_removed);
   j.key("clip_proposals").begin_array();
   for (const VesselEnd& e : s.clip_proposals) {
     j.begin_object();

@@ -16,7 +16,8 @@ namespace vm {
 /// radius, centroid, normal, vertices, source ("file" | "cap" | "clip"),
 /// label, name (the group name it gets by default)}], caps_removed, clips
 /// [{point, normal (the plane), centroid, radius, perimeter, area_removed}],
-/// clip_proposals [{point, normal (the plane clip auto would cut by), radius
+/// specks_removed (separate pieces under 1% of the largest), clip_proposals
+/// [{point, normal (the plane clip auto would cut by), radius
 /// (of that section), tip, depth (radii in from the tip)}] (a closed surface
 /// not clipped),
 /// smoothing {mode (auto | off | passes), staircase, direction_fraction,

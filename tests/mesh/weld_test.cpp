@@ -47,6 +47,21 @@ TEST(Weld, MergesNearCoincidentCornersWithinTolerance) {
   EXPECT_EQ(weld(soup, exact).num_vertices(), 6u);
 }
 
+TEST(Weld, AFarStrayTriangleDoesNotCollapseTheSurface) {
+  // A tube of edges about 0.4 and one triangle a million units away: the
+  // bounding box grows a million-fold, the tolerance must not.
+  SurfaceMesh tube = testing::open_tube(16, 6);
+  const size_t n = tube.num_vertices();
+  SurfaceMesh with_stray = tube;
+  with_stray.points.insert(with_stray.points.end(), {1e6, 0, 0, 1e6 + 1, 0, 0, 1e6, 1, 0});
+  with_stray.triangles.insert(with_stray.triangles.end(),
+                              {int32_t(n), int32_t(n + 1), int32_t(n + 2)});
+  WeldStats stats;
+  SurfaceMesh w = weld(soup_of(with_stray), {}, &stats);
+  EXPECT_EQ(w.num_vertices(), n + 3);
+  EXPECT_EQ(stats.merged_by_tolerance, 0u);
+}
+
 TEST(Weld, KeepsDistinctPointsApart) {
   TriangleSoup soup;
   soup.coords = {0, 0, 0, 1e-3f, 0, 0, 0, 1e-3f, 0};

@@ -155,3 +155,41 @@ TEST(PrepareClip, PlanesCutAnySurfaceAndTheirOpeningsSayClip) {
 
 }  // namespace
 }  // namespace vm
+
+namespace vm {
+namespace {
+
+TEST(PrepareSpecks, SmallSeparatePiecesAreRemovedSayingWhere) {
+  // A tube and, far away, a stray triangle and a small closed blob.
+  SurfaceMesh m = testing::open_tube(32, 16, 1.0, 6.0);
+  auto add = [&](const SurfaceMesh& piece, const Vec3& shift) {
+    const int32_t first = int32_t(m.num_vertices());
+    for (size_t v = 0; v < piece.num_vertices(); ++v)
+      for (size_t k = 0; k < 3; ++k) m.points.push_back(piece.points[3 * v + k] + shift[k]);
+    for (int32_t c : piece.triangles) m.triangles.push_back(first + c);
+  };
+  SurfaceMesh stray;
+  stray.points = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  stray.triangles = {0, 1, 2};
+  add(stray, {1e6, 0, 0});
+  add(testing::tetrahedron(), {0, 50, 0});
+  auto r = prepare_surface(write_stl_binary(m));
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(r.value().specks_removed, 2u);
+  EXPECT_EQ(r.value().topology.components, 1);
+  EXPECT_EQ(r.value().mesh.num_triangles(), size_t(2 * 32 * 16));
+  EXPECT_LT(r.value().box.diagonal(), 10);
+  EXPECT_TRUE(has_warning(r.value(), "removed 2 small separate pieces (5 triangles, each under 1% "
+                                     "of the surface), e.g. at ("));
+  // A second vessel of its own size is no speck: several components remain.
+  SurfaceMesh two = testing::open_tube(32, 16, 1.0, 6.0);
+  m = two;
+  add(two, {10, 0, 0});
+  auto both = prepare_surface(write_stl_binary(m));
+  ASSERT_TRUE(both.ok()) << both.message();
+  EXPECT_EQ(both.value().specks_removed, 0u);
+  EXPECT_EQ(both.value().topology.components, 2);
+}
+
+}  // namespace
+}  // namespace vm

@@ -153,6 +153,24 @@ endsolid tet
 `;
 
 describe('analyze', () => {
+  test('a stray triangle far away is removed as a speck, not welded into the vessel', () => {
+    const stl = api.makePhantom({ kind: 'bifurcation', voxel: 0.12 }).stl;
+    const n = new DataView(stl.buffer, stl.byteOffset).getUint32(80, true);
+    const bytes = new Uint8Array(stl.length + 50);
+    bytes.set(stl);
+    const view = new DataView(bytes.buffer);
+    view.setUint32(80, n + 1, true);
+    [0, 0, 1, 1e6, 0, 0, 1e6 + 1, 0, 0, 1e6, 1, 0].forEach((x, i) => view.setFloat32(stl.length + 4 * i, x, true));
+    const clean = api.analyze(stl).analysis;
+    const r = api.analyze(bytes);
+    assert.equal(r.ok, true, r.error);
+    assert.equal(r.analysis.specks_removed, 1);
+    assert.equal(r.analysis.components, 1);
+    assert.equal(r.analysis.vertices, clean.vertices);
+    assert.equal(r.analysis.openings.length, 3);
+    assert.match(r.analysis.warnings.join('\n'), /removed a small separate piece \(1 triangle, under 1% of the surface\) at \(1e\+06, 0, 0\)/);
+  });
+
   test('a closed surface: the vessel ends proposed as cuts, cutAt and clipPlanes/clipAt open it', () => {
     const p = api.makePhantom({ kind: 'bifurcation', voxel: 0.12, noise: 0.3, openEnds: false });
     const r = api.analyze(p.stl);
@@ -293,30 +311,42 @@ describe('mesh', () => {
     assert.equal(api.mesh(stl, { mshVersion: '3' }).error, 'mshVersion needs 4.1 or 2.2');
   });
 
-  test('several components refused unless the largest is kept', () => {
+  test('several components refused unless the largest is kept; small pieces removed as specks', () => {
     const a = api.makePhantom({ noise: 0.3, kind: 'tube', voxel: 0.2 }).stl;
+    const b = api.makePhantom({ noise: 0.3, kind: 'tube', voxel: 0.25, scale: 0.8 }).stl;
     const tet = api.analyze(ascii(TETRA));
     assert.equal(tet.ok, true);
-    // Append the tetrahedron's 4 triangles to the tube's binary STL.
-    const n = new DataView(a.buffer, a.byteOffset).getUint32(80, true);
-    const both = new Uint8Array(a.length + 4 * 50);
-    both.set(a);
-    const view = new DataView(both.buffer);
-    view.setUint32(80, n + 4, true);
-    const { positions, triangles } = tet.surface;
-    for (let t = 0; t < 4; t++) {
-      for (let c = 0; c < 3; c++) {
-        for (let k = 0; k < 3; k++) {
-          view.setFloat32(a.length + 50 * t + 12 + 12 * c + 4 * k, positions[3 * triangles[3 * t + c] + k] + 50, true);
-        }
-      }
-    }
+    const count = (stl) => new DataView(stl.buffer, stl.byteOffset).getUint32(80, true);
+    /** The binary STL of a's triangles, then `extra` [x0 y0 z0 ...] triangles moved by 50. */
+    const append = (extra) => {
+      const n = count(a);
+      const out = new Uint8Array(a.length + (extra.length / 9) * 50);
+      out.set(a);
+      const view = new DataView(out.buffer);
+      view.setUint32(80, n + extra.length / 9, true);
+      for (let t = 0; t < extra.length / 9; t++)
+        for (let i = 0; i < 9; i++) view.setFloat32(a.length + 50 * t + 12 + 4 * i, extra[9 * t + i] + 50, true);
+      return out;
+    };
+    // A second vessel: refused, or only the largest kept.
+    const other = [];
+    for (let t = 0; t < count(b); t++)
+      for (let i = 0; i < 9; i++) other.push(new DataView(b.buffer, b.byteOffset).getFloat32(84 + 50 * t + 12 + 4 * i, true));
+    const both = append(other);
     const refused = api.mesh(both);
     assert.equal(refused.ok, false);
     assert.match(refused.error, /2 connected components/);
     const kept = api.mesh(both, { largestComponentOnly: true, remesh: false });
     assert.equal(kept.ok, true, kept.error);
-    assert.equal(kept.report.output.triangles, n);
+    assert.equal(kept.report.output.triangles, count(a));
+    // A tetrahedron beside it: a speck, removed with a warning.
+    const { positions, triangles } = tet.surface;
+    const speck = [];
+    for (const v of triangles) speck.push(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+    const withSpeck = api.mesh(append(speck), { remesh: false, surfaceOnly: true });
+    assert.equal(withSpeck.ok, true, withSpeck.error);
+    assert.equal(withSpeck.report.output.triangles, count(a));
+    assert.match(withSpeck.report.warnings.join('\n'), /removed a small separate piece \(4 triangles/);
   });
 });
 
