@@ -721,6 +721,13 @@ function syncExportFormats() {
   }
   if ($('export-format').selectedOptions[0]?.disabled) $('export-format').value = EXPORT_FORMATS[0].value;
   $('export-hint').hidden = !surfaceOnly;
+  showExportLabel();
+}
+
+/** The Export button names the chosen format: 'Export MSH 4.1'. */
+function showExportLabel() {
+  const { label } = exportFormat($('export-format').value);
+  $('export').textContent = `Export ${label.replace(/ \(.*\)$/, '')}`;
 }
 
 $('size-mode').addEventListener('change', (e) => {
@@ -733,6 +740,7 @@ $('size-mode').addEventListener('change', (e) => {
   $('size-value').value = uniform ? Number(h.toPrecision(2)) : 20;
 });
 $('show').addEventListener('change', (e) => show(e.target.value));
+$('export-format').addEventListener('change', showExportLabel);
 $('clip-axis').addEventListener('change', (e) => {
   // A new normal keeps the side away from the camera: the cut faces you.
   const axis = e.target.value;
