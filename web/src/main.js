@@ -14,6 +14,7 @@ import { drawHistogram } from './histogram.js';
 import { OpeningsTable } from './openings.js';
 import { hideAnalysis, showAnalysis } from './panel.js';
 import { Prepare } from './prepare.js';
+import { Settings } from './settings.js';
 import { describeNonSurface } from './sniff.js';
 import { Viewer } from './viewer.js';
 import { listenViewKeys } from './view-keys.js';
@@ -817,6 +818,20 @@ client.ready.then(
   (e) => showError(`The mesher could not start: ${e.message}`),
 );
 $('export-format').replaceChildren(...EXPORT_FORMATS.map(({ value, label }) => new Option(label, value)));
+// The options remembered in this browser (after the export formats exist).
+const settings = new Settings({
+  onRestore: () => {
+    showSizeLabel();
+    syncLayerFields();
+    syncExportFormats();
+  },
+});
+settings.restore();
+settings.listen();
+$('reset-settings').addEventListener('click', () => {
+  settings.reset();
+  bar.announce('Options reset to their defaults');
+});
 document.body.dataset.meshJobs = '0';
 hideAnalysis();
 bar.step('load');
