@@ -32,8 +32,21 @@ test('the page stays responsive during a long analysis, and cancel works', async
     };
     requestAnimationFrame(tick);
   });
+  // Every value the progress bar shows, to check it never goes back.
+  await page.evaluate(() => {
+    window.fractions_ = [];
+    const bar = document.getElementById('progress-bar');
+    new MutationObserver(() => bar.dataset.fraction && window.fractions_.push(Number(bar.dataset.fraction))).observe(bar, {
+      attributes: true,
+      attributeFilter: ['data-fraction'],
+    });
+  });
   await upload(page, 'tube.stl', buf);
   await expect(page.getByTestId('progress')).toBeVisible();
+  await expect(page.getByTestId('progress-stage')).toContainText('read');
+  await expect(page.getByTestId('progress-time')).toContainText('elapsed');
+  await expect(page.getByRole('button', { name: 'Cancel' })).toBeVisible();
+  await screenshots(page, 'responsive-progress', page.getByTestId('progress'));
   const before = await page.evaluate(() => window.frames_);
   // The main thread answers while the worker computes.
   await page.getByRole('checkbox', { name: 'Wireframe' }).click();
@@ -41,6 +54,9 @@ test('the page stays responsive during a long analysis, and cancel works', async
   const after = await page.evaluate(() => window.frames_);
   expect(after).toBeGreaterThan(before);
   await expect(page.getByTestId('stat-triangles')).toHaveText(tris.toLocaleString('en-US'), { timeout: 60_000 });
+  const fractions = await page.evaluate(() => window.fractions_);
+  expect(fractions.length).toBeGreaterThan(1);
+  for (let i = 1; i < fractions.length; i++) expect(fractions[i]).toBeGreaterThanOrEqual(fractions[i - 1]);
 
   // Cancel a running job: the page reports it and keeps working.
   await upload(page, 'tube-again.stl', buf);

@@ -60,6 +60,7 @@ export class ActionBar {
     clearInterval(this.timer);
     this.timer = setInterval(() => this._draw(), 500);
     this.announce(`${label} started`);
+    $('next-step').textContent = `Working (${label}): wait for it, or press Cancel.`;
   }
 
   /** A worker report: the bar only moves forward. */
@@ -78,6 +79,7 @@ export class ActionBar {
     $('progress').hidden = true;
     $('progress-bar').value = 0;
     $('progress-stage').textContent = '';
+    this.hint();
   }
 
   _draw() {
