@@ -42,6 +42,7 @@ test('axe finds no serious or critical violation at any step', async ({ page }) 
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
   await expect(page.getByTestId('next-step')).toContainText('press Mesh');
   expect(await seriousViolations(page), 'loaded').toEqual([]);
+  await screenshots(page, 'a11y-loaded');
 
   // Prepared: smoothed by passes, a cut being placed.
   await page.getByTestId('smooth').selectOption('passes');
