@@ -57,6 +57,9 @@ test('axe finds no serious or critical violation at any step', async ({ page }) 
   await expect(page.getByTestId('volume-result')).toBeVisible({ timeout: 60_000 });
   await expect(page.getByTestId('next-step')).toContainText('press Export');
   expect(await seriousViolations(page), 'meshed').toEqual([]);
+  await page.setViewportSize({ width: 390, height: 844 });
+  expect(await seriousViolations(page), 'meshed, on a phone').toEqual([]);
+  await page.setViewportSize({ width: 1440, height: 900 });
   await screenshots(page, 'a11y-meshed', page.getByTestId('volume-result'));
 });
 
