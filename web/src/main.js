@@ -68,6 +68,11 @@ const prepare = new Prepare({
     $('show').value = 'input';
     show('input', { fit: false });
   },
+  // Cuts not made yet: the bar says to make them first.
+  onChange: (pending) => {
+    if (bar.current !== 'prepare' || busy || !$('error').hidden) return;
+    bar.hint(pending ? 'Press “Cut these open” to make the listed cuts into openings, then press Mesh.' : undefined);
+  },
 });
 
 $('legend').querySelector('.ramp').style.background = qualityGradientCss();
