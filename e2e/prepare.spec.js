@@ -97,6 +97,8 @@ test('a closed bifurcation: proposed cuts made into openings, one replaced by a 
   await page.getByRole('button', { name: `Remove cut ${lowest}` }).click();
   await expect(cuts).toHaveCount(2);
   await expect(page.getByTestId('apply-cuts')).toBeVisible();
+  // The action bar says what to do about it.
+  await expect(page.getByTestId('next-step')).toContainText('Cut these open');
 
   // A cut clicked on the parent vessel, halfway down.
   await page.getByTestId('add-cut').click();

@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { openApp, upload } from './helpers.js';
+import { openApp, screenshots, upload } from './helpers.js';
 
 // A large surface generated in the worker, analyzed while the main thread
 // keeps painting frames and answering clicks; then a job is cancelled.
@@ -32,8 +32,21 @@ test('the page stays responsive during a long analysis, and cancel works', async
     };
     requestAnimationFrame(tick);
   });
+  // Every value the progress bar shows, to check it never goes back.
+  await page.evaluate(() => {
+    window.fractions_ = [];
+    const bar = document.getElementById('progress-bar');
+    new MutationObserver(() => bar.dataset.fraction && window.fractions_.push(Number(bar.dataset.fraction))).observe(bar, {
+      attributes: true,
+      attributeFilter: ['data-fraction'],
+    });
+  });
   await upload(page, 'tube.stl', buf);
   await expect(page.getByTestId('progress')).toBeVisible();
+  await expect(page.getByTestId('progress-stage')).toContainText('read');
+  await expect(page.getByTestId('progress-time')).toContainText('elapsed');
+  await expect(page.getByRole('button', { name: 'Cancel' })).toBeVisible();
+  await screenshots(page, 'responsive-progress', page.getByTestId('progress'));
   const before = await page.evaluate(() => window.frames_);
   // The main thread answers while the worker computes.
   await page.getByRole('checkbox', { name: 'Wireframe' }).click();
@@ -41,6 +54,9 @@ test('the page stays responsive during a long analysis, and cancel works', async
   const after = await page.evaluate(() => window.frames_);
   expect(after).toBeGreaterThan(before);
   await expect(page.getByTestId('stat-triangles')).toHaveText(tris.toLocaleString('en-US'), { timeout: 60_000 });
+  const fractions = await page.evaluate(() => window.fractions_);
+  expect(fractions.length).toBeGreaterThan(1);
+  for (let i = 1; i < fractions.length; i++) expect(fractions[i]).toBeGreaterThanOrEqual(fractions[i - 1]);
 
   // Cancel a running job: the page reports it and keeps working.
   await upload(page, 'tube-again.stl', buf);
@@ -49,4 +65,48 @@ test('the page stays responsive during a long analysis, and cancel works', async
   await expect(page.getByTestId('error')).toHaveText('Cancelled.');
   await page.getByTestId('load-sample').click();
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
+});
+
+// A phone (390x844): no horizontal scroll, the view above the panel and at
+// least 300 px wide, the action bar's buttons in sight, every control of the
+// panel reachable within the screen's width; the same once meshed.
+test('on a phone the page fits its width and every action is reachable', async ({ page }) => {
+  await page.setViewportSize({ width: 390, height: 844 });
+  await openApp(page);
+  const fits = async (when) => {
+    const width = await page.evaluate(() => document.scrollingElement.scrollWidth);
+    expect(width, `${when}: page scroll width`).toBeLessThanOrEqual(390);
+    const body = await page.locator('#panel-body').evaluate((el) => [el.scrollWidth, el.clientWidth]);
+    expect(body[0], `${when}: panel scroll width`).toBeLessThanOrEqual(body[1]);
+    const view = await page.getByTestId('viewer').boundingBox();
+    const panel = await page.locator('#panel-body').boundingBox();
+    expect(view.width).toBeGreaterThanOrEqual(300);
+    expect(view.y + view.height).toBeLessThanOrEqual(panel.y + 1); // stacked: the view on top
+    for (const id of ['remesh', 'export']) {
+      const box = await page.getByTestId(id).boundingBox();
+      expect(box.y + box.height, `${when}: ${id} in sight`).toBeLessThanOrEqual(844);
+      expect(box.x + box.width).toBeLessThanOrEqual(390);
+    }
+    // Every visible control of the panel can be scrolled to, within the width.
+    const controls = page.locator('#panel-body :is(button, select, input:not([type=hidden]), summary)');
+    for (let i = 0, n = await controls.count(); i < n; i++) {
+      const control = controls.nth(i);
+      if (!(await control.isVisible())) continue;
+      await control.scrollIntoViewIfNeeded();
+      const box = await control.boundingBox();
+      expect(box.x, `${when}: control ${i}`).toBeGreaterThanOrEqual(0);
+      expect(box.x + box.width, `${when}: control ${i}`).toBeLessThanOrEqual(390);
+      expect(box.y + box.height, `${when}: control ${i}`).toBeLessThanOrEqual(844);
+    }
+  };
+  await page.getByTestId('load-sample').click();
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  await fits('loaded');
+  await page.getByTestId('size-mode').selectOption('size');
+  await page.getByTestId('size-value').fill('0.35');
+  await page.getByTestId('layers').fill('1');
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('volume-result')).toBeVisible({ timeout: 60_000 });
+  await fits('meshed');
+  await screenshots(page, 'responsive-phone-meshed', page.getByTestId('volume-view'));
 });

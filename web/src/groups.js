@@ -3,6 +3,8 @@
 // wall_inlet, wall_outlet_k; volumes: lumen, boundary_layer, vessel_wall,
 // also the colors of the faces cut by the clipping plane) and of the
 // volume's parts, and their legends.
+import { PALETTE_SIZE, paletteColor } from './palette.js';
+
 const FIXED = {
   wall: [0.8, 0.8, 0.78],
   inlet: [0.16, 0.42, 0.85],
@@ -11,34 +13,48 @@ const FIXED = {
   boundary_layer: [0.35, 0.68, 0.95],
   vessel_wall: [0.6, 0.16, 0.22],
 };
-const OUTLETS = [
-  [0.22, 0.66, 0.32],
-  [0.96, 0.6, 0.1],
-  [0.58, 0.36, 0.78],
-  [0.1, 0.66, 0.7],
-  [0.86, 0.3, 0.56],
-  [0.55, 0.5, 0.2],
-];
 const OTHER = [0.6, 0.6, 0.6];
 
-/** A palette color for a name the user gave an opening (the same each time). */
-function namedColor(name) {
-  let h = 0;
-  for (const ch of name) h = (h * 31 + ch.codePointAt(0)) >>> 0;
-  return OUTLETS[h % OUTLETS.length];
+/** The palette number of outlet_k (k - 1), or null for another name. */
+function outletIndex(name) {
+  const outlet = /^outlet_(\d+)$/.exec(name);
+  return outlet ? Number(outlet[1]) - 1 : null;
 }
 
-/** RGB (0..1) of the group `name`; a wall ring (wall_inlet, wall_outlet_k,
- * wall_NAME) is its cap's color, paler; a cap the user named gets a palette
- * color. */
-export function groupColor(name) {
-  if (FIXED[name]) return FIXED[name];
-  const ring = /^wall_(.+)$/.exec(name);
-  if (ring) return groupColor(ring[1]).map((c) => 0.5 * c + 0.5);
-  const outlet = /^outlet_(\d+)$/.exec(name);
-  if (outlet) return OUTLETS[(Number(outlet[1]) - 1) % OUTLETS.length];
-  return name ? namedColor(name) : OTHER;
+/**
+ * The colors (RGB 0..1) of the groups `names`, all different for up to 24
+ * groups: the fixed ones (wall, inlet, lumen...) their own; outlet_k the
+ * palette's k-th; a cap the user named the first palette color no other
+ * group of the list has; a wall ring (wall_inlet, wall_outlet_k, wall_NAME)
+ * its cap's color, paler.
+ */
+export function groupColors(names) {
+  const taken = new Set(names.map(outletIndex).filter((i) => i !== null));
+  const named = new Map();
+  let next = 0;
+  const base = (name) => {
+    if (FIXED[name]) return FIXED[name];
+    const k = outletIndex(name);
+    if (k !== null) return paletteColor(k);
+    if (!name) return OTHER;
+    if (!named.has(name)) {
+      while (taken.has(next % PALETTE_SIZE) && next < taken.size + PALETTE_SIZE) next++;
+      taken.add(next % PALETTE_SIZE);
+      named.set(name, paletteColor(next++));
+    }
+    return named.get(name);
+  };
+  const color = (name) => {
+    const ring = /^wall_(.+)$/.exec(name);
+    return ring && !FIXED[name] ? color(ring[1]).map((c) => 0.5 * c + 0.5) : base(name);
+  };
+  // Caps first, so a ring listed before its cap gets the cap's color.
+  for (const name of names) if (!/^wall_/.test(name)) base(name);
+  return names.map(color);
 }
+
+/** RGB (0..1) of the group `name` alone (see groupColors). */
+export const groupColor = (name) => groupColors([name])[0];
 
 /** The volume's parts (volume.tetPart values): name and color. */
 export const PARTS = [
@@ -61,7 +77,8 @@ function legendItem(name, color, data) {
 
 /** Fills the <ul> legend with one swatch per group name. */
 export function drawGroupLegend(list, names) {
-  list.replaceChildren(...names.map((name) => legendItem(name, groupColor(name), { group: name })));
+  const colors = groupColors(names);
+  list.replaceChildren(...names.map((name, i) => legendItem(name, colors[i], { group: name })));
 }
 
 /**

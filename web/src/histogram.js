@@ -1,4 +1,5 @@
-// Bar chart of a histogram of counts over [0, 1], drawn as SVG.
+// Bar chart of a histogram of counts over [0, 1], drawn as SVG (the axis'
+// labels are HTML under it, .histogram-axis, so they are never stretched).
 const NS = 'http://www.w3.org/2000/svg';
 
 function el(name, attrs) {
@@ -11,8 +12,8 @@ function el(name, attrs) {
 export function drawHistogram(svg, counts, unit = 'triangles') {
   svg.replaceChildren();
   const width = 320;
-  const height = 110;
-  const bottom = 14;
+  const height = 96;
+  const bottom = 1;
   svg.setAttribute('viewBox', `0 0 ${width} ${height}`);
   svg.setAttribute('preserveAspectRatio', 'none');
   const max = Math.max(1, ...counts);
@@ -27,9 +28,4 @@ export function drawHistogram(svg, counts, unit = 'triangles') {
     bar.append(title);
     svg.append(bar);
   });
-  for (const x of [0, 0.5, 1]) {
-    const label = el('text', { x: Math.min(width - 8, Math.max(2, x * width - 6)), y: height - 2 });
-    label.textContent = String(x);
-    svg.append(label);
-  }
 }

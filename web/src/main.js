@@ -6,6 +6,7 @@
 // VTU, VTP, STL, SimVascular mesh-complete). All meshing happens in the Web
 // Worker behind VesselmeshClient, so the page stays responsive.
 import { VesselmeshClient } from '../../wasm/src/client.js';
+import { ActionBar } from './action-bar.js';
 import { qualityGradientCss } from './colormap.js';
 import { EXPORT_FORMATS, exportFileName, exportFormat } from './files.js';
 import { drawGroupLegend, drawPartLegend, PARTS } from './groups.js';
@@ -13,7 +14,10 @@ import { drawHistogram } from './histogram.js';
 import { OpeningsTable } from './openings.js';
 import { hideAnalysis, showAnalysis } from './panel.js';
 import { Prepare } from './prepare.js';
+import { Settings } from './settings.js';
+import { describeNonSurface } from './sniff.js';
 import { Viewer } from './viewer.js';
+import { listenViewKeys } from './view-keys.js';
 import { withPrismsSplit } from './prisms.js';
 import { VolumeView } from './volume-view.js';
 
@@ -22,6 +26,7 @@ const $ = (id) => document.getElementById(id);
 const MAX_FILE_BYTES = 1.5 * 2 ** 30;
 
 const client = new VesselmeshClient();
+const bar = new ActionBar();
 const viewer = new Viewer($('viewer'));
 const count = (n) => n.toLocaleString('en');
 const volumeView = new VolumeView(viewer, ({ triangles, cut, cutByPart, ms }) => {
@@ -63,23 +68,38 @@ const prepare = new Prepare({
     $('show').value = 'input';
     show('input', { fit: false });
   },
+  // Cuts not made yet: the bar says to make them first.
+  onChange: (pending) => {
+    if (bar.current !== 'prepare' || busy || !$('error').hidden) return;
+    bar.hint(pending ? 'Press “Cut these open” to make the listed cuts into openings, then press Mesh.' : undefined);
+  },
 });
 
 $('legend').querySelector('.ramp').style.background = qualityGradientCss();
 
-function showError(message) {
-  $('error').textContent = message;
-  $('error').hidden = false;
+// What to do after an error, by what failed.
+const NEXT_AFTER = {
+  read: 'Open another file (STL, VTP, VTK, OBJ or PLY, or gzipped), or load the sample.',
+  mesh: 'Change the options above (the size, the cuts, the openings) and press Mesh again.',
+  cancelled: 'Cancelled: press the button of the step again when ready.',
+  options: 'Correct the field marked in red above, then press Mesh or Export again.',
+};
+
+/** Shows `message` in the action bar with what to do next (`next`: a key of
+ * NEXT_AFTER or a text; by default the step's own hint). */
+function showError(message, next) {
+  if (next === undefined && message === 'Cancelled.') next = 'cancelled';
+  bar.error(message, NEXT_AFTER[next] ?? next);
 }
 
 function clearError() {
-  $('error').hidden = true;
-  $('error').textContent = '';
+  bar.clearError();
 }
 
 // Controls that start a job, off while one runs.
 const BUSY_CONTROLS = [
   'load-sample',
+  'open-file',
   'export',
   'file-input',
   'remesh',
@@ -92,17 +112,15 @@ const BUSY_CONTROLS = [
 
 function setBusy(on, stage = '') {
   busy = on;
-  $('progress').hidden = !on;
-  $('progress-bar').value = 0;
-  $('progress-stage').textContent = stage;
+  if (on) bar.start(stage);
+  else bar.stop();
   for (const id of BUSY_CONTROLS) $(id).disabled = on;
   for (const button of $('units-prompt').querySelectorAll('button')) button.disabled = on;
   prepare.setBusy(on);
 }
 
 function onProgress(fraction, stage) {
-  $('progress-bar').value = fraction;
-  $('progress-stage').textContent = stage;
+  bar.report(fraction, stage);
 }
 
 /** Runs one worker job with the progress bar; returns its result. */
@@ -124,7 +142,7 @@ async function analyze(name, bytes, prep, onError = showError) {
   const result = await run('read', () => client.analyze(bytes, { ...prep, onProgress }));
   if (result.ok) return result;
   const message = result.cancelled ? 'Cancelled.' : `${name}: ${result.error}`;
-  onError(message);
+  onError(message, result.cancelled ? 'cancelled' : 'read');
   return { ok: false, message };
 }
 
@@ -181,6 +199,9 @@ async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, on
   remeshed = null;
   $('remesh-result').hidden = true;
   $('drop-hint').hidden = true;
+  $('primary-actions').hidden = false;
+  bar.step('prepare');
+  bar.announce(`${name} loaded: ${result.analysis.openings.length} openings`);
   $('legend').hidden = false;
   const { analysis } = current;
   showAnalysis(name, analysis, prep);
@@ -195,6 +216,7 @@ async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, on
     showError(
       `${name} has ${analysis.components} connected components. ` +
         'Meshing refuses it unless "Keep the largest component only" is checked.',
+      'Check "Keep the largest component only" above (Load options), or open another file.',
     );
   }
   return null;
@@ -232,15 +254,23 @@ function showSizeLabel() {
 
 async function loadFile(file) {
   if (busy || acting) return;
+  // Not a surface at all (an image, a PDF, an archive, a DICOM slice): said
+  // before the core is asked.
+  const head = new Uint8Array(await file.slice(0, 512).arrayBuffer().catch(() => new ArrayBuffer(0)));
+  const wrong = describeNonSurface(head, file.name);
+  if (wrong) {
+    showError(`${file.name}: ${wrong}`, 'read');
+    return;
+  }
   if (file.size > MAX_FILE_BYTES) {
-    showError(`${file.name}: file too large (${(file.size / 2 ** 30).toFixed(1)} GB; the limit in a browser tab is 1.5 GB).`);
+    showError(`${file.name}: file too large (${(file.size / 2 ** 30).toFixed(1)} GB; the limit in a browser tab is 1.5 GB).`, 'read');
     return;
   }
   let bytes;
   try {
     bytes = new Uint8Array(await file.arrayBuffer());
   } catch (e) {
-    showError(`${file.name}: cannot read the file (${e.message}).`);
+    showError(`${file.name}: cannot read the file (${e.message}).`, 'read');
     return;
   }
   await loadBytes(file.name, bytes, {}, [], { fresh: true });
@@ -252,7 +282,7 @@ async function loadSample() {
     client.makePhantom({ kind: 'bifurcation', voxel: 0.08, noise: 0.3 }),
   );
   if (!made.ok) {
-    showError(made.cancelled ? 'Cancelled.' : `sample: ${made.error}`);
+    showError(made.cancelled ? 'Cancelled.' : `sample: ${made.error}`, made.cancelled ? 'cancelled' : 'read');
     return;
   }
   await loadBytes('sample-bifurcation.stl', made.stl, {}, [], { fresh: true });
@@ -592,12 +622,12 @@ function showMeshResult(result) {
 async function checkedMeshOptions() {
   const problem = [coreSizeProblem(), layerProblems(), openings.extensionProblem()].find(Boolean);
   if (problem) {
-    showError(problem);
+    showError(problem, 'options');
     return null;
   }
   const cuts = prepare.pendingProblem();
   if (cuts) {
-    showError(cuts);
+    showError(cuts, 'Apply the new cuts (Cut these open) or remove them, then press Mesh again.');
     prepare.showError(cuts);
     prepare.focusApply();
     return null;
@@ -605,7 +635,7 @@ async function checkedMeshOptions() {
   if (!(await ensureAnalyzed())) return null;
   const naming = await openings.check();
   if (naming.problem) {
-    showError(`Opening ${naming.problem.k}: ${naming.problem.message}`);
+    showError(`Opening ${naming.problem.k}: ${naming.problem.message}`, `Give opening ${naming.problem.k} another name, then press Mesh again.`);
     openings.focusName(naming.problem.k);
     return null;
   }
@@ -618,9 +648,11 @@ async function meshWith(options, write = {}) {
   held.mesh = null;
   document.body.dataset.meshJobs = String(++meshJobs);
   $('flow-error').hidden = true;
+  bar.step('mesh');
   const result = await run('mesh', () => client.mesh(current.bytes, { ...options, ...write, onProgress }));
   if (!result.ok) {
-    showError(result.cancelled ? 'Cancelled.' : `${current.name}: ${result.error}`);
+    bar.step(remeshed ? 'inspect' : 'prepare');
+    showError(result.cancelled ? 'Cancelled.' : `${current.name}: ${result.error}`, result.cancelled ? 'cancelled' : 'mesh');
     // A refused flow extension is also said next to the extension fields.
     if (result.option === 'flowExtension' || /flow extension|flowExtension/i.test(result.error)) {
       $('flow-error').textContent = result.error;
@@ -633,6 +665,8 @@ async function meshWith(options, write = {}) {
   remeshed = { key: JSON.stringify(options), result };
   held.mesh = remeshed;
   showMeshResult(result);
+  bar.step('inspect');
+  bar.announce(`Meshed: ${count(result.report.output.triangles)} wall triangles`);
   return result;
 }
 
@@ -671,13 +705,18 @@ async function exportFile() {
   let file;
   if (remeshed?.key === JSON.stringify(options) && held.mesh === remeshed) {
     const result = await run('export', () => client.export(format, write));
-    if (!result.ok) showError(`${current.name}: ${result.error}`);
+    if (!result.ok) showError(result.cancelled ? 'Cancelled.' : `${current.name}: ${result.error}`, 'mesh');
     file = result.ok && result.file;
   } else {
     file = (await meshWith(options, { format, ...write }))?.file;
   }
   const chosen = exportFormat($('export-format').value);
-  if (file) download(exportFileName(current.name, chosen.value), file, chosen.mime);
+  if (file) {
+    const name = exportFileName(current.name, chosen.value);
+    download(name, file, chosen.mime);
+    bar.step('export', `Exported ${name}. Change the options and press Mesh again, or open another file.`);
+    bar.announce(`Exported ${name}`);
+  }
 }
 
 /** The export formats that apply: a surface-only mesh has no volume formats. */
@@ -688,6 +727,13 @@ function syncExportFormats() {
   }
   if ($('export-format').selectedOptions[0]?.disabled) $('export-format').value = EXPORT_FORMATS[0].value;
   $('export-hint').hidden = !surfaceOnly;
+  showExportLabel();
+}
+
+/** The Export button names the chosen format: 'Export MSH 4.1'. */
+function showExportLabel() {
+  const { label } = exportFormat($('export-format').value);
+  $('export').textContent = `Export ${label.replace(/ \(.*\)$/, '')}`;
 }
 
 $('size-mode').addEventListener('change', (e) => {
@@ -700,6 +746,7 @@ $('size-mode').addEventListener('change', (e) => {
   $('size-value').value = uniform ? Number(h.toPrecision(2)) : 20;
 });
 $('show').addEventListener('change', (e) => show(e.target.value));
+$('export-format').addEventListener('change', showExportLabel);
 $('clip-axis').addEventListener('change', (e) => {
   // A new normal keeps the side away from the camera: the cut faces you.
   const axis = e.target.value;
@@ -741,6 +788,7 @@ $('file-input').addEventListener('change', (e) => {
   if (file) loadFile(file);
 });
 $('load-sample').addEventListener('click', loadSample);
+$('open-file').addEventListener('click', () => $('file-input').click());
 $('export').addEventListener('click', () => act(exportFile));
 for (const id of ['units', 'keep-caps', 'largest-only']) $(id).addEventListener('change', reanalyze);
 for (const button of $('units-prompt').querySelectorAll('button')) {
@@ -754,6 +802,7 @@ $('cancel').addEventListener('click', () => {
   held.analysis = held.mesh = null;
 });
 $('fit-view').addEventListener('click', () => viewer.fitView());
+listenViewKeys(viewer);
 $('wireframe').addEventListener('change', (e) => viewer.setWireframe(e.target.checked));
 
 const view = $('viewer');
@@ -774,7 +823,22 @@ client.ready.then(
   (e) => showError(`The mesher could not start: ${e.message}`),
 );
 $('export-format').replaceChildren(...EXPORT_FORMATS.map(({ value, label }) => new Option(label, value)));
+// The options remembered in this browser (after the export formats exist).
+const settings = new Settings({
+  onRestore: () => {
+    showSizeLabel();
+    syncLayerFields();
+    syncExportFormats();
+  },
+});
+settings.restore();
+settings.listen();
+$('reset-settings').addEventListener('click', () => {
+  settings.reset();
+  bar.announce('Options reset to their defaults');
+});
 document.body.dataset.meshJobs = '0';
 hideAnalysis();
+bar.step('load');
 syncLayerFields();
 syncExportFormats();

@@ -72,6 +72,7 @@ export class OpeningsTable {
     const radio = element('input', { type: 'radio', name: 'inlet', value: String(k), checked: i === 0 }, 'inlet-choice');
     const choice = element('label', { className: 'inlet-choice', title: 'Cap this opening as the inlet' });
     choice.append(radio, ' inlet');
+    radio.setAttribute('aria-label', `Opening ${k} is the inlet`);
     const input = element('input', { type: 'text', className: 'opening-name', spellcheck: false }, 'opening-name');
     // The analysis' default name until the core has checked the table.
     Object.assign(input, { autocomplete: 'off', value: o.name ?? '', placeholder: o.name ?? '' });

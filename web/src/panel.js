@@ -32,6 +32,7 @@ export function showAnalysis(name, analysis, prep) {
   const a = analysis;
   const unit = a.units.unit;
   $('summary').hidden = false;
+  $('intro').hidden = true;
   $('file-name').textContent = name;
   showUnits(a.units);
   $('stat-format').textContent = a.format;
@@ -63,4 +64,5 @@ export function showAnalysis(name, analysis, prep) {
 
 export function hideAnalysis() {
   $('summary').hidden = true;
+  $('intro').hidden = false;
 }

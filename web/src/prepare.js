@@ -52,9 +52,11 @@ export class Prepare {
    * @param {() => Promise<string|null>} hooks.reanalyze analyzes the surface
    *   again with prepOptions(); resolves the error, or null
    * @param {() => void} hooks.showInput shows the analyzed surface in the view
+   * @param {(pending: boolean) => void} [hooks.onChange] the cuts changed;
+   *   pending: some are not made yet
    */
-  constructor({ viewer, cutAt, reanalyze, showInput }) {
-    Object.assign(this, { viewer, cutAt, reanalyze, showInput });
+  constructor({ viewer, cutAt, reanalyze, showInput, onChange = () => {} }) {
+    Object.assign(this, { viewer, cutAt, reanalyze, showInput, onChange });
     this.discs = new CutDiscs(viewer);
     this.cuts = []; // {point, normal, radius, tilt: [a, b] degrees, offset: radii moved, source}
     this.selected = -1;
@@ -406,6 +408,7 @@ export class Prepare {
     $('cut-edit').disabled = this.busy;
     if (cut) $('cut-edit-title').textContent = `Cut ${this.selected + 1}`;
     this._draw();
+    this.onChange(Boolean(this.pendingProblem()));
   }
 
   _hint(pending) {

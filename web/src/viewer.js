@@ -187,6 +187,29 @@ export class Viewer {
     return [rect.left + ((v.x + 1) / 2) * rect.width, rect.top + ((1 - v.y) / 2) * rect.height];
   }
 
+  /** Orbits the camera around the target: `azimuth` about the up axis,
+   * `polar` towards it (radians; the pole is not crossed). */
+  orbit(azimuth, polar) {
+    const up = new THREE.Quaternion().setFromUnitVectors(this.camera.up, new THREE.Vector3(0, 1, 0));
+    const offset = this.camera.position.clone().sub(this.controls.target).applyQuaternion(up);
+    const s = new THREE.Spherical().setFromVector3(offset);
+    s.theta -= azimuth;
+    s.phi = Math.min(Math.PI - 0.01, Math.max(0.01, s.phi + polar));
+    offset.setFromSpherical(s).applyQuaternion(up.invert());
+    this.camera.position.copy(this.controls.target).add(offset);
+    this.camera.lookAt(this.controls.target);
+    this.controls.update();
+    this.render();
+  }
+
+  /** Moves the camera `factor` times its distance from the target (< 1: in). */
+  zoom(factor) {
+    const offset = this.camera.position.clone().sub(this.controls.target).multiplyScalar(factor);
+    this.camera.position.copy(this.controls.target).add(offset);
+    this.controls.update();
+    this.render();
+  }
+
   fitView() {
     if (!this.sphere) return;
     const sphere = this.sphere;

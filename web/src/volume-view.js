@@ -9,7 +9,7 @@ import * as THREE from 'three';
 
 import { ClipBuffers, clipBoundary, faceAdjacency, tetCentroids } from './clip.js';
 import { qualityColor } from './colormap.js';
-import { groupColor, PARTS } from './groups.js';
+import { groupColor, groupColors, PARTS } from './groups.js';
 
 const AXES = { x: 0, y: 1, z: 2 };
 const byte = (x) => Math.round(255 * x);
@@ -53,14 +53,14 @@ function prepare(volume) {
     tetColors[3 * t + 2] = table[i + 2];
   }
   // One color per surface tag, then one for faces without a tag.
-  const tagColors = Uint8Array.from([...surfaceNames, ''].flatMap((n) => groupColor(n).map(byte)));
+  const tagColors = Uint8Array.from(groupColors([...surfaceNames, '']).flatMap((c) => c.map(byte)));
   const box = new THREE.Box3().setFromArray(positions);
   data = {
     across,
     tetPart,
     tetColors,
     partColors: colorsByIndex(tetPart, PARTS.map((p) => p.color)),
-    regionColors: colorsByIndex(volume.tetRegion ?? new Int32Array(nt), regionNames.map(groupColor)),
+    regionColors: colorsByIndex(volume.tetRegion ?? new Int32Array(nt), groupColors(regionNames)),
     tagColors,
     cutColor: groupColor('lumen').map(byte),
     sphere: box.getBoundingSphere(new THREE.Sphere()),
@@ -76,7 +76,7 @@ function boundaryGeometry({ positions, triangles, triangleTag, surfaceNames }) {
   const nb = triangleTag.length;
   const pos = new Float32Array(9 * nb);
   const col = new Uint8Array(9 * nb);
-  const colors = surfaceNames.map((n) => groupColor(n).map(byte));
+  const colors = groupColors(surfaceNames).map((c) => c.map(byte));
   for (let t = 0; t < nb; t++) {
     const c = colors[triangleTag[t]] ?? [150, 150, 150];
     for (let k = 0; k < 3; k++) {
