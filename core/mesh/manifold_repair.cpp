@@ -184,12 +184,19 @@ void split_nonmanifold_edges(SurfaceMesh& mesh, std::vector<int32_t>* labels,
         p.emplace_back(order[(start + k) % n], order[(start + k + 1) % n]);
       return p;
     };
+    // Score: pairs traversing the edge in opposite directions (a consistent
+    // sheet) first, then pairs whose wedge (counterclockwise from x to y
+    // around a -> b) is the inside of a solid, so each pair closes its own
+    // lumen: a triangle running a -> b has the normal d x r, turned
+    // counterclockwise from r, so both normals point out of the wedge when
+    // x runs b -> a and y runs a -> b.
     std::vector<std::pair<size_t, size_t>> best;
     int best_score = -1;
     for (size_t start = 0; start < (n % 2 ? n : 2); ++start) {
       const auto p = n % 2 ? pairs_of(start + 1, n - 1) : pairs_of(start, n);
       int score = 0;
-      for (auto [x, y] : p) score += forward[x] != forward[y];
+      for (auto [x, y] : p)
+        score += int(n) * (forward[x] != forward[y]) + (!forward[x] && forward[y]);
       if (score > best_score) best_score = score, best = p;
     }
     for (auto [x, y] : best) {
