@@ -137,9 +137,10 @@ void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
   for (size_t i = 0; i < s.holes.size(); ++i) {
     const vm::Hole& h = s.holes[i];
     std::printf(
-        "  %zu: perimeter %g %s, radius %g %s (local vessel radius %g), centroid (%g, %g, %g)%s\n",
-        i + 1, h.perimeter, unit, h.radius, unit, h.vessel_radius, h.centroid[0], h.centroid[1],
-        h.centroid[2], h.closed ? ", closed" : ", open");
+        "  %zu: perimeter %g %s, radius %g %s (local vessel radius %g %s), centroid (%g, %g, "
+        "%g)%s\n",
+        i + 1, h.perimeter, unit, h.radius, unit, h.vessel_radius, unit, h.centroid[0],
+        h.centroid[1], h.centroid[2], h.closed ? ", closed" : ", open");
   }
   const vm::SmoothingOutcome& sm = s.smoothing;
   char staircase[96] = "not a voxel staircase";

@@ -62,7 +62,8 @@ const OptionSpec kOptions[] = {
      .default_text = "auto",
      .needs = "auto or off",
      .doc = "auto: split non-manifold edges and vertices into manifold sheets and close holes "
-            "smaller than the hole fraction of the local radius; off: refuse such surfaces"},
+            "smaller than the hole fraction of the local radius; off: only the safe repairs "
+            "(non-manifold surfaces are refused, holes stay openings)"},
     {.id = "hole_fraction",
      .cli = "hole-fraction",
      .js = "holeFraction",
