@@ -151,7 +151,8 @@ void repair_edges(PreparedSurface& s, Work& w) {
 void find_and_close_holes(PreparedSurface& s, Work& w, const PrepareOptions& options) {
   if (!s.repair.orientable || w.adjacency.num_nonmanifold_edges > 0) return;
   TopologyReport t = analyze_topology(s.mesh, w.adjacency);
-  if (t.openings.empty() || s.mesh.num_triangles() > 2'000'000) return;
+  if (t.openings.empty() || !(options.hole_fraction > 0) || s.mesh.num_triangles() > 2'000'000)
+    return;
   SurfaceMesh manifold = s.mesh;
   ManifoldRepairStats unused;
   split_nonmanifold_vertices(manifold, unused);
@@ -248,6 +249,7 @@ Status repair(PreparedSurface& s, Work& w, const PrepareOptions& options) {
   if (s.mesh.num_triangles() == 0)
     return Status::Error("no triangle left: all " + num(s.input_triangles) +
                          " triangles of the file have zero area");
+  s.repaired = options.repair;
   if (options.repair) repair_edges(s, w);
   orient_consistently(s.mesh, s.repair, &w.adjacency);
   if (!s.repair.orientable) {
@@ -582,11 +584,13 @@ Status check_meshable(const PreparedSurface& s) {
     return Status::Error("cannot mesh: the surface has " + num(t.nonmanifold_edges) +
                          " non-manifold edges (shared by 3 or more triangles), e.g. near " +
                          point_text(t.nonmanifold_edge_example) +
-                         "; fix the segmentation or export a manifold surface");
+                         (s.repaired ? "; fix the segmentation or export a manifold surface"
+                                     : "; split them into manifold sheets with {repair} auto"));
   }
   if (t.nonmanifold_vertices > 0) {
     return Status::Error("cannot mesh: the surface has " + num(t.nonmanifold_vertices) +
-                         " non-manifold vertices (sheets touching at a vertex)");
+                         " non-manifold vertices (sheets touching at a vertex)" +
+                         (s.repaired ? std::string() : "; split them with {repair} auto"));
   }
   if (!s.repair.orientable) {
     return Status::Error("cannot mesh: the surface is not orientable");

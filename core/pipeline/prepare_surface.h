@@ -108,6 +108,7 @@ struct PreparedSurface {
   size_t input_triangles = 0;  ///< triangles in the file
   WeldStats weld;
   RepairStats repair;
+  bool repaired = true;  ///< phase 2 ran with {repair} auto
   ManifoldRepairStats manifold;
   /// Boundary loops found smaller than {hole_fraction} of the local vessel
   /// radius, in the order found (by decreasing radius), closed or not.

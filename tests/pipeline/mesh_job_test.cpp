@@ -327,6 +327,9 @@ TEST(MeshJob, NonManifoldIsRefusedWithALocation) {
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("1 non-manifold edges"), std::string::npos) << r.message();
   EXPECT_NE(r.message().find("(0.5, 0, 0)"), std::string::npos) << r.message();
+  EXPECT_NE(r.message().find("split them into manifold sheets with {repair} auto"),
+            std::string::npos)
+      << r.message();
 }
 
 TEST(MeshJob, ProgressIsMonotoneAndCancelStops) {
