@@ -238,14 +238,18 @@ void repair_vertices(PreparedSurface& s) {
 /// found (and closed with {repair} auto); non-manifold vertices split.
 Status repair(PreparedSurface& s, Work& w, const PrepareOptions& options) {
   remove_degenerate_and_duplicates(s.mesh, s.repair, &w.labels);
-  if (s.repair.degenerate_removed > 0)
-    s.warnings.push_back(num(s.repair.degenerate_removed) + " zero-area triangles were removed");
-  if (s.repair.collinear_repaired > 0)
-    s.warnings.push_back(num(s.repair.collinear_repaired) +
+  const RepairStats& r = s.repair;
+  if (r.degenerate_removed > 0)
+    s.warnings.push_back(num(r.degenerate_removed) + " zero-area triangles were removed, e.g. at " +
+                         point_text(r.degenerate_example));
+  if (r.collinear_repaired > 0)
+    s.warnings.push_back(num(r.collinear_repaired) +
                          " flat triangles (collinear corners) were removed by "
-                         "splitting their neighbors");
-  if (s.repair.duplicates_removed > 0)
-    s.warnings.push_back(num(s.repair.duplicates_removed) + " duplicate triangles were removed");
+                         "splitting their neighbors, e.g. at " +
+                         point_text(r.collinear_example));
+  if (r.duplicates_removed > 0)
+    s.warnings.push_back(num(r.duplicates_removed) + " duplicate triangles were removed, e.g. at " +
+                         point_text(r.duplicate_example));
   if (s.mesh.num_triangles() == 0)
     return Status::Error("no triangle left: all " + num(s.input_triangles) +
                          " triangles of the file have zero area");
@@ -258,7 +262,8 @@ Status repair(PreparedSurface& s, Work& w, const PrepareOptions& options) {
     s.warnings.push_back("the normals pointed inward: all triangles were reversed to face out");
   } else if (s.repair.flipped > 0) {
     s.warnings.push_back(num(s.repair.flipped) +
-                         " triangles were re-oriented (consistent, outward)");
+                         " triangles were re-oriented (consistent, outward), e.g. at " +
+                         point_text(s.repair.flipped_example));
   }
   find_and_close_holes(s, w, options);
   if (options.repair) {
