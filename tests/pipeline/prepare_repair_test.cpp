@@ -71,6 +71,9 @@ TEST_P(DirtyPhantom, IsRepairedItsHolesClosedAndItsOpeningsKept) {
                           "were closed, at ("));
   EXPECT_TRUE(
       has_warning(s, "fin triangles hanging on non-manifold edges were removed, e.g. at ("));
+  EXPECT_TRUE(has_warning(s, "6 duplicate triangles were removed, e.g. at ("));
+  EXPECT_TRUE(has_warning(s, "zero-area triangles were removed, e.g. at ("));
+  EXPECT_TRUE(has_warning(s, "triangles were re-oriented (consistent, outward), e.g. at ("));
   // The analysis lists the holes apart from the openings.
   const std::string json = analysis_json(s);
   EXPECT_NE(json.find("\"holes\":[{\"perimeter\":"), std::string::npos);
