@@ -1,7 +1,9 @@
 // Non-manifold edges and vertices split into manifold sheets (Gueziec et
 // al., "Cutting and stitching", IEEE TVCG 2001, the cutting step): fins
 // dropped, the triangles around each non-manifold edge paired in angular
-// order, then every vertex duplicated once per triangle fan.
+// order, then every vertex duplicated once per triangle fan; a local twist
+// cut out where a short orientation-reversing cycle of the dual graph (a
+// search of the orientation double cover) shows one.
 #include "core/mesh/manifold_repair.h"
 
 #include <algorithm>
@@ -214,6 +216,124 @@ void split_nonmanifold_edges(SurfaceMesh& mesh, std::vector<int32_t>* labels,
     ends.push_back(b);
   });
   split_fans(mesh, partner, std::move(ends), stats);
+}
+
+namespace {
+
+/// Whether orienting every component is contradictory somewhere: a
+/// breadth-first propagation of relative orientations across the edges of
+/// exactly two triangles meets a triangle from both sides.
+bool orientation_contradicts(const SurfaceMesh& mesh, const TriangleAdjacency& adj) {
+  const size_t nt = mesh.num_triangles();
+  std::vector<int8_t> side(nt, -1);  // 0: as given, 1: reversed; -1 unseen
+  std::vector<int32_t> queue;
+  for (size_t seed = 0; seed < nt; ++seed) {
+    if (side[seed] >= 0) continue;
+    side[seed] = 0;
+    queue.assign(1, int32_t(seed));
+    for (size_t q = 0; q < queue.size(); ++q) {
+      const int32_t t = queue[q];
+      for (int32_t h = 3 * t; h < 3 * t + 3; ++h) {
+        const int32_t o = adj.opposite[size_t(h)];
+        if (o < 0) continue;
+        // Consistent when the shared edge runs opposite ways once both
+        // triangles are turned to their sides.
+        const int8_t want =
+            int8_t(side[size_t(t)] ^ (half_edge_from(mesh, h) == half_edge_from(mesh, o)));
+        const int32_t u = o / 3;
+        if (side[size_t(u)] < 0) {
+          side[size_t(u)] = want;
+          queue.push_back(u);
+        } else if (side[size_t(u)] != want) {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+/// The triangles on a short orientation-reversing cycle (at most
+/// 2 `depth` triangles across edges of exactly two triangles): a search of
+/// the orientation double cover from (t, as given) that reaches (t,
+/// reversed) within `depth` steps each way. A Moebius band's shortest such
+/// cycle runs its whole length, a local twist's is a few triangles.
+std::vector<int32_t> twisted_triangles(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
+                                       int depth) {
+  const size_t nt = mesh.num_triangles();
+  std::vector<int32_t> stamp(2 * nt, -1);  // per (triangle, side): last search
+  std::vector<std::pair<int32_t, int>> level, next;
+  std::vector<int32_t> out;
+  for (size_t t = 0; t < nt; ++t) {
+    level.assign(1, {int32_t(t), 0});
+    stamp[2 * t] = int32_t(t);
+    bool found = false;
+    for (int d = 0; d < 2 * depth && !found && !level.empty(); ++d) {
+      next.clear();
+      for (auto [x, side] : level) {
+        for (int32_t h = 3 * x; h < 3 * x + 3 && !found; ++h) {
+          const int32_t o = adj.opposite[size_t(h)];
+          if (o < 0) continue;
+          const int32_t u = o / 3;
+          const int s2 = side ^ int(half_edge_from(mesh, h) == half_edge_from(mesh, o));
+          if (size_t(u) == t && s2 == 1) found = true;
+          int32_t& st = stamp[2 * size_t(u) + size_t(s2)];
+          if (st == int32_t(t)) continue;
+          st = int32_t(t);
+          next.emplace_back(u, s2);
+        }
+      }
+      level.swap(next);
+    }
+    if (found) out.push_back(int32_t(t));
+  }
+  return out;
+}
+
+}  // namespace
+
+size_t remove_orientation_twists(SurfaceMesh& mesh, std::vector<int32_t>* labels,
+                                 ManifoldRepairStats& stats, size_t budget) {
+  if (labels && labels->size() != mesh.num_triangles()) labels = nullptr;
+  const SurfaceMesh original = mesh;
+  const std::vector<int32_t> original_labels = labels ? *labels : std::vector<int32_t>{};
+  // The input's free-edge vertices, by position (removals renumber): no
+  // triangle touching them goes, so a band is never cut across.
+  std::vector<Vec3> rim;
+  {
+    const TriangleAdjacency adj = build_adjacency(mesh);
+    for (size_t h = 0; h < adj.opposite.size(); ++h)
+      if (adj.opposite[h] == TriangleAdjacency::kBoundary)
+        rim.push_back(at(mesh.points, half_edge_from(mesh, int32_t(h))));
+    std::sort(rim.begin(), rim.end());
+  }
+  size_t removed = 0;
+  Vec3 example{};
+  for (int round = 0; round < 4; ++round) {
+    const TriangleAdjacency adj = build_adjacency(mesh);
+    if (!orientation_contradicts(mesh, adj)) {
+      if (removed > 0) {
+        if (stats.twisted_removed == 0) stats.twisted_example = example;
+        stats.twisted_removed += removed;
+      }
+      return removed;
+    }
+    const std::vector<int32_t> twisted = twisted_triangles(mesh, adj, 3);
+    bool on_rim = false;
+    for (int32_t t : twisted)
+      for (int k = 0; k < 3; ++k)
+        on_rim |= std::binary_search(rim.begin(), rim.end(),
+                                     at(mesh.points, mesh.triangles[3 * size_t(t) + size_t(k)]));
+    if (round == 3 || twisted.empty() || on_rim || removed + twisted.size() > budget) break;
+    if (removed == 0) example = centroid_of(mesh, twisted[0]);
+    std::vector<uint8_t> remove(mesh.num_triangles(), 0);
+    for (int32_t t : twisted) remove[size_t(t)] = 1;
+    remove_triangles(mesh, remove, labels);
+    removed += twisted.size();
+  }
+  mesh = original;
+  if (labels) *labels = original_labels;
+  return 0;
 }
 
 void split_nonmanifold_vertices(SurfaceMesh& mesh, ManifoldRepairStats& stats) {

@@ -3,8 +3,9 @@
 // non-manifold edges are split by pairing their triangles in angular order
 // around the edge (the usual "cutting" step of Gueziec, Taubin, Lazarus and
 // Horn, "Cutting and stitching: converting sets of polygons to manifold
-// surfaces", IEEE TVCG 2001), and every vertex where several triangle fans
-// meet is duplicated once per fan.
+// surfaces", IEEE TVCG 2001), every vertex where several triangle fans
+// meet is duplicated once per fan, and a local twist (a crosscap of a few
+// triangles, found as a short orientation-reversing cycle) is cut out.
 #pragma once
 
 #include <cstddef>
@@ -28,6 +29,10 @@ struct ManifoldRepairStats {
   size_t vertices_split = 0;
   size_t vertex_copies = 0;
   Vec3 vertex_example{};
+  /// Triangles removed because orienting them was contradictory (a local
+  /// twist: they leave holes behind, for the hole filling to close).
+  size_t twisted_removed = 0;
+  Vec3 twisted_example{};
 };
 
 /// Drops fins (a triangle on a non-manifold edge whose two other edges are
@@ -52,5 +57,18 @@ void split_nonmanifold_edges(SurfaceMesh& mesh, std::vector<int32_t>* labels,
 /// 3 or more triangles (run split_nonmanifold_edges first), else such
 /// edges are left as they are.
 void split_nonmanifold_vertices(SurfaceMesh& mesh, ManifoldRepairStats& stats);
+
+/// Makes a surface orientable that is not only because of a local twist
+/// (a crosscap of a few triangles): while orienting across the edges of
+/// exactly two triangles is contradictory, the triangles on an
+/// orientation-reversing cycle of at most 6 triangles are removed (with
+/// their labels), up to 3 rounds, while at most
+/// `budget` triangles go, none of them touching a free edge of the input
+/// (so a band is never cut across). When no short cycle is found (a
+/// Moebius band: its shortest one runs its whole length) or the twist
+/// needs more, the mesh is put back as it was. Returns the triangles
+/// removed. Cost: O(triangles * 2^6) when the surface is non-orientable.
+size_t remove_orientation_twists(SurfaceMesh& mesh, std::vector<int32_t>* labels,
+                                 ManifoldRepairStats& stats, size_t budget);
 
 }  // namespace vm

@@ -133,6 +133,16 @@ void repair_edges(PreparedSurface& s, Work& w) {
     s.warnings.push_back(num(m.fins_removed) +
                          " fin triangles hanging on non-manifold edges were removed, e.g. at " +
                          point_text(m.fin_example));
+  // A local twist (at most 20 triangles or 0.1% of them) is cut out; the
+  // holes it leaves are closed with the others.
+  const size_t budget = std::max<size_t>(20, s.mesh.num_triangles() / 1000);
+  if (remove_orientation_twists(s.mesh, &w.labels, m, budget) > 0)
+    s.warnings.push_back(num(m.twisted_removed) +
+                         " triangles whose orientation contradicted their neighbors' (a local "
+                         "twist that made the surface non-orientable) were removed, e.g. at " +
+                         point_text(m.twisted_example) +
+                         "; the holes they leave are closed when smaller than {hole_fraction} of "
+                         "the local radius");
   if (m.edges_split > 0)
     s.warnings.push_back(num(m.edges_split) +
                          " non-manifold edges were split into manifold sheets (their triangles "

@@ -142,6 +142,7 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
   j.key("fins_removed").value(s.manifold.fins_removed);
   j.key("nonmanifold_edges_split").value(s.manifold.edges_split);
   j.key("nonmanifold_vertices_split").value(s.manifold.vertices_split);
+  j.key("twisted_removed").value(s.manifold.twisted_removed);
   j.end_object();
   j.key("quality");
   write_quality(j, s.quality_stats);

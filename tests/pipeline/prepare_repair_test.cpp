@@ -4,11 +4,14 @@
 // closed, and they mesh with the default options.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
 
 #include "core/io/stl.h"
+#include "core/mesh/adjacency.h"
+#include "core/mesh/repair.h"
 #include "core/mesh/volume_check.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/mesh_job.h"
@@ -145,6 +148,75 @@ TEST(PrepareRepair, AMoebiusStripStaysRefused) {
   EXPECT_FALSE(r.value().repair.orientable);
   EXPECT_TRUE(r.value().holes.empty());
   EXPECT_FALSE(check_meshable(r.value()).ok());
+}
+
+TEST(PrepareRepair, ALocalTwistIsCutOutAndItsHolesClosed) {
+  // A tube with a crosscap: the 1-ring of a valence-5 vertex replaced by
+  // the 5-triangle Moebius band whose boundary is the ring's rim, which
+  // makes the surface non-orientable through edges of two triangles only.
+  PhantomOptions po;
+  po.kind = PhantomKind::kTube;
+  PhantomTruth truth;
+  auto phantom = make_vessel_phantom(po, &truth);
+  ASSERT_TRUE(phantom.ok());
+  SurfaceMesh m = phantom.value();
+  const TriangleAdjacency adj = build_adjacency(m);
+  int32_t v = -1;
+  for (size_t c = m.num_vertices() / 2; c < m.num_vertices() && v < 0; ++c) {
+    if (adj.star_offsets[c + 1] - adj.star_offsets[c] != 5) continue;
+    bool interior = true;
+    for (int32_t i = adj.star_offsets[c]; i < adj.star_offsets[c + 1]; ++i)
+      for (int k = 0; k < 3; ++k)
+        interior &= adj.opposite[3 * size_t(adj.star[size_t(i)]) + size_t(k)] >= 0;
+    if (interior) v = int32_t(c);
+  }
+  ASSERT_GE(v, 0);
+  // The rim in order: each star triangle (v, a, b) leads from a to b.
+  std::vector<std::pair<int32_t, int32_t>> arcs;
+  std::vector<uint8_t> remove(m.num_triangles(), 0);
+  for (int32_t i = adj.star_offsets[size_t(v)]; i < adj.star_offsets[size_t(v) + 1]; ++i) {
+    const int32_t t = adj.star[size_t(i)];
+    int k = 0;
+    while (m.triangles[3 * size_t(t) + size_t(k)] != v) ++k;
+    arcs.emplace_back(m.triangles[3 * size_t(t) + size_t(k + 1) % 3],
+                      m.triangles[3 * size_t(t) + size_t(k + 2) % 3]);
+    remove[size_t(t)] = 1;
+  }
+  std::vector<int32_t> rim{arcs[0].first};
+  while (rim.size() < 5)
+    for (auto [a, b] : arcs)
+      if (a == rim.back()) {
+        rim.push_back(b);
+        break;
+      }
+  // Band vertex j sits at rim position j * 3 mod 5 (boundary 0 2 4 1 3).
+  std::array<int32_t, 5> band{};
+  for (int j = 0; j < 5; ++j) band[size_t(j * 3 % 5)] = rim[size_t(j)];
+  for (int i = 0; i < 5; ++i)
+    m.triangles.insert(m.triangles.end(),
+                       {band[size_t(i)], band[size_t(i + 1) % 5], band[size_t(i + 2) % 5]});
+  remove.resize(m.num_triangles(), 0);
+  remove_triangles(m, remove);
+  RepairStats before;
+  SurfaceMesh copy = m;
+  orient_consistently(copy, before);
+  ASSERT_FALSE(before.orientable);
+
+  auto r = prepare_surface(write_stl_binary(m));
+  ASSERT_TRUE(r.ok()) << r.message();
+  const PreparedSurface& s = r.value();
+  EXPECT_TRUE(s.repair.orientable);
+  EXPECT_GT(s.manifold.twisted_removed, 0u);
+  EXPECT_LE(s.manifold.twisted_removed, 10u);
+  EXPECT_FALSE(s.holes.empty());
+  for (const Hole& h : s.holes) EXPECT_TRUE(h.closed);
+  EXPECT_EQ(int(s.topology.openings.size()), truth.openings);
+  EXPECT_EQ(s.topology.genus, 0);
+  EXPECT_EQ(s.topology.nonmanifold_edges, 0u);
+  EXPECT_TRUE(check_meshable(s).ok());
+  EXPECT_TRUE(has_warning(s, "(a local twist that made the surface non-orientable) were removed"));
+  auto job = run_mesh_job(write_stl_binary(m));
+  EXPECT_TRUE(job.ok()) << job.message();
 }
 
 TEST(PrepareRepair, ANonManifoldEdgeOfTwoSheetsIsSplit) {
