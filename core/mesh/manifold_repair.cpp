@@ -295,18 +295,19 @@ std::vector<int32_t> twisted_triangles(const SurfaceMesh& mesh, const TriangleAd
 size_t remove_orientation_twists(SurfaceMesh& mesh, std::vector<int32_t>* labels,
                                  ManifoldRepairStats& stats, size_t budget) {
   if (labels && labels->size() != mesh.num_triangles()) labels = nullptr;
-  const SurfaceMesh original = mesh;
-  const std::vector<int32_t> original_labels = labels ? *labels : std::vector<int32_t>{};
-  // The input's free-edge vertices, by position (removals renumber): no
-  // triangle touching them goes, so a band is never cut across.
   std::vector<Vec3> rim;
   {
     const TriangleAdjacency adj = build_adjacency(mesh);
+    if (!orientation_contradicts(mesh, adj)) return 0;  // the usual case
+    // The input's free-edge vertices, by position (removals renumber): no
+    // triangle touching them goes, so a band is never cut across.
     for (size_t h = 0; h < adj.opposite.size(); ++h)
       if (adj.opposite[h] == TriangleAdjacency::kBoundary)
         rim.push_back(at(mesh.points, half_edge_from(mesh, int32_t(h))));
     std::sort(rim.begin(), rim.end());
   }
+  const SurfaceMesh original = mesh;
+  const std::vector<int32_t> original_labels = labels ? *labels : std::vector<int32_t>{};
   size_t removed = 0;
   Vec3 example{};
   for (int round = 0; round < 4; ++round) {
