@@ -147,7 +147,7 @@ void repair_edges(PreparedSurface& s, Work& w) {
     s.warnings.push_back(num(m.edges_split) +
                          " non-manifold edges were split into manifold sheets (their triangles "
                          "paired in angular order around the edge), e.g. at " +
-                         point_text(m.edge_example) + "; keep them with {repair} off");
+                         point_text(m.edge_example) + "; turn this off with {repair} off");
 }
 
 /// Phase 2c: boundary loops smaller than {hole_fraction} of the local
@@ -160,13 +160,18 @@ void repair_edges(PreparedSurface& s, Work& w) {
 /// non-manifold vertices are split (same vertex numbers, copies appended).
 void find_and_close_holes(PreparedSurface& s, Work& w, const PrepareOptions& options) {
   if (!s.repair.orientable || w.adjacency.num_nonmanifold_edges > 0) return;
-  TopologyReport t = analyze_topology(s.mesh, w.adjacency);
+  const TopologyReport t = analyze_topology(s.mesh, w.adjacency);
   if (t.openings.empty() || !(options.hole_fraction > 0) || s.mesh.num_triangles() > 2'000'000)
     return;
-  SurfaceMesh manifold = s.mesh;
-  ManifoldRepairStats unused;
-  split_nonmanifold_vertices(manifold, unused);
-  const std::vector<double> chord = chord_radius(manifold);
+  std::vector<double> chord;
+  if (t.nonmanifold_vertices > 0) {
+    SurfaceMesh manifold = s.mesh;
+    ManifoldRepairStats unused;
+    split_nonmanifold_vertices(manifold, unused);
+    chord = chord_radius(manifold);
+  } else {
+    chord = chord_radius(s.mesh);
+  }
   // Loops through a vertex twice are split into simple cycles; a cycle
   // whose edges another loop has already is not listed twice.
   std::vector<Opening> candidates;
