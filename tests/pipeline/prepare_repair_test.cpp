@@ -111,6 +111,25 @@ INSTANTIATE_TEST_SUITE_P(Kinds, DirtyPhantom,
                          ::testing::Values(PhantomKind::kTube, PhantomKind::kBifurcation,
                                            PhantomKind::kAneurysm));
 
+TEST(PrepareRepair, ADirtyAneurysmInMetresIsRepairedLikeInMillimetres) {
+  PhantomOptions o;
+  o.kind = PhantomKind::kAneurysm;
+  o.dirty = true;
+  o.scale = 0.001;
+  o.seed = 7;
+  PhantomTruth truth;
+  auto phantom = make_vessel_phantom(o, &truth);
+  ASSERT_TRUE(phantom.ok());
+  auto r = prepare_surface(write_stl_binary(phantom.value()));
+  ASSERT_TRUE(r.ok()) << r.message();
+  const PreparedSurface& s = r.value();
+  EXPECT_EQ(s.unit.unit, LengthUnit::kM);
+  EXPECT_EQ(int(s.holes.size()), truth.holes);
+  for (const Hole& h : s.holes) EXPECT_TRUE(h.closed);
+  EXPECT_EQ(int(s.topology.openings.size()), truth.openings);
+  EXPECT_TRUE(check_meshable(s).ok());
+}
+
 TEST(PrepareRepair, RealOpeningsAreNeverClosed) {
   // Clean phantoms: every opening is as large as its vessel (the branches'
   // smaller than the parent's), so none is a hole, even at half a radius.
