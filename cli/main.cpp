@@ -34,8 +34,8 @@ constexpr const char* kIntro =
 
 usage:
   vesselmesh info FILE [options]
-      Read, weld and analyze a lumen surface: counts, openings, genus,
-      non-manifold edges, triangle quality gamma_k.
+      Read, weld, repair and analyze a lumen surface: counts, openings,
+      holes, genus, non-manifold edges, triangle quality gamma_k.
   vesselmesh mesh FILE -o OUT.msh [options]
       Remesh the surface by conformal maps, grow a boundary layer inward,
       cap each opening with a planar triangulation, fill the lumen with
@@ -130,6 +130,17 @@ void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
     std::printf("  %zu: %s: perimeter %g %s, radius %g %s, centroid (%g, %g, %g), %zu vertices%s\n",
                 i + 1, names.ok() ? names.value()[i].c_str() : "?", o.perimeter, unit, o.radius,
                 unit, o.centroid[0], o.centroid[1], o.centroid[2], o.loop.size(), from.c_str());
+  }
+  size_t closed = 0;
+  for (const vm::Hole& h : s.holes) closed += h.closed;
+  std::printf("holes:       %zu (%zu closed)\n", s.holes.size(), closed);
+  for (size_t i = 0; i < s.holes.size(); ++i) {
+    const vm::Hole& h = s.holes[i];
+    std::printf(
+        "  %zu: perimeter %g %s, radius %g %s (local vessel radius %g %s), centroid (%g, %g, "
+        "%g)%s\n",
+        i + 1, h.perimeter, unit, h.radius, unit, h.vessel_radius, unit, h.centroid[0],
+        h.centroid[1], h.centroid[2], h.closed ? ", closed" : ", open");
   }
   if (!s.clip_proposals.empty()) {
     std::printf("vessel ends: %zu (the cuts --clip auto would make)\n", s.clip_proposals.size());

@@ -449,6 +449,8 @@ def main():
             check(fname, d["closed"] == exp["closed"], f"closed {d['closed']} == {exp['closed']}")
             check(fname, d["components"] == 1, f"components {d['components']} == 1")
             check(fname, d["nonmanifold_edges"] == 0, "no non-manifold edge")
+            check(fname, not d["holes"] and not d["repairs"]["nonmanifold_edges_split"],
+                  f"no hole, no non-manifold repair (a clean surface): {len(d['holes'])} holes")
             check(fname, d["format"] == exp.get("format", "binary STL"), f"format {d['format']}")
             check(fname, d["caps_removed"] == exp.get("caps", 0)
                   and all(o["source"] == ("cap" if exp.get("caps") else "file") for o in d["openings"]),

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 
+#include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
 
@@ -21,6 +22,11 @@ bool zero_area(const SurfaceMesh& m, size_t t) {
   for (int k = 0; k < 3; ++k) u[k] = b[k] - a[k], v[k] = c[k] - a[k];
   return u[1] * v[2] - u[2] * v[1] == 0 && u[2] * v[0] - u[0] * v[2] == 0 &&
          u[0] * v[1] - u[1] * v[0] == 0;
+}
+
+Vec3 centroid(const SurfaceMesh& m, size_t t) {
+  return (1.0 / 3) * (at(m.points, m.triangles[3 * t]) + at(m.points, m.triangles[3 * t + 1]) +
+                      at(m.points, m.triangles[3 * t + 2]));
 }
 
 /// Drops the vertices no triangle uses; returns old -> new index (-1: gone).
@@ -152,7 +158,7 @@ void repair_collinear_triangles(SurfaceMesh& mesh, RepairStats& stats,
       if (count != 1 || touched[neighbor]) {
         if (last_pass) {
           remove[t] = 1;
-          ++stats.degenerate_removed;
+          if (stats.degenerate_removed++ == 0) stats.degenerate_example = centroid(mesh, size_t(t));
         }
         continue;
       }
@@ -168,7 +174,7 @@ void repair_collinear_triangles(SurfaceMesh& mesh, RepairStats& stats,
       touched[neighbor] = 1;
       remove[t] = 1;
       ++progress;
-      ++stats.collinear_repaired;
+      if (stats.collinear_repaired++ == 0) stats.collinear_example = at(mesh.points, c);
     }
     remove.resize(mesh.num_triangles(), 0);
     for (uint8_t& r : remove) r = !r;
@@ -189,7 +195,7 @@ void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats,
   for (size_t t = 0; t < nt; ++t) {
     int32_t a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
     if (a == b || b == c || a == c) {
-      ++stats.degenerate_removed;
+      if (stats.degenerate_removed++ == 0) stats.degenerate_example = centroid(mesh, t);
       keep[t] = 0;
     }
   }
@@ -229,9 +235,10 @@ void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats,
       }
     }
   }
-  for (uint8_t& d : duplicate) {
-    stats.duplicates_removed += d;
-    d = !d;
+  for (size_t t = 0; t < kept; ++t) {
+    if (duplicate[t] && stats.duplicates_removed++ == 0)
+      stats.duplicate_example = centroid(mesh, t);
+    duplicate[t] = !duplicate[t];
   }
   keep_triangles(mesh, duplicate, labels);
   remove_unused_vertices(mesh, stats);
@@ -317,7 +324,8 @@ void orient_consistently(SurfaceMesh& mesh, RepairStats& stats, TriangleAdjacenc
     any_reversed = true;
   }
   // Net count of triangles reversed relative to the input.
-  for (uint8_t f : flip) stats.flipped += f;
+  for (size_t t = 0; t < nt; ++t)
+    if (flip[t] && stats.flipped++ == 0) stats.flipped_example = centroid(mesh, t);
   if (adjacency) {
     if (any_reversed) remap_after_flips(adj, reversed);
     *adjacency = std::move(adj);

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/surface_mesh.h"
 
@@ -20,6 +21,10 @@ struct RepairStats {
   size_t flipped = 0;             ///< triangles reversed to orient consistently
   size_t unused_vertices_removed = 0;
   bool orientable = true;  ///< false if some component is non-orientable
+  /// One place of each kind of change, for the warnings: a removed
+  /// degenerate triangle's centroid, a flat one's middle corner, a removed
+  /// duplicate's centroid, a re-oriented triangle's centroid.
+  Vec3 degenerate_example{}, collinear_example{}, duplicate_example{}, flipped_example{};
 };
 
 /// Removes triangles with a repeated vertex; removes flat triangles (three

@@ -49,6 +49,8 @@ bool single_fan(const SurfaceMesh& m, const TriangleAdjacency& adj, int32_t v) {
   return reached == d;
 }
 
+}  // namespace
+
 Opening describe_loop(const SurfaceMesh& m, std::vector<int32_t> loop) {
   Opening op;
   const size_t n = loop.size();
@@ -84,8 +86,6 @@ Opening describe_loop(const SurfaceMesh& m, std::vector<int32_t> loop) {
   op.loop = std::move(loop);
   return op;
 }
-
-}  // namespace
 
 TopologyReport analyze_topology(const SurfaceMesh& mesh) {
   return analyze_topology(mesh, build_adjacency(mesh));

@@ -48,6 +48,10 @@ struct TopologyReport {
   std::vector<size_t> component_triangles;  ///< triangle count per component
 };
 
+/// The perimeter, radius, centroid and normal of a loop of `mesh`'s
+/// vertices (in order, not repeated).
+Opening describe_loop(const SurfaceMesh& mesh, std::vector<int32_t> loop);
+
 /// Analyzes `mesh`. Precondition: no triangle with a repeated vertex.
 /// Boundary loops through a bow-tie vertex are split at that vertex by
 /// following the triangle fans, so each loop is a simple cycle.

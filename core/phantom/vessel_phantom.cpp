@@ -15,6 +15,7 @@
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
 #include "core/mesh/topology.h"
+#include "core/phantom/dirty_phantom.h"
 #include "core/phantom/marching_cubes.h"
 
 namespace vm {
@@ -348,9 +349,11 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
     for (const EndCut& c : m.cuts) clip(mesh, c);
   keep_largest_component(mesh);
   if (open && o.flat_caps) close_by_fans(mesh);
+  const DirtTruth dirt = o.dirty ? add_segmentation_defects(mesh, o.seed) : DirtTruth{};
   for (double& x : mesh.points) x *= o.scale;
   if (truth) {
     truth->genus = m.genus;
+    truth->holes = dirt.holes;
     truth->openings = open && !o.flat_caps ? int(m.cuts.size()) : 0;
     truth->opening_radii.clear();
     truth->opening_centers.clear();

@@ -45,6 +45,11 @@ struct PhantomOptions {
   /// constant step (what marching cubes on an unsmoothed segmentation
   /// gives). False: the field itself, a staircase smoothed by interpolation.
   bool binary = false;
+  /// Segmentation defects added (add_segmentation_defects in
+  /// dirty_phantom.h): holes, a fin, touching holes, duplicates, a flipped
+  /// patch, a zero-area band. The surface is then neither manifold nor
+  /// welded; the truth counts the holes.
+  bool dirty = false;
   /// Uniform scale applied to the output coordinates (e.g. 10 for "mm").
   double scale = 1.0;
 };
@@ -53,6 +58,8 @@ struct PhantomOptions {
 struct PhantomTruth {
   int openings = 0;  ///< boundary loops expected when open_ends (0 with flat_caps)
   int genus = 0;
+  /// Defect holes added by `dirty` (boundary loops besides the openings).
+  int holes = 0;
   /// Radius of each opening or flat cap (same order as `opening_centers`),
   /// scaled.
   std::vector<double> opening_radii;

@@ -51,6 +51,32 @@ const OptionSpec kOptions[] = {
      .commands = kInfoMesh,
      .group = "input",
      .doc = "keep only the largest connected component instead of refusing several"},
+    {.id = "repair",
+     .cli = "repair",
+     .js = "repair",
+     .type = T::kChoice,
+     .commands = kInfoMesh,
+     .group = "input",
+     .metavar = "auto|off",
+     .choices = kOffAuto,
+     .default_text = "auto",
+     .needs = "auto or off",
+     .doc = "auto: split non-manifold edges and vertices into manifold sheets and close holes "
+            "smaller than the hole fraction of the local radius; off: only the safe repairs "
+            "(non-manifold surfaces are refused, holes stay openings)"},
+    {.id = "hole_fraction",
+     .cli = "hole-fraction",
+     .js = "holeFraction",
+     .commands = kInfoMesh,
+     .group = "input",
+     .metavar = "F",
+     .min = 0,
+     .max = 1,
+     .default_text = "0.25",
+     .unit = "fraction of R",
+     .needs = "a fraction of the local vessel radius in [0, 1] (0: close no hole)",
+     .doc = "a boundary loop whose equivalent radius sqrt(area/pi) is below F local vessel radii "
+            "is a hole (closed by repair auto), else an opening"},
     {.id = "units",
      .cli = "units",
      .js = "units",
@@ -495,6 +521,14 @@ const OptionSpec kOptions[] = {
      .commands = kCommandPhantom,
      .group = "phantom",
      .doc = "the raw staircase of a binary voxel mask (thresholded per voxel, not smoothed)"},
+    {.id = "dirty",
+     .cli = "dirty",
+     .js = "dirty",
+     .type = T::kFlag,
+     .commands = kCommandPhantom,
+     .group = "phantom",
+     .doc = "add segmentation defects: small holes, a fin (non-manifold edge), touching holes "
+            "(non-manifold vertex), duplicated faces, a flipped patch, a zero-area band"},
     {.id = "seed",
      .cli = "seed",
      .js = "seed",
@@ -783,6 +817,10 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
     o.opening_names.emplace_back(v.opening - 1, v.text);
   } else if (id == "largest_component") {
     o.prepare.largest_component_only = v.flag;
+  } else if (id == "repair") {
+    o.prepare.repair = v.text == "auto";
+  } else if (id == "hole_fraction") {
+    o.prepare.hole_fraction = x;
   } else if (id == "remesh") {
     o.remesh = v.flag;
   } else if (id == "surface_only") {
@@ -814,6 +852,8 @@ Status apply_option(PhantomOptions& o, const OptionSpec& spec, const OptionValue
     o.noise = v.number;
   } else if (id == "binary") {
     o.binary = v.flag;
+  } else if (id == "dirty") {
+    o.dirty = v.flag;
   } else if (id == "seed") {
     o.seed = uint32_t(v.number);
   } else if (id == "scale") {

@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <set>
 
 #include "core/geom/vec3.h"
 #include "core/layers/chord_radius.h"
 #include "core/prepare/cut_across_vessel.h"
+#include "core/prepare/fill_holes.h"
 #include "core/prepare/flow_extensions.h"
 #include "core/prepare/vessel_ends.h"
 
@@ -17,6 +19,12 @@ namespace {
 std::string num(size_t n) { return std::to_string(n); }
 
 Status cancelled() { return Status::Cancelled(); }
+
+std::string length_text(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.4g", x);
+  return buf;
+}
 
 /// A typical vessel radius of the prepared surface: the median radius of
 /// its openings, else the median half chord across the lumen (closed
@@ -88,48 +96,37 @@ Status read_and_weld(PreparedSurface& s, Work& w, std::span<const uint8_t> bytes
   return Status::Ok();
 }
 
-/// Phase 2: safe repairs (degenerate and duplicate triangles), outward
-/// orientation.
-Status repair(PreparedSurface& s, Work& w) {
-  remove_degenerate_and_duplicates(s.mesh, s.repair, &w.labels);
-  if (s.repair.degenerate_removed > 0)
-    s.warnings.push_back(num(s.repair.degenerate_removed) + " zero-area triangles were removed");
-  if (s.repair.collinear_repaired > 0)
-    s.warnings.push_back(num(s.repair.collinear_repaired) +
-                         " flat triangles (collinear corners) were removed by "
-                         "splitting their neighbors");
-  if (s.repair.duplicates_removed > 0)
-    s.warnings.push_back(num(s.repair.duplicates_removed) + " duplicate triangles were removed");
-  if (s.mesh.num_triangles() == 0)
-    return Status::Error("no triangle left: all " + num(s.input_triangles) +
-                         " triangles of the file have zero area");
-  orient_consistently(s.mesh, s.repair, &w.adjacency);
-  if (!s.repair.orientable) {
-    s.warnings.push_back("the surface is not orientable: it cannot bound a volume");
-  } else if (s.repair.flipped == s.mesh.num_triangles()) {
-    s.warnings.push_back("the normals pointed inward: all triangles were reversed to face out");
-  } else if (s.repair.flipped > 0) {
-    s.warnings.push_back(num(s.repair.flipped) +
-                         (s.repair.flipped == 1 ? " triangle was" : " triangles were") +
-                         " re-oriented (consistent, outward)");
+/// "(x, y, z), (x, y, z) and 3 more": the first few places of a list.
+std::string places_text(const std::vector<Vec3>& places) {
+  std::string out;
+  const size_t shown = std::min<size_t>(places.size(), 3);
+  for (size_t i = 0; i < shown; ++i) out += (i ? ", " : "") + point_text(places[i]);
+  if (places.size() > shown) out += " and " + num(places.size() - shown) + " more";
+  return out;
+}
+
+/// A boundary loop that passes a vertex more than once (holes touching at
+/// a vertex) as simple cycles, in order.
+std::vector<std::vector<int32_t>> simple_cycles(const std::vector<int32_t>& loop) {
+  std::vector<std::vector<int32_t>> out;
+  std::vector<int32_t> stack;
+  for (int32_t v : loop) {
+    auto it = std::find(stack.begin(), stack.end(), v);
+    if (it != stack.end()) {
+      out.emplace_back(it, stack.end());
+      stack.erase(it + 1, stack.end());
+    } else {
+      stack.push_back(v);
+    }
   }
-  return Status::Ok();
+  if (!stack.empty()) {
+    // The loop closes on its first vertex: what is left is a cycle too.
+    out.push_back(std::move(stack));
+  }
+  return out;
 }
 
-/// Phase 3: only the largest component, when asked.
-void keep_largest_component(PreparedSurface& s, Work& w) {
-  const TopologyReport parts = analyze_topology(s.mesh, w.adjacency);
-  if (parts.components <= 1) return;
-  std::vector<uint8_t> other(s.mesh.num_triangles());
-  for (size_t t = 0; t < other.size(); ++t) other[t] = parts.triangle_component[t] != 0;
-  remove_triangles(s.mesh, other, &w.labels);
-  w.adjacency = build_adjacency(s.mesh);
-  s.warnings.push_back("kept the largest of " + std::to_string(parts.components) + " components (" +
-                       num(parts.component_triangles[0]) + " of " + num(parts.triangles) +
-                       " triangles)");
-}
-
-/// Phase 3, always: specks, separate pieces with less than 1% of the
+/// Phase 2, after orientation, always: specks, separate pieces with less than 1% of the
 /// largest piece's triangles or area (stray triangles, segmentation
 /// islands), are removed, saying where.
 void drop_specks(PreparedSurface& s, Work& w) {
@@ -168,6 +165,183 @@ void drop_specks(PreparedSurface& s, Work& w) {
                                  ", under 1% of the surface) at " + example
                            : "removed " + num(count) + " small separate pieces (" + num(triangles) +
                                  " triangles, each under 1% of the surface), e.g. at " + example);
+}
+
+/// Phase 2b ({repair} auto): fins dropped, non-manifold edges split.
+void repair_edges(PreparedSurface& s, Work& w) {
+  ManifoldRepairStats& m = s.manifold;
+  split_nonmanifold_edges(s.mesh, &w.labels, m);
+  if (m.fins_removed > 0)
+    s.warnings.push_back(num(m.fins_removed) +
+                         " fin triangles hanging on non-manifold edges were removed, e.g. at " +
+                         point_text(m.fin_example));
+  // A local twist (at most 20 triangles or 0.1% of them) is cut out; the
+  // holes it leaves are closed with the others.
+  const size_t budget = std::max<size_t>(20, s.mesh.num_triangles() / 1000);
+  if (remove_orientation_twists(s.mesh, &w.labels, m, budget) > 0)
+    s.warnings.push_back(num(m.twisted_removed) +
+                         " triangles whose orientation contradicted their neighbors' (a local "
+                         "twist that made the surface non-orientable) were removed, e.g. at " +
+                         point_text(m.twisted_example) +
+                         "; the holes they leave are closed when smaller than {hole_fraction} of "
+                         "the local radius");
+  if (m.edges_split > 0)
+    s.warnings.push_back(num(m.edges_split) +
+                         " non-manifold edges were split into manifold sheets (their triangles "
+                         "paired in angular order around the edge), e.g. at " +
+                         point_text(m.edge_example) + "; turn this off with {repair} off");
+}
+
+/// Phase 2c: boundary loops smaller than {hole_fraction} of the local
+/// vessel radius are holes; closed when {repair} is auto. The local radius
+/// is the median, over the loop's vertices, of the half chord across the
+/// lumen along the inward normal (chord_radius, the measure the layers use):
+/// at the rim of a real opening it is about the opening's own radius, at a
+/// defect in the wall it is the vessel's, whatever the loop's size.
+/// Needs an orientable surface; the chords are cast on a copy whose
+/// non-manifold vertices are split (same vertex numbers, copies appended).
+void find_and_close_holes(PreparedSurface& s, Work& w, const PrepareOptions& options) {
+  if (!s.repair.orientable || w.adjacency.num_nonmanifold_edges > 0) return;
+  const TopologyReport t = analyze_topology(s.mesh, w.adjacency);
+  if (t.openings.empty() || !(options.hole_fraction > 0) || s.mesh.num_triangles() > 2'000'000)
+    return;
+  std::vector<double> chord;
+  if (t.nonmanifold_vertices > 0) {
+    SurfaceMesh manifold = s.mesh;
+    ManifoldRepairStats unused;
+    split_nonmanifold_vertices(manifold, unused);
+    chord = chord_radius(manifold);
+  } else {
+    chord = chord_radius(s.mesh);
+  }
+  // Loops through a vertex twice are split into simple cycles; a cycle
+  // whose edges another loop has already is not listed twice.
+  std::vector<Opening> candidates;
+  std::set<std::pair<int32_t, int32_t>> taken;
+  auto take = [&](const std::vector<int32_t>& loop) {
+    bool fresh = false;
+    for (size_t i = 0; i < loop.size(); ++i)
+      fresh |= taken.insert({loop[i], loop[(i + 1) % loop.size()]}).second;
+    return fresh;
+  };
+  for (const Opening& op : t.openings)
+    if (std::set<int32_t>(op.loop.begin(), op.loop.end()).size() == op.loop.size() && take(op.loop))
+      candidates.push_back(op);
+  for (const Opening& op : t.openings) {
+    if (std::set<int32_t>(op.loop.begin(), op.loop.end()).size() == op.loop.size()) continue;
+    for (std::vector<int32_t>& cycle : simple_cycles(op.loop))
+      if (cycle.size() >= 3 && take(cycle))
+        candidates.push_back(describe_loop(s.mesh, std::move(cycle)));
+  }
+  std::vector<std::vector<int32_t>> loops;
+  for (const Opening& op : candidates) {
+    if (!(op.perimeter > 0) || op.loop.size() < 3) continue;  // never a zero-length loop
+    std::vector<double> r;
+    for (int32_t v : op.loop) r.push_back(chord[size_t(v)]);
+    std::nth_element(r.begin(), r.begin() + long(r.size() / 2), r.end());
+    const double local = r[r.size() / 2];
+    if (!(op.radius < options.hole_fraction * local)) continue;
+    Hole h;
+    h.perimeter = op.perimeter;
+    h.radius = op.radius;
+    h.centroid = op.centroid;
+    h.vessel_radius = local;
+    s.holes.push_back(h);
+    loops.push_back(op.loop);
+  }
+  if (s.holes.empty()) return;
+  const std::string fraction = length_text(options.hole_fraction);
+  if (!options.repair) {
+    std::vector<Vec3> where;
+    for (const Hole& h : s.holes) where.push_back(h.centroid);
+    s.warnings.push_back(num(s.holes.size()) + " holes smaller than " + fraction +
+                         " of the local vessel radius were left open ({repair} off), at " +
+                         places_text(where) + ": they would be meshed as openings");
+    return;
+  }
+  const std::vector<HoleFill> fills = fill_holes(s.mesh, loops, &w.labels);
+  std::vector<Vec3> closed, open;
+  for (size_t i = 0; i < fills.size(); ++i) {
+    Hole& h = s.holes[i];
+    h.closed = fills[i].filled;
+    h.triangles_added = fills[i].triangles_added;
+    h.min_angle = fills[i].min_angle;
+    (h.closed ? closed : open).push_back(h.centroid);
+  }
+  if (!closed.empty())
+    s.warnings.push_back(num(closed.size()) + " holes smaller than " + fraction +
+                         " of the local vessel radius ({hole_fraction}) were closed, at " +
+                         places_text(closed) + "; keep them open with {repair} off");
+  if (!open.empty())
+    s.warnings.push_back(num(open.size()) +
+                         " holes could not be closed (their fill would repeat "
+                         "an edge of the surface), at " +
+                         places_text(open) + ": they stay openings; fix the segmentation there");
+}
+
+/// Phase 2d ({repair} auto): vertices where several fans meet duplicated.
+void repair_vertices(PreparedSurface& s) {
+  ManifoldRepairStats& m = s.manifold;
+  split_nonmanifold_vertices(s.mesh, m);
+  if (m.vertices_split > 0)
+    s.warnings.push_back(num(m.vertices_split) +
+                         " non-manifold vertices (several triangle fans meeting) were split, one "
+                         "copy per fan, e.g. at " +
+                         point_text(m.vertex_example));
+}
+
+/// Phase 2: safe repairs (degenerate and duplicate triangles), then with
+/// {repair} auto non-manifold edges split; outward orientation; holes
+/// found (and closed with {repair} auto); non-manifold vertices split.
+Status repair(PreparedSurface& s, Work& w, const PrepareOptions& options) {
+  remove_degenerate_and_duplicates(s.mesh, s.repair, &w.labels);
+  const RepairStats& r = s.repair;
+  if (r.degenerate_removed > 0)
+    s.warnings.push_back(num(r.degenerate_removed) + " zero-area triangles were removed, e.g. at " +
+                         point_text(r.degenerate_example));
+  if (r.collinear_repaired > 0)
+    s.warnings.push_back(num(r.collinear_repaired) +
+                         " flat triangles (collinear corners) were removed by "
+                         "splitting their neighbors, e.g. at " +
+                         point_text(r.collinear_example));
+  if (r.duplicates_removed > 0)
+    s.warnings.push_back(num(r.duplicates_removed) + " duplicate triangles were removed, e.g. at " +
+                         point_text(r.duplicate_example));
+  if (s.mesh.num_triangles() == 0)
+    return Status::Error("no triangle left: all " + num(s.input_triangles) +
+                         " triangles of the file have zero area");
+  s.repaired = options.repair;
+  if (options.repair) repair_edges(s, w);
+  orient_consistently(s.mesh, s.repair, &w.adjacency);
+  if (!s.repair.orientable) {
+    s.warnings.push_back("the surface is not orientable: it cannot bound a volume");
+  } else if (s.repair.flipped == s.mesh.num_triangles()) {
+    s.warnings.push_back("the normals pointed inward: all triangles were reversed to face out");
+  } else if (s.repair.flipped > 0) {
+    s.warnings.push_back(
+        num(s.repair.flipped) + (s.repair.flipped == 1 ? " triangle was" : " triangles were") +
+        " re-oriented (consistent, outward), e.g. at " + point_text(s.repair.flipped_example));
+  }
+  drop_specks(s, w);
+  find_and_close_holes(s, w, options);
+  if (options.repair) {
+    repair_vertices(s);
+    if (!s.holes.empty() || s.manifold.vertices_split > 0) w.adjacency = build_adjacency(s.mesh);
+  }
+  return Status::Ok();
+}
+
+/// Phase 3: only the largest component, when asked.
+void keep_largest_component(PreparedSurface& s, Work& w) {
+  const TopologyReport parts = analyze_topology(s.mesh, w.adjacency);
+  if (parts.components <= 1) return;
+  std::vector<uint8_t> other(s.mesh.num_triangles());
+  for (size_t t = 0; t < other.size(); ++t) other[t] = parts.triangle_component[t] != 0;
+  remove_triangles(s.mesh, other, &w.labels);
+  w.adjacency = build_adjacency(s.mesh);
+  s.warnings.push_back("kept the largest of " + std::to_string(parts.components) + " components (" +
+                       num(parts.component_triangles[0]) + " of " + num(parts.triangles) +
+                       " triangles)");
 }
 
 /// "0.12", or "0.7 x 0.7 x 1.5" for a voxel of unequal sides.
@@ -307,12 +481,6 @@ Status extend_openings(PreparedSurface& s, Work& w, const PrepareOptions& option
     s.warnings.push_back("flow extensions added at opening " + where +
                          ": straight along each opening's normal, ending in a circle of its area");
   return Status::Ok();
-}
-
-std::string length_text(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.4g", x);
-  return buf;
 }
 
 /// Cuts the surface with one plane; the new opening's vertices get a source
@@ -468,8 +636,7 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   if (!report_progress(progress, 0.0, "read")) return cancelled();
   if (Status st = read_and_weld(s, w, file_bytes, options); !st.ok()) return st;
   if (!report_progress(progress, 0.3, "repair")) return cancelled();
-  if (Status st = repair(s, w); !st.ok()) return st;
-  drop_specks(s, w);
+  if (Status st = repair(s, w, options); !st.ok()) return st;
   if (options.largest_component_only) keep_largest_component(s, w);
   if (!report_progress(progress, 0.4, "smooth")) return cancelled();
   smooth(s, w, options);
@@ -501,11 +668,13 @@ Status check_meshable(const PreparedSurface& s) {
     return Status::Error("cannot mesh: the surface has " + num(t.nonmanifold_edges) +
                          " non-manifold edges (shared by 3 or more triangles), e.g. near " +
                          point_text(t.nonmanifold_edge_example) +
-                         "; fix the segmentation or export a manifold surface");
+                         (s.repaired ? "; fix the segmentation or export a manifold surface"
+                                     : "; split them into manifold sheets with {repair} auto"));
   }
   if (t.nonmanifold_vertices > 0) {
     return Status::Error("cannot mesh: the surface has " + num(t.nonmanifold_vertices) +
-                         " non-manifold vertices (sheets touching at a vertex)");
+                         " non-manifold vertices (sheets touching at a vertex)" +
+                         (s.repaired ? std::string() : "; split them with {repair} auto"));
   }
   if (!s.repair.orientable) {
     return Status::Error("cannot mesh: the surface is not orientable");

@@ -8,6 +8,7 @@
 
 #include "core/io/read_surface.h"
 #include "core/io/stl.h"
+#include "core/mesh/manifold_repair.h"
 #include "core/mesh/repair.h"
 #include "core/mesh/surface_mesh.h"
 #include "core/mesh/topology.h"
@@ -29,6 +30,12 @@ struct PrepareOptions {
   /// Keep only the largest connected component (the others are removed
   /// and reported) instead of refusing inputs with several components.
   bool largest_component_only = false;
+  /// Repair of dirty surfaces (phase 2): non-manifold edges and vertices
+  /// split into manifold sheets, and holes smaller than hole_fraction of
+  /// the local vessel radius closed. False: only the safe repairs (zero-area
+  /// and duplicate triangles, orientation); holes are listed, not closed.
+  bool repair = true;
+  double hole_fraction = 0.25;
   /// Flow extensions, in local radii of each opening (0: none): the length
   /// for every opening, then per opening (index in the analysis' order,
   /// before extension) where given.
@@ -72,6 +79,19 @@ inline const char* opening_source_name(OpeningSource::Kind kind) {
   return kind == OpeningSource::kCap ? "cap" : kind == OpeningSource::kClip ? "clip" : "file";
 }
 
+/// A boundary loop too small to be an opening: a defect of the surface.
+struct Hole {
+  double perimeter = 0;  ///< model units
+  double radius = 0;     ///< sqrt(area / pi) of the loop closed by a fan
+  Vec3 centroid{};
+  /// The local vessel radius it was compared with: the median over the
+  /// loop's vertices of the half chord across the lumen (chord_radius).
+  double vessel_radius = 0;
+  bool closed = false;  ///< filled (else it is still an opening of `topology`)
+  size_t triangles_added = 0;
+  double min_angle = 0;  ///< of the fill's triangles, degrees
+};
+
 /// Phase 4's outcome: what the surface was found to be and how it was
 /// smoothed.
 struct SmoothingOutcome {
@@ -92,6 +112,11 @@ struct PreparedSurface {
   size_t input_triangles = 0;  ///< triangles in the file
   WeldStats weld;
   RepairStats repair;
+  bool repaired = true;  ///< phase 2 ran with {repair} auto
+  ManifoldRepairStats manifold;
+  /// Boundary loops found smaller than {hole_fraction} of the local vessel
+  /// radius, in the order found (by decreasing radius), closed or not.
+  std::vector<Hole> holes;
   TopologyReport topology;
   BoundingBox box;
   std::vector<float> quality;  ///< gamma_k per triangle of `mesh`

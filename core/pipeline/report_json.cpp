@@ -92,6 +92,19 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
     j.end_object();
   }
   j.end_array();
+  j.key("holes").begin_array();
+  for (const Hole& h : s.holes) {
+    j.begin_object();
+    j.key("perimeter").value(h.perimeter);
+    j.key("radius").value(h.radius);
+    j.key("centroid").array(h.centroid);
+    j.key("vessel_radius").value(h.vessel_radius);
+    j.key("closed").value(h.closed);
+    j.key("triangles_added").value(h.triangles_added);
+    j.key("min_angle").value(h.min_angle);
+    j.end_object();
+  }
+  j.end_array();
   j.key("caps_removed").value(s.caps_removed);
   j.key("smoothing");
   write_smoothing(j, s.smoothing);
@@ -138,6 +151,10 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
   j.key("duplicates_removed").value(s.repair.duplicates_removed);
   j.key("flipped").value(s.repair.flipped);
   j.key("unused_vertices_removed").value(s.repair.unused_vertices_removed);
+  j.key("fins_removed").value(s.manifold.fins_removed);
+  j.key("nonmanifold_edges_split").value(s.manifold.edges_split);
+  j.key("nonmanifold_vertices_split").value(s.manifold.vertices_split);
+  j.key("twisted_removed").value(s.manifold.twisted_removed);
   j.end_object();
   j.key("quality");
   write_quality(j, s.quality_stats);

@@ -322,10 +322,16 @@ TEST(MeshJob, NonManifoldIsRefusedWithALocation) {
   SurfaceMesh m = testing::tetrahedron();
   m.points.insert(m.points.end(), {0.5, -1, 0.5});
   m.triangles.insert(m.triangles.end(), {0, 1, 4});
-  auto r = run_mesh_job(write_stl_binary(m));
+  // {repair} auto removes the fin; off, the surface is refused.
+  MeshJobOptions o;
+  ASSERT_TRUE(set_option_text(o, "repair", "off").ok());
+  auto r = run_mesh_job(write_stl_binary(m), o);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("1 non-manifold edges"), std::string::npos) << r.message();
   EXPECT_NE(r.message().find("(0.5, 0, 0)"), std::string::npos) << r.message();
+  EXPECT_NE(r.message().find("split them into manifold sheets with {repair} auto"),
+            std::string::npos)
+      << r.message();
 }
 
 TEST(MeshJob, ProgressIsMonotoneAndCancelStops) {
@@ -350,11 +356,12 @@ TEST(ReportJson, HasTheDocumentedKeys) {
   auto r = run_mesh_job(write_stl_binary(testing::open_tube(16, 5)));
   ASSERT_TRUE(r.ok());
   std::string a = analysis_json(r.value().surface);
-  for (const char* key : {"\"vertices\":96", "\"triangles\":160", "\"components\":1",
-                          "\"openings\":[{\"source\":\"file\",\"label\":-1,\"extension\":0,\"name\":\"inlet\"",
-                          "\"genus\":0", "\"nonmanifold_edges\":0", "\"quality\":{\"min\":",
-                          "\"closed\":false", "\"format\":\"binary STL\"", "\"caps_removed\":0",
-                          "\"units\":{\"unit\":\"mm\",\"guessed\":true,\"certain\":false"})
+  for (const char* key :
+       {"\"vertices\":96", "\"triangles\":160", "\"components\":1",
+        "\"openings\":[{\"source\":\"file\",\"label\":-1,\"extension\":0,\"name\":\"inlet\"",
+        "\"genus\":0", "\"nonmanifold_edges\":0", "\"quality\":{\"min\":", "\"closed\":false",
+        "\"format\":\"binary STL\"", "\"caps_removed\":0", "\"holes\":[]",
+        "\"units\":{\"unit\":\"mm\",\"guessed\":true,\"certain\":false"})
     EXPECT_NE(a.find(key), std::string::npos) << key << " in " << a;
   EXPECT_EQ(count(a, "\"radius\":"), 2u);
   std::string m = mesh_report_json(r.value());

@@ -9,6 +9,10 @@ export interface AnalyzeOptions {
   onProgress?: ProgressCallback;
   /** keep only the largest connected component instead of refusing several. Default false. */
   largestComponentOnly?: boolean;
+  /** auto: split non-manifold edges and vertices into manifold sheets and close holes smaller than the hole fraction of the local radius; off: only the safe repairs (non-manifold surfaces are refused, holes stay openings) Needs auto or off. Default auto. */
+  repair?: 'off' | 'auto';
+  /** a boundary loop whose equivalent radius sqrt(area/pi) is below F local vessel radii is a hole (closed by repair auto), else an opening. Needs a fraction of the local vessel radius in [0, 1] (0: close no hole). Default 0.25. */
+  holeFraction?: number;
   /** the unit of the file's numbers (default: guessed from the vessel radii: below 0.05 metres, else millimetres) Needs mm, cm or m. */
   units?: 'mm' | 'cm' | 'm';
   /** extend the openings (K=L: opening K) straight along their normals by L local radii. Needs a length in local radii from 0 (none) to 100, or K=L for opening K. Default 0. */
@@ -32,6 +36,10 @@ export interface MeshOptions {
   onProgress?: ProgressCallback;
   /** keep only the largest connected component instead of refusing several. Default false. */
   largestComponentOnly?: boolean;
+  /** auto: split non-manifold edges and vertices into manifold sheets and close holes smaller than the hole fraction of the local radius; off: only the safe repairs (non-manifold surfaces are refused, holes stay openings) Needs auto or off. Default auto. */
+  repair?: 'off' | 'auto';
+  /** a boundary loop whose equivalent radius sqrt(area/pi) is below F local vessel radii is a hole (closed by repair auto), else an opening. Needs a fraction of the local vessel radius in [0, 1] (0: close no hole). Default 0.25. */
+  holeFraction?: number;
   /** the unit of the file's numbers (default: guessed from the vessel radii: below 0.05 metres, else millimetres) Needs mm, cm or m. */
   units?: 'mm' | 'cm' | 'm';
   /** extend the openings (K=L: opening K) straight along their normals by L local radii. Needs a length in local radii from 0 (none) to 100, or K=L for opening K. Default 0. */
@@ -118,6 +126,8 @@ export interface PhantomOptions {
   noise?: number;
   /** the raw staircase of a binary voxel mask (thresholded per voxel, not smoothed) Default false. */
   binary?: boolean;
+  /** add segmentation defects: small holes, a fin (non-manifold edge), touching holes (non-manifold vertex), duplicated faces, a flipped patch, a zero-area band. Default false. */
+  dirty?: boolean;
   /** noise seed. Needs an integer from 0 to 4294967295. Default 1. */
   seed?: number;
   /** scale of the coordinates. Needs a positive scale factor. Default 1. */

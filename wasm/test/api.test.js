@@ -226,6 +226,25 @@ describe('analyze', () => {
     assert.ok(a.openings[0].radius >= a.openings[1].radius);
   });
 
+  test('a dirty phantom: holes closed and listed apart from the openings; repair off keeps them', () => {
+    const p = api.makePhantom({ kind: 'aneurysm', voxel: 0.12, dirty: true });
+    assert.equal(p.ok, true);
+    const r = api.analyze(p.stl);
+    assert.equal(r.ok, true, r.error);
+    const a = r.analysis;
+    assert.equal(a.openings.length, 3);
+    assert.ok(a.holes.length >= 5, `${a.holes.length} holes`);
+    assert.ok(a.holes.every((h) => h.closed && h.perimeter > 0 && h.radius < 0.25 * h.vessel_radius));
+    assert.equal(a.nonmanifold_edges, 0);
+    assert.equal(a.nonmanifold_vertices, 0);
+    const closed = /holes smaller than 0.25 of the local vessel radius \(holeFraction\) were closed/;
+    assert.ok(a.warnings.some((w) => closed.test(w)));
+    const off = api.analyze(p.stl, { repair: 'off' });
+    assert.equal(off.ok, true, off.error);
+    assert.ok(off.analysis.nonmanifold_edges > 0);
+    assert.ok(off.analysis.holes.every((h) => !h.closed));
+  });
+
   test('ASCII STL of a closed tetrahedron, re-oriented outward', () => {
     const r = api.analyze(ascii(TETRA));
     assert.equal(r.ok, true, r.error);
