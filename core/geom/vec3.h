@@ -36,6 +36,8 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 /// "(x, y, z)" with 6 significant digits, for messages that say where.
 std::string point_text(const Vec3& p);
+/// A number for messages, with `digits` significant digits ("%g").
+std::string number_text(double x, int digits = 4);
 
 /// a / |a|, or a unchanged when it is zero.
 inline Vec3 normalized(const Vec3& a) {

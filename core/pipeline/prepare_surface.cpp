@@ -20,12 +20,6 @@ std::string num(size_t n) { return std::to_string(n); }
 
 Status cancelled() { return Status::Cancelled(); }
 
-std::string length_text(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.4g", x);
-  return buf;
-}
-
 /// A typical vessel radius of the prepared surface: the median radius of
 /// its openings, else the median half chord across the lumen (closed
 /// surfaces), else a tenth of the bounding box (too large to measure).
@@ -250,7 +244,7 @@ void find_and_close_holes(PreparedSurface& s, Work& w, const PrepareOptions& opt
     loops.push_back(op.loop);
   }
   if (s.holes.empty()) return;
-  const std::string fraction = length_text(options.hole_fraction);
+  const std::string fraction = number_text(options.hole_fraction);
   if (!options.repair) {
     std::vector<Vec3> where;
     for (const Hole& h : s.holes) where.push_back(h.centroid);
@@ -540,14 +534,14 @@ Status clip(PreparedSurface& s, Work& w, const PrepareOptions& options) {
           continue;
         }
         const ClipCut& c = s.clips.back();
-        cut += (count++ ? "; " : "") + point_text(c.centroid) + " radius " + length_text(c.radius);
+        cut += (count++ ? "; " : "") + point_text(c.centroid) + " radius " + number_text(c.radius);
         if (e.cut_depth != options.clip_distance)
-          cut += " (" + length_text(e.cut_depth) +
+          cut += " (" + number_text(e.cut_depth) +
                  " radii in: the end is flat and oblique, a cut nearer its tip would cross it)";
       }
       if (count > 0)
         s.warnings.push_back("cut " + num(count) + (count == 1 ? " vessel end" : " vessel ends") +
-                             " open ({clip} auto, " + length_text(options.clip_distance) +
+                             " open ({clip} auto, " + number_text(options.clip_distance) +
                              (options.clip_distance == 1 ? " local radius" : " local radii") +
                              " in from each tip; change with {clip_distance}): at " + cut);
       else
@@ -568,8 +562,8 @@ Status clip(PreparedSurface& s, Work& w, const PrepareOptions& options) {
     if (Status st = clip_one(s, w, plane); !st.ok()) return st;
     const ClipCut& c = s.clips.back();
     s.warnings.push_back("cut by the plane at " + point_text(plane.point) + ": an opening at " +
-                         point_text(c.centroid) + " of radius " + length_text(c.radius) + " (" +
-                         length_text(c.area_removed) + " of area removed)");
+                         point_text(c.centroid) + " of radius " + number_text(c.radius) + " (" +
+                         number_text(c.area_removed) + " of area removed)");
   }
   for (const std::array<double, 3>& at_point : options.clip_at) {
     if (!manifold)
@@ -580,8 +574,8 @@ Status clip(PreparedSurface& s, Work& w, const PrepareOptions& options) {
     if (Status st = clip_one(s, w, across.value().plane); !st.ok()) return st;
     const ClipCut& c = s.clips.back();
     s.warnings.push_back("cut across the vessel at " + point_text(at_point) + ": an opening at " +
-                         point_text(c.centroid) + " of radius " + length_text(c.radius) + " (" +
-                         length_text(c.area_removed) + " of area removed)");
+                         point_text(c.centroid) + " of radius " + number_text(c.radius) + " (" +
+                         number_text(c.area_removed) + " of area removed)");
   }
   if (!options.clip_auto && s.caps_removed == 0 && manifold && closed()) {
     VesselEndOptions eo;

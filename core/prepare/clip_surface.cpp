@@ -23,12 +23,6 @@ std::string point_text(const Vec& p) {
   return buf;
 }
 
-std::string length_text(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.4g", x);
-  return buf;
-}
-
 /// The surface being cut, with what travels with its triangles and vertices.
 struct State {
   SurfaceMesh mesh;
@@ -203,10 +197,10 @@ Status PlaneCut::choose_loop(LevelLoop& chosen) const {
     const CurveShape shape = curve_shape(near.points);
     if (near.closed && best_distance > o_.reach * shape.radius)
       return Status::Error("the plane at " + point_text(q) + " does not cut the surface within " +
-                           length_text(o_.reach * shape.radius) +
+                           number_text(o_.reach * shape.radius) +
                            " of that point (its nearest cut, around " + point_text(shape.centroid) +
-                           " with radius " + length_text(shape.radius) + ", passes " +
-                           length_text(best_distance) +
+                           " with radius " + number_text(shape.radius) + ", passes " +
+                           number_text(best_distance) +
                            " away): put the point inside the vessel to cut, at the centre of "
                            "its section ({clip_plane})");
   }
@@ -306,7 +300,7 @@ Status PlaneCut::run(ClipCut& report) {
   for (int32_t t : kept_seeds)
     if (side[size_t(t)] == 2)
       return Status::Error("the cut of the plane at " + point_text(plane_.point) + " (around " +
-                           point_text(shape.centroid) + ", radius " + length_text(shape.radius) +
+                           point_text(shape.centroid) + ", radius " + number_text(shape.radius) +
                            ") does not divide the surface in two: the vessels beyond it join "
                            "the rest again; cut a vessel end instead ({clip_plane})");
 

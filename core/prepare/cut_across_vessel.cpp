@@ -182,8 +182,8 @@ Result<VesselCut> cut_across_vessel(const SurfaceMesh& mesh, const TriangleAdjac
         "bulge, an aneurysm or a branching)");
   if (roundness_of(shape) < 0.25)
     return refuse("the section there is not round (from its centre, its nearest point is " +
-                  std::to_string(shape.min_distance) + " and its farthest " +
-                  std::to_string(shape.max_distance) + " away)");
+                  number_text(shape.min_distance) + " and its farthest " +
+                  number_text(shape.max_distance) + " away)");
 
   // Phase 4b: a tube on both sides. The sections half a radius away wind
   // around the axis with about the same radius (not a vessel's rounded end,
@@ -201,8 +201,8 @@ Result<VesselCut> cut_across_vessel(const SurfaceMesh& mesh, const TriangleAdjac
           norm(near_shape.centroid - q) > 0.5 * shape.radius)
         return refuse("the vessel is no tube there (half a radius along it, at " + point_text(q) +
                       ", its section is " +
-                      (found ? "of radius " + std::to_string(near_shape.radius) + " against " +
-                                   std::to_string(shape.radius) + ", or off the axis"
+                      (found ? "of radius " + number_text(near_shape.radius) + " against " +
+                                   number_text(shape.radius) + ", or off the axis"
                              : std::string("missing: the vessel ends")) +
                       ")");
       centres[k] = near_shape.centroid;

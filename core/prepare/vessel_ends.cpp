@@ -59,12 +59,6 @@ Vec principal_direction(const std::vector<Vec>& pts, const Vec& guess) {
   return dot(v, guess) < 0 ? Vec{-v[0], -v[1], -v[2]} : v;
 }
 
-std::string number_text(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.3g", x);
-  return buf;
-}
-
 /// A plane section around an axis point.
 struct Section {
   bool found = false;
@@ -420,7 +414,7 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
     set_plane(ref.point, ref.dir);
     cap.clear();
     if (!beyond(ref.section.loop, cap, cap_area))
-      return reject("the part beyond " + number_text(z_cap) + " radii in is not an end");
+      return reject("the part beyond " + number_text(z_cap, 3) + " radii in is not an end");
     const Vec c_ref = ref.section.shape.centroid;
     double h_new = z_cap * R_new;
     if (!cap.empty()) {
@@ -475,7 +469,7 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   }
   if (roundness(cut.section) < round_enough) z_cut = D, cut = section_at(D);
   if (!cut.section.found)
-    return reject("no section around its axis " + number_text(z_cut) + " radii in");
+    return reject("no section around its axis " + number_text(z_cut, 3) + " radii in");
   // The cut's normal: the axis from the tube's sections at and behind it
   // (not in front of it, where an oblique or lopsided end would pull it
   // over), then the section again with that normal.
@@ -495,11 +489,11 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
     const bool in_tube = s.z >= z_cap - 1e-9 && s.z <= tube_end + 1e-9;
     const bool behind = s.z >= z_cut - 1e-9 && s.z <= z_cut + 1 + 1e-9;
     if (!in_tube && !behind) continue;
-    const std::string where = number_text(s.z) + " radii in";
+    const std::string where = number_text(s.z, 3) + " radii in";
     if (!s.section.found) return reject("no section around its axis " + where);
     if (std::abs(s.section.shape.radius / R - 1) > o.radius_tolerance)
-      return reject("no tube of radius " + number_text(R) + " behind it (radius " +
-                    number_text(s.section.shape.radius) + " " + where + ")");
+      return reject("no tube of radius " + number_text(R, 3) + " behind it (radius " +
+                    number_text(s.section.shape.radius, 3) + " " + where + ")");
     if (roundness(s.section) < o.min_roundness)
       return reject("the section " + where + " is not round");
     if (lateral(s.section.shape.centroid, s.point, s.dir) > o.max_offset * R)
@@ -511,7 +505,7 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   set_plane(cut_point, cut_axis);
   cap.clear();
   if (!beyond(cut_section.loop, cap, cap_area))
-    return reject("the part beyond a cut " + number_text(z_cut) + " radii in is not an end");
+    return reject("the part beyond a cut " + number_text(z_cut, 3) + " radii in is not an end");
   for (int32_t v : cap) {
     const Vec p = sh_.point(v);
     if (lateral(p, cut_point, cut_axis) > (2 + 0.25 * z_cut) * R ||

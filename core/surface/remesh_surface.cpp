@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "core/geom/point_kdtree.h"
+#include "core/geom/vec3.h"
 #include "core/mesh/boundary_loops.h"
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/star_visibility.h"
@@ -520,9 +521,22 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
     }
     if (failed.ok()) break;
     const std::vector<int32_t> bad = part.patches[failed_patch].triangle_of;
-    if (stats.retries >= 8 || bad.size() < 8)
+    if (stats.retries >= 16 || bad.size() < 4) {
+      // Where: the patch's centre; what helps: a surface with fewer folds
+      // or creases at this size.
+      Vec3 centre{0, 0, 0};
+      for (int32_t t : bad)
+        for (int k = 0; k < 3; ++k)
+          centre = centre + (1.0 / (3.0 * double(bad.size()))) *
+                                at(input.points, input.triangles[3 * size_t(t) + size_t(k)]);
       return Status::Error("meshing a patch of " + std::to_string(bad.size()) +
-                           " input triangles failed: " + failed.message());
+                           " input triangles near " + point_text(centre) +
+                           " failed after " + std::to_string(stats.retries) +
+                           " splits: " + failed.message() +
+                           "; the surface is too folded there for the size: smooth it "
+                           "({smooth} 10), give a smaller {size}, or turn crease detection "
+                           "off ({feature_angle} 180)");
+    }
     std::vector<int32_t>& limit = part.options.size_limit;
     if (limit.empty()) limit.assign(input.num_triangles(), 0);
     for (int32_t t : bad) limit[size_t(t)] = int32_t(bad.size());
