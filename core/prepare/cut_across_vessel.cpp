@@ -135,7 +135,7 @@ Result<VesselCut> cut_across_vessel(const SurfaceMesh& mesh, const TriangleAdjac
   auto refuse = [&](const std::string& why) {
     return Status::Error("cannot cut across the vessel at " + point_text(p) + ": " + why +
                          "; point to a vessel away from branchings and aneurysms, or give the "
-                         "plane itself");
+                         "plane itself ({clip_plane})");
   };
 
   // Phase 2, first round: grow the ball from a few local edges until the
