@@ -143,15 +143,6 @@ Result<SurfaceFile> read_stl_file(std::span<const uint8_t> bytes,
   if (!soup.ok()) return soup.status();
   SurfaceFile file;
   file.soup = std::move(soup.value());
-  if (file.soup.ascii) {
-    // The coordinates as written, in double: an indexed surface of one
-    // point per corner (welding merges them).
-    file.points = std::move(file.soup.coords_double);
-    file.triangles.resize(file.points.size() / 3);
-    for (size_t i = 0; i < file.triangles.size(); ++i) file.triangles[i] = int32_t(i);
-    file.soup.coords.clear();
-    file.soup.coords.shrink_to_fit();
-  }
   file.warnings = file.soup.warnings;
   file.format = file.soup.ascii ? "ASCII STL" : "binary STL";
   file.format_id = "stl";

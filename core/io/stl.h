@@ -16,9 +16,6 @@ namespace vm {
 /// coords: 9 * num_triangles() floats (x y z of corners a, b, c).
 struct TriangleSoup {
   std::vector<float> coords;
-  /// ASCII only: the same coordinates as doubles, as correctly rounded from
-  /// the text (`coords` holds their float roundings, as a binary STL would).
-  std::vector<double> coords_double;
   bool ascii = false;  ///< true when read from an ASCII STL
   std::string header;  ///< binary header (80 bytes, trimmed) or ASCII solid name
   /// Tolerated oddities (e.g. trailing bytes after a binary STL).

@@ -14,13 +14,11 @@
 
 namespace vm {
 
-/// One surface file's contents. Exactly one of `soup` (binary STL: unwelded
-/// corner triples, float as in the file) and `points`/`triangles` (ASCII
-/// STL: one point per corner, as doubles; every other format: the file's
-/// own indexed points, as doubles) is non-empty.
+/// One surface file's contents. Exactly one of `soup` (STL: unwelded corner
+/// triples, float as in the file) and `points`/`triangles` (every other
+/// format: the file's own indexed points, as doubles) is non-empty.
 struct SurfaceFile {
-  /// Binary STL: 9 floats per triangle (see stl.h); for an ASCII STL only
-  /// `ascii` and `header` are set.
+  /// STL only: 9 floats per triangle (see stl.h).
   TriangleSoup soup;
   /// Indexed formats: 3 doubles per point (x y z), 3 point indices per
   /// triangle, in the file's orientation. Polygons are split into triangles
