@@ -338,6 +338,12 @@ function coreSizeProblem() {
   return check(input, !bad, `Core size must be a length ≥ 0 in ${unitName()}, or blank for the default.`);
 }
 
+/** Why the largest volume change field is unusable, or null. */
+function volumeChangeProblem() {
+  const x = numberIn('max-volume-change');
+  return check($('max-volume-change'), x >= 0 && x <= 100, 'Largest volume change must be a percentage from 0 to 100 (Advanced).');
+}
+
 const LAYER_FIELDS = ['layers', 'layer-thickness', 'first-layer', 'growth', 'wall-thickness', 'wall-layers'];
 
 /** Why the boundary layer or vessel wall fields are unusable: every field
@@ -396,6 +402,8 @@ function meshOptions(names) {
     surfaceOnly: $('surface-only').checked,
   };
   if (!$('fidelity-on').checked) options.fidelity = 0;
+  const volumeChange = numberIn('max-volume-change') / 100;
+  if (volumeChange !== Number($('max-volume-change').defaultValue) / 100) options.maxVolumeChange = volumeChange;
   const coreSize = $('core-size').value.trim();
   if (coreSize !== '') options.coreSize = Number(coreSize);
   const flow = openings.flowExtensions();
@@ -620,7 +628,7 @@ function showMeshResult(result) {
 /** The panel's mesh options once every field and opening name is valid
  * (the core checked the names), else null with the problem shown. */
 async function checkedMeshOptions() {
-  const problem = [coreSizeProblem(), layerProblems(), openings.extensionProblem()].find(Boolean);
+  const problem = [coreSizeProblem(), volumeChangeProblem(), layerProblems(), openings.extensionProblem()].find(Boolean);
   if (problem) {
     showError(problem, 'options');
     return null;
@@ -761,7 +769,7 @@ $('volume-color').addEventListener('change', (e) => {
 });
 $('show-boundary').addEventListener('change', (e) => volumeView.set({ boundary: e.target.checked }));
 $('show-edges').addEventListener('change', (e) => volumeView.set({ edges: e.target.checked }));
-for (const id of ['core-size', ...LAYER_FIELDS]) {
+for (const id of ['core-size', 'max-volume-change', ...LAYER_FIELDS]) {
   $(id).addEventListener('input', () => $(id).setAttribute('aria-invalid', 'false'));
 }
 $('layers').addEventListener('input', syncLayerFields);

@@ -1,6 +1,6 @@
 // The Prepare step of the panel, for surfaces that need it before meshing:
 // smoothing (auto, off or N passes, with the analysis' note on a voxel
-// staircase), and cuts. A closed surface gets the core's proposed cuts at
+// staircase), repairs and holes (repair.js), and cuts. A closed surface gets the core's proposed cuts at
 // its vessel ends (analysis.clip_proposals); the user removes cuts, adds
 // one by clicking on a vessel (the core's cutAt: the section perpendicular
 // to the vessel there), moves the selected one along the vessel and tilts
@@ -10,6 +10,7 @@
 // shown here, next to the controls.
 import { CutDiscs } from './cut-discs.js';
 import { alongVessel, cutPlane, keepSide } from './cut-geometry.js';
+import { Repairs } from './repair.js';
 import { length, point, withUnit } from './units.js';
 
 const $ = (id) => document.getElementById(id);
@@ -69,6 +70,7 @@ export class Prepare {
     this.moving = null; // the running move along the vessel
     this.unit = 'mm';
     this.scale = 0;
+    this.repairs = new Repairs({ viewer, reanalyze: () => this._reanalyze(), showError: (m) => this.showError(m) });
     this._listen();
   }
 
@@ -139,9 +141,10 @@ export class Prepare {
     return ok ? n : null;
   }
 
-  /** The analyze options of this step: smooth, clipPlanes (the applied cuts). */
+  /** The analyze options of this step: smooth, repair, holeFraction,
+   * clipPlanes (the applied cuts). */
   prepOptions() {
-    const prep = {};
+    const prep = this.repairs.prepOptions();
     const mode = $('smooth').value;
     if (mode === 'off') prep.smooth = 'off';
     if (mode === 'passes' && this._passes() !== null) prep.smooth = this._passes();
@@ -156,6 +159,7 @@ export class Prepare {
     $('smooth').value = typeof smooth === 'number' ? 'passes' : smooth;
     if (typeof smooth === 'number') $('smooth-passes').value = String(smooth);
     $('smooth-passes-field').hidden = $('smooth').value !== 'passes';
+    this.repairs.showPrep(prep);
     this.applied = prep.clipPlanes ?? [];
     this._render();
   }
@@ -189,6 +193,7 @@ export class Prepare {
       this.selected = -1;
     }
     $('smoothing-note').textContent = smoothingNote(analysis.smoothing, this.unit);
+    this.repairs.show(analysis);
     this.setAdding(false);
     this._render();
   }
@@ -197,6 +202,7 @@ export class Prepare {
    * only on it). */
   setVisible(on) {
     this.visible = on;
+    this.repairs.setVisible(on);
     if (!on) this.setAdding(false);
     this._draw();
   }
@@ -204,6 +210,7 @@ export class Prepare {
   /** Off while a worker job runs. */
   setBusy(on) {
     this.busy = on;
+    this.repairs.setBusy(on);
     this._render();
   }
 

@@ -24,6 +24,7 @@ export const SETTING_IDS = [
   'param',
   'mesher2d',
   'fidelity-on',
+  'max-volume-change',
   'export-format',
   'output-units',
 ];

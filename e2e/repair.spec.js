@@ -1,0 +1,128 @@
+import { readFileSync } from 'node:fs';
+
+import { expect, test } from '@playwright/test';
+
+import { createVesselmesh } from '../wasm/src/vesselmesh.js';
+import { openApp, screenshots, upload } from './helpers.js';
+
+// Repairs in the Prepare step: a dirty segmentation (small holes, a fin,
+// touching holes, duplicates, a flipped patch: makePhantom's dirty) is
+// repaired with the defaults, its holes listed with where they are and
+// closed; with repair off or no hole size, the holes become openings and
+// meshing the non-manifold surface is refused, said where the user looks.
+// The largest volume change (Advanced) refuses a wall too coarse for the
+// vessel and lets the user accept it.
+
+test.use({ viewport: { width: 1440, height: 900 } });
+
+let api;
+test.beforeAll(async () => {
+  const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
+  api = await createVesselmesh({ wasmBinary });
+});
+
+const phantom = (options) => Buffer.from(api.makePhantom({ kind: 'bifurcation', voxel: 0.15, ...options }).stl);
+
+async function open(page) {
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
+  await openApp(page);
+  return errors;
+}
+
+/** The numbers of the first '(x, y, z)' in a text. */
+const coordinates = (text) => text.match(/\(([^)]*)\)/)[1].split(',').map(Number);
+
+test('a dirty surface is repaired, its holes listed and closed; repair off leaves them openings', async ({ page }) => {
+  const errors = await open(page);
+  const dirty = phantom({ dirty: true });
+  const analysis = api.analyze(dirty);
+  expect(analysis.ok).toBe(true);
+  const closedHoles = analysis.analysis.holes.filter((h) => h.closed);
+  expect(closedHoles.length).toBeGreaterThan(3);
+
+  await upload(page, 'dirty.stl', dirty);
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  await expect(page.getByTestId('repair-note')).toContainText('Repaired:');
+  await expect(page.getByTestId('repair-note')).toContainText(`${closedHoles.length} holes closed`);
+  await expect(page.getByTestId('repair-note')).toContainText('fin removed');
+  const rows = page.getByTestId('hole-row');
+  await expect(rows).toHaveCount(analysis.analysis.holes.length);
+  // Each row says where its hole is (the core's centroid) and that it was closed.
+  for (const [i, hole] of analysis.analysis.holes.entries()) {
+    const text = await rows.nth(i).textContent();
+    coordinates(text).forEach((x, k) => expect(Math.abs(x - hole.centroid[k])).toBeLessThan(1e-3 * Math.max(1, Math.abs(x))));
+    await expect(rows.nth(i)).toHaveAttribute('data-state', hole.closed ? 'closed' : 'open');
+  }
+  await expect(page.getByTestId('holes-hint')).toContainText('marked in orange');
+  await rows.first().hover();
+  await screenshots(page, 'repair-holes', page.getByTestId('prepare'));
+
+  // Repair off: the holes are openings, nothing is closed, and meshing the
+  // non-manifold surface is refused with a message in view.
+  await page.getByTestId('repair').selectOption('off');
+  await expect(page.getByTestId('holes-hint')).toContainText('Repair is off');
+  await expect(page.getByTestId('holes')).toBeHidden();
+  const openings = Number(await page.getByTestId('stat-openings').textContent());
+  expect(openings).toBeGreaterThanOrEqual(3 + closedHoles.length);
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('error')).toContainText(/non-manifold/i);
+  await expect(page.getByTestId('error')).toBeInViewport();
+  await screenshots(page, 'repair-off-refused', page.getByTestId('error'));
+
+  // A hole size of 0 closes no hole: every loop is an opening.
+  await page.getByTestId('repair').selectOption('auto');
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  await page.getByTestId('hole-fraction').fill('0');
+  await page.getByTestId('hole-fraction').press('Enter');
+  await expect(page.getByTestId('holes-hint')).toHaveText('No holes found.');
+  // (The loops around the split non-manifold vertex count differently with repair on.)
+  await expect.poll(async () => Number(await page.getByTestId('stat-openings').textContent())).toBeGreaterThan(3 + closedHoles.length - 2);
+
+  // A size out of range is marked and said, and nothing is analyzed.
+  await page.getByTestId('hole-fraction').fill('2');
+  await page.getByTestId('hole-fraction').press('Enter');
+  await expect(page.getByTestId('hole-fraction')).toHaveAttribute('aria-invalid', 'true');
+  await expect(page.getByTestId('prepare-error')).toContainText('from 0 to 1');
+
+  // Back to the default: repaired and meshed, with an inlet and two outlets.
+  await page.getByTestId('hole-fraction').fill('0.25');
+  await page.getByTestId('hole-fraction').press('Enter');
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  await expect(page.getByTestId('hole-row')).toHaveCount(analysis.analysis.holes.length);
+  await page.getByTestId('size-mode').selectOption('size');
+  await page.getByTestId('size-value').fill('0.35');
+  await page.getByTestId('layers').fill('1');
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('remesh-result')).toBeVisible({ timeout: 90_000 });
+  await expect(page.locator('#out-caps')).toHaveText('inlet, outlet_1, outlet_2');
+  expect(errors).toEqual([]);
+});
+
+test('the largest volume change refuses a wall too coarse for the vessel, and the user can accept it', async ({ page }) => {
+  const errors = await open(page);
+  await upload(page, 'bifurcation.stl', phantom());
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  await page.getByTestId('size-mode').selectOption('size');
+  await page.getByTestId('size-value').fill('3');
+  await page.getByTestId('layers').fill('0');
+  await page.getByTestId('remesh').click();
+  const error = page.getByTestId('error');
+  await expect(error).toContainText(/less volume/);
+  await expect(error).toBeInViewport();
+  const lost = Number(/([\d.]+)% less volume/.exec(await error.textContent())[1]);
+  expect(lost).toBeGreaterThan(5);
+
+  // Accepting more than was lost meshes it.
+  await page.locator('details summary', { hasText: 'Advanced' }).click();
+  await page.getByTestId('max-volume-change').fill('-1');
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('max-volume-change')).toHaveAttribute('aria-invalid', 'true');
+  await expect(error).toContainText('percentage from 0 to 100');
+  await page.getByTestId('max-volume-change').fill(String(Math.ceil(lost) + 1));
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('remesh-result')).toBeVisible({ timeout: 90_000 });
+  await expect(error).toBeHidden();
+  expect(errors).toEqual([]);
+});
