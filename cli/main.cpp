@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli/args.h"
+#include "cli/read_input.h"
 #include "core/io/provenance.h"
 #include "core/io/stl.h"
 #include "core/io/zip_writer.h"
@@ -48,6 +49,7 @@ usage:
       Print the option table (JSON: for tools; Markdown: the README's list).
   vesselmesh --help | --version
 
+FILE may be '-': the surface is read from standard input (a pipe).
 Lengths are in the model's unit; R is the local vessel radius.
 )";
 
@@ -61,24 +63,19 @@ int fail(const std::string& msg) {
   return 1;
 }
 
-std::optional<std::vector<uint8_t>> read_file(const std::string& path, std::string& error) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) {
-    error = "cannot open '" + path + "'";
+/// The input file's bytes ('-': standard input) within the read limits of
+/// `options`; the error message on failure.
+std::optional<std::vector<uint8_t>> read_file(const std::string& path,
+                                              const vm::MeshJobOptions& options,
+                                              std::string& error) {
+  vm::SurfaceReadOptions limits;
+  limits.max_triangles = options.prepare.read.max_triangles;
+  auto bytes = vm::cli::read_input(path, limits);
+  if (!bytes.ok()) {
+    error = bytes.message();
     return std::nullopt;
   }
-  std::streamsize size = in.tellg();
-  if (size < 0) {
-    error = "cannot read '" + path + "' (is it a directory?)";
-    return std::nullopt;
-  }
-  in.seekg(0);
-  std::vector<uint8_t> bytes(static_cast<size_t>(size));
-  if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size)) {
-    error = "cannot read '" + path + "'";
-    return std::nullopt;
-  }
-  return bytes;
+  return std::move(bytes.value());
 }
 
 bool write_file(const std::string& path, const void* data, size_t size, std::string& error) {
@@ -226,7 +223,7 @@ int cmd_info(int argc, char** argv) {
   vm::MeshJobOptions options;
   if (std::string e = vm::cli::apply_all(a, options); !e.empty()) return usage_error(e);
   std::string err;
-  auto bytes = read_file(a.positional[0], err);
+  auto bytes = read_file(a.positional[0], options, err);
   if (!bytes) return fail(err);
   auto r = vm::prepare_surface(*bytes, options.prepare);
   if (!r.ok()) return fail(a.positional[0], r.status());
@@ -309,7 +306,7 @@ int cmd_mesh(int argc, char** argv) {
   std::string err;
   const auto dest = destination(out->text, options, err);
   if (!dest) return usage_error(err);
-  auto bytes = read_file(a.positional[0], err);
+  auto bytes = read_file(a.positional[0], options, err);
   if (!bytes) return fail(err);
   auto r = vm::run_mesh_job(*bytes, options);
   if (!r.ok()) return fail(a.positional[0], r.status());

@@ -215,3 +215,15 @@ test('units: metres guessed plainly, an unsure guess asked and changed; caps kep
   await expect(units).toHaveText('mm');
   expect(errors).toEqual([]);
 });
+
+test('a UTF-16 ASCII STL is read, and the page says it was UTF-16', async ({ page }) => {
+  const { errors, foreign } = await open(page);
+  const facet = 'facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n';
+  const text = `solid t\n${facet}endsolid t\n`;
+  await upload(page, 'utf16.stl', Buffer.concat([Buffer.from([0xff, 0xfe]), Buffer.from(text, 'utf16le')]));
+  await expect(page.getByTestId('stat-format')).toHaveText('ASCII STL');
+  await expect(page.getByTestId('stat-input-triangles')).toHaveText('1');
+  await expect(page.getByTestId('warnings')).toContainText('UTF-16');
+  expect(errors).toEqual([]);
+  expect(foreign).toEqual([]);
+});

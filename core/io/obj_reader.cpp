@@ -39,27 +39,22 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-// Iterates over the lines of a buffer (without their line ends).
+// Iterates over the lines of a buffer (without their line ends: \n, \r\n
+// or a lone \r).
 class Lines {
  public:
-  explicit Lines(std::span<const uint8_t> bytes)
-      : p_(reinterpret_cast<const char*>(bytes.data())), n_(bytes.size()) {}
+  explicit Lines(std::span<const uint8_t> bytes) : cur_(bytes) {}
   bool next(std::string_view& line) {
-    if (pos_ >= n_) return false;
-    size_t b = pos_;
-    while (pos_ < n_ && p_[pos_] != '\n') ++pos_;
-    size_t e = pos_;
-    if (pos_ < n_) ++pos_;
-    if (e > b && p_[e - 1] == '\r') --e;
-    line = std::string_view(p_ + b, e - b);
+    if (cur_.remaining() == 0) return false;
+    line = cur_.rest_of_line();
     ++number_;
     return true;
   }
   size_t number() const { return number_; }
 
  private:
-  const char* p_;
-  size_t n_, pos_ = 0, number_ = 0;
+  TextCursor cur_;
+  size_t number_ = 0;
 };
 
 bool is_vertex_line(std::string_view line) {

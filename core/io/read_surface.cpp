@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/geom/vec3.h"
 #include "core/io/float_bits.h"
 #include "core/io/inflate.h"
 #include "core/io/obj_reader.h"
@@ -171,11 +172,55 @@ Result<SurfaceFile> read_sniffed(std::span<const uint8_t> bytes,
 
 bool is_gzip(std::span<const uint8_t> b) { return b.size() >= 2 && b[0] == 0x1f && b[1] == 0x8b; }
 
+/// Whether the bytes start with a UTF-16 byte order mark (FF FE: little
+/// endian, FE FF: big endian).
+bool is_utf16(std::span<const uint8_t> b) {
+  return b.size() >= 2 && ((b[0] == 0xFF && b[1] == 0xFE) || (b[0] == 0xFE && b[1] == 0xFF));
+}
+
+/// UTF-16 text (after its byte order mark) as one byte a character: ASCII
+/// as is, anything else '?' (the formats' keywords and numbers are ASCII).
+std::vector<uint8_t> utf16_to_ascii(std::span<const uint8_t> b) {
+  const bool little = b[0] == 0xFF;
+  std::vector<uint8_t> out;
+  out.reserve(b.size() / 2);
+  for (size_t i = 2; i + 1 < b.size(); i += 2) {
+    const unsigned unit = little ? b[i] | (b[i + 1] << 8) : (b[i] << 8) | b[i + 1];
+    out.push_back(unit < 128 ? uint8_t(unit) : uint8_t('?'));
+  }
+  return out;
+}
+
 }  // namespace
+
+Status check_surface_size(std::span<const uint8_t> prefix, uint64_t file_size,
+                          const SurfaceReadOptions& options) {
+  const auto gib = [](uint64_t n) { return number_text(double(n) / double(uint64_t(1) << 30), 3); };
+  if (file_size > options.max_file_bytes) {
+    return Status::Error("file too large: " + gib(file_size) + " GiB, the limit of this build is " +
+                         gib(options.max_file_bytes) + " GiB");
+  }
+  if (prefix.size() >= 84 && !is_gzip(prefix)) {
+    const uint64_t count = load_u32le(prefix.data() + 80);
+    if (84 + 50 * count == file_size && count > options.max_triangles) {
+      return Status::Error("file too large: the binary STL header announces " +
+                           std::to_string(count) + " triangles, the limit of this build is " +
+                           std::to_string(options.max_triangles));
+    }
+  }
+  return Status::Ok();
+}
 
 Result<SurfaceFile> read_surface(std::span<const uint8_t> bytes,
                                  const SurfaceReadOptions& options) {
   if (bytes.empty()) return Status::Error("empty file");
+  if (is_utf16(bytes)) {
+    const std::vector<uint8_t> text = utf16_to_ascii(bytes);
+    Result<SurfaceFile> r = read_surface(text, options);
+    if (!r.ok()) return Status::Error("UTF-16 text file: " + r.message());
+    r.value().warnings.push_back("the file is UTF-16 text; it was read as ASCII");
+    return r;
+  }
   if (!is_gzip(bytes)) return read_sniffed(bytes, options);
   const std::string prefix = "gzip-compressed file: ";
   std::vector<std::string> gzip_warnings;

@@ -19,7 +19,19 @@ struct SurfaceReadOptions {
   /// Limit of gzip/zlib output (the whole decompressed file, and the sum of
   /// the compressed arrays of a VTK XML file): a "zip bomb" is refused.
   size_t max_decompressed_bytes = size_t(2) << 30;
+  /// Larger files are refused before they are read (check_surface_size):
+  /// 25M triangles of ASCII STL take about 7 GiB.
+  uint64_t max_file_bytes = uint64_t(8) << 30;
 };
+
+/// Whether a file of `file_size` bytes whose first bytes are `prefix` (at
+/// least 84 when the file has them) is within the limits of `options`,
+/// judged before the file is read: its size against max_file_bytes, and a
+/// binary STL header's triangle count against max_triangles. Formats whose
+/// counts come later are checked by their readers, before any allocation
+/// proportional to a count.
+Status check_surface_size(std::span<const uint8_t> prefix, uint64_t file_size,
+                          const SurfaceReadOptions& options = {});
 
 /// Reads a surface file held in memory. The format is sniffed from the
 /// content: gzip magic (1f 8b: decompressed, then sniffed once more), "<?xml"

@@ -4,6 +4,7 @@
 // endloop / endfacet / endsolid.
 #include "core/io/stl.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -125,22 +126,38 @@ Result<TriangleSoup> read_ascii(std::span<const uint8_t> bytes, const StlReadOpt
   return soup;
 }
 
+bool is_text_byte(uint8_t c) { return c >= 32 || c == '\n' || c == '\r' || c == '\t'; }
+
+/// Whether the first 512 bytes are all text.
 bool looks_like_text(std::span<const uint8_t> bytes) {
-  size_t n = std::min<size_t>(bytes.size(), 512);
-  for (size_t i = 0; i < n; ++i) {
-    uint8_t c = bytes[i];
-    if (c == 0 || (c < 32 && c != '\n' && c != '\r' && c != '\t')) return false;
-  }
+  const size_t n = std::min<size_t>(bytes.size(), 512);
+  for (size_t i = 0; i < n; ++i)
+    if (!is_text_byte(bytes[i])) return false;
   return true;
 }
 
-bool starts_with_solid(std::span<const uint8_t> bytes) {
+/// Whether the bytes (after an optional UTF-8 byte order mark) read as an
+/// ASCII STL: "solid", a name line that may hold any byte but a line end
+/// (writers put NUL, form feeds or binary junk in it), then text up to 512
+/// bytes on whose first word is "facet" or "endsolid".
+bool looks_like_ascii_stl(std::span<const uint8_t> bytes) {
   size_t i = 0;
   while (i < bytes.size() &&
          (bytes[i] == ' ' || bytes[i] == '\t' || bytes[i] == '\r' || bytes[i] == '\n'))
     ++i;
-  return bytes.size() - i >= 5 &&
-         iequals(std::string_view(reinterpret_cast<const char*>(bytes.data() + i), 5), "solid");
+  if (bytes.size() - i < 5 ||
+      !iequals(std::string_view(reinterpret_cast<const char*>(bytes.data() + i), 5), "solid")) {
+    return false;
+  }
+  const size_t name_end = std::min<size_t>(bytes.size(), i + 1024);
+  while (i < name_end && bytes[i] != '\n' && bytes[i] != '\r') ++i;
+  if (i == name_end) return false;
+  const size_t end = std::min<size_t>(bytes.size(), i + 512);
+  for (size_t k = i; k < end; ++k)
+    if (!is_text_byte(bytes[k])) return false;
+  TextCursor cur(bytes.subspan(i, end - i));
+  const std::string_view first = cur.next();
+  return iequals(first, "facet") || iequals(first, "endsolid");
 }
 
 }  // namespace
@@ -153,11 +170,11 @@ Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes, const StlReadOptio
     count = load_u32le(bytes.data() + 80);
     binary_law = kHeaderBytes + kTriangleBytes * count == bytes.size();
   }
-  bool text = looks_like_text(bytes);
-  if (!binary_law && text) {
-    if (!starts_with_solid(bytes)) {
-      return Result<TriangleSoup>::Error("not an STL file: text that does not start with 'solid'");
-    }
+  if (bytes.size() >= 3 && bytes[0] == 0xEF && bytes[1] == 0xBB && bytes[2] == 0xBF &&
+      !binary_law) {
+    bytes = bytes.subspan(3);  // a UTF-8 byte order mark before "solid"
+  }
+  if (!binary_law && looks_like_ascii_stl(bytes)) {
     Result<TriangleSoup> r = read_ascii(bytes, options);
     if (!r.ok()) return r;
     if (r.value().num_triangles() == 0) {
@@ -171,19 +188,25 @@ Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes, const StlReadOptio
     return Result<TriangleSoup>::Error("not an STL file: " + fmt_count(bytes.size()) +
                                        " bytes is shorter than a binary STL header (84 bytes)");
   }
-  if (count > options.max_triangles) {
-    return Result<TriangleSoup>::Error("file too large: the header announces " + fmt_count(count) +
-                                       " triangles, the limit of this build is " +
-                                       fmt_count(options.max_triangles));
-  }
   uint64_t need = kHeaderBytes + kTriangleBytes * count;
   TriangleSoup soup;
-  if (bytes.size() < need) {
+  if (bytes.size() < need && !looks_like_text(bytes)) {
     uint64_t have = (bytes.size() - kHeaderBytes) / kTriangleBytes;
     return Result<TriangleSoup>::Error("truncated binary STL: the header announces " +
                                        fmt_count(count) + " triangles (" + fmt_count(need) +
                                        " bytes) but the file has " + fmt_count(bytes.size()) +
                                        " bytes (room for " + fmt_count(have) + " triangles)");
+  }
+  if (bytes.size() < need) {
+    return Result<TriangleSoup>::Error(
+        "not an STL file: text that is not an ASCII STL ('solid NAME', then 'facet normal' "
+        "lines; it starts with '" +
+        printable_prefix(bytes, 24) + "')");
+  }
+  if (count > options.max_triangles) {
+    return Result<TriangleSoup>::Error("file too large: the header announces " + fmt_count(count) +
+                                       " triangles, the limit of this build is " +
+                                       fmt_count(options.max_triangles));
   }
   if (count == 0) {
     return Result<TriangleSoup>::Error("binary STL contains no triangle");

@@ -118,7 +118,10 @@ std::string printable_prefix(std::span<const uint8_t> bytes, size_t max_bytes) {
 
 void TextCursor::skip_space() {
   while (pos_ < n_ && is_text_space(p_[pos_])) {
-    if (p_[pos_] == '\n') ++line_;
+    // A line ends at \n, \r\n or a lone \r (classic Mac line ends).
+    if (p_[pos_] == '\n' || (p_[pos_] == '\r' && (pos_ + 1 == n_ || p_[pos_ + 1] != '\n'))) {
+      ++line_;
+    }
     ++pos_;
   }
 }
@@ -140,13 +143,13 @@ std::string_view TextCursor::peek() {
 
 std::string_view TextCursor::rest_of_line() {
   size_t b = pos_;
-  while (pos_ < n_ && p_[pos_] != '\n') ++pos_;
+  while (pos_ < n_ && p_[pos_] != '\n' && p_[pos_] != '\r') ++pos_;
   size_t e = pos_;
   if (pos_ < n_) {
+    if (p_[pos_] == '\r' && pos_ + 1 < n_ && p_[pos_ + 1] == '\n') ++pos_;
     ++pos_;
     ++line_;
   }
-  if (e > b && p_[e - 1] == '\r') --e;
   return std::string_view(p_ + b, e - b);
 }
 

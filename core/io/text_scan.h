@@ -44,8 +44,8 @@ class TextCursor {
   std::string_view next();
   /// Next token without consuming it.
   std::string_view peek();
-  /// The rest of the current line (without the newline), consuming the
-  /// newline too.
+  /// The rest of the current line (without its end: \n, \r\n or a lone
+  /// \r), consuming the line end too.
   std::string_view rest_of_line();
   /// Skips spaces and tabs, then one line end (\n or \r\n) if there is one:
   /// where the binary data after a keyword line starts.

@@ -41,6 +41,34 @@ check "phantom bad kind" expect_exit 2 "--kind needs bifurcation, tube, aneurysm
 head -c 1000 "$T/bif.stl" > "$T/truncated.stl"
 check "truncated" expect_exit 1 "truncated binary STL" "$VM" info "$T/truncated.stl"
 
+# Where the input comes from: standard input, a pipe, a directory, a device.
+check "stdin ('-')" expect_exit 0 "openings:    3" sh -c '"$1" info - < "$2"' _ "$VM" "$T/bif.stl"
+check "pipe" expect_exit 0 "openings:    3" sh -c 'cat "$2" | "$1" info -' _ "$VM" "$T/bif.stl"
+check "mesh from a pipe" expect_exit 0 "wrote" sh -c 'cat "$2" | "$1" mesh - -o "$3" --size 0.3 --layers 0' _ "$VM" "$T/bif.stl" "$T/pipe.msh"
+check "directory" expect_exit 1 "is a directory: give a surface file" "$VM" info "$T"
+check "device" expect_exit 1 "is a device, not a surface file" "$VM" info /dev/zero
+# A binary STL announcing more triangles than the limit is refused from its
+# header, before its 1.25 GB are read (a sparse file: nothing is written).
+python3 -c "
+import struct, sys
+with open(sys.argv[1], 'wb') as f:
+    f.write(b'big'.ljust(80, b' ') + struct.pack('<I', 25000001))
+    f.truncate(84 + 50 * 25000001)
+" "$T/huge.stl"
+check "too many triangles, refused from the header" expect_exit 1 "the binary STL header announces 25000001 triangles" "$VM" info "$T/huge.stl"
+rm -f "$T/huge.stl"
+# Text as segmentation tools write it: a UTF-8 byte order mark, a form feed
+# or NUL in the solid's name, classic Mac line ends (CR only), UTF-16.
+facet='facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n'
+printf "\xef\xbb\xbfsolid t\n${facet}endsolid t\n" > "$T/bom.stl"
+printf "solid a\fb\000c\n${facet}endsolid\n" > "$T/name.stl"
+printf "solid t\n${facet}endsolid t\n" | tr '\n' '\r' > "$T/cr.stl"
+printf "solid t\n${facet}endsolid t\n" | iconv -f ASCII -t UTF-16 > "$T/utf16.stl"
+for f in bom name cr utf16; do
+  check "ASCII STL: $f" expect_exit 0 "(ASCII STL, 1 triangles)" "$VM" info "$T/$f.stl"
+done
+check "UTF-16 said" expect_exit 0 "UTF-16 text" "$VM" info "$T/utf16.stl"
+
 "$VM" info "$T/bif.stl" --json > "$T/info.json"
 check "info json openings" [ "$(json "$T/info.json" "len(d['openings'])")" = 3 ]
 check "info json genus" [ "$(json "$T/info.json" "d['genus']")" = 0 ]

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <random>
 #include <string>
 
@@ -160,6 +161,45 @@ TEST(ReadSurface, ClearlyStlKeepsStlMessages) {
   Bytes zeroed = stl;
   for (size_t t = 0; t < 20; ++t) std::fill_n(zeroed.begin() + long(84 + 50 * t), 12, 0);
   EXPECT_HAS(error_of(Bytes(zeroed.begin(), zeroed.begin() + 700)), "truncated binary STL");
+}
+
+TEST(ReadSurface, Utf16TextIsRead) {
+  const std::string ascii = testing::ascii_stl(float_tube());
+  for (bool little : {true, false}) {
+    Bytes b = little ? Bytes{0xFF, 0xFE} : Bytes{0xFE, 0xFF};
+    for (char c : ascii) {
+      b.push_back(little ? uint8_t(c) : 0);
+      b.push_back(little ? 0 : uint8_t(c));
+    }
+    auto r = read_surface(b);
+    ASSERT_TRUE(r.ok()) << r.message();
+    EXPECT_EQ(r.value().num_triangles(), float_tube().num_triangles());
+    ASSERT_FALSE(r.value().warnings.empty());
+    EXPECT_HAS(r.value().warnings.back(), "UTF-16");
+  }
+}
+
+TEST(ReadSurface, ObjWithClassicMacLineEnds) {
+  auto r = read_surface(to_bytes("v 0 0 0\rv 1 0 0\rv 0 1 0\rv 0 0 1\rf 1 2 3\rf 1 2 4\r"));
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(r.value().num_triangles(), 2u);
+}
+
+TEST(ReadSurface, SizeIsCheckedFromTheHeaderBeforeReading) {
+  Bytes head(84, ' ');
+  const uint32_t count = 25'000'001;
+  std::memcpy(head.data() + 80, &count, 4);
+  const uint64_t size = 84 + 50 * uint64_t(count);
+  EXPECT_HAS(check_surface_size(head, size).message(),
+             "the binary STL header announces 25000001 triangles, the limit of this build is "
+             "25000000");
+  // A header that does not fit the file's size is left to the reader.
+  EXPECT_TRUE(check_surface_size(head, size - 1).ok());
+  SurfaceReadOptions small;
+  small.max_file_bytes = 1000;
+  EXPECT_HAS(check_surface_size(head, 2000, small).message(), "file too large");
+  Bytes stl = write_stl_binary(float_tube());
+  EXPECT_TRUE(check_surface_size(Bytes(stl.begin(), stl.begin() + 84), stl.size()).ok());
 }
 
 TEST(ReadSurface, BinaryStlWhoseHeaderLooksLikeAnotherFormat) {

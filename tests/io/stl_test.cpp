@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "tests/support/test_meshes.h"
@@ -58,10 +60,15 @@ TEST(Stl, AsciiAcceptsUpperCaseAndCrLf) {
 
 TEST(Stl, AsciiNumbersParseLikeStrtod) {
   // Every syntax the reader accepts, compared with strtod rounded to float.
-  const char* numbers[] = {"0",        "-0",      "1",         "-1.5",       "+2.25",
-                           "3.",       ".5",      "-.125",     "1e3",        "1E-3",
-                           "1.5e+2",   "123456789.123456789",    "0.000001234",
-                           "6.02214076e23", "-7.5e-30", "1234567890123456789012", "3.4e38"};
+  const char* numbers[] = {"0",           "-0",
+                           "1",           "-1.5",
+                           "+2.25",       "3.",
+                           ".5",          "-.125",
+                           "1e3",         "1E-3",
+                           "1.5e+2",      "123456789.123456789",
+                           "0.000001234", "6.02214076e23",
+                           "-7.5e-30",    "1234567890123456789012",
+                           "3.4e38"};
   for (const char* num : numbers) {
     std::string s = "solid n\nfacet normal 0 0 0\nouter loop\nvertex " + std::string(num) +
                     " 0 0\nvertex 0 1 0\nvertex 0 0 1\nendloop\nendfacet\nendsolid n\n";
@@ -160,9 +167,13 @@ TEST(Stl, TooManyTrianglesIsRefusedBeforeAllocating) {
   std::vector<uint8_t> bytes(84, 0);
   uint32_t huge = 4000000000u;
   std::memcpy(bytes.data() + 80, &huge, 4);
+  // 84 bytes that claim 4e9 triangles are a truncated file, refused
+  // without allocating for the claim.
   auto r = read_stl(bytes);
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("too large"), std::string::npos) << r.message();
+  EXPECT_NE(r.message().find("truncated binary STL: the header announces 4000000000 triangles"),
+            std::string::npos)
+      << r.message();
 
   StlReadOptions small;
   small.max_triangles = 3;
@@ -176,6 +187,41 @@ TEST(Stl, ShortBinaryIsRefused) {
   auto r = read_stl(bytes);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("shorter than a binary STL header"), std::string::npos) << r.message();
+}
+
+TEST(Stl, AsciiAsSegmentationToolsWriteIt) {
+  const std::string facets =
+      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+      "endloop\nendfacet\n";
+  const std::string body = facets + "endsolid t\n";
+  std::string mac = "solid t\n" + body;
+  std::replace(mac.begin(), mac.end(), '\n', '\r');
+  const std::string cases[] = {
+      "\xEF\xBB\xBFsolid t\n" + body,                 // UTF-8 byte order mark
+      std::string("solid a\fb\0c\n", 12) + body,      // form feed and NUL in the name
+      mac,                                            // classic Mac line ends
+      "solid " + std::string(90, 'x') + "\n" + body,  // a name past byte 84
+  };
+  for (const std::string& text : cases) {
+    auto r = read_stl(bytes_of(text));
+    ASSERT_TRUE(r.ok()) << r.message();
+    EXPECT_TRUE(r.value().ascii);
+    EXPECT_EQ(r.value().num_triangles(), 1u);
+    EXPECT_FLOAT_EQ(r.value().coords[3], 1.0f);
+  }
+  // Lines are counted with lone CRs too.
+  std::string bad = "solid t\rfacet normal 0 0 1\router loop\rvertex 0 0 0\rvertex 1 x 0\r";
+  auto r = read_stl(bytes_of(bad));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("line 5"), std::string::npos) << r.message();
+}
+
+TEST(Stl, TextThatIsNotStlSaysSo) {
+  auto r = read_stl(bytes_of(std::string(200, 'a') + "\n"));
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("not an STL file: text that is not an ASCII STL"), std::string::npos)
+      << r.message();
+  EXPECT_EQ(r.message().find("too large"), std::string::npos) << r.message();
 }
 
 }  // namespace

@@ -19,7 +19,50 @@ const text = (bytes) => new TextDecoder().decode(bytes);
 /** The capped tube VTP (capped-tube-vtp.js) as file bytes. */
 const cappedTubeVtp = (n, m) => new TextEncoder().encode(cappedTubeText(n, m));
 
+/** An ASCII STL of the phantom tube's triangles, as text. */
+function asciiStl(stl) {
+  const view = new DataView(stl.buffer, stl.byteOffset, stl.byteLength);
+  const n = view.getUint32(80, true);
+  const lines = ['solid tube'];
+  for (let t = 0; t < n; ++t) {
+    lines.push('facet normal 0 0 0', 'outer loop');
+    for (let c = 0; c < 3; ++c) {
+      const at = 84 + 50 * t + 12 + 12 * c;
+      lines.push(`vertex ${[0, 4, 8].map((k) => view.getFloat32(at + k, true)).join(' ')}`);
+    }
+    lines.push('endloop', 'endfacet');
+  }
+  return `${lines.join('\n')}\nendsolid tube\n`;
+}
+
 describe('files in', () => {
+  test('ASCII STL as segmentation tools write it: a byte order mark, NUL in the name, CR line ends, UTF-16', () => {
+    const stl = api.makePhantom({ kind: 'tube', voxel: 0.3 }).stl;
+    const want = api.analyze(stl);
+    assert.equal(want.ok, true, want.error);
+    const body = asciiStl(stl);
+    const utf16 = new Uint8Array(2 + 2 * body.length);
+    utf16.set([0xff, 0xfe]);
+    for (let i = 0; i < body.length; ++i) utf16[2 + 2 * i] = body.charCodeAt(i);
+    const cases = {
+      bom: new TextEncoder().encode(`\ufeff${body}`),
+      name: new TextEncoder().encode(body.replace('solid tube', 'solid a\fb\0c')),
+      cr: new TextEncoder().encode(body.replaceAll('\n', '\r')),
+      utf16,
+    };
+    for (const [name, bytes] of Object.entries(cases)) {
+      const got = api.analyze(bytes);
+      assert.equal(got.ok, true, `${name}: ${got.error}`);
+      assert.equal(got.analysis.format, 'ASCII STL', name);
+      assert.equal(got.analysis.triangles, want.analysis.triangles, name);
+      assert.equal(got.analysis.openings.length, want.analysis.openings.length, name);
+    }
+    assert.ok(api.analyze(utf16).analysis.warnings.some((w) => /UTF-16/.test(w)));
+    const bad = api.analyze(new TextEncoder().encode(`${'not a mesh '.repeat(20)}\n`));
+    assert.equal(bad.ok, false);
+    assert.match(bad.error, /not a surface file this tool reads/);
+  });
+
   test('a labelled VTP: its caps become openings, the unit is given or guessed', () => {
     const vtp = cappedTubeVtp();
     const a = api.analyze(vtp);
