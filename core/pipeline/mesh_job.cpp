@@ -120,6 +120,28 @@ Status check_volume_change(const SurfaceFidelity& f, const MeshJobOptions& optio
   return Status::BadOption(uniform ? "size" : "per_circumference", buf);
 }
 
+/// Warnings on layers the user may not have meant: a vessel wall asked for
+/// by its number of layers alone, and a first layer so thin against the
+/// wall's size (below 1e-3 of its smallest edge) that its elements are flat.
+void warn_about_layers(MeshJobResult& r, const MeshJobOptions& options,
+                       const std::vector<double>& wall_sizes) {
+  if (options.vessel.layers > 0 && !options.wall_thickness_given) {
+    r.warnings.push_back("a vessel wall of " + std::to_string(options.vessel.layers) + " layers, " +
+                         number_text(options.vessel.thickness_fraction) +
+                         " R thick (the default {wall_thickness}), was grown outward because "
+                         "{wall_layers} was given; without {wall_layers} there is no vessel wall");
+  }
+  const double first = options.viscous.first_height;
+  if (options.viscous.layers <= 0 || first <= 0 || wall_sizes.empty()) return;
+  const double h = *std::min_element(wall_sizes.begin(), wall_sizes.end());
+  if (first >= 1e-3 * h) return;
+  r.warnings.push_back("{first_layer} " + number_text(first) + " is " + number_text(first / h, 2) +
+                       " of the smallest wall edge (" + number_text(h) +
+                       "): the layer's elements are nearly flat (quality near 0) and solvers "
+                       "may reject them; use {first_layer} " +
+                       number_text(1e-3 * h, 2) + " or more");
+}
+
 /// Stages 4 to 7: boundary layers, caps on the openings, the tetrahedra of
 /// the lumen, assembly; checks the result before anything is written.
 /// The element budget of the volume: the tetrahedra estimated from the
@@ -183,6 +205,7 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
     }
   }
   st.seconds_layers = seconds_since(t0);
+  warn_about_layers(r, options, wall_sizes);
 
   // Stage 5: caps on the core's boundary (the viscous layer's front, else
   // the wall with its rims on their planes).

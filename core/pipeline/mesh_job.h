@@ -62,6 +62,9 @@ struct MeshJobOptions {
   /// 0.2 R in all inward; for the wall, 4 layers of 0.1 R when asked.
   LayerSpec viscous;
   LayerSpec vessel = no_vessel_wall();
+  /// Whether the vessel wall's thickness was given (a wall asked for by its
+  /// number of layers alone is said in a warning).
+  bool wall_thickness_given = false;
   /// The viscous layer as its own volume `boundary_layer` (else in `lumen`).
   bool tag_layer = false;
   /// Keep the layers' prisms (MSH type 6; their faces at the openings as

@@ -548,9 +548,10 @@ const OptionSpec kOptions[] = {
      .group = "phantom",
      .metavar = "S",
      .min = 0,
+     .max = 1e30,
      .min_exclusive = true,
      .default_text = "1",
-     .needs = "a positive scale factor",
+     .needs = "a positive scale factor up to 1e30 (STL coordinates are 32-bit floats)",
      .doc = "scale of the coordinates"},
     {.id = "open_ends",
      .cli = "closed",
@@ -767,6 +768,7 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
     o.viscous.thickness_fraction = x;
   } else if (id == "wall_thickness") {
     o.vessel.thickness_fraction = x;
+    o.wall_thickness_given = true;
     if (o.vessel.layers == 0) o.vessel.layers = 4;
   } else if (id == "first_layer") {
     o.viscous.first_height = x;

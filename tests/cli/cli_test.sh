@@ -37,6 +37,7 @@ printf 'this is not a mesh at all\n' > "$T/garbage.stl"
 check "garbage" expect_exit 1 "not a surface file this tool reads" "$VM" info "$T/garbage.stl"
 
 check "phantom" expect_exit 0 "wrote" "$VM" phantom "$T/bif.stl" --kind bifurcation --voxel 0.1 --noise 0.3
+check "phantom scale past float" expect_exit 2 "--scale needs a positive scale factor up to 1e30" "$VM" phantom "$T/x.stl" --scale 1e39
 check "phantom bad kind" expect_exit 2 "--kind needs bifurcation, tube, aneurysm or torus" "$VM" phantom "$T/x.stl" --kind blob
 head -c 1000 "$T/bif.stl" > "$T/truncated.stl"
 check "truncated" expect_exit 1 "truncated binary STL" "$VM" info "$T/truncated.stl"

@@ -2,10 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include <numbers>
-
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "core/mesh/enclosed_volume.h"
@@ -477,8 +476,7 @@ TEST(MeshJob, AWallThatLosesTheVesselsVolumeIsRefusedNamingTheSizeToUse) {
   EXPECT_EQ(coarse.status().kind(), ErrorKind::kBadOption);
   EXPECT_EQ(coarse.status().option(), "per_circumference");
   const std::string cli = phrase_error(coarse.status(), kFaceCli);
-  EXPECT_NE(cli.find("--per-circumference 5 makes a wall that encloses"), std::string::npos)
-      << cli;
+  EXPECT_NE(cli.find("--per-circumference 5 makes a wall that encloses"), std::string::npos) << cli;
   EXPECT_NE(cli.find("less volume than the input"), std::string::npos) << cli;
   EXPECT_NE(cli.find("(or accept the change with --max-volume-change"), std::string::npos) << cli;
   // The size it names is fine.
@@ -502,6 +500,33 @@ TEST(MeshJob, AWallThatLosesTheVesselsVolumeIsRefusedNamingTheSizeToUse) {
   auto accepted = run_mesh_job(stl, o);
   ASSERT_TRUE(accepted.ok()) << accepted.message();
   EXPECT_LT(accepted.value().fidelity.volume_change, -0.05);
+}
+
+TEST(MeshJob, LayersTheUserMayNotHaveMeantAreSaid) {
+  // A tube of radius 1 meshed at h 0.5: the vessel wall asked for by its
+  // layers alone, and a first layer far thinner than the wall's edges.
+  const std::vector<uint8_t> stl = write_stl_binary(testing::open_tube(32, 16, 1.0, 4.0));
+  const auto warnings_of = [&](std::vector<std::pair<std::string, std::string>> set) {
+    MeshJobOptions o;
+    EXPECT_TRUE(set_option_text(o, "size", "0.5").ok());
+    for (const auto& [id, text] : set) EXPECT_TRUE(set_option_text(o, id, text).ok()) << id;
+    auto r = run_mesh_job(stl, o);
+    EXPECT_TRUE(r.ok()) << r.message();
+    std::string all;
+    for (const std::string& w : r.ok() ? r.value().warnings : std::vector<std::string>{})
+      all += phrase_options(w, kFaceCli) + "\n";
+    return all;
+  };
+  const std::string alone = warnings_of({{"wall_layers", "2"}});
+  EXPECT_NE(alone.find("a vessel wall of 2 layers, 0.1 R thick (the default --wall-thickness)"),
+            std::string::npos)
+      << alone;
+  EXPECT_EQ(warnings_of({{"wall_layers", "2"}, {"wall_thickness", "0.1"}}).find("vessel wall"),
+            std::string::npos);
+  const std::string thin = warnings_of({{"first_layer", "1e-6"}});
+  EXPECT_NE(thin.find("--first-layer 1e-06 is"), std::string::npos) << thin;
+  EXPECT_NE(thin.find("nearly flat"), std::string::npos) << thin;
+  EXPECT_EQ(warnings_of({{"first_layer", "0.02"}}).find("nearly flat"), std::string::npos);
 }
 
 }  // namespace

@@ -130,7 +130,7 @@ export interface PhantomOptions {
   dirty?: boolean;
   /** noise seed. Needs an integer from 0 to 4294967295. Default 1. */
   seed?: number;
-  /** scale of the coordinates. Needs a positive scale factor. Default 1. */
+  /** scale of the coordinates. Needs a positive scale factor up to 1e30 (STL coordinates are 32-bit floats). Default 1. */
   scale?: number;
   /** cut the vessel ends open (off: a closed surface with rounded ends) Default true. */
   openEnds?: boolean;

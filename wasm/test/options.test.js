@@ -104,7 +104,7 @@ describe('option table', () => {
     const stl = api.makePhantom({ kind: 'tube', voxel: 0.4 }).stl;
     for (const spec of api.optionTable.filter((s) => s.faces.includes('js') && s.max !== undefined && s.type !== 'numbers')) {
       const call = spec.commands.includes('mesh') ? 'mesh' : spec.commands.includes('info') ? 'analyze' : 'makePhantom';
-      const bad = spec.max + 1;
+      const bad = spec.max * (1 + 1e-9) + 1; // past the maximum, also for 1e30
       const r = call === 'makePhantom' ? api.makePhantom({ [spec.js]: bad }) : api[call](stl, { [spec.js]: bad });
       assert.equal(r.kind, 'bad_option', spec.id);
       assert.equal(r.error, `${spec.js} needs ${spec.needs}`);
