@@ -1,22 +1,88 @@
 // Vite build of the browser app. Everything is bundled (three.js, the worker,
 // the wasm binary): the app makes no request beyond its own origin.
+//
+// `vite build --mode singlefile` builds the one-file app instead:
+// dist/vesselmesh.html with the JS, the CSS, the worker and the wasm inlined,
+// which works opened from disk (file://) with no network.
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 import { defineConfig } from 'vite';
+import { viteSingleFile } from 'vite-plugin-singlefile';
 
 const here = dirname(fileURLToPath(import.meta.url));
 
-export default defineConfig({
-  root: here,
-  base: './',
-  build: {
-    outDir: resolve(here, 'dist'),
-    emptyOutDir: true,
-    target: 'es2022',
-    chunkSizeWarningLimit: 1024,
+/** Renames the one-file build's index.html to vesselmesh.html. */
+const renameHtml = (name) => ({
+  name: 'vm-rename-html',
+  enforce: 'post',
+  generateBundle(_options, bundle) {
+    const html = bundle['index.html'];
+    if (html) html.fileName = name;
   },
-  worker: { format: 'es' },
-  server: { fs: { allow: [resolve(here, '..')] } },
-  preview: { port: 4173, strictPort: true },
 });
+
+/** The Emscripten module's own `new URL('vesselmesh_core.wasm', import.meta.url)`
+ * is never fetched (vesselmesh.js always passes wasmBinary); inlined, it
+ * would be a second copy of the wasm in the file. */
+const dropCoreWasmUrl = () => ({
+  name: 'vm-drop-core-wasm-url',
+  transform(code, id) {
+    if (!id.endsWith('vesselmesh_core.mjs')) return null;
+    return code.replace(/new URL\((["'])vesselmesh_core\.wasm\1,\s*import\.meta\.url\)/g, '"vesselmesh_core.wasm"');
+  },
+});
+
+/** The client's default worker (a separate file) is never started in the
+ * one-file app (worker-inline.js is): drop the file Vite emits for it. */
+const dropWorkerFiles = () => ({
+  name: 'vm-drop-worker-files',
+  enforce: 'post',
+  generateBundle(_options, bundle) {
+    for (const name of Object.keys(bundle)) if (/^(assets\/)?worker-.*\.js$/.test(name)) delete bundle[name];
+  },
+});
+
+function singleFileConfig() {
+  return {
+    root: here,
+    base: './',
+    resolve: {
+      alias: [{ find: /^\.\/worker-source\.js$/, replacement: resolve(here, 'src/worker-inline.js') }],
+    },
+    build: {
+      outDir: resolve(here, '../dist'),
+      emptyOutDir: false,
+      target: 'es2022',
+      chunkSizeWarningLimit: 8192,
+      assetsInlineLimit: () => true,
+    },
+    // A classic worker: Chromium refuses module workers from blob: URLs in a
+    // file:// page.
+    worker: { format: 'iife', plugins: () => [dropCoreWasmUrl()] },
+    plugins: [
+      dropCoreWasmUrl(),
+      viteSingleFile({ removeViteModuleLoader: true }),
+      renameHtml('vesselmesh.html'),
+      dropWorkerFiles(),
+    ],
+  };
+}
+
+export default defineConfig(({ mode }) =>
+  mode === 'singlefile'
+    ? singleFileConfig()
+    : {
+        root: here,
+        base: './',
+        build: {
+          outDir: resolve(here, 'dist'),
+          emptyOutDir: true,
+          target: 'es2022',
+          chunkSizeWarningLimit: 1024,
+        },
+        worker: { format: 'es' },
+        server: { fs: { allow: [resolve(here, '..')] } },
+        preview: { port: 4173, strictPort: true },
+      },
+);
