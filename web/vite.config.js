@@ -8,6 +8,7 @@ import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 import { defineConfig } from 'vite';
+import { VitePWA } from 'vite-plugin-pwa';
 import { viteSingleFile } from 'vite-plugin-singlefile';
 
 const here = dirname(fileURLToPath(import.meta.url));
@@ -43,10 +44,41 @@ const dropWorkerFiles = () => ({
   },
 });
 
+/** The installable app: a web app manifest and a service worker precaching
+ * every file of the build (page, bundle, CSS, the worker script, the wasm),
+ * so that after one visit the app reloads and restarts its worker (Cancel)
+ * with no server. */
+const installable = () =>
+  VitePWA({
+    registerType: 'autoUpdate',
+    injectRegister: 'script',
+    includeAssets: ['icon.svg'],
+    manifest: {
+      name: 'vesselmesh',
+      short_name: 'vesselmesh',
+      description: 'Quality meshes for cardiovascular flow simulation, in the browser',
+      start_url: './',
+      scope: './',
+      display: 'standalone',
+      background_color: '#f4f6f8',
+      theme_color: '#17212b',
+      icons: [{ src: 'icon.svg', sizes: 'any', type: 'image/svg+xml', purpose: 'any' }],
+    },
+    workbox: {
+      globPatterns: ['**/*.{html,js,css,wasm,svg,webmanifest}'],
+      maximumFileSizeToCacheInBytes: 16 * 2 ** 20,
+      inlineWorkboxRuntime: true,
+      cleanupOutdatedCaches: true,
+      clientsClaim: true,
+      skipWaiting: true,
+    },
+  });
+
 function singleFileConfig() {
   return {
     root: here,
     base: './',
+    publicDir: false, // the icon is for the installable app
     resolve: {
       alias: [{ find: /^\.\/worker-source\.js$/, replacement: resolve(here, 'src/worker-inline.js') }],
     },
@@ -82,6 +114,7 @@ export default defineConfig(({ mode }) =>
           chunkSizeWarningLimit: 1024,
         },
         worker: { format: 'es' },
+        plugins: [installable()],
         server: { fs: { allow: [resolve(here, '..')] } },
         preview: { port: 4173, strictPort: true },
       },
