@@ -3,7 +3,8 @@
 //
 // `vite build --mode singlefile` builds the one-file app instead:
 // dist/vesselmesh.html with the JS, the CSS, the worker and the wasm inlined,
-// which works opened from disk (file://) with no network.
+// which works opened from disk (file://) with no network. `--mode element`
+// builds the <vessel-mesher> custom element into dist/element/.
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -101,9 +102,39 @@ function singleFileConfig() {
   };
 }
 
+/** The <vessel-mesher> element as a module a page loads with a plain
+ * <script type="module"> (three.js bundled in): dist/element/vessel-mesher.js,
+ * its worker and the wasm beside it in dist/element/assets/. */
+function elementConfig() {
+  return {
+    root: here,
+    base: './',
+    publicDir: false,
+    build: {
+      outDir: resolve(here, '../dist/element'),
+      emptyOutDir: true,
+      target: 'es2022',
+      chunkSizeWarningLimit: 1024,
+      modulePreload: false,
+      rollupOptions: {
+        input: resolve(here, 'src/element/vessel-mesher.js'),
+        preserveEntrySignatures: 'exports-only',
+        output: {
+          entryFileNames: 'vessel-mesher.js',
+          chunkFileNames: 'assets/[name]-[hash].js',
+          assetFileNames: 'assets/[name]-[hash][extname]',
+        },
+      },
+    },
+    worker: { format: 'es' },
+  };
+}
+
 export default defineConfig(({ mode }) =>
   mode === 'singlefile'
     ? singleFileConfig()
+    : mode === 'element'
+    ? elementConfig()
     : {
         root: here,
         base: './',
