@@ -1,16 +1,38 @@
-// <vessel-mesher> (dist/element/, `npm run build:web`) on a host page that
-// serves the element itself, with hostile CSS: two elements, each with its
-// own worker, load (src attribute / load()), mesh (button / mesh()), send
-// their events and export; nothing is requested outside the page's origin.
+// The npm package installed into a fresh project (wasm/test/consumer.js):
+// <vessel-mesher> on a host page that serves the installed package itself,
+// with hostile CSS: two elements, each with its own worker, load (src
+// attribute / load()), mesh (button / mesh()), send their events and export;
+// and a Vite app bundling the package meshes the sample with the worker
+// client, the API and the element. Nothing is requested outside the origin.
 import { existsSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
 
 import { expect, test } from '@playwright/test';
 
+import { buildViteApp, installedConsumer } from '../wasm/test/consumer.js';
 import { createVesselmesh } from '../wasm/src/vesselmesh.js';
 import { screenshots } from './helpers.js';
 import { serveStatic } from './static-server.js';
 
-const ELEMENT = new URL('../dist/element/', import.meta.url).pathname;
+const BUILT = new URL('../dist/element/vessel-mesher.js', import.meta.url).pathname;
+
+let consumer;
+test.beforeAll(() => {
+  if (existsSync(BUILT)) consumer = installedConsumer();
+});
+test.afterAll(() => consumer?.cleanup());
+
+/** Records requests to any origin but the server's. */
+function outsideRequests(page, server) {
+  const foreign = [];
+  page.on('request', (request) => {
+    const url = new URL(request.url());
+    if (['http:', 'https:', 'ws:', 'wss:'].includes(url.protocol) && url.host !== `127.0.0.1:${server.port}`) {
+      foreign.push(request.url());
+    }
+  });
+  return foreign;
+}
 
 const HOST_PAGE = `<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>host</title>
@@ -34,22 +56,16 @@ const HOST_PAGE = `<!doctype html>
 </body></html>`;
 
 test('two <vessel-mesher> elements on a host page mesh independently and send their events', async ({ page }) => {
-  test.skip(!existsSync(`${ELEMENT}vessel-mesher.js`), 'dist/element is not built (npm run build:web)');
+  test.skip(!consumer, 'dist/element is not built (npm run build:web)');
   const api = await createVesselmesh({ wasmBinary: readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url)) });
   const sample = api.makePhantom({ kind: 'bifurcation', voxel: 0.08, noise: 0.3 });
   expect(sample.ok).toBe(true);
   const server = await serveStatic({
     files: { '/': HOST_PAGE, '/sample.stl': Buffer.from(sample.stl) },
-    dirs: { '/vesselmesh/element/': ELEMENT },
+    dirs: { '/vesselmesh/element/': join(consumer.pkg, 'dist/element/') },
   });
   try {
-    const foreign = [];
-    page.on('request', (request) => {
-      const url = new URL(request.url());
-      if (['http:', 'https:', 'ws:', 'wss:'].includes(url.protocol) && url.host !== `127.0.0.1:${server.port}`) {
-        foreign.push(request.url());
-      }
-    });
+    const foreign = outsideRequests(page, server);
     const errors = [];
     page.on('pageerror', (e) => errors.push(e.message));
     await page.goto(server.url);
@@ -119,6 +135,27 @@ test('two <vessel-mesher> elements on a host page mesh independently and send th
     for (const url of workers) expect(url.host).toBe(`127.0.0.1:${server.port}`);
 
     await screenshots(page, 'element', page.locator('#b'));
+    expect(foreign).toEqual([]);
+    expect(errors).toEqual([]);
+  } finally {
+    await server.close();
+  }
+});
+
+test('a Vite app that installed the package meshes the sample with the client, the API and the element', async ({ page }) => {
+  test.skip(!consumer, 'dist/element is not built (npm run build:web)');
+  const server = await serveStatic({ dirs: { '/': buildViteApp(consumer) }, files: {} });
+  try {
+    const foreign = outsideRequests(page, server);
+    const errors = [];
+    page.on('pageerror', (e) => errors.push(e.message));
+    await page.goto(`${server.url}index.html`);
+    await expect(page.locator('#out')).toHaveAttribute('data-result', /./, { timeout: 60_000 });
+    const result = JSON.parse(await page.locator('#out').getAttribute('data-result'));
+    expect(result.error).toBeUndefined();
+    expect(result.worker).toBeGreaterThan(1000);
+    expect(result.direct).toBeGreaterThan(100);
+    expect(result.element).toBe(result.worker); // the same options, the same mesh
     expect(foreign).toEqual([]);
     expect(errors).toEqual([]);
   } finally {
