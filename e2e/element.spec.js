@@ -18,7 +18,8 @@ const BUILT = new URL('../dist/element/vessel-mesher.js', import.meta.url).pathn
 
 let consumer;
 test.beforeAll(() => {
-  if (existsSync(BUILT)) consumer = installedConsumer();
+  expect(existsSync(BUILT), 'dist/element is built (npm run build:web)').toBe(true);
+  consumer = installedConsumer();
 });
 test.afterAll(() => consumer?.cleanup());
 
@@ -56,7 +57,6 @@ const HOST_PAGE = `<!doctype html>
 </body></html>`;
 
 test('two <vessel-mesher> elements on a host page mesh independently and send their events', async ({ page }) => {
-  test.skip(!consumer, 'dist/element is not built (npm run build:web)');
   const api = await createVesselmesh({ wasmBinary: readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url)) });
   const sample = api.makePhantom({ kind: 'bifurcation', voxel: 0.08, noise: 0.3 });
   expect(sample.ok).toBe(true);
@@ -143,7 +143,6 @@ test('two <vessel-mesher> elements on a host page mesh independently and send th
 });
 
 test('a Vite app that installed the package meshes the sample with the client, the API and the element', async ({ page }) => {
-  test.skip(!consumer, 'dist/element is not built (npm run build:web)');
   const server = await serveStatic({ dirs: { '/': buildViteApp(consumer) }, files: {} });
   try {
     const foreign = outsideRequests(page, server);

@@ -35,6 +35,7 @@ test('installed: after one visit the app reloads and meshes with its server stop
   try {
     await page.goto('/');
     await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+    expect(await page.evaluate(() => crossOriginIsolated)).toBe(true);
     const manifest = await page.locator('link[rel="manifest"]').getAttribute('href');
     expect(manifest).toMatch(/manifest\.webmanifest$/);
     // The service worker is active and controls the page once it has
@@ -58,6 +59,7 @@ test('installed: after one visit the app reloads and meshes with its server stop
   await expect(page.evaluate((u) => fetch(u).then(() => 'answered', () => 'failed'), `http://127.0.0.1:${port}/not-cached`)).resolves.toBe('failed');
   await page.reload();
   await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  expect(await page.evaluate(() => crossOriginIsolated)).toBe(true); // the cached headers
   await page.getByTestId('load-sample').click();
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
   await page.getByTestId('size-value').fill('40'); // a few seconds of work

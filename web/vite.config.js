@@ -75,6 +75,14 @@ const installable = () =>
     },
   });
 
+/** Cross-origin isolation (so a threaded build could use SharedArrayBuffer
+ * where allowed); the app works without it. The service worker's precache
+ * keeps these headers on the responses it serves. */
+const ISOLATION_HEADERS = {
+  'Cross-Origin-Opener-Policy': 'same-origin',
+  'Cross-Origin-Embedder-Policy': 'require-corp',
+};
+
 function singleFileConfig() {
   return {
     root: here,
@@ -146,7 +154,7 @@ export default defineConfig(({ mode }) =>
         },
         worker: { format: 'es' },
         plugins: [installable()],
-        server: { fs: { allow: [resolve(here, '..')] } },
-        preview: { port: 4173, strictPort: true },
+        server: { fs: { allow: [resolve(here, '..')] }, headers: ISOLATION_HEADERS },
+        preview: { port: 4173, strictPort: true, headers: ISOLATION_HEADERS },
       },
 );

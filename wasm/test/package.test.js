@@ -69,9 +69,10 @@ const TSCONFIG = {
   },
 };
 
-describe('npm package', { skip: !built && 'build the wasm and npm run build:web first' }, () => {
+describe('npm package', () => {
   let consumer;
   before(() => {
+    assert.ok(built, 'the wasm (wasm/dist/) and the element (dist/element/, npm run build:web) are built');
     consumer = installedConsumer();
   });
   after(() => consumer?.cleanup());
