@@ -116,8 +116,11 @@ export class VesselMesher extends HTMLElement {
   }
 
   disconnectedCallback() {
+    // A new worker on reconnection holds no mesh: export() needs a new one.
     this._client?.dispose();
     this._client = null;
+    this._result = null;
+    this._ui.export.disabled = true;
   }
 
   attributeChangedCallback(name, old, value) {
