@@ -118,6 +118,7 @@ emcmake cmake -S . -B build-wasm -G Ninja -DCMAKE_BUILD_TYPE=Release -DVM_BUILD_
 cmake --build build-wasm -j "$jobs"
 
 if [[ ${1:-} != --no-web ]]; then
-  echo "== web app (web/dist/)"
+  echo "== web app (web/dist/, dist/vesselmesh.html, dist/element/) and docs (docs/dist/)"
   npm run --silent build:web
+  npm run --silent build:docs
 fi

@@ -1,22 +1,160 @@
 // Vite build of the browser app. Everything is bundled (three.js, the worker,
 // the wasm binary): the app makes no request beyond its own origin.
+//
+// `vite build --mode singlefile` builds the one-file app instead:
+// dist/vesselmesh.html with the JS, the CSS, the worker and the wasm inlined,
+// which works opened from disk (file://) with no network. `--mode element`
+// builds the <vessel-mesher> custom element into dist/element/.
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 import { defineConfig } from 'vite';
+import { VitePWA } from 'vite-plugin-pwa';
+import { viteSingleFile } from 'vite-plugin-singlefile';
 
 const here = dirname(fileURLToPath(import.meta.url));
 
-export default defineConfig({
-  root: here,
-  base: './',
-  build: {
-    outDir: resolve(here, 'dist'),
-    emptyOutDir: true,
-    target: 'es2022',
-    chunkSizeWarningLimit: 1024,
+/** Renames the one-file build's index.html to vesselmesh.html. */
+const renameHtml = (name) => ({
+  name: 'vm-rename-html',
+  enforce: 'post',
+  generateBundle(_options, bundle) {
+    const html = bundle['index.html'];
+    if (html) html.fileName = name;
   },
-  worker: { format: 'es' },
-  server: { fs: { allow: [resolve(here, '..')] } },
-  preview: { port: 4173, strictPort: true },
 });
+
+/** The Emscripten module's own `new URL('vesselmesh_core.wasm', import.meta.url)`
+ * is never fetched (vesselmesh.js always passes wasmBinary); inlined, it
+ * would be a second copy of the wasm in the file. */
+const dropCoreWasmUrl = () => ({
+  name: 'vm-drop-core-wasm-url',
+  transform(code, id) {
+    if (!id.endsWith('vesselmesh_core.mjs')) return null;
+    return code.replace(/new URL\((["'])vesselmesh_core\.wasm\1,\s*import\.meta\.url\)/g, '"vesselmesh_core.wasm"');
+  },
+});
+
+/** The client's default worker (a separate file) is never started in the
+ * one-file app (worker-inline.js is): drop the file Vite emits for it. */
+const dropWorkerFiles = () => ({
+  name: 'vm-drop-worker-files',
+  enforce: 'post',
+  generateBundle(_options, bundle) {
+    for (const name of Object.keys(bundle)) if (/^(assets\/)?worker-.*\.js$/.test(name)) delete bundle[name];
+  },
+});
+
+/** The installable app: a web app manifest and a service worker precaching
+ * every file of the build (page, bundle, CSS, the worker script, the wasm),
+ * so that after one visit the app reloads and restarts its worker (Cancel)
+ * with no server. */
+const installable = () =>
+  VitePWA({
+    registerType: 'autoUpdate',
+    injectRegister: 'script',
+    includeAssets: ['icon.svg'],
+    manifest: {
+      name: 'vesselmesh',
+      short_name: 'vesselmesh',
+      description: 'Quality meshes for cardiovascular flow simulation, in the browser',
+      start_url: './',
+      scope: './',
+      display: 'standalone',
+      background_color: '#f4f6f8',
+      theme_color: '#17212b',
+      icons: [{ src: 'icon.svg', sizes: 'any', type: 'image/svg+xml', purpose: 'any' }],
+    },
+    workbox: {
+      globPatterns: ['**/*.{html,js,css,wasm,svg,webmanifest}'],
+      maximumFileSizeToCacheInBytes: 16 * 2 ** 20,
+      inlineWorkboxRuntime: true,
+      cleanupOutdatedCaches: true,
+      clientsClaim: true,
+      skipWaiting: true,
+    },
+  });
+
+/** Cross-origin isolation (so a threaded build could use SharedArrayBuffer
+ * where allowed); the app works without it. The service worker's precache
+ * keeps these headers on the responses it serves. */
+const ISOLATION_HEADERS = {
+  'Cross-Origin-Opener-Policy': 'same-origin',
+  'Cross-Origin-Embedder-Policy': 'require-corp',
+};
+
+function singleFileConfig() {
+  return {
+    root: here,
+    base: './',
+    publicDir: false, // the icon is for the installable app
+    resolve: {
+      alias: [{ find: /^\.\/worker-source\.js$/, replacement: resolve(here, 'src/worker-inline.js') }],
+    },
+    build: {
+      outDir: resolve(here, '../dist'),
+      emptyOutDir: false,
+      target: 'es2022',
+      chunkSizeWarningLimit: 8192,
+      assetsInlineLimit: () => true,
+    },
+    // A classic worker: Chromium refuses module workers from blob: URLs in a
+    // file:// page.
+    worker: { format: 'iife', plugins: () => [dropCoreWasmUrl()] },
+    plugins: [
+      dropCoreWasmUrl(),
+      viteSingleFile({ removeViteModuleLoader: true }),
+      renameHtml('vesselmesh.html'),
+      dropWorkerFiles(),
+    ],
+  };
+}
+
+/** The <vessel-mesher> element as a module a page loads with a plain
+ * <script type="module"> (three.js bundled in): dist/element/vessel-mesher.js,
+ * its worker and the wasm beside it in dist/element/assets/. */
+function elementConfig() {
+  return {
+    root: here,
+    base: './',
+    publicDir: false,
+    build: {
+      outDir: resolve(here, '../dist/element'),
+      emptyOutDir: true,
+      target: 'es2022',
+      chunkSizeWarningLimit: 1024,
+      modulePreload: false,
+      rollupOptions: {
+        input: resolve(here, 'src/element/vessel-mesher.js'),
+        preserveEntrySignatures: 'exports-only',
+        output: {
+          entryFileNames: 'vessel-mesher.js',
+          chunkFileNames: 'assets/[name]-[hash].js',
+          assetFileNames: 'assets/[name]-[hash][extname]',
+        },
+      },
+    },
+    worker: { format: 'es' },
+  };
+}
+
+export default defineConfig(({ mode }) =>
+  mode === 'singlefile'
+    ? singleFileConfig()
+    : mode === 'element'
+    ? elementConfig()
+    : {
+        root: here,
+        base: './',
+        build: {
+          outDir: resolve(here, 'dist'),
+          emptyOutDir: true,
+          target: 'es2022',
+          chunkSizeWarningLimit: 1024,
+        },
+        worker: { format: 'es' },
+        plugins: [installable()],
+        server: { fs: { allow: [resolve(here, '..')] }, headers: ISOLATION_HEADERS },
+        preview: { port: 4173, strictPort: true, headers: ISOLATION_HEADERS },
+      },
+);

@@ -214,37 +214,39 @@ export interface OptionSpec {
 
 export type OutputFormat = NonNullable<MeshOptions['format']>;
 
+/** What analyze() gives (the analysis has the keys of `vesselmesh info --json`). */
+export type AnalyzeResult = { ok: true; analysis: Record<string, unknown>; surface: Surface } | Failure;
+
+/** What mesh() gives (the report has the keys of `vesselmesh mesh --report`). */
+export type MeshResult =
+  | {
+      ok: true;
+      /** The file in `format` (a zip for 'mesh-complete'), and a name for it. */
+      file: Uint8Array;
+      fileName: string;
+      format: OutputFormat;
+      /** The same bytes as `file` when the format is 'msh'. */
+      msh?: Uint8Array;
+      report: Record<string, unknown>;
+      surface: Surface;
+      volume?: MeshVolume;
+    }
+  | Failure;
+
+/** What export() gives. */
+export type ExportResult = { ok: true; file: Uint8Array; fileName: string; format: OutputFormat } | Failure;
+
+export type ExportOptions = Pick<MeshOptions, 'mshVersion' | 'outputUnits'>;
+
 export interface VesselmeshApi {
   version: string;
   optionTable: OptionSpec[];
   /** Reads, repairs and analyzes a surface file (the analysis has the keys of `vesselmesh info --json`). */
-  analyze(
-    bytes: Uint8Array | ArrayBuffer | ArrayBufferView,
-    options?: AnalyzeOptions,
-  ): ({ ok: true; analysis: Record<string, unknown>; surface: Surface }) | Failure;
+  analyze(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: AnalyzeOptions): AnalyzeResult;
   /** Meshes a surface file (the report has the keys of `vesselmesh mesh --report`). */
-  mesh(
-    bytes: Uint8Array | ArrayBuffer | ArrayBufferView,
-    options?: MeshOptions,
-  ):
-    | {
-        ok: true;
-        /** The file in `format` (a zip for 'mesh-complete'), and a name for it. */
-        file: Uint8Array;
-        fileName: string;
-        format: OutputFormat;
-        /** The same bytes as `file` when the format is 'msh'. */
-        msh?: Uint8Array;
-        report: Record<string, unknown>;
-        surface: Surface;
-        volume?: MeshVolume;
-      }
-    | Failure;
+  mesh(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: MeshOptions): MeshResult;
   /** The last meshed result in another format, without meshing again. */
-  export(
-    format: OutputFormat,
-    options?: Pick<MeshOptions, 'mshVersion' | 'outputUnits'>,
-  ): { ok: true; file: Uint8Array; fileName: string; format: OutputFormat } | Failure;
+  export(format: OutputFormat, options?: ExportOptions): ExportResult;
   /** The group names the last analyzed surface's openings get with these options, or the error mesh() would give. */
   openingNames(options?: Pick<MeshOptions, 'names' | 'inlet'>): { ok: true; names: string[] } | Failure;
   /** The cut across the vessel at the point of the last analyzed surface nearest `point`: the normal points to the side with less surface, which clipPlanes [...point, ...normal] removes. */
@@ -255,7 +257,38 @@ export interface VesselmeshApi {
   makePhantom(options?: PhantomOptions): { ok: true; stl: Uint8Array } | Failure;
 }
 
-/** Loads the WebAssembly module (in Node pass wasmBinary, read with fs). */
+/**
+ * Loads the WebAssembly module. The package finds the wasm itself (Node:
+ * read from the package; browser: fetched next to the module); wasmBinary
+ * gives the bytes instead.
+ */
 export function createVesselmesh(options?: {
   wasmBinary?: ArrayBuffer | Uint8Array;
 }): Promise<VesselmeshApi>;
+
+/** A client's job options: the API's, with onProgress called from the worker's messages. */
+export type ClientAnalyzeOptions = Omit<AnalyzeOptions, 'onProgress'> & { onProgress?: (fraction: number, stage: string) => void };
+export type ClientMeshOptions = Omit<MeshOptions, 'onProgress'> & { onProgress?: (fraction: number, stage: string) => void };
+
+/**
+ * The API in a Web Worker (browser only), as promises: one job at a time;
+ * cancel() ends the running job ({ ok: false, cancelled: true }) and
+ * starts a fresh worker.
+ */
+export class VesselmeshClient {
+  constructor(options?: { createWorker?: () => Worker });
+  /** Resolves with the version once the worker has loaded the wasm. */
+  ready: Promise<string>;
+  version?: string;
+  /** The option table, once ready. */
+  optionTable?: OptionSpec[];
+  analyze(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: ClientAnalyzeOptions): Promise<AnalyzeResult>;
+  mesh(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: ClientMeshOptions): Promise<MeshResult>;
+  export(format: OutputFormat, options?: ExportOptions): Promise<ExportResult>;
+  openingNames(options?: Pick<MeshOptions, 'names' | 'inlet'>): Promise<{ ok: true; names: string[] } | Failure>;
+  cutAt(point: ArrayLike<number>): Promise<{ ok: true; point: number[]; normal: number[]; radius: number; areaRemoved: number } | Failure>;
+  layerFractions(options?: Pick<MeshOptions, 'layers' | 'growth'>): Promise<{ ok: true; fractions: Float64Array } | Failure>;
+  makePhantom(options?: PhantomOptions): Promise<{ ok: true; stl: Uint8Array } | Failure>;
+  cancel(): void;
+  dispose(): void;
+}

@@ -6,7 +6,7 @@ import { execFileSync } from 'node:child_process';
 import { existsSync, readFileSync } from 'node:fs';
 import { before, describe, test } from 'node:test';
 
-import { TYPES_PATH, typesFor } from '../scripts/gen-types.mjs';
+import { ELEMENT_TYPES_PATH, elementTypes, TYPES_PATH, typesFor } from '../scripts/gen-types.mjs';
 import { createVesselmesh } from '../src/vesselmesh.js';
 
 const root = new URL('../../', import.meta.url);
@@ -39,6 +39,7 @@ const wrongType = (spec) => (spec.type === 'flag' ? 'yes' : spec.type === 'numbe
 describe('option table', () => {
   test('the committed vesselmesh.d.ts is generated from the table (node wasm/scripts/gen-types.mjs)', () => {
     assert.equal(readFileSync(TYPES_PATH, 'utf8'), typesFor(api.optionTable));
+    assert.equal(readFileSync(ELEMENT_TYPES_PATH, 'utf8'), elementTypes());
   });
 
   test('every JS option of the table is declared in vesselmesh.d.ts with its JS key', () => {

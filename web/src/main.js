@@ -20,12 +20,13 @@ import { Viewer } from './viewer.js';
 import { listenViewKeys } from './view-keys.js';
 import { withPrismsSplit } from './prisms.js';
 import { VolumeView } from './volume-view.js';
+import { createWorker } from './worker-source.js';
 
 const $ = (id) => document.getElementById(id);
 // Above this the browser tab would run out of memory (the wasm heap is 4 GB).
 const MAX_FILE_BYTES = 1.5 * 2 ** 30;
 
-const client = new VesselmeshClient();
+const client = new VesselmeshClient({ createWorker });
 const bar = new ActionBar();
 const viewer = new Viewer($('viewer'));
 const count = (n) => n.toLocaleString('en');

@@ -1,0 +1,86 @@
+// The documentation site (docs/dist/, npm run build:docs): its live
+// <vessel-mesher> examples mesh the bundled sample in place, the references
+// list every option of the table with its unit, and nothing is requested
+// outside the site's origin.
+import { existsSync } from 'node:fs';
+
+import { expect, test } from '@playwright/test';
+
+import { createVesselmesh } from '../wasm/src/node.js';
+import { screenshots } from './helpers.js';
+import { serveStatic } from './static-server.js';
+
+const DOCS = new URL('../docs/dist/', import.meta.url).pathname;
+
+let server;
+test.beforeAll(async () => {
+  expect(existsSync(`${DOCS}index.html`), 'docs/dist is built (npm run build:docs)').toBe(true);
+  server = await serveStatic({ dirs: { '/': DOCS } });
+});
+test.afterAll(() => server?.close());
+
+function watch(page) {
+  const foreign = [];
+  const errors = [];
+  page.on('request', (request) => {
+    const url = new URL(request.url());
+    if (['http:', 'https:', 'ws:', 'wss:'].includes(url.protocol) && url.host !== `127.0.0.1:${server.port}`) {
+      foreign.push(request.url());
+    }
+  });
+  page.on('pageerror', (e) => errors.push(e.message));
+  return { foreign, errors };
+}
+
+test('the getting-started page meshes the sample in place', async ({ page }) => {
+  const { foreign, errors } = watch(page);
+  await page.goto(`${server.url}index.html`);
+  const el = page.locator('#start');
+  await expect(el.getByRole('status')).toContainText('3 openings', { timeout: 60_000 });
+  await el.getByRole('button', { name: 'Mesh' }).click();
+  await expect(el.getByRole('status')).toContainText('tetrahedra', { timeout: 60_000 });
+  await screenshots(page, 'docs-start', el);
+  expect(foreign).toEqual([]);
+  expect(errors).toEqual([]);
+});
+
+test('the element page: a scripted example meshes and logs its events', async ({ page }) => {
+  const { foreign, errors } = watch(page);
+  await page.goto(`${server.url}element.html`);
+  await expect(page.locator('body')).toHaveAttribute('data-scripted', 'meshed', { timeout: 60_000 });
+  const log = page.locator('#log');
+  await expect(log).toContainText('vm-analyzed: 3 openings');
+  await expect(log).toContainText('vm-progress');
+  await expect(log).toContainText(/vm-meshed: \d+ tetrahedra/);
+  await expect(page.locator('#full').getByRole('status')).toContainText('3 openings');
+  await screenshots(page, 'docs-element', page.locator('#scripted'));
+  expect(foreign).toEqual([]);
+  expect(errors).toEqual([]);
+});
+
+test('the references list every option of the table with its unit; every page is linked', async ({ page }) => {
+  const { optionTable } = await createVesselmesh();
+  const { foreign } = watch(page);
+  for (const [file, face] of [['cli.html', 'cli'], ['js-api.html', 'js']]) {
+    await page.goto(`${server.url}${file}`);
+    for (const [command] of [['info'], ['mesh'], ['phantom']]) {
+      const expected = optionTable.filter((o) => o.commands.includes(command) && o.faces.includes(face));
+      const rows = page.locator(`table[data-command="${command}"] tbody tr`);
+      await expect(rows).toHaveCount(expected.length);
+      for (const o of expected.filter((o) => o.unit === 'length')) {
+        await expect(page.locator(`[id="${command}-${face}-${o.id}"] .unit`)).toContainText("model's unit");
+      }
+    }
+  }
+  const links = await page.locator('header nav a').evaluateAll((as) => as.map((a) => a.getAttribute('href')));
+  expect(links).toEqual(['index.html', 'cli.html', 'js-api.html', 'element.html', 'method.html', 'architecture.html']);
+  for (const href of links) {
+    const response = await page.goto(`${server.url}${href}`);
+    expect(response.status()).toBe(200);
+    await expect(page.locator('main h1, main h2').first()).toBeVisible();
+  }
+  await page.goto(`${server.url}method.html`);
+  await expect(page.locator('main')).toContainText('γ');
+  await screenshots(page, 'docs-method');
+  expect(foreign).toEqual([]);
+});
