@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake ninja-build libeigen3-dev libnanoflann-dev libgtest-dev
   libxxhash-dev zlib1g-dev dpkg-dev emscripten chromium gmsh python3-gmsh python3-vtk9
-  python3-meshio nodejs npm)
+  python3-meshio clang libclang-rt-14-dev nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <set>
 #include <string>
 
@@ -86,6 +87,19 @@ TEST(OptionTable, EveryOptionAppliesWithAValidValue) {
     }
     EXPECT_TRUE(st.ok()) << s.id << ": " << st.message();
   }
+}
+
+TEST(OptionTable, EveryIntegerFitsAnInt) {
+  // Integer options are stored in int (inlet, layers...): a maximum keeps
+  // every accepted value representable (the fuzzer found --inlet 1e10).
+  for (const OptionSpec& s : option_table()) {
+    if (s.type != OptionType::kInteger) continue;
+    EXPECT_LE(s.max, 4294967295.0) << s.id;
+    if (s.id != "seed") EXPECT_LE(s.max, double(std::numeric_limits<int>::max())) << s.id;
+  }
+  MeshJobOptions o;
+  const Status big = set_option_text(o, "inlet", "1e10");
+  EXPECT_EQ(big.kind(), ErrorKind::kBadOption);
 }
 
 TEST(OptionTable, ParsesAndChecksRanges) {
