@@ -114,6 +114,7 @@ struct SurfaceFidelity {
 /// One physical group of the written file and its element count.
 struct OutputGroup {
   int dim = 2;
+  int tag = 1;  ///< its physical tag, unique across dimensions (write_outputs.h physical_tags)
   std::string name;
   size_t elements = 0;
 };

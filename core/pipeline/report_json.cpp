@@ -283,6 +283,7 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
   for (const OutputGroup& g : r.groups) {
     j.begin_object();
     j.key("dim").value(g.dim);
+    j.key("tag").value(g.tag);
     j.key("name").value(g.name);
     j.key("elements").value(g.elements);
     j.end_object();
