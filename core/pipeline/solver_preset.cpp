@@ -36,8 +36,9 @@ const SolverPreset kPresets[] = {
      .format = OutputFormat::kMsh,
      .msh_version = MshVersion::k41,
      .output_units = LengthUnit::kGuess,
-     .note = "read with dolfinx.io.gmshio.read_from_msh: cell tags are the volume groups, facet "
-             "tags the surface groups"},
+     .note = "read with gmsh.open and dolfinx.io.gmshio.model_to_mesh (dolfinx 0.5's "
+             "read_from_msh fails): cell tags are the volume groups' tags, facet tags the surface "
+             "groups'"},
     {.solver = Solver::kSvFsi,
      .name = "svfsi",
      .label = "svFSI (SimVascular mesh-complete)",
