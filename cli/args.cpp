@@ -112,11 +112,8 @@ Args parse_args(int argc, char** argv, int first, OptionCommand command) {
 }
 
 std::string apply_all(const Args& args, MeshJobOptions& options) {
-  for (const auto& [spec, value] : args.values) {
-    Status st = apply_option(options, *spec, value);
-    if (!st.ok()) return phrase_error(st, kFaceCli);
-  }
-  return "";
+  Status st = apply_options(options, args.values);  // the solver preset first
+  return st.ok() ? "" : phrase_error(st, kFaceCli);
 }
 
 std::string apply_all(const Args& args, PhantomOptions& options) {

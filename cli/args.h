@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/pipeline/option_table.h"
+#include "core/pipeline/solver_preset.h"
 
 namespace vm::cli {
 

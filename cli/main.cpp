@@ -22,6 +22,7 @@
 #include "core/pipeline/mesh_job.h"
 #include "core/pipeline/opening_names.h"
 #include "core/pipeline/report_json.h"
+#include "core/pipeline/solver_preset.h"
 #include "core/pipeline/write_outputs.h"
 #include "core/util/allocator_tuning.h"
 #include "core/util/version.h"
@@ -171,6 +172,19 @@ void print_mesh_summary(const std::string& out, const vm::MeshJobResult& res) {
   const char* unit = unit_text.c_str();
   for (const std::string& w : res.warnings)
     std::fprintf(stderr, "warning: %s\n", vm::phrase_options(w, vm::kFaceCli).c_str());
+  if (!res.preset.solver.empty()) {
+    std::printf("preset %s\n", vm::preset_summary(res.preset).c_str());
+    if (!res.preset.note.empty()) std::printf("  %s\n", res.preset.note.c_str());
+  }
+  if (const auto& y = res.first_layer_yplus) {
+    std::printf(
+        "first layer: %.4g %s (%.4g m) for y+ %g at the inlet %s (diameter %.4g %s, U %g m/s, rho "
+        "%g kg/m^3, mu %g Pa s: Re %.4g, Cf %.4g, tau_w %.4g Pa, u_tau %.4g m/s; Cf = 0.026 "
+        "Re^(-1/7))\n",
+        y->height, unit, y->estimate.height, y->target.yplus, y->inlet.c_str(), y->inlet_diameter,
+        unit, y->target.velocity, y->target.density, y->target.viscosity, y->estimate.reynolds,
+        y->estimate.skin_friction, y->estimate.wall_shear_stress, y->estimate.friction_velocity);
+  }
   std::printf("wrote %s in %.3f s:", out.c_str(), res.seconds_total);
   for (const vm::OutputGroup& g : res.groups)
     std::printf(" %s %zu%s", g.name.c_str(), g.elements, &g == &res.groups.back() ? "\n" : ",");
@@ -242,23 +256,22 @@ struct Destination {
   bool zip = false, folder = false;
 };
 
-std::optional<Destination> destination(const std::string& path, const vm::MeshJobOptions& options,
+std::optional<Destination> destination(const std::string& path, vm::MeshJobOptions& options,
                                        std::string& error) {
   Destination d;
   const bool ends_zip = path.size() > 4 && path.compare(path.size() - 4, 4, ".zip") == 0;
   const bool dir = !path.empty() && (path.back() == '/' || std::filesystem::is_directory(path));
-  if (options.format) {
-    d.format = *options.format;
-  } else if (dir) {
-    d.format = vm::OutputFormat::kMeshComplete;
-  } else {
-    auto f = vm::format_for_path(path);
-    if (!f.ok()) {
-      error = vm::phrase_error(f.status(), vm::kFaceCli);
-      return std::nullopt;
-    }
-    d.format = f.value();
+  // What the name says (a folder, an extension), else a preset's default.
+  std::optional<vm::OutputFormat> from_name;
+  if (dir) {
+    from_name = vm::OutputFormat::kMeshComplete;
+  } else if (auto f = vm::format_for_path(path); f.ok()) {
+    from_name = f.value();
+  } else if (!options.format && options.solver == vm::Solver::kNone) {
+    error = vm::phrase_error(f.status(), vm::kFaceCli);
+    return std::nullopt;
   }
+  d.format = vm::resolve_output_format(options, from_name);
   if (d.format == vm::OutputFormat::kMeshComplete) {
     d.zip = ends_zip;
     d.folder = !ends_zip;

@@ -29,8 +29,10 @@ same mesh:
                             and mesh-complete.names.json agreeing with the
                             MSH's physical names, tags and counts.
 
-Face id = MSH physical tag (vesselmesh writes surface tag t as physical
-t + 1 and ModelFaceID t + 1); names.json must give the same names.
+Face id = MSH physical tag, region id = MSH physical volume tag (vesselmesh
+numbers the surface groups 1..k and the volume groups k+1.., unique across
+dimensions, the same numbers in every file); names.json must give the same
+names.
 Prints one line per check (PASS/FAIL), exits 1 when any check fails.
 
 Usage: /usr/bin/python3 validation/check_vtk_outputs.py --msh out.msh

@@ -252,6 +252,7 @@ def gmsh_volume(path):
             planar = max(planar, float(np.abs((pts - ctr) @ normal).max()))
         diag = float(np.linalg.norm(xyz[1:].max(axis=0) - xyz[1:].min(axis=0)))
         return dict(names=[gmsh.model.getPhysicalName(d, t) for d, t in gmsh.model.getPhysicalGroups()],
+                    groups=[(d, t) for d, t in gmsh.model.getPhysicalGroups()],
                     counts=counts, triangles=len(tri), tets=len(tet), orphans=orphans,
                     min_v6=float(v6.min()), volume=float(v6.sum() / 6), enclosed=float(enclosed),
                     unmatched=unmatched, planar=planar / diag)
@@ -306,6 +307,11 @@ def check_volume(fname, path, tmp, args, d, have_gmsh, label, flags, layers):
     g = gmsh_volume(out)
     check(fname, g["names"] == want and g["orphans"] == 0,
           f"{label}: Gmsh finds the groups, no element outside them")
+    # gmshToFoam names cell zones by number: no tag in two dimensions, and
+    # the report's tags are the file's.
+    tags = [t for _, t in g["groups"]]
+    check(fname, len(set(tags)) == len(tags) and sorted(g["groups"]) == sorted((x["dim"], x["tag"]) for x in o["groups"]),
+          f"{label}: physical tags unique across dimensions, as reported: {g['groups']}")
     check(fname, g["tets"] == v["tetrahedra"] and g["triangles"] == v["boundary_triangles"],
           f"{label}: Gmsh reads {g['tets']} tetrahedra and {g['triangles']} triangles as reported")
     check(fname, g["min_v6"] > 0, f"{label}: no inverted or flat tetrahedron (min 6V {g['min_v6']:.3g})")

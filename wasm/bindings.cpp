@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/io/provenance.h"
@@ -24,6 +25,7 @@
 #include "core/pipeline/opening_names.h"
 #include "core/pipeline/option_table.h"
 #include "core/pipeline/report_json.h"
+#include "core/pipeline/solver_preset.h"
 #include "core/pipeline/write_outputs.h"
 #include "core/prepare/cut_across_vessel.h"
 #include "core/quality/tet_quality.h"
@@ -168,6 +170,7 @@ vm::Status apply_js_options(Target& target, const val& opts, vm::OptionCommand c
   if (opts.isUndefined() || opts.isNull()) return vm::Status::Ok();
   val keys = val::global("Object").call<val>("keys", opts);
   const size_t n = keys["length"].as<size_t>();
+  Applied given;
   for (size_t i = 0; i < n; ++i) {
     const std::string key = keys[i].as<std::string>();
     const val v = opts[key];
@@ -176,12 +179,16 @@ vm::Status apply_js_options(Target& target, const val& opts, vm::OptionCommand c
     if (!spec) return vm::Status::BadOption("", "unknown option '" + key + "'");
     auto values = values_from(*spec, v);
     if (!values.ok()) return values.status();
-    for (const vm::OptionValue& o : values.value()) {
-      if (vm::Status st = vm::apply_option(target, *spec, o); !st.ok()) return st;
-      if (applied) applied->emplace_back(spec, o);
-    }
+    for (const vm::OptionValue& o : values.value()) given.emplace_back(spec, o);
   }
-  return vm::Status::Ok();
+  if (applied) applied->insert(applied->end(), given.begin(), given.end());
+  if constexpr (std::is_same_v<Target, vm::MeshJobOptions>) {
+    return vm::apply_options(target, given);  // the solver preset first
+  } else {
+    for (const auto& [spec, o] : given)
+      if (vm::Status st = vm::apply_option(target, *spec, o); !st.ok()) return st;
+    return vm::Status::Ok();
+  }
 }
 
 void set_surface(val& r, const vm::SurfaceMesh& m, const std::vector<float>& quality) {
@@ -325,7 +332,7 @@ val mesh(val stl, val opts, val progress) {
   Applied applied;
   if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh, &applied); !st.ok())
     return error(st);
-  const vm::OutputFormat format = options.format.value_or(vm::OutputFormat::kMsh);
+  const vm::OutputFormat format = vm::resolve_output_format(options, std::nullopt);
   if (vm::Status st = vm::check_format(format, options); !st.ok()) return error(st);
   std::vector<uint8_t> bytes = bytes_from(stl);
   auto result = vm::run_mesh_job(bytes, options, progress_from(progress));
@@ -358,6 +365,14 @@ val export_mesh(val opts) {
   Applied applied;
   if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh, &applied); !st.ok())
     return error(st);
+  // The mesh's solver preset (its unit and MSH version), then the export's
+  // own options, which win.
+  Applied all;
+  for (const auto& given : last_mesh->options)
+    if (given.first->id == "solver") all.push_back(given);
+  all.insert(all.end(), applied.begin(), applied.end());
+  options = vm::MeshJobOptions{};
+  if (vm::Status st = vm::apply_options(options, all); !st.ok()) return error(st);
   if (!options.format)
     return error(vm::Status::BadOption("format", "is needed: msh, vtu, vtp, stl or mesh-complete"));
   val r = val::object();
@@ -437,6 +452,8 @@ val make_phantom(val opts) {
 
 std::string option_table() { return vm::option_table_json(); }
 
+std::string solver_presets() { return vm::solver_presets_json(); }
+
 std::string version() { return vm::kVersion; }
 
 }  // namespace
@@ -447,6 +464,7 @@ EMSCRIPTEN_BINDINGS(vesselmesh) {
   emscripten::function("makePhantom", &make_phantom);
   emscripten::function("version", &version);
   emscripten::function("optionTable", &option_table);
+  emscripten::function("solverPresets", &solver_presets);
   emscripten::function("exportMesh", &export_mesh);
   emscripten::function("openingNames", &opening_names);
   emscripten::function("cutAt", &cut_at);

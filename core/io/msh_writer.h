@@ -15,7 +15,9 @@ enum class MshVersion { k41, k22 };
 /// Gmsh element type codes used by vesselmesh.
 enum class MshElementType : int { kTriangle = 2, kQuad = 3, kTetrahedron = 4, kPrism = 6 };
 
-/// A named physical group. Tags are positive and unique per dimension.
+/// A named physical group. Tags are positive and unique per dimension (the
+/// pipeline makes them unique across dimensions too: write_outputs.h
+/// physical_tags).
 struct MshPhysical {
   int dim = 2;  ///< 2 surface, 3 volume
   int tag = 1;

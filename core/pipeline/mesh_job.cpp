@@ -314,12 +314,49 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   return Status::Ok();
 }
 
+/// The first layer's height from options.yplus (when asked) at the chosen
+/// inlet of the prepared surface, in the model's unit: set in `options`
+/// and recorded in `r`. Errors: no layer to size, {first_layer} given too,
+/// no inlet velocity, no opening.
+Status first_layer_from_yplus(MeshJobResult& r, MeshJobOptions& options) {
+  const YPlusTarget& t = options.yplus;
+  if (!(t.yplus > 0)) return Status::Ok();
+  if (options.viscous.first_height > 0)
+    return Status::BadOption("first_layer_yplus",
+                             "and {first_layer} both set the first layer's height: give one");
+  if (!(t.velocity > 0))
+    return Status::BadOption("first_layer_yplus",
+                             "needs the flow's {inlet_velocity} (m/s) to size the first layer");
+  if (options.viscous.layers <= 0 || !options.volume)
+    return Status::BadOption("first_layer_yplus",
+                             "sizes the boundary layer's first layer: there is none ({layers} 0 "
+                             "or {surface_only})");
+  const std::vector<Opening>& openings = r.surface.topology.openings;
+  if (openings.empty())
+    return Status::Error(
+        "{first_layer_yplus} needs an inlet to take the flow's diameter from, and this surface "
+        "is closed: cut it open ({clip} auto) or give {first_layer}");
+  const size_t inlet = size_t(options.inlet) < openings.size() ? size_t(options.inlet) : 0;
+  const double metres = metres_per_unit(r.surface.unit.unit);
+  FirstLayerFromYPlus f;
+  f.target = t;
+  f.inlet = r.opening_names[inlet];
+  f.inlet_diameter = 2 * openings[inlet].radius;
+  f.estimate = first_layer_height_for_yplus(t, f.inlet_diameter * metres);
+  f.height = f.estimate.height / metres;
+  options.viscous.first_height = f.height;
+  r.first_layer_yplus = f;
+  return Status::Ok();
+}
+
 }  // namespace
 
-Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes,
-                                   const MeshJobOptions& options, const ProgressFn& progress) {
+Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const MeshJobOptions& given,
+                                   const ProgressFn& progress) {
   auto t0 = std::chrono::steady_clock::now();
+  MeshJobOptions options = given;  // with what the surface decides (a y+ height)
   MeshJobResult r;
+  r.preset = options.preset;
   // Stage 1 takes the first fifth of the progress bar, remeshing most of the rest.
   ProgressFn sub = [&](double f, std::string_view stage) {
     return report_progress(progress, 0.2 * f, stage);
@@ -334,6 +371,13 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes,
   auto names = opening_names(r.surface, options.opening_names, options.inlet);
   if (!names.ok()) return names.status();
   r.opening_names = std::move(names).value();
+  if (Status st = first_layer_from_yplus(r, options); !st.ok()) return st;
+  if (options.output_units != LengthUnit::kGuess && r.surface.unit.guessed &&
+      !r.surface.unit.certain)
+    r.warnings.push_back("the mesh is written in " +
+                         std::string(unit_symbol(options.output_units)) + " from a guessed unit, " +
+                         std::string(unit_symbol(r.surface.unit.unit)) +
+                         " (unconfirmed: " + r.surface.unit.reason + "); say {units} if it is not");
   r.output_surface = r.surface.mesh;
   if (options.volume) {
     // Known sizes are checked against the budget before remeshing.

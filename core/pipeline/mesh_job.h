@@ -11,6 +11,7 @@
 
 #include "core/io/msh_writer.h"
 #include "core/io/output_file.h"
+#include "core/layers/first_layer_yplus.h"
 #include "core/layers/layer_mesh.h"
 #include "core/mesh/volume_mesh.h"
 #include "core/pipeline/prepare_surface.h"
@@ -30,8 +31,33 @@ inline LayerSpec no_vessel_wall() {
   return s;
 }
 
+/// The solver a mesh is for (solver_preset.h): kNone, no preset.
+enum class Solver { kNone, kGmsh, kOpenFoam, kFenics, kSvFsi };
+
+/// One setting of a solver preset as applied: the option's id, its value's
+/// text, and whether the preset set it (false: the user gave the option,
+/// and the user's value was kept).
+struct PresetSetting {
+  std::string id, value;
+  bool from_preset = true;
+};
+
+/// The preset applied to a job (solver_preset.h apply_options): the
+/// solver's name ("" = none), what it set, and a note on what the solver
+/// needs beyond the file (e.g. a patch type to set after conversion).
+struct PresetOutcome {
+  std::string solver;
+  std::vector<PresetSetting> settings;
+  std::string note;
+};
+
 struct MeshJobOptions {
   PrepareOptions prepare;
+  /// The solver the mesh is for; its preset's defaults are applied by
+  /// apply_options (solver_preset.h), which records them in `preset`
+  /// (copied to the result for the report).
+  Solver solver = Solver::kNone;
+  PresetOutcome preset;
   /// How the result is to be written (write_outputs.h; the job itself
   /// writes nothing): the format (none: from the output's file name, else
   /// MSH), the MSH version, the unit.
@@ -65,6 +91,11 @@ struct MeshJobOptions {
   /// Whether the vessel wall's thickness was given (a wall asked for by its
   /// number of layers alone is said in a warning).
   bool wall_thickness_given = false;
+  /// The first layer's height from a target y+ (yplus.yplus > 0) and the
+  /// flow at the inlet (first_layer_yplus.h): set when the surface is known
+  /// (the inlet's diameter, the model's unit); refused together with
+  /// viscous.first_height.
+  YPlusTarget yplus;
   /// The viscous layer as its own volume `boundary_layer` (else in `lumen`).
   bool tag_layer = false;
   /// Keep the layers' prisms (MSH type 6; their faces at the openings as
@@ -117,12 +148,25 @@ struct SurfaceFidelity {
 /// One physical group of the written file and its element count.
 struct OutputGroup {
   int dim = 2;
+  int tag = 1;  ///< its physical tag, unique across dimensions (write_outputs.h physical_tags)
   std::string name;
   size_t elements = 0;
 };
 
+/// The first layer's height as set from a target y+.
+struct FirstLayerFromYPlus {
+  YPlusTarget target;         ///< the y+ and the flow (SI)
+  YPlusHeight estimate;       ///< Re, Cf, tau_w, u_tau, the height in metres
+  std::string inlet;          ///< the group name of the opening used
+  double inlet_diameter = 0;  ///< its equivalent diameter 2 sqrt(area / pi), model unit
+  double height = 0;          ///< the first layer's height, model unit
+};
+
 struct MeshJobResult {
-  PreparedSurface surface;            ///< the input as read and analyzed
+  PreparedSurface surface;  ///< the input as read and analyzed
+  PresetOutcome preset;     ///< the solver preset applied (options.preset)
+  /// When the first layer's height came from a target y+.
+  std::optional<FirstLayerFromYPlus> first_layer_yplus;
   SurfaceMesh output_surface;         ///< the surface written (wall)
   std::vector<float> output_quality;  ///< gamma_k per output triangle
   QualityStats output_quality_stats;

@@ -19,6 +19,7 @@ constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm",
 constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
 constexpr std::string_view kOffAuto[] = {"off", "auto"};
 constexpr std::string_view kFormats[] = {"msh", "vtu", "vtp", "stl", "mesh-complete"};
+constexpr std::string_view kSolvers[] = {"gmsh", "openfoam", "fenics", "svfsi"};
 
 constexpr uint8_t kInfoMesh = kCommandInfo | kCommandMesh;
 
@@ -385,6 +386,49 @@ const OptionSpec kOptions[] = {
      .max = 100,
      .needs = "a number of layers from 0 (none) to 100",
      .doc = "layers of the vessel wall (alone: a wall of 0.1 R; 0: no wall)"},
+    {.id = "first_layer_yplus",
+     .cli = "first-layer-yplus",
+     .js = "firstLayerYplus",
+     .group = "layers",
+     .metavar = "Y",
+     .min = 0,
+     .min_exclusive = true,
+     .needs = "a positive target y+",
+     .doc = "first layer height from this target y+ at the inlet, with the inlet velocity, "
+            "density and viscosity (skin friction Cf = 0.026 Re^(-1/7), Re of the inlet's "
+            "diameter); the height used is reported"},
+    {.id = "inlet_velocity",
+     .cli = "inlet-velocity",
+     .js = "inletVelocity",
+     .group = "layers",
+     .metavar = "U",
+     .min = 0,
+     .min_exclusive = true,
+     .unit = "m/s",
+     .needs = "a positive velocity in m/s",
+     .doc = "with a target y+: the mean velocity at the inlet, m/s"},
+    {.id = "density",
+     .cli = "density",
+     .js = "density",
+     .group = "layers",
+     .metavar = "RHO",
+     .min = 0,
+     .min_exclusive = true,
+     .default_text = "1060",
+     .unit = "kg/m^3",
+     .needs = "a positive density in kg/m^3",
+     .doc = "with a target y+: the fluid's density, kg/m^3 (blood)"},
+    {.id = "viscosity",
+     .cli = "viscosity",
+     .js = "viscosity",
+     .group = "layers",
+     .metavar = "MU",
+     .min = 0,
+     .min_exclusive = true,
+     .default_text = "0.0035",
+     .unit = "Pa s",
+     .needs = "a positive dynamic viscosity in Pa s",
+     .doc = "with a target y+: the fluid's dynamic viscosity, Pa s (blood)"},
     {.id = "tag_layer",
      .cli = "tag-layer",
      .js = "tagLayer",
@@ -407,6 +451,16 @@ const OptionSpec kOptions[] = {
      .metavar = "OUT.msh",
      .needs = "a file name",
      .doc = "the file to write (also -o)"},
+    {.id = "solver",
+     .cli = "for",
+     .js = "solver",
+     .type = T::kChoice,
+     .group = "output",
+     .metavar = "SOLVER",
+     .choices = kSolvers,
+     .needs = "gmsh, openfoam, fenics or svfsi",
+     .doc = "defaults for this solver: element types, format, MSH version, output unit (README, "
+            "Solver presets); options you give and the output's extension win"},
     {.id = "format",
      .cli = "format",
      .js = "format",
@@ -775,6 +829,20 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
     o.viscous.first_height = x;
   } else if (id == "growth") {
     o.viscous.growth = x;
+  } else if (id == "first_layer_yplus") {
+    o.yplus.yplus = x;
+  } else if (id == "inlet_velocity") {
+    o.yplus.velocity = x;
+  } else if (id == "density") {
+    o.yplus.density = x;
+  } else if (id == "viscosity") {
+    o.yplus.viscosity = x;
+  } else if (id == "solver") {
+    // The preset's defaults are applied by apply_options (solver_preset.h).
+    if (v.text == "gmsh") o.solver = Solver::kGmsh;
+    if (v.text == "openfoam") o.solver = Solver::kOpenFoam;
+    if (v.text == "fenics") o.solver = Solver::kFenics;
+    if (v.text == "svfsi") o.solver = Solver::kSvFsi;
   } else if (id == "param") {
     o.remesh_options.param = v.text == "harmonic"  ? ParamMethod::kHarmonic
                              : v.text == "floater" ? ParamMethod::kFloater

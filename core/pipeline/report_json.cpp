@@ -167,6 +167,38 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
   JsonWriter j;
   j.begin_object();
   j.key("input").raw(analysis_json(r.surface, face));
+  if (!r.preset.solver.empty()) {
+    j.key("preset").begin_object();
+    j.key("solver").value(r.preset.solver);
+    j.key("settings").begin_array();
+    for (const PresetSetting& s : r.preset.settings) {
+      j.begin_object();
+      j.key("option").value(phrase_options("{" + s.id + "}", face));
+      j.key("value").value(s.value);
+      j.key("from").value(s.from_preset ? "preset" : "user");
+      j.end_object();
+    }
+    j.end_array();
+    j.key("note").value(r.preset.note);
+    j.end_object();
+  }
+  if (const auto& y = r.first_layer_yplus) {
+    j.key("first_layer_yplus").begin_object();
+    j.key("yplus").value(y->target.yplus);
+    j.key("inlet_velocity").value(y->target.velocity);
+    j.key("density").value(y->target.density);
+    j.key("viscosity").value(y->target.viscosity);
+    j.key("inlet").value(y->inlet);
+    j.key("inlet_diameter").value(y->inlet_diameter);
+    j.key("reynolds").value(y->estimate.reynolds);
+    j.key("skin_friction").value(y->estimate.skin_friction);
+    j.key("wall_shear_stress").value(y->estimate.wall_shear_stress);
+    j.key("friction_velocity").value(y->estimate.friction_velocity);
+    j.key("height_m").value(y->estimate.height);
+    j.key("height").value(y->height);
+    j.key("correlation").value("Cf = 0.026 Re^(-1/7)");
+    j.end_object();
+  }
   j.key("output").begin_object();
   // Lengths of the report are in the input's unit.
   j.key("unit").value(unit_symbol(r.surface.unit.unit));
@@ -283,6 +315,7 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
   for (const OutputGroup& g : r.groups) {
     j.begin_object();
     j.key("dim").value(g.dim);
+    j.key("tag").value(g.tag);
     j.key("name").value(g.name);
     j.key("elements").value(g.elements);
     j.end_object();

@@ -32,8 +32,13 @@ namespace vm {
 /// the words of `face`.
 std::string analysis_json(const PreparedSurface& surface, OptionFace face = kFaceCli);
 
-/// Keys: input (analysis_json), output {vertices, triangles, quality,
-/// groups [...]}, warnings, seconds.
+/// Keys: input (analysis_json), preset (with a solver preset: solver,
+/// settings [{option, value, from: "preset" | "user"}], note),
+/// first_layer_yplus (when the first layer was sized from a y+: yplus,
+/// inlet_velocity, density, viscosity, inlet, inlet_diameter (model unit),
+/// reynolds, skin_friction, wall_shear_stress, friction_velocity, height_m,
+/// height (model unit), correlation), output {unit, vertices, triangles,
+/// quality, ..., groups [{dim, tag, name, elements}]}, warnings, seconds.
 std::string mesh_report_json(const MeshJobResult& result, OptionFace face = kFaceCli);
 
 }  // namespace vm

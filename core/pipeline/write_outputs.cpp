@@ -32,8 +32,12 @@ std::vector<double> scaled(const std::vector<double>& points, double scale) {
   return out;
 }
 
-/// The result as a volume mesh with names: the volume, or (surface only)
-/// the wall as the boundary of nothing, tag 0 `wall`.
+/// The result as a volume mesh with names, its tags renumbered to the
+/// physical tags (physical_tags) minus one: every writer numbers a tag t as
+/// t + 1, so that numbers are the same in every file. `surfaces[t]` and
+/// `regions[r]` name the renumbered tags ("" = none: the regions' first k
+/// entries, numbers taken by the surfaces). Surface only: the wall as the
+/// boundary of nothing, `wall`.
 struct Named {
   VolumeMesh mesh;
   std::vector<std::string> surfaces, regions;
@@ -46,13 +50,26 @@ Named named_mesh(const MeshJobResult& r, double scale) {
     n.mesh.triangles = r.output_surface.triangles;
     n.mesh.triangle_tag.assign(r.output_surface.num_triangles(), 0);
     n.surfaces = {"wall"};
-  } else {
-    n.mesh = r.volume;
-    if (scale != 1)
-      for (double& x : n.mesh.points) x *= scale;
-    n.surfaces = r.surface_names;
-    n.regions = r.region_names;
+    return n;
   }
+  n.mesh = r.volume;
+  if (scale != 1)
+    for (double& x : n.mesh.points) x *= scale;
+  const PhysicalTags tags = physical_tags(r.surface_names, r.region_names);
+  auto renumber = [](std::vector<int32_t>& values, const std::vector<int>& number,
+                     std::vector<std::string>& names, const std::vector<std::string>& from) {
+    for (int32_t& v : values)
+      if (v >= 0 && size_t(v) < number.size() && number[size_t(v)] > 0) v = number[size_t(v)] - 1;
+    for (size_t t = 0; t < number.size(); ++t) {
+      if (number[t] <= 0) continue;
+      if (names.size() < size_t(number[t])) names.resize(size_t(number[t]));
+      names[size_t(number[t]) - 1] = from[t];
+    }
+  };
+  renumber(n.mesh.triangle_tag, tags.surface, n.surfaces, r.surface_names);
+  renumber(n.mesh.quad_tag, tags.surface, n.surfaces, r.surface_names);
+  renumber(n.mesh.tet_region, tags.region, n.regions, r.region_names);
+  renumber(n.mesh.prism_region, tags.region, n.regions, r.region_names);
   return n;
 }
 
@@ -93,24 +110,34 @@ Status check_format(OutputFormat format, const MeshJobOptions& options) {
   return Status::Ok();
 }
 
+PhysicalTags physical_tags(const std::vector<std::string>& surface_names,
+                           const std::vector<std::string>& region_names) {
+  PhysicalTags tags;
+  int next = 0;
+  for (const std::string& name : surface_names) tags.surface.push_back(name.empty() ? 0 : ++next);
+  for (const std::string& name : region_names) tags.region.push_back(name.empty() ? 0 : ++next);
+  return tags;
+}
+
 std::vector<OutputGroup> output_groups(const MeshJobResult& r) {
   std::vector<OutputGroup> groups;
   if (surface_only(r)) {
-    groups.push_back({2, "wall", r.output_surface.num_triangles()});
+    groups.push_back({2, 1, "wall", r.output_surface.num_triangles()});
     return groups;
   }
   const VolumeMesh& m = r.volume;
-  auto count = [](const std::vector<int32_t>& tags, size_t tag) {
-    return size_t(std::count(tags.begin(), tags.end(), int32_t(tag)));
+  const PhysicalTags tags = physical_tags(r.surface_names, r.region_names);
+  auto count = [](const std::vector<int32_t>& values, size_t tag) {
+    return size_t(std::count(values.begin(), values.end(), int32_t(tag)));
   };
   for (size_t tag = 0; tag < r.surface_names.size(); ++tag)
     if (!r.surface_names[tag].empty())
-      groups.push_back(
-          {2, r.surface_names[tag], count(m.triangle_tag, tag) + count(m.quad_tag, tag)});
+      groups.push_back({2, tags.surface[tag], r.surface_names[tag],
+                        count(m.triangle_tag, tag) + count(m.quad_tag, tag)});
   for (size_t region = 0; region < r.region_names.size(); ++region)
     if (!r.region_names[region].empty())
-      groups.push_back(
-          {3, r.region_names[region], count(m.tet_region, region) + count(m.prism_region, region)});
+      groups.push_back({3, tags.region[region], r.region_names[region],
+                        count(m.tet_region, region) + count(m.prism_region, region)});
   return groups;
 }
 

@@ -42,9 +42,22 @@ struct WriteOptions {
 /// `format`.
 Status check_format(OutputFormat format, const MeshJobOptions& options);
 
-/// The physical groups a result's files have, with their element counts:
-/// one per used surface tag (dimension 2), then one per used region (3);
-/// surface only: `wall`.
+/// The physical tag number of each group of a result's files, unique across
+/// dimensions (gmshToFoam names cell zones by number, so a surface group and
+/// a volume group must never share one): the named surface tags get 1..k in
+/// tag order, then the named regions k+1..k+m in region order; an unnamed
+/// ("" = unused) tag or region gets 0. `surface[t]` is the number of surface
+/// tag t, `region[r]` of region r. The MSH physical tags, VTK's ModelFaceID
+/// and ModelRegionID and mesh-complete's ids are all these numbers.
+struct PhysicalTags {
+  std::vector<int> surface, region;
+};
+PhysicalTags physical_tags(const std::vector<std::string>& surface_names,
+                           const std::vector<std::string>& region_names);
+
+/// The physical groups a result's files have, with their element counts
+/// and tag numbers (physical_tags): one per used surface tag (dimension 2),
+/// then one per used region (3); surface only: `wall`.
 std::vector<OutputGroup> output_groups(const MeshJobResult& result);
 
 /// The MSH model of a result (the volume with its groups, or the wall as

@@ -129,6 +129,65 @@ check "mesh bad layers" expect_exit 2 "--layers needs a number of layers" "$VM" 
 check "mesh bad wall thickness" expect_exit 2 "--wall-thickness needs a fraction" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --wall-thickness 1.5
 check "mesh unwritable output" expect_exit 1 "cannot write" "$VM" mesh "$T/bif.stl" -o "$T/no/such/dir/x.msh"
 
+# Physical tags unique across dimensions (gmshToFoam names cell zones by number).
+unique_tags() {  # unique_tags FILE.msh: no tag number in two dimensions
+  python3 - "$1" <<'PY'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+i = lines.index("$PhysicalNames")
+groups = [l.split()[:2] for l in lines[i + 2:i + 2 + int(lines[i + 1])]]
+tags = [t for d, t in groups]
+print("unique" if len(set(tags)) == len(tags) and len(tags) > 1 else "SHARED " + str(groups))
+PY
+}
+msh_types() {  # msh_types FILE.msh: the element types in it, sorted (MSH 4.1 or 2.2)
+  python3 - "$1" <<'PY'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+version = lines[1].split()[0]
+i = lines.index("$Elements") + 1
+types = set()
+if version == "2.2":
+    for l in lines[i + 1:i + 1 + int(lines[i])]:
+        types.add(int(l.split()[1]))
+else:
+    blocks, i = int(lines[i].split()[0]), i + 1
+    for _ in range(blocks):
+        dim, ent, ty, n = map(int, lines[i].split())
+        types.add(ty)
+        i += n + 1
+print(",".join(map(str, sorted(types))))
+PY
+}
+check "msh 4.1 tags unique across dimensions" [ "$(unique_tags "$T/w.msh")" = unique ]
+check "msh 2.2 tags unique across dimensions" [ "$(unique_tags "$T/bif22.msh")" = unique ]
+check "report groups carry the tags" [ "$(json "$T/w.json" "[(g['dim'], g['tag']) for g in d['output']['groups']][-3:]")" = "[(3, 9), (3, 10), (3, 11)]" ]
+
+# Solver presets: defaults under the user's options.
+check "bad solver" expect_exit 2 "--for needs gmsh, openfoam, fenics or svfsi" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --for ansys
+check "openfoam preset (the .msh name is yours)" expect_exit 0 "preset openfoam: prisms true, msh_version 2.2, output_units m (the preset); format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/foam.msh" --size 0.25 --for openfoam --report "$T/foam.json"
+check "openfoam: MSH 2.2" [ "$(sed -n 2p "$T/foam.msh")" = "2.2 0 8" ]
+check "openfoam: prisms (type 6) kept" [ "$(msh_types "$T/foam.msh")" = "2,3,4,6" ]
+check "openfoam: the report lists the preset's settings" [ "$(json "$T/foam.json" "d['preset']['solver'], [s['from'] for s in d['preset']['settings']]")" = "openfoam ['preset', 'preset', 'preset', 'user']" ]
+check "openfoam: a guessed unit converted warns" expect_exit 0 "written in m from a guessed unit, mm (unconfirmed" "$VM" mesh "$T/bif.stl" -o "$T/foam.msh" --size 0.25 --layers 2 --for openfoam
+check "openfoam: coordinates / 1000" [ "$(awk '/^\$Nodes/{n=1;getline;next} /^\$EndNodes/{n=0} n{for(i=2;i<=4;i++){x=$i<0?-$i:$i; if(x>m)m=x}} END{print (m>0.001 && m<0.02)}' "$T/foam.msh")" = 1 ]
+check "openfoam: explicit version wins" expect_exit 0 "msh_version 4.1, format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/foam41.msh" --size 0.25 --layers 2 --for openfoam --msh-version 4.1
+check "openfoam: explicit version written" [ "$(sed -n 2p "$T/foam41.msh")" = "4.1 0 8" ]
+check "fenics preset" expect_exit 0 "preset fenics: prisms false" "$VM" mesh "$T/bif.stl" -o "$T/fenics.msh" --size 0.25 --layers 2 --for fenics
+check "fenics: tetrahedra only" [ "$(msh_types "$T/fenics.msh")" = "2,4" ]
+check "fenics + --prisms: prisms (yours)" expect_exit 0 "prisms true, format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/fenicsp.msh" --size 0.25 --layers 2 --for fenics --prisms
+check "svfsi preset: a mesh-complete folder" expect_exit 0 "format mesh-complete (the preset)" "$VM" mesh "$T/bif.stl" -o "$T/svfsi-out" --size 0.25 --layers 2 --for svfsi
+check "svfsi folder written" [ -f "$T/svfsi-out/mesh-complete.mesh.vtu" ] && [ -f "$T/svfsi-out/mesh-surfaces/wall.vtp" ]
+check "svfsi: a .msh name wins" expect_exit 0 "format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/svfsi.msh" --size 0.25 --layers 2 --for svfsi
+check "no preset: a name without extension refused" expect_exit 2 "cannot tell the output format" "$VM" mesh "$T/bif.stl" -o "$T/noext" --size 0.25
+
+# First layer from a target y+.
+check "y+ sets the first layer" expect_exit 0 "first layer: " "$VM" mesh "$T/bif.stl" -o "$T/yplus.msh" --size 0.25 --layers 3 --first-layer-yplus 1 --inlet-velocity 0.3 --report "$T/yplus.json"
+check "y+ in the report" [ "$(json "$T/yplus.json" "' '.join(str(x) for x in (lambda y: (y['yplus'], y['inlet'], y['density'], y['viscosity'], abs(y['height'] - 1000 * y['height_m']) < 1e-12, 0 < y['height'] < 0.5))(d['first_layer_yplus']))")" = "1 inlet 1060 0.0035 True True" ]
+check "y+ and --first-layer refused" expect_exit 2 "--first-layer-yplus and --first-layer both set the first layer's height" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --first-layer-yplus 1 --inlet-velocity 0.3 --first-layer 0.01
+check "y+ needs a velocity" expect_exit 2 "--first-layer-yplus needs the flow's --inlet-velocity" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --first-layer-yplus 1
+check "density alone refused" expect_exit 2 "--density sizes the first layer from a target y+" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --density 1000
+
 # Two components: refused, then accepted with --largest-component.
 cat "$T/bif.stl" > "$T/two.stl"
 python3 - "$T/bif.stl" "$T/two.stl" <<'PY'

@@ -367,7 +367,8 @@ TEST(ReportJson, HasTheDocumentedKeys) {
   for (const char* key :
        {"\"remesh\":{\"patches\":", "\"seam_points\":", "\"genus\":0",
         "\"caps\":[{\"name\":\"inlet\"", "\"volume\":{\"vertices\":", "\"tetrahedra\":",
-        "\"groups\":[{\"dim\":2,\"name\":\"wall\",\"elements\":", "{\"dim\":3,\"name\":\"lumen\"",
+        "\"groups\":[{\"dim\":2,\"tag\":1,\"name\":\"wall\",\"elements\":",
+        "{\"dim\":3,\"tag\":4,\"name\":\"lumen\"",
         "\"input_gap_vertices\":", "\"pinned_vertices\":", "\"pinning_rounds\":",
         "\"pinning_reverted\":", "\"size_rounds\":", "\"fidelity\":"})
     EXPECT_NE(m.find(key), std::string::npos) << key << " in " << m;

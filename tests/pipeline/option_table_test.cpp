@@ -95,7 +95,9 @@ TEST(OptionTable, EveryIntegerFitsAnInt) {
   for (const OptionSpec& s : option_table()) {
     if (s.type != OptionType::kInteger) continue;
     EXPECT_LE(s.max, 4294967295.0) << s.id;
-    if (s.id != "seed") EXPECT_LE(s.max, double(std::numeric_limits<int>::max())) << s.id;
+    if (s.id != "seed") {
+      EXPECT_LE(s.max, double(std::numeric_limits<int>::max())) << s.id;
+    }
   }
   MeshJobOptions o;
   const Status big = set_option_text(o, "inlet", "1e10");

@@ -35,6 +35,8 @@ export class VesselmeshClient {
       this.version = msg.version;
       /** The option table (see the API's optionTable), once ready. */
       this.optionTable = msg.optionTable;
+      /** The solver presets (see the API's solverPresets), once ready. */
+      this.solverPresets = msg.solverPresets;
       this._readyResolve(msg.version);
       return;
     }

@@ -74,7 +74,7 @@ export interface MeshOptions {
   fidelity?: number;
   /** write the remeshed wall alone (no caps, layers or volume) Default false. */
   surfaceOnly?: boolean;
-  /** opening K (largest first) is `inlet` instead of the largest. Needs an opening number >= 1 (as the analysis lists them). */
+  /** opening K (largest first) is `inlet` instead of the largest. Needs an opening number from 1 to 1000000 (as the analysis lists them). */
   inlet?: number;
   /** target size in the core of the lumen (0: the uniform size, or grown from the wall's) In the model's unit. Needs a length >= 0 (0: grow from the wall size). Default 0. */
   coreSize?: number;
@@ -98,10 +98,20 @@ export interface MeshOptions {
   wallThickness?: number;
   /** layers of the vessel wall (alone: a wall of 0.1 R; 0: no wall) Needs a number of layers from 0 (none) to 100. */
   wallLayers?: number;
+  /** first layer height from this target y+ at the inlet, with the inlet velocity, density and viscosity (skin friction Cf = 0.026 Re^(-1/7), Re of the inlet's diameter); the height used is reported. Needs a positive target y+. */
+  firstLayerYplus?: number;
+  /** with a target y+: the mean velocity at the inlet, m/s. Needs a positive velocity in m/s. */
+  inletVelocity?: number;
+  /** with a target y+: the fluid's density, kg/m^3 (blood) Needs a positive density in kg/m^3. Default 1060. */
+  density?: number;
+  /** with a target y+: the fluid's dynamic viscosity, Pa s (blood) Needs a positive dynamic viscosity in Pa s. Default 0.0035. */
+  viscosity?: number;
   /** the viscous layer as its own volume group `boundary_layer`. Default false. */
   tagLayer?: boolean;
   /** keep the layers' prisms (MSH type 6) instead of 3 tetrahedra each. Default false. */
   prisms?: boolean;
+  /** defaults for this solver: element types, format, MSH version, output unit (README, Solver presets); options you give and the output's extension win. Needs gmsh, openfoam, fenics or svfsi. */
+  solver?: 'gmsh' | 'openfoam' | 'fenics' | 'svfsi';
   /** the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip or a folder for mesh-complete; JS: msh) Needs msh, vtu, vtp, stl or mesh-complete. */
   format?: 'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete';
   /** convert the written mesh to this unit (default: the input's) Needs mm, cm or m. */
@@ -238,9 +248,23 @@ export type ExportResult = { ok: true; file: Uint8Array; fileName: string; forma
 
 export type ExportOptions = Pick<MeshOptions, 'mshVersion' | 'outputUnits'>;
 
+/** A solver preset (`solver`): the defaults it sets (README, "Solver presets"). */
+export interface SolverPreset {
+  name: NonNullable<MeshOptions['solver']>;
+  label: string;
+  prisms: boolean;
+  format: OutputFormat;
+  mshVersion: NonNullable<MeshOptions['mshVersion']>;
+  /** '' for the input's unit. */
+  outputUnits: NonNullable<MeshOptions['outputUnits']> | '';
+  note: string;
+}
+
 export interface VesselmeshApi {
   version: string;
   optionTable: OptionSpec[];
+  /** The solver presets, in the order of the `solver` option's choices. */
+  solverPresets: SolverPreset[];
   /** Reads, repairs and analyzes a surface file (the analysis has the keys of `vesselmesh info --json`). */
   analyze(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: AnalyzeOptions): AnalyzeResult;
   /** Meshes a surface file (the report has the keys of `vesselmesh mesh --report`). */

@@ -54,6 +54,8 @@ export async function createVesselmesh({ wasmBinary } = {}) {
   const withSurface = (raw, extra) => ({ ok: true, ...extra, surface: raw.surface });
   /** The option table (core/pipeline/option_table.h) as parsed JSON. */
   const optionTable = JSON.parse(core.optionTable());
+  /** The solver presets (core/pipeline/solver_preset.h) as parsed JSON. */
+  const solverPresets = JSON.parse(core.solverPresets());
 
   return {
     version: core.version(),
@@ -61,6 +63,11 @@ export async function createVesselmesh({ wasmBinary } = {}) {
     /** Every option of analyze, mesh and makePhantom: id, js (the key
      * here), type, range, default, unit, doc (see vesselmesh.d.ts). */
     optionTable,
+
+    /** The solver presets of the `solver` option: name, label, and what
+     * each sets (prisms, format, mshVersion, outputUnits; '' = the
+     * input's unit), with a note on what the solver needs. */
+    solverPresets,
 
     /**
      * Reads, welds, repairs and analyzes a surface file (STL).

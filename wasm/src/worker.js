@@ -3,7 +3,7 @@
 //          'cutAt' | 'layerFractions',
 //          args: [bytes?, options] }
 //        (export: args [format, options]: the last mesh in another format)
-//   out: { type: 'ready', version, optionTable } | { type: 'error', error } once
+//   out: { type: 'ready', version, optionTable, solverPresets } | { type: 'error', error } once
 //        at start;
 //        { id, type: 'progress', fraction, stage } during a job (at most one
 //        every 50 ms); { id, type: 'result', result } at the end, with the
@@ -14,7 +14,12 @@ import { createVesselmesh } from './vesselmesh.js';
 
 const apiPromise = createVesselmesh().then(
   (api) => {
-    self.postMessage({ type: 'ready', version: api.version, optionTable: api.optionTable });
+    self.postMessage({
+      type: 'ready',
+      version: api.version,
+      optionTable: api.optionTable,
+      solverPresets: api.solverPresets,
+    });
     return api;
   },
   (error) => {

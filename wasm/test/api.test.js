@@ -551,7 +551,7 @@ describe('mesh: volume', () => {
     assert.equal(s.ok, true, s.error);
     assert.equal(s.volume, undefined);
     assert.deepEqual(s.report.output.groups, [
-      { dim: 2, name: 'wall', elements: s.report.output.triangles },
+      { dim: 2, tag: 1, name: 'wall', elements: s.report.output.triangles },
     ]);
     assert.ok(!s.report.output.caps?.length);
     assert.ok(!s.report.output.volume);

@@ -345,7 +345,18 @@ function volumeChangeProblem() {
   return check($('max-volume-change'), x >= 0 && x <= 100, 'Largest volume change must be a percentage from 0 to 100 (Advanced).');
 }
 
-const LAYER_FIELDS = ['layers', 'layer-thickness', 'first-layer', 'growth', 'wall-thickness', 'wall-layers'];
+const LAYER_FIELDS = [
+  'layers',
+  'layer-thickness',
+  'first-layer',
+  'first-layer-yplus',
+  'inlet-velocity',
+  'density',
+  'viscosity',
+  'growth',
+  'wall-thickness',
+  'wall-layers',
+];
 
 /** Why the boundary layer or vessel wall fields are unusable: every field
  * that applies is marked, the first problem returned (null when all are
@@ -354,14 +365,16 @@ function layerProblems() {
   for (const id of LAYER_FIELDS) $(id).setAttribute('aria-invalid', 'false');
   if ($('surface-only').checked) return null; // no volume: the fields are unused
   const layers = numberIn('layers') > 0;
-  const first = $('layer-mode').value === 'first';
+  const mode = $('layer-mode').value;
+  const first = mode === 'first';
+  const yplus = mode === 'yplus';
   const wall = $('wall-on').checked;
   // [field, applies, valid(value), message]
   const rules = [
     ['layers', true, (x) => fits('layers', x), `Boundary layer: the number of layers must be ${needs('layers')}.`],
     [
       'layer-thickness',
-      layers && !first,
+      layers && mode === 'thickness',
       (x) => fits('layer_thickness', x),
       `Boundary layer: the total thickness must be ${needs('layer_thickness')} (e.g. 0.2).`,
     ],
@@ -371,6 +384,17 @@ function layerProblems() {
       (x) => fits('first_layer', x),
       `Boundary layer: the first-layer height must be ${needs('first_layer')} in ${unitName()}.`,
     ],
+    ...[
+      ['first-layer-yplus', 'first_layer_yplus', 'the target y+'],
+      ['inlet-velocity', 'inlet_velocity', 'the inlet velocity'],
+      ['density', 'density', 'the density'],
+      ['viscosity', 'viscosity', 'the viscosity'],
+    ].map(([id, option, what]) => [
+      id,
+      layers && yplus,
+      (x) => fits(option, x),
+      `Boundary layer: ${what} must be ${needs(option)}.`,
+    ]),
     ['growth', layers, (x) => fits('growth', x), `Boundary layer: the growth must be ${needs('growth')}.`],
     [
       'wall-thickness',
@@ -397,6 +421,7 @@ function meshOptions(names) {
   const mode = $('size-mode').value;
   const options = {
     ...current.prep,
+    ...($('solver').value && { solver: $('solver').value }),
     [mode]: Number($('size-value').value),
     param: $('param').value,
     mesher2d: $('mesher2d').value,
@@ -415,8 +440,14 @@ function meshOptions(names) {
   if (!options.surfaceOnly) {
     options.layers = numberIn('layers');
     if (options.layers > 0) {
-      if ($('layer-mode').value === 'first') options.firstLayer = numberIn('first-layer');
-      else options.layerThickness = numberIn('layer-thickness');
+      const mode = $('layer-mode').value;
+      if (mode === 'first') options.firstLayer = numberIn('first-layer');
+      else if (mode === 'yplus') {
+        options.firstLayerYplus = numberIn('first-layer-yplus');
+        options.inletVelocity = numberIn('inlet-velocity');
+        options.density = numberIn('density');
+        options.viscosity = numberIn('viscosity');
+      } else options.layerThickness = numberIn('layer-thickness');
       options.growth = numberIn('growth');
       options.tagLayer = $('tag-layer').checked;
       options.prisms = $('keep-prisms').checked;
@@ -432,12 +463,14 @@ function meshOptions(names) {
 /** Enables the layer fields that apply (none with 0 layers or surface only). */
 function syncLayerFields() {
   const none = numberIn('layers') === 0;
-  for (const id of ['layer-mode', 'layer-thickness', 'first-layer', 'growth', 'tag-layer', 'keep-prisms']) {
+  const yplusIds = ['first-layer-yplus', 'inlet-velocity', 'density', 'viscosity'];
+  for (const id of ['layer-mode', 'layer-thickness', 'first-layer', ...yplusIds, 'growth', 'tag-layer', 'keep-prisms']) {
     $(id).disabled = none;
   }
-  const first = $('layer-mode').value === 'first';
-  $('layer-thickness-field').hidden = first;
-  $('first-layer-field').hidden = !first;
+  const mode = $('layer-mode').value;
+  $('layer-thickness-field').hidden = mode !== 'thickness';
+  $('first-layer-field').hidden = mode !== 'first';
+  $('yplus-fields').hidden = mode !== 'yplus';
   $('wall-thickness').disabled = $('wall-layers').disabled = !$('wall-on').checked;
   $('layer-options').disabled = $('wall-options').disabled = $('surface-only').checked;
 }
@@ -457,6 +490,57 @@ async function suggestedFirstLayer() {
   const growth = fits('growth', numberIn('growth')) ? numberIn('growth') : 1;
   const r = await client.layerFractions({ layers, growth });
   return r.ok ? String(Number((total * r.fractions[1]).toPrecision(2))) : '';
+}
+
+/** The preset of the chosen solver (from the core), or undefined. */
+const chosenPreset = () => client.solverPresets?.find((p) => p.name === $('solver').value);
+
+/** Says what the chosen solver's preset sets, under the select. */
+function showSolverHint() {
+  const preset = chosenPreset();
+  $('solver-hint').hidden = !preset;
+  if (!preset) return;
+  const units = preset.outputUnits ? `written in ${preset.outputUnits}` : 'in the input\'s unit';
+  const format = preset.format === 'msh' ? `MSH ${preset.mshVersion}` : preset.format;
+  const elements = preset.prisms ? 'layer prisms kept' : 'tetrahedra only';
+  $('solver-hint').textContent = `${preset.label}: ${elements}, ${format}, ${units}.${preset.note ? ` Then: ${preset.note}.` : ''}`;
+}
+
+/** Sets the controls a solver's preset decides (element types, export
+ * format, units) to its values; the user may change them after. */
+function applySolverPreset() {
+  const preset = chosenPreset();
+  if (preset) {
+    $('keep-prisms').checked = preset.prisms;
+    $('export-format').value = preset.format === 'msh' ? `msh-${preset.mshVersion}` : preset.format;
+    $('output-units').value = preset.outputUnits;
+    syncExportFormats();
+  }
+  showSolverHint();
+}
+
+/** What the report says of the preset and the y+ sizing, in the result. */
+function showPresetAndYplus(report) {
+  const preset = report.preset;
+  $('out-preset').hidden = !preset;
+  if (preset) {
+    const list = (from) =>
+      preset.settings
+        .filter((s) => s.from === from)
+        .map((s) => `${s.option} ${s.value || 'input\'s'}`)
+        .join(', ');
+    const yours = list('user');
+    $('out-preset').textContent = `Preset ${preset.solver}: ${list('preset') || 'nothing'}${yours ? `; yours: ${yours}` : ''}.`;
+  }
+  const y = report.first_layer_yplus;
+  $('out-yplus').hidden = !y;
+  if (y) {
+    const unit = report.output.unit;
+    $('out-yplus').textContent =
+      `First layer ${Number(y.height.toPrecision(3))} ${unit} for y+ ${y.yplus} at ${y.inlet} ` +
+      `(diameter ${Number(y.inlet_diameter.toPrecision(3))} ${unit}, ${y.inlet_velocity} m/s: ` +
+      `Re ${Math.round(y.reynolds)}, τw ${Number(y.wall_shear_stress.toPrecision(3))} Pa).`;
+  }
 }
 
 /** The clipping options chosen in the panel. */
@@ -593,6 +677,7 @@ function showMeshResult(result) {
     $('out-pinned').textContent = fidelity.pinned_vertices.toLocaleString('en');
   }
   drawHistogram($('out-histogram'), out.quality.histogram);
+  showPresetAndYplus(result.report);
   const elements = out.groups.reduce((n, g) => n + g.elements, 0);
   $('remesh-result').dataset.elements = String(elements);
   const volume = out.volume && result.volume;
@@ -783,6 +868,7 @@ $('layer-mode').addEventListener('change', (e) => {
   syncLayerFields();
 });
 $('wall-on').addEventListener('change', syncLayerFields);
+$('solver').addEventListener('change', applySolverPreset);
 $('surface-only').addEventListener('change', () => {
   syncLayerFields();
   syncExportFormats();
@@ -828,7 +914,10 @@ view.addEventListener('drop', (e) => {
 });
 
 client.ready.then(
-  () => document.body.setAttribute('data-ready', 'true'),
+  () => {
+    showSolverHint();
+    document.body.setAttribute('data-ready', 'true');
+  },
   (e) => showError(`The mesher could not start: ${e.message}`),
 );
 $('export-format').replaceChildren(...EXPORT_FORMATS.map(({ value, label }) => new Option(label, value)));
@@ -838,6 +927,7 @@ const settings = new Settings({
     showSizeLabel();
     syncLayerFields();
     syncExportFormats();
+    showSolverHint();
   },
 });
 settings.restore();

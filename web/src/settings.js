@@ -7,6 +7,7 @@ const KEY = 'vesselmesh.settings.v1';
 
 /** The remembered controls, by id. */
 export const SETTING_IDS = [
+  'solver',
   'size-mode',
   'size-value',
   'surface-only',
@@ -15,6 +16,10 @@ export const SETTING_IDS = [
   'layer-mode',
   'layer-thickness',
   'first-layer',
+  'first-layer-yplus',
+  'inlet-velocity',
+  'density',
+  'viscosity',
   'growth',
   'tag-layer',
   'keep-prisms',

@@ -1,0 +1,122 @@
+import { expect, test } from '@playwright/test';
+
+import { exportDownload, openApp, screenshots } from './helpers.js';
+
+// "Which solver?": asked once in the Mesh step, remembered; the preset sets
+// the element types, export format and units; the result says what it set.
+// The first layer from a target y+ is reachable there too.
+
+async function loadSample(page) {
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  const foreign = await openApp(page);
+  await page.getByTestId('load-sample').click();
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  return { errors, foreign };
+}
+
+/** Presses Mesh and waits for a new result (the clip info is redrawn). */
+async function mesh(page) {
+  await page.getByTestId('clip-info').evaluate((e) => (e.textContent = ''));
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('clip-info')).not.toBeEmpty({ timeout: 60_000 });
+  await expect(page.getByTestId('error')).toBeHidden();
+}
+
+/** The MSH text's version, physical groups [dim, tag, name] and element types. */
+function readMsh(text) {
+  const lines = text.split('\n');
+  const version = lines[lines.indexOf('$MeshFormat') + 1].split(' ')[0];
+  const p = lines.indexOf('$PhysicalNames');
+  const groups = lines.slice(p + 2, p + 2 + Number(lines[p + 1])).map((l) => {
+    const [dim, tag, name] = l.split(' ');
+    return [Number(dim), Number(tag), name.slice(1, -1)];
+  });
+  let e = lines.indexOf('$Elements') + 1;
+  const types = new Set();
+  if (version === '2.2') {
+    for (const l of lines.slice(e + 1, e + 1 + Number(lines[e]))) types.add(Number(l.split(' ')[1]));
+  } else {
+    const blocks = Number(lines[e++].split(' ')[0]);
+    for (let b = 0; b < blocks; b++) {
+      const [, , type, n] = lines[e].split(' ').map(Number);
+      types.add(type);
+      e += n + 1;
+    }
+  }
+  return { version, groups, types: [...types].sort((a, b) => a - b) };
+}
+
+test('OpenFOAM: prisms, MSH 2.2 in metres, tags unique; remembered after a reload', async ({ page }) => {
+  const { errors, foreign } = await loadSample(page);
+  await expect(page.getByTestId('solver')).toHaveValue('');
+  await expect(page.getByTestId('solver-hint')).toBeHidden();
+  await page.getByTestId('solver').selectOption('openfoam');
+  // The preset sets the controls it decides; the user may change them after.
+  await expect(page.getByTestId('keep-prisms')).toBeChecked();
+  await expect(page.getByTestId('export-format')).toHaveValue('msh-2.2');
+  await expect(page.getByTestId('output-units')).toHaveValue('m');
+  await expect(page.getByTestId('solver-hint')).toContainText('layer prisms kept, MSH 2.2, written in m');
+  await expect(page.getByTestId('solver-hint')).toContainText('gmshToFoam');
+  await page.getByTestId('layers').fill('2');
+  await mesh(page);
+  await expect(page.getByTestId('out-preset')).toBeVisible();
+  await expect(page.getByTestId('out-preset')).toContainText('Preset openfoam: mshVersion 2.2, outputUnits m');
+  await expect(page.getByTestId('out-preset')).toContainText('yours: prisms true'); // the checkbox says so
+  await screenshots(page, 'solver-openfoam', page.getByTestId('solver'));
+
+  const { name, bytes } = await exportDownload(page);
+  expect(name).toMatch(/\.msh$/);
+  const msh = readMsh(bytes.toString());
+  expect(msh.version).toBe('2.2');
+  expect(msh.types).toEqual([2, 3, 4, 6]);
+  const tags = msh.groups.map(([, tag]) => tag);
+  expect(new Set(tags).size).toBe(tags.length);
+  expect(msh.groups).toEqual([
+    [2, 1, 'wall'],
+    [2, 2, 'inlet'],
+    [2, 3, 'outlet_1'],
+    [2, 4, 'outlet_2'],
+    [3, 5, 'lumen'],
+  ]);
+
+  // Asked once: remembered with the other options.
+  await page.reload();
+  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  await expect(page.getByTestId('solver')).toHaveValue('openfoam');
+  await expect(page.getByTestId('solver-hint')).toContainText('OpenFOAM');
+  expect(foreign).toEqual([]);
+  expect(errors).toEqual([]);
+});
+
+test('FEniCS: tetrahedra only; a target y+ sizes the first layer, shown in the result', async ({ page }) => {
+  const { errors } = await loadSample(page);
+  await page.getByTestId('keep-prisms').check();
+  await page.getByTestId('solver').selectOption('fenics');
+  await expect(page.getByTestId('keep-prisms')).not.toBeChecked();
+  await expect(page.getByTestId('export-format')).toHaveValue('msh-4.1');
+  await expect(page.getByTestId('output-units')).toHaveValue('');
+  await page.getByTestId('layers').fill('3');
+  await page.getByTestId('layer-mode').selectOption('yplus');
+  await expect(page.getByTestId('yplus-fields')).toBeVisible();
+  await expect(page.getByTestId('density')).toHaveValue('1060');
+  await expect(page.getByTestId('viscosity')).toHaveValue('0.0035');
+  await page.getByTestId('first-layer-yplus').fill('2');
+  await page.getByTestId('inlet-velocity').fill('0.4');
+  await mesh(page);
+  await expect(page.getByTestId('out-preset')).toContainText('Preset fenics:');
+  const yplus = page.getByTestId('out-yplus');
+  await expect(yplus).toBeVisible();
+  await expect(yplus).toContainText(/^First layer [\d.e-]+ mm for y\+ 2 at inlet \(diameter [\d.]+ mm, 0\.4 m\/s: Re \d+/);
+  await screenshots(page, 'solver-fenics-yplus', yplus);
+  const msh = readMsh((await exportDownload(page)).bytes.toString());
+  expect(msh.version).toBe('4.1');
+  expect(msh.types).toEqual([2, 4]);
+  expect(errors).toEqual([]);
+
+  // A bad velocity is said next to its field, before the core is asked.
+  await page.getByTestId('inlet-velocity').fill('-1');
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('error')).toContainText('the inlet velocity must be a positive velocity in m/s');
+  await expect(page.getByTestId('inlet-velocity')).toHaveAttribute('aria-invalid', 'true');
+});
