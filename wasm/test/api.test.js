@@ -607,8 +607,8 @@ describe('mesh: volume', () => {
 
   test('bad volume options are refused with the JS option name', () => {
     const cases = [
-      [{ inlet: 0 }, /^inlet needs an opening number >= 1 \(as the analysis lists them\)$/],
-      [{ inlet: 1.5 }, /^inlet needs an opening number >= 1/],
+      [{ inlet: 0 }, /^inlet needs an opening number from 1 to 1000000 \(as the analysis lists them\)$/],
+      [{ inlet: 1.5 }, /^inlet needs an opening number from 1/],
       [{ inlet: 9 }, /^inlet must be between 1 and the number of openings \(3\)$/],
       [{ coreSize: -1 }, /^coreSize needs a length >= 0/],
       [{ coreSize: 'big' }, /^coreSize must be a number$/],
