@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # README command 2: set up, build, run every test: GoogleTest + CLI (ctest),
-# the same suite under AddressSanitizer/UBSan, a short libFuzzer run of the
-# readers and the option table, the Node test of the built
+# the same suite under AddressSanitizer/UBSan, the hostile-input corpus, a
+# short libFuzzer run of the readers and the option table, the Node test of
+# the built
 # WebAssembly module, and the Playwright specs in Chromium.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,6 +16,9 @@ echo "== ctest (Debug, -fsanitize=address,undefined)"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DVM_SANITIZE=ON >/dev/null
 cmake --build build-asan -j "$jobs"
 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ctest --test-dir build-asan --output-on-failure -j "$jobs"
+
+echo "== hostile-input corpus (CLI under a 4 GiB memory cap)"
+/usr/bin/python3 -W ignore tests/hostile/run_corpus.py build/vesselmesh
 
 echo "== fuzzing (libFuzzer, 30 s a target)"
 bash scripts/fuzz.sh 30
