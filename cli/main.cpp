@@ -203,6 +203,14 @@ void print_mesh_summary(const std::string& out, const vm::MeshJobResult& res) {
         res.volume.num_vertices(), res.volume.num_tets(), res.core_quality_stats.min,
         res.core_quality_stats.mean, vs.steiner_points, vs.seconds_layers, vs.seconds_caps,
         vs.seconds_recovery, vs.seconds_refinement, vs.seconds_check);
+    // The surfaces as written (after boundary recovery): gamma_k a group,
+    // the layers' rings at the openings apart.
+    std::printf("written surfaces gamma_k:");
+    for (const vm::SurfaceGroupQuality& g : res.written_quality) {
+      std::printf(" %s min %.3f mean %.3f", g.name.c_str(), g.quality.min, g.quality.mean);
+      if (g.ring.count > 0) std::printf(" (layer ring min %.3f)", g.ring.min);
+      std::printf("%s", &g == &res.written_quality.back() ? "\n" : ",");
+    }
     for (const auto& [name, ls, layers] :
          {std::tuple{"boundary layer", &vs.boundary_layer, vs.viscous_layers},
           std::tuple{"vessel wall", &vs.vessel_wall, vs.wall_layers}})

@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { openApp } from './helpers.js';
+import { openApp, screenshots } from './helpers.js';
 
 const num = async (page, id) => Number((await page.getByTestId(id).textContent()).replace(/,/g, ''));
 const drawn = async (page) => Number(await page.getByTestId('volume-view').getAttribute('data-triangles'));
@@ -12,6 +12,40 @@ async function meshSample(page) {
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('remesh-result')).toBeVisible({ timeout: 60_000 });
   return foreign;
+}
+
+/** gamma_k (seed section 3) of every triangle of an MSH 4.1 text. */
+function mshTriangleQualities(text) {
+  const lines = text.split('\n');
+  const xyz = new Map();
+  let i = lines.indexOf('$Nodes') + 1;
+  const blocks = Number(lines[i++].split(' ')[0]);
+  for (let b = 0; b < blocks; ++b) {
+    const n = Number(lines[i++].split(' ')[3]);
+    const tags = lines.slice(i, i + n).map(Number);
+    i += n;
+    tags.forEach((tag, k) => xyz.set(tag, lines[i + k].split(' ').map(Number)));
+    i += n;
+  }
+  const out = [];
+  i = lines.indexOf('$Elements') + 1;
+  const eblocks = Number(lines[i++].split(' ')[0]);
+  for (let b = 0; b < eblocks; ++b) {
+    const [, , type, n] = lines[i++].split(' ').map(Number);
+    if (type === 2) {
+      for (const line of lines.slice(i, i + n)) {
+        const [a, c, d] = line.split(' ').slice(1, 4).map((t) => xyz.get(Number(t)));
+        const len = (p, q) => Math.hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]);
+        const [l0, l1, l2] = [len(c, d), len(d, a), len(a, c)];
+        const u = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+        const v = [d[0] - a[0], d[1] - a[1], d[2] - a[2]];
+        const area2 = Math.hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]);
+        out.push((4 * area2 * area2) / ((l0 + l1 + l2) * l0 * l1 * l2));
+      }
+    }
+    i += n;
+  }
+  return out;
 }
 
 async function downloadText(page) {
@@ -91,6 +125,22 @@ test('mesh the sample with its volume: clipped view, gamma_t histogram, groups, 
   const lines = text.split('\n');
   const elements = Number(lines[lines.indexOf('$Elements') + 1].split(' ')[1]);
   expect(elements).toBe(Number(await page.getByTestId('remesh-result').getAttribute('data-elements')));
+
+  // The surfaces' quality shown is the file's: a row a group, the layer's
+  // ring at each cap apart, and the smallest shown is the file's smallest.
+  const rows = page.getByTestId('surface-quality').locator('tbody tr');
+  await expect(rows.locator('[data-stat=name]')).toHaveText(['wall', 'inlet', 'outlet_1', 'outlet_2']);
+  const shown = [];
+  for (const row of await rows.all()) {
+    shown.push(Number(await row.locator('[data-stat=min]').textContent()));
+    const ring = await row.locator('[data-stat=ring-min]').textContent();
+    if (ring !== '–') shown.push(Number(ring.split(' ')[0]));
+  }
+  await expect(rows.nth(1).locator('[data-stat=ring-min]')).not.toHaveText('–');
+  expect(await num(page, 'out-quality-min')).toBe(shown[0]);
+  const inFile = Math.min(...mshTriangleQualities(text));
+  expect(Math.abs(Math.min(...shown) - inFile)).toBeLessThanOrEqual(0.0015);
+  await screenshots(page, 'surface-quality', page.getByTestId('surface-quality'));
   expect(foreign).toEqual([]);
   expect(errors).toEqual([]);
 });

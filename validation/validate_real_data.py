@@ -242,6 +242,9 @@ def gmsh_volume(path):
         interface = {tuple(f) for f in uniq[(cnt == 2) & (gmin != gmax)]}
         surface = {tuple(f) for f in np.sort(tri, axis=1)}
         unmatched = len(boundary - surface) + len(surface - boundary - interface)
+        import meshquality
+        group_min = {name: float(meshquality.gamma_k(xyz, np.concatenate(arrs)).min())
+                     for name, arrs in groups.items() if arrs[0].shape[1] == 3}
         planar = 0.0
         for name, arrs in groups.items():
             if name in ("wall", "outer_wall") or arrs[0].shape[1] == 4:
@@ -255,7 +258,7 @@ def gmsh_volume(path):
                     groups=[(d, t) for d, t in gmsh.model.getPhysicalGroups()],
                     counts=counts, triangles=len(tri), tets=len(tet), orphans=orphans,
                     min_v6=float(v6.min()), volume=float(v6.sum() / 6), enclosed=float(enclosed),
-                    unmatched=unmatched, planar=planar / diag)
+                    unmatched=unmatched, planar=planar / diag, group_min=group_min)
     finally:
         gmsh.finalize()
 
@@ -320,6 +323,18 @@ def check_volume(fname, path, tmp, args, d, have_gmsh, label, flags, layers):
     check(fname, abs(g["volume"] - g["enclosed"]) <= 1e-9 * abs(g["enclosed"]),
           f"{label}: tetrahedra fill the enclosed volume ({g['volume']:.6g} vs {g['enclosed']:.6g})")
     check(fname, g["planar"] <= 1e-9, f"{label}: caps planar ({g['planar']:.1e} of the diagonal)")
+    # The reported surface quality is the file's (after boundary recovery):
+    # per group, the smaller of its discs' and its layer ring's minimum.
+    for sq in v["surfaces"]:
+        reported = min(sq["quality"]["min"], sq.get("ring_quality", {"min": 1})["min"])
+        filed = g["group_min"].get(sq["name"], -1)
+        check(fname, abs(reported - filed) <= 2e-3,
+              f"{label}: {sq['name']} gamma_k min as reported {reported:.4f} = the file's {filed:.4f}")
+    wall = next(sq for sq in v["surfaces"] if sq["name"] == "wall")
+    print(f"  {label}: written wall gamma_k min {wall['quality']['min']:.3f} mean {wall['quality']['mean']:.3f} "
+          f"(remeshed {wq['min']:.3f}); caps " + ", ".join(
+              f"{sq['name']} {sq['quality']['min']:.3f}" + (f"/ring {sq['ring_quality']['min']:.3f}" if "ring_quality" in sq else "")
+              for sq in v["surfaces"] if sq["name"] != "wall"))
 
 
 def check_flow_extensions(fname, path, tmp, args, d, have_gmsh):

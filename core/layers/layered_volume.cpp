@@ -148,6 +148,7 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
       m.triangles.push_back(core_id[size_t(rec.triangles[3 * t + size_t(k)])]);
     m.triangle_tag.push_back(rec.triangle_tag[t]);
   }
+  out.ring_first = m.num_triangles();
   const LayerMesh* ringed[2] = {inner ? &in : nullptr, outer ? &ou : nullptr};
   for (int side = 0; side < 2; ++side) {
     const LayerMesh* layer = ringed[side];
@@ -168,6 +169,7 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
       }
     }
   }
+  out.ring_end = m.num_triangles();
   if (outer) {
     for (int32_t v : ou.front) m.triangles.push_back(outer_id(v));
     m.triangle_tag.resize(m.num_triangles(), outer_wall);

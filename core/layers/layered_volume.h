@@ -31,6 +31,10 @@ struct LayeredVolume {
   size_t front_steiner_points = 0;  ///< recovery's points on the layer front, absorbed
   /// The core's tetrahedra in mesh.tets: [core_first, core_first + core_count).
   size_t core_first = 0, core_count = 0;
+  /// The layers' rings at the openings in mesh.triangles (split prisms'
+  /// faces, flat by construction): [ring_first, ring_end); empty when the
+  /// rings are quads (keep_prisms) or there are no layers.
+  size_t ring_first = 0, ring_end = 0;
 };
 
 /// Merges, into one conforming mesh:

@@ -276,6 +276,9 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   if (!assembled.ok()) return Status::Error("volume meshing failed: " + assembled.message());
   r.volume = std::move(assembled.value().mesh);
   r.surface_names = std::move(assembled.value().surface_names);
+  r.written_quality =
+      surface_group_quality(r.volume, r.surface_names, assembled.value().ring_first,
+                            assembled.value().ring_end, options.prepare.histogram_bins);
   r.region_names = std::move(assembled.value().region_names);
   st.front_steiner_points = assembled.value().front_steiner_points;
   const size_t core_first = assembled.value().core_first;

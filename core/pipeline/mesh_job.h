@@ -15,6 +15,7 @@
 #include "core/layers/layer_mesh.h"
 #include "core/mesh/volume_mesh.h"
 #include "core/pipeline/prepare_surface.h"
+#include "core/quality/surface_group_quality.h"
 #include "core/surface/caps.h"
 #include "core/surface/remesh_surface.h"
 #include "core/util/progress.h"
@@ -184,8 +185,11 @@ struct MeshJobResult {
   std::vector<std::string> opening_names;
   std::vector<std::string> surface_names;  ///< per triangle tag ("" = unused tag)
   std::vector<std::string> region_names;   ///< per tet region ("" = unused region)
-  std::vector<float> tet_quality;          ///< gamma_t per tetrahedron
-  QualityStats tet_quality_stats;          ///< of all the tetrahedra
+  /// gamma_k of the surfaces as written, per group (the wall after
+  /// recovery; caps' discs and layer rings apart).
+  std::vector<SurfaceGroupQuality> written_quality;
+  std::vector<float> tet_quality;  ///< gamma_t per tetrahedron
+  QualityStats tet_quality_stats;  ///< of all the tetrahedra
   /// Of the core's tetrahedra only (the isotropic part; layer elements are
   /// flat by design).
   QualityStats core_quality_stats;

@@ -279,6 +279,21 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
     write_quality(j, r.tet_quality_stats);
     j.key("core_quality");
     write_quality(j, r.core_quality_stats);
+    // gamma_k of the surfaces as written (after recovery), per group; the
+    // layers' rings at the openings apart.
+    j.key("surfaces").begin_array();
+    for (const SurfaceGroupQuality& g : r.written_quality) {
+      j.begin_object();
+      j.key("name").value(g.name);
+      j.key("quality");
+      write_quality(j, g.quality);
+      if (g.ring.count > 0) {
+        j.key("ring_quality");
+        write_quality(j, g.ring);
+      }
+      j.end_object();
+    }
+    j.end_array();
     for (const auto& [name, ls, layers] :
          {std::tuple{"boundary_layer", &vs.boundary_layer, vs.viscous_layers},
           std::tuple{"vessel_wall", &vs.vessel_wall, vs.wall_layers}}) {

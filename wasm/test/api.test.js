@@ -768,11 +768,21 @@ describe('mesh: boundary layers and vessel wall', () => {
     // No ring: each opening's group is its cap alone.
     for (const c of m.report.output.caps) assert.equal(group(m, c.name), c.triangles, c.name);
     assert.equal(m.report.output.volume.core_quality.count, m.volume.tets.length / 4);
+    // The surfaces as written, a group each: no ring without layers.
+    const surfaces = m.report.output.volume.surfaces;
+    assert.deepEqual(surfaces.map((s) => s.name), ['wall', ...m.report.output.caps.map((c) => c.name)]);
+    for (const s of surfaces) assert.equal(s.quality.count, group(m, s.name), s.name);
+    assert.ok(surfaces.every((s) => s.ring_quality === undefined));
 
     const f = api.mesh(tube, { firstLayer: 0.005, growth: 1.3, layers: 5 });
     assert.equal(f.ok, true, f.error);
     assert.equal(partCounts(f.volume)[1], 15 * f.report.output.triangles);
     assert.equal(f.report.output.volume.boundary_layer.layers, 5);
+    // With layers, each cap's group is its disc plus the layer's flat ring.
+    for (const s of f.report.output.volume.surfaces.slice(1)) {
+      assert.equal(s.quality.count + s.ring_quality.count, group(f, s.name), s.name);
+      assert.ok(s.ring_quality.min < s.quality.min, s.name);
+    }
     // The first layer's height: the wall's vertices to their layer-1 copies.
     // (The tets of a wall triangle's first prism have the wall vertices and
     // the first layer's.)

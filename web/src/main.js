@@ -19,6 +19,7 @@ import { describeNonSurface } from './sniff.js';
 import { Viewer } from './viewer.js';
 import { listenViewKeys } from './view-keys.js';
 import { withPrismsSplit } from './prisms.js';
+import { showSurfaceQuality } from './surface-quality.js';
 import { VolumeView } from './volume-view.js';
 import { createWorker } from './worker-source.js';
 
@@ -668,15 +669,18 @@ function showMeshResult(result) {
   const out = result.report.output;
   $('out-triangles').textContent = out.triangles.toLocaleString('en');
   $('out-patches').textContent = out.remesh ? out.remesh.patches : '-';
-  $('out-quality-min').textContent = out.quality.min.toFixed(3);
-  $('out-quality-mean').textContent = out.quality.mean.toFixed(3);
+  // The wall's quality as written (after boundary recovery) when the volume
+  // was meshed, else the remeshed surface's (the same file).
+  const wall = out.volume?.surfaces?.find((s) => s.name === 'wall')?.quality ?? out.quality;
+  $('out-quality-min').textContent = wall.min.toFixed(3);
+  $('out-quality-mean').textContent = wall.mean.toFixed(3);
   const fidelity = out.remesh?.fidelity;
   $('out-fidelity').hidden = !fidelity;
   if (fidelity) {
     $('out-far').textContent = fidelity.input_gap_vertices.toLocaleString('en');
     $('out-pinned').textContent = fidelity.pinned_vertices.toLocaleString('en');
   }
-  drawHistogram($('out-histogram'), out.quality.histogram);
+  drawHistogram($('out-histogram'), wall.histogram);
   showPresetAndYplus(result.report);
   const elements = out.groups.reduce((n, g) => n + g.elements, 0);
   $('remesh-result').dataset.elements = String(elements);
@@ -701,6 +705,7 @@ function showMeshResult(result) {
     $('tet-histogram-all-field').hidden = !layered;
     drawTetHistogram(result);
     showLayerStats(v);
+    showSurfaceQuality($('surface-quality'), v.surfaces);
     $('show').prepend(volumeOption);
   } else {
     volumeOption.remove();
