@@ -207,8 +207,11 @@ void print_mesh_summary(const std::string& out, const vm::MeshJobResult& res) {
     // the layers' rings at the openings apart.
     std::printf("written surfaces gamma_k:");
     for (const vm::SurfaceGroupQuality& g : res.written_quality) {
-      std::printf(" %s min %.3f mean %.3f", g.name.c_str(), g.quality.min, g.quality.mean);
-      if (g.ring.count > 0) std::printf(" (layer ring min %.3f)", g.ring.min);
+      std::printf(" %s", g.name.c_str());
+      if (g.quality.count > 0) std::printf(" min %.3f mean %.3f", g.quality.min, g.quality.mean);
+      if (g.ring.count > 0)
+        std::printf(g.quality.count > 0 ? " (layer ring min %.3f)" : " layer ring min %.3f",
+                    g.ring.min);
       std::printf("%s", &g == &res.written_quality.back() ? "\n" : ",");
     }
     for (const auto& [name, ls, layers] :

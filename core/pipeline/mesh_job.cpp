@@ -256,6 +256,7 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
   fo.core_size = options.core_size > 0                             ? options.core_size
                  : options.remesh && so.mode == SizeMode::kUniform ? so.size
                                                                    : 0;
+  fo.spheres = so.spheres;
   FillStats fs;
   ProgressFn fill_progress = [&](double f, std::string_view stage) {
     return report_progress(progress, 0.92 + 0.06 * f, stage);

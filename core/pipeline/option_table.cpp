@@ -211,6 +211,18 @@ const OptionSpec kOptions[] = {
      .unit = "length",
      .needs = "a positive length",
      .doc = "largest edge length"},
+    {.id = "refine",
+     .cli = "refine",
+     .js = "refine",
+     .type = T::kNumbers,
+     .group = "size",
+     .metavar = "X,Y,Z,R,H",
+     .list_size = 5,
+     .unit = "length",
+     .needs = "5 numbers X,Y,Z,R,H: a centre, a radius R > 0 and a size H > 0",
+     .doc = "local refinement: edges of at most H within R of (X,Y,Z), graded out of it (wall "
+            "and volume)",
+     .repeatable = true},
     {.id = "gradation",
      .cli = "gradation",
      .js = "gradation",
@@ -797,6 +809,10 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
     size.size_min = x;
   } else if (id == "size_max") {
     size.size_max = x;
+  } else if (id == "refine") {
+    if (!(v.numbers[3] > 0) || !(v.numbers[4] > 0)) return needs(spec);
+    size.spheres.push_back(
+        {{v.numbers[0], v.numbers[1], v.numbers[2]}, v.numbers[3], v.numbers[4]});
   } else if (id == "gradation") {
     size.gradation = x;
   } else if (id == "curvature") {

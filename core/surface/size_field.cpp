@@ -130,8 +130,14 @@ Result<std::vector<double>> vertex_sizes(const SurfaceMesh& m, const SizeOptions
     for (size_t v = 0; v < nv; ++v)
       if (k[v] > 0) h[v] = std::min(h[v], 2 * std::numbers::pi / (o.curvature_points * k[v]));
   }
-  // Phase 3: clamps.
+  // Phase 3: clamps, then the refinement spheres (below size_min if asked).
   for (double& x : h) x = std::clamp(x, o.size_min, o.size_max);
+  for (const RefineSphere& s : o.spheres)
+    if (!(s.radius > 0) || !(s.size > 0) || !std::isfinite(s.radius) || !std::isfinite(s.size))
+      return Status::BadOption("refine", "needs a positive radius R and size H");
+  if (!o.spheres.empty())
+    for (size_t v = 0; v < nv; ++v)
+      h[v] = std::min(h[v], refine_size(o.spheres, &m.points[3 * v], o.gradation));
   // Phase 4: gradation.
   grade_sizes(m, off, nb, h, o.gradation);
   for (double x : h)

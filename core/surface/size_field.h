@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/geom/refine_sphere.h"
 #include "core/mesh/surface_mesh.h"
 #include "core/util/result.h"
 
@@ -30,6 +31,9 @@ struct SizeOptions {
   /// Gradation: h may grow by at most this per unit length along the
   /// surface (|grad h| <= gradation; 0 = off).
   double gradation = 0.2;
+  /// Local refinement (refine_sphere.h): h <= H inside each sphere, graded
+  /// out of it, before the gradation phase.
+  std::vector<RefineSphere> spheres;
 };
 
 /// One size per input vertex (num_vertices values, > 0). The radius comes

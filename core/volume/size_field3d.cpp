@@ -55,6 +55,8 @@ Result<VolumeSizeField> VolumeSizeField::build(const std::vector<double>& points
   f.g_ = options.gradation;
   f.min_size_ = *std::min_element(sizes.begin(), sizes.end());
   if (f.core_ > 0) f.min_size_ = std::min(f.min_size_, f.core_);
+  f.spheres_ = options.spheres;
+  for (const RefineSphere& s : f.spheres_) f.min_size_ = std::min(f.min_size_, s.size);
 
   // Phase 2: tree order. Depth d with ceil(n / 2^d) <= kLeaf.
   int depth = 0;
@@ -138,6 +140,7 @@ double VolumeSizeField::eval(const double* x, double upper_bound, double rel_tol
   double best = upper_bound;
   const double keep = 1 - rel_tol;  // nodes that cannot beat keep * best are skipped
   if (core_ > 0) best = std::min(best, core_);
+  if (!spheres_.empty()) best = std::min(best, refine_size(spheres_, x, g_));
   if (nodes_.empty()) return best;
   const int32_t first_leaf = int32_t(nodes_.size() / 2);
   auto lower_bound = [&](const Node& nd) {

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/geom/refine_sphere.h"
 #include "core/util/result.h"
 
 namespace vm {
@@ -31,6 +32,8 @@ struct VolumeSizeOptions {
   double core_size = 0;
   /// Gradation g >= 0 (dimensionless): growth of h per unit distance.
   double gradation = 0.25;
+  /// Local refinement (refine_sphere.h), graded at `gradation`.
+  std::vector<RefineSphere> spheres;
 };
 
 class VolumeSizeField {
@@ -78,6 +81,7 @@ class VolumeSizeField {
   std::vector<double> size_;  // per point, in tree order
   std::vector<Node> nodes_;   // implicit binary tree, root 0
   double core_ = 0, g_ = 0.25, min_size_ = 0;
+  std::vector<RefineSphere> spheres_;
 };
 
 }  // namespace vm

@@ -57,6 +57,7 @@ Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& ve
   VolumeSizeOptions fo;
   fo.core_size = options.core_size;
   fo.gradation = options.gradation;
+  fo.spheres = options.spheres;
   auto field = VolumeSizeField::build(bpts, bsize, fo);
   if (!field.ok()) return R::Error("fill volume: " + field.message());
   std::vector<double> vertex_h(n0);

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/geom/refine_sphere.h"
 #include "core/mesh/volume_mesh.h"
 #include "core/quality/triangle_quality.h"
 #include "core/util/progress.h"
@@ -27,6 +28,8 @@ struct FillOptions {
   /// h(x) = min(H, min_i (h_i + g |x - x_i|)) (size_field3d.h).
   double core_size = 0;
   double gradation = 0.25;
+  /// Local refinement spheres (refine_sphere.h) in the size field.
+  std::vector<RefineSphere> spheres;
   /// Refinement options (region_tag is taken from above).
   RefineOptions refine;
   /// Optimization options; optimize = false skips the stage (for tests and

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <set>
 #include <string>
@@ -26,7 +27,8 @@ std::string valid_text(const OptionSpec& s) {
       t.assign(s.default_text.empty() ? std::string_view("a") : s.default_text);
       break;
     case OptionType::kNumbers:
-      for (int i = 0; i < s.list_size; ++i) t += (i ? "," : "") + std::to_string(s.min + 1);
+      for (int i = 0; i < s.list_size; ++i)
+        t += (i ? "," : "") + std::to_string(std::max(s.min + 1, 1.0));
       break;
     case OptionType::kFlag:
       break;

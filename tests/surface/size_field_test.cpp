@@ -308,5 +308,36 @@ TEST(SizeField, InvalidOptionsAreErrors) {
   EXPECT_FALSE(vertex_sizes(SurfaceMesh{}, ok).ok()) << "empty mesh";
 }
 
+TEST(SizeField, RefinementSpheresLowerTheSizeInsideAndGradeOut) {
+  const SurfaceMesh m = noisy_phantom(PhantomKind::kBifurcation);
+  SizeOptions o;
+  o.mode = SizeMode::kUniform;
+  o.size = 0.4;
+  o.gradation = 0.2;
+  const double c[3] = {m.points[0], m.points[1], m.points[2]};
+  o.spheres.push_back({{c[0], c[1], c[2]}, 0.8, 0.05});
+  auto r = vertex_sizes(m, o);
+  ASSERT_TRUE(r.ok()) << r.message();
+  size_t inside = 0;
+  for (size_t v = 0; v < m.num_vertices(); ++v) {
+    const double d =
+        std::hypot(m.points[3 * v] - c[0], m.points[3 * v + 1] - c[1], m.points[3 * v + 2] - c[2]);
+    if (d <= 0.8) {
+      EXPECT_NEAR(r.value()[v], 0.05, 1e-12);
+      ++inside;
+    } else {
+      // Graded out of the sphere at most at g by distance, and never above h.
+      EXPECT_LE(r.value()[v], std::min(0.4, 0.05 + 0.2 * (d - 0.8)) + 1e-12);
+    }
+    if (d > 0.8 + 0.35 / 0.2 + 0.5) {
+      EXPECT_NEAR(r.value()[v], 0.4, 1e-12);
+    }
+  }
+  EXPECT_GT(inside, 10u);
+  EXPECT_LE(worst_gradation_excess(m, r.value(), 0.2), 1e-9);
+  o.spheres[0].size = 0;
+  EXPECT_EQ(vertex_sizes(m, o).status().option(), "refine");
+}
+
 }  // namespace
 }  // namespace vm

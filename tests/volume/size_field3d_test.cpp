@@ -137,5 +137,25 @@ TEST(VolumeSizeField, Errors) {
   EXPECT_FALSE(VolumeSizeField::build({0, 0, 0}, {1}, o).ok());
 }
 
+TEST(VolumeSizeField, RefinementSpheresAreGradedMinima) {
+  const Sample s = random_sample(200, 5);
+  VolumeSizeOptions o;
+  o.core_size = 0.5;
+  o.gradation = 0.3;
+  o.spheres.push_back({{0.2, -0.1, 0.0}, 0.25, 0.004});
+  auto f = VolumeSizeField::build(s.pts, s.h, o);
+  ASSERT_TRUE(f.ok()) << f.message();
+  EXPECT_EQ(f.value().min_size(), 0.004);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 500; ++i) {
+    const double x[3] = {u(rng), u(rng), u(rng)};
+    const double d = std::hypot(x[0] - 0.2, x[1] + 0.1, x[2]);
+    const double want =
+        std::min(brute_force(s.pts, s.h, 0.5, 0.3, x), 0.004 + 0.3 * std::max(0.0, d - 0.25));
+    EXPECT_DOUBLE_EQ(f.value()(x), want);
+  }
+}
+
 }  // namespace
 }  // namespace vm
