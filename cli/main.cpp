@@ -239,10 +239,14 @@ int cmd_info(int argc, char** argv) {
 }
 
 /// Where and how `mesh` writes: the format (--format, else the output's
-/// extension; a folder for mesh-complete unless the name ends in .zip).
+/// extension; a folder for mesh-complete and foam unless the name ends in
+/// .zip). An OpenFOAM case named NAME.foam: the case is the folder NAME.foam
+/// is in, and NAME.foam its (empty) marker file for ParaView.
 struct Destination {
   vm::OutputFormat format = vm::OutputFormat::kMsh;
   bool zip = false, folder = false;
+  std::string folder_path;  ///< the folder written into, when `folder`
+  std::string marker;       ///< foam: the marker file's name in the folder
 };
 
 std::optional<Destination> destination(const std::string& path, const vm::MeshJobOptions& options,
@@ -262,9 +266,16 @@ std::optional<Destination> destination(const std::string& path, const vm::MeshJo
     }
     d.format = f.value();
   }
-  if (d.format == vm::OutputFormat::kMeshComplete) {
+  if (d.format == vm::OutputFormat::kMeshComplete || d.format == vm::OutputFormat::kFoam) {
     d.zip = ends_zip;
     d.folder = !ends_zip;
+    d.folder_path = path;
+  }
+  const bool ends_foam = path.size() > 5 && path.compare(path.size() - 5, 5, ".foam") == 0;
+  if (d.format == vm::OutputFormat::kFoam && ends_foam && !dir) {
+    const std::filesystem::path p(path);
+    d.folder_path = p.has_parent_path() ? p.parent_path().string() : ".";
+    d.marker = p.filename().string();
   }
   if (vm::Status st = vm::check_format(d.format, options); !st.ok()) {
     error = vm::phrase_error(st, vm::kFaceCli);
@@ -286,7 +297,9 @@ bool write_outputs(const std::string& path, const Destination& d,
   }
   if (!d.folder) return write_file(path, files[0].bytes.data(), files[0].bytes.size(), error);
   for (const vm::OutputFile& f : files) {
-    const std::filesystem::path target = std::filesystem::path(path) / f.path;
+    const bool marker = d.format == vm::OutputFormat::kFoam && f.path == "case.foam";
+    const std::filesystem::path target =
+        std::filesystem::path(d.folder_path) / (marker && !d.marker.empty() ? d.marker : f.path);
     std::error_code ec;
     std::filesystem::create_directories(target.parent_path(), ec);
     if (ec) {
