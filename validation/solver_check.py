@@ -8,7 +8,8 @@ with, Debian's OpenFOAM (v1912) and FEniCS (dolfinx 0.5).
   constant/polyMesh, in metres (--output-units m); `checkMesh` must report no
   failed check and no severely non-orthogonal face (> 70 degrees). The
   bifurcation also goes through MSH 2.2 + `gmshToFoam` (the same mesh, the
-  same counts and checks). `simpleFoam` (laminar, SIMPLE residual control p
+  same counts and checks), and is meshed again with a vessel wall (three
+  cell zones, the lumen / wall interface a face zone, `outer_wall` a wall). `simpleFoam` (laminar, SIMPLE residual control p
   1e-5, U 1e-6) must converge within 1,000 iterations on the bifurcation
   and the open abdominal aorta: fixed uniform inflow normal to the inlet,
   fixed pressure 0 on the outlets, no slip on the wall, blood's kinematic
@@ -222,6 +223,33 @@ def run_simplefoam(name, case):
     return dict(iterations=its, seconds=secs, speed=speed, diameter=diameter)
 
 
+def wall_case(args, path, tmp, rows):
+    """With a vessel wall and the viscous layer tagged: three cell zones, the
+    lumen / vessel-wall interface a face zone of internal faces (no patch),
+    the outer surface a wall patch; checkMesh passes."""
+    name = os.path.basename(path) + " (vessel wall)"
+    case = os.path.join(tmp, "bifurcation-wall")
+    shutil.rmtree(case, ignore_errors=True)
+    r, secs = vesselmesh(args, path, case + "/", FILES[os.path.basename(path)] + FOAM_FLAGS +
+                         ["--format", "foam", "--wall-thickness", "0.1", "--tag-layer"])
+    if not check(name, r.returncode == 0, f"meshed in {secs:.1f} s {r.stderr.strip()}"):
+        return
+    kinds = dict(patches(case))
+    check(name, "wall" not in kinds and kinds.get("outer_wall") == "wall" and
+          kinds.get("wall_inlet") == "patch",
+          f"boundary: {', '.join(f'{p} ({t})' for p, t in kinds.items())}")
+    n = check_mesh(name, case)
+    text = open(os.path.join(case, "checkMesh.log")).read()
+    zones = re.findall(r"^\s+(lumen|boundary_layer|vessel_wall)\s+\d+", text, re.M)
+    face_zone = re.search(r"^\s+wall\s+(\d+)\s+\d+\s+ok", text, re.M)
+    check(name, sorted(zones) == ["boundary_layer", "lumen", "vessel_wall"] and face_zone,
+          f"checkMesh reads the cell zones {zones} and the face zone wall "
+          f"({face_zone.group(1) if face_zone else 'missing'} faces)")
+    rows.append((name, "native polyMesh", f"{n['cells']} cells",
+                 f"non-ortho max {n['non_ortho_max']:.1f} mean {n['non_ortho_mean']:.1f}, "
+                 f"skew {n['skewness']:.2f}", f"mesh {secs:.1f} s, check {n['seconds']:.1f} s"))
+
+
 def vesselmesh(args, path, out, flags):
     t = time.time()
     r = subprocess.run([args.vesselmesh, "mesh", path, "-o", out, "--quiet"] + flags,
@@ -362,6 +390,8 @@ def main():
                                  f"non-ortho max {g['non_ortho_max']:.1f} mean "
                                  f"{g['non_ortho_mean']:.1f}, skew {g['skewness']:.2f}",
                                  f"check {g['seconds']:.1f} s"))
+            if name == "bifurcation.stl":
+                wall_case(args, path, tmp, rows)
             if name in SIMPLEFOAM_FILES and not args.no_simplefoam:
                 s = run_simplefoam(name, case)
                 rows.append((name, "simpleFoam laminar", f"{n['cells']} cells",
