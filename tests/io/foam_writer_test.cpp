@@ -203,10 +203,11 @@ double check_poly_mesh(const PolyMesh& m, size_t cells, size_t points) {
   }
   for (size_t f = 0; f < ni; ++f) {
     EXPECT_LT(m.owner[f], m.neighbour[f]) << f;
-    if (f > 0)
+    if (f > 0) {
       EXPECT_TRUE(std::pair(m.owner[f - 1], m.neighbour[f - 1]) <
                   std::pair(m.owner[f], m.neighbour[f]))
           << f;
+    }
   }
   // Patches: contiguous after the internal faces, covering the rest.
   size_t at = ni;
