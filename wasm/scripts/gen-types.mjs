@@ -156,7 +156,7 @@ export function typesFor(table) {
     '  ):',
     '    | {',
     '        ok: true;',
-    "        /** The file in `format` (a zip for 'mesh-complete'), and a name for it. */",
+    "        /** The file in `format` (a zip for 'mesh-complete' and 'foam'), and a name for it. */",
     '        file: Uint8Array;',
     '        fileName: string;',
     '        format: OutputFormat;',

@@ -102,8 +102,8 @@ export interface MeshOptions {
   tagLayer?: boolean;
   /** keep the layers' prisms (MSH type 6) instead of 3 tetrahedra each. Default false. */
   prisms?: boolean;
-  /** the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip or a folder for mesh-complete; JS: msh) Needs msh, vtu, vtp, stl or mesh-complete. */
-  format?: 'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete';
+  /** the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip or a folder for mesh-complete, .foam for an OpenFOAM case; JS: msh); foam: constant/polyMesh in a folder (-o case/), around NAME.foam, or zipped (.zip) Needs msh, vtu, vtp, stl, mesh-complete or foam. */
+  format?: 'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete' | 'foam';
   /** convert the written mesh to this unit (default: the input's) Needs mm, cm or m. */
   outputUnits?: 'mm' | 'cm' | 'm';
   /** Gmsh MSH format version. Needs 4.1 or 2.2. Default 4.1. */
@@ -229,7 +229,7 @@ export interface VesselmeshApi {
   ):
     | {
         ok: true;
-        /** The file in `format` (a zip for 'mesh-complete'), and a name for it. */
+        /** The file in `format` (a zip for 'mesh-complete' and 'foam'), and a name for it. */
         file: Uint8Array;
         fileName: string;
         format: OutputFormat;
