@@ -37,7 +37,7 @@ export const EXPORT_FORMATS = [
   },
   {
     value: 'foam',
-    label: 'OpenFOAM case, constant/polyMesh (.zip)',
+    label: 'OpenFOAM case, polyMesh (.zip)',
     format: 'foam',
     suffix: '-openfoam.zip',
     mime: 'application/zip',
