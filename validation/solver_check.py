@@ -13,7 +13,8 @@ with, Debian's OpenFOAM (v1912) and FEniCS (dolfinx 0.5).
   1e-5, U 1e-6) must converge within 1,000 iterations on the bifurcation
   and the open abdominal aorta: fixed uniform inflow normal to the inlet,
   fixed pressure 0 on the outlets, no slip on the wall, blood's kinematic
-  viscosity.
+  viscosity; the outlets' flow rates (postProcess flowRatePatch) must add
+  up to the inlet's within 0.1%.
 - FEniCS: the bifurcation meshed with split prisms (tetrahedra only, which
   dolfinx reads) into MSH 4.1, read by dolfinx.io.gmshio (model_to_mesh of
   the file opened by the gmsh module: read_from_msh of Debian's 0.5.2 is
@@ -223,6 +224,21 @@ def run_simplefoam(name, case, reynolds):
           + (f"converged in {its} iterations" if its else
              f"not converged (exit {code}, {last[-1] if last else 0} iterations)")
           + f", {secs:.1f} s")
+    if its:
+        # Mass balance: what comes in at the inlet leaves by the outlets.
+        flows = {}
+        for patch in [p for p, _ in patches(case) if p == "inlet" or p.startswith("outlet")]:
+            log = os.path.join(case, f"flowRate-{patch}.log")
+            foam(f"postProcess -func 'flowRatePatch(name={patch})' -latestTime", case, log)
+            m = re.search(r"sum\(" + re.escape(patch) + r"\) of phi = (\S+)", open(log).read())
+            flows[patch] = float(m.group(1)) if m else float("nan")
+        q_in = -flows.get("inlet", float("nan"))
+        q_out = sum(q for p, q in flows.items() if p != "inlet")
+        check(name, q_in > 0 and abs(q_out - q_in) <= 1e-3 * q_in and
+              abs(q_in - speed * area) <= 0.01 * speed * area,
+              f"flow rate in {q_in * 6e7:.4g} ml/min (speed x inlet area "
+              f"{speed * area * 6e7:.4g}), out {q_out * 6e7:.4g} ml/min, split " +
+              ", ".join(f"{p} {100 * q / q_in:.1f}%" for p, q in flows.items() if p != "inlet"))
     return dict(iterations=its, seconds=secs, speed=speed, diameter=diameter)
 
 
