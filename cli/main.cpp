@@ -239,9 +239,10 @@ int cmd_info(int argc, char** argv) {
 }
 
 /// Where and how `mesh` writes: the format (--format, else the output's
-/// extension; a folder for mesh-complete and foam unless the name ends in
-/// .zip). An OpenFOAM case named NAME.foam: the case is the folder NAME.foam
-/// is in, and NAME.foam its (empty) marker file for ParaView.
+/// extension; a folder means mesh-complete, or foam when it is an OpenFOAM
+/// case already). Both write a folder unless the name ends in .zip. An OpenFOAM case named
+/// NAME.foam: the case is the folder NAME.foam is in, and NAME.foam its (empty) marker file for
+/// ParaView.
 struct Destination {
   vm::OutputFormat format = vm::OutputFormat::kMsh;
   bool zip = false, folder = false;
@@ -257,7 +258,10 @@ std::optional<Destination> destination(const std::string& path, const vm::MeshJo
   if (options.format) {
     d.format = *options.format;
   } else if (dir) {
-    d.format = vm::OutputFormat::kMeshComplete;
+    // An existing OpenFOAM case (system/controlDict) gets its polyMesh.
+    const bool foam_case =
+        std::filesystem::is_regular_file(std::filesystem::path(path) / "system" / "controlDict");
+    d.format = foam_case ? vm::OutputFormat::kFoam : vm::OutputFormat::kMeshComplete;
   } else {
     auto f = vm::format_for_path(path);
     if (!f.ok()) {

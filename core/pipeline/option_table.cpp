@@ -415,8 +415,9 @@ const OptionSpec kOptions[] = {
      .choices = kFormats,
      .needs = "msh, vtu, vtp, stl, mesh-complete or foam",
      .doc = "the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip "
-            "or a folder for mesh-complete, .foam for an OpenFOAM case; JS: msh); foam: "
-            "constant/polyMesh in a folder (-o case/), around NAME.foam, or zipped (.zip)"},
+            "or a folder for mesh-complete, .foam or a folder with system/controlDict for an "
+            "OpenFOAM case; JS: msh); foam: constant/polyMesh in a folder (-o case/), around "
+            "NAME.foam, or zipped (.zip)"},
     {.id = "output_units",
      .cli = "output-units",
      .js = "outputUnits",

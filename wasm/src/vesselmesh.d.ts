@@ -102,7 +102,7 @@ export interface MeshOptions {
   tagLayer?: boolean;
   /** keep the layers' prisms (MSH type 6) instead of 3 tetrahedra each. Default false. */
   prisms?: boolean;
-  /** the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip or a folder for mesh-complete, .foam for an OpenFOAM case; JS: msh); foam: constant/polyMesh in a folder (-o case/), around NAME.foam, or zipped (.zip) Needs msh, vtu, vtp, stl, mesh-complete or foam. */
+  /** the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip or a folder for mesh-complete, .foam or a folder with system/controlDict for an OpenFOAM case; JS: msh); foam: constant/polyMesh in a folder (-o case/), around NAME.foam, or zipped (.zip) Needs msh, vtu, vtp, stl, mesh-complete or foam. */
   format?: 'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete' | 'foam';
   /** convert the written mesh to this unit (default: the input's) Needs mm, cm or m. */
   outputUnits?: 'mm' | 'cm' | 'm';
