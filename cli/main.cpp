@@ -300,10 +300,23 @@ bool write_outputs(const std::string& path, const Destination& d,
     return write_file(path, zip.value().data(), zip.value().size(), error);
   }
   if (!d.folder) return write_file(path, files[0].bytes.data(), files[0].bytes.size(), error);
+  if (d.format == vm::OutputFormat::kFoam) {
+    // Zones of a mesh this one replaces would name faces it does not have.
+    for (const char* zones : {"faceZones", "pointZones"}) {
+      const std::string rel = std::string("constant/polyMesh/") + zones;
+      bool written = false;
+      for (const vm::OutputFile& f : files) written |= f.path == rel;
+      std::error_code ec;
+      if (!written) std::filesystem::remove(std::filesystem::path(d.folder_path) / rel, ec);
+    }
+  }
   for (const vm::OutputFile& f : files) {
-    const bool marker = d.format == vm::OutputFormat::kFoam && f.path == "case.foam";
+    const bool foam = d.format == vm::OutputFormat::kFoam;
+    const bool marker = foam && f.path == "case.foam";
     const std::filesystem::path target =
         std::filesystem::path(d.folder_path) / (marker && !d.marker.empty() ? d.marker : f.path);
+    // A case's own settings (system/, its marker) are kept; only the mesh is replaced.
+    if (foam && f.path.rfind("constant/", 0) != 0 && std::filesystem::exists(target)) continue;
     std::error_code ec;
     std::filesystem::create_directories(target.parent_path(), ec);
     if (ec) {
