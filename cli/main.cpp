@@ -261,10 +261,15 @@ int cmd_info(int argc, char** argv) {
 }
 
 /// Where and how `mesh` writes: the format (--format, else the output's
-/// extension; a folder for mesh-complete unless the name ends in .zip).
+/// extension; a folder means mesh-complete, or foam when it is an OpenFOAM
+/// case already). Both write a folder unless the name ends in .zip. An OpenFOAM case named
+/// NAME.foam: the case is the folder NAME.foam is in, and NAME.foam its (empty) marker file for
+/// ParaView.
 struct Destination {
   vm::OutputFormat format = vm::OutputFormat::kMsh;
   bool zip = false, folder = false;
+  std::string folder_path;  ///< the folder written into, when `folder`
+  std::string marker;       ///< foam: the marker file's name in the folder
 };
 
 std::optional<Destination> destination(const std::string& path, vm::MeshJobOptions& options,
@@ -272,10 +277,14 @@ std::optional<Destination> destination(const std::string& path, vm::MeshJobOptio
   Destination d;
   const bool ends_zip = path.size() > 4 && path.compare(path.size() - 4, 4, ".zip") == 0;
   const bool dir = !path.empty() && (path.back() == '/' || std::filesystem::is_directory(path));
-  // What the name says (a folder, an extension), else a preset's default.
+  // What the name says (a folder: an existing OpenFOAM case, one with
+  // system/controlDict, gets its polyMesh, else mesh-complete; an
+  // extension), else a preset's default.
   std::optional<vm::OutputFormat> from_name;
   if (dir) {
-    from_name = vm::OutputFormat::kMeshComplete;
+    const bool foam_case =
+        std::filesystem::is_regular_file(std::filesystem::path(path) / "system" / "controlDict");
+    from_name = foam_case ? vm::OutputFormat::kFoam : vm::OutputFormat::kMeshComplete;
   } else if (auto f = vm::format_for_path(path); f.ok()) {
     from_name = f.value();
   } else if (!options.format && options.solver == vm::Solver::kNone) {
@@ -283,9 +292,16 @@ std::optional<Destination> destination(const std::string& path, vm::MeshJobOptio
     return std::nullopt;
   }
   d.format = vm::resolve_output_format(options, from_name);
-  if (d.format == vm::OutputFormat::kMeshComplete) {
+  if (d.format == vm::OutputFormat::kMeshComplete || d.format == vm::OutputFormat::kFoam) {
     d.zip = ends_zip;
     d.folder = !ends_zip;
+    d.folder_path = path;
+  }
+  const bool ends_foam = path.size() > 5 && path.compare(path.size() - 5, 5, ".foam") == 0;
+  if (d.format == vm::OutputFormat::kFoam && ends_foam && !dir) {
+    const std::filesystem::path p(path);
+    d.folder_path = p.has_parent_path() ? p.parent_path().string() : ".";
+    d.marker = p.filename().string();
   }
   if (vm::Status st = vm::check_format(d.format, options); !st.ok()) {
     error = vm::phrase_error(st, vm::kFaceCli);
@@ -306,8 +322,23 @@ bool write_outputs(const std::string& path, const Destination& d,
     return write_file(path, zip.value().data(), zip.value().size(), error);
   }
   if (!d.folder) return write_file(path, files[0].bytes.data(), files[0].bytes.size(), error);
+  if (d.format == vm::OutputFormat::kFoam) {
+    // Zones of a mesh this one replaces would name faces it does not have.
+    for (const char* zones : {"faceZones", "pointZones"}) {
+      const std::string rel = std::string("constant/polyMesh/") + zones;
+      bool written = false;
+      for (const vm::OutputFile& f : files) written |= f.path == rel;
+      std::error_code ec;
+      if (!written) std::filesystem::remove(std::filesystem::path(d.folder_path) / rel, ec);
+    }
+  }
   for (const vm::OutputFile& f : files) {
-    const std::filesystem::path target = std::filesystem::path(path) / f.path;
+    const bool foam = d.format == vm::OutputFormat::kFoam;
+    const bool marker = foam && f.path == "case.foam";
+    const std::filesystem::path target =
+        std::filesystem::path(d.folder_path) / (marker && !d.marker.empty() ? d.marker : f.path);
+    // A case's own settings (system/, its marker) are kept; only the mesh is replaced.
+    if (foam && f.path.rfind("constant/", 0) != 0 && std::filesystem::exists(target)) continue;
     std::error_code ec;
     std::filesystem::create_directories(target.parent_path(), ec);
     if (ec) {

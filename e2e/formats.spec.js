@@ -105,6 +105,15 @@ test('a capped VTP: caps become openings, one named, the mesh exported as VTU th
   expect(zip.name).toBe('model-mesh-complete.zip');
   expect([...zip.bytes.subarray(0, 4)]).toEqual([0x50, 0x4b, 0x03, 0x04]);
   expect(zip.bytes.toString('latin1')).toContain('mesh-surfaces/distal.vtp');
+  // The OpenFOAM case, zipped: constant/polyMesh with its boundary file.
+  await page.getByTestId('export-format').selectOption('foam');
+  const foam = await exportDownload(page);
+  expect(foam.name).toBe('model-openfoam.zip');
+  expect([...foam.bytes.subarray(0, 4)]).toEqual([0x50, 0x4b, 0x03, 0x04]);
+  const foamText = foam.bytes.toString('latin1');
+  for (const name of ['constant/polyMesh/boundary', 'constant/polyMesh/faces', 'constant/polyMesh/owner']) {
+    expect(foamText).toContain(name);
+  }
   expect(await meshJobs(page)).toBe('1');
   await screenshots(page, 'formats', rows.nth(1));
 

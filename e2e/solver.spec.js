@@ -47,17 +47,20 @@ function readMsh(text) {
   return { version, groups, types: [...types].sort((a, b) => a - b) };
 }
 
-test('OpenFOAM: prisms, MSH 2.2 in metres, tags unique; remembered after a reload', async ({ page }) => {
+test('OpenFOAM: the native case by default; as MSH 2.2: prisms in metres, tags unique; remembered after a reload', async ({ page }) => {
   const { errors, foreign } = await loadSample(page);
   await expect(page.getByTestId('solver')).toHaveValue('');
   await expect(page.getByTestId('solver-hint')).toBeHidden();
   await page.getByTestId('solver').selectOption('openfoam');
   // The preset sets the controls it decides; the user may change them after.
   await expect(page.getByTestId('keep-prisms')).toBeChecked();
-  await expect(page.getByTestId('export-format')).toHaveValue('msh-2.2');
+  await expect(page.getByTestId('export-format')).toHaveValue('foam');
   await expect(page.getByTestId('output-units')).toHaveValue('m');
-  await expect(page.getByTestId('solver-hint')).toContainText('layer prisms kept, MSH 2.2, written in m');
-  await expect(page.getByTestId('solver-hint')).toContainText('gmshToFoam');
+  await expect(page.getByTestId('solver-hint')).toContainText('layer prisms kept, OpenFOAM case');
+  await expect(page.getByTestId('solver-hint')).toContainText('written in m');
+  await expect(page.getByTestId('solver-hint')).toContainText('wall is a wall patch');
+  // The user may still want gmshToFoam's input: MSH 2.2, chosen after.
+  await page.getByTestId('export-format').selectOption('msh-2.2');
   await page.getByTestId('layers').fill('2');
   await mesh(page);
   await expect(page.getByTestId('out-preset')).toBeVisible();

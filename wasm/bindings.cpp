@@ -287,7 +287,7 @@ struct LastMesh {
 std::optional<LastMesh> last_mesh;
 
 /// The files of the last result in `format` as one file (a zip for
-/// mesh-complete): {file, fileName} on `r`; false with `r` an error.
+/// mesh-complete and foam): {file, fileName} on `r`; false with `r` an error.
 /// `extra`: export()'s own options, recorded after mesh()'s in the
 /// provenance (a later value of an option wins).
 bool set_file(val& r, vm::OutputFormat format, const vm::MeshJobOptions& options,
@@ -305,14 +305,14 @@ bool set_file(val& r, vm::OutputFormat format, const vm::MeshJobOptions& options
     return false;
   }
   std::string bytes, name;
-  if (format == vm::OutputFormat::kMeshComplete) {
+  if (format == vm::OutputFormat::kMeshComplete || format == vm::OutputFormat::kFoam) {
     auto zip = vm::write_zip(files.value());
     if (!zip.ok()) {
       r = error(zip.status());
       return false;
     }
     bytes = std::move(zip).value();
-    name = "mesh-complete.zip";
+    name = format == vm::OutputFormat::kFoam ? "openfoam-case.zip" : "mesh-complete.zip";
   } else {
     bytes = std::move(files.value()[0].bytes);
     name = files.value()[0].path;
@@ -374,7 +374,8 @@ val export_mesh(val opts) {
   options = vm::MeshJobOptions{};
   if (vm::Status st = vm::apply_options(options, all); !st.ok()) return error(st);
   if (!options.format)
-    return error(vm::Status::BadOption("format", "is needed: msh, vtu, vtp, stl or mesh-complete"));
+    return error(
+        vm::Status::BadOption("format", "is needed: msh, vtu, vtp, stl, mesh-complete or foam"));
   val r = val::object();
   r.set("ok", true);
   set_file(r, *options.format, options, applied);

@@ -1,5 +1,5 @@
-// One file of a multi-file output (a `mesh-complete` folder, a ZIP archive's
-// entries): its path relative to the output's root and its contents.
+// One file of a multi-file output (a `mesh-complete` folder, an OpenFOAM
+// case, a ZIP archive's entries): its path relative to the output's root and its contents.
 #pragma once
 
 #include <string>
@@ -13,6 +13,7 @@ enum class OutputFormat {
   kVtp,           ///< VTK PolyData of the boundary faces, ModelFaceID per face
   kStl,           ///< binary STL of the remeshed wall alone
   kMeshComplete,  ///< the mesh-complete folder (VTU, exterior VTP, one VTP a face)
+  kFoam,          ///< an OpenFOAM case folder (constant/polyMesh, foam_writer.h)
 };
 
 /// path: relative, '/'-separated (e.g. "mesh-surfaces/wall.vtp"); bytes: the

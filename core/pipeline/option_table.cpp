@@ -18,7 +18,7 @@ constexpr std::string_view kMshVersions[] = {"4.1", "2.2"};
 constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm", "torus"};
 constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
 constexpr std::string_view kOffAuto[] = {"off", "auto"};
-constexpr std::string_view kFormats[] = {"msh", "vtu", "vtp", "stl", "mesh-complete"};
+constexpr std::string_view kFormats[] = {"msh", "vtu", "vtp", "stl", "mesh-complete", "foam"};
 constexpr std::string_view kSolvers[] = {"gmsh", "openfoam", "fenics", "svfsi"};
 
 constexpr uint8_t kInfoMesh = kCommandInfo | kCommandMesh;
@@ -480,9 +480,11 @@ const OptionSpec kOptions[] = {
      .group = "output",
      .metavar = "F",
      .choices = kFormats,
-     .needs = "msh, vtu, vtp, stl or mesh-complete",
+     .needs = "msh, vtu, vtp, stl, mesh-complete or foam",
      .doc = "the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip "
-            "or a folder for mesh-complete; JS: msh)"},
+            "or a folder for mesh-complete, .foam or a folder with system/controlDict for an "
+            "OpenFOAM case; JS: msh); foam: constant/polyMesh in a folder (-o case/), around "
+            "NAME.foam, or zipped (.zip)"},
     {.id = "output_units",
      .cli = "output-units",
      .js = "outputUnits",

@@ -21,14 +21,16 @@ const SolverPreset kPresets[] = {
      .note = ""},
     {.solver = Solver::kOpenFoam,
      .name = "openfoam",
-     .label = "OpenFOAM (gmshToFoam)",
+     .label = "OpenFOAM (polyMesh case)",
      .keep_prisms = true,
-     // MSH 2.2 for gmshToFoam, until a native polyMesh output exists.
-     .format = OutputFormat::kMsh,
+     // The native case (foam_writer.h): `wall` a wall patch, cell zones
+     // named; MSH 2.2 when the output's name asks for .msh (gmshToFoam).
+     .format = OutputFormat::kFoam,
      .msh_version = MshVersion::k22,
      .output_units = LengthUnit::kM,
-     .note = "convert with gmshToFoam; it makes every patch of type patch: set the type of "
-             "`wall` to wall in constant/polyMesh/boundary; the volume groups become cell zones"},
+     .note = "constant/polyMesh is ready: wall is a wall patch, the openings are patches, the "
+             "volume groups are cell zones; add the 0/ fields and your system/ dictionaries (a "
+             ".msh output is MSH 2.2 for gmshToFoam, which makes every patch a patch)"},
     {.solver = Solver::kFenics,
      .name = "fenics",
      .label = "FEniCS (dolfinx)",

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <numeric>
 
+#include "core/io/foam_writer.h"
 #include "core/io/mesh_complete.h"
 #include "core/io/stl.h"
 #include "core/io/vtk_writer.h"
@@ -18,7 +19,12 @@ constexpr std::pair<OutputFormat, std::string_view> kFormats[] = {
     {OutputFormat::kVtu, "vtu"},
     {OutputFormat::kVtp, "vtp"},
     {OutputFormat::kStl, "stl"},
-    {OutputFormat::kMeshComplete, "mesh-complete"}};
+    {OutputFormat::kMeshComplete, "mesh-complete"},
+    {OutputFormat::kFoam, "foam"}};
+
+bool volume_format(OutputFormat f) {
+  return f == OutputFormat::kVtu || f == OutputFormat::kMeshComplete || f == OutputFormat::kFoam;
+}
 
 bool surface_only(const MeshJobResult& r) {
   return r.volume.tets.empty() && r.volume.prisms.empty();
@@ -85,7 +91,7 @@ Result<OutputFormat> parse_format(std::string_view name) {
   for (const auto& [f, n] : kFormats)
     if (n == name) return f;
   return Result<OutputFormat>::Error("unknown output format '" + std::string(name) +
-                                     "' (msh, vtu, vtp, stl or mesh-complete)");
+                                     "' (msh, vtu, vtp, stl, mesh-complete or foam)");
 }
 
 Result<OutputFormat> format_for_path(std::string_view path) {
@@ -95,15 +101,16 @@ Result<OutputFormat> format_for_path(std::string_view path) {
   if (dot != std::string_view::npos && (slash == std::string_view::npos || dot > slash))
     for (char c : path.substr(dot + 1)) ext += char(std::tolower(static_cast<unsigned char>(c)));
   if (ext == "zip") return OutputFormat::kMeshComplete;
+  if (ext == "foam") return OutputFormat::kFoam;
   if (ext == "msh" || ext == "vtu" || ext == "vtp" || ext == "stl") return parse_format(ext);
   return Result<OutputFormat>::Error(
       "cannot tell the output format from '" + std::string(path) +
       "': name it .msh (Gmsh), .vtu (VTK volume), .vtp (VTK boundary faces), .stl (the wall) or "
-      ".zip (SimVascular mesh-complete), or say {format}");
+      ".zip (SimVascular mesh-complete), .foam (OpenFOAM case), or say {format}");
 }
 
 Status check_format(OutputFormat format, const MeshJobOptions& options) {
-  if (!options.volume && (format == OutputFormat::kVtu || format == OutputFormat::kMeshComplete))
+  if (!options.volume && volume_format(format))
     return Status::BadOption("format", "cannot be " + std::string(format_name(format)) +
                                            ": it holds a volume mesh, and {surface_only} writes "
                                            "the wall alone; use msh, vtp or stl");
@@ -180,7 +187,7 @@ Result<std::vector<OutputFile>> write_outputs(const MeshJobResult& r, OutputForm
   const double scale = options.units == LengthUnit::kGuess
                            ? 1
                            : metres_per_unit(from) / metres_per_unit(options.units);
-  if (surface_only(r) && (format == OutputFormat::kVtu || format == OutputFormat::kMeshComplete))
+  if (surface_only(r) && volume_format(format))
     return Status::BadOption("format", "cannot be " + std::string(format_name(format)) +
                                            ": it holds a volume mesh, and this one is surface "
                                            "only ({surface_only}); use msh, vtp or stl");
@@ -236,6 +243,13 @@ Result<std::vector<OutputFile>> write_outputs(const MeshJobResult& r, OutputForm
     case OutputFormat::kMeshComplete: {
       const Named n = named_mesh(r, scale);
       auto folder = mesh_complete_files(n.mesh, n.surfaces, n.regions, options.provenance);
+      if (!folder.ok()) return folder.status();
+      files = std::move(folder).value();
+      break;
+    }
+    case OutputFormat::kFoam: {
+      const Named n = named_mesh(r, scale);
+      auto folder = foam_case_files(n.mesh, n.surfaces, n.regions, options.provenance);
       if (!folder.ok()) return folder.status();
       files = std::move(folder).value();
       break;

@@ -1,6 +1,7 @@
 // The files of a meshed result, in the format asked: Gmsh MSH (4.1 or 2.2),
 // VTK (the volume as VTU, the boundary faces with their ids as VTP), the
-// remeshed wall as STL, or SimVascular's `mesh-complete` folder for svFSI.
+// remeshed wall as STL, SimVascular's `mesh-complete` folder for svFSI, or
+// an OpenFOAM case (constant/polyMesh).
 // Every file records its provenance where the format allows, and may be
 // converted to another length unit.
 #pragma once
@@ -17,12 +18,12 @@
 
 namespace vm {
 
-/// "msh", "vtu", "vtp", "stl", "mesh-complete".
+/// "msh", "vtu", "vtp", "stl", "mesh-complete", "foam".
 std::string_view format_name(OutputFormat format);
 /// The format of a name as format_name gives it.
 Result<OutputFormat> parse_format(std::string_view name);
 /// The format a file name asks for by its extension (.msh, .vtu, .vtp,
-/// .stl, .zip: mesh-complete), case-insensitive. Errors list the extensions.
+/// .stl, .zip: mesh-complete, .foam: OpenFOAM case), case-insensitive. Errors list the extensions.
 Result<OutputFormat> format_for_path(std::string_view path);
 
 struct WriteOptions {
@@ -37,7 +38,7 @@ struct WriteOptions {
 };
 
 /// Whether a job with these settings can be written in `format`: the volume
-/// formats (VTU, mesh-complete) need a volume. Checked before meshing, so
+/// formats (VTU, mesh-complete, foam) need a volume. Checked before meshing, so
 /// that a job never runs only to fail at writing. Error: kBadOption on
 /// `format`.
 Status check_format(OutputFormat format, const MeshJobOptions& options);
@@ -66,7 +67,9 @@ MshModel msh_model(const MeshJobResult& result, double scale = 1);
 
 /// The result's files in `format`: one file named "mesh.<ext>" for the
 /// single-file formats, the folder's files (paths relative to it) for
-/// mesh-complete. Errors: a volume format (VTU, mesh-complete) for a
+/// mesh-complete and foam (an OpenFOAM case: foam_case_files; write it in
+/// metres, `units`, for OpenFOAM's solvers). Errors: a volume format (VTU,
+/// mesh-complete, foam) for a
 /// surface-only result; a writer's error.
 Result<std::vector<OutputFile>> write_outputs(const MeshJobResult& result, OutputFormat format,
                                               const WriteOptions& options = {});

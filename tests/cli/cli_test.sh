@@ -270,6 +270,17 @@ done
 check "mesh-complete folder" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/mc/" --size 0.3 --layers 1
 check "mesh-complete files" [ -f "$T/mc/mesh-complete.mesh.vtu" -a -f "$T/mc/mesh-complete.exterior.vtp" -a -f "$T/mc/mesh-surfaces/outlet_2.vtp" -a -f "$T/mc/mesh-complete.names.json" ]
 check "zip is valid" python3 -m zipfile -t "$T/out.zip"
+check "openfoam case folder" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/of/" --format foam --size 0.3 --layers 1 --prisms
+check "openfoam case files" [ -f "$T/of/constant/polyMesh/points" -a -f "$T/of/constant/polyMesh/faces" -a -f "$T/of/constant/polyMesh/owner" -a -f "$T/of/constant/polyMesh/neighbour" -a -f "$T/of/constant/polyMesh/boundary" -a -f "$T/of/constant/polyMesh/cellZones" -a -f "$T/of/system/controlDict" -a -f "$T/of/case.foam" ]
+check "openfoam wall patch" grep -q "type            wall;" "$T/of/constant/polyMesh/boundary"
+check "openfoam by .foam" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/of2/bif.foam" --size 0.3 --layers 1
+check "openfoam .foam marker and case" [ -f "$T/of2/bif.foam" -a ! -s "$T/of2/bif.foam" -a -f "$T/of2/constant/polyMesh/faces" -a ! -e "$T/of2/case.foam" ]
+echo "// the user's own" >> "$T/of/system/controlDict"
+echo "stale" > "$T/of/constant/polyMesh/faceZones"
+check "an existing OpenFOAM case folder gets its polyMesh" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/of" --size 0.3 --layers 1
+check "the case's mesh replaced, its settings kept" [ "$(find "$T/of/constant/polyMesh/faces" -newer "$T/of2/bif.foam" | wc -l)" = 1 -a ! -e "$T/of/mesh-complete.mesh.vtu" -a "$(tail -1 "$T/of/system/controlDict")" = "// the user's own" -a ! -e "$T/of/constant/polyMesh/faceZones" ]
+check "openfoam zipped" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/of.zip" --format foam --size 0.3 --layers 1
+check "openfoam zip holds the case" python3 -c "import zipfile, sys; n = zipfile.ZipFile('$T/of.zip').namelist(); sys.exit(0 if 'constant/polyMesh/boundary' in n and 'case.foam' in n else 1)"
 check "unknown extension" expect_exit 2 "cannot tell the output format from" "$VM" mesh "$T/bif.stl" -o "$T/out.xyz"
 check "volume format needs a volume" expect_exit 2 "--format cannot be vtu: it holds a volume mesh, and --surface-only writes the wall alone" "$VM" mesh "$T/bif.stl" -o "$T/out.vtu" --surface-only
 check "format option wins" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/wall.dat" --format stl --surface-only --size 0.3

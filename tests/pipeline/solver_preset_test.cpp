@@ -42,7 +42,9 @@ TEST(SolverPreset, OpenFoamKeepsPrismsWritesMsh22InMetres) {
   EXPECT_TRUE(o.keep_prisms);
   EXPECT_EQ(o.msh_version, MshVersion::k22);
   EXPECT_EQ(o.output_units, LengthUnit::kM);
-  EXPECT_EQ(resolve_output_format(o, std::nullopt), OutputFormat::kMsh);
+  // The native case, unless the output's name says otherwise.
+  EXPECT_EQ(resolve_output_format(o, std::nullopt), OutputFormat::kFoam);
+  EXPECT_EQ(resolve_output_format(o, OutputFormat::kMsh), OutputFormat::kMsh);
   for (const char* id : {"prisms", "msh_version", "output_units", "format"}) {
     ASSERT_NE(setting(o, id), nullptr) << id;
     EXPECT_TRUE(setting(o, id)->from_preset) << id;

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <map>
 
 #include "core/io/stl.h"
 #include "core/pipeline/option_table.h"
@@ -39,12 +41,14 @@ TEST(WriteOutputs, FormatsByNameAndExtension) {
   EXPECT_EQ(format_for_path("a/b/Mesh.VTU").value(), OutputFormat::kVtu);
   EXPECT_EQ(format_for_path("x.zip").value(), OutputFormat::kMeshComplete);
   EXPECT_EQ(format_for_path("x.msh").value(), OutputFormat::kMsh);
+  EXPECT_EQ(format_for_path("case/Aorta.FOAM").value(), OutputFormat::kFoam);
   auto bad = format_for_path("dir.v2/mesh");
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.message().find(".msh (Gmsh), .vtu"), std::string::npos) << bad.message();
+  EXPECT_NE(bad.message().find(".foam (OpenFOAM case)"), std::string::npos) << bad.message();
   EXPECT_NE(phrase_options(bad.message(), kFaceCli).find("--format"), std::string::npos);
   for (auto f : {OutputFormat::kMsh, OutputFormat::kVtu, OutputFormat::kVtp, OutputFormat::kStl,
-                 OutputFormat::kMeshComplete})
+                 OutputFormat::kMeshComplete, OutputFormat::kFoam})
     EXPECT_EQ(parse_format(format_name(f)).value(), f);
 }
 
@@ -119,8 +123,43 @@ TEST(WriteOutputs, MeshCompleteAndTheWallAlone) {
   EXPECT_EQ(soup.value().num_triangles(), tube(true).output_surface.num_triangles());
 }
 
+TEST(WriteOutputs, FoamCaseInMetres) {
+  WriteOptions o;
+  o.units = LengthUnit::kM;
+  o.provenance = "vesselmesh test";
+  auto files = write_outputs(tube(true), OutputFormat::kFoam, o);
+  ASSERT_TRUE(files.ok()) << files.message();
+  std::map<std::string, std::string> by_path;
+  for (const OutputFile& f : files.value()) by_path[f.path] = f.bytes;
+  for (const char* p :
+       {"constant/polyMesh/points", "constant/polyMesh/faces", "constant/polyMesh/owner",
+        "constant/polyMesh/neighbour", "constant/polyMesh/boundary", "constant/polyMesh/cellZones",
+        "system/controlDict", "case.foam"})
+    EXPECT_EQ(by_path.count(p), 1u) << p;
+  EXPECT_EQ(by_path.count("constant/polyMesh/faceZones"), 0u);  // no interface
+  const MeshJobResult& r = tube(true);
+  const std::string note = "nPoints:" + std::to_string(r.volume.num_vertices()) +
+                           "  nCells:" + std::to_string(r.volume.num_tets());
+  EXPECT_NE(by_path["constant/polyMesh/owner"].find(note), std::string::npos);
+  const std::string& boundary = by_path["constant/polyMesh/boundary"];
+  for (const char* patch : {"    wall\n    {\n        type            wall;",
+                            "    inlet\n    {\n        type            patch;",
+                            "    outlet_1\n    {\n        type            patch;"})
+    EXPECT_NE(boundary.find(patch), std::string::npos) << patch;
+  EXPECT_NE(by_path["constant/polyMesh/cellZones"].find("\nlumen\n"), std::string::npos);
+  // In metres: the tube (4 mm long) ends at z = 0.004.
+  const std::string& points = by_path["constant/polyMesh/points"];
+  double max_z = 0;
+  for (size_t at = points.find("\n(\n") + 3; points[at] == '('; at = points.find('\n', at) + 1) {
+    double x, y, z;
+    ASSERT_EQ(std::sscanf(points.c_str() + at, "(%lf %lf %lf)", &x, &y, &z), 3);
+    max_z = std::max(max_z, std::abs(z));
+  }
+  EXPECT_NEAR(max_z, 0.004, 1e-12);
+}
+
 TEST(WriteOutputs, VolumeFormatsNeedAVolume) {
-  for (auto f : {OutputFormat::kVtu, OutputFormat::kMeshComplete}) {
+  for (auto f : {OutputFormat::kVtu, OutputFormat::kMeshComplete, OutputFormat::kFoam}) {
     auto r = write_outputs(tube(false), f);
     ASSERT_FALSE(r.ok());
     EXPECT_EQ(r.status().option(), "format");

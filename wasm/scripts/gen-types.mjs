@@ -150,7 +150,7 @@ export function typesFor(table) {
     'export type MeshResult =',
     '  | {',
     '      ok: true;',
-    "      /** The file in `format` (a zip for 'mesh-complete'), and a name for it. */",
+    "      /** The file in `format` (a zip for 'mesh-complete' and 'foam'), and a name for it. */",
     '      file: Uint8Array;',
     '      fileName: string;',
     '      format: OutputFormat;',

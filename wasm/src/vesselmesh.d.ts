@@ -64,6 +64,8 @@ export interface MeshOptions {
   sizeMin?: number;
   /** largest edge length. In the model's unit. Needs a positive length. */
   sizeMax?: number;
+  /** local refinement: edges of at most H within R of (X,Y,Z), graded out of it (wall and volume) In the model's unit. Needs 5 numbers X,Y,Z,R,H: a centre, a radius R > 0 and a size H > 0. */
+  refine?: number[] | number[][];
   /** the size grows at most G per unit length. Needs a number >= 0 (size growth per unit length). Default 0.2. */
   gradation?: number;
   /** at least P edges per radian of curvature (0: off) Needs a number of points per radian >= 0. Default 0. */
@@ -112,8 +114,8 @@ export interface MeshOptions {
   prisms?: boolean;
   /** defaults for this solver: element types, format, MSH version, output unit (README, Solver presets); options you give and the output's extension win. Needs gmsh, openfoam, fenics or svfsi. */
   solver?: 'gmsh' | 'openfoam' | 'fenics' | 'svfsi';
-  /** the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip or a folder for mesh-complete; JS: msh) Needs msh, vtu, vtp, stl or mesh-complete. */
-  format?: 'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete';
+  /** the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip or a folder for mesh-complete, .foam or a folder with system/controlDict for an OpenFOAM case; JS: msh); foam: constant/polyMesh in a folder (-o case/), around NAME.foam, or zipped (.zip) Needs msh, vtu, vtp, stl, mesh-complete or foam. */
+  format?: 'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete' | 'foam';
   /** convert the written mesh to this unit (default: the input's) Needs mm, cm or m. */
   outputUnits?: 'mm' | 'cm' | 'm';
   /** Gmsh MSH format version. Needs 4.1 or 2.2. Default 4.1. */
@@ -231,7 +233,7 @@ export type AnalyzeResult = { ok: true; analysis: Record<string, unknown>; surfa
 export type MeshResult =
   | {
       ok: true;
-      /** The file in `format` (a zip for 'mesh-complete'), and a name for it. */
+      /** The file in `format` (a zip for 'mesh-complete' and 'foam'), and a name for it. */
       file: Uint8Array;
       fileName: string;
       format: OutputFormat;

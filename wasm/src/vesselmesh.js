@@ -92,7 +92,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * vesselmesh.d.ts). Returns the MSH file bytes, the report, the wall
      * surface and the volume (see vesselmesh.d.ts, MeshVolume). `file` is
      * the written file in `format` (default msh, then also as `msh`; a zip
-     * for mesh-complete), `fileName` a name for it.
+     * for mesh-complete and foam), `fileName` a name for it.
      * @returns {{ok: true, file: Uint8Array, fileName: string, format: string,
      *   msh?: Uint8Array, report: object, surface: object, volume?: object}
      *   | {ok: false, error: string}} (no volume when surfaceOnly)
@@ -117,7 +117,9 @@ export async function createVesselmesh({ wasmBinary } = {}) {
     /**
      * The last meshed result in another format, without meshing again:
      * 'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete' (a zip of the
-     * folder), with mshVersion and outputUnits as in mesh().
+     * folder) | 'foam' (a zip of the OpenFOAM case: constant/polyMesh,
+     * system/controlDict, case.foam), with mshVersion and outputUnits as in
+     * mesh() (outputUnits 'm' for OpenFOAM's solvers).
      * @returns {{ok: true, file: Uint8Array, fileName: string, format: string}
      *   | {ok: false, error: string}}
      */

@@ -4,6 +4,7 @@
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { before, describe, test } from 'node:test';
+import { inflateRawSync } from 'node:zlib';
 
 import { createVesselmesh } from '../src/vesselmesh.js';
 import { cappedTubeVtp as cappedTubeText } from './capped-tube-vtp.js';
@@ -15,6 +16,24 @@ before(async () => {
 });
 
 const text = (bytes) => new TextDecoder().decode(bytes);
+
+/** The entries of a ZIP archive (local headers, stored or deflated) by name. */
+function unzip(bytes) {
+  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+  const files = {};
+  for (let at = 0; view.getUint32(at, true) === 0x04034b50; ) {
+    const method = view.getUint16(at + 8, true);
+    const size = view.getUint32(at + 18, true);
+    const nameLength = view.getUint16(at + 26, true);
+    const extraLength = view.getUint16(at + 28, true);
+    const name = text(bytes.subarray(at + 30, at + 30 + nameLength));
+    const start = at + 30 + nameLength + extraLength;
+    const data = bytes.subarray(start, start + size);
+    files[name] = text(method === 8 ? inflateRawSync(data) : data);
+    at = start + size;
+  }
+  return files;
+}
 
 /** The capped tube VTP (capped-tube-vtp.js) as file bytes. */
 const cappedTubeVtp = (n, m) => new TextEncoder().encode(cappedTubeText(n, m));
@@ -190,8 +209,55 @@ describe('names and files out', () => {
     for (const name of ['mesh-complete.mesh.vtu', 'mesh-complete.exterior.vtp', 'mesh-surfaces/inlet.vtp']) {
       assert.ok(text(zip.file).includes(name), name);
     }
-    assert.match(api.export('obj').error, /^format needs msh, vtu, vtp, stl or mesh-complete$/);
+    assert.match(api.export('obj').error, /^format needs msh, vtu, vtp, stl, mesh-complete or foam$/);
     assert.match(api.export('msh', { size: 1 }).error, /unknown export option 'size'/);
+  });
+
+  test('foam: a zip of the OpenFOAM case, prisms kept, in metres', () => {
+    const m = api.mesh(tube, { size: 0.4, layers: 2, prisms: true, format: 'foam', outputUnits: 'm' });
+    assert.equal(m.ok, true, m.error);
+    assert.equal(m.format, 'foam');
+    assert.equal(m.fileName, 'openfoam-case.zip');
+    const files = unzip(m.file);
+    assert.deepEqual(Object.keys(files).sort(), [
+      'case.foam',
+      'constant/polyMesh/boundary',
+      'constant/polyMesh/cellZones',
+      'constant/polyMesh/faces',
+      'constant/polyMesh/neighbour',
+      'constant/polyMesh/owner',
+      'constant/polyMesh/points',
+      'system/controlDict',
+      'system/fvSchemes',
+      'system/fvSolution',
+    ]);
+    const body = (name) => files[`constant/polyMesh/${name}`].split('\n}\n')[1];
+    // The volume's points and cells, every cell face once.
+    const v = m.volume;
+    const nPoints = v.positions.length / 3;
+    const [nTets, nPrisms] = [v.tets.length / 4, v.prisms.length / 6];
+    assert.ok(nPrisms > 0);
+    assert.equal(Number(body('points').trim().split('\n')[0]), nPoints);
+    const note = files['constant/polyMesh/owner'].match(
+      /note\s+"nPoints:(\d+)\s+nCells:(\d+)\s+nFaces:(\d+)\s+nInternalFaces:(\d+)"/,
+    );
+    const [, points, cells, nFaces, nInternal] = note.map(Number);
+    assert.deepEqual([points, cells], [nPoints, nTets + nPrisms]);
+    assert.equal(body('faces').match(/^[34]\(/gm).length, nFaces);
+    // Internal faces twice, boundary faces (the tagged triangles and quads) once.
+    assert.equal(nFaces - nInternal, v.triangles.length / 3 + v.quads.length / 4);
+    assert.equal(2 * nInternal + (nFaces - nInternal), 4 * nTets + 5 * nPrisms);
+    // Patches: the wall a wall, the openings patches; the lumen a cell zone.
+    const boundary = body('boundary');
+    assert.match(boundary, /wall\n\s+\{\n\s+type\s+wall;/);
+    assert.match(boundary, /inlet\n\s+\{\n\s+type\s+patch;/);
+    assert.match(boundary, /outlet_1\n\s+\{\n\s+type\s+patch;/);
+    assert.match(body('cellZones'), /^lumen$/m);
+    // Metres: the points are the volume's (in mm) over 1000.
+    const z = [...body('points').matchAll(/\(\S+ \S+ (\S+)\)/g)].map((p) => Number(p[1]));
+    const zMm = v.positions.filter((_, i) => i % 3 === 2);
+    assert.ok(Math.abs(Math.max(...z) - Math.max(...zMm) / 1000) < 1e-6, `max z ${Math.max(...z)}`);
+    assert.equal(api.export('foam').fileName, 'openfoam-case.zip');
   });
 
   test('a surface-only result has no volume format', () => {

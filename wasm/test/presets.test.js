@@ -59,7 +59,7 @@ describe('solver presets', () => {
     const spec = api.optionTable.find((s) => s.js === 'solver');
     assert.deepEqual(api.solverPresets.map((p) => p.name), spec.choices);
     const foam = api.solverPresets.find((p) => p.name === 'openfoam');
-    assert.deepEqual([foam.prisms, foam.format, foam.mshVersion, foam.outputUnits], [true, 'msh', '2.2', 'm']);
+    assert.deepEqual([foam.prisms, foam.format, foam.mshVersion, foam.outputUnits], [true, 'foam', '2.2', 'm']);
   });
 
   test("solver 'fenics': tetrahedra only in the MSH, the preset in the report", () => {
@@ -74,8 +74,13 @@ describe('solver presets', () => {
     assert.deepEqual(setting(m, 'prisms'), { option: 'prisms', value: 'false', from: 'preset' });
   });
 
-  test("solver 'openfoam': prisms, MSH 2.2, metres; an explicit option wins; export keeps the preset", () => {
-    const m = api.mesh(tube, { layers: 2, solver: 'openfoam', units: 'mm' });
+  test("solver 'openfoam': the native case by default; as MSH: prisms, 2.2, metres; an explicit option wins", () => {
+    const c = api.mesh(tube, { layers: 2, solver: 'openfoam', units: 'mm' });
+    assert.equal(c.ok, true, c.error);
+    assert.deepEqual([c.format, c.fileName], ['foam', 'openfoam-case.zip']);
+    assert.deepEqual([c.file[0], c.file[1]], [0x50, 0x4b]); // PK
+    assert.deepEqual(setting(c, 'format'), { option: 'format', value: 'foam', from: 'preset' });
+    const m = api.mesh(tube, { layers: 2, solver: 'openfoam', units: 'mm', format: 'msh' });
     assert.equal(m.ok, true, m.error);
     const msh = readMsh(m.msh);
     assert.equal(msh.version, '2.2');
@@ -86,7 +91,7 @@ describe('solver presets', () => {
     for (const x of m.volume.positions) model = Math.max(model, Math.abs(x));
     assert.ok(Math.abs(msh.largest - model / 1000) < 1e-6 * model, `${msh.largest} vs ${model} mm`);
     assert.deepEqual(setting(m, 'outputUnits'), { option: 'outputUnits', value: 'm', from: 'preset' });
-    assert.match(m.report.preset.note, /gmshToFoam/);
+    assert.match(m.report.preset.note, /wall is a wall patch/);
     // Export without meshing again: still the preset's version and unit.
     const again = api.export('msh');
     assert.equal(again.ok, true, again.error);

@@ -35,6 +35,14 @@ export const EXPORT_FORMATS = [
     mime: 'application/zip',
     volume: true,
   },
+  {
+    value: 'foam',
+    label: 'OpenFOAM case, polyMesh (.zip)',
+    format: 'foam',
+    suffix: '-openfoam.zip',
+    mime: 'application/zip',
+    volume: true,
+  },
 ];
 
 /** The export format with this select value (the first, MSH 4.1, if unknown). */

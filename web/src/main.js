@@ -502,7 +502,7 @@ function showSolverHint() {
   $('solver-hint').hidden = !preset;
   if (!preset) return;
   const units = preset.outputUnits ? `written in ${preset.outputUnits}` : 'in the input\'s unit';
-  const format = preset.format === 'msh' ? `MSH ${preset.mshVersion}` : preset.format;
+  const format = preset.format === 'msh' ? `MSH ${preset.mshVersion}` : exportFormat(preset.format).label;
   const elements = preset.prisms ? 'layer prisms kept' : 'tetrahedra only';
   $('solver-hint').textContent = `${preset.label}: ${elements}, ${format}, ${units}.${preset.note ? ` Then: ${preset.note}.` : ''}`;
 }

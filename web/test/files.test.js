@@ -29,11 +29,19 @@ describe('file names', () => {
   test('each export format has its file name', () => {
     assert.deepEqual(
       EXPORT_FORMATS.map((f) => exportFileName('model.vtp.gz', f.value)),
-      ['model.msh', 'model.msh', 'model.vtu', 'model-boundary.vtp', 'model-wall.stl', 'model-mesh-complete.zip'],
+      [
+        'model.msh',
+        'model.msh',
+        'model.vtu',
+        'model-boundary.vtp',
+        'model-wall.stl',
+        'model-mesh-complete.zip',
+        'model-openfoam.zip',
+      ],
     );
     assert.deepEqual(
       EXPORT_FORMATS.filter((f) => f.volume).map((f) => f.format),
-      ['vtu', 'mesh-complete'],
+      ['vtu', 'mesh-complete', 'foam'],
     );
   });
 

@@ -1,0 +1,437 @@
+// OpenFOAM polyMesh writer (foam_writer.h): every cell face is found once by
+// sorting the faces of all cells by vertex set; a set met twice is an
+// internal face (owner the lower cell), once a boundary face, which a tagged
+// triangle or quad names the patch of.
+#include "core/io/foam_writer.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cstdio>
+#include <set>
+
+namespace vm {
+namespace {
+
+/// Outward vertex cycles of a cell's faces (face_elements.h): tetrahedron
+/// (4 triangles), prism (2 triangles, 3 quads); -1 ends a triangle.
+constexpr int8_t kTetFaces[4][4] = {{1, 2, 3, -1}, {0, 3, 2, -1}, {0, 1, 3, -1}, {0, 2, 1, -1}};
+constexpr int8_t kPrismFaces[5][4] = {
+    {0, 2, 1, -1}, {3, 4, 5, -1}, {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}};
+
+/// A face of a cell, by its sorted vertex set (a triangle's 4th = INT32_MAX).
+struct CellFace {
+  std::array<int32_t, 4> key;
+  int32_t cell;
+  int8_t local;
+};
+
+std::array<int32_t, 4> face_key(const int32_t* v, int n) {
+  std::array<int32_t, 4> k{v[0], v[1], v[2], n == 4 ? v[3] : INT32_MAX};
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+class Text {
+ public:
+  void str(std::string_view s) { buf_.append(s); }
+  void ch(char c) { buf_.push_back(c); }
+  void integer(int64_t v) {
+    char tmp[24];
+    auto r = std::to_chars(tmp, tmp + sizeof(tmp), v);
+    buf_.append(tmp, r.ptr);
+  }
+  /// Shortest text that reads back to exactly v (%.17g where the library
+  /// has no floating-point to_chars, e.g. Emscripten's libc++).
+  void real(double v) {
+    char tmp[32];
+#if defined(__cpp_lib_to_chars)
+    auto r = std::to_chars(tmp, tmp + sizeof(tmp), v);
+    buf_.append(tmp, r.ptr);
+#else
+    int n = std::snprintf(tmp, sizeof(tmp), "%.17g", v);
+    buf_.append(tmp, size_t(n));
+#endif
+  }
+  std::string take() { return std::move(buf_); }
+
+ private:
+  std::string buf_;
+};
+
+/// The FoamFile header of a file; `note` and `comment` optional.
+void header(Text& t, std::string_view cls, std::string_view location, std::string_view object,
+            const std::string& comment, const std::string& note = "") {
+  t.str("/* OpenFOAM file written by vesselmesh */\n");
+  if (!comment.empty()) {
+    t.str("// ");
+    for (char c : comment) t.ch(c == '\n' || c == '\r' ? ' ' : c);
+    t.ch('\n');
+  }
+  t.str("FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       ");
+  t.str(cls);
+  if (!note.empty()) {
+    t.str(";\n    note        \"");
+    t.str(note);
+    t.ch('"');
+  }
+  t.str(";\n    location    \"");
+  t.str(location);
+  t.str("\";\n    object      ");
+  t.str(object);
+  t.str(";\n}\n\n");
+}
+
+/// `n` labels as an OpenFOAM list body "n\n(\n...\n)\n", ten a line.
+template <class Get>
+void label_list(Text& t, size_t n, Get get) {
+  t.integer(int64_t(n));
+  t.str("\n(\n");
+  for (size_t i = 0; i < n; ++i) {
+    t.integer(int64_t(get(i)));
+    t.ch(i % 10 == 9 || i + 1 == n ? '\n' : ' ');
+  }
+  t.str(")\n");
+}
+
+/// An OpenFOAM word we write: letters, digits, '_', '-', '.'.
+bool is_word(const std::string& s) {
+  if (s.empty()) return false;
+  for (char c : s)
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+          c == '-' || c == '.'))
+      return false;
+  return true;
+}
+
+std::string name_or(const std::vector<std::string>& names, size_t i, const char* prefix) {
+  if (i < names.size() && !names[i].empty()) return names[i];
+  return prefix + std::to_string(i + 1);
+}
+
+/// Whether cycles a and b (same n vertices) run the same way round.
+bool same_turn(const int32_t* a, const int32_t* b, int n) {
+  for (int i = 0; i < n; ++i)
+    if (b[i] == a[0]) return b[(i + 1) % n] == a[1];
+  return false;
+}
+
+}  // namespace
+
+Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
+                                                const std::vector<std::string>& surface_names,
+                                                const std::vector<std::string>& region_names,
+                                                const std::string& comment) {
+  using R = Result<std::vector<OutputFile>>;
+  const size_t nt = mesh.num_tets(), np = mesh.num_prisms(), ncells = nt + np;
+  const size_t ntri = mesh.num_triangles(), nq = mesh.num_quads();
+  const size_t nv = mesh.num_vertices();
+  if (mesh.tet_region.size() != nt || mesh.prism_region.size() != np)
+    return R::Error("OpenFOAM: region tags are not one per tetrahedron and prism");
+  if (mesh.triangle_tag.size() != ntri || mesh.quad_tag.size() != nq)
+    return R::Error("OpenFOAM: surface tags are not one per triangle and quad");
+  if (ncells == 0 || ncells > size_t(INT32_MAX) / 5)
+    return R::Error("OpenFOAM: the mesh has " + std::to_string(ncells) +
+                    " cells; it needs at least one and fewer than 429 million");
+  for (const auto* a : {&mesh.tets, &mesh.prisms, &mesh.triangles, &mesh.quads})
+    for (int32_t v : *a)
+      if (v < 0 || size_t(v) >= nv)
+        return R::Error("OpenFOAM: vertex index " + std::to_string(v) + " out of range (" +
+                        std::to_string(nv) + " vertices)");
+  for (const auto* a : {&mesh.tet_region, &mesh.prism_region, &mesh.triangle_tag, &mesh.quad_tag})
+    for (int32_t tag : *a)
+      if (tag < 0 || tag > 1000000)
+        return R::Error("OpenFOAM: tag " + std::to_string(tag) + " out of range");
+
+  // The vertices of a cell's local face (n = 3 or 4).
+  auto cell_face = [&](int32_t cell, int local, int32_t out[4]) {
+    const bool tet = size_t(cell) < nt;
+    const int8_t* f = tet ? kTetFaces[local] : kPrismFaces[local];
+    const int32_t* v = tet ? &mesh.tets[4 * size_t(cell)] : &mesh.prisms[6 * (size_t(cell) - nt)];
+    const int n = f[3] < 0 ? 3 : 4;
+    for (int k = 0; k < n; ++k) out[k] = v[f[k]];
+    return n;
+  };
+  auto where = [&](int32_t vertex) {
+    const double* p = &mesh.points[3 * size_t(vertex)];
+    char tmp[96];
+    std::snprintf(tmp, sizeof(tmp), "(%.6g, %.6g, %.6g)", p[0], p[1], p[2]);
+    return std::string(tmp);
+  };
+
+  // Phase 1: every cell face, sorted by vertex set, then by cell.
+  std::vector<CellFace> faces;
+  faces.reserve(4 * nt + 5 * np);
+  for (size_t c = 0; c < ncells; ++c) {
+    const int nf = c < nt ? 4 : 5;
+    for (int l = 0; l < nf; ++l) {
+      int32_t v[4];
+      const int n = cell_face(int32_t(c), l, v);
+      faces.push_back({face_key(v, n), int32_t(c), int8_t(l)});
+    }
+  }
+  std::sort(faces.begin(), faces.end(), [](const CellFace& a, const CellFace& b) {
+    return a.key != b.key ? a.key < b.key : a.cell < b.cell;
+  });
+
+  // Phase 2: internal faces (a set twice) and boundary faces (once).
+  // group_first[g]: index in `faces` of group g's first entry.
+  std::vector<size_t> group_first;
+  std::vector<uint8_t> group_size;
+  for (size_t i = 0; i < faces.size();) {
+    size_t j = i + 1;
+    while (j < faces.size() && faces[j].key == faces[i].key) ++j;
+    if (j - i > 2)
+      return R::Error("OpenFOAM: a face at " + where(faces[i].key[0]) + " is shared by " +
+                      std::to_string(j - i) + " cells; the volume mesh is not conforming");
+    group_first.push_back(i);
+    group_size.push_back(uint8_t(j - i));
+    i = j;
+  }
+  const size_t ngroups = group_first.size();
+  auto find_group = [&](const std::array<int32_t, 4>& key) -> int64_t {
+    size_t lo = 0, hi = ngroups;
+    while (lo < hi) {
+      const size_t mid = (lo + hi) / 2;
+      if (faces[group_first[mid]].key < key)
+        lo = mid + 1;
+      else
+        hi = mid;
+    }
+    return lo < ngroups && faces[group_first[lo]].key == key ? int64_t(lo) : -1;
+  };
+
+  // Phase 3: the tagged faces name the patch of a boundary face, or put an
+  // internal face in a face zone.
+  std::vector<int32_t> group_tag(ngroups, -1);
+  struct ZoneFace {
+    int32_t tag;
+    size_t group;
+    bool flip;
+  };
+  std::vector<ZoneFace> zone_faces;
+  size_t ntags = 0;
+  for (size_t f = 0; f < ntri + nq; ++f) {
+    const bool tri = f < ntri;
+    const int32_t* v = tri ? &mesh.triangles[3 * f] : &mesh.quads[4 * (f - ntri)];
+    const int n = tri ? 3 : 4;
+    const int32_t tag = tri ? mesh.triangle_tag[f] : mesh.quad_tag[f - ntri];
+    ntags = std::max(ntags, size_t(tag) + 1);
+    const int64_t g = find_group(face_key(v, n));
+    if (g < 0)
+      return R::Error("OpenFOAM: a face of " + name_or(surface_names, size_t(tag), "patch_") +
+                      " at " + where(v[0]) + " is no cell's face");
+    if (group_size[size_t(g)] == 1) {
+      group_tag[size_t(g)] = tag;
+    } else {
+      const CellFace& owner = faces[group_first[size_t(g)]];
+      int32_t cycle[4];
+      cell_face(owner.cell, owner.local, cycle);
+      zone_faces.push_back({tag, size_t(g), !same_turn(v, cycle, n)});
+    }
+  }
+  for (size_t g = 0; g < ngroups; ++g)
+    if (group_size[g] == 1 && group_tag[g] < 0)
+      return R::Error("OpenFOAM: a boundary face at " + where(faces[group_first[g]].key[0]) +
+                      " has no surface tag (no triangle or quad of the mesh covers it)");
+
+  // Phase 4: face order. Internal faces by (owner, neighbour); boundary
+  // faces by (tag, owner); the order of groups in `order`.
+  std::vector<size_t> order;
+  order.reserve(ngroups);
+  size_t ninternal = 0;
+  for (size_t g = 0; g < ngroups; ++g)
+    if (group_size[g] == 2) order.push_back(g);
+  ninternal = order.size();
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    const CellFace &a0 = faces[group_first[a]], &b0 = faces[group_first[b]];
+    if (a0.cell != b0.cell) return a0.cell < b0.cell;
+    return faces[group_first[a] + 1].cell < faces[group_first[b] + 1].cell;
+  });
+  for (size_t g = 0; g < ngroups; ++g)
+    if (group_size[g] == 1) order.push_back(g);
+  std::stable_sort(order.begin() + long(ninternal), order.end(), [&](size_t a, size_t b) {
+    if (group_tag[a] != group_tag[b]) return group_tag[a] < group_tag[b];
+    return faces[group_first[a]].cell < faces[group_first[b]].cell;
+  });
+  std::vector<size_t> patch_start(ntags + 1, ngroups), patch_size(ntags, 0);
+  for (size_t i = order.size(); i-- > ninternal;) {
+    patch_start[size_t(group_tag[order[i]])] = i;
+    ++patch_size[size_t(group_tag[order[i]])];
+  }
+  std::vector<int32_t> face_of_group(ngroups);
+  for (size_t i = 0; i < order.size(); ++i) face_of_group[order[i]] = int32_t(i);
+
+  // Names: patches and zones, each an OpenFOAM word, unique among its kind.
+  auto check_names = [&](const std::vector<size_t>& used, const std::vector<std::string>& names,
+                         const char* prefix, const char* what) -> Status {
+    std::set<std::string> seen;
+    for (size_t i : used) {
+      const std::string name = name_or(names, i, prefix);
+      if (!is_word(name))
+        return Status::Error("OpenFOAM: the " + std::string(what) + " name \"" + name +
+                             "\" is not a word (letters, digits, '_', '-' and '.' only)");
+      if (!seen.insert(name).second)
+        return Status::Error("OpenFOAM: two " + std::string(what) + "s are named \"" + name + "\"");
+    }
+    return Status::Ok();
+  };
+  std::vector<size_t> patches, zones_used, face_zones;
+  for (size_t tag = 0; tag < ntags; ++tag)
+    if (patch_size[tag] > 0) patches.push_back(tag);
+  std::vector<std::vector<int32_t>> cells_of(1);  // per region, its cells
+  for (size_t c = 0; c < ncells; ++c) {
+    const size_t r = size_t(c < nt ? mesh.tet_region[c] : mesh.prism_region[c - nt]);
+    if (r >= cells_of.size()) cells_of.resize(r + 1);
+    cells_of[r].push_back(int32_t(c));
+  }
+  for (size_t r = 0; r < cells_of.size(); ++r)
+    if (!cells_of[r].empty()) zones_used.push_back(r);
+  std::stable_sort(zone_faces.begin(), zone_faces.end(), [&](const ZoneFace& a, const ZoneFace& b) {
+    return a.tag != b.tag ? a.tag < b.tag : face_of_group[a.group] < face_of_group[b.group];
+  });
+  for (const ZoneFace& z : zone_faces)
+    if (face_zones.empty() || face_zones.back() != size_t(z.tag))
+      face_zones.push_back(size_t(z.tag));
+  if (Status st = check_names(patches, surface_names, "patch_", "patch"); !st.ok()) return st;
+  if (Status st = check_names(zones_used, region_names, "zone_", "cell zone"); !st.ok()) return st;
+  if (Status st = check_names(face_zones, surface_names, "patch_", "face zone"); !st.ok())
+    return st;
+
+  // Phase 5: the files.
+  const std::string poly = "constant/polyMesh";
+  std::vector<OutputFile> files;
+  {
+    Text t;
+    header(t, "vectorField", poly, "points", comment);
+    t.integer(int64_t(nv));
+    t.str("\n(\n");
+    for (size_t v = 0; v < nv; ++v) {
+      t.ch('(');
+      for (int k = 0; k < 3; ++k) {
+        if (k) t.ch(' ');
+        t.real(mesh.points[3 * v + size_t(k)]);
+      }
+      t.str(")\n");
+    }
+    t.str(")\n");
+    files.push_back({poly + "/points", t.take()});
+  }
+  {
+    Text t;
+    header(t, "faceList", poly, "faces", comment);
+    t.integer(int64_t(ngroups));
+    t.str("\n(\n");
+    for (size_t g : order) {
+      const CellFace& owner = faces[group_first[g]];
+      int32_t v[4];
+      const int n = cell_face(owner.cell, owner.local, v);
+      t.integer(n);
+      t.ch('(');
+      for (int k = 0; k < n; ++k) {
+        if (k) t.ch(' ');
+        t.integer(v[k]);
+      }
+      t.str(")\n");
+    }
+    t.str(")\n");
+    files.push_back({poly + "/faces", t.take()});
+  }
+  const std::string note = "nPoints:" + std::to_string(nv) + "  nCells:" + std::to_string(ncells) +
+                           "  nFaces:" + std::to_string(ngroups) +
+                           "  nInternalFaces:" + std::to_string(ninternal);
+  {
+    Text t;
+    header(t, "labelList", poly, "owner", comment, note);
+    label_list(t, ngroups, [&](size_t i) { return faces[group_first[order[i]]].cell; });
+    files.push_back({poly + "/owner", t.take()});
+  }
+  {
+    Text t;
+    header(t, "labelList", poly, "neighbour", comment, note);
+    label_list(t, ninternal, [&](size_t i) { return faces[group_first[order[i]] + 1].cell; });
+    files.push_back({poly + "/neighbour", t.take()});
+  }
+  {
+    Text t;
+    header(t, "polyBoundaryMesh", poly, "boundary", comment);
+    t.integer(int64_t(patches.size()));
+    t.str("\n(\n");
+    for (size_t tag : patches) {
+      const std::string name = name_or(surface_names, tag, "patch_");
+      const bool wall = name == "wall" || name == "outer_wall";
+      t.str("    " + name + "\n    {\n        type            ");
+      t.str(wall ? "wall;\n        inGroups        List<word> 1(wall);\n" : "patch;\n");
+      t.str("        nFaces          ");
+      t.integer(int64_t(patch_size[tag]));
+      t.str(";\n        startFace       ");
+      t.integer(int64_t(patch_start[tag]));
+      t.str(";\n    }\n");
+    }
+    t.str(")\n");
+    files.push_back({poly + "/boundary", t.take()});
+  }
+  {
+    Text t;
+    header(t, "regIOobject", poly, "cellZones", comment);
+    t.integer(int64_t(zones_used.size()));
+    t.str("\n(\n");
+    for (size_t r : zones_used) {
+      t.str(name_or(region_names, r, "zone_") +
+            "\n{\n    type cellZone;\n    cellLabels List<label> ");
+      label_list(t, cells_of[r].size(), [&](size_t i) { return cells_of[r][i]; });
+      t.str(";\n}\n");
+    }
+    t.str(")\n");
+    files.push_back({poly + "/cellZones", t.take()});
+  }
+  if (!face_zones.empty()) {
+    Text t;
+    header(t, "regIOobject", poly, "faceZones", comment);
+    t.integer(int64_t(face_zones.size()));
+    t.str("\n(\n");
+    for (size_t tag : face_zones) {
+      size_t first = 0;
+      while (size_t(zone_faces[first].tag) != tag) ++first;
+      size_t last = first;
+      while (last < zone_faces.size() && size_t(zone_faces[last].tag) == tag) ++last;
+      t.str(name_or(surface_names, tag, "patch_") +
+            "\n{\n    type faceZone;\n    faceLabels List<label> ");
+      label_list(t, last - first,
+                 [&](size_t i) { return face_of_group[zone_faces[first + i].group]; });
+      t.str(";\n    flipMap List<bool> ");
+      label_list(t, last - first, [&](size_t i) { return zone_faces[first + i].flip ? 1 : 0; });
+      t.str(";\n}\n");
+    }
+    t.str(")\n");
+    files.push_back({poly + "/faceZones", t.take()});
+  }
+  {
+    Text t;
+    header(t, "dictionary", "system", "controlDict", comment);
+    t.str(
+        "startFrom       startTime;\nstartTime       0;\nstopAt          endTime;\n"
+        "endTime         1;\ndeltaT          1;\nwriteControl    timeStep;\n"
+        "writeInterval   1;\nwriteFormat     ascii;\nwritePrecision  12;\n"
+        "timeFormat      general;\ntimePrecision   6;\nrunTimeModifiable false;\n");
+    files.push_back({"system/controlDict", t.take()});
+  }
+  {
+    Text t;
+    header(t, "dictionary", "system", "fvSchemes", comment);
+    t.str(
+        "ddtSchemes { default steadyState; }\ngradSchemes { default Gauss linear; }\n"
+        "divSchemes { default none; }\nlaplacianSchemes { default Gauss linear corrected; }\n"
+        "interpolationSchemes { default linear; }\nsnGradSchemes { default corrected; }\n");
+    files.push_back({"system/fvSchemes", t.take()});
+  }
+  {
+    Text t;
+    header(t, "dictionary", "system", "fvSolution", comment);
+    files.push_back({"system/fvSolution", t.take()});
+  }
+  files.push_back({"case.foam", ""});
+  return files;
+}
+
+}  // namespace vm
