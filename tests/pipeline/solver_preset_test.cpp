@@ -44,11 +44,12 @@ TEST(SolverPreset, OpenFoamKeepsPrismsWritesMsh22InMetres) {
   EXPECT_EQ(o.output_units, LengthUnit::kM);
   // The native case, unless the output's name says otherwise.
   EXPECT_EQ(resolve_output_format(o, std::nullopt), OutputFormat::kFoam);
-  EXPECT_EQ(resolve_output_format(o, OutputFormat::kMsh), OutputFormat::kMsh);
   for (const char* id : {"prisms", "msh_version", "output_units", "format"}) {
     ASSERT_NE(setting(o, id), nullptr) << id;
     EXPECT_TRUE(setting(o, id)->from_preset) << id;
   }
+  EXPECT_EQ(resolve_output_format(o, OutputFormat::kMsh), OutputFormat::kMsh);
+  EXPECT_FALSE(setting(o, "format")->from_preset);
   EXPECT_EQ(setting(o, "msh_version")->value, "2.2");
   EXPECT_EQ(setting(o, "output_units")->value, "m");
   EXPECT_NE(preset_summary(o.preset).find("openfoam: prisms true, msh_version 2.2"),
