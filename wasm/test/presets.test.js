@@ -98,7 +98,7 @@ describe('solver presets', () => {
     assert.equal(readMsh(again.file).version, '2.2');
     assert.ok(Math.abs(readMsh(again.file).largest - msh.largest) < 1e-12);
     // Explicit options win over the preset.
-    const mine = api.mesh(tube, { layers: 2, solver: 'openfoam', prisms: false, mshVersion: '4.1' });
+    const mine = api.mesh(tube, { layers: 2, solver: 'openfoam', prisms: false, mshVersion: '4.1', format: 'msh' });
     assert.equal(mine.ok, true, mine.error);
     assert.deepEqual(readMsh(mine.msh).types, [2, 4]);
     assert.equal(readMsh(mine.msh).version, '4.1');
