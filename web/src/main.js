@@ -19,6 +19,7 @@ import { describeNonSurface } from './sniff.js';
 import { Viewer } from './viewer.js';
 import { listenViewKeys } from './view-keys.js';
 import { withPrismsSplit } from './prisms.js';
+import { Refinements } from './refine.js';
 import { showSurfaceQuality } from './surface-quality.js';
 import { VolumeView } from './volume-view.js';
 import { createWorker } from './worker-source.js';
@@ -77,6 +78,17 @@ const prepare = new Prepare({
   },
 });
 
+const refinements = new Refinements({
+  viewer,
+  canPick: () => shown !== 'volume',
+  showSurface: () => {
+    $('show').value = 'input';
+    show('input', { fit: false });
+  },
+  onAdding: () => prepare.setAdding(false),
+});
+$('add-cut').addEventListener('click', () => refinements.setAdding(false));
+
 $('legend').querySelector('.ramp').style.background = qualityGradientCss();
 
 // What to do after an error, by what failed.
@@ -119,6 +131,7 @@ function setBusy(on, stage = '') {
   for (const id of BUSY_CONTROLS) $(id).disabled = on;
   for (const button of $('units-prompt').querySelectorAll('button')) button.disabled = on;
   prepare.setBusy(on);
+  refinements.setBusy(on);
 }
 
 function onProgress(fraction, stage) {
@@ -211,6 +224,7 @@ async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, on
   const scale = analysis.bounding_box.diagonal;
   openings.show(analysis.openings, { unit: analysis.units.unit, labelArray: analysis.label_array, scale }, edits);
   prepare.show(analysis, { fresh });
+  if (fresh) refinements.reset({ unit: analysis.units.unit, scale });
   $('flow-error').hidden = true;
   // The same surface again (other options): the view keeps its camera.
   show('input', { fit: fresh || shown === null });
@@ -433,6 +447,8 @@ function meshOptions(names) {
   if (volumeChange !== Number($('max-volume-change').defaultValue) / 100) options.maxVolumeChange = volumeChange;
   const coreSize = $('core-size').value.trim();
   if (coreSize !== '') options.coreSize = Number(coreSize);
+  const refine = refinements.options();
+  if (refine.length) options.refine = refine;
   const flow = openings.flowExtensions();
   if (Object.keys(flow).length) options.flowExtension = flow;
   const inlet = openings.chosenInlet();
@@ -595,6 +611,7 @@ function show(which, { fit = true } = {}) {
   $('legend').hidden = false;
   if (volume) {
     prepare.setVisible(false);
+    refinements.setVisible(false);
     try {
       volumeView.set(volumeOptions());
       volumeView.show(volume);
@@ -614,6 +631,7 @@ function show(which, { fit = true } = {}) {
   viewer.setSurface(output ? remeshed.result.surface : current.surface, { fit });
   shown = output ? 'output' : 'input';
   prepare.setVisible(!output);
+  refinements.setVisible(true);
 }
 
 /** The gamma_t histogram: of the core (the layers' elements are flat by
@@ -719,7 +737,7 @@ function showMeshResult(result) {
 /** The panel's mesh options once every field and opening name is valid
  * (the core checked the names), else null with the problem shown. */
 async function checkedMeshOptions() {
-  const problem = [coreSizeProblem(), volumeChangeProblem(), layerProblems(), openings.extensionProblem()].find(Boolean);
+  const problem = [coreSizeProblem(), volumeChangeProblem(), refinements.problem(), layerProblems(), openings.extensionProblem()].find(Boolean);
   if (problem) {
     showError(problem, 'options');
     return null;
