@@ -759,6 +759,21 @@ describe('mesh: boundary layers and vessel wall', () => {
     assert.equal(api.layerFractions({ growth: 9 }).option, 'growth');
   });
 
+  test('refine: a sphere bounds the size on the wall and in the volume; several are taken', () => {
+    const plain = api.mesh(tube, { layers: 0 });
+    const one = api.mesh(tube, { layers: 0, refine: [0, 0, 0, 1.5, 0.1] });
+    assert.equal(one.ok, true, one.error);
+    assert.ok(Math.abs(one.report.output.remesh.size.min - 0.1) < 1e-9);
+    assert.ok(one.report.output.triangles > plain.report.output.triangles);
+    assert.ok(one.report.output.volume.tetrahedra > plain.report.output.volume.tetrahedra);
+    const two = api.mesh(tube, { layers: 0, refine: [[0, 0, 0, 1.5, 0.1], [0, 0, 4, 1.5, 0.1]] });
+    assert.ok(two.report.output.triangles > one.report.output.triangles);
+    const bad = api.mesh(tube, { refine: [0, 0, 0, -1, 0.05] });
+    assert.equal(bad.ok, false);
+    assert.equal(bad.option, 'refine');
+    assert.match(bad.error, /^refine needs 5 numbers/);
+  });
+
   test('layers: 0 gives no layer part; firstLayer + growth sets the heights', () => {
     const m = api.mesh(tube, { layers: 0 });
     assert.equal(m.ok, true, m.error);
