@@ -19,6 +19,35 @@ export async function openApp(page) {
   return foreign;
 }
 
+/** Opens the app recording page errors and console errors; returns the
+ * list they go into. */
+export async function openWatched(page) {
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
+  await openApp(page);
+  return errors;
+}
+
+/** Opens the app and loads the bundled sample; returns the page errors and
+ * the requests to other origins. */
+export async function loadSample(page) {
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  const foreign = await openApp(page);
+  await page.getByTestId('load-sample').click();
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  return { errors, foreign };
+}
+
+/** Presses Mesh and waits for a new result (the clip info is redrawn). */
+export async function meshAgain(page) {
+  await page.getByTestId('clip-info').evaluate((e) => (e.textContent = ''));
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('clip-info')).not.toBeEmpty({ timeout: 60_000 });
+  await expect(page.getByTestId('error')).toBeHidden();
+}
+
 /** ASCII STL of a closed tetrahedron (4 triangles, 4 vertices, genus 0),
  * one facet inside out. */
 export const TETRA_ASCII = `solid tet

@@ -1,26 +1,9 @@
 import { expect, test } from '@playwright/test';
 
-import { openApp } from './helpers.js';
+import { loadSample, meshAgain as mesh } from './helpers.js';
 
 const num = async (page, id) => Number((await page.getByTestId(id).textContent()).replace(/,/g, ''));
 const drawn = async (page) => Number(await page.getByTestId('volume-view').getAttribute('data-triangles'));
-
-async function loadSample(page) {
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(e.message));
-  const foreign = await openApp(page);
-  await page.getByTestId('load-sample').click();
-  await expect(page.getByTestId('stat-openings')).toHaveText('3');
-  return { errors, foreign };
-}
-
-/** Presses Mesh and waits for a new result (the clip info is redrawn). */
-async function mesh(page) {
-  await page.getByTestId('clip-info').evaluate((e) => (e.textContent = ''));
-  await page.getByTestId('remesh').click();
-  await expect(page.getByTestId('clip-info')).not.toBeEmpty({ timeout: 60_000 });
-  await expect(page.getByTestId('error')).toBeHidden();
-}
 
 async function downloadText(page) {
   const [download] = await Promise.all([

@@ -3,7 +3,7 @@ import { readFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 
 import { createVesselmesh } from '../wasm/src/vesselmesh.js';
-import { openApp, screenshots, upload } from './helpers.js';
+import { openWatched as open, screenshots, upload } from './helpers.js';
 
 // The Prepare step: a closed surface (a bifurcation with rounded ends, as
 // segmentation tools export it) gets cuts proposed at its vessel ends, made
@@ -21,15 +21,6 @@ test.beforeAll(async () => {
 
 /** A bifurcation phantom's STL (parent radius 1 along -z, branches up +z). */
 const bifurcation = (options) => Buffer.from(api.makePhantom({ kind: 'bifurcation', voxel: 0.15, ...options }).stl);
-
-/** Opens the app and records page errors and console errors. */
-async function open(page) {
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(e.message));
-  page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
-  await openApp(page);
-  return errors;
-}
 
 /** Small and quick: a uniform size of 0.35 and one boundary layer. */
 async function coarse(page) {

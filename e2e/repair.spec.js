@@ -3,7 +3,7 @@ import { readFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 
 import { createVesselmesh } from '../wasm/src/vesselmesh.js';
-import { openApp, screenshots, upload } from './helpers.js';
+import { openWatched as open, screenshots, upload } from './helpers.js';
 
 // Repairs in the Prepare step: a dirty segmentation (small holes, a fin,
 // touching holes, duplicates, a flipped patch: makePhantom's dirty) is
@@ -22,14 +22,6 @@ test.beforeAll(async () => {
 });
 
 const phantom = (options) => Buffer.from(api.makePhantom({ kind: 'bifurcation', voxel: 0.15, ...options }).stl);
-
-async function open(page) {
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(e.message));
-  page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
-  await openApp(page);
-  return errors;
-}
 
 /** The numbers of the first '(x, y, z)' in a text. */
 const coordinates = (text) => text.match(/\(([^)]*)\)/)[1].split(',').map(Number);

@@ -1,27 +1,10 @@
 import { expect, test } from '@playwright/test';
 
-import { exportDownload, openApp, screenshots } from './helpers.js';
+import { exportDownload, loadSample, meshAgain as mesh, screenshots } from './helpers.js';
 
 // "Which solver?": asked once in the Mesh step, remembered; the preset sets
 // the element types, export format and units; the result says what it set.
 // The first layer from a target y+ is reachable there too.
-
-async function loadSample(page) {
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(e.message));
-  const foreign = await openApp(page);
-  await page.getByTestId('load-sample').click();
-  await expect(page.getByTestId('stat-openings')).toHaveText('3');
-  return { errors, foreign };
-}
-
-/** Presses Mesh and waits for a new result (the clip info is redrawn). */
-async function mesh(page) {
-  await page.getByTestId('clip-info').evaluate((e) => (e.textContent = ''));
-  await page.getByTestId('remesh').click();
-  await expect(page.getByTestId('clip-info')).not.toBeEmpty({ timeout: 60_000 });
-  await expect(page.getByTestId('error')).toBeHidden();
-}
 
 /** The MSH text's version, physical groups [dim, tag, name] and element types. */
 function readMsh(text) {

@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <set>
 
+#include "core/io/text_out.h"
+
 namespace vm {
 namespace {
 
@@ -32,35 +34,8 @@ std::array<int32_t, 4> face_key(const int32_t* v, int n) {
   return k;
 }
 
-class Text {
- public:
-  void str(std::string_view s) { buf_.append(s); }
-  void ch(char c) { buf_.push_back(c); }
-  void integer(int64_t v) {
-    char tmp[24];
-    auto r = std::to_chars(tmp, tmp + sizeof(tmp), v);
-    buf_.append(tmp, r.ptr);
-  }
-  /// Shortest text that reads back to exactly v (%.17g where the library
-  /// has no floating-point to_chars, e.g. Emscripten's libc++).
-  void real(double v) {
-    char tmp[32];
-#if defined(__cpp_lib_to_chars)
-    auto r = std::to_chars(tmp, tmp + sizeof(tmp), v);
-    buf_.append(tmp, r.ptr);
-#else
-    int n = std::snprintf(tmp, sizeof(tmp), "%.17g", v);
-    buf_.append(tmp, size_t(n));
-#endif
-  }
-  std::string take() { return std::move(buf_); }
-
- private:
-  std::string buf_;
-};
-
 /// The FoamFile header of a file; `note` and `comment` optional.
-void header(Text& t, std::string_view cls, std::string_view location, std::string_view object,
+void header(TextOut& t, std::string_view cls, std::string_view location, std::string_view object,
             const std::string& comment, const std::string& note = "") {
   t.str("/* OpenFOAM file written by vesselmesh */\n");
   if (!comment.empty()) {
@@ -84,7 +59,7 @@ void header(Text& t, std::string_view cls, std::string_view location, std::strin
 
 /// `n` labels as an OpenFOAM list body "n\n(\n...\n)\n", ten a line.
 template <class Get>
-void label_list(Text& t, size_t n, Get get) {
+void label_list(TextOut& t, size_t n, Get get) {
   t.integer(int64_t(n));
   t.str("\n(\n");
   for (size_t i = 0; i < n; ++i) {
@@ -302,7 +277,7 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
   const std::string poly = "constant/polyMesh";
   std::vector<OutputFile> files;
   {
-    Text t;
+    TextOut t;
     header(t, "vectorField", poly, "points", comment);
     t.integer(int64_t(nv));
     t.str("\n(\n");
@@ -318,7 +293,7 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
     files.push_back({poly + "/points", t.take()});
   }
   {
-    Text t;
+    TextOut t;
     header(t, "faceList", poly, "faces", comment);
     t.integer(int64_t(ngroups));
     t.str("\n(\n");
@@ -341,19 +316,19 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
                            "  nFaces:" + std::to_string(ngroups) +
                            "  nInternalFaces:" + std::to_string(ninternal);
   {
-    Text t;
+    TextOut t;
     header(t, "labelList", poly, "owner", comment, note);
     label_list(t, ngroups, [&](size_t i) { return faces[group_first[order[i]]].cell; });
     files.push_back({poly + "/owner", t.take()});
   }
   {
-    Text t;
+    TextOut t;
     header(t, "labelList", poly, "neighbour", comment, note);
     label_list(t, ninternal, [&](size_t i) { return faces[group_first[order[i]] + 1].cell; });
     files.push_back({poly + "/neighbour", t.take()});
   }
   {
-    Text t;
+    TextOut t;
     header(t, "polyBoundaryMesh", poly, "boundary", comment);
     t.integer(int64_t(patches.size()));
     t.str("\n(\n");
@@ -372,7 +347,7 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
     files.push_back({poly + "/boundary", t.take()});
   }
   {
-    Text t;
+    TextOut t;
     header(t, "regIOobject", poly, "cellZones", comment);
     t.integer(int64_t(zones_used.size()));
     t.str("\n(\n");
@@ -386,7 +361,7 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
     files.push_back({poly + "/cellZones", t.take()});
   }
   if (!face_zones.empty()) {
-    Text t;
+    TextOut t;
     header(t, "regIOobject", poly, "faceZones", comment);
     t.integer(int64_t(face_zones.size()));
     t.str("\n(\n");
@@ -407,7 +382,7 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
     files.push_back({poly + "/faceZones", t.take()});
   }
   {
-    Text t;
+    TextOut t;
     header(t, "dictionary", "system", "controlDict", comment);
     t.str(
         "startFrom       startTime;\nstartTime       0;\nstopAt          endTime;\n"
@@ -417,7 +392,7 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
     files.push_back({"system/controlDict", t.take()});
   }
   {
-    Text t;
+    TextOut t;
     header(t, "dictionary", "system", "fvSchemes", comment);
     t.str(
         "ddtSchemes { default steadyState; }\ngradSchemes { default Gauss linear; }\n"
@@ -426,7 +401,7 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
     files.push_back({"system/fvSchemes", t.take()});
   }
   {
-    Text t;
+    TextOut t;
     header(t, "dictionary", "system", "fvSolution", comment);
     files.push_back({"system/fvSolution", t.take()});
   }

@@ -10,38 +10,10 @@
 #include <limits>
 #include <set>
 
+#include "core/io/text_out.h"
+
 namespace vm {
 namespace {
-
-class TextOut {
- public:
-  void str(std::string_view s) { buf_.append(s); }
-  void ch(char c) { buf_.push_back(c); }
-  template <class Int>
-  void integer(Int v) {
-    char tmp[24];
-    auto r = std::to_chars(tmp, tmp + sizeof(tmp), v);
-    buf_.append(tmp, r.ptr);
-  }
-  /// Shortest text that reads back to exactly v (to_chars where the
-  /// standard library has it for doubles; %.17g, also exact, elsewhere, e.g.
-  /// Emscripten's libc++ 14).
-  void real(double v) {
-    char tmp[32];
-#if defined(__cpp_lib_to_chars)
-    auto r = std::to_chars(tmp, tmp + sizeof(tmp), v);
-    buf_.append(tmp, r.ptr);
-#else
-    int n = std::snprintf(tmp, sizeof(tmp), "%.17g", v);
-    buf_.append(tmp, size_t(n));
-#endif
-  }
-  std::string take() { return std::move(buf_); }
-  void reserve(size_t n) { buf_.reserve(n); }
-
- private:
-  std::string buf_;
-};
 
 Status validate(const MshModel& m) {
   const size_t nn = m.points.size() / 3;

@@ -4,6 +4,8 @@
 // side the cut removes) and its number. The selected cut is drawn stronger.
 import * as THREE from 'three';
 
+import { disposeOverlay } from './overlay.js';
+
 const DISC_SCALE = 1.3;
 const COLOR = 0x1f6fb2;
 const SELECTED = 0xd0104c;
@@ -90,13 +92,6 @@ export class CutDiscs {
   }
 
   clear() {
-    if (!this.group) return;
-    this.viewer.removeOverlay(this.group);
-    this.group.traverse((obj) => {
-      obj.geometry?.dispose();
-      obj.material?.map?.dispose();
-      obj.material?.dispose();
-    });
-    this.group = null;
+    this.group = disposeOverlay(this.viewer, this.group);
   }
 }

@@ -6,6 +6,7 @@
 // translucent ball. The spheres belong to the file: a new file clears them.
 import * as THREE from 'three';
 
+import { disposeOverlay } from './overlay.js';
 import { point } from './units.js';
 
 const $ = (id) => document.getElementById(id);
@@ -172,13 +173,7 @@ export class Refinements {
   }
 
   _clear() {
-    if (!this.group) return;
-    this.viewer.removeOverlay(this.group);
-    this.group.traverse((obj) => {
-      obj.geometry?.dispose();
-      obj.material?.dispose();
-    });
-    this.group = null;
+    this.group = disposeOverlay(this.viewer, this.group);
   }
 
   _draw() {

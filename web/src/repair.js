@@ -7,6 +7,8 @@
 // vessel's, closed or left open) and marked on the surface. Changing a
 // control analyzes the surface again.
 import * as THREE from 'three';
+
+import { disposeOverlay } from './overlay.js';
 import { length, point } from './units.js';
 
 const $ = (id) => document.getElementById(id);
@@ -143,13 +145,7 @@ export class Repairs {
   }
 
   _clear() {
-    if (!this.group) return;
-    this.viewer.removeOverlay(this.group);
-    this.group.traverse((obj) => {
-      obj.geometry?.dispose();
-      obj.material?.dispose();
-    });
-    this.group = null;
+    this.group = disposeOverlay(this.viewer, this.group);
   }
 
   /** A translucent ball on each hole, 1.5 times its radius (at least
