@@ -8,6 +8,7 @@ import { expect, test } from '@playwright/test';
 
 import { createVesselmesh } from '../wasm/src/node.js';
 import { screenshots } from './helpers.js';
+import { freePort, startPreview } from './preview.js';
 import { serveStatic } from './static-server.js';
 
 const DOCS = new URL('../docs/dist/', import.meta.url).pathname;
@@ -83,4 +84,21 @@ test('the references list every option of the table with its unit; every page is
   await expect(page.locator('main')).toContainText('γ');
   await screenshots(page, 'docs-method');
   expect(foreign).toEqual([]);
+});
+
+test('served by npm run preview:docs, the docs are cross-origin isolated and the live example still meshes', async ({ page }) => {
+  const preview = await startPreview(await freePort(), 'web/vite.config.js', ['--outDir', '../docs/dist']);
+  try {
+    const errors = [];
+    page.on('pageerror', (e) => errors.push(e.message));
+    await page.goto(`${preview.url}index.html`);
+    expect(await page.evaluate(() => self.crossOriginIsolated)).toBe(true);
+    const el = page.locator('#start');
+    await expect(el.getByRole('status')).toContainText('3 openings', { timeout: 60_000 });
+    await el.getByRole('button', { name: 'Mesh' }).click();
+    await expect(el.getByRole('status')).toContainText('tetrahedra', { timeout: 60_000 });
+    expect(errors).toEqual([]);
+  } finally {
+    await preview.stop();
+  }
 });

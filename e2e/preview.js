@@ -17,12 +17,13 @@ export function freePort() {
   });
 }
 
-/** Starts `vite preview` of web/dist on 127.0.0.1:port; resolves once it
- * answers, with stop() (resolves once the process has exited). */
-export async function startPreview(port, config = 'web/vite.config.js') {
+/** Starts `vite preview` of web/dist (or what `args` say, e.g. ['--outDir',
+ * '../docs/dist']) on 127.0.0.1:port; resolves once it answers, with stop()
+ * (resolves once the process has exited). */
+export async function startPreview(port, config = 'web/vite.config.js', args = []) {
   const child = spawn(
     process.execPath,
-    ['node_modules/vite/bin/vite.js', 'preview', '--config', config, '--host', '127.0.0.1', '--port', String(port), '--strictPort'],
+    ['node_modules/vite/bin/vite.js', 'preview', '--config', config, '--host', '127.0.0.1', '--port', String(port), '--strictPort', ...args],
     { cwd: root, stdio: ['ignore', 'pipe', 'pipe'] },
   );
   let output = '';
