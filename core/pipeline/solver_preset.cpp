@@ -49,7 +49,8 @@ const SolverPreset kPresets[] = {
      .msh_version = MshVersion::k41,
      .output_units = LengthUnit::kGuess,
      .note = "mesh-complete.mesh.vtu is the volume, mesh-surfaces/<name>.vtp the faces svFSI's "
-             "input file names"},
+             "input file names; with a vessel wall, fluid/ and solid/ each such a folder, sharing "
+             "the interface wall.vtp"},
 };
 
 std::string_view msh_version_text(MshVersion v) { return v == MshVersion::k22 ? "2.2" : "4.1"; }

@@ -10,6 +10,7 @@
 #include "core/io/stl.h"
 #include "core/io/vtk_writer.h"
 #include "core/mesh/face_elements.h"
+#include "core/mesh/region_submesh.h"
 
 namespace vm {
 namespace {
@@ -48,6 +49,29 @@ struct Named {
   VolumeMesh mesh;
   std::vector<std::string> surfaces, regions;
 };
+
+Named named_mesh(const MeshJobResult& r, double scale);
+
+/// svFSI's layout with a vessel wall: the fluid (every region but
+/// `vessel_wall`) and the solid (`vessel_wall`) each a mesh-complete
+/// folder, `fluid/` and `solid/`, whose `mesh-surfaces/wall.vtp` are the same
+/// interface triangles on the same coordinates (each oriented out of its
+/// own part). Without a vessel wall, one folder as usual.
+Result<std::vector<OutputFile>> fsi_mesh_complete(const Named& n, const std::string& comment) {
+  std::vector<int32_t> fluid, solid;
+  for (size_t t = 0; t < n.regions.size(); ++t)
+    if (!n.regions[t].empty())
+      (n.regions[t] == "vessel_wall" ? solid : fluid).push_back(int32_t(t));
+  if (solid.empty()) return mesh_complete_files(n.mesh, n.surfaces, n.regions, comment);
+  std::vector<OutputFile> files;
+  for (const auto& [folder, regions] : {std::pair{"fluid/", fluid}, std::pair{"solid/", solid}}) {
+    auto part =
+        mesh_complete_files(region_submesh(n.mesh, regions), n.surfaces, n.regions, comment);
+    if (!part.ok()) return part.status();
+    for (OutputFile& f : part.value()) files.push_back({folder + f.path, std::move(f.bytes)});
+  }
+  return files;
+}
 
 Named named_mesh(const MeshJobResult& r, double scale) {
   Named n;
@@ -242,7 +266,9 @@ Result<std::vector<OutputFile>> write_outputs(const MeshJobResult& r, OutputForm
     }
     case OutputFormat::kMeshComplete: {
       const Named n = named_mesh(r, scale);
-      auto folder = mesh_complete_files(n.mesh, n.surfaces, n.regions, options.provenance);
+      auto folder = r.preset.solver == "svfsi"
+                        ? fsi_mesh_complete(n, options.provenance)
+                        : mesh_complete_files(n.mesh, n.surfaces, n.regions, options.provenance);
       if (!folder.ok()) return folder.status();
       files = std::move(folder).value();
       break;

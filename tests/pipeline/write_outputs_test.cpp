@@ -123,6 +123,35 @@ TEST(WriteOutputs, MeshCompleteAndTheWallAlone) {
   EXPECT_EQ(soup.value().num_triangles(), tube(true).output_surface.num_triangles());
 }
 
+TEST(WriteOutputs, SvFsiWithAVesselWallGetsAFluidAndASolidFolder) {
+  MeshJobOptions o;
+  ASSERT_TRUE(set_option_text(o, "size", "0.4").ok());
+  ASSERT_TRUE(set_option_text(o, "wall_thickness", "0.1").ok());
+  ASSERT_TRUE(set_option_text(o, "wall_layers", "2").ok());
+  o.preset.solver = "svfsi";
+  auto r = run_mesh_job(write_stl_binary(testing::open_tube(24, 8, 1.0, 4.0)), o);
+  ASSERT_TRUE(r.ok()) << r.message();
+  auto folder = write_outputs(r.value(), OutputFormat::kMeshComplete);
+  ASSERT_TRUE(folder.ok()) << folder.message();
+  std::map<std::string, std::string> files;
+  for (const OutputFile& f : folder.value()) files[f.path] = f.bytes;
+  for (const char* p : {"fluid/mesh-complete.mesh.vtu", "fluid/mesh-surfaces/wall.vtp",
+                        "fluid/mesh-surfaces/inlet.vtp", "solid/mesh-complete.mesh.vtu",
+                        "solid/mesh-surfaces/wall.vtp", "solid/mesh-surfaces/outer_wall.vtp",
+                        "solid/mesh-surfaces/wall_inlet.vtp"})
+    EXPECT_TRUE(files.count(p)) << p;
+  EXPECT_FALSE(files.count("fluid/mesh-surfaces/outer_wall.vtp"));
+  EXPECT_FALSE(files.count("solid/mesh-surfaces/inlet.vtp"));
+  // The interface: as many triangles on each side (the files' Polys count).
+  const auto polys = [](const std::string& vtp) {
+    const size_t at = vtp.find("NumberOfPolys=\"");
+    return at == std::string::npos ? std::string() : vtp.substr(at, vtp.find(' ', at) - at);
+  };
+  EXPECT_EQ(polys(files["fluid/mesh-surfaces/wall.vtp"]),
+            polys(files["solid/mesh-surfaces/wall.vtp"]));
+  EXPECT_FALSE(polys(files["fluid/mesh-surfaces/wall.vtp"]).empty());
+}
+
 TEST(WriteOutputs, FoamCaseInMetres) {
   WriteOptions o;
   o.units = LengthUnit::kM;

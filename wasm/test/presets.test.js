@@ -117,6 +117,16 @@ describe('solver presets', () => {
     assert.deepEqual(setting(msh, 'format'), { option: 'format', value: 'msh', from: 'user' });
   });
 
+  test("solver 'svfsi' with a vessel wall: fluid/ and solid/ mesh-complete folders in the zip", () => {
+    const m = api.mesh(tube, { layers: 2, solver: 'svfsi', wallThickness: 0.1 });
+    assert.equal(m.ok, true, m.error);
+    const names = Buffer.from(m.file).toString('latin1');
+    for (const path of ['fluid/mesh-complete.mesh.vtu', 'fluid/mesh-surfaces/wall.vtp', 'solid/mesh-complete.mesh.vtu', 'solid/mesh-surfaces/wall.vtp', 'solid/mesh-surfaces/outer_wall.vtp']) {
+      assert.ok(names.includes(path), path);
+    }
+    assert.ok(!names.includes('fluid/mesh-surfaces/outer_wall.vtp'));
+  });
+
   test('a bad solver is refused with the JS option name', () => {
     const m = api.mesh(tube, { solver: 'ansys' });
     assert.equal(m.ok, false);
