@@ -106,3 +106,21 @@ test('FEniCS: tetrahedra only; a target y+ sizes the first layer, shown in the r
   await expect(page.getByTestId('error')).toContainText('the inlet velocity must be a positive velocity in m/s');
   await expect(page.getByTestId('inlet-velocity')).toHaveAttribute('aria-invalid', 'true');
 });
+
+test('svFSI with a vessel wall: the download holds fluid/ and solid/ mesh-complete folders', async ({ page }) => {
+  const { errors, foreign } = await loadSample(page);
+  await page.getByTestId('solver').selectOption('svfsi');
+  await expect(page.getByTestId('export-format')).toHaveValue('mesh-complete');
+  await page.getByTestId('layers').fill('1');
+  await page.getByTestId('wall-on').check();
+  await mesh(page);
+  const { name, bytes } = await exportDownload(page);
+  expect(name).toMatch(/\.zip$/);
+  // A zip's central directory names its entries in plain text.
+  const names = bytes.toString('latin1');
+  for (const path of ['fluid/mesh-complete.mesh.vtu', 'fluid/mesh-surfaces/wall.vtp', 'solid/mesh-complete.mesh.vtu', 'solid/mesh-surfaces/wall.vtp', 'solid/mesh-surfaces/outer_wall.vtp']) {
+    expect(names).toContain(path);
+  }
+  expect(foreign).toEqual([]);
+  expect(errors).toEqual([]);
+});
