@@ -167,7 +167,7 @@ check "msh 2.2 tags unique across dimensions" [ "$(unique_tags "$T/bif22.msh")" 
 check "report groups carry the tags" [ "$(json "$T/w.json" "[(g['dim'], g['tag']) for g in d['output']['groups']][-3:]")" = "[(3, 9), (3, 10), (3, 11)]" ]
 
 # Solver presets: defaults under the user's options.
-check "svfsi with a vessel wall" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/fsi/" --for svfsi --wall-thickness 0.1 --size 0.3
+check "svfsi with a vessel wall" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/fsi/" --for svfsi --wall-thickness 0.1 --size 0.4 --layers 1
 check "svfsi: fluid and solid mesh-complete folders sharing the wall" [ -f "$T/fsi/fluid/mesh-complete.mesh.vtu" -a -f "$T/fsi/solid/mesh-complete.mesh.vtu" -a -f "$T/fsi/fluid/mesh-surfaces/wall.vtp" -a -f "$T/fsi/solid/mesh-surfaces/wall.vtp" -a -f "$T/fsi/solid/mesh-surfaces/outer_wall.vtp" -a ! -e "$T/fsi/fluid/mesh-surfaces/outer_wall.vtp" ]
 check "bad solver" expect_exit 2 "--for needs gmsh, openfoam, fenics or svfsi" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --for ansys
 check "openfoam preset (the .msh name is yours)" expect_exit 0 "preset openfoam: prisms true, msh_version 2.2, output_units m (the preset); format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/foam.msh" --size 0.25 --for openfoam --report "$T/foam.json"
