@@ -120,6 +120,22 @@ Status check_volume_change(const SurfaceFidelity& f, const MeshJobOptions& optio
   return Status::BadOption(uniform ? "size" : "per_circumference", buf);
 }
 
+/// Refinement spheres whose size H is below 1e-4 of the model's bounding-box
+/// diagonal are refused: the graded field would ask for elements too small
+/// to place in floating point near the centre (the corpus found 1e-300 to
+/// hang), and no vessel feature is that small.
+Status check_refine_sizes(const std::vector<RefineSphere>& spheres, double diagonal) {
+  const double smallest = 1e-4 * diagonal;
+  for (const RefineSphere& s : spheres)
+    if (!(s.size >= smallest))
+      return Status::BadOption("refine", "size " + number_text(s.size) + " at " +
+                                             point_text({s.center[0], s.center[1], s.center[2]}) +
+                                             " is below 1e-4 of the model's size (" +
+                                             number_text(diagonal) + "): give a size of " +
+                                             number_text(smallest, 2) + " or more");
+  return Status::Ok();
+}
+
 /// Warnings on layers the user may not have meant: a vessel wall asked for
 /// by its number of layers alone, and a first layer so thin against the
 /// wall's size (below 1e-3 of its smallest edge) that its elements are flat.
@@ -376,6 +392,9 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const Me
   if (!names.ok()) return names.status();
   r.opening_names = std::move(names).value();
   if (Status st = first_layer_from_yplus(r, options); !st.ok()) return st;
+  if (Status st = check_refine_sizes(options.remesh_options.size.spheres, r.surface.box.diagonal());
+      !st.ok())
+    return st;
   if (options.output_units != LengthUnit::kGuess && r.surface.unit.guessed &&
       !r.surface.unit.certain)
     r.warnings.push_back("the mesh is written in " +

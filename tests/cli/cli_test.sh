@@ -86,6 +86,7 @@ check "mesh 2.2" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif22.msh"
 check "msh 4.1 header" [ "$(sed -n 2p "$T/bif41.msh")" = "4.1 0 8" ]
 check "msh 2.2 header" [ "$(sed -n 2p "$T/bif22.msh")" = "2.2 0 8" ]
 check "refine: a bad radius" expect_exit 2 "--refine needs 5 numbers X,Y,Z,R,H" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --refine 0,0,0,0,0.1
+check "refine: a size too small for floating point" expect_exit 2 "below 1e-4 of the model's size" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --refine 1e-300,1e-300,1e-300,1e-300,1e-300
 check "refine: finer within the sphere" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/refined.msh" --surface-only --refine 0,0,0,1,0.08 --report "$T/refined.json"
 check "refine: the smallest size is the sphere's" [ "$(json "$T/refined.json" "abs(d['output']['remesh']['size']['min'] - 0.08) < 1e-9")" = True ]
 check "mesh bad size" expect_exit 2 "--size needs a positive length" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size -1
