@@ -124,15 +124,17 @@ Status check_volume_change(const SurfaceFidelity& f, const MeshJobOptions& optio
 /// diagonal are refused: the graded field would ask for elements too small
 /// to place in floating point near the centre (the corpus found 1e-300 to
 /// hang), and no vessel feature is that small.
-Status check_refine_sizes(const std::vector<RefineSphere>& spheres, double diagonal) {
+Status check_refine_sizes(const std::vector<RefineSphere>& spheres, double diagonal,
+                          std::string_view unit) {
   const double smallest = 1e-4 * diagonal;
   for (const RefineSphere& s : spheres)
     if (!(s.size >= smallest))
-      return Status::BadOption("refine", "size " + number_text(s.size) + " at " +
-                                             point_text({s.center[0], s.center[1], s.center[2]}) +
-                                             " is below 1e-4 of the model's size (" +
-                                             number_text(diagonal) + "): give a size of " +
-                                             number_text(smallest, 2) + " or more");
+      return Status::BadOption(
+          "refine", "size " + number_text(s.size) + " at " +
+                        point_text({s.center[0], s.center[1], s.center[2]}) + " " +
+                        std::string(unit) + " is below 1e-4 of the model's size (" +
+                        number_text(diagonal) + " " + std::string(unit) + "): give a size of " +
+                        number_text(smallest, 2) + " or more");
   return Status::Ok();
 }
 
@@ -392,7 +394,8 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const Me
   if (!names.ok()) return names.status();
   r.opening_names = std::move(names).value();
   if (Status st = first_layer_from_yplus(r, options); !st.ok()) return st;
-  if (Status st = check_refine_sizes(options.remesh_options.size.spheres, r.surface.box.diagonal());
+  if (Status st = check_refine_sizes(options.remesh_options.size.spheres, r.surface.box.diagonal(),
+                                     unit_symbol(r.surface.unit.unit));
       !st.ok())
     return st;
   if (options.output_units != LengthUnit::kGuess && r.surface.unit.guessed &&
