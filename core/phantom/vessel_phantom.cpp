@@ -78,12 +78,47 @@ struct Model {
   double bulb_radius = 0;
   std::vector<EndCut> cuts;  ///< used when open_ends
   std::vector<EndCut> ends;  ///< the rounded free ends: tip, outward direction, radius
+  /// Per branch: its last point is a junction (other branches start there),
+  /// so that end is not free. Branch 0's start is always free.
+  std::vector<bool> joined_end;
   int genus = 0;
 };
 
 /// The cut across the end of `b` at sample `i`, facing away from sample j.
 EndCut cut_at(const Branch& b, size_t i, size_t j) {
   return {b.points[i], unit(sub(b.points[i], b.points[j])), b.radii[i]};
+}
+
+/// Adds to `m` a branch from `start` along `dir` (unit) of length `len` and
+/// radius `r` (tapering by 6%), gently bent toward `side`, and below it
+/// `depth` levels of asymmetric splits: the two children leave at 32 and 42
+/// degrees in the plane of `dir` and `side`, with radii by Murray's law (the
+/// cubes of the children's radii sum to the parent's), 0.78 of its length,
+/// and their own split planes turned a quarter turn about their axes.
+void grow_tree(Model& m, const Vec& start, const Vec& dir, const Vec& side, double r, double len,
+               int depth) {
+  auto at = [&](double t, double bend) {
+    return Vec{start[0] + t * len * dir[0] + bend * side[0],
+               start[1] + t * len * dir[1] + bend * side[1],
+               start[2] + t * len * dir[2] + bend * side[2]};
+  };
+  m.branches.push_back(spline_branch({at(0, 0), at(0.5, 0.08 * len), at(1, 0)}, 24,
+                                     [r](double s) { return r * (1.0 - 0.06 * s); }));
+  m.joined_end.push_back(depth > 0);
+  if (depth == 0) return;
+  const Vec end = at(1, 0);
+  const double rr = 0.94 * r;
+  // Murray's law with a 0.6:0.4 flow split: r_i = rr * share_i^(1/3).
+  const double shares[2] = {0.6, 0.4};
+  const double angles[2] = {32.0, -42.0};
+  for (int c = 0; c < 2; ++c) {
+    const double a = angles[c] * std::numbers::pi / 180;
+    const Vec d = unit({std::cos(a) * dir[0] + std::sin(a) * side[0],
+                        std::cos(a) * dir[1] + std::sin(a) * side[1],
+                        std::cos(a) * dir[2] + std::sin(a) * side[2]});
+    const Vec turned = unit(cross(d, side));
+    grow_tree(m, end, d, turned, rr * std::cbrt(shares[c]), 0.78 * len, depth - 1);
+  }
 }
 
 Model build_model(PhantomKind kind) {
@@ -113,6 +148,23 @@ Model build_model(PhantomKind kind) {
       }
       break;
     }
+    case PhantomKind::kTree: {
+      // A trunk splitting three times (8 leaves) with two side branches off
+      // the trunk: 17 branches, 11 free ends.
+      grow_tree(m, {0, 0, -6}, {0, 0, 1}, {1, 0, 0}, 1.0, 6.0, 3);
+      const Branch trunk = m.branches[0];
+      const double side_at[2] = {0.35, 0.65};
+      const Vec side_dir[2] = {unit({-0.2, 0.85, 0.5}), unit({-0.3, -0.8, 0.5})};
+      for (int k = 0; k < 2; ++k) {
+        const Vec& p = trunk.points[size_t(side_at[k] * double(trunk.points.size() - 1))];
+        const Vec q = {p[0] + 3.2 * side_dir[k][0], p[1] + 3.2 * side_dir[k][1],
+                       p[2] + 3.2 * side_dir[k][2]};
+        m.branches.push_back(
+            spline_branch({p, lerp(p, q, 0.5), q}, n, [](double s) { return 0.5 - 0.04 * s; }));
+        m.joined_end.push_back(false);
+      }
+      break;
+    }
     case PhantomKind::kTorus: {
       std::vector<Vec> ring;
       for (int i = 0; i <= 8; ++i) {
@@ -134,12 +186,16 @@ Model build_model(PhantomKind kind) {
     }
   }
   // Free ends: cut a twelfth of the way in. A single tube has two; in a
-  // bifurcation the parent ends and the children start at the junction.
+  // bifurcation or a tree the parents end and the children start at the
+  // junctions.
+  if (kind == PhantomKind::kBifurcation || kind == PhantomKind::kAneurysm)
+    m.joined_end = {true, false, false};
+  m.joined_end.resize(m.branches.size(), false);
   for (size_t bi = 0; bi < m.branches.size(); ++bi) {
     const Branch& b = m.branches[bi];
     size_t last = b.points.size() - 1, in = std::max<size_t>(1, b.points.size() / 12);
     bool free_start = bi == 0;
-    bool free_end = bi > 0 || m.branches.size() == 1;
+    bool free_end = !m.joined_end[bi];
     if (free_start) m.cuts.push_back(cut_at(b, in, in + 1));
     if (free_end) m.cuts.push_back(cut_at(b, last - in, last - in - 1));
     if (free_start) m.ends.push_back(cut_at(b, 0, 1));

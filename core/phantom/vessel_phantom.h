@@ -20,6 +20,7 @@ enum class PhantomKind {
   kBifurcation,  ///< a parent vessel splitting into two branches, 3 openings
   kAneurysm,     ///< the bifurcation with a saccular bulb, 3 openings
   kTorus,        ///< a closed torus-like handle (genus 1, 0 openings)
+  kTree,         ///< a trunk split three times plus two side branches: 17 branches, 11 openings
 };
 
 struct PhantomOptions {

@@ -15,7 +15,7 @@ namespace {
 constexpr std::string_view kParams[] = {"lscm", "harmonic", "floater"};
 constexpr std::string_view kMeshers[] = {"frontal", "delaunay", "adapt"};
 constexpr std::string_view kMshVersions[] = {"4.1", "2.2"};
-constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm", "torus"};
+constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm", "torus", "tree"};
 constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
 constexpr std::string_view kOffAuto[] = {"off", "auto"};
 constexpr std::string_view kFormats[] = {"msh", "vtu", "vtp", "stl", "mesh-complete", "foam"};
@@ -559,8 +559,8 @@ const OptionSpec kOptions[] = {
      .metavar = "KIND",
      .choices = kPhantomKinds,
      .default_text = "bifurcation",
-     .needs = "bifurcation, tube, aneurysm or torus",
-     .doc = "the vessel model"},
+     .needs = "bifurcation, tube, aneurysm, torus or tree",
+     .doc = "the vessel model (tree: 17 branches, 11 openings)"},
     {.id = "voxel",
      .cli = "voxel",
      .js = "voxel",
@@ -934,6 +934,7 @@ Status apply_option(PhantomOptions& o, const OptionSpec& spec, const OptionValue
     o.kind = v.text == "tube"       ? PhantomKind::kTube
              : v.text == "aneurysm" ? PhantomKind::kAneurysm
              : v.text == "torus"    ? PhantomKind::kTorus
+             : v.text == "tree"     ? PhantomKind::kTree
                                     : PhantomKind::kBifurcation;
   } else if (id == "voxel") {
     o.voxel = v.number;

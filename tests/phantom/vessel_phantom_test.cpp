@@ -55,8 +55,27 @@ INSTANTIATE_TEST_SUITE_P(All, PhantomKinds,
                          ::testing::Values(Case{PhantomKind::kTube, "tube"},
                                            Case{PhantomKind::kBifurcation, "bifurcation"},
                                            Case{PhantomKind::kAneurysm, "aneurysm"},
-                                           Case{PhantomKind::kTorus, "torus"}),
+                                           Case{PhantomKind::kTorus, "torus"},
+                                           Case{PhantomKind::kTree, "tree"}),
                          [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Phantom, TreeHasElevenOpeningsOfMurrayRadii) {
+  PhantomOptions o;
+  o.kind = PhantomKind::kTree;
+  o.voxel = 0.1;
+  PhantomTruth truth;
+  auto r = make_vessel_phantom(o, &truth);
+  ASSERT_TRUE(r.ok()) << r.message();
+  ASSERT_EQ(truth.openings, 11);
+  // One inlet of radius ~0.97 (the trunk, cut near its start) and ten
+  // outlets between the leaves' (3 Murray splits) and the side branches'.
+  std::vector<double> radii = truth.opening_radii;
+  std::sort(radii.begin(), radii.end());
+  EXPECT_GT(radii.back(), 0.95);
+  EXPECT_LT(radii[9], 0.55);
+  EXPECT_GT(radii.front(), 0.25);
+  EXPECT_EQ(analyze_topology(r.value()).genus, 0);
+}
 
 TEST(Phantom, ClosedEndsGiveAClosedSurface) {
   PhantomOptions o;
