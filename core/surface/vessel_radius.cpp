@@ -9,8 +9,10 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <unordered_set>
 
 #include "core/geom/point_kdtree.h"
+#include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 
 namespace vm {
@@ -45,6 +47,74 @@ std::vector<double> inward_normals(const SurfaceMesh& m) {
 // on phantoms and the reference data: rim estimates within about 10%).
 const double kCosSeparation = std::cos(110.0 * std::numbers::pi / 180);
 
+/// Shrinks the ball at `x` with inward normal `n`, from radius r_max,
+/// against the points of `tree` (indices into `pts`); `self` is x's own
+/// index in `pts` (or -1). Returns the radius, or -1 if the ball never
+/// closed.
+double shrink_ball(const PointKdTree& tree, const std::vector<double>& pts, const double* x,
+                   const double* n, int64_t self, double r_max) {
+  double r = r_max;
+  bool closed = false;
+  for (int iter = 0; iter < 64; ++iter) {
+    double c[3] = {x[0] + r * n[0], x[1] + r * n[1], x[2] + r * n[2]};
+    uint32_t q = 0;
+    double d2 = 0;
+    tree.knnSearch(c, 1, &q, &d2);
+    if (int64_t(q) == self) break;  // nothing closer than p itself: the ball is empty
+    const double* y = &pts[3 * size_t(q)];
+    double pq[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
+    double along = pq[0] * n[0] + pq[1] * n[1] + pq[2] * n[2];
+    double len2 = pq[0] * pq[0] + pq[1] * pq[1] + pq[2] * pq[2];
+    if (along <= 0) break;
+    double r_new = len2 / (2 * along);
+    if (!(r_new < r * (1 - 1e-12))) {  // no progress: q is on the sphere
+      closed = true;
+      break;
+    }
+    // Denoising (Ma et al., section 4): q seen from the new center within
+    // a small angle of p is surface noise next to p, not the wall across
+    // the lumen; keep the current ball. cos(angle p c q) = 1 - |pq|^2 /
+    // (2 r^2) on the sphere of radius r through p and q.
+    if (1 - len2 / (2 * r_new * r_new) > kCosSeparation) {
+      closed = true;
+      break;
+    }
+    r = r_new;
+    closed = true;
+  }
+  return closed ? r : -1.0;
+}
+
+/// Above this many vertices the balls are shrunk at a sample of about
+/// kSamples vertices, one per cell of a grid, against the sample only (an
+/// oversampled surface: its sample is far denser than any vessel radius).
+constexpr size_t kSampleAbove = 400'000;
+constexpr size_t kSamples = 100'000;
+
+/// One vertex per occupied cell of a grid of cells of edge
+/// sqrt(area / kSamples): about kSamples vertices spread evenly on the
+/// surface.
+std::vector<int32_t> grid_sample(const SurfaceMesh& m) {
+  double area = 0;
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    const int32_t* v = &m.triangles[3 * t];
+    const Vec3 a = at(m.points, v[0]), b = at(m.points, v[1]), c = at(m.points, v[2]);
+    area += 0.5 * norm(cross(b - a, c - a));
+  }
+  const double cell = std::sqrt(area / double(kSamples));
+  const BoundingBox box = bounding_box(m.points);
+  std::unordered_set<uint64_t> taken;
+  taken.reserve(2 * kSamples);
+  std::vector<int32_t> sample;
+  for (size_t v = 0; v < m.num_vertices(); ++v) {
+    uint64_t key = 0;
+    for (int k = 0; k < 3; ++k)
+      key = (key << 21) | (uint64_t((m.points[3 * v + size_t(k)] - box.min[k]) / cell) & 0x1FFFFF);
+    if (taken.insert(key).second) sample.push_back(int32_t(v));
+  }
+  return sample;
+}
+
 }  // namespace
 
 std::vector<double> vessel_radius(const SurfaceMesh& m) {
@@ -52,44 +122,42 @@ std::vector<double> vessel_radius(const SurfaceMesh& m) {
   const double r_max = 0.5 * bounding_box(m.points).diagonal();
   TriangleAdjacency adj = build_adjacency(m);
   std::vector<double> normal = inward_normals(m);
-  PointCloud cloud{m.points};
-  PointKdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
 
-  // Phase 1: shrink a ball at every vertex.
+  // Phase 1: shrink a ball at every vertex, or at a grid sample of an
+  // oversampled surface (each other vertex then takes the value of the
+  // sample vertex nearest along the edges: a breadth-first fill).
   std::vector<double> radius(nv, -1.0);  // -1: the ball never closed
-  for (size_t p = 0; p < nv; ++p) {
-    const double* x = &m.points[3 * p];
-    const double* n = &normal[3 * p];
-    double r = r_max;
-    bool closed = false;
-    for (int iter = 0; iter < 64; ++iter) {
-      double c[3] = {x[0] + r * n[0], x[1] + r * n[1], x[2] + r * n[2]};
-      uint32_t q = 0;
-      double d2 = 0;
-      tree.knnSearch(c, 1, &q, &d2);
-      if (q == p) break;  // nothing closer than p itself: the ball is empty
-      const double* y = &m.points[3 * size_t(q)];
-      double pq[3] = {y[0] - x[0], y[1] - x[1], y[2] - x[2]};
-      double along = pq[0] * n[0] + pq[1] * n[1] + pq[2] * n[2];
-      double len2 = pq[0] * pq[0] + pq[1] * pq[1] + pq[2] * pq[2];
-      if (along <= 0) break;
-      double r_new = len2 / (2 * along);
-      if (!(r_new < r * (1 - 1e-12))) {  // no progress: q is on the sphere
-        closed = true;
-        break;
-      }
-      // Denoising (Ma et al., section 4): q seen from the new center within
-      // a small angle of p is surface noise next to p, not the wall across
-      // the lumen; keep the current ball. cos(angle p c q) = 1 - |pq|^2 /
-      // (2 r^2) on the sphere of radius r through p and q.
-      if (1 - len2 / (2 * r_new * r_new) > kCosSeparation) {
-        closed = true;
-        break;
-      }
-      r = r_new;
-      closed = true;
+  if (nv <= kSampleAbove) {
+    PointCloud cloud{m.points};
+    PointKdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+    for (size_t p = 0; p < nv; ++p)
+      radius[p] = shrink_ball(tree, m.points, &m.points[3 * p], &normal[3 * p], int64_t(p), r_max);
+  } else {
+    const std::vector<int32_t> sample = grid_sample(m);
+    std::vector<double> pts(3 * sample.size());
+    for (size_t i = 0; i < sample.size(); ++i)
+      for (size_t k = 0; k < 3; ++k) pts[3 * i + k] = m.points[3 * size_t(sample[i]) + k];
+    PointCloud cloud{pts};
+    PointKdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+    std::vector<int32_t> source(nv, -1), queue;
+    queue.reserve(nv);
+    for (size_t i = 0; i < sample.size(); ++i) {
+      const size_t p = size_t(sample[i]);
+      radius[p] = shrink_ball(tree, pts, &m.points[3 * p], &normal[3 * p], int64_t(i), r_max);
+      source[p] = int32_t(p);
+      queue.push_back(int32_t(p));
     }
-    if (closed) radius[p] = r;
+    for (size_t head = 0; head < queue.size(); ++head) {
+      const int32_t v = queue[head];
+      for (int32_t i = adj.star_offsets[size_t(v)]; i < adj.star_offsets[size_t(v) + 1]; ++i)
+        for (int k = 0; k < 3; ++k) {
+          const int32_t w = m.triangles[3 * size_t(adj.star[size_t(i)]) + size_t(k)];
+          if (source[size_t(w)] >= 0) continue;
+          source[size_t(w)] = source[size_t(v)];
+          radius[size_t(w)] = radius[size_t(v)];
+          queue.push_back(w);
+        }
+    }
   }
 
   // Phase 2: 1-ring medians (unclosed balls take their neighbors' value).

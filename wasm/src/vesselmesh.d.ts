@@ -130,8 +130,8 @@ export interface MeshOptions {
 
 /** Options of makePhantom(). */
 export interface PhantomOptions {
-  /** the vessel model. Needs bifurcation, tube, aneurysm or torus. Default bifurcation. */
-  kind?: 'bifurcation' | 'tube' | 'aneurysm' | 'torus';
+  /** the vessel model (tree: 17 branches, 11 openings) Needs bifurcation, tube, aneurysm, torus or tree. Default bifurcation. */
+  kind?: 'bifurcation' | 'tube' | 'aneurysm' | 'torus' | 'tree';
   /** voxel edge (the parent vessel's radius is 1) In the model's unit. Needs a positive voxel size. Default 0.1. */
   voxel?: number;
   /** voxel-value noise, in voxels. Needs a noise amplitude >= 0 (in voxels). Default 0. */
