@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "bench/bench_util.h"
-#include "core/layers/chord_radius.h"
+#include "core/mesh/chord_radius.h"
 #include "core/layers/extrude_layers.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/surface/caps.h"

@@ -11,7 +11,7 @@
 #include <optional>
 #include <tuple>
 
-#include "core/layers/chord_radius.h"
+#include "core/mesh/chord_radius.h"
 #include "core/layers/extrude_layers.h"
 #include "core/layers/layered_volume.h"
 #include "core/mesh/edge_lengths.h"

@@ -7,7 +7,7 @@
 #include <set>
 
 #include "core/geom/vec3.h"
-#include "core/layers/chord_radius.h"
+#include "core/mesh/chord_radius.h"
 #include "core/prepare/cut_across_vessel.h"
 #include "core/prepare/fill_holes.h"
 #include "core/prepare/flow_extensions.h"

@@ -13,6 +13,7 @@
 
 #include "core/geom/point_kdtree.h"
 #include "core/geom/vec3.h"
+#include "core/mesh/chord_radius.h"
 #include "core/mesh/adjacency.h"
 
 namespace vm {
@@ -49,7 +50,7 @@ const double kCosSeparation = std::cos(110.0 * std::numbers::pi / 180);
 
 /// Shrinks the ball at `x` with inward normal `n`, from radius r_max,
 /// against the points of `tree` (indices into `pts`); `self` is x's own
-/// index in `pts` (or -1). Returns the radius, or -1 if the ball never
+/// index in `pts`. Returns the radius, or -1 if the ball never
 /// closed.
 double shrink_ball(const PointKdTree& tree, const std::vector<double>& pts, const double* x,
                    const double* n, int64_t self, double r_max) {
@@ -85,26 +86,20 @@ double shrink_ball(const PointKdTree& tree, const std::vector<double>& pts, cons
   return closed ? r : -1.0;
 }
 
-/// Above this many vertices the balls are shrunk at a sample of about
-/// kSamples vertices, one per cell of a grid, against the sample only (an
-/// oversampled surface: its sample is far denser than any vessel radius).
-constexpr size_t kSampleAbove = 400'000;
-constexpr size_t kSamples = 100'000;
-
 /// One vertex per occupied cell of a grid of cells of edge
-/// sqrt(area / kSamples): about kSamples vertices spread evenly on the
+/// sqrt(area / samples): about `samples` vertices spread evenly on the
 /// surface.
-std::vector<int32_t> grid_sample(const SurfaceMesh& m) {
+std::vector<int32_t> grid_sample(const SurfaceMesh& m, size_t samples) {
   double area = 0;
   for (size_t t = 0; t < m.num_triangles(); ++t) {
     const int32_t* v = &m.triangles[3 * t];
     const Vec3 a = at(m.points, v[0]), b = at(m.points, v[1]), c = at(m.points, v[2]);
     area += 0.5 * norm(cross(b - a, c - a));
   }
-  const double cell = std::sqrt(area / double(kSamples));
+  const double cell = std::sqrt(area / double(samples));
   const BoundingBox box = bounding_box(m.points);
   std::unordered_set<uint64_t> taken;
-  taken.reserve(2 * kSamples);
+  taken.reserve(2 * samples);
   std::vector<int32_t> sample;
   for (size_t v = 0; v < m.num_vertices(); ++v) {
     uint64_t key = 0;
@@ -117,7 +112,7 @@ std::vector<int32_t> grid_sample(const SurfaceMesh& m) {
 
 }  // namespace
 
-std::vector<double> vessel_radius(const SurfaceMesh& m) {
+std::vector<double> vessel_radius(const SurfaceMesh& m, const VesselRadiusSampling& sampling) {
   const size_t nv = m.num_vertices();
   const double r_max = 0.5 * bounding_box(m.points).diagonal();
   TriangleAdjacency adj = build_adjacency(m);
@@ -125,15 +120,22 @@ std::vector<double> vessel_radius(const SurfaceMesh& m) {
 
   // Phase 1: shrink a ball at every vertex, or at a grid sample of an
   // oversampled surface (each other vertex then takes the value of the
-  // sample vertex nearest along the edges: a breadth-first fill).
+  // sample vertex with a closed ball nearest along the edges: a
+  // breadth-first fill).
   std::vector<double> radius(nv, -1.0);  // -1: the ball never closed
-  if (nv <= kSampleAbove) {
+  if (nv <= sampling.sample_above) {
     PointCloud cloud{m.points};
     PointKdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
     for (size_t p = 0; p < nv; ++p)
       radius[p] = shrink_ball(tree, m.points, &m.points[3 * p], &normal[3 * p], int64_t(p), r_max);
   } else {
-    const std::vector<int32_t> sample = grid_sample(m);
+    // The sample's balls start at the half chord along the inward normal
+    // (a ball tangent at p inside the lumen is at most that large), not at
+    // the bounding box, and meet the sample's points only (a nearest-point
+    // search on the full surface visits every point of the wall's ring
+    // around the centre).
+    const std::vector<int32_t> sample = grid_sample(m, sampling.samples);
+    const std::vector<double> chord = half_chords(m, sample);
     std::vector<double> pts(3 * sample.size());
     for (size_t i = 0; i < sample.size(); ++i)
       for (size_t k = 0; k < 3; ++k) pts[3 * i + k] = m.points[3 * size_t(sample[i]) + k];
@@ -143,7 +145,15 @@ std::vector<double> vessel_radius(const SurfaceMesh& m) {
     queue.reserve(nv);
     for (size_t i = 0; i < sample.size(); ++i) {
       const size_t p = size_t(sample[i]);
-      radius[p] = shrink_ball(tree, pts, &m.points[3 * p], &normal[3 * p], int64_t(i), r_max);
+      const double r0 = chord[i] > 0 ? std::min(r_max, 1.001 * chord[i]) : r_max;
+      radius[p] = shrink_ball(tree, pts, &m.points[3 * p], &normal[3 * p], int64_t(i), r0);
+      // Unclosed, or kept at the first ball (the nearest point was judged
+      // noise next to p; isolated among vertices whose balls closed, where
+      // every vertex has one): not spread, the medians fill it.
+      if (!(radius[p] > 0) || radius[p] >= r0) {
+        radius[p] = -1;
+        continue;
+      }
       source[p] = int32_t(p);
       queue.push_back(int32_t(p));
     }

@@ -17,6 +17,18 @@ namespace vm {
 /// outward oriented (inward normals point into the lumen), at least one
 /// triangle. Vertices whose ball never closes (e.g. facing an opening) get
 /// the median of their neighbors, or at most half the bounding-box diagonal.
-std::vector<double> vessel_radius(const SurfaceMesh& mesh);
+/// An oversampled surface (more than `sample_above` vertices) has its balls
+/// shrunk at about `samples` vertices spread evenly (one per cell of a grid
+/// of edge sqrt(area / samples)); every other
+/// vertex takes the value of the sample vertex nearest along the edges.
+/// The sample is far denser than any vessel radius for the surfaces this
+/// applies to (millions of triangles).
+struct VesselRadiusSampling {
+  size_t sample_above = 400'000;
+  size_t samples = 100'000;
+};
+
+std::vector<double> vessel_radius(const SurfaceMesh& mesh,
+                                  const VesselRadiusSampling& sampling = {});
 
 }  // namespace vm

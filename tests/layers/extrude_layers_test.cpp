@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/layers/chord_radius.h"
+#include "core/mesh/chord_radius.h"
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/surface_distance.h"
 #include "core/mesh/volume_check.h"

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/layers/chord_radius.h"
+#include "core/mesh/chord_radius.h"
 #include "core/layers/extrude_layers.h"
 #include "core/layers/refine_layers.h"
 #include "core/mesh/enclosed_volume.h"

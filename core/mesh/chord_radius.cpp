@@ -2,17 +2,16 @@
 // through a bounding-volume hierarchy (mesh/triangle_bvh.h) with slab tests
 // and the Moller-Trumbore ray-triangle test (Moller and Trumbore, "Fast,
 // minimum storage ray-triangle intersection", JGT 2, 1997), 1-ring medians.
-#include "core/layers/chord_radius.h"
+#include "core/mesh/chord_radius.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "core/layers/layer_geometry.h"
+#include "core/geom/vec3.h"
 #include "core/mesh/triangle_bvh.h"
 
 namespace vm {
-using namespace layers;  // NOLINT: the layer stage's own vector helpers
 
 namespace {
 
@@ -36,7 +35,7 @@ double ray_triangle(const SurfaceMesh& m, int32_t t, const Vec3& o, const Vec3& 
 
 }  // namespace
 
-std::vector<double> chord_radius(const SurfaceMesh& wall) {
+std::vector<double> half_chords(const SurfaceMesh& wall, const std::vector<int32_t>& vertices) {
   const size_t nv = wall.num_vertices(), nt = wall.num_triangles();
   std::vector<double> normal(3 * nv, 0.0);
   for (size_t t = 0; t < nt; ++t) {
@@ -52,11 +51,12 @@ std::vector<double> chord_radius(const SurfaceMesh& wall) {
   const double diag = bounding_box(wall.points).diagonal();
   const double s_min = 1e-9 * diag;
   const TriangleBvh bvh = build_triangle_bvh(wall, 4);
-  std::vector<double> radius(nv, -1.0);
+  std::vector<double> radius(vertices.size(), -1.0);
   std::vector<int32_t> stack;
-  for (size_t v = 0; v < nv && !bvh.empty(); ++v) {
-    const Vec3 o = at(wall.points, int32_t(v));
-    const Vec3 d = normalized(at(normal, int32_t(v)));
+  for (size_t i = 0; i < vertices.size() && !bvh.empty(); ++i) {
+    const int32_t v = vertices[i];
+    const Vec3 o = at(wall.points, v);
+    const Vec3 d = normalized(at(normal, v));
     if (!(norm(d) > 0.5)) continue;
     const double inv[3] = {1 / d[0], 1 / d[1], 1 / d[2]};
     double best = std::numeric_limits<double>::infinity();
@@ -82,15 +82,24 @@ std::vector<double> chord_radius(const SurfaceMesh& wall) {
         stack.push_back(n.first + 1);
         continue;
       }
-      for (int32_t i = n.first; i < n.first + n.count; ++i) {
-        const int32_t t = bvh.order[size_t(i)];
+      for (int32_t j = n.first; j < n.first + n.count; ++j) {
+        const int32_t t = bvh.order[size_t(j)];
         const int32_t* f = &wall.triangles[3 * size_t(t)];
-        if (f[0] == int32_t(v) || f[1] == int32_t(v) || f[2] == int32_t(v)) continue;
+        if (f[0] == v || f[1] == v || f[2] == v) continue;
         best = std::min(best, ray_triangle(wall, t, o, d, s_min));
       }
     }
-    if (std::isfinite(best)) radius[v] = 0.5 * best;
+    if (std::isfinite(best)) radius[i] = 0.5 * best;
   }
+  return radius;
+}
+
+std::vector<double> chord_radius(const SurfaceMesh& wall) {
+  const size_t nv = wall.num_vertices(), nt = wall.num_triangles();
+  const double diag = bounding_box(wall.points).diagonal();
+  std::vector<int32_t> all(nv);
+  for (size_t v = 0; v < nv; ++v) all[v] = int32_t(v);
+  std::vector<double> radius = half_chords(wall, all);
   // Rays that left through an opening: their neighbors' median, grown in
   // from the measured vertices; then two passes of a 1-ring median.
   std::vector<std::vector<int32_t>> ring(nv);

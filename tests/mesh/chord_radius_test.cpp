@@ -1,4 +1,4 @@
-#include "core/layers/chord_radius.h"
+#include "core/mesh/chord_radius.h"
 
 #include <gtest/gtest.h>
 

@@ -5,6 +5,7 @@
 // hierarchy of the wall.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "core/mesh/surface_mesh.h"
@@ -23,5 +24,11 @@ namespace vm {
 /// value is a length actually measured across the lumen.
 /// Preconditions: manifold, outward oriented, every vertex in a triangle.
 std::vector<double> chord_radius(const SurfaceMesh& wall);
+
+/// The raw measure at the given wall vertices only (one value per entry of
+/// `vertices`): half the distance along the inward angle-weighted normal to
+/// the first wall triangle the ray meets, -1 where it meets none (it leaves
+/// through an opening). No smoothing. Same preconditions.
+std::vector<double> half_chords(const SurfaceMesh& wall, const std::vector<int32_t>& vertices);
 
 }  // namespace vm
