@@ -101,12 +101,13 @@ Result<TriangleSoup> read_ascii(std::span<const uint8_t> bytes, const StlReadOpt
     for (int v = 0; v < 3; ++v) {
       if (!expect("vertex")) return fail("expected 'vertex'");
       for (int k = 0; k < 3; ++k) {
-        float x;
+        double x;
         std::string_view t = cur.next();
-        if (!parse_float(t, x)) {
+        if (!parse_double(t, x)) {
           return fail("bad vertex coordinate '" + std::string(t.substr(0, 32)) + "'");
         }
-        soup.coords.push_back(x);
+        soup.coords64.push_back(x);
+        soup.coords.push_back(static_cast<float>(x));
       }
     }
     if (!expect("endloop")) {
