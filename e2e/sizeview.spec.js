@@ -115,6 +115,24 @@ test('colour by the vessel radius and the asked size, legends in mm with the cor
   await screenshots(page, 'sizeview-size', page.getByTestId('colour-by'));
   await noSideScroll(page, 'coloured');
 
+  // Meshed, the volume is shown: nothing coloured, the status says where
+  // the colours are; the input surface shown again, they are back.
+  await page.getByTestId('colour-by').selectOption('radius');
+  await expect(legend).toHaveAttribute('data-mode', 'radius');
+  await page.getByTestId('size-mode').selectOption('size');
+  await page.getByTestId('size-value').fill('0.35');
+  await page.getByTestId('layers').fill('1');
+  await page.getByTestId('refine-remove').click();
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('volume-result')).toBeVisible({ timeout: 60_000 });
+  await expect(legend).toBeHidden();
+  await expect(page.getByTestId('part-legend')).toBeVisible();
+  await expect(page.getByTestId('colour-status')).toContainText('Drawn on the input surface');
+  await page.getByTestId('show').selectOption('input');
+  await expect(legend).toBeVisible();
+  expect(close((await legendRange(page))[0], r0)).toBe(true);
+  await expect(page.getByTestId('colour-status')).toHaveText('');
+
   // Back to quality: the γ legend again.
   await page.getByTestId('colour-by').selectOption('none');
   await expect(legend).toBeHidden();

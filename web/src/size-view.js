@@ -98,6 +98,12 @@ export class SizeView {
       if (this.canColour()) this.viewer.setVertexColors(null);
       return;
     }
+    if (!this.canColour()) {
+      // The remeshed surface or the volume is shown: nothing to colour.
+      this._legend(null);
+      this._status('Drawn on the input surface: choose Show: Input surface.');
+      return;
+    }
     const field = await this._field();
     if (this.mode === 'none') return;
     if (!field || !this.canColour()) {
