@@ -70,8 +70,10 @@ export class Measure {
     this._show();
   }
 
-  /** Stops measuring (another click mode starts, a new file). */
+  /** Stops measuring (another click mode starts, a new file: then the
+   * button is usable). */
   stop() {
+    $('measure').disabled = !this.model();
     if (this.active || this.points.length) this.setActive(false);
   }
 
