@@ -204,5 +204,21 @@ test('measure: the radius at a point, the distance between two, by mouse and by 
   await expect.poll(async () => Number(await info.getAttribute('data-radius'))).toBeCloseTo(nearestRadius(c), 6);
   await page.keyboard.press('Escape');
   await expect(info).toBeHidden();
+
+  // Inspect: meshed, the volume is shown; measuring shows the remeshed
+  // surface to click on, and R is still the input's nearest vertex's.
+  await page.getByTestId('size-mode').selectOption('size');
+  await page.getByTestId('size-value').fill('0.35');
+  await page.getByTestId('layers').fill('1');
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('volume-result')).toBeVisible({ timeout: 60_000 });
+  await expect(page.getByTestId('show')).toHaveValue('volume');
+  await page.getByTestId('measure').click();
+  await expect(page.getByTestId('show')).toHaveValue('output');
+  await page.mouse.click(...(await surfacePoint(page, 'Click to measure at')));
+  await expect(info).toHaveAttribute('data-radius', /\d/);
+  const [o] = JSON.parse(await info.getAttribute('data-points'));
+  expect(Number(await info.getAttribute('data-radius'))).toBeCloseTo(nearestRadius(o), 6);
+  await page.keyboard.press('Escape');
   expect(errors).toEqual([]);
 });
