@@ -17,11 +17,13 @@
 #include "cli/read_input.h"
 #include "core/io/provenance.h"
 #include "core/io/stl.h"
+#include "core/io/vtk_writer.h"
 #include "core/io/zip_writer.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/mesh_job.h"
 #include "core/pipeline/opening_names.h"
 #include "core/pipeline/report_json.h"
+#include "core/pipeline/size_preview.h"
 #include "core/pipeline/solver_preset.h"
 #include "core/pipeline/write_outputs.h"
 #include "core/util/allocator_tuning.h"
@@ -37,7 +39,9 @@ constexpr const char* kIntro =
 usage:
   vesselmesh info FILE [options]
       Read, weld, repair and analyze a lumen surface: counts, openings,
-      holes, genus, non-manifold edges, triangle quality gamma_k.
+      holes, genus, non-manifold edges, triangle quality gamma_k; with
+      --size-field OUT.vtp, the local radius and the size the size options
+      ask for at each vertex, before meshing.
   vesselmesh mesh FILE -o OUT.msh [options]
       Remesh the surface by conformal maps, grow a boundary layer inward,
       cap each opening with a planar triangulation, fill the lumen with
@@ -241,6 +245,38 @@ int fail(const std::string& file, const vm::Status& st) {
   return fail(file.empty() ? message : file + ": " + message);
 }
 
+/// `info --size-field OUT.vtp`: the prepared surface with the radius and
+/// the asked size at its vertices (size_preview.h), and a line saying their
+/// ranges when `say`.
+int write_size_field(const std::string& file, const std::string& path,
+                     const vm::PreparedSurface& surface, const vm::MeshJobOptions& options,
+                     bool say) {
+  auto preview = vm::size_preview(surface, options);
+  if (!preview.ok()) return fail(file, preview.status());
+  const vm::SizePreview& p = preview.value();
+  vm::VtpSurface s;
+  s.points = surface.mesh.points;
+  s.triangles = surface.mesh.triangles;
+  s.face_ids.assign(surface.mesh.num_triangles(), 1);
+  s.point_scalars = {{"radius", p.radius}, {"size", p.size}};
+  vm::VtkWriteOptions wo;
+  wo.comment = "vesselmesh " + std::string(vm::kVersion) +
+               " size field: radius = local vessel radius R, size = asked edge length h (" +
+               std::string(vm::unit_symbol(surface.unit.unit)) + ")";
+  auto vtp = vm::write_vtp(s, wo);
+  if (!vtp.ok()) return fail(file, vtp.status());
+  std::string err;
+  if (!write_file(path, vtp.value().data(), vtp.value().size(), err)) return fail(err);
+  if (say) {
+    const auto [r0, r1] = std::minmax_element(p.radius.begin(), p.radius.end());
+    const auto [h0, h1] = std::minmax_element(p.size.begin(), p.size.end());
+    const std::string u(vm::unit_symbol(surface.unit.unit));
+    std::printf("size field:  wrote %s: radius %.4g..%.4g %s, size %.4g..%.4g %s\n", path.c_str(),
+                *r0, *r1, u.c_str(), *h0, *h1, u.c_str());
+  }
+  return 0;
+}
+
 int cmd_info(int argc, char** argv) {
   Args a = vm::cli::parse_args(argc, argv, 2, vm::kCommandInfo);
   if (!a.error.empty()) return usage_error(a.error);
@@ -257,6 +293,8 @@ int cmd_info(int argc, char** argv) {
   } else {
     print_text_report(a.positional[0], r.value());
   }
+  if (const vm::OptionValue* out = a.get("size_field"))
+    return write_size_field(a.positional[0], out->text, r.value(), options, !a.get("json"));
   return 0;
 }
 

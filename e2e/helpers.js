@@ -112,3 +112,23 @@ export async function screenshots(page, name, focus = null) {
   }
   await page.setViewportSize({ width: 1440, height: 900 });
 }
+
+const frame = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+
+/** With a click mode on (a cut, a refinement, a measurement), the first
+ * view position whose pick info starts with `prefix` (it names a surface
+ * point there), scanning from the view's middle; `after`: a position to
+ * skip within 40 px of. */
+export async function surfacePoint(page, prefix, after = null) {
+  const box = await page.getByTestId('viewer').boundingBox();
+  for (let fy = 0.3; fy < 0.9; fy += 0.03) {
+    for (const fx of [0.5, 0.45, 0.55, 0.4, 0.6]) {
+      const [x, y] = [box.x + fx * box.width, box.y + fy * box.height];
+      if (after && Math.hypot(x - after[0], y - after[1]) < 40) continue;
+      await page.mouse.move(x, y);
+      await frame(page);
+      if ((await page.getByTestId('pick-info').textContent()).startsWith(prefix)) return [x, y];
+    }
+  }
+  throw new Error('no surface point found in the view');
+}

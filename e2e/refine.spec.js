@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { openApp, screenshots } from './helpers.js';
+import { openApp, screenshots, surfacePoint } from './helpers.js';
 
 // Local refinement in the Mesh step: a sphere placed by clicking on the
 // surface, its radius and size edited, meshes finer there (the core's
@@ -9,23 +9,7 @@ import { openApp, screenshots } from './helpers.js';
 
 test.use({ viewport: { width: 1440, height: 900 } });
 
-const frame = (page) => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
 const count = async (page, id) => Number((await page.getByTestId(id).textContent()).replace(/,/g, ''));
-
-/** With "Add a refinement" on, the first view position whose pick info
- * names a surface point. */
-async function surfacePoint(page) {
-  const box = await page.getByTestId('viewer').boundingBox();
-  for (let fy = 0.3; fy < 0.9; fy += 0.03) {
-    for (const fx of [0.5, 0.45, 0.55, 0.4, 0.6]) {
-      const [x, y] = [box.x + fx * box.width, box.y + fy * box.height];
-      await page.mouse.move(x, y);
-      await frame(page);
-      if ((await page.getByTestId('pick-info').textContent()).startsWith('Click to refine around')) return [x, y];
-    }
-  }
-  throw new Error('no surface point found in the view');
-}
 
 test('a refinement sphere placed on the surface meshes finer there; removed, the mesh is as before', async ({ page }) => {
   const errors = [];
@@ -43,7 +27,7 @@ test('a refinement sphere placed on the surface meshes finer there; removed, the
   await page.getByTestId('add-refine').click();
   await expect(page.getByTestId('add-refine')).toHaveAttribute('aria-pressed', 'true');
   await expect(page.getByTestId('show')).toHaveValue('input');
-  const [x, y] = await surfacePoint(page);
+  const [x, y] = await surfacePoint(page, 'Click to refine around');
   await page.mouse.click(x, y);
   const rows = page.getByTestId('refine-row');
   await expect(rows).toHaveCount(1);

@@ -25,6 +25,7 @@
 #include "core/pipeline/opening_names.h"
 #include "core/pipeline/option_table.h"
 #include "core/pipeline/report_json.h"
+#include "core/pipeline/size_preview.h"
 #include "core/pipeline/solver_preset.h"
 #include "core/pipeline/write_outputs.h"
 #include "core/prepare/cut_across_vessel.h"
@@ -258,12 +259,16 @@ void set_volume(val& r, const vm::MeshJobResult& res) {
   r.set("volume", v);
 }
 
-/// The last analyzed surface, for openingNames().
+/// The last analyzed surface, for openingNames(), cutAt() and sizeField().
 std::optional<vm::PreparedSurface> last_analysis;
+/// Its local vessel radius once sizeField() computed it (it depends on the
+/// surface only), else empty.
+std::vector<double> last_radius;
 
 /// options: the JS API's analyze options (the table's info options).
 val analyze(val stl, val opts, val progress) {
   last_analysis.reset();
+  last_radius.clear();
   vm::MeshJobOptions options;
   if (vm::Status st = apply_js_options(options, opts, vm::kCommandInfo); !st.ok()) return error(st);
   std::vector<uint8_t> bytes = bytes_from(stl);
@@ -426,6 +431,33 @@ val cut_at(val point) {
   return r;
 }
 
+/// The size field the mesh options would remesh the last analyzed surface
+/// with (size_preview.h): {ok, positions, triangles (its vertices and
+/// triangles, as analyze() gave them), radius (R a vertex), size (h a
+/// vertex), unit} or the error mesh() would give for these size options.
+val size_field(val opts) {
+  if (!last_analysis)
+    return error(vm::Status::Error("nothing analyzed yet: analyze a surface first"));
+  vm::MeshJobOptions options;
+  if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh); !st.ok()) return error(st);
+  auto preview = vm::size_preview(*last_analysis, options, last_radius);
+  if (!preview.ok()) return error(preview.status());
+  const vm::SurfaceMesh& m = last_analysis->mesh;
+  last_radius = preview.value().radius;
+  val r = val::object();
+  r.set("ok", true);
+  std::vector<float> positions(m.points.begin(), m.points.end());
+  r.set("positions", copy_out(positions.data(), positions.size(), "Float32Array"));
+  r.set("triangles", copy_out(reinterpret_cast<const uint32_t*>(m.triangles.data()),
+                              m.triangles.size(), "Uint32Array"));
+  const std::vector<float> radius(preview.value().radius.begin(), preview.value().radius.end());
+  const std::vector<float> size(preview.value().size.begin(), preview.value().size.end());
+  r.set("radius", copy_out(radius.data(), radius.size(), "Float32Array"));
+  r.set("size", copy_out(size.data(), size.size(), "Float32Array"));
+  r.set("unit", std::string(vm::unit_symbol(last_analysis->unit.unit)));
+  return r;
+}
+
 /// The cumulative height fractions of the layers (N + 1 values, 0 to 1)
 /// for these mesh options (layers, growth; others ignored).
 val layer_fractions(val opts) {
@@ -470,4 +502,5 @@ EMSCRIPTEN_BINDINGS(vesselmesh) {
   emscripten::function("openingNames", &opening_names);
   emscripten::function("cutAt", &cut_at);
   emscripten::function("layerFractions", &layer_fractions);
+  emscripten::function("sizeField", &size_field);
 }

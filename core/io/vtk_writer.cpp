@@ -297,6 +297,13 @@ Result<std::string> write_vtp(const VtpSurface& s, const VtkWriteOptions& option
     return R::Error("VTP: global node ids are not one per point");
   if (!s.global_element_ids.empty() && s.global_element_ids.size() != nc)
     return R::Error("VTP: global element ids are not one per cell");
+  for (const auto& [name, values] : s.point_scalars) {
+    if (values.size() != n) return R::Error("VTP: point data '" + name + "' is not one per point");
+    if (name.empty() ||
+        name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                               "0123456789_") != std::string::npos)
+      return R::Error("VTP: point data name '" + name + "' is not a plain word");
+  }
   if (!in_range(s.triangles, n) || !in_range(s.quads, n))
     return R::Error("VTP: a cell refers to a point out of range");
   if (nc > size_t(INT32_MAX)) return R::Error("VTP: too many cells");
@@ -307,12 +314,14 @@ Result<std::string> write_vtp(const VtpSurface& s, const VtkWriteOptions& option
   for (int32_t v : s.quads) new_index[v] = 0;
   std::vector<double> points;
   std::vector<int32_t> node_ids;
+  std::vector<std::vector<double>> scalars(s.point_scalars.size());
   int32_t used = 0;
   for (size_t v = 0; v < n; ++v) {
     if (new_index[v] < 0) continue;
     new_index[v] = used++;
     points.insert(points.end(), &s.points[3 * v], &s.points[3 * v] + 3);
     if (!s.global_node_ids.empty()) node_ids.push_back(s.global_node_ids[v]);
+    for (size_t k = 0; k < scalars.size(); ++k) scalars[k].push_back(s.point_scalars[k].second[v]);
   }
   std::vector<int32_t> connectivity;
   connectivity.reserve(s.triangles.size() + s.quads.size());
@@ -324,8 +333,13 @@ Result<std::string> write_vtp(const VtpSurface& s, const VtkWriteOptions& option
   add_offsets(offsets, s.quads.size() / 4, 4);
 
   std::vector<Section> sections;
+  Section point_data{"PointData", {}};
   if (!s.global_node_ids.empty())
-    sections.push_back({"PointData", {array_ref("Int32", "GlobalNodeID", 1, node_ids)}});
+    point_data.arrays.push_back(array_ref("Int32", "GlobalNodeID", 1, node_ids));
+  for (size_t k = 0; k < scalars.size(); ++k)
+    point_data.arrays.push_back(
+        array_ref("Float64", s.point_scalars[k].first.c_str(), 1, scalars[k]));
+  if (!point_data.arrays.empty()) sections.push_back(std::move(point_data));
   Section cell_data{"CellData", {array_ref("Int32", "ModelFaceID", 1, s.face_ids)}};
   if (!s.global_element_ids.empty())
     cell_data.arrays.push_back(array_ref("Int32", "GlobalElementID", 1, s.global_element_ids));

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/mesh/volume_mesh.h"
@@ -69,6 +70,10 @@ struct VtpSurface {
   /// then quads).
   std::span<const int32_t> global_node_ids;
   std::vector<int32_t> global_element_ids;
+  /// Optional named point data (Float64, one value per point of `points`,
+  /// kept with the points they belong to), e.g. {"radius", R} (a name must
+  /// be a plain word: letters, digits, '_').
+  std::vector<std::pair<std::string, std::span<const double>>> point_scalars;
 
   size_t num_cells() const { return triangles.size() / 3 + quads.size() / 4; }
 };
@@ -76,7 +81,7 @@ struct VtpSurface {
 /// The surface `s` as a VTK XML PolyData (same encoding as write_vtu): the
 /// used points (Float64 x 3), polys (connectivity Int32, offsets Int64),
 /// cell data ModelFaceID and, when given, GlobalElementID, point data
-/// GlobalNodeID when given. Errors: array sizes inconsistent (partial
+/// GlobalNodeID and the point scalars when given. Errors: array sizes inconsistent (partial
 /// cells, a face id or global id count that is not one per cell or per
 /// point), a point index out of range.
 Result<std::string> write_vtp(const VtpSurface& s, const VtkWriteOptions& options = {});

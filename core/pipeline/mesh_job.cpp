@@ -21,6 +21,7 @@
 #include "core/mesh/surface_distance.h"
 #include "core/mesh/volume_check.h"
 #include "core/pipeline/opening_names.h"
+#include "core/pipeline/size_preview.h"
 #include "core/pipeline/write_outputs.h"
 #include "core/quality/tet_quality.h"
 #include "core/surface/element_estimate.h"
@@ -118,24 +119,6 @@ Status check_volume_change(const SurfaceFidelity& f, const MeshJobOptions& optio
                 uniform ? so.size * scale : std::ceil(so.per_circumference / scale),
                 uniform ? "smaller" : "more", std::ceil(100 * change + 1) / 100);
   return Status::BadOption(uniform ? "size" : "per_circumference", buf);
-}
-
-/// Refinement spheres whose size H is below 1e-4 of the model's bounding-box
-/// diagonal are refused: the graded field would ask for elements too small
-/// to place in floating point near the centre (the corpus found 1e-300 to
-/// hang), and no vessel feature is that small.
-Status check_refine_sizes(const std::vector<RefineSphere>& spheres, double diagonal,
-                          std::string_view unit) {
-  const double smallest = 1e-4 * diagonal;
-  for (const RefineSphere& s : spheres)
-    if (!(s.size >= smallest))
-      return Status::BadOption(
-          "refine", "size " + number_text(s.size) + " at " +
-                        point_text({s.center[0], s.center[1], s.center[2]}) + " " +
-                        std::string(unit) + " is below 1e-4 of the model's size (" +
-                        number_text(diagonal) + " " + std::string(unit) + "): give a size of " +
-                        number_text(smallest, 2) + " or more");
-  return Status::Ok();
 }
 
 /// Warnings on layers the user may not have meant: a vessel wall asked for

@@ -101,6 +101,14 @@ void limit_gradation(const SurfaceMesh& m, std::vector<double>& h, double gradat
 }
 
 Result<std::vector<double>> vertex_sizes(const SurfaceMesh& m, const SizeOptions& o) {
+  if (o.mode != SizeMode::kPerCircumference || m.num_triangles() == 0)
+    return vertex_sizes(m, o, {});
+  const std::vector<double> r = vessel_radius(m);
+  return vertex_sizes(m, o, r);
+}
+
+Result<std::vector<double>> vertex_sizes(const SurfaceMesh& m, const SizeOptions& o,
+                                         std::span<const double> r) {
   using R = Result<std::vector<double>>;
   if (m.num_triangles() == 0) return R::Error("the surface is empty");
   if (!(o.size_min >= 0) || !(o.size_max > 0) || o.size_min > o.size_max)
@@ -119,7 +127,7 @@ Result<std::vector<double>> vertex_sizes(const SurfaceMesh& m, const SizeOptions
   } else {
     if (!(o.per_circumference >= 3) || !std::isfinite(o.per_circumference))
       return Status::BadOption("per_circumference", "must be a number >= 3");
-    std::vector<double> r = vessel_radius(m);
+    if (r.size() != nv) return Status::Internal("the size field got no radius per vertex");
     for (size_t v = 0; v < nv; ++v) h[v] = 2 * std::numbers::pi * r[v] / o.per_circumference;
   }
   std::vector<int32_t> off, nb;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "core/geom/refine_sphere.h"
@@ -40,6 +41,13 @@ struct SizeOptions {
 /// from vessel_radius (shrinking balls). Errors: non-positive or non-finite
 /// parameters, min > max, an empty mesh.
 Result<std::vector<double>> vertex_sizes(const SurfaceMesh& mesh, const SizeOptions& options);
+
+/// The same with the local radius given (one per vertex, model units, as
+/// vessel_radius gives it; used in the per-circumference mode only), for a
+/// caller that also needs the radius (size_preview.h). Precondition:
+/// radius.size() == mesh.num_vertices() in that mode.
+Result<std::vector<double>> vertex_sizes(const SurfaceMesh& mesh, const SizeOptions& options,
+                                         std::span<const double> radius);
 
 /// Limits the growth of `h` (one size per vertex of `mesh`) to `gradation`
 /// per unit length along the edges, lowering sizes only (0: no change).

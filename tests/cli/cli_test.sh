@@ -29,7 +29,7 @@ check "unknown option" expect_exit 2 "unknown option '--bogus'" "$VM" info x.stl
 check "option twice" expect_exit 2 "option '--size' is given more than once" "$VM" mesh x.stl -o x.msh --size 1 --size 2
 check "flag with a value" expect_exit 2 "option '--verify' takes no value" "$VM" mesh x.stl -o x.msh --verify=1
 check "option without value" expect_exit 2 "option '--size' needs a value" "$VM" mesh x.stl -o x.msh --size
-check "mesh option on info" expect_exit 2 "unknown option '--size'" "$VM" info x.stl --size 1
+check "mesh option on info" expect_exit 2 "unknown option '--layers'" "$VM" info x.stl --layers 1
 check "missing file" expect_exit 1 "cannot open '$T/none.stl'" "$VM" info "$T/none.stl"
 : > "$T/empty.stl"
 check "empty file" expect_exit 1 "empty file" "$VM" info "$T/empty.stl"
@@ -89,6 +89,43 @@ check "refine: a bad radius" expect_exit 2 "--refine needs 5 numbers X,Y,Z,R,H" 
 check "refine: a size too small for floating point" expect_exit 2 "below 1e-4 of the model's size" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --refine 1e-300,1e-300,1e-300,1e-300,1e-300
 check "refine: finer within the sphere" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/refined.msh" --surface-only --refine 0,0,0,1,0.08 --report "$T/refined.json"
 check "refine: the smallest size is the sphere's" [ "$(json "$T/refined.json" "abs(d['output']['remesh']['size']['min'] - 0.08) < 1e-9")" = True ]
+# The size field before meshing: info --size-field writes the prepared
+# surface with point data radius (R) and size (h) in the model's unit.
+vtp_arrays() {  # vtp_arrays FILE: prints a dict name -> list of Float64 point data values
+  python3 - "$1" <<'PY'
+import re, struct, sys
+d = open(sys.argv[1], 'rb').read()
+head, data = d.split(b'<AppendedData encoding="raw">', 1)
+data = data[data.index(b'_') + 1:]
+pd = re.search(rb'<PointData>(.*?)</PointData>', head, re.S).group(1)
+out = {}
+for m in re.finditer(rb'<DataArray type="Float64" Name="(\w+)" format="appended" offset="(\d+)"', pd):
+    off = int(m.group(2)); n = struct.unpack('<Q', data[off:off + 8])[0]
+    out[m.group(1).decode()] = struct.unpack('<%dd' % (n // 8), data[off + 8:off + 8 + n])
+print(repr(out))
+PY
+}
+check "size field: written" expect_exit 0 "size field:  wrote $T/sf.vtp: radius" "$VM" info "$T/bif.stl" --size-field "$T/sf.vtp" --per-circumference 16 --gradation 0
+check "size field: h = 2 pi R / N, R near the phantom's (parent radius 1)" [ "$(vtp_arrays "$T/sf.vtp" | python3 -c "
+import math, sys
+a = eval(sys.stdin.read()); r, h = a['radius'], a['size']
+med = sorted(r)[len(r) // 2]
+print(len(r) == len(h) > 100 and 0.5 < med < 1.1 and all(abs(y - 2 * math.pi * x / 16) <= 1e-12 * x for x, y in zip(r, h)))")" = True ]
+check "size field: a refinement sphere's size is the smallest" expect_exit 0 "size field:" "$VM" info "$T/bif.stl" --size-field "$T/sfr.vtp" --refine 0,0,0,1,0.08 --size-max 0.4
+check "size field: min H, max size-max" [ "$(vtp_arrays "$T/sfr.vtp" | python3 -c "
+import sys
+h = eval(sys.stdin.read())['size']
+print(abs(min(h) - 0.08) < 1e-12 and max(h) <= 0.4)")" = True ]
+check "size field: a bad refinement refused as mesh refuses it" expect_exit 2 "below 1e-4 of the model's size" "$VM" info "$T/bif.stl" --size-field "$T/x.vtp" --refine 0,0,0,1,1e-9
+check "size field: needs a file name" expect_exit 2 "option '--size-field' needs a value" "$VM" info "$T/bif.stl" --size-field
+check "size field: JSON stays JSON" [ "$("$VM" info "$T/bif.stl" --json --size-field "$T/sfj.vtp" | python3 -c "import json,sys; print(len(json.load(sys.stdin)['openings']))")" = 3 ]
+if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import vtk" 2>/dev/null; then
+  check "size field: VTK reads radius and size" [ "$(/usr/bin/python3 -c "
+import vtk
+r = vtk.vtkXMLPolyDataReader(); r.SetFileName('$T/sf.vtp'); r.Update()
+p = r.GetOutput(); pd = p.GetPointData()
+print(p.GetNumberOfPoints() > 100 and pd.GetArray('radius').GetNumberOfTuples() == p.GetNumberOfPoints() and pd.GetArray('size') is not None)")" = True ]
+fi
 check "mesh bad size" expect_exit 2 "--size needs a positive length" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size -1
 check "mesh bad N" expect_exit 2 "--per-circumference needs" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --per-circumference 2
 check "mesh bad param" expect_exit 2 "lscm, harmonic or floater" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --param conformal

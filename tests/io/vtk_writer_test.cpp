@@ -181,6 +181,29 @@ TEST(VtkWriter, VtpKeepsUsedPointsAndTheirGlobalIds) {
   EXPECT_NE(f.find("CellData", "ModelFaceID"), nullptr);
 }
 
+TEST(VtkWriter, VtpPointScalarsFollowTheirPoints) {
+  // Point 2 is unused: its values are dropped with it.
+  const std::vector<double> points = {0, 0, 0, 1, 0, 0, 9, 9, 9, 0, 1, 0};
+  const std::vector<double> radius = {1.5, 2.5, 99, 3.5}, size = {0.1, 0.2, 99, 0.3};
+  VtpSurface s;
+  s.points = points;
+  s.triangles = {0, 1, 3};
+  s.face_ids = {1};
+  s.point_scalars = {{"radius", radius}, {"size", size}};
+  for (bool zlib : {false, true}) {
+    VtkWriteOptions o;
+    o.zlib = zlib;
+    VtkFile f = parse(write_vtp(s, o));
+    EXPECT_EQ(f.values<double>("PointData", "radius"), (std::vector<double>{1.5, 2.5, 3.5}));
+    EXPECT_EQ(f.values<double>("PointData", "size"), (std::vector<double>{0.1, 0.2, 0.3}));
+  }
+  const std::vector<double> short_values = {1, 2};
+  s.point_scalars = {{"radius", short_values}};
+  EXPECT_FALSE(write_vtp(s).ok());
+  s.point_scalars = {{"a\"b", radius}};
+  EXPECT_FALSE(write_vtp(s).ok());
+}
+
 TEST(VtkWriter, VtpErrors) {
   const std::vector<double> points = {0, 0, 0, 1, 0, 0, 0, 1, 0};
   VtpSurface s;

@@ -102,6 +102,11 @@ export class VesselmeshClient {
     return this._call('layerFractions', [options]);
   }
 
+  /** The size field of the last analyzed surface for these mesh options (API sizeField()). */
+  sizeField(options = {}) {
+    return this._call('sizeField', [options]);
+  }
+
   /** Generates a phantom STL; options as in the API's makePhantom(). */
   makePhantom(options = {}) {
     return this._call('makePhantom', [options]);

@@ -29,6 +29,20 @@ export interface AnalyzeOptions {
   clipPlanes?: number[] | number[][];
   /** cut across the vessel at the surface point nearest X,Y,Z, perpendicular to the vessel, removing the side with less surface. In the model's unit. Needs 3 numbers X,Y,Z: a point on or near the vessel to cut across. */
   clipAt?: number[] | number[][];
+  /** uniform target edge length. In the model's unit. Needs a positive length. */
+  size?: number;
+  /** h = 2 pi R(x) / N, R the local vessel radius (the default size mode) Needs a number of edges per circumference >= 3. Default 20. */
+  perCircumference?: number;
+  /** smallest edge length. In the model's unit. Needs a length >= 0. Default 0. */
+  sizeMin?: number;
+  /** largest edge length. In the model's unit. Needs a positive length. */
+  sizeMax?: number;
+  /** local refinement: edges of at most H within R of (X,Y,Z), graded out of it (wall and volume) In the model's unit. Needs 5 numbers X,Y,Z,R,H: a centre, a radius R > 0 and a size H > 0. */
+  refine?: number[] | number[][];
+  /** the size grows at most G per unit length. Needs a number >= 0 (size growth per unit length). Default 0.2. */
+  gradation?: number;
+  /** at least P edges per radian of curvature (0: off) Needs a number of points per radian >= 0. Default 0. */
+  curvature?: number;
 }
 
 /** Options of mesh(). */
@@ -250,6 +264,11 @@ export type ExportResult = { ok: true; file: Uint8Array; fileName: string; forma
 
 export type ExportOptions = Pick<MeshOptions, 'mshVersion' | 'outputUnits'>;
 
+/** What sizeField() gives: the last analyzed surface and, a vertex, the local vessel radius R and the asked edge length h (the model's unit). */
+export type SizeFieldResult =
+  | { ok: true; positions: Float32Array; triangles: Uint32Array; radius: Float32Array; size: Float32Array; unit: string }
+  | Failure;
+
 /** A solver preset (`solver`): the defaults it sets (README, "Solver presets"). */
 export interface SolverPreset {
   name: NonNullable<MeshOptions['solver']>;
@@ -279,6 +298,8 @@ export interface VesselmeshApi {
   cutAt(point: ArrayLike<number>): { ok: true; point: number[]; normal: number[]; radius: number; areaRemoved: number } | Failure;
   /** The layers' cumulative height fractions (layers + 1 values from 0 to 1). */
   layerFractions(options?: Pick<MeshOptions, 'layers' | 'growth'>): { ok: true; fractions: Float64Array } | Failure;
+  /** The size field mesh() would remesh the last analyzed surface with: at each of its vertices the local vessel radius R and the asked edge length h, in the model's unit, before meshing; or the error mesh() would give. */
+  sizeField(options?: MeshOptions): SizeFieldResult;
   /** A synthetic segmentation-like vessel surface as binary STL. */
   makePhantom(options?: PhantomOptions): { ok: true; stl: Uint8Array } | Failure;
 }
@@ -314,6 +335,7 @@ export class VesselmeshClient {
   openingNames(options?: Pick<MeshOptions, 'names' | 'inlet'>): Promise<{ ok: true; names: string[] } | Failure>;
   cutAt(point: ArrayLike<number>): Promise<{ ok: true; point: number[]; normal: number[]; radius: number; areaRemoved: number } | Failure>;
   layerFractions(options?: Pick<MeshOptions, 'layers' | 'growth'>): Promise<{ ok: true; fractions: Float64Array } | Failure>;
+  sizeField(options?: MeshOptions): Promise<SizeFieldResult>;
   makePhantom(options?: PhantomOptions): Promise<{ ok: true; stl: Uint8Array } | Failure>;
   cancel(): void;
   dispose(): void;

@@ -153,6 +153,22 @@ export async function createVesselmesh({ wasmBinary } = {}) {
     },
 
     /**
+     * The size field mesh() would remesh the last analyzed surface with,
+     * before meshing: at each vertex of that surface (its positions and
+     * triangles, as analyze() gave them) the local vessel radius R and the
+     * edge length h the size options ask for (perCircumference or size,
+     * sizeMin, sizeMax, curvature, gradation, refine), in the model's
+     * `unit`; or the error mesh() would give for these options.
+     * @returns {{ok: true, positions: Float32Array, triangles: Uint32Array,
+     *   radius: Float32Array, size: Float32Array, unit: string}
+     *   | {ok: false, error: string}}
+     */
+    sizeField(options = {}) {
+      const raw = core.sizeField(options);
+      return raw.ok ? raw : failure(raw);
+    },
+
+    /**
      * The cumulative height fractions of the boundary layer's layers for
      * these options (`layers`, `growth`): layers + 1 values from 0 to 1, the
      * first layer's height being fractions[1] times the total thickness.

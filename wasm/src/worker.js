@@ -1,13 +1,14 @@
 // Module Web Worker serving the vesselmesh API. Protocol:
 //   in:  { id, op: 'analyze' | 'mesh' | 'makePhantom' | 'export' | 'openingNames' |
-//          'cutAt' | 'layerFractions',
+//          'cutAt' | 'layerFractions' | 'sizeField',
 //          args: [bytes?, options] }
 //        (export: args [format, options]: the last mesh in another format)
 //   out: { type: 'ready', version, optionTable, solverPresets } | { type: 'error', error } once
 //        at start;
 //        { id, type: 'progress', fraction, stage } during a job (at most one
 //        every 50 ms); { id, type: 'result', result } at the end, with the
-//        result's typed-array buffers (file, msh, stl, surface.*, volume.*)
+//        result's typed-array buffers (file, msh, stl, surface.*, volume.*,
+//        sizeField's arrays)
 //        transferred, not copied.
 import { transferables } from './transfer.js';
 import { createVesselmesh } from './vesselmesh.js';
@@ -66,6 +67,9 @@ self.onmessage = async (event) => {
       break;
     case 'layerFractions':
       result = api.layerFractions(args[0]);
+      break;
+    case 'sizeField':
+      result = api.sizeField(args[0]);
       break;
     default:
       result = { ok: false, error: `unknown operation '${op}'` };

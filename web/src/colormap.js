@@ -27,3 +27,32 @@ export function qualityGradientCss() {
   });
   return `linear-gradient(to right, ${stops.join(', ')})`;
 }
+
+// Sequential colormap for lengths (the vessel radius, the edge size): dark
+// blue (small) through teal and green to yellow (large), even in lightness
+// so that a larger value always looks lighter.
+const SCALAR_STOPS = [
+  [0.0, [0.27, 0.0, 0.33]],
+  [0.25, [0.23, 0.32, 0.55]],
+  [0.5, [0.13, 0.57, 0.55]],
+  [0.75, [0.37, 0.79, 0.38]],
+  [1.0, [0.99, 0.91, 0.14]],
+];
+
+/** Writes the RGB (0..1) color of t in [0, 1] (clamped) on the length
+ * colormap into out[offset..offset+3). */
+export function scalarColor(t, out, offset = 0) {
+  const x = Math.min(1, Math.max(0, Number.isFinite(t) ? t : 0));
+  let i = 1;
+  while (i < SCALAR_STOPS.length - 1 && x > SCALAR_STOPS[i][0]) i++;
+  const [x0, c0] = SCALAR_STOPS[i - 1];
+  const [x1, c1] = SCALAR_STOPS[i];
+  const f = (x - x0) / (x1 - x0);
+  for (let k = 0; k < 3; k++) out[offset + k] = c0[k] + f * (c1[k] - c0[k]);
+}
+
+/** CSS linear-gradient of the length colormap, for its legend. */
+export function scalarGradientCss() {
+  const stops = SCALAR_STOPS.map(([x, c]) => `rgb(${c.map((v) => Math.round(v * 255)).join(',')}) ${x * 100}%`);
+  return `linear-gradient(to right, ${stops.join(', ')})`;
+}

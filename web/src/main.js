@@ -20,6 +20,8 @@ import { Viewer } from './viewer.js';
 import { listenViewKeys } from './view-keys.js';
 import { withPrismsSplit } from './prisms.js';
 import { Refinements } from './refine.js';
+import { Measure } from './measure.js';
+import { SizeView } from './size-view.js';
 import { showSurfaceQuality } from './surface-quality.js';
 import { VolumeView } from './volume-view.js';
 import { createWorker } from './worker-source.js';
@@ -85,9 +87,49 @@ const refinements = new Refinements({
     $('show').value = 'input';
     show('input', { fit: false });
   },
-  onAdding: () => prepare.setAdding(false),
+  onAdding: () => {
+    prepare.setAdding(false);
+    measure.stop();
+  },
+  onChange: () => sizeView.optionsChanged(),
 });
-$('add-cut').addEventListener('click', () => refinements.setAdding(false));
+$('add-cut').addEventListener('click', () => {
+  refinements.setAdding(false);
+  measure.stop();
+});
+
+// The size field before meshing (size-view.js) and measurements (measure.js).
+const sizeView = new SizeView({
+  viewer,
+  sizeField: async (options) => {
+    if (busy || acting) return { ok: false, error: 'a job is running; the colours follow when it ends' };
+    if (!(await ensureAnalyzed())) return { ok: false, error: 'the surface could not be analyzed' };
+    return client.sizeField(options);
+  },
+  sizeOptions: () => {
+    const refine = refinements.options().filter(([, , , r, h]) => r > 0 && h > 0);
+    return { [$('size-mode').value]: numberIn('size-value'), ...(refine.length && { refine }) };
+  },
+  surface: () => current?.surface ?? null,
+  canColour: () => shown === 'input',
+  showInput: refinements.showSurface,
+});
+const measure = new Measure({
+  viewer,
+  radiusAt: (point) => sizeView.radiusAt(point),
+  model: () => current && { unit: current.analysis.units.unit, scale: current.analysis.bounding_box.diagonal },
+  canPick: () => shown !== 'volume',
+  showSurface: () => {
+    $('show').value = remeshed ? 'output' : 'input';
+    show($('show').value, { fit: false });
+  },
+  onStart: () => {
+    prepare.setAdding(false);
+    refinements.setAdding(false);
+  },
+});
+for (const id of ['size-mode', 'size-value']) $(id).addEventListener('input', () => sizeView.optionsChanged());
+$('size-mode').addEventListener('change', () => sizeView.optionsChanged());
 
 $('legend').querySelector('.ramp').style.background = qualityGradientCss();
 
@@ -225,6 +267,7 @@ async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, on
   openings.show(analysis.openings, { unit: analysis.units.unit, labelArray: analysis.label_array, scale }, edits);
   prepare.show(analysis, { fresh });
   if (fresh) refinements.reset({ unit: analysis.units.unit, scale });
+  measure.stop();
   $('flow-error').hidden = true;
   // The same surface again (other options): the view keeps its camera.
   show('input', { fit: fresh || shown === null });
@@ -617,6 +660,7 @@ function show(which, { fit = true } = {}) {
       volumeView.show(volume);
       drawLegend(volume);
       shown = 'volume';
+      sizeView.shown();
       return;
     } catch (e) {
       showError(`Cannot show the volume: ${e.message}`);
@@ -632,6 +676,7 @@ function show(which, { fit = true } = {}) {
   shown = output ? 'output' : 'input';
   prepare.setVisible(!output);
   refinements.setVisible(true);
+  sizeView.shown();
 }
 
 /** The gamma_t histogram: of the core (the layers' elements are flat by

@@ -11,14 +11,13 @@
 import { CutDiscs } from './cut-discs.js';
 import { alongVessel, cutPlane, keepSide } from './cut-geometry.js';
 import { Repairs } from './repair.js';
+import { CLICK_SLOP_PX, listenSurfaceClicks, viewCentre } from './surface-clicks.js';
 import { length, point, withUnit } from './units.js';
 
 const $ = (id) => document.getElementById(id);
 // A move along the vessel asks the core again at most this far (local
 // radii), so the cut follows a bending vessel.
 const MOVE_STEP = 0.5;
-// A press on the view that moves less than this is a click (else an orbit).
-const CLICK_SLOP_PX = 5;
 
 const samePlanes = (a, b) => JSON.stringify(a) === JSON.stringify(b);
 
@@ -83,10 +82,7 @@ export class Prepare {
       if (this._passes() !== null) this._reanalyze();
     });
     $('add-cut').addEventListener('click', () => this.setAdding(!this.adding));
-    $('cut-center').addEventListener('click', () => {
-      const rect = this.viewer.renderer.domElement.getBoundingClientRect();
-      this._addAt(rect.left + rect.width / 2, rect.top + rect.height / 2);
-    });
+    $('cut-center').addEventListener('click', () => this._addAt(...viewCentre(this.viewer)));
     $('propose-cuts').addEventListener('click', () => this._useProposals());
     $('apply-cuts').addEventListener('click', () => this.apply());
     $('cut-move').addEventListener('input', () => this._moveTo(Number($('cut-move').value)));
@@ -104,30 +100,18 @@ export class Prepare {
     }
     $('cut-deselect').addEventListener('click', () => this.select(-1));
 
-    // A click (not a drag) on the view adds a cut there while adding.
-    const view = $('viewer');
-    let down = null;
-    view.addEventListener('pointerdown', (e) => {
-      down = { x: e.clientX, y: e.clientY };
-    });
-    // While adding, where the cut would go is said as the pointer moves.
-    let frame = 0;
-    view.addEventListener('pointermove', (e) => {
-      if (!this.adding || frame) return;
-      const { clientX: x, clientY: y } = e;
-      frame = requestAnimationFrame(() => {
-        frame = 0;
+    // A click (not a drag) on the view adds a cut there while adding, else
+    // selects the cut drawn there; where the cut would go is said as the
+    // pointer moves.
+    listenSurfaceClicks($('viewer'), {
+      active: () => true,
+      onClick: (x, y) => (this.adding ? this._addAt(x, y) : this._selectNear(x, y)),
+      onHover: (x, y) => {
         if (this.adding) this._showPick(this.viewer.pick(x, y));
-      });
-    });
-    view.addEventListener('pointerup', (e) => {
-      if (!down || e.target.tagName !== 'CANVAS') return;
-      if (Math.hypot(e.clientX - down.x, e.clientY - down.y) > CLICK_SLOP_PX) return;
-      if (this.adding) this._addAt(e.clientX, e.clientY);
-      else this._selectNear(e.clientX, e.clientY);
-    });
-    document.addEventListener('keydown', (e) => {
-      if (e.key === 'Escape' && this.adding) this.setAdding(false);
+      },
+      onEscape: () => {
+        if (this.adding) this.setAdding(false);
+      },
     });
   }
 

@@ -7,11 +7,11 @@
 import * as THREE from 'three';
 
 import { disposeOverlay } from './overlay.js';
+import { listenSurfaceClicks } from './surface-clicks.js';
 import { point } from './units.js';
 
 const $ = (id) => document.getElementById(id);
 const COLOR = 0x2a9d4b;
-const CLICK_SLOP_PX = 5;
 
 function element(tag, props = {}, testId = null) {
   const node = Object.assign(document.createElement(tag), props);
@@ -27,9 +27,10 @@ export class Refinements {
    *   that can be clicked (else the surface is shown first by showSurface)
    * @param {() => void} hooks.showSurface shows the surface in the view
    * @param {() => void} hooks.onAdding another click mode must stop
+   * @param {() => void} hooks.onChange the spheres changed (added, edited, removed)
    */
-  constructor({ viewer, canPick, showSurface, onAdding = () => {} }) {
-    Object.assign(this, { viewer, canPick, showSurface, onAdding });
+  constructor({ viewer, canPick, showSurface, onAdding = () => {}, onChange = () => {} }) {
+    Object.assign(this, { viewer, canPick, showSurface, onAdding, onChange });
     this.spheres = []; // {center: [x, y, z], radius, size}
     this.adding = false;
     this.visible = true;
@@ -38,24 +39,15 @@ export class Refinements {
     this.unit = 'mm';
     this.scale = 1;
     $('add-refine').addEventListener('click', () => this.setAdding(!this.adding));
-    const view = $('viewer');
-    let down = null;
-    view.addEventListener('pointerdown', (e) => {
-      down = { x: e.clientX, y: e.clientY };
-    });
-    view.addEventListener('pointermove', (e) => {
-      if (!this.adding) return;
-      const at = this.viewer.pick(e.clientX, e.clientY);
-      $('pick-info').hidden = false;
-      $('pick-info').textContent = at ? `Click to refine around ${point(at, this.scale)} ${this.unit}` : 'Not on the surface';
-    });
-    view.addEventListener('pointerup', (e) => {
-      if (!this.adding || !down || e.target.tagName !== 'CANVAS') return;
-      if (Math.hypot(e.clientX - down.x, e.clientY - down.y) > CLICK_SLOP_PX) return;
-      this._addAt(e.clientX, e.clientY);
-    });
-    document.addEventListener('keydown', (e) => {
-      if (e.key === 'Escape' && this.adding) this.setAdding(false);
+    listenSurfaceClicks($('viewer'), {
+      active: () => this.adding,
+      onClick: (x, y) => this._addAt(x, y),
+      onHover: (x, y) => {
+        const at = this.viewer.pick(x, y);
+        $('pick-info').hidden = false;
+        $('pick-info').textContent = at ? `Click to refine around ${point(at, this.scale)} ${this.unit}` : 'Not on the surface';
+      },
+      onEscape: () => this.setAdding(false),
     });
   }
 
@@ -134,6 +126,7 @@ export class Refinements {
     const rows = this.spheres.map((s, i) => this._row(s, i));
     $('refinements').querySelector('tbody').replaceChildren(...rows);
     $('refinements').hidden = rows.length === 0;
+    this.onChange();
     $('refine-hint').textContent = rows.length
       ? 'Within each radius the edges are at most the size, growing smoothly outside.'
       : 'None: add one and click on the surface where the mesh should be finer (an aneurysm neck, a stenosis).';
@@ -151,6 +144,7 @@ export class Refinements {
         s[key] = input.value.trim() === '' ? NaN : Number(input.value);
         input.setAttribute('aria-invalid', 'false');
         this._draw();
+        this.onChange();
       });
       return input;
     };

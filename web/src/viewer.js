@@ -1,8 +1,8 @@
 // three.js view: one content at a time (a triangle surface colored per
 // triangle by quality, or the clipped volume of volume-view.js), orbit
 // controls, fit-to-view, a wireframe overlay, highlighted loops, overlays
-// that outlive the content (the cut discs) and picking a point on the
-// surface.
+// that outlive the content (the cut discs), per-vertex colours of the
+// surface (the size view) and picking a point on the surface.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 
@@ -89,6 +89,29 @@ export class Viewer {
     this.setContent(group, geometry.boundingSphere, { fit });
     this.wire = wire;
     this.solid = solid;
+    this.surface = { triangles, quality };
+  }
+
+  /**
+   * Colours the shown surface (setSurface) per vertex: `colors` holds 3
+   * floats (RGB 0..1) a vertex of its positions; null brings back the
+   * quality colours. False when no surface is shown.
+   */
+  setVertexColors(colors) {
+    if (!this.solid || !this.surface) return false;
+    const { triangles, quality } = this.surface;
+    const attribute = this.solid.geometry.getAttribute('color');
+    const col = attribute.array;
+    for (let t = 0; t < triangles.length / 3; t++) {
+      for (let c = 0; c < 3; c++) {
+        const o = 9 * t + 3 * c;
+        if (colors) col.set(colors.subarray(3 * triangles[3 * t + c], 3 * triangles[3 * t + c] + 3), o);
+        else qualityColor(quality[t], col, o);
+      }
+    }
+    attribute.needsUpdate = true;
+    this.render();
+    return true;
   }
 
   /**
@@ -112,7 +135,7 @@ export class Viewer {
         obj.material?.dispose();
       });
     }
-    this.content = this.sphere = this.wire = this.solid = null;
+    this.content = this.sphere = this.wire = this.solid = this.surface = null;
     this.highlightLoop(null);
   }
 
