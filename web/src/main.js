@@ -13,8 +13,10 @@ import { drawGroupLegend, drawPartLegend, PARTS } from './groups.js';
 import { drawHistogram } from './histogram.js';
 import { OpeningsTable } from './openings.js';
 import { hideAnalysis, showAnalysis } from './panel.js';
+import { PrepHistory } from './prep-history.js';
 import { Prepare } from './prepare.js';
-import { Settings } from './settings.js';
+import { resetAll } from './reset.js';
+import { listenShareLink, Settings } from './settings.js';
 import { describeNonSurface } from './sniff.js';
 import { Viewer } from './viewer.js';
 import { listenViewKeys } from './view-keys.js';
@@ -58,6 +60,7 @@ const openings = new OpeningsTable($('openings'), {
   onHover: (loop) => viewer.highlightLoop(loop, current.surface.positions),
   allExtensions: $('flow-all'),
 });
+let prepHistory = null; // undo and redo of the preparation (below)
 const prepare = new Prepare({
   viewer,
   cutAt: async (point) => {
@@ -73,6 +76,7 @@ const prepare = new Prepare({
   },
   // Cuts not made yet: the bar says to make them first.
   onChange: (pending) => {
+    prepHistory?.schedule();
     if (bar.current !== 'prepare' || busy || !$('error').hidden) return;
     bar.hint(pending ? 'Press “Cut these open” to make the listed cuts into openings, then press Mesh.' : undefined);
   },
@@ -88,6 +92,14 @@ const refinements = new Refinements({
   onAdding: () => prepare.setAdding(false),
 });
 $('add-cut').addEventListener('click', () => refinements.setAdding(false));
+prepHistory = new PrepHistory({
+  current: () => current,
+  prepare,
+  openings,
+  reanalyze: (prep, names) => loadBytes(current.name, current.bytes, prep, names),
+  isBusy: () => busy || acting,
+  announce: (text) => bar.announce(text),
+});
 
 $('legend').querySelector('.ramp').style.background = qualityGradientCss();
 
@@ -132,6 +144,7 @@ function setBusy(on, stage = '') {
   for (const button of $('units-prompt').querySelectorAll('button')) button.disabled = on;
   prepare.setBusy(on);
   refinements.setBusy(on);
+  prepHistory.setBusy(on);
 }
 
 function onProgress(fraction, stage) {
@@ -200,9 +213,10 @@ function showPrep(prep) {
  * opening names the user typed, kept when the same surface is analyzed
  * again in another unit; `fresh` for a new file. On failure the previous
  * file stays, and the error message (given to `onError`) is returned; null
- * on success.
+ * on success. The undo history starts again for a new file (unless
+ * `keepHistory`), else records the new state.
  */
-async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, onError = showError } = {}) {
+async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, keepHistory = false, onError = showError } = {}) {
   showPrep(prep);
   const result = await analyze(name, bytes, prep, onError);
   if (!result.ok) {
@@ -228,6 +242,8 @@ async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, on
   $('flow-error').hidden = true;
   // The same surface again (other options): the view keeps its camera.
   show('input', { fit: fresh || shown === null });
+  if (fresh && !keepHistory) prepHistory.start();
+  else prepHistory.record();
   if (analysis.components > 1) {
     showError(
       `${name} has ${analysis.components} connected components. ` +
@@ -953,11 +969,16 @@ const settings = new Settings({
     showSolverHint();
   },
 });
-settings.restore();
+listenShareLink(settings, settings.restore(), (text) => bar.announce(text));
 settings.listen();
-$('reset-settings').addEventListener('click', () => {
-  settings.reset();
-  bar.announce('Options reset to their defaults');
+$('reset-settings').addEventListener('click', async () => {
+  if (busy || acting) return;
+  const error = await resetAll({
+    settings,
+    reload: async () => (current ? loadBytes(current.name, current.bytes, {}, [], { fresh: true, keepHistory: true }) : null),
+    fit: () => viewer.fitView(),
+  });
+  if (!error) bar.announce('Everything reset to the defaults');
 });
 document.body.dataset.meshJobs = '0';
 hideAnalysis();
