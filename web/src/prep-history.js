@@ -144,6 +144,7 @@ export class PrepHistory {
   }
 
   _render() {
+    $('history-actions').hidden = !this.current();
     const off = !this.current() || this.isBusy() || this.restoring;
     const undo = $('undo');
     const redo = $('redo');

@@ -32,9 +32,9 @@ export function defaultOf(el) {
   return el.defaultValue;
 }
 
-/** Sets the controls `ids` to their defaults; those that change get a
- * change event (and input, for sliders), so the page follows. */
-export function resetControls(ids) {
+/** Sets the controls `ids` to their defaults; with `events`, those that
+ * change get a change event (and input, for sliders), so the page follows. */
+export function resetControls(ids, { events = true } = {}) {
   for (const id of ids) {
     const el = $(id);
     if (!el) continue;
@@ -44,6 +44,7 @@ export function resetControls(ids) {
     if (checkable) el.checked = value;
     else el.value = value;
     el.removeAttribute('aria-invalid');
+    if (!events) continue;
     if (el.type === 'range' || el.type === 'number') el.dispatchEvent(new Event('input', { bubbles: true }));
     el.dispatchEvent(new Event('change', { bubbles: true }));
   }
@@ -59,8 +60,8 @@ export function resetControls(ids) {
  */
 export async function resetAll({ settings, reload, fit }) {
   settings.reset();
-  // The view shows the surface before the volume's controls are reset.
-  resetControls(PREP_FIELDS);
+  // Quietly: the file is analyzed again once, below, with them.
+  resetControls(PREP_FIELDS, { events: false });
   resetControls(VIEW_CONTROLS);
   const error = await reload();
   fit();

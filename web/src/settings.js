@@ -82,7 +82,10 @@ export class Settings {
       for (const el of this.controls) write(el, el.id in link.values ? link.values[el.id] : this.defaults.get(el.id));
     }
     this.onRestore();
-    if (link.given) this.save(); // the link's settings are now this browser's (and the hash drops the ignored ones)
+    // The link's settings are now this browser's; the address shows the
+    // settings in use (without a link's ignored ones).
+    if (link.given) this.save();
+    else this._address();
     return link.problems;
   }
 
