@@ -37,6 +37,7 @@ export class PrepHistory {
     this.history = new UndoHistory();
     this.timer = null;
     this.restoring = false;
+    this.busy = false;
     $('undo').addEventListener('click', () => this.undo());
     $('redo').addEventListener('click', () => this.redo());
     document.addEventListener('keydown', (e) => this._key(e));
@@ -81,7 +82,9 @@ export class PrepHistory {
     }, SETTLE_MS);
   }
 
-  setBusy() {
+  /** Off while a worker job runs (on: the job started, off: it ended). */
+  setBusy(on) {
+    this.busy = on;
     this._render();
   }
 
@@ -145,7 +148,7 @@ export class PrepHistory {
 
   _render() {
     $('history-actions').hidden = !this.current();
-    const off = !this.current() || this.isBusy() || this.restoring;
+    const off = !this.current() || this.busy || this.restoring;
     const undo = $('undo');
     const redo = $('redo');
     undo.disabled = off || !this.history.canUndo;

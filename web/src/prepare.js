@@ -434,7 +434,8 @@ export class Prepare {
     $('cut-edit').disabled = this.busy;
     if (cut) $('cut-edit-title').textContent = `Cut ${this.selected + 1}`;
     this._draw();
-    this.onChange(Boolean(this.pendingProblem()));
+    // Pending: listed cuts not made yet (the proposals included).
+    this.onChange(pending);
   }
 
   _hint(pending) {
