@@ -57,6 +57,20 @@ test('axe: the sample with a cut being placed and smoothing by passes', async ({
   await page.getByTestId('add-cut').click();
 });
 
+test('axe: a link with an invalid option (the notice), the copied link, Undo and Redo', async ({ page }) => {
+  await page.goto('/#layers=abc&size-mode=size');
+  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  await expect(page.getByTestId('link-notice')).toBeVisible();
+  expect(await seriousViolations(page), 'link notice').toEqual([]);
+  await page.getByTestId('load-sample').click();
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  await page.getByTestId('units').selectOption('cm');
+  await expect(page.getByTestId('undo')).toBeEnabled();
+  await page.getByTestId('copy-link').click();
+  await expect(page.getByTestId('share-link')).toBeVisible();
+  expect(await seriousViolations(page), 'copied link, undo').toEqual([]);
+});
+
 test('inlet radios are named by their opening; histogram labels are at least 11 px', async ({ page }) => {
   await openApp(page);
   await page.getByTestId('load-sample').click();
