@@ -5,8 +5,9 @@ import { closedBifurcation, openWatched, screenshots } from './helpers.js';
 // The whole workflow by keyboard only (Tab, Enter, Space, the arrow keys,
 // typing a number, Ctrl+Z): the file chooser opened from the Open button,
 // the units chosen and undone, the proposed cuts made, the inlet moved,
-// the 3D view orbited and zoomed, the mesh options set, meshed, the
-// clipping plane moved, a format chosen and the mesh exported.
+// the 3D view orbited and zoomed, the mesh options set, a refinement
+// placed at the view's centre, meshed, the clipping plane moved, a format
+// chosen and the mesh exported.
 
 test.use({ viewport: { width: 1440, height: 900 } });
 
@@ -80,6 +81,24 @@ test('keyboard only: open a file, prepare, orbit the view, mesh, inspect and exp
   await tabTo(page, page.getByTestId('tag-layer'));
   await page.keyboard.press('Space');
   await expect(page.getByTestId('tag-layer')).toBeChecked();
+  // A local refinement placed at the view's centre (the view turned by
+  // the arrow keys until the surface is there), its size typed.
+  await tabTo(page, page.getByTestId('add-refine'));
+  await page.keyboard.press('Enter');
+  await expect(page.getByTestId('add-refine')).toHaveAttribute('aria-pressed', 'true');
+  for (let turn = 0; (await page.getByTestId('refine-row').count()) === 0; turn++) {
+    expect(turn, 'turns of the view before the surface is at its centre').toBeLessThan(24);
+    if (turn > 0) {
+      await tabTo(page, canvas);
+      await page.keyboard.press('ArrowUp');
+    }
+    await tabTo(page, page.getByTestId('refine-center'));
+    await page.keyboard.press('Enter');
+  }
+  await expect(page.getByTestId('refine-radius')).toBeFocused();
+  await tabTo(page, page.getByTestId('refine-size'));
+  await page.keyboard.press('Control+A');
+  await page.keyboard.type('0.2');
   await tabTo(page, page.getByTestId('remesh'));
   await page.keyboard.press('Enter');
   await expect(page.getByTestId('volume-result')).toBeVisible({ timeout: 60_000 });
