@@ -134,6 +134,7 @@ const BUSY_CONTROLS = [
   'largest-only',
   'smooth',
   'smooth-passes',
+  'reset-settings',
 ];
 
 function setBusy(on, stage = '') {
