@@ -100,22 +100,6 @@ export async function exportDownload(page) {
   return { name: download.suggestedFilename(), bytes: Buffer.concat(chunks) };
 }
 
-/** Screenshots of the page at desktop (1440x900) and phone (390x844) width,
- * `focus` (a locator) scrolled into view: out/NAME-desktop.png,
- * out/NAME-phone.png; the desktop size is restored. */
-export async function screenshots(page, name, focus = null) {
-  const out = new URL('../out/', import.meta.url).pathname;
-  for (const [size, width, height] of [
-    ['desktop', 1440, 900],
-    ['phone', 390, 844],
-  ]) {
-    await page.setViewportSize({ width, height });
-    if (focus) await focus.scrollIntoViewIfNeeded();
-    await page.screenshot({ path: `${out}${name}-${size}.png` });
-  }
-  await page.setViewportSize({ width: 1440, height: 900 });
-}
-
 let api = null;
 /** A closed bifurcation phantom's STL (rounded vessel ends, as segmentation
  * tools export it: its cuts are proposed), made by the JS API here. */
@@ -180,3 +164,20 @@ export async function walkSteps(page, at) {
   await expect(page.getByTestId('error')).toContainText('scan.png: this seems to be a PNG image');
   await at('error');
 }
+
+/** Screenshots of the page at desktop (1440x900) and phone (390x844) width,
+ * `focus` (a locator) scrolled into view: out/NAME-desktop.png,
+ * out/NAME-phone.png; the desktop size is restored. */
+export async function screenshots(page, name, focus = null) {
+  const out = new URL('../out/', import.meta.url).pathname;
+  for (const [size, width, height] of [
+    ['desktop', 1440, 900],
+    ['phone', 390, 844],
+  ]) {
+    await page.setViewportSize({ width, height });
+    if (focus) await focus.scrollIntoViewIfNeeded();
+    await page.screenshot({ path: `${out}${name}-${size}.png` });
+  }
+  await page.setViewportSize({ width: 1440, height: 900 });
+}
+

@@ -92,14 +92,6 @@ const refinements = new Refinements({
   onAdding: () => prepare.setAdding(false),
 });
 $('add-cut').addEventListener('click', () => refinements.setAdding(false));
-prepHistory = new PrepHistory({
-  current: () => current,
-  prepare,
-  openings,
-  reanalyze: (prep, names) => loadBytes(current.name, current.bytes, prep, names),
-  isBusy: () => busy || acting,
-  announce: (text) => bar.announce(text),
-});
 
 $('legend').querySelector('.ramp').style.background = qualityGradientCss();
 
@@ -110,6 +102,16 @@ const NEXT_AFTER = {
   cancelled: 'Cancelled: press the button of the step again when ready.',
   options: 'Correct the field marked in red above, then press Mesh or Export again.',
 };
+
+// Undo and redo of the preparation (prep-history.js).
+prepHistory = new PrepHistory({
+  current: () => current,
+  prepare,
+  openings,
+  reanalyze: (prep, names) => loadBytes(current.name, current.bytes, prep, names),
+  isBusy: () => busy || acting,
+  announce: (text) => bar.announce(text),
+});
 
 /** Shows `message` in the action bar with what to do next (`next`: a key of
  * NEXT_AFTER or a text; by default the step's own hint). */

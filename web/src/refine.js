@@ -37,12 +37,12 @@ export class Refinements {
     this.group = null;
     this.unit = 'mm';
     this.scale = 1;
-    $('add-refine').addEventListener('click', () => this.setAdding(!this.adding));
     // By keyboard: the view turned (arrow keys) to have the spot in its centre.
     $('refine-center').addEventListener('click', () => {
       const rect = this.viewer.renderer.domElement.getBoundingClientRect();
       this._addAt(rect.left + rect.width / 2, rect.top + rect.height / 2);
     });
+    $('add-refine').addEventListener('click', () => this.setAdding(!this.adding));
     const view = $('viewer');
     let down = null;
     view.addEventListener('pointerdown', (e) => {
