@@ -180,4 +180,3 @@ export async function screenshots(page, name, focus = null) {
   }
   await page.setViewportSize({ width: 1440, height: 900 });
 }
-
