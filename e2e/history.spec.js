@@ -11,7 +11,7 @@ import { openWatched, screenshots, upload } from './helpers.js';
 // Ctrl+Z) and redone (Ctrl+Shift+Z, Ctrl+Y, the Redo button), the surface
 // analyzed again where the analyze options differ (the openings, the view's
 // surface and the proposed cuts follow); a change after an undo drops
-// what was undone.
+// what was undone; a cut tilted by several key presses is one change.
 
 test.use({ viewport: { width: 1440, height: 900 } });
 
@@ -159,5 +159,18 @@ test('every preparation change is undone and redone', async ({ page }) => {
   await page.keyboard.press('Control+z');
   await expect(body).toHaveAttribute('data-history', '7/7');
 
+  // A cut tilted with the arrow keys is one change, undone whole.
+  await page.getByTestId('cut-select').first().click();
+  await page.getByTestId('cut-tilt-a').focus();
+  for (let i = 0; i < 4; i++) await page.keyboard.press('ArrowRight');
+  await expect(page.locator('#cut-tilt-a-value')).toHaveText('4°');
+  await expect(body).toHaveAttribute('data-history', '8/8');
+  await expect(cuts.first()).toHaveAttribute('data-state', 'new');
+  await expect(undo).toHaveAccessibleName('Undo: cuts');
+  await undo.click();
+  await expect(body).toHaveAttribute('data-history', '7/8');
+  await expect(cuts.first()).toHaveAttribute('data-state', 'made');
+  await expect(page.getByTestId('apply-cuts')).toBeHidden();
+  await expect(page.getByTestId('cut-edit')).toBeHidden();
   expect(errors).toEqual([]);
 });
