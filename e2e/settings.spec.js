@@ -87,11 +87,14 @@ test('the options are in the address; a link sets them over the remembered ones'
   await expect.poll(() => hashOf(page)).toBe('#layers=3&mesher2d=delaunay');
 
   // Another tab of the same browser opens a link: the link's options win,
-  // the ones it does not name get their defaults; no notice.
+  // the ones it does not name get their defaults; the notice says which
+  // changed.
   const other = await context.newPage();
   await other.goto('/#size-mode=size&size-value=0.5&layers=2&wall-on=1&export-format=vtu');
   await expect(other.locator('body')).toHaveAttribute('data-ready', 'true');
-  await expect(other.getByTestId('link-notice')).toBeHidden();
+  await expect(other.locator('#link-notice-text')).toHaveText(
+    'The link changed these options: size-mode, size-value, layers, wall-on, mesher2d, export-format.',
+  );
   await other.getByTestId('load-sample').click();
   await expect(other.getByTestId('stat-openings')).toHaveText('3');
   await expect(other.getByTestId('size-mode')).toHaveValue('size');
@@ -105,6 +108,12 @@ test('the options are in the address; a link sets them over the remembered ones'
   // They are now this browser's: a reload without the hash keeps them.
   await other.goto('/');
   await expect(other.locator('body')).toHaveAttribute('data-ready', 'true');
+  await expect(other.getByTestId('link-notice')).toBeHidden();
+  // Nor does a reload of the page's own address say anything.
+  await other.reload();
+  await expect(other.locator('body')).toHaveAttribute('data-ready', 'true');
+  await expect(other.getByTestId('link-notice')).toBeHidden();
+  await expect(other.getByTestId('layers')).toHaveValue('2');
   await expect(other.getByTestId('layers')).toHaveValue('2');
   expect(hashOf(other)).toBe('#size-mode=size&size-value=0.5&layers=2&wall-on=1&export-format=vtu');
   await other.close();
@@ -119,6 +128,7 @@ test('a link with invalid options: those are ignored and said, the valid ones se
   await expect(notice).toContainText('size-mode=huge: must be one of perCircumference, size');
   await expect(notice).toContainText('colour: not an option of this page');
   await expect(notice).toContainText('ignored');
+  await expect(notice).toContainText('The link changed these options: growth, output-units.');
   await screenshots(page, 'settings-link-notice', notice);
   await page.getByTestId('load-sample').click();
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
@@ -164,7 +174,7 @@ test('Copy link gives a link that opens with the same options', async ({ browser
   await expect(them.getByTestId('solver')).toHaveValue('svfsi');
   await expect(them.getByTestId('first-layer-yplus')).toHaveValue('2');
   await expect(them.getByTestId('yplus-fields')).toBeVisible();
-  await expect(them.getByTestId('link-notice')).toBeHidden();
+  await expect(them.getByTestId('link-notice')).toContainText('The link changed these options: solver, size-value,');
   await fresh.close();
 });
 

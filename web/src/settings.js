@@ -5,7 +5,7 @@
 // a link with settings sets them (the link wins over this browser's, the
 // controls it does not name get their defaults). Per-file choices (the
 // input's units, cuts, opening names) are not settings.
-import { controlSpec, decodeSettings, encodeSettings, ignoredNotice } from './share.js';
+import { controlSpec, decodeSettings, encodeSettings, linkNotice } from './share.js';
 
 const KEY = 'vesselmesh.settings.v1';
 
@@ -64,8 +64,11 @@ export class Settings {
 
   /**
    * Sets the controls to the remembered values (if any), then to the
-   * link's (the address' hash), which win. Returns the link's settings that
-   * were ignored, as 'name=value: must be ...' lines (empty when none).
+   * link's (the address' hash), which win. Returns what the link did:
+   * {given: whether the address had settings, changed: the ids whose value
+   * differs from this browser's (none on a reload of the page's own
+   * address), problems: its settings that were ignored, as 'name=value:
+   * must be ...'}.
    */
   restore() {
     let saved = null;
@@ -78,15 +81,20 @@ export class Settings {
       for (const el of this.controls) if (el.id in saved) write(el, saved[el.id]);
     }
     const link = decodeSettings(this.location?.hash ?? '', this.specs);
+    const changed = [];
     if (link.given) {
-      for (const el of this.controls) write(el, el.id in link.values ? link.values[el.id] : this.defaults.get(el.id));
+      for (const el of this.controls) {
+        const before = read(el);
+        write(el, el.id in link.values ? link.values[el.id] : this.defaults.get(el.id));
+        if (read(el) !== before) changed.push(el.id);
+      }
     }
     this.onRestore();
     // The link's settings are now this browser's; the address shows the
     // settings in use (without a link's ignored ones).
     if (link.given) this.save();
     else this._address();
-    return link.problems;
+    return { given: link.given, changed, problems: link.problems };
   }
 
   /** The controls' values, by id. */
@@ -152,18 +160,19 @@ export class Settings {
 
 /**
  * The settings' link controls: "Copy link" puts settings.link() on the
- * clipboard (and shows it, selected, when the clipboard is refused); the
- * notice of a link's ignored settings (`problems`, from restore()) is
- * shown in the action bar until dismissed.
+ * clipboard (and shows it, selected, when the clipboard is refused); what
+ * an opened link set and ignored (`link`, from restore()) is said in the
+ * action bar until dismissed.
  * @param {Settings} settings
- * @param {string[]} problems
+ * @param {{changed: string[], problems: string[]}} link
  * @param {(text: string) => void} announce
  */
-export function listenShareLink(settings, problems, announce) {
+export function listenShareLink(settings, link, announce) {
   const $ = (id) => document.getElementById(id);
   const notice = $('link-notice');
-  if (problems.length) {
-    $('link-notice-text').textContent = ignoredNotice(problems);
+  const text = linkNotice(link.changed, link.problems);
+  if (text) {
+    $('link-notice-text').textContent = text;
     notice.hidden = false;
   }
   $('link-notice-dismiss').addEventListener('click', () => {

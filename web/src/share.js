@@ -110,3 +110,11 @@ export function ignoredNotice(problems) {
   const n = problems.length;
   return `The link's ${n === 1 ? 'setting' : `${n} settings`} ${problems.join('; ')} — ignored (${n === 1 ? 'its default is used' : 'their defaults are used'}).`;
 }
+
+/** The notice said when a link was opened: the options whose value it
+ * changed from this browser's (`ids`) and those it had that were ignored;
+ * '' when there is nothing to say (the page's own address reloaded). */
+export function linkNotice(ids, problems) {
+  const set = ids.length ? `The link changed these options: ${ids.join(', ')}.` : '';
+  return [set, ignoredNotice(problems)].filter(Boolean).join(' ');
+}

@@ -4,7 +4,7 @@
 import assert from 'node:assert/strict';
 import { describe, test } from 'node:test';
 
-import { decodeSettings, encodeSettings, ignoredNotice, parseValue } from '../src/share.js';
+import { decodeSettings, encodeSettings, ignoredNotice, linkNotice, parseValue } from '../src/share.js';
 
 const SPECS = [
   { id: 'size-mode', kind: 'select', options: ['perCircumference', 'size'] },
@@ -69,6 +69,16 @@ describe('settings link', () => {
     assert.deepEqual(parseValue(SPECS[2], ' 3 '), { value: '3' });
     assert.deepEqual(parseValue(SPECS[4], 'true'), { value: true });
     assert.deepEqual(parseValue(SPECS[4], '0'), { value: false });
+  });
+
+  test('the notice of an opened link names what it changed and what it ignored', () => {
+    assert.equal(linkNotice(['layers', 'wall-on'], []), 'The link changed these options: layers, wall-on.');
+    assert.equal(
+      linkNotice(['layers'], ['size-mode=huge: must be one of perCircumference, size']),
+      "The link changed these options: layers. The link's setting size-mode=huge: must be one of perCircumference, size — ignored (its default is used).",
+    );
+    assert.match(linkNotice([], ['x: not an option of this page']), /^The link's setting x: /);
+    assert.equal(linkNotice([], []), '');
   });
 
   test('escaped characters survive', () => {
