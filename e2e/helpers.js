@@ -3,8 +3,11 @@
 // exports and take screenshots.
 import { expect } from '@playwright/test';
 
+import { readFileSync } from 'node:fs';
+
 import { HOST } from './port.js';
 import { cappedTubeVtp as cappedTubeText } from '../wasm/test/capped-tube-vtp.js';
+import { createVesselmesh } from '../wasm/src/vesselmesh.js';
 
 /** Opens the app; returns the list of requests made to any other origin. */
 export async function openApp(page) {
@@ -95,6 +98,71 @@ export async function exportDownload(page) {
   const chunks = [];
   for await (const chunk of await download.createReadStream()) chunks.push(chunk);
   return { name: download.suggestedFilename(), bytes: Buffer.concat(chunks) };
+}
+
+let api = null;
+/** A closed bifurcation phantom's STL (rounded vessel ends, as segmentation
+ * tools export it: its cuts are proposed), made by the JS API here. */
+export async function closedBifurcation() {
+  api ??= await createVesselmesh({ wasmBinary: readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url)) });
+  return Buffer.from(api.makePhantom({ kind: 'bifurcation', voxel: 0.15, openEnds: false }).stl);
+}
+
+/** A PNG's first bytes: a file that is not a surface. */
+export const PNG_BYTES = Buffer.concat([Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]), Buffer.alloc(200)]);
+
+/** The workflow's steps, in order, as walkSteps() stops at them. */
+export const STEP_NAMES = ['load', 'prepare', 'mesh', 'inspect', 'export', 'error'];
+
+/**
+ * Walks the page through every step of the workflow and calls `at(step)`
+ * (awaited) at each, the page showing it: 'load' (the empty page),
+ * 'prepare' (a closed bifurcation, its proposed cuts listed, one selected
+ * to move and tilt), 'mesh' (a fine mesh in progress, cancelled after),
+ * 'inspect' (a coarse mesh's volume), 'export' (downloaded), 'error' (a PNG
+ * opened). The app must be open and empty.
+ */
+export async function walkSteps(page, at) {
+  await expect(page.locator('body')).toHaveAttribute('data-step', 'load');
+  await at('load');
+
+  await upload(page, 'closed-bifurcation.stl', await closedBifurcation());
+  await expect(page.getByTestId('cut-row')).toHaveCount(3);
+  await page.getByTestId('cut-select').first().click();
+  await expect(page.getByTestId('cut-edit')).toBeVisible();
+  await expect(page.locator('body')).toHaveAttribute('data-step', 'prepare');
+  await at('prepare');
+
+  await page.getByTestId('apply-cuts').click();
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  // Fine enough to be still running while `at` looks at it.
+  await page.getByTestId('size-mode').selectOption('size');
+  await page.getByTestId('size-value').fill('0.06');
+  await page.getByTestId('layers').fill('4');
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('progress')).toBeVisible();
+  await expect(page.getByTestId('progress-stage')).toContainText('mesh');
+  await expect(page.locator('body')).toHaveAttribute('data-step', 'mesh');
+  await at('mesh');
+  await expect(page.getByTestId('progress'), 'the mesh still runs after the mesh step was looked at').toBeVisible();
+  await page.getByRole('button', { name: 'Cancel' }).click();
+  await expect(page.getByTestId('error')).toHaveText('Cancelled.');
+
+  await page.getByTestId('size-value').fill('0.35');
+  await page.getByTestId('layers').fill('1');
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('volume-result')).toBeVisible({ timeout: 60_000 });
+  await expect(page.locator('body')).toHaveAttribute('data-step', 'inspect');
+  await at('inspect');
+
+  const download = await exportDownload(page);
+  expect(download.name).toBe('closed-bifurcation.msh');
+  await expect(page.locator('body')).toHaveAttribute('data-step', 'export');
+  await at('export');
+
+  await page.getByTestId('file-input').setInputFiles({ name: 'scan.png', mimeType: 'image/png', buffer: PNG_BYTES });
+  await expect(page.getByTestId('error')).toContainText('scan.png: this seems to be a PNG image');
+  await at('error');
 }
 
 /** Screenshots of the page at desktop (1440x900) and phone (390x844) width,

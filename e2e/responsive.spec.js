@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { openApp, screenshots, upload } from './helpers.js';
+import { openApp, screenshots, STEP_NAMES, upload, walkSteps } from './helpers.js';
 
 // A large surface generated in the worker, analyzed while the main thread
 // keeps painting frames and answering clicks; then a job is cancelled.
@@ -109,4 +109,39 @@ test('on a phone the page fits its width and every action is reachable', async (
   await expect(page.getByTestId('volume-result')).toBeVisible({ timeout: 60_000 });
   await fits('meshed');
   await screenshots(page, 'responsive-phone-meshed', page.getByTestId('volume-view'));
+});
+
+// Every step of the workflow on a phone (390x844): no horizontal scroll of
+// the page nor of the panel, the action bar's buttons (Mesh, Export, Undo,
+// Redo, Cancel while a job runs) within the screen.
+test('on a phone no step scrolls sideways and the actions stay in sight', async ({ page }) => {
+  test.setTimeout(240_000);
+  await page.setViewportSize({ width: 390, height: 844 });
+  await openApp(page);
+  const seen = [];
+  await walkSteps(page, async (step) => {
+    seen.push(step);
+    const width = await page.evaluate(() => document.scrollingElement.scrollWidth);
+    expect(width, `${step}: page scroll width`).toBeLessThanOrEqual(390);
+    const [scroll, client] = await page.locator('#panel-body').evaluate((el) => [el.scrollWidth, el.clientWidth]);
+    expect(scroll, `${step}: panel scroll width`).toBeLessThanOrEqual(client);
+    const bar = page.getByTestId('action-bar');
+    const [barScroll, barClient] = await bar.evaluate((el) => [el.scrollWidth, el.clientWidth]);
+    expect(barScroll, `${step}: action bar scroll width`).toBeLessThanOrEqual(barClient);
+    const buttons = bar.getByRole('button');
+    for (let i = 0, n = await buttons.count(); i < n; i++) {
+      const button = buttons.nth(i);
+      if (!(await button.isVisible())) continue;
+      const box = await button.boundingBox();
+      const name = await button.textContent();
+      expect(box.x, `${step}: ${name}`).toBeGreaterThanOrEqual(0);
+      expect(box.x + box.width, `${step}: ${name}`).toBeLessThanOrEqual(390);
+      expect(box.y + box.height, `${step}: ${name}`).toBeLessThanOrEqual(844);
+    }
+    if (step === 'mesh') await expect(page.getByRole('button', { name: 'Cancel' })).toBeInViewport();
+    if (['prepare', 'inspect', 'export'].includes(step)) {
+      for (const id of ['remesh', 'export', 'undo', 'redo']) await expect(page.getByTestId(id)).toBeInViewport();
+    }
+  });
+  expect(seen).toEqual(STEP_NAMES);
 });

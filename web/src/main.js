@@ -13,8 +13,10 @@ import { drawGroupLegend, drawPartLegend, PARTS } from './groups.js';
 import { drawHistogram } from './histogram.js';
 import { OpeningsTable } from './openings.js';
 import { hideAnalysis, showAnalysis } from './panel.js';
+import { PrepHistory } from './prep-history.js';
 import { Prepare } from './prepare.js';
-import { Settings } from './settings.js';
+import { resetAll } from './reset.js';
+import { listenShareLink, Settings } from './settings.js';
 import { describeNonSurface } from './sniff.js';
 import { Viewer } from './viewer.js';
 import { listenViewKeys } from './view-keys.js';
@@ -60,6 +62,7 @@ const openings = new OpeningsTable($('openings'), {
   onHover: (loop) => viewer.highlightLoop(loop, current.surface.positions),
   allExtensions: $('flow-all'),
 });
+let prepHistory = null; // undo and redo of the preparation (below)
 const prepare = new Prepare({
   viewer,
   cutAt: async (point) => {
@@ -75,6 +78,7 @@ const prepare = new Prepare({
   },
   // Cuts not made yet: the bar says to make them first.
   onChange: (pending) => {
+    prepHistory?.schedule();
     if (bar.current !== 'prepare' || busy || !$('error').hidden) return;
     bar.hint(pending ? 'Press “Cut these open” to make the listed cuts into openings, then press Mesh.' : undefined);
   },
@@ -141,6 +145,16 @@ const NEXT_AFTER = {
   options: 'Correct the field marked in red above, then press Mesh or Export again.',
 };
 
+// Undo and redo of the preparation (prep-history.js).
+prepHistory = new PrepHistory({
+  current: () => current,
+  prepare,
+  openings,
+  reanalyze: (prep, names) => loadBytes(current.name, current.bytes, prep, names),
+  isBusy: () => busy || acting,
+  announce: (text) => bar.announce(text),
+});
+
 /** Shows `message` in the action bar with what to do next (`next`: a key of
  * NEXT_AFTER or a text; by default the step's own hint). */
 function showError(message, next) {
@@ -164,6 +178,7 @@ const BUSY_CONTROLS = [
   'largest-only',
   'smooth',
   'smooth-passes',
+  'reset-settings',
 ];
 
 function setBusy(on, stage = '') {
@@ -174,6 +189,7 @@ function setBusy(on, stage = '') {
   for (const button of $('units-prompt').querySelectorAll('button')) button.disabled = on;
   prepare.setBusy(on);
   refinements.setBusy(on);
+  prepHistory.setBusy(on);
 }
 
 function onProgress(fraction, stage) {
@@ -242,9 +258,10 @@ function showPrep(prep) {
  * opening names the user typed, kept when the same surface is analyzed
  * again in another unit; `fresh` for a new file. On failure the previous
  * file stays, and the error message (given to `onError`) is returned; null
- * on success.
+ * on success. The undo history starts again for a new file (unless
+ * `keepHistory`), else records the new state.
  */
-async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, onError = showError } = {}) {
+async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, keepHistory = false, onError = showError } = {}) {
   showPrep(prep);
   const result = await analyze(name, bytes, prep, onError);
   if (!result.ok) {
@@ -271,6 +288,8 @@ async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, on
   $('flow-error').hidden = true;
   // The same surface again (other options): the view keeps its camera.
   show('input', { fit: fresh || shown === null });
+  if (fresh && !keepHistory) prepHistory.start();
+  else prepHistory.record();
   if (analysis.components > 1) {
     showError(
       `${name} has ${analysis.components} connected components. ` +
@@ -998,11 +1017,16 @@ const settings = new Settings({
     showSolverHint();
   },
 });
-settings.restore();
+listenShareLink(settings, settings.restore(), (text) => bar.announce(text));
 settings.listen();
-$('reset-settings').addEventListener('click', () => {
-  settings.reset();
-  bar.announce('Options reset to their defaults');
+$('reset-settings').addEventListener('click', async () => {
+  if (busy || acting) return;
+  const error = await resetAll({
+    settings,
+    reload: async () => (current ? loadBytes(current.name, current.bytes, {}, [], { fresh: true, keepHistory: true }) : null),
+    fit: () => viewer.fitView(),
+  });
+  if (!error) bar.announce('Everything reset to the defaults');
 });
 document.body.dataset.meshJobs = '0';
 hideAnalysis();

@@ -97,7 +97,7 @@ export class OpeningsTable {
     const head = element('div', { className: 'opening-head' });
     head.append(choice, input, cap);
     li.append(head, info, flow, error);
-    const row = { k, li, input, error, cap, extension, shift, opening: o, edited: false };
+    const row = { k, li, input, radio, error, cap, extension, shift, opening: o, edited: false };
     this._listen(row, radio);
     return row;
   }
@@ -164,6 +164,31 @@ export class OpeningsTable {
       problem ??= ok(input) ? null : input.getAttribute('aria-label') ?? 'Flow extension, all openings';
     }
     return problem && `${problem}: a length from 0 to 100 local radii.`;
+  }
+
+  /** The choices of the table: the typed names (edits()), the inlet, the
+   * flow extensions (all openings' field and each row's), as typed. */
+  state() {
+    return {
+      names: this.edits(),
+      inlet: this.chosenInlet() ?? 1,
+      flowAll: this.allExtensions.value,
+      extensions: this.rows.map((r) => r.extension.value),
+    };
+  }
+
+  /** Sets the table's choices to a state() of the same openings; the names
+   * are checked again (a row without a typed name gets its default). */
+  setState({ names = [], inlet = 1, flowAll = '0', extensions = [] }) {
+    this.allExtensions.value = flowAll;
+    for (const [i, row] of this.rows.entries()) {
+      row.edited = Boolean(names[i]);
+      if (row.edited) row.input.value = names[i];
+      row.radio.checked = row.k === inlet;
+      row.extension.value = extensions[i] ?? flowAll;
+    }
+    this.extensionProblem();
+    if (this.rows.length) this.check();
   }
 
   /** The names the user typed, by row index ('' where none). */

@@ -250,6 +250,25 @@ export class Prepare {
     return 'Cuts: the listed cuts are not made yet. Press “Cut these open” (or undo the changes) before meshing.';
   }
 
+  /** The listed cuts (copies) and whether they are the untouched
+   * proposals: what undo puts back (prep-history.js). */
+  cutState() {
+    return {
+      cuts: this.cuts.map((c) => ({ ...c, point: [...c.point], normal: [...c.normal], tilt: [...c.tilt] })),
+      fromProposals: this.fromProposals,
+    };
+  }
+
+  /** Lists the cuts of a cutState() (none selected, not adding). */
+  setCutState({ cuts, fromProposals }) {
+    this.cuts = cuts.map((c) => ({ ...c, point: [...c.point], normal: [...c.normal], tilt: [...c.tilt] }));
+    this.fromProposals = fromProposals;
+    this.selected = -1;
+    this.setAdding(false);
+    this.clearError();
+    this._render();
+  }
+
   /** Moves the focus to the button that makes the cuts. */
   focusApply() {
     $('apply-cuts').focus();
@@ -399,7 +418,8 @@ export class Prepare {
     $('cut-edit').disabled = this.busy;
     if (cut) $('cut-edit-title').textContent = `Cut ${this.selected + 1}`;
     this._draw();
-    this.onChange(Boolean(this.pendingProblem()));
+    // Pending: listed cuts not made yet (the proposals included).
+    this.onChange(pending);
   }
 
   _hint(pending) {

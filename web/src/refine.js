@@ -38,6 +38,11 @@ export class Refinements {
     this.group = null;
     this.unit = 'mm';
     this.scale = 1;
+    // By keyboard: the view turned (arrow keys) to have the spot in its centre.
+    $('refine-center').addEventListener('click', () => {
+      const rect = this.viewer.renderer.domElement.getBoundingClientRect();
+      this._addAt(rect.left + rect.width / 2, rect.top + rect.height / 2);
+    });
     $('add-refine').addEventListener('click', () => this.setAdding(!this.adding));
     listenSurfaceClicks($('viewer'), {
       active: () => this.adding,
@@ -98,6 +103,7 @@ export class Refinements {
     }
     $('add-refine').setAttribute('aria-pressed', String(this.adding));
     $('add-refine').textContent = this.adding ? 'Click on the surface… (Esc: stop)' : 'Add a refinement';
+    $('refine-center').hidden = !this.adding;
     $('viewer').classList.toggle('picking', this.adding);
     $('pick-info').hidden = !this.adding;
     if (this.adding) $('pick-info').textContent = 'Click on the surface where the mesh should be finer';
@@ -105,7 +111,11 @@ export class Refinements {
 
   _addAt(x, y) {
     const at = this.viewer.pick(x, y);
-    if (!at) return;
+    if (!at) {
+      $('pick-info').hidden = false;
+      $('pick-info').textContent = 'No surface there: turn the view (arrow keys in the view) to bring the spot to its centre, or click on it';
+      return;
+    }
     // A start the user then edits: a ball 1/20 of the model across, edges
     // a fifth of its radius.
     const radius = Number((0.05 * this.scale).toPrecision(2));

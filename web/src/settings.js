@@ -1,7 +1,11 @@
 // The mesh and export options remembered in this browser (localStorage):
 // saved on every change, restored when the page opens, and put back to the
-// page's defaults by Reset. Per-file choices (the input's units, cuts,
-// opening names) are not settings.
+// page's defaults by Reset. They are also in the page's address (the hash,
+// kept up to date: share.js), so a link gives them to someone else; opening
+// a link with settings sets them (the link wins over this browser's, the
+// controls it does not name get their defaults). Per-file choices (the
+// input's units, cuts, opening names) are not settings.
+import { controlSpec, decodeSettings, encodeSettings, linkNotice } from './share.js';
 
 const KEY = 'vesselmesh.settings.v1';
 
@@ -48,14 +52,24 @@ export class Settings {
    * @param {object} hooks onRestore: called after the controls were set
    *   (restore, reset), to update what depends on them
    */
-  constructor({ onRestore = () => {}, storage = globalThis.localStorage } = {}) {
+  constructor({ onRestore = () => {}, storage = globalThis.localStorage, location = globalThis.location, history = globalThis.history } = {}) {
     this.onRestore = onRestore;
     this.storage = storage;
+    this.location = location;
+    this.history = history;
     this.controls = SETTING_IDS.map((id) => document.getElementById(id)).filter(Boolean);
     this.defaults = new Map(this.controls.map((el) => [el.id, read(el)]));
+    this.specs = this.controls.map((el) => controlSpec(el, this.defaults.get(el.id)));
   }
 
-  /** Sets the controls to the remembered values (if any). */
+  /**
+   * Sets the controls to the remembered values (if any), then to the
+   * link's (the address' hash), which win. Returns what the link did:
+   * {given: whether the address had settings, changed: the ids whose value
+   * differs from this browser's (none on a reload of the page's own
+   * address), problems: its settings that were ignored, as 'name=value:
+   * must be ...'}.
+   */
   restore() {
     let saved = null;
     try {
@@ -63,18 +77,62 @@ export class Settings {
     } catch {
       saved = null; // unreadable: the defaults
     }
-    if (!saved || typeof saved !== 'object') return false;
-    for (const el of this.controls) if (el.id in saved) write(el, saved[el.id]);
+    if (saved && typeof saved === 'object') {
+      for (const el of this.controls) if (el.id in saved) write(el, saved[el.id]);
+    }
+    const link = decodeSettings(this.location?.hash ?? '', this.specs);
+    const changed = [];
+    if (link.given) {
+      for (const el of this.controls) {
+        const before = read(el);
+        write(el, el.id in link.values ? link.values[el.id] : this.defaults.get(el.id));
+        if (read(el) !== before) changed.push(el.id);
+      }
+    }
     this.onRestore();
-    return true;
+    // The link's settings are now this browser's; the address shows the
+    // settings in use (without a link's ignored ones).
+    if (link.given) this.save();
+    else this._address();
+    return { given: link.given, changed, problems: link.problems };
   }
 
-  /** Remembers the controls' values. */
+  /** The controls' values, by id. */
+  values() {
+    return new Map(this.controls.map((el) => [el.id, read(el)]));
+  }
+
+  /** The hash of a link with the current settings ('' for the defaults). */
+  hash() {
+    return encodeSettings(SETTING_IDS, this.values(), this.defaults);
+  }
+
+  /** The page's address with the current settings: a link to share. */
+  link() {
+    const loc = this.location;
+    return `${loc.origin === 'null' ? loc.href.replace(/#.*$/, '') : `${loc.origin}${loc.pathname}${loc.search}`}${this.hash()}`;
+  }
+
+  /** Remembers the controls' values, and puts them in the address. */
   save() {
     try {
-      this.storage?.setItem(KEY, JSON.stringify(Object.fromEntries(this.controls.map((el) => [el.id, read(el)]))));
+      this.storage?.setItem(KEY, JSON.stringify(Object.fromEntries(this.values())));
     } catch {
       // storage full or refused (private mode): not remembered
+    }
+    this._address();
+  }
+
+  /** The address' hash follows the settings (no new history entry). */
+  _address() {
+    const loc = this.location;
+    if (!loc || !this.history?.replaceState) return;
+    const hash = this.hash();
+    if (hash === loc.hash || (!hash && !loc.href.includes('#'))) return;
+    try {
+      this.history.replaceState(this.history.state, '', `${loc.href.replace(/#.*$/, '')}${hash}`);
+    } catch {
+      // an address that cannot be replaced (some file:// pages): not shown there
     }
   }
 
@@ -86,6 +144,7 @@ export class Settings {
       // nothing remembered
     }
     for (const el of this.controls) write(el, this.defaults.get(el.id));
+    this._address();
     this.onRestore();
   }
 
@@ -97,4 +156,42 @@ export class Settings {
       document.addEventListener(type, (e) => ids.has(e.target.id) && this.save());
     }
   }
+}
+
+/**
+ * The settings' link controls: "Copy link" puts settings.link() on the
+ * clipboard (and shows it, selected, when the clipboard is refused); what
+ * an opened link set and ignored (`link`, from restore()) is said in the
+ * action bar until dismissed.
+ * @param {Settings} settings
+ * @param {{changed: string[], problems: string[]}} link
+ * @param {(text: string) => void} announce
+ */
+export function listenShareLink(settings, link, announce) {
+  const $ = (id) => document.getElementById(id);
+  const notice = $('link-notice');
+  const text = linkNotice(link.changed, link.problems);
+  if (text) {
+    $('link-notice-text').textContent = text;
+    notice.hidden = false;
+  }
+  $('link-notice-dismiss').addEventListener('click', () => {
+    notice.hidden = true;
+  });
+  $('copy-link').addEventListener('click', async () => {
+    const link = settings.link();
+    const field = $('share-link');
+    field.value = link;
+    $('share-link-field').hidden = false;
+    let copied = false;
+    try {
+      await navigator.clipboard.writeText(link);
+      copied = true;
+    } catch {
+      copied = false; // refused (no permission, not a secure page): the field is there to copy from
+    }
+    field.select();
+    $('share-link-status').textContent = copied ? 'Copied.' : 'Select and copy it (the clipboard was refused).';
+    announce(copied ? 'Link to these options copied' : 'The link is shown selected: copy it');
+  });
 }
