@@ -38,7 +38,9 @@ check "garbage" expect_exit 1 "not a surface file this tool reads" "$VM" info "$
 
 check "phantom" expect_exit 0 "wrote" "$VM" phantom "$T/bif.stl" --kind bifurcation --voxel 0.1 --noise 0.3
 check "phantom scale past float" expect_exit 2 "--scale needs a positive scale factor up to 1e30" "$VM" phantom "$T/x.stl" --scale 1e39
-check "phantom bad kind" expect_exit 2 "--kind needs bifurcation, tube, aneurysm or torus" "$VM" phantom "$T/x.stl" --kind blob
+check "phantom bad kind" expect_exit 2 "--kind needs bifurcation, tube, aneurysm, torus or tree" "$VM" phantom "$T/x.stl" --kind blob
+check "phantom tree" expect_exit 0 "wrote" "$VM" phantom "$T/tree.stl" --kind tree --voxel 0.12
+check "tree has 11 openings" expect_exit 0 "openings:    11" "$VM" info "$T/tree.stl"
 head -c 1000 "$T/bif.stl" > "$T/truncated.stl"
 check "truncated" expect_exit 1 "truncated binary STL" "$VM" info "$T/truncated.stl"
 
