@@ -101,13 +101,12 @@ Result<TriangleSoup> read_ascii(std::span<const uint8_t> bytes, const StlReadOpt
     for (int v = 0; v < 3; ++v) {
       if (!expect("vertex")) return fail("expected 'vertex'");
       for (int k = 0; k < 3; ++k) {
-        double x;
+        float x;
         std::string_view t = cur.next();
-        if (!parse_double(t, x)) {
+        if (!parse_float(t, x)) {
           return fail("bad vertex coordinate '" + std::string(t.substr(0, 32)) + "'");
         }
-        soup.coords64.push_back(x);
-        soup.coords.push_back(static_cast<float>(x));
+        soup.coords.push_back(x);
       }
     }
     if (!expect("endloop")) {

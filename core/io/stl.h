@@ -16,10 +16,6 @@ namespace vm {
 /// coords: 9 * num_triangles() floats (x y z of corners a, b, c).
 struct TriangleSoup {
   std::vector<float> coords;
-  /// ASCII STL only: the same coordinates as the text gives them, in double
-  /// (a full-precision file keeps its digits: float32 would move a point
-  /// at 1e5 by up to 0.004); coords holds them rounded to float.
-  std::vector<double> coords64;
   bool ascii = false;  ///< true when read from an ASCII STL
   std::string header;  ///< binary header (80 bytes, trimmed) or ASCII solid name
   /// Tolerated oddities (e.g. trailing bytes after a binary STL).

@@ -80,15 +80,10 @@ Status read_and_weld(PreparedSurface& s, Work& w, std::span<const uint8_t> bytes
   w.labels = std::move(f.face_labels);
   w.face_names = std::move(f.face_names);
   s.label_array = f.label_array;
-  if (!f.soup.coords64.empty()) {  // ASCII STL: welded in double
-    std::vector<int32_t> corners(f.soup.coords64.size() / 3);
-    for (size_t i = 0; i < corners.size(); ++i) corners[i] = int32_t(i);
-    s.mesh = weld(f.soup.coords64, corners, options.weld, &s.weld);
-  } else if (!f.soup.coords.empty()) {
+  if (!f.soup.coords.empty())
     s.mesh = weld(f.soup, options.weld, &s.weld);
-  } else {
+  else
     s.mesh = weld(f.points, f.triangles, options.weld, &s.weld);
-  }
   if (s.weld.merged_by_tolerance > 0)
     s.warnings.push_back(num(s.weld.merged_by_tolerance) +
                          " nearly coincident vertices were merged");

@@ -2,11 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cmath>
-#include <cstdio>
 #include <cstring>
-#include <numbers>
 #include <random>
 #include <string>
 
@@ -121,15 +117,7 @@ TEST(ReadSurface, PreparedSurfaceIsTheSameFromEveryFormat) {
     auto p = prepare_surface(s.bytes);
     ASSERT_TRUE(p.ok()) << p.message();
     EXPECT_EQ(p.value().format, s.format);
-    if (s.format.find("ASCII STL") != std::string::npos) {
-      // ASCII keeps the text's digits in double: the float file's points
-      // to within float rounding, not bit for bit.
-      ASSERT_EQ(p.value().mesh.points.size(), stl.value().mesh.points.size());
-      for (size_t i = 0; i < p.value().mesh.points.size(); ++i)
-        EXPECT_NEAR(p.value().mesh.points[i], stl.value().mesh.points[i], 1e-7);
-    } else {
-      EXPECT_EQ(p.value().mesh.points, stl.value().mesh.points);
-    }
+    EXPECT_EQ(p.value().mesh.points, stl.value().mesh.points);
     EXPECT_EQ(p.value().mesh.triangles, stl.value().mesh.triangles);
     EXPECT_EQ(p.value().topology.openings.size(), 2u);
     EXPECT_EQ(p.value().topology.genus, 0);
@@ -140,42 +128,6 @@ std::string error_of(const Bytes& b, const SurfaceReadOptions& o = {}) {
   auto r = read_surface(b, o);
   EXPECT_FALSE(r.ok());
   return r.message();
-}
-
-TEST(ReadSurface, AsciiStlKeepsFullPrecisionCoordinates) {
-  // A tube 1e5 away from the origin, written with 17 digits: float32 would
-  // round its points to 1/128 (0.0078), a tenth of its edges.
-  std::string text = "solid far\n";
-  char line[160];
-  const int n = 16, rows = 4;
-  auto corner = [&](int i, int j) {
-    const double a = 2 * std::numbers::pi * i / n;
-    return std::array<double, 3>{1e5 + 0.1 * std::cos(a), 1e5 + 0.1 * std::sin(a), 0.1 * j};
-  };
-  for (int j = 0; j < rows; ++j)
-    for (int i = 0; i < n; ++i) {
-      const std::array<double, 3> q[2][3] = {
-          {corner(i, j), corner(i + 1, j), corner(i + 1, j + 1)},
-          {corner(i, j), corner(i + 1, j + 1), corner(i, j + 1)}};
-      for (const auto& t : q) {
-        text += "facet normal 0 0 0\nouter loop\n";
-        for (const auto& v : t) {
-          std::snprintf(line, sizeof line, "vertex %.17g %.17g %.17g\n", v[0], v[1], v[2]);
-          text += line;
-        }
-        text += "endloop\nendfacet\n";
-      }
-    }
-  text += "endsolid far\n";
-  auto p = prepare_surface(Bytes(text.begin(), text.end()));
-  ASSERT_TRUE(p.ok()) << p.message();
-  const SurfaceMesh& m = p.value().mesh;
-  EXPECT_EQ(m.num_vertices(), size_t(n * (rows + 1)));
-  EXPECT_EQ(p.value().topology.openings.size(), 2u);
-  for (size_t v = 0; v < m.num_vertices(); ++v) {
-    const double dx = m.points[3 * v] - 1e5, dy = m.points[3 * v + 1] - 1e5;
-    EXPECT_NEAR(std::sqrt(dx * dx + dy * dy), 0.1, 1e-9);
-  }
 }
 
 TEST(ReadSurface, PngIsNotASurface) {
