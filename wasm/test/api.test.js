@@ -851,7 +851,7 @@ describe('mesh: boundary layers and vessel wall', () => {
 
 describe('makePhantom', () => {
   test('each kind has its openings and genus', () => {
-    const expected = { tube: [2, 0], bifurcation: [3, 0], aneurysm: [3, 0], torus: [0, 1] };
+    const expected = { tube: [2, 0], bifurcation: [3, 0], aneurysm: [3, 0], torus: [0, 1], tree: [11, 0] };
     for (const [kind, [openings, genus]] of Object.entries(expected)) {
       const p = api.makePhantom({ noise: 0.3, kind, voxel: 0.15 });
       assert.equal(p.ok, true, p.error);
@@ -865,7 +865,7 @@ describe('makePhantom', () => {
     const a = api.makePhantom({ noise: 0.3, voxel: 0.2, seed: 7 });
     const b = api.makePhantom({ noise: 0.3, voxel: 0.2, seed: 7 });
     assert.deepEqual(a.stl, b.stl);
-    assert.equal(api.makePhantom({ kind: 'blob' }).error, 'kind needs bifurcation, tube, aneurysm or torus');
+    assert.equal(api.makePhantom({ kind: 'blob' }).error, 'kind needs bifurcation, tube, aneurysm, torus or tree');
     assert.equal(api.makePhantom({ voxel: 0 }).error, 'voxel needs a positive voxel size');
     assert.match(api.makePhantom({ voxel: 1e-4 }).error, /too large/);
     assert.match(api.makePhantom({ seed: -1 }).error, /seed/);
