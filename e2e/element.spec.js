@@ -143,6 +143,9 @@ test('two <vessel-mesher> elements on a host page mesh independently and send th
 });
 
 test('a Vite app that installed the package meshes the sample with the client, the API and the element', async ({ page }) => {
+  // Packs, installs and builds an app first: minutes when the other worker
+  // meshes a large tree on a 2-core machine.
+  test.setTimeout(300_000);
   const server = await serveStatic({ dirs: { '/': buildViteApp(consumer) }, files: {} });
   try {
     const foreign = outsideRequests(page, server);
