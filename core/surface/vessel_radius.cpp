@@ -13,8 +13,8 @@
 
 #include "core/geom/point_kdtree.h"
 #include "core/geom/vec3.h"
-#include "core/mesh/chord_radius.h"
 #include "core/mesh/adjacency.h"
+#include "core/mesh/chord_radius.h"
 
 namespace vm {
 namespace {
@@ -150,10 +150,9 @@ std::vector<double> vessel_radius(const SurfaceMesh& m, const VesselRadiusSampli
       const size_t p = size_t(sample[i]);
       const double r0 = chord[i] > 0 ? std::min(r_max, 1.001 * chord[i]) : r_max;
       radius[p] = shrink_ball(tree, pts, &m.points[3 * p], &normal[3 * p], int64_t(i), r0);
-      // Unclosed, or kept at the first ball (the nearest point was judged
-      // noise next to p; isolated among vertices whose balls closed, where
-      // every vertex has one): not spread, the medians fill it.
-      if (!(radius[p] > 0) || radius[p] >= r0) {
+      // Unclosed, or still the bounding-box ball (no chord, nothing met):
+      // not spread, the medians fill it.
+      if (!(radius[p] > 0) || radius[p] >= r_max) {
         radius[p] = -1;
         continue;
       }
