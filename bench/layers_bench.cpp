@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "bench/bench_util.h"
-#include "core/mesh/chord_radius.h"
 #include "core/layers/extrude_layers.h"
+#include "core/mesh/chord_radius.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/surface/caps.h"
 #include "core/surface/remesh_surface.h"

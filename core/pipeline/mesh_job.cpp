@@ -11,9 +11,9 @@
 #include <optional>
 #include <tuple>
 
-#include "core/mesh/chord_radius.h"
 #include "core/layers/extrude_layers.h"
 #include "core/layers/layered_volume.h"
+#include "core/mesh/chord_radius.h"
 #include "core/mesh/edge_lengths.h"
 #include "core/mesh/enclosed_volume.h"
 #include "core/mesh/prism_split.h"

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh/chord_radius.h"
 #include "core/layers/extrude_layers.h"
 #include "core/layers/refine_layers.h"
+#include "core/mesh/chord_radius.h"
 #include "core/mesh/enclosed_volume.h"
 #include "core/mesh/volume_check.h"
 #include "core/phantom/vessel_phantom.h"
