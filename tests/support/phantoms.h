@@ -5,7 +5,9 @@
 
 #include <cmath>
 #include <cstddef>
+#include <vector>
 
+#include "core/mesh/topology.h"
 #include "core/phantom/vessel_phantom.h"
 
 namespace vm::testing {
@@ -32,6 +34,24 @@ inline size_t nearest_truth_opening(const PhantomTruth& truth, const double* cen
     if (d < best_d) best_d = d, best = i;
   }
   return best;
+}
+
+/// The values of `per_vertex` at the vertices just inside an opening: 0.3
+/// to 0.8 model units in from its plane (the rim itself has no closing
+/// ball) and within two radii R of its centroid.
+inline std::vector<double> rim_band_values(const SurfaceMesh& m, const Opening& op, double R,
+                                           const std::vector<double>& per_vertex) {
+  std::vector<double> near;
+  for (size_t v = 0; v < m.num_vertices(); ++v) {
+    double along = 0, dist2 = 0;
+    for (size_t k = 0; k < 3; ++k) {
+      const double x = m.points[3 * v + k] - op.centroid[k];
+      along += x * op.normal[k];
+      dist2 += x * x;
+    }
+    if (along < -0.3 && along > -0.8 && dist2 < 4 * R * R) near.push_back(per_vertex[v]);
+  }
+  return near;
 }
 
 }  // namespace vm::testing

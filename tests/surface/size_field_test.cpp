@@ -98,18 +98,7 @@ TEST(SizeField, PerCircumferenceOnAPhantomMatchesTheTrueRadius) {
   for (const Opening& op : topo.openings) {
     const size_t best = testing::nearest_truth_opening(truth, op.centroid.data());
     const double R = truth.opening_radii[best];
-    // Vertices a little inside the vessel from the cut (the rim itself has
-    // no closing ball).
-    std::vector<double> near;
-    for (size_t v = 0; v < m.num_vertices(); ++v) {
-      double along = 0, dist2 = 0;
-      for (int k = 0; k < 3; ++k) {
-        const double x = m.points[3 * v + k] - op.centroid[k];
-        along += x * op.normal[k];
-        dist2 += x * x;
-      }
-      if (along < -0.3 && along > -0.8 && dist2 < 4 * R * R) near.push_back(r.value()[v]);
-    }
+    const std::vector<double> near = testing::rim_band_values(m, op, R, r.value());
     ASSERT_GT(near.size(), 20u);
     const double expected = 2 * kPi * R / N;
     EXPECT_NEAR(median(near), expected, 0.1 * expected) << "opening of radius " << R;

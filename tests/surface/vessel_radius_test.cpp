@@ -29,9 +29,7 @@ TEST(VesselRadius, TorusGivesItsTubeRadius) {
 }
 
 /// At each opening of the phantom the true tube radius is known: the median
-/// of `r` over the vertices near the rim (within one radius of its
-/// centroid, 0.3 to 0.8 inside its plane, away from the cut itself) must be
-/// within 10% of it.
+/// of `r` over the vertices just inside the rim must be within 10% of it.
 void expect_rims_within_ten_percent(const SurfaceMesh& mesh, const PhantomTruth& truth,
                                     const std::vector<double>& r) {
   ASSERT_EQ(r.size(), mesh.num_vertices());
@@ -39,17 +37,8 @@ void expect_rims_within_ten_percent(const SurfaceMesh& mesh, const PhantomTruth&
   ASSERT_EQ(int(topo.openings.size()), truth.openings);
   for (const Opening& op : topo.openings) {
     const size_t best = testing::nearest_truth_opening(truth, op.centroid.data());
-    std::vector<double> near;
-    for (size_t v = 0; v < mesh.num_vertices(); ++v) {
-      double d = 0, dist = 0;
-      for (size_t k = 0; k < 3; ++k) {
-        const double x = mesh.points[3 * v + k] - op.centroid[k];
-        d += x * op.normal[k];
-        dist += x * x;
-      }
-      if (d < -0.3 && d > -0.8 && dist < 4 * truth.opening_radii[best] * truth.opening_radii[best])
-        near.push_back(r[v]);
-    }
+    const std::vector<double> near =
+        testing::rim_band_values(mesh, op, truth.opening_radii[best], r);
     ASSERT_GT(near.size(), 20u);
     EXPECT_NEAR(median(near), truth.opening_radii[best], 0.1 * truth.opening_radii[best]);
   }
