@@ -228,7 +228,7 @@ def option_cases(table):
         ["--feature-angle", "1"],
         ["--fidelity", "1", "--size", "0.05"],
         ["--size-min", "10", "--size-max", "0.01"],
-        ["--flow-extension", "100"],  # refused: beyond the range
+        ["--flow-extension", "100"],
         ["--flow-extension", "100", "--size", "0.5"],
         ["--max-elements", "1000"],
         ["--clip", "auto"],

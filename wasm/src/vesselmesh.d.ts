@@ -15,7 +15,7 @@ export interface AnalyzeOptions {
   holeFraction?: number;
   /** the unit of the file's numbers (default: guessed from the vessel radii: below 0.05 metres, else millimetres) Needs mm, cm or m. */
   units?: 'mm' | 'cm' | 'm';
-  /** extend the openings (K=L: opening K) straight along their normals by L local radii. Needs a length in local radii from 0 (none) to 50, or K=L for opening K. Default 0. */
+  /** extend the openings (K=L: opening K) straight along their normals by L local radii. Needs a length in local radii from 0 (none) to 100, or K=L for opening K. Default 0. */
   flowExtension?: number | Record<number, number> | number[];
   /** keep planar caps as wall (else each recognised cap is removed and its rim becomes an opening) Default false. */
   keepCaps?: boolean;
@@ -56,7 +56,7 @@ export interface MeshOptions {
   holeFraction?: number;
   /** the unit of the file's numbers (default: guessed from the vessel radii: below 0.05 metres, else millimetres) Needs mm, cm or m. */
   units?: 'mm' | 'cm' | 'm';
-  /** extend the openings (K=L: opening K) straight along their normals by L local radii. Needs a length in local radii from 0 (none) to 50, or K=L for opening K. Default 0. */
+  /** extend the openings (K=L: opening K) straight along their normals by L local radii. Needs a length in local radii from 0 (none) to 100, or K=L for opening K. Default 0. */
   flowExtension?: number | Record<number, number> | number[];
   /** keep planar caps as wall (else each recognised cap is removed and its rim becomes an opening) Default false. */
   keepCaps?: boolean;
