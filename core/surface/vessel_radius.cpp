@@ -75,8 +75,11 @@ double shrink_ball(const PointKdTree& tree, const std::vector<double>& pts, cons
     // Denoising (Ma et al., section 4): q seen from the new center within
     // a small angle of p is surface noise next to p, not the wall across
     // the lumen; keep the current ball. cos(angle p c q) = 1 - |pq|^2 /
-    // (2 r^2) on the sphere of radius r through p and q.
-    if (1 - len2 / (2 * r_new * r_new) > kCosSeparation) {
+    // (2 r^2) on the sphere of radius r through p and q. Not on the first
+    // step: the current ball is then the initial one, half the model
+    // across, which no wall touched (kept, it gave R = r_max on the sides
+    // of bends and branches: up to half the vertices of real surfaces).
+    if (iter > 0 && 1 - len2 / (2 * r_new * r_new) > kCosSeparation) {
       closed = true;
       break;
     }

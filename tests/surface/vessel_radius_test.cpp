@@ -77,5 +77,23 @@ TEST(VesselRadius, SampledIsWithinTenPercentAndHasNoRunaways) {
   expect_rims_within_ten_percent(mesh, truth, r);
 }
 
+TEST(VesselRadius, NoBallKeptAtTheInitialRadiusOnBranches) {
+  // The first shrinking step's nearest point may be angularly close to p
+  // (the far side of a bend or a branch); keeping the initial ball there
+  // gave R = half the bounding-box diagonal on 15% of this phantom's
+  // vertices. Every estimate stays below 1.5 times the parent's radius (1).
+  PhantomOptions o;
+  o.kind = PhantomKind::kBifurcation;
+  o.voxel = 0.08;
+  o.noise = 0.3;
+  auto m = make_vessel_phantom(o);
+  ASSERT_TRUE(m.ok());
+  const std::vector<double> r = vessel_radius(m.value());
+  size_t above = 0;
+  for (double x : r) above += x > 1.5;
+  EXPECT_EQ(above, 0u) << "of " << r.size();
+  EXPECT_LT(*std::max_element(r.begin(), r.end()), 1.5);
+}
+
 }  // namespace
 }  // namespace vm
