@@ -14,7 +14,13 @@ namespace vm {
 using namespace layers;  // NOLINT: the layer stage's own vector helpers
 namespace {
 
-constexpr double kVisibilityTarget = 0.3;
+// Each direction is pushed until it sees every triangle of its star at
+// direction . normal >= this: a prism's three columns then lie within 66
+// degrees of its base triangle's normal, and so does the line through the
+// centres of stacked prisms, which keeps finite-volume non-orthogonality
+// below OpenFOAM's 70-degree limit at creases (0.3 allowed 72.5 degrees:
+// 70.7 was measured on a coronary tree).
+constexpr double kVisibilityTarget = 0.4;
 constexpr double kVisibilityFloor = 0.02;
 
 std::string where(const SurfaceMesh& m, int32_t v) {

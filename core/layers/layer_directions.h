@@ -44,7 +44,7 @@ struct LayerDirections {
 /// enough, so the front never crosses the cap planes and the rings stay the
 /// only layer faces in them; (5) visibility: every direction is pushed
 /// toward the normal of the incident triangle it sees worst until it sees
-/// all of them at direction . normal >= 0.3 (rim directions kept in their
+/// all of them at direction . normal >= 0.4 (rim directions kept in their
 /// plane), or the best found is kept.
 ///
 /// Inputs: `wall` manifold and outward oriented, rim vertices already on
