@@ -2,9 +2,9 @@
 // opening, the rim's directions into the extension (the wall's own, from
 // each rim vertex's inner neighbours, so the join is smooth) and the end
 // circle; (2) rings of vertices along a Hermite curve from each rim vertex
-// to its circle point halfway, then straight to the end; (3) bands of
-// triangles between consecutive rings, oriented like the wall; (4) a check
-// that no new triangle crosses the surface.
+// to its circle point (halfway, at most 2.5 radii out), then straight to
+// the end; (3) bands of triangles between consecutive rings, oriented like
+// the wall; (4) a check that no new triangle crosses the surface.
 #include "core/prepare/flow_extensions.h"
 
 #include <algorithm>
@@ -71,6 +71,10 @@ std::vector<Vec3> rim_directions(const SurfaceMesh& m, const TriangleAdjacency& 
   }
   return dirs;
 }
+
+// Length of the join from the rim's shape to the circle, in the opening's
+// radii (the first half of a 5-radius extension).
+constexpr double kBlendRadii = 2.5;
 
 }  // namespace
 
@@ -140,10 +144,12 @@ Result<std::vector<FlowExtension>> add_flow_extensions(SurfaceMesh& mesh,
       dirs[i] = unit(add(dirs[i], around, -dot(dirs[i], around)));
     }
     // Phase 2: rings. The cross-section blends over the first half of the
-    // extension (Hermite, leaving the rim in the wall's direction, arriving
-    // along the axis), then runs straight.
+    // extension, at most kBlendRadii radii (Hermite, leaving the rim in the
+    // wall's direction, arriving along the axis), then runs straight. The
+    // Hermite tangents scale with the blend's chord: a blend as long as
+    // half of a long extension would swing out by radii and pinch the tube.
     const size_t rings = std::max<size_t>(2, size_t(std::ceil(height / std::max(edge, 1e-300))));
-    const double half = 0.5 * height;
+    const double half = std::min(0.5 * height, kBlendRadii * op.radius);
     std::vector<int32_t> previous(loop.begin(), loop.end()), current(n);
     for (size_t j = 1; j <= rings; ++j) {
       const double z = height * double(j) / double(rings);

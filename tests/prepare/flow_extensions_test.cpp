@@ -76,6 +76,41 @@ TEST(FlowExtensions, ExtendAnOpenTubeStraightAlongItsAxis) {
   EXPECT_EQ(find_self_intersections(tube).pairs, 0u);
 }
 
+TEST(FlowExtensions, ALongExtensionOfAFlaredEndStaysATube) {
+  // A tube widening from radius 1 to 2 (wall 14 degrees off the axis at
+  // both rims), extended by 40 radii at both ends: the join leaves each
+  // rim in the wall's direction, yet no ring may swing out or pinch. Every
+  // new vertex stays between the rim's and the end circle's radius from the
+  // axis, with 10% slack for the join's smooth overshoot (a blend over half
+  // the extension put rings between 0.29 and 3.4 from it).
+  SurfaceMesh tube = testing::open_tube(32, 8, 1.0, 4.0);
+  for (size_t v = 0; v < tube.num_vertices(); ++v) {
+    const double s = 1 + 0.25 * tube.points[3 * v + 2];
+    tube.points[3 * v] *= s;
+    tube.points[3 * v + 1] *= s;
+  }
+  const TopologyReport before = analyze_topology(tube);
+  ASSERT_EQ(before.openings.size(), 2u);
+  const size_t old_vertices = tube.num_vertices();
+  std::vector<int32_t> opening_of;
+  auto r = add_flow_extensions(tube, nullptr, before.openings, {40.0, 40.0}, &opening_of);
+  ASSERT_TRUE(r.ok()) << r.message();
+  ASSERT_EQ(opening_of.size(), tube.num_vertices() - old_vertices);
+  const double angle = 2 * std::numbers::pi / 32;
+  for (size_t i = 0; i < opening_of.size(); ++i) {
+    const Opening& op = before.openings[size_t(opening_of[i])];
+    // The rim is a circle about the z axis: its radius, and the end's.
+    const double* rim = &tube.points[3 * size_t(op.loop[0])];
+    const double rim_radius = std::hypot(rim[0], rim[1]);
+    const double end_radius = op.radius * std::sqrt(angle / std::sin(angle));
+    const double* p = &tube.points[3 * (old_vertices + i)];
+    const double d = std::hypot(p[0], p[1]);
+    EXPECT_GE(d, 0.9 * std::min(rim_radius, end_radius)) << "vertex " << i;
+    EXPECT_LE(d, 1.1 * std::max(rim_radius, end_radius)) << "vertex " << i;
+  }
+  EXPECT_EQ(find_self_intersections(tube).pairs, 0u);
+}
+
 TEST(FlowExtensions, AnExtensionIntoTheWallIsRefusedWithAPlace) {
   // A U-shaped tube: its two ends face the same way, side by side; a long
   // extension of one is fine, but a bent end aimed at the other tube is not.
