@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "core/geom/vec3.h"
+#include "core/mesh/chord_radius.h"
 
 namespace vm {
 namespace {
@@ -291,7 +292,7 @@ CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& 
   // Phase 2: tests.
   std::vector<uint8_t> in_region(nt, 0);
   std::vector<int32_t> owner(mesh.num_vertices(), -1);
-  std::vector<std::vector<int32_t>> kept_vertices;
+  std::vector<std::vector<int32_t>> kept_vertices, kept_rims;
   for (auto& triangles : candidates) {
     if (!labelled && triangles.size() < 2) continue;
     Region r;
@@ -325,18 +326,42 @@ CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& 
     cap.normal = r.normal;
     out.caps.push_back(std::move(cap));
     kept_vertices.push_back(std::move(topo.vertices));
+    kept_rims.push_back(std::move(topo.rim_vertices));
   }
 
-  // Phase 3: caps sharing a vertex cannot both become openings.
+  // Phase 3: an unlabelled cap much narrower than the lumen across its rim
+  // is a flat spot on a vessel's side (noise), not a vessel end. The median
+  // half chord from the rim along the inward normals measures the lumen:
+  // about the cap's own radius at a real end (the rays cross the vessel
+  // behind it), the vessel's radius beside a flat spot.
+  std::vector<uint8_t> narrow(out.caps.size(), 0);
+  if (!labelled && !out.caps.empty()) {
+    std::vector<int32_t> rims;
+    for (const std::vector<int32_t>& rim : kept_rims)
+      rims.insert(rims.end(), rim.begin(), rim.end());
+    const std::vector<double> chord = half_chords(mesh, rims);
+    size_t at = 0;
+    for (size_t c = 0; c < out.caps.size(); ++c) {
+      std::vector<double> measured;
+      for (size_t i = 0; i < kept_rims[c].size(); ++i, ++at)
+        if (chord[at] > 0) measured.push_back(chord[at]);
+      if (!measured.empty() && out.caps[c].radius < options.min_lumen_fraction * median(measured))
+        narrow[c] = 1;
+    }
+  }
+
+  // Phase 4: caps sharing a vertex cannot both become openings.
   std::vector<uint8_t> drop(out.caps.size(), 0);
   for (size_t c = 0; c < out.caps.size(); ++c)
     for (int32_t v : kept_vertices[c]) {
+      if (narrow[c]) break;
       if (owner[size_t(v)] >= 0 && owner[size_t(v)] != int32_t(c))
         drop[c] = drop[size_t(owner[size_t(v)])] = 1;
       owner[size_t(v)] = int32_t(c);
     }
   size_t n = 0;
   for (size_t c = 0; c < out.caps.size(); ++c) {
+    if (narrow[c]) continue;
     if (drop[c]) {
       out.notes.push_back("a flat end at " + std::to_string(out.caps[c].centroid[0]) + ", " +
                           std::to_string(out.caps[c].centroid[1]) + ", " +

@@ -12,8 +12,9 @@
 // minority of the surface; without labels also a rim that is sharp all
 // around, a wall meeting it at roughly a right angle and going straight
 // back from it like a vessel of the cap's radius (which a voxel staircase's
-// terrace does not); (3) caps touching each other or an opening are
-// dropped.
+// terrace does not); (3) unlabelled caps much narrower than the lumen
+// across their rim (flat spots of a noisy wall) are dropped; (4) caps
+// touching each other are dropped.
 #pragma once
 
 #include <array>
@@ -52,6 +53,10 @@ struct CapRecognitionOptions {
   double min_radius_ratio = 0.6, max_radius_ratio = 1.6;
   /// A cap has at least this many rim vertices.
   int min_rim_vertices = 3;
+  /// Without labels: a cap's equivalent radius is at least this fraction of
+  /// the lumen's half width across its rim (the median half chord from its
+  /// rim vertices; smaller: a flat spot on a vessel's side).
+  double min_lumen_fraction = 0.25;
 };
 
 /// One recognised cap.
