@@ -182,9 +182,8 @@ void set_floors(Pinning& p) {
 /// `before` (one per output vertex of the wall then).
 void relax(Pinning& p, const std::vector<uint8_t>& before) {
   p.wall.size = output_sizes(p.input, p.wall.home, p.h);
-  const auto more =
-      optimize_on_surface(p.mesh, p.wall.home, p.wall.fixed, p.wall.size, p.input, p.adj,
-                          p.relax_options, around_changes(p.mesh, p.wall.fixed, before), &p.slack);
+  const auto more = optimize_on_surface(p.mesh, p.wall, p.input, p.adj, p.relax_options,
+                                        around_changes(p.mesh, p.wall.fixed, before), &p.slack);
   p.stats.collapses += more.collapses;
   p.stats.swaps += more.swaps;
   p.stats.moves += more.moves;
@@ -194,7 +193,7 @@ void relax(Pinning& p, const std::vector<uint8_t>& before) {
 /// around them. Returns the number freed.
 size_t unpin_and_relax(Pinning& p, double min_gamma) {
   const std::vector<uint8_t> before = p.wall.fixed;
-  const size_t freed = unpin_poor(p.mesh, p.wall.fixed, p.wall.pin_of, min_gamma, p.given_up);
+  const size_t freed = unpin_poor(p.mesh, p.wall, min_gamma, p.given_up);
   p.stats.fidelity_pinned -= freed;
   if (freed > 0) relax(p, before);
   return freed;
@@ -246,7 +245,6 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
       std::min(p.relax_options.valence_passes, options.fidelity_passes);
   p.given_up.assign(input.num_vertices(), 0);
   wall.pin_of.assign(wall.fixed.size(), -1);
-  p.slack.pin_of = &wall.pin_of;
   p.slack.input_h = &h;
   p.slack.slack = options.fidelity_pin_slack * options.fidelity;
   // The last rounds retry every vertex left far, accepting poorer
@@ -270,8 +268,8 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     if (round == options.fidelity_rounds) std::fill(p.given_up.begin(), p.given_up.end(), 0);
     if (round == 0) set_floors(p);
     const std::vector<uint8_t> before = wall.fixed;
-    const PinStats pinned = pin_to_input(mesh, wall.home, wall.fixed, wall.pin_of, input, asked,
-                                         input_gaps, options.fidelity, p.given_up);
+    const PinStats pinned =
+        pin_to_input(mesh, wall, input, asked, input_gaps, options.fidelity, p.given_up);
     if (pinned.pinned == 0) {
       // Nothing left to try at this quality: on to the last rounds.
       if (round < options.fidelity_rounds) {

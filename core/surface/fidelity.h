@@ -18,16 +18,6 @@
 
 namespace vm {
 
-/// What travels with each output vertex while the wall is optimized and
-/// pinned: flat arrays, one entry per output vertex, renumbered and
-/// extended together with the mesh.
-struct WallVertices {
-  std::vector<int32_t> home;    ///< an input triangle that contains it
-  std::vector<uint8_t> fixed;   ///< kFree, kOnOpening, kOnFeature or kPinned
-  std::vector<int32_t> pin_of;  ///< the input vertex it is pinned to, or -1
-  std::vector<double> size;     ///< target edge length there (model unit, > 0)
-};
-
 /// The target size at each output vertex: the mean of `h` (one per input
 /// vertex, model unit) over its home triangle (`home`: one input triangle
 /// per output vertex).

@@ -363,8 +363,7 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
   // Phase 5: swaps and smoothing on the input surface (seed section 3).
   t0 = std::chrono::steady_clock::now();
   wall.size = output_sizes(input, wall.home, h);
-  const auto ostats = optimize_on_surface(out.mesh, wall.home, wall.fixed, wall.size, input,
-                                          part.adj, options.optimize);
+  const auto ostats = optimize_on_surface(out.mesh, wall, input, part.adj, options.optimize);
   stats.collapses = ostats.collapses;
   stats.swaps = ostats.swaps;
   stats.moves = ostats.moves;
