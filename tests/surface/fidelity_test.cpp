@@ -25,7 +25,10 @@ struct Unpinned {
   RemeshOptions options;
   RemeshedSurface out;
   WallVertices wall;
+  std::vector<double> asked;  ///< the uniform size h, per input vertex
 };
+
+constexpr double kH = 0.3;
 
 Unpinned unpinned_bifurcation(double h) {
   Unpinned u;
@@ -37,6 +40,7 @@ Unpinned unpinned_bifurcation(double h) {
   EXPECT_TRUE(r.ok()) << r.message();
   if (!r.ok()) return u;
   u.out = std::move(r).value();
+  u.asked.assign(u.input.num_vertices(), h);
   u.wall.home = u.out.home;
   u.wall.size = u.out.sizes;
   u.wall.fixed.resize(u.out.home.size());
@@ -51,11 +55,10 @@ size_t count_far(const std::vector<double>& gaps, double limit) {
 }
 
 TEST(Fidelity, PinningRoundsBringFarInputVerticesOntoTheWall) {
-  const double h = 0.3;
+  const double h = kH;
   Unpinned u = unpinned_bifurcation(h);
   ASSERT_GT(u.out.mesh.num_triangles(), 0u);
   const SurfaceMesh& in = u.input;
-  const std::vector<double> asked(in.num_vertices(), h);
   const size_t far_before = count_far(distances_to_surface(u.out.mesh, in.points, true).per_point,
                                       u.options.fidelity * h);
   ASSERT_GT(far_before, 0u) << "the phantom should have far input vertices";
@@ -65,7 +68,7 @@ TEST(Fidelity, PinningRoundsBringFarInputVerticesOntoTheWall) {
   SurfaceMesh mesh = u.out.mesh;
   std::vector<double> gaps;
   RemeshStats stats;
-  pin_far_input_vertices(in, build_adjacency(in), asked, asked, u.options, mesh, u.wall, gaps,
+  pin_far_input_vertices(in, build_adjacency(in), u.asked, u.asked, u.options, mesh, u.wall, gaps,
                          stats);
 
   // The gaps returned are the wall's, and far fewer are beyond the limit.
@@ -110,11 +113,10 @@ TEST(Fidelity, PinningRoundsBringFarInputVerticesOntoTheWall) {
 }
 
 TEST(Fidelity, SizeRoundsMakeTheSizeFinerAtFarVerticesAndKeepTheBestWall) {
-  const double h = 0.3;
+  const double h = kH;
   Unpinned u = unpinned_bifurcation(h);
   ASSERT_GT(u.out.mesh.num_triangles(), 0u);
   const SurfaceMesh& in = u.input;
-  const std::vector<double> asked(in.num_vertices(), h);
   const std::vector<double> first_gaps = u.out.input_gaps;
   const double limit = u.options.fidelity * h;
   ASSERT_GT(count_far(first_gaps, limit), 0u);
@@ -125,7 +127,7 @@ TEST(Fidelity, SizeRoundsMakeTheSizeFinerAtFarVerticesAndKeepTheBestWall) {
   Result<RemeshedSurface> result(u.out);
   RemeshStats stats;
   const Status status = refine_size_where_far(
-      in, u.options, asked, asked, result, stats,
+      in, u.options, u.asked, u.asked, result, stats,
       [&](const std::vector<double>& sizes, RemeshStats&) -> Result<RemeshedSurface> {
         asked_sizes.push_back(sizes);
         RemeshedSurface closer = u.out;
@@ -152,7 +154,7 @@ TEST(Fidelity, SizeRoundsMakeTheSizeFinerAtFarVerticesAndKeepTheBestWall) {
   // A cancelled remeshing is returned as such.
   Result<RemeshedSurface> again(u.out);
   const Status cancelled = refine_size_where_far(
-      in, u.options, asked, asked, again, stats,
+      in, u.options, u.asked, u.asked, again, stats,
       [](const std::vector<double>&, RemeshStats&) -> Result<RemeshedSurface> {
         return Status::Cancelled();
       });
