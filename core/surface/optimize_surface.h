@@ -85,9 +85,9 @@ struct SurfaceOptimizeStats {
 /// together. Preconditions: `mesh` is manifold and consistently oriented;
 /// wall.home has one input triangle per vertex, wall.fixed one flag per
 /// vertex (kOnOpening on every boundary vertex; kOnFeature, kPinned or
-/// kFree elsewhere), wall.size one per vertex or none (then `size` above
-/// means no split or collapse), wall.pin_of one per vertex with `pins`;
-/// input_adj is build_adjacency(input).
+/// kFree elsewhere), wall.size one per vertex or empty (then no split or
+/// collapse), wall.pin_of one per vertex with `pins`; input_adj is
+/// build_adjacency(input).
 /// `start` (empty, or one flag per vertex) limits the first pass to the
 /// flagged vertices and their triangles; later passes follow the changes.
 /// `pins` (null: none) lets pinned vertices slide (see PinSlack).
