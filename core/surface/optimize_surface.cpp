@@ -73,11 +73,11 @@ class Optimizer {
  public:
   Optimizer(SurfaceMesh& m, std::vector<int32_t>& home, std::vector<uint8_t>& fixed,
             std::vector<double>& size, const SurfaceMesh& input, const TriangleAdjacency& input_adj,
-            const SurfaceOptimizeOptions& o, const PinSlack* pins)
+            const SurfaceOptimizeOptions& o, const PinSlack* pins, std::vector<int32_t>* pin_of)
       : m_(m), home_(home), fixed_(fixed), size_(size), in_(input), in_adj_(input_adj) {
     collapse_ratio_ = o.collapse_ratio;
     if (pins) {
-      pin_of_ = pins->pin_of;
+      pin_of_ = pin_of;
       input_h_ = pins->input_h;
       pin_slack_ = pin_of_ && input_h_ ? pins->slack : 0;
     }
@@ -608,14 +608,14 @@ int32_t project_near(const double* q, int32_t start, const SurfaceMesh& input,
   return best_t;
 }
 
-SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>& home,
-                                         std::vector<uint8_t>& fixed, std::vector<double>& size,
+SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, WallVertices& wall,
                                          const SurfaceMesh& input,
                                          const TriangleAdjacency& input_adj,
                                          const SurfaceOptimizeOptions& options,
                                          const std::vector<uint8_t>& start, const PinSlack* pins) {
   SurfaceOptimizeStats stats;
-  Optimizer opt(mesh, home, fixed, size, input, input_adj, options, pins);
+  Optimizer opt(mesh, wall.home, wall.fixed, wall.size, input, input_adj, options, pins,
+                &wall.pin_of);
   if (!start.empty()) opt.start_from(start);
   for (int pass = 0; pass < options.passes; ++pass) {
     size_t splits = pass < options.valence_passes ? opt.split_pass() : 0;
@@ -630,7 +630,7 @@ SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>
     if (splits == 0 && collapses == 0 && swaps == 0 && moves == 0) break;
     opt.next_pass();
   }
-  if (stats.collapses > 0) opt.compact(fixed, size);
+  if (stats.collapses > 0) opt.compact(wall.fixed, wall.size);
   return stats;
 }
 

@@ -27,11 +27,9 @@ struct SurfaceOptimizeOptions {
   double split_ratio = 1.6;
 };
 
-/// Pinned vertices that may slide (see pin_to_input).
+/// Pinned vertices that may slide (see pin_to_input); the input vertex
+/// each is pinned to is WallVertices::pin_of.
 struct PinSlack {
-  /// Per output vertex, the input vertex it is pinned to (-1: none);
-  /// renumbered and extended with the mesh.
-  std::vector<int32_t>* pin_of = nullptr;
   /// Per input vertex, the size h there (> 0).
   const std::vector<double>* input_h = nullptr;
   /// A pinned vertex may move, like a free one, while it stays within
@@ -48,6 +46,16 @@ inline constexpr uint8_t kOnFeature = 2;  ///< on a sharp crease: never moves
 /// are not creases.
 inline constexpr uint8_t kPinned = 3;
 
+/// What travels with each vertex of the remeshed wall while it is
+/// optimized and pinned: flat arrays, one entry per output vertex,
+/// renumbered and extended together with the mesh.
+struct WallVertices {
+  std::vector<int32_t> home;    ///< an input triangle near (or containing) it
+  std::vector<uint8_t> fixed;   ///< kFree, kOnOpening, kOnFeature or kPinned
+  std::vector<int32_t> pin_of;  ///< the input vertex it is pinned to, or -1
+  std::vector<double> size;     ///< target edge length there (model unit, > 0)
+};
+
 struct SurfaceOptimizeStats {
   size_t swaps = 0;
   size_t moves = 0;
@@ -59,7 +67,7 @@ struct SurfaceOptimizeStats {
 /// - splits of edges longer than `options.split_ratio` times the target size
 ///   at their midpoints projected onto `input`;
 /// - collapses of edges shorter than `options.collapse_ratio` times the
-///   target size `size` (one per vertex; empty: no collapse), keeping the
+///   target size `wall.size` (one per vertex; empty: no collapse), keeping the
 ///   mesh manifold (link condition) and the opening vertices in place;
 /// - swaps of interior edges towards regular valences (6 inside, 4 on an
 ///   opening) that keep the pair's worst gamma_k above a fraction of itself;
@@ -67,22 +75,23 @@ struct SurfaceOptimizeStats {
 /// - moves of each vertex not `fixed` (or pinned, within its slack) to the
 ///   mean of the apexes that would make its triangles equilateral,
 ///   projected onto `input` (the closest point found by a walk from
-///   `home[v]`, an input triangle near v, which is updated), when the
+///   `wall.home[v]`, an input triangle near v, which is updated), when the
 ///   star's worst gamma_k increases, or its mean increases while the worst
 ///   stays above min(before, 0.8).
 /// Vertices only move to points of the input surface; the boundary edges of
 /// `mesh` never change; no triangle turns by more than the normal guard.
-/// Split vertices are appended (free) and collapsed vertices removed: mesh,
-/// home, fixed and size are renumbered together. Preconditions: `mesh` is
-/// manifold and consistently oriented, home has one input triangle per
-/// vertex, fixed one flag per vertex (kOnOpening on every boundary vertex;
-/// kOnFeature, kPinned or kFree elsewhere), input_adj is
+/// Split vertices are appended (free) and collapsed vertices removed: mesh
+/// and `wall` (home, fixed, size, and pin_of with `pins`) are renumbered
+/// together. Preconditions: `mesh` is manifold and consistently oriented;
+/// wall.home has one input triangle per vertex, wall.fixed one flag per
+/// vertex (kOnOpening on every boundary vertex; kOnFeature, kPinned or
+/// kFree elsewhere), wall.size one per vertex or empty (then no split or
+/// collapse), wall.pin_of one per vertex with `pins`; input_adj is
 /// build_adjacency(input).
 /// `start` (empty, or one flag per vertex) limits the first pass to the
 /// flagged vertices and their triangles; later passes follow the changes.
 /// `pins` (null: none) lets pinned vertices slide (see PinSlack).
-SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, std::vector<int32_t>& home,
-                                         std::vector<uint8_t>& fixed, std::vector<double>& size,
+SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, WallVertices& wall,
                                          const SurfaceMesh& input,
                                          const TriangleAdjacency& input_adj,
                                          const SurfaceOptimizeOptions& options = {},

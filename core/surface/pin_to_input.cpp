@@ -189,8 +189,7 @@ std::array<double, 3> barycentric(const double* x, const double* a, const double
 
 }  // namespace
 
-PinStats pin_to_input(SurfaceMesh& output, std::vector<int32_t>& home, std::vector<uint8_t>& fixed,
-                      std::vector<int32_t>& pin_of, const SurfaceMesh& input,
+PinStats pin_to_input(SurfaceMesh& output, WallVertices& wall, const SurfaceMesh& input,
                       const std::vector<double>& h, const std::vector<double>& gaps, double limit,
                       const std::vector<uint8_t>& skip) {
   PinStats st;
@@ -210,7 +209,7 @@ PinStats pin_to_input(SurfaceMesh& output, std::vector<int32_t>& home, std::vect
     for (int c = 0; c < 3; ++c) input_tri[size_t(input.triangles[3 * t + size_t(c)])] = int32_t(t);
   // Built before any change: triangles split later are touched and skipped.
   const TriangleBvh bvh = build_triangle_bvh(output);
-  Pinner pin(output, home, fixed, pin_of);
+  Pinner pin(output, wall.home, wall.fixed, wall.pin_of);
   for (const auto& [neg_rel, v] : far) {
     const double* x = &input.points[3 * size_t(v)];
     const int32_t t = closest_surface_point(output, bvh, x).triangle;
@@ -239,8 +238,10 @@ PinStats pin_to_input(SurfaceMesh& output, std::vector<int32_t>& home, std::vect
   return st;
 }
 
-size_t unpin_poor(const SurfaceMesh& output, std::vector<uint8_t>& fixed,
-                  std::vector<int32_t>& pin_of, double min_gamma, std::vector<uint8_t>& skip) {
+size_t unpin_poor(const SurfaceMesh& output, WallVertices& wall, double min_gamma,
+                  std::vector<uint8_t>& skip) {
+  std::vector<uint8_t>& fixed = wall.fixed;
+  std::vector<int32_t>& pin_of = wall.pin_of;
   const std::vector<double> seen = star_visibility(output);
   const size_t nt = output.num_triangles();
   size_t freed = 0;

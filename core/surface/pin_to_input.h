@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/mesh/surface_mesh.h"
+#include "core/surface/optimize_surface.h"
 
 namespace vm {
 
@@ -21,29 +22,29 @@ struct PinStats {
 /// For each input vertex v with gaps[v] > limit * h[v], largest relative
 /// gap first, and not flagged in `skip` (empty, or one flag per input
 /// vertex): the output triangle closest to v gets a vertex exactly at v,
-/// with home = a triangle of v, fixed = kPinned and pin_of = v. Its
+/// with (in `wall`) home = a triangle of v, fixed = kPinned and pin_of =
+/// v. Its
 /// nearest corner moves there if it is free (kFree), closer than 0.35 h[v],
 /// and its triangles keep gamma_k >= 0.3; else the edge nearest to v's
 /// projection (barycentric < 0.2; not an opening or crease edge) or the
 /// triangle is split at v (new triangles appended, with gamma_k >= 0.1;
-/// new vertex appended to the points, home, fixed and pin_of). Every
-/// changed triangle turns by less than 60 degrees.
+/// new vertex appended to the points and wall.home, fixed and pin_of, not
+/// to wall.size: the caller sizes the new vertices). Every changed
+/// triangle turns by less than 60 degrees.
 /// Triangles changed once are not changed again in the same call.
-/// `output` is manifold and oriented like `input`; home, fixed, pin_of
-/// (the input vertex each output vertex is pinned to, or -1): one per
-/// output vertex; h, gaps: one per input vertex, h > 0 (gaps:
-/// distances_to_surface(output, input.points)).
-PinStats pin_to_input(SurfaceMesh& output, std::vector<int32_t>& home, std::vector<uint8_t>& fixed,
-                      std::vector<int32_t>& pin_of, const SurfaceMesh& input,
+/// `output` is manifold and oriented like `input`; wall.home, fixed and
+/// pin_of: one per output vertex; h, gaps: one per input vertex, h > 0
+/// (gaps: distances_to_surface(output, input.points)).
+PinStats pin_to_input(SurfaceMesh& output, WallVertices& wall, const SurfaceMesh& input,
                       const std::vector<double>& h, const std::vector<double>& gaps, double limit,
                       const std::vector<uint8_t>& skip);
 
-/// Frees (fixed = kFree, pin_of = -1) every pinned vertex of a triangle
-/// of `output` with gamma_k < min_gamma or with a folded corner
+/// Frees (wall.fixed = kFree, wall.pin_of = -1) every pinned vertex of a
+/// triangle of `output` with gamma_k < min_gamma or with a folded corner
 /// (star_visibility < 0.25: about 75 degrees), and flags in `skip` (one per
-/// input vertex) the input vertex it was pinned to (pin_of, one per output
-/// vertex), so that it is not pinned again. Returns the number freed.
-size_t unpin_poor(const SurfaceMesh& output, std::vector<uint8_t>& fixed,
-                  std::vector<int32_t>& pin_of, double min_gamma, std::vector<uint8_t>& skip);
+/// input vertex) the input vertex it was pinned to (wall.pin_of, one per
+/// output vertex), so that it is not pinned again. Returns the number freed.
+size_t unpin_poor(const SurfaceMesh& output, WallVertices& wall, double min_gamma,
+                  std::vector<uint8_t>& skip);
 
 }  // namespace vm

@@ -47,15 +47,13 @@ bool faces_up(const SurfaceMesh& m) {
 struct SpikeCase {
   SurfaceMesh input = testing::square_grid(20), output = testing::square_grid(4);
   int32_t spike = 8 * 21 + 7;  // input vertex (7, 8): (0.35, 0.4)
-  std::vector<int32_t> home;
-  std::vector<uint8_t> fixed;
-  std::vector<int32_t> pin_of;
+  WallVertices wall;
   std::vector<double> h;
   explicit SpikeCase(double height = 0.05) {
     input.points[3 * size_t(spike) + 2] = height;
-    home.assign(output.num_vertices(), 0);
-    fixed.assign(output.num_vertices(), kFree);
-    pin_of.assign(output.num_vertices(), -1);
+    wall.home.assign(output.num_vertices(), 0);
+    wall.fixed.assign(output.num_vertices(), kFree);
+    wall.pin_of.assign(output.num_vertices(), -1);
     h.assign(input.num_vertices(), 0.25);
   }
   std::vector<double> gaps() const {
@@ -68,8 +66,7 @@ TEST(PinToInput, AnOutputVertexLandsOnTheFarInputVertex) {
   const std::vector<double> before = c.gaps();
   ASSERT_NEAR(before[size_t(c.spike)], 0.05, 1e-12);  // 0.2 h
   const size_t nt = c.output.num_triangles();
-  const PinStats st =
-      pin_to_input(c.output, c.home, c.fixed, c.pin_of, c.input, c.h, before, 0.1, {});
+  const PinStats st = pin_to_input(c.output, c.wall, c.input, c.h, before, 0.1, {});
   // Only the spike and its 1-ring (under 0.1 h = 0.025 only the spike) are far.
   EXPECT_EQ(st.far, 1u);
   EXPECT_EQ(st.pinned, 1u);
@@ -77,20 +74,20 @@ TEST(PinToInput, AnOutputVertexLandsOnTheFarInputVertex) {
   EXPECT_EQ(after[size_t(c.spike)], 0.0);
   for (size_t v = 0; v < after.size(); ++v) EXPECT_LE(after[v], 0.1 * 0.25 + 1e-12) << v;
   size_t pinned = 0;
-  for (size_t v = 0; v < c.fixed.size(); ++v) {
-    if (c.fixed[v] != kPinned) continue;
+  for (size_t v = 0; v < c.wall.fixed.size(); ++v) {
+    if (c.wall.fixed[v] != kPinned) continue;
     ++pinned;
     for (int k = 0; k < 3; ++k)
       EXPECT_EQ(c.output.points[3 * v + size_t(k)],
                 c.input.points[3 * size_t(c.spike) + size_t(k)]);
-    const int32_t* T = &c.input.triangles[3 * size_t(c.home[v])];
+    const int32_t* T = &c.input.triangles[3 * size_t(c.wall.home[v])];
     EXPECT_TRUE(T[0] == c.spike || T[1] == c.spike || T[2] == c.spike);
   }
   EXPECT_EQ(pinned, 1u);
   EXPECT_TRUE(oriented_manifold(c.output));
   EXPECT_TRUE(faces_up(c.output));
   EXPECT_GE(c.output.num_triangles(), nt);
-  EXPECT_EQ(c.home.size(), c.output.num_vertices());
+  EXPECT_EQ(c.wall.home.size(), c.output.num_vertices());
   // Every output vertex still lies on the input.
   EXPECT_LE(distances_to_surface(c.input, c.output.points).max, 1e-12);
 }
@@ -100,21 +97,16 @@ TEST(PinToInput, SkippedVerticesAndNearOnesAreLeftAlone) {
   std::vector<uint8_t> skip(c.input.num_vertices(), 0);
   skip[size_t(c.spike)] = 1;
   const SurfaceMesh original = c.output;
-  EXPECT_EQ(
-      pin_to_input(c.output, c.home, c.fixed, c.pin_of, c.input, c.h, c.gaps(), 0.1, skip).pinned,
-      0u);
+  EXPECT_EQ(pin_to_input(c.output, c.wall, c.input, c.h, c.gaps(), 0.1, skip).pinned, 0u);
   // A looser limit than the spike's gap: nothing to do either.
-  EXPECT_EQ(pin_to_input(c.output, c.home, c.fixed, c.pin_of, c.input, c.h, c.gaps(), 0.5, {}).far,
-            0u);
+  EXPECT_EQ(pin_to_input(c.output, c.wall, c.input, c.h, c.gaps(), 0.5, {}).far, 0u);
   EXPECT_EQ(c.output.points, original.points);
   EXPECT_EQ(c.output.triangles, original.triangles);
 }
 
 TEST(PinToInput, UnpinPoorFreesPinsInPoorTrianglesAndRemembersThem) {
   SpikeCase c;
-  ASSERT_EQ(
-      pin_to_input(c.output, c.home, c.fixed, c.pin_of, c.input, c.h, c.gaps(), 0.1, {}).pinned,
-      1u);
+  ASSERT_EQ(pin_to_input(c.output, c.wall, c.input, c.h, c.gaps(), 0.1, {}).pinned, 1u);
   std::vector<uint8_t> skip(c.input.num_vertices(), 0);
   double worst = 1;
   for (size_t t = 0; t < c.output.num_triangles(); ++t) {
@@ -124,11 +116,11 @@ TEST(PinToInput, UnpinPoorFreesPinsInPoorTrianglesAndRemembersThem) {
                                            &c.output.points[3 * size_t(T[2])]));
   }
   // Below the worst triangle: nothing freed.
-  EXPECT_EQ(unpin_poor(c.output, c.fixed, c.pin_of, worst * 0.99, skip), 0u);
+  EXPECT_EQ(unpin_poor(c.output, c.wall, worst * 0.99, skip), 0u);
   EXPECT_EQ(std::count(skip.begin(), skip.end(), 1), 0);
   // Above every triangle: the pin is freed and its input vertex skipped.
-  EXPECT_EQ(unpin_poor(c.output, c.fixed, c.pin_of, 1.01, skip), 1u);
-  EXPECT_EQ(std::count(c.fixed.begin(), c.fixed.end(), kPinned), 0);
+  EXPECT_EQ(unpin_poor(c.output, c.wall, 1.01, skip), 1u);
+  EXPECT_EQ(std::count(c.wall.fixed.begin(), c.wall.fixed.end(), kPinned), 0);
   EXPECT_EQ(skip[size_t(c.spike)], 1);
   EXPECT_EQ(std::count(skip.begin(), skip.end(), 1), 1);
 }
@@ -138,27 +130,23 @@ TEST(PinToInput, PinnedVerticesSlideOnlyWithinTheSlack) {
   // sliding within 0.08 h, and a slack of 0.08 h never given (no PinSlack).
   auto optimized = [](double slack, bool with_pin_of) {
     SpikeCase c(0.03);  // 0.12 h
-    EXPECT_EQ(
-        pin_to_input(c.output, c.home, c.fixed, c.pin_of, c.input, c.h, c.gaps(), 0.1, {}).pinned,
-        1u);
+    EXPECT_EQ(pin_to_input(c.output, c.wall, c.input, c.h, c.gaps(), 0.1, {}).pinned, 1u);
     const TriangleAdjacency adj = build_adjacency(c.input);
     const TriangleBvh bvh = build_triangle_bvh(c.input);
     for (size_t v = 0; v < c.output.num_vertices(); ++v)  // home: the input triangle under v
-      if (c.fixed[v] != kPinned)
-        c.home[v] = closest_surface_point(c.input, bvh, &c.output.points[3 * v]).triangle;
+      if (c.wall.fixed[v] != kPinned)
+        c.wall.home[v] = closest_surface_point(c.input, bvh, &c.output.points[3 * v]).triangle;
     for (size_t v = 0; v < c.output.num_vertices(); ++v)  // the boundary stays
       if (c.output.points[3 * v] == 0 || c.output.points[3 * v] == 1 ||
           c.output.points[3 * v + 1] == 0 || c.output.points[3 * v + 1] == 1)
-        c.fixed[v] = kOnOpening;
-    std::vector<double> size(c.output.num_vertices(), 0.25);
+        c.wall.fixed[v] = kOnOpening;
+    c.wall.size.assign(c.output.num_vertices(), 0.25);
     PinSlack pins;
-    pins.pin_of = &c.pin_of;
     pins.input_h = &c.h;
     pins.slack = slack;
-    optimize_on_surface(c.output, c.home, c.fixed, size, c.input, adj, {}, {},
-                        with_pin_of ? &pins : nullptr);
+    optimize_on_surface(c.output, c.wall, c.input, adj, {}, {}, with_pin_of ? &pins : nullptr);
     if (with_pin_of) {
-      EXPECT_EQ(c.pin_of.size(), c.output.num_vertices());
+      EXPECT_EQ(c.wall.pin_of.size(), c.output.num_vertices());
     }
     return c;
   };
@@ -167,9 +155,9 @@ TEST(PinToInput, PinnedVerticesSlideOnlyWithinTheSlack) {
   // The pinned vertex's distance to its input vertex (-1: none).
   auto pinned_offset = [](const SpikeCase& c) {
     double offset = -1;
-    for (size_t v = 0; v < c.fixed.size(); ++v)
-      if (c.fixed[v] == kPinned) {
-        EXPECT_EQ(c.pin_of[v], c.spike);
+    for (size_t v = 0; v < c.wall.fixed.size(); ++v)
+      if (c.wall.fixed[v] == kPinned) {
+        EXPECT_EQ(c.wall.pin_of[v], c.spike);
         const double* x = &c.output.points[3 * v];
         const double* s = &c.input.points[3 * size_t(c.spike)];
         offset = std::hypot(x[0] - s[0], x[1] - s[1], x[2] - s[2]);

@@ -295,8 +295,11 @@ TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
   const SurfaceMesh in = testing::open_tube(64, 32, R, L);
   const TriangleAdjacency in_adj = build_adjacency(in);
   SurfaceMesh m = testing::open_tube(16, 8, R, L);
-  std::vector<uint8_t> fixed(m.num_vertices(), 0);
-  std::vector<int32_t> home(m.num_vertices(), 0);
+  WallVertices wall;
+  std::vector<uint8_t>& fixed = wall.fixed;
+  std::vector<int32_t>& home = wall.home;
+  fixed.assign(m.num_vertices(), 0);
+  home.assign(m.num_vertices(), 0);
   uint32_t state = 12345;
   auto rnd = [&] {
     state = state * 1664525u + 1013904223u;
@@ -341,8 +344,8 @@ TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
           std::minmax(half_edge_from(m, int32_t(he)), half_edge_to(m, int32_t(he))));
   std::sort(boundary_before.begin(), boundary_before.end());
 
-  std::vector<double> no_sizes;  // no collapse: the vertex count stays
-  SurfaceOptimizeStats s = optimize_on_surface(m, home, fixed, no_sizes, in, in_adj);
+  // No sizes (wall.size empty), no collapse: the vertex count stays.
+  SurfaceOptimizeStats s = optimize_on_surface(m, wall, in, in_adj);
   const QualityStats qa = quality_stats(triangle_qualities(m));
   EXPECT_GT(s.moves + s.swaps, 0u);
   EXPECT_GE(qa.min, qb.min);
@@ -392,8 +395,11 @@ TEST(OptimizeSurface, CollapsesShortEdgesAndRegularizesValences) {
     m.triangles[3 * t + 2] = v;
     m.triangles.insert(m.triangles.end(), {b, c, v, c, a, v});
   }
-  std::vector<uint8_t> fixed(m.num_vertices(), 0);
-  std::vector<int32_t> home(m.num_vertices(), 0);
+  WallVertices wall;
+  std::vector<uint8_t>& fixed = wall.fixed;
+  std::vector<int32_t>& home = wall.home;
+  fixed.assign(m.num_vertices(), 0);
+  home.assign(m.num_vertices(), 0);
   for (size_t v = 0; v < m.num_vertices(); ++v) {
     const double* x = pt(m, int32_t(v));
     fixed[v] = x[2] == 0 || x[2] == L;
@@ -404,7 +410,8 @@ TEST(OptimizeSurface, CollapsesShortEdgesAndRegularizesValences) {
     }
   }
   const double h = 2 * kPi * R / 16;
-  std::vector<double> size(m.num_vertices(), h);
+  std::vector<double>& size = wall.size;
+  size.assign(m.num_vertices(), h);
   auto short_edges = [&](const SurfaceMesh& s) {
     size_t n = 0;
     for (size_t t = 0; t < s.num_triangles(); ++t)
@@ -427,7 +434,7 @@ TEST(OptimizeSurface, CollapsesShortEdgesAndRegularizesValences) {
   for (size_t v = 0; v < m.num_vertices(); ++v)
     if (fixed[v]) fixed_points.insert(fixed_points.end(), pt(m, int32_t(v)), pt(m, int32_t(v)) + 3);
 
-  SurfaceOptimizeStats s = optimize_on_surface(m, home, fixed, size, in, in_adj);
+  SurfaceOptimizeStats s = optimize_on_surface(m, wall, in, in_adj);
   EXPECT_GT(s.collapses, 0u);
   ASSERT_EQ(home.size(), m.num_vertices());
   ASSERT_EQ(fixed.size(), m.num_vertices());

@@ -1,0 +1,75 @@
+// Fidelity of the remeshed wall to its input: the rounds that find input
+// vertices farther than a fraction of h from the output and pin output
+// vertices onto them (pin_to_input), or make the size finer around them
+// and mesh the surface again. Marchandise et al., section 2.1 put every new
+// vertex on the input; these rounds add the converse, the input lying near
+// the new surface (stage 3 of docs/ARCHITECTURE.md).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/mesh/adjacency.h"
+#include "core/mesh/surface_mesh.h"
+#include "core/surface/remesh_surface.h"
+#include "core/util/result.h"
+
+namespace vm {
+
+/// The target size at each output vertex: the mean of `h` (one per input
+/// vertex, model unit) over its home triangle (`home`: one input triangle
+/// per output vertex).
+std::vector<double> output_sizes(const SurfaceMesh& input, const std::vector<int32_t>& home,
+                                 const std::vector<double>& h);
+
+/// Edge length / mean target size of its ends (`size`: one per output
+/// vertex of `out.mesh`), each edge once: 10th percentile, median, 90th
+/// percentile ({0, 0, 0} without edges).
+std::array<double, 3> edge_ratios(const RemeshedSurface& out, const std::vector<double>& size);
+
+/// The pinning rounds (RemeshOptions::fidelity .. fidelity_floor_mean):
+/// output vertices pinned onto the input vertices farther than
+/// options.fidelity times `asked` from the output (pin_to_input), then
+/// options.fidelity_passes optimization passes around them; pins that cost
+/// quality are freed, and a round is undone if the quality floors still
+/// fail, or if it made a self-intersection or a needle.
+/// `input`: manifold, oriented, `adj` its adjacency with the sharp features
+/// cut; `h`: the size the wall was meshed at, `asked`: the size asked for
+/// (size rounds make h finer, never asked), one per input vertex, > 0,
+/// model unit. `mesh`: the optimized wall, manifold, oriented like the
+/// input, every vertex on it; `wall`: its per-vertex data (home, fixed and
+/// size as the optimizer left them; pin_of is reset to -1), kept in step
+/// with the mesh (size made output_sizes(h) again where a round ran). On
+/// return `input_gaps` holds each input vertex's distance to the wall
+/// (model unit), and `stats` the fidelity counts (reset first), the
+/// self-intersections when counted exactly, and the optimizer's counts
+/// added.
+void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& adj,
+                            const std::vector<double>& h, const std::vector<double>& asked,
+                            const RemeshOptions& options, SurfaceMesh& mesh, WallVertices& wall,
+                            std::vector<double>& input_gaps, RemeshStats& stats);
+
+/// Meshes the whole surface again at `sizes` (one per input vertex, model
+/// unit), adding its times and counts to `stats`.
+using RemeshAtSizesFn =
+    std::function<Result<RemeshedSurface>(const std::vector<double>& sizes, RemeshStats& stats)>;
+
+/// The size rounds (RemeshOptions::fidelity_size_rounds): while input
+/// vertices stay beyond options.fidelity times `asked` from the wall in
+/// `result` (meshed at `h`, with `stats`), and not as noise everywhere, the
+/// size is made finer within h of each and the surface meshed again by
+/// `remesh`, from the last round's sizes; they stop when the median edge
+/// falls more than options.fidelity_size_drift below the asked size.
+/// `h`, `asked`: one per input vertex, model unit, > 0. Leaves in `result`
+/// and `stats` the surface with the fewest far vertices (the time and
+/// rounds spent in `stats` count every round, kept or not). Returns an
+/// error only when `remesh` was cancelled (then `result` and `stats` are
+/// unspecified).
+Status refine_size_where_far(const SurfaceMesh& input, const RemeshOptions& options,
+                             std::vector<double> h, const std::vector<double>& asked,
+                             Result<RemeshedSurface>& result, RemeshStats& stats,
+                             const RemeshAtSizesFn& remesh);
+
+}  // namespace vm
