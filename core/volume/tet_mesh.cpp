@@ -54,7 +54,7 @@ Result<TetMesh> TetMesh::from_kernel(const Delaunay3D& kernel, int32_t tag,
     if (id[size_t(t)] >= 0) id[size_t(t)] = first[size_t(id[size_t(t)])]++;
   tp.tets.resize(size_t(n));
   tp.constrained.assign(size_t(n), 0);
-  tp.tags.assign(size_t(n), 0);
+  tp.tagged = false;
   // Phase 2: vertices, neighbors and constraints (slots kept, so the
   // kernel's face indices stay valid).
   for (int32_t t = 0; t < cap; ++t) {
@@ -96,7 +96,7 @@ Result<TetMesh> TetMesh::from_arrays(std::vector<double> points, const std::vect
       tp.tets[t].n[k] = kBoundary;
     }
   tp.constrained.assign(nt, 0);
-  tp.tags.assign(nt, 0);
+  tp.tagged = false;
   tp.stamp.assign(nt, 0);
   for (size_t i = 0; i < tets.size(); ++i) tp.vertex_tet[size_t(tets[i])] = int32_t(i / 4);
   // Faces matched by sorting their keys.

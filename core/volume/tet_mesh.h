@@ -76,6 +76,7 @@ class TetMesh {
     return topo_.neighbor(t, k) < 0 || topo_.is_constrained(t, k);
   }
   size_t num_tets() const { return topo_.num_live(); }
+  /// The shared topology (core/volume/tet_topology.h; tags unused).
   const TetTopology& topology() const { return topo_; }
 
   /// Live tetrahedra around vertex v, into out (cleared first).
@@ -89,7 +90,8 @@ class TetMesh {
   /// live t.
   bool edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>& ring_tets,
                  std::vector<int32_t>& ring, int max_size = 64) const {
-    return vm::edge_ring(topo_, t, a, b, ring_tets, ring, {true, size_t(max_size)});
+    return vm::edge_ring(topo_, t, a, b, ring_tets, ring,
+                         {true, max_size > 0 ? size_t(max_size) : 0});
   }
 
   /// Replaces the live tetrahedra old_tets (connected) by new_tets with the

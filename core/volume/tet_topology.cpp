@@ -10,37 +10,22 @@ namespace vm {
 void TetTopology::reserve(size_t n) {
   tets.reserve(n);
   constrained.reserve(n);
-  tags.reserve(n);
+  if (tagged) tags.reserve(n);
   stamp.reserve(n);
 }
 
-int32_t TetTopology::new_slot() {
-  if (!free_slots.empty()) {
-    const int32_t t = free_slots.back();
-    free_slots.pop_back();
-    return t;
-  }
+int32_t TetTopology::append_slot() {
   const int32_t t = int32_t(tets.size());
   tets.push_back({{kFree, kFree, kFree, kFree}, {-1, -1, -1, -1}});
   constrained.push_back(0);
-  tags.push_back(0);
+  if (tagged) tags.push_back(0);
   stamp.push_back(0);
   return t;
 }
 
-void TetTopology::free_slot(int32_t t) {
-  tets[size_t(t)].v[0] = kFree;
-  constrained[size_t(t)] = 0;
-  free_slots.push_back(t);
-}
-
-uint32_t TetTopology::visit_stamp() const {
-  if (gen > 0xfffffff0u) {
-    std::fill(stamp.begin(), stamp.end(), 0);
-    gen = 0;
-  }
-  gen += 2;
-  return gen;
+void TetTopology::clear_stamps() const {
+  std::fill(stamp.begin(), stamp.end(), 0);
+  gen = 0;
 }
 
 bool edge_ring(const TetTopology& m, int32_t t, int32_t a, int32_t b,
@@ -167,7 +152,7 @@ ReplaceError replace_tets(TetTopology& m, const int32_t* old_tets, int n_old,
     if (!f.used) return ReplaceError::kUncoveredFace;
   // Phase 3: commit: old slots reused first, then new ones, then the
   // remaining old slots freed.
-  const int32_t tag = m.tags[size_t(old_tets[0])];
+  const int32_t tag = m.tagged ? m.tags[size_t(old_tets[0])] : 0;
   for (int i = 0; i < n_old; ++i)
     for (int32_t x : m.tets[size_t(old_tets[i])].v)
       if (x >= 0) m.vertex_tet[size_t(x)] = -1;
@@ -177,7 +162,7 @@ ReplaceError replace_tets(TetTopology& m, const int32_t* old_tets, int n_old,
   for (int i = 0; i < n_new; ++i) {
     const int32_t t = ids[size_t(i)];
     std::copy(new_tets[i].begin(), new_tets[i].end(), m.tets[size_t(t)].v);
-    m.tags[size_t(t)] = tag;
+    if (m.tagged) m.tags[size_t(t)] = tag;
     m.constrained[size_t(t)] = 0;
     for (int32_t x : new_tets[i])
       if (x >= 0) m.vertex_tet[size_t(x)] = t;

@@ -13,9 +13,10 @@
 // Layout: per tetrahedron one 32-byte record {v[4], n[4]} (vertex k of tet
 // t is v[k]; face k is the face opposite vertex k; n[k] is 4 * u + j with u
 // the tetrahedron across face k and j that face's index in u, or negative
-// when there is none), a byte of constrained-face bits, a region tag; slots
-// are live or free (kFree at v[0]) and free slots are reused last-freed
-// first. Per vertex: one live incident tetrahedron (vertex_tet).
+// when there is none), a byte of constrained-face bits, a region tag (the
+// kernel's; the region mesh has none); slots are live or free (kFree at
+// v[0]) and free slots are reused last-freed first. Per vertex: one live
+// incident tetrahedron (vertex_tet).
 #pragma once
 
 #include <array>
@@ -73,7 +74,8 @@ struct TetTopology {
 
   std::vector<Rec> tets;             // per slot
   std::vector<uint8_t> constrained;  // per slot: bit k = face k constrained
-  std::vector<int32_t> tags;         // per slot: region tag
+  std::vector<int32_t> tags;         // per slot: region tag (if tagged)
+  bool tagged = true;                // false: tags stay empty
   std::vector<int32_t> free_slots;   // free slot ids, reused from the back
   std::vector<int32_t> vertex_tet;   // per vertex: a live incident slot or -1
   // Visit marks (per slot) of the searches; see visit_stamp().
@@ -93,12 +95,32 @@ struct TetTopology {
   /// Reserves room for n slots.
   void reserve(size_t n);
   /// A slot to fill: the last freed one, else a new one (vertices kFree,
-  /// links -1, tag 0, not constrained).
-  int32_t new_slot();
+  /// links -1, tag 0, not constrained). Inline: the star of every
+  /// insertion calls it per new tetrahedron.
+  int32_t new_slot() {
+    if (!free_slots.empty()) {
+      const int32_t t = free_slots.back();
+      free_slots.pop_back();
+      return t;
+    }
+    return append_slot();
+  }
   /// Frees live slot t (not its links: the caller relinks its neighbors).
-  void free_slot(int32_t t);
+  void free_slot(int32_t t) {
+    tets[size_t(t)].v[0] = kFree;
+    constrained[size_t(t)] = 0;
+    free_slots.push_back(t);
+  }
   /// A fresh even mark m for `stamp`; m + 1 is free for a second set.
-  uint32_t visit_stamp() const;
+  uint32_t visit_stamp() const {
+    if (gen > 0xfffffff0u) clear_stamps();
+    gen += 2;
+    return gen;
+  }
+
+ private:
+  int32_t append_slot();
+  void clear_stamps() const;
 };
 
 /// The 2-3 flip of face k of t (with a neighbor across): the three
@@ -167,7 +189,7 @@ struct ReplaceScratch {
 /// first, in order) into ids. Checks only the face matching (each boundary
 /// face of the old set once, inner faces twice) and that no constrained
 /// face is inside the old set; the caller checks the orientation. New
-/// tetrahedra take the tag of old_tets[0] and the constraint bits of the
+/// tetrahedra take the tag of old_tets[0] (if tagged) and the constraint bits of the
 /// boundary faces they inherit. On an error nothing changes.
 ReplaceError replace_tets(TetTopology& m, const int32_t* old_tets, int n_old,
                           const std::array<int32_t, 4>* new_tets, int n_new,
