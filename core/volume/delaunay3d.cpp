@@ -170,7 +170,7 @@ int32_t Delaunay3D::walk(const double* p, int32_t hint) const {
     t = 0;
     while (!is_live(t)) ++t;
   }
-  if (is_ghost(t)) t = topo_.tets[size_t(t)].n[inf_slot(tet(t))] >> 2;
+  if (is_ghost(t)) t = neighbor(t, inf_slot(tet(t))) >> 2;
   int32_t prev = -1;
   const int64_t max_steps = int64_t(tet_capacity()) * 4 + 64;
   for (int64_t step = 0; step < max_steps; ++step) {
@@ -183,7 +183,7 @@ int32_t Delaunay3D::walk(const double* p, int32_t hint) const {
     int32_t next = -1;
     for (int j = 0; j < 4; ++j) {
       const int k = (start + j) & 3;
-      const int32_t n = topo_.tets[size_t(t)].n[k] >> 2;
+      const int32_t n = neighbor(t, k) >> 2;
       if (n == prev) continue;  // p is strictly inside that face
       const int* f = kFaceOut[k];
       if (orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) < 0) {
@@ -279,7 +279,7 @@ bool Delaunay3D::ghost_conflict(int32_t t, const double* p, int32_t pv, bool str
   // p in the plane of the hull face: inside the ghost's "sphere" iff inside
   // the circumcircle of the face, which every sphere through the face
   // shares; the finite neighbor decides (with the same perturbation).
-  return finite_conflict(topo_.tets[size_t(t)].n[g] >> 2, p, pv);
+  return finite_conflict(neighbor(t, g) >> 2, p, pv);
 }
 
 template <bool kVerify>
@@ -407,7 +407,7 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
       if (orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) == 0) zero[nz++] = k;
     }
     if (nz == 1) {
-      pinned_.push_back(topo_.tets[size_t(t0)].n[zero[0]] >> 2);
+      pinned_.push_back(neighbor(t0, zero[0]) >> 2);
     } else if (nz == 2) {
       int32_t e[2], m = 0;
       for (int s = 0; s < 4; ++s)
@@ -424,7 +424,7 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
   if (respect_constraints)
     for (int32_t t : pinned_)
       for (int k = 0; k < 4; ++k)
-        if (is_constrained(t, k) && topo_.stamp[size_t(topo_.tets[size_t(t)].n[k] >> 2)] == in)
+        if (is_constrained(t, k) && topo_.stamp[size_t(neighbor(t, k) >> 2)] == in)
           return false;  // p on a constrained face
   // Phase 2b: conflict search, not crossing constrained faces, only
   // outward (across faces that p sees from inside: the triangulation need
@@ -448,7 +448,7 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
   for (size_t i = 0; i < cavity_.size() && cavity_.size() < kMaxCavity; ++i) {
     const int32_t t = cavity_[i];
     for (int k = 0; k < 4; ++k) {
-      const int32_t n = topo_.tets[size_t(t)].n[k] >> 2;
+      const int32_t n = neighbor(t, k) >> 2;
       const uint32_t s = topo_.stamp[size_t(n)];
       if (s == in || s == out) continue;
       if (respect_constraints && is_constrained(t, k)) continue;
@@ -471,7 +471,7 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
       const int32_t t = cavity_[i];
       if (topo_.stamp[size_t(t)] != in) continue;
       for (int k = 0; k < 4; ++k) {
-        const int32_t n = topo_.tets[size_t(t)].n[k] >> 2;
+        const int32_t n = neighbor(t, k) >> 2;
         int32_t drop = -1;
         if (topo_.stamp[size_t(n)] == in) {
           if (!(respect_constraints && is_constrained(t, k))) continue;
@@ -640,7 +640,7 @@ std::vector<int32_t> Delaunay3D::finite_tets() const {
 }
 
 void Delaunay3D::set_constrained(int32_t t, int k, bool on) {
-  const int32_t e = topo_.tets[size_t(t)].n[k];
+  const int32_t e = neighbor(t, k);
   const int32_t u = e >> 2, j = e & 3;
   if (on) {
     topo_.constrained[size_t(t)] |= uint8_t(1u << k);
@@ -752,7 +752,7 @@ Result<std::array<int32_t, 3>> Delaunay3D::flip23(int32_t t, int k) {
   using R = Result<std::array<int32_t, 3>>;
   if (t < 0 || size_t(t) >= tet_capacity() || !is_live(t) || k < 0 || k > 3)
     return R::Error("flip23: invalid face");
-  const int32_t u = topo_.tets[size_t(t)].n[k] >> 2;
+  const int32_t u = neighbor(t, k) >> 2;
   if (is_ghost(t) || is_ghost(u)) return R::Error("flip23: a hull face");
   std::vector<std::array<int32_t, 4>> nt(3);
   flip23_tets(topo_, t, k, nt.data());
@@ -878,7 +878,7 @@ Status Delaunay3D::check(bool delaunay) const {
     if (infs == 0 && orient3d(point(v[0]), point(v[1]), point(v[2]), point(v[3])) >= 0)
       return fail("finite tetrahedron not positive", t);
     for (int k = 0; k < 4; ++k) {
-      const int32_t e = topo_.tets[size_t(t)].n[k];
+      const int32_t e = neighbor(t, k);
       const int32_t u = e >> 2, j = e & 3;
       const int32_t* w = tet(u);
       if (v[k] == w[j]) return fail("two tetrahedra with the same vertices", t);
