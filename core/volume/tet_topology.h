@@ -3,7 +3,8 @@
 // and the optimizer's region mesh (core/volume/tet_mesh.h: a face with no
 // neighbor is a region boundary face); docs/ARCHITECTURE.md, stage 6.
 //
-// Adjacency is encoded per face as 4 * tet + face (Shewchuk, "Two discrete
+// The face table kFaceOut is core/mesh/volume_mesh.h's. Adjacency is
+// encoded per face as 4 * tet + face (Shewchuk, "Two discrete
 // optimization algorithms for the topological improvement of tetrahedral
 // meshes", 2002, for the edge rings and the replacement of a set of
 // tetrahedra by another with the same boundary, the building block of flips
@@ -24,14 +25,10 @@
 #include <utility>
 #include <vector>
 
+#include "core/mesh/volume_mesh.h"
 #include "core/util/result.h"
 
 namespace vm {
-
-/// Face k of a positive tetrahedron, as slots ordered counterclockwise seen
-/// from outside (so orient3d(face, q) < 0 iff q is strictly outside face k).
-/// web/src/clip.js keeps a copy (TET_FACES), compared by its tests.
-inline constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 /// The six edges of a tetrahedron as slot pairs.
 inline constexpr int kTetEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
