@@ -19,6 +19,7 @@
 #include <unordered_set>
 
 #include "core/geom/predicates.h"
+#include "core/geom/vec3.h"
 #include "core/mesh/triangle_bvh.h"
 
 namespace vm {
@@ -111,13 +112,7 @@ bool segment_triangle(const double* p, const double* q, const double* a, const d
 // |axis| * |point - origin|), so a "separated" answer is always right.
 constexpr double kFilterMargin = 1e-12;
 
-using V3 = std::array<double, 3>;
-V3 sub3(const double* a, const double* b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-V3 cross3(const V3& a, const V3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot3(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double len3(const V3& a) { return std::sqrt(dot3(a, a)); }
+Vec3 sub3(const double* a, const double* b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 
 // Triangles sharing vertex v, other corners a, b (first) and c, d (second):
 // true if a plane through v is proven to leave a, b strictly on one side and
@@ -126,24 +121,24 @@ double len3(const V3& a) { return std::sqrt(dot3(a, a)); }
 // second's.
 bool separated_at_vertex(const double* v, const double* a, const double* b, const double* c,
                          const double* d) {
-  const V3 x[4] = {sub3(a, v), sub3(b, v), sub3(c, v), sub3(d, v)};
+  const Vec3 x[4] = {sub3(a, v), sub3(b, v), sub3(c, v), sub3(d, v)};
   double scale = 0;
-  for (const V3& y : x) scale = std::max(scale, len3(y));
-  const V3 n1 = cross3(x[0], x[1]), n2 = cross3(x[2], x[3]);
-  auto side = [&](const V3& m, int i, int j, double sign) {  // x[i], x[j] strictly on `sign`
-    const double eps = kFilterMargin * len3(m) * scale;
-    return sign * dot3(m, x[i]) > eps && sign * dot3(m, x[j]) > eps;
+  for (const Vec3& y : x) scale = std::max(scale, norm(y));
+  const Vec3 n1 = cross(x[0], x[1]), n2 = cross(x[2], x[3]);
+  auto side = [&](const Vec3& m, int i, int j, double sign) {  // x[i], x[j] strictly on `sign`
+    const double eps = kFilterMargin * norm(m) * scale;
+    return sign * dot(m, x[i]) > eps && sign * dot(m, x[j]) > eps;
   };
-  auto splits = [&](const V3& m) {
+  auto splits = [&](const Vec3& m) {
     return (side(m, 0, 1, 1) && side(m, 2, 3, -1)) || (side(m, 0, 1, -1) && side(m, 2, 3, 1));
   };
   if (side(n1, 2, 3, 1) || side(n1, 2, 3, -1) || side(n2, 0, 1, 1) || side(n2, 0, 1, -1))
     return true;
   // Planes through v containing one of the four edges at v, perpendicular to
   // a face: the separators of two disjoint sectors of one plane.
-  for (const V3& n : {n1, n2})
-    for (const V3& e : x)
-      if (splits(cross3(n, e))) return true;
+  for (const Vec3& n : {n1, n2})
+    for (const Vec3& e : x)
+      if (splits(cross(n, e))) return true;
   return false;
 }
 
@@ -152,13 +147,13 @@ bool separated_at_vertex(const double* v, const double* a, const double* b, cons
 // proven to point away from each other (more than 90 degrees apart), so the
 // triangles cannot fold onto each other.
 bool opened_at_edge(const double* e0, const double* e1, const double* c, const double* d) {
-  const V3 e = sub3(e1, e0), x = sub3(c, e0), y = sub3(d, e0);
-  const double ee = dot3(e, e);
+  const Vec3 e = sub3(e1, e0), x = sub3(c, e0), y = sub3(d, e0);
+  const double ee = dot(e, e);
   if (!(ee > 0)) return false;
-  const double fx = dot3(x, e) / ee, fy = dot3(y, e) / ee;
-  const V3 wx = {x[0] - fx * e[0], x[1] - fx * e[1], x[2] - fx * e[2]};
-  const V3 wy = {y[0] - fy * e[0], y[1] - fy * e[1], y[2] - fy * e[2]};
-  return dot3(wx, wy) < -1e-9 * len3(x) * len3(y);
+  const double fx = dot(x, e) / ee, fy = dot(y, e) / ee;
+  const Vec3 wx = {x[0] - fx * e[0], x[1] - fx * e[1], x[2] - fx * e[2]};
+  const Vec3 wy = {y[0] - fy * e[0], y[1] - fy * e[1], y[2] - fy * e[2]};
+  return dot(wx, wy) < -1e-9 * norm(x) * norm(y);
 }
 
 // Triangles with no shared vertex: true if a separating axis (a face
@@ -166,30 +161,30 @@ bool opened_at_edge(const double* e0, const double* e1, const double* c, const d
 // separators of coplanar triangles) is proven to separate them.
 bool separated_apart(const double* const* p, const double* const* q) {
   const double* o = p[0];
-  V3 x[6];
+  Vec3 x[6];
   double scale = 0;
   for (int k = 0; k < 3; ++k) {
     x[k] = sub3(p[k], o);
     x[k + 3] = sub3(q[k], o);
   }
-  for (const V3& y : x) scale = std::max(scale, len3(y));
-  const V3 n1 = cross3(sub3(p[1], p[0]), sub3(p[2], p[0]));
-  const V3 n2 = cross3(sub3(q[1], q[0]), sub3(q[2], q[0]));
-  auto separates = [&](const V3& m) {
+  for (const Vec3& y : x) scale = std::max(scale, norm(y));
+  const Vec3 n1 = cross(sub3(p[1], p[0]), sub3(p[2], p[0]));
+  const Vec3 n2 = cross(sub3(q[1], q[0]), sub3(q[2], q[0]));
+  auto separates = [&](const Vec3& m) {
     double lo1 = 1e300, hi1 = -1e300, lo2 = 1e300, hi2 = -1e300;
     for (int k = 0; k < 3; ++k) {
-      const double s = dot3(m, x[k]), t = dot3(m, x[k + 3]);
+      const double s = dot(m, x[k]), t = dot(m, x[k + 3]);
       lo1 = std::min(lo1, s), hi1 = std::max(hi1, s);
       lo2 = std::min(lo2, t), hi2 = std::max(hi2, t);
     }
-    const double eps = kFilterMargin * len3(m) * scale;
+    const double eps = kFilterMargin * norm(m) * scale;
     return hi1 + eps < lo2 || hi2 + eps < lo1;
   };
   if (separates(n1) || separates(n2)) return true;
   for (int k = 0; k < 3; ++k) {
-    const V3 e1 = sub3(p[(k + 1) % 3], p[k]), e2 = sub3(q[(k + 1) % 3], q[k]);
-    if (separates(cross3(n1, e1)) || separates(cross3(n1, e2)) || separates(cross3(n2, e1)) ||
-        separates(cross3(n2, e2)))
+    const Vec3 e1 = sub3(p[(k + 1) % 3], p[k]), e2 = sub3(q[(k + 1) % 3], q[k]);
+    if (separates(cross(n1, e1)) || separates(cross(n1, e2)) || separates(cross(n2, e1)) ||
+        separates(cross(n2, e2)))
       return true;
   }
   return false;

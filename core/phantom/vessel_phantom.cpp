@@ -21,37 +21,35 @@
 namespace vm {
 namespace {
 
-using Vec = Vec3;
-
-Vec lerp(const Vec& a, const Vec& b, double t) {
+Vec3 lerp(const Vec3& a, const Vec3& b, double t) {
   return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
 }
-Vec sub(const Vec& a, const Vec& b) { return a - b; }
-Vec unit(const Vec& a) {
+Vec3 sub(const Vec3& a, const Vec3& b) { return a - b; }
+Vec3 unit(const Vec3& a) {
   double n = std::sqrt(dot(a, a));
   return {a[0] / n, a[1] / n, a[2] / n};
 }
 
 /// A vessel branch: a polyline centerline with a radius per point.
 struct Branch {
-  std::vector<Vec> points;
+  std::vector<Vec3> points;
   std::vector<double> radii;
 };
 
 /// Catmull-Rom spline through `ctrl` sampled with `n` points per span, radius
 /// from `radius(s)` with s in [0, 1] along the samples.
 template <class RadiusFn>
-Branch spline_branch(const std::vector<Vec>& ctrl, int n, RadiusFn radius) {
+Branch spline_branch(const std::vector<Vec3>& ctrl, int n, RadiusFn radius) {
   Branch b;
   const size_t spans = ctrl.size() - 1;
   for (size_t s = 0; s < spans; ++s) {
-    const Vec& p0 = ctrl[s == 0 ? 0 : s - 1];
-    const Vec& p1 = ctrl[s];
-    const Vec& p2 = ctrl[s + 1];
-    const Vec& p3 = ctrl[std::min(s + 2, spans)];
+    const Vec3& p0 = ctrl[s == 0 ? 0 : s - 1];
+    const Vec3& p1 = ctrl[s];
+    const Vec3& p2 = ctrl[s + 1];
+    const Vec3& p3 = ctrl[std::min(s + 2, spans)];
     for (int i = 0; i < n || (s + 1 == spans && i == n); ++i) {
       double t = double(i) / n, t2 = t * t, t3 = t2 * t;
-      Vec p;
+      Vec3 p;
       for (int k = 0; k < 3; ++k)
         p[k] = 0.5 * (2 * p1[k] + (-p0[k] + p2[k]) * t +
                       (2 * p0[k] - 5 * p1[k] + 4 * p2[k] - p3[k]) * t2 +
@@ -67,14 +65,14 @@ Branch spline_branch(const std::vector<Vec>& ctrl, int n, RadiusFn radius) {
 /// A plane cutting one vessel end; the part on the +normal side near `center`
 /// is removed.
 struct EndCut {
-  Vec center, normal;
+  Vec3 center, normal;
   double radius;
 };
 
 struct Model {
   std::vector<Branch> branches;
   bool has_bulb = false;
-  Vec bulb_center{};
+  Vec3 bulb_center{};
   double bulb_radius = 0;
   std::vector<EndCut> cuts;  ///< used when open_ends
   std::vector<EndCut> ends;  ///< the rounded free ends: tip, outward direction, radius
@@ -95,28 +93,28 @@ EndCut cut_at(const Branch& b, size_t i, size_t j) {
 /// degrees in the plane of `dir` and `side`, with radii by Murray's law (the
 /// cubes of the children's radii sum to the parent's), 0.78 of its length,
 /// and their own split planes turned a quarter turn about their axes.
-void grow_tree(Model& m, const Vec& start, const Vec& dir, const Vec& side, double r, double len,
+void grow_tree(Model& m, const Vec3& start, const Vec3& dir, const Vec3& side, double r, double len,
                int depth) {
   auto at = [&](double t, double bend) {
-    return Vec{start[0] + t * len * dir[0] + bend * side[0],
-               start[1] + t * len * dir[1] + bend * side[1],
-               start[2] + t * len * dir[2] + bend * side[2]};
+    return Vec3{start[0] + t * len * dir[0] + bend * side[0],
+                start[1] + t * len * dir[1] + bend * side[1],
+                start[2] + t * len * dir[2] + bend * side[2]};
   };
   m.branches.push_back(spline_branch({at(0, 0), at(0.5, 0.08 * len), at(1, 0)}, 24,
                                      [r](double s) { return r * (1.0 - 0.06 * s); }));
   m.joined_end.push_back(depth > 0);
   if (depth == 0) return;
-  const Vec end = at(1, 0);
+  const Vec3 end = at(1, 0);
   const double rr = 0.94 * r;
   // Murray's law with a 0.6:0.4 flow split: r_i = rr * share_i^(1/3).
   const double shares[2] = {0.6, 0.4};
   const double angles[2] = {32.0, -42.0};
   for (int c = 0; c < 2; ++c) {
     const double a = angles[c] * std::numbers::pi / 180;
-    const Vec d = unit({std::cos(a) * dir[0] + std::sin(a) * side[0],
-                        std::cos(a) * dir[1] + std::sin(a) * side[1],
-                        std::cos(a) * dir[2] + std::sin(a) * side[2]});
-    const Vec turned = unit(cross(d, side));
+    const Vec3 d = unit({std::cos(a) * dir[0] + std::sin(a) * side[0],
+                         std::cos(a) * dir[1] + std::sin(a) * side[1],
+                         std::cos(a) * dir[2] + std::sin(a) * side[2]});
+    const Vec3 turned = unit(cross(d, side));
     grow_tree(m, end, d, turned, rr * std::cbrt(shares[c]), 0.78 * len, depth - 1);
   }
 }
@@ -154,11 +152,11 @@ Model build_model(PhantomKind kind) {
       grow_tree(m, {0, 0, -6}, {0, 0, 1}, {1, 0, 0}, 1.0, 6.0, 3);
       const Branch trunk = m.branches[0];
       const double side_at[2] = {0.35, 0.65};
-      const Vec side_dir[2] = {unit({-0.2, 0.85, 0.5}), unit({-0.3, -0.8, 0.5})};
+      const Vec3 side_dir[2] = {unit({-0.2, 0.85, 0.5}), unit({-0.3, -0.8, 0.5})};
       for (int k = 0; k < 2; ++k) {
-        const Vec& p = trunk.points[size_t(side_at[k] * double(trunk.points.size() - 1))];
-        const Vec q = {p[0] + 3.2 * side_dir[k][0], p[1] + 3.2 * side_dir[k][1],
-                       p[2] + 3.2 * side_dir[k][2]};
+        const Vec3& p = trunk.points[size_t(side_at[k] * double(trunk.points.size() - 1))];
+        const Vec3 q = {p[0] + 3.2 * side_dir[k][0], p[1] + 3.2 * side_dir[k][1],
+                        p[2] + 3.2 * side_dir[k][2]};
         m.branches.push_back(
             spline_branch({p, lerp(p, q, 0.5), q}, n, [](double s) { return 0.5 - 0.04 * s; }));
         m.joined_end.push_back(false);
@@ -166,7 +164,7 @@ Model build_model(PhantomKind kind) {
       break;
     }
     case PhantomKind::kTorus: {
-      std::vector<Vec> ring;
+      std::vector<Vec3> ring;
       for (int i = 0; i <= 8; ++i) {
         double a = 2 * std::numbers::pi * i / 8;
         ring.push_back({3.2 * std::cos(a), 2.6 * std::sin(a), 0.4 * std::sin(2 * a)});
@@ -223,7 +221,7 @@ void branch_plane(const Branch& b, const GridSpec& g, double zk, float far, floa
   std::fill(out, out + size_t(g.nx) * size_t(g.ny), far);
   const double band = far;
   for (size_t s = 0; s + 1 < b.points.size(); ++s) {
-    const Vec &p = b.points[s], &q = b.points[s + 1];
+    const Vec3 &p = b.points[s], &q = b.points[s + 1];
     double rmax = std::max(b.radii[s], b.radii[s + 1]) + band;
     if (zk < std::min(p[2], q[2]) - rmax || zk > std::max(p[2], q[2]) + rmax) continue;
     int i0 = std::max(0, int(std::floor((std::min(p[0], q[0]) - rmax - g.origin[0]) / g.spacing)));
@@ -232,15 +230,15 @@ void branch_plane(const Branch& b, const GridSpec& g, double zk, float far, floa
     int j0 = std::max(0, int(std::floor((std::min(p[1], q[1]) - rmax - g.origin[1]) / g.spacing)));
     int j1 =
         std::min(g.ny - 1, int(std::ceil((std::max(p[1], q[1]) + rmax - g.origin[1]) / g.spacing)));
-    Vec d = sub(q, p);
+    Vec3 d = sub(q, p);
     double len2 = dot(d, d);
     for (int j = j0; j <= j1; ++j) {
       for (int i = i0; i <= i1; ++i) {
-        Vec x = {g.origin[0] + g.spacing * i, g.origin[1] + g.spacing * j, zk};
-        Vec w = sub(x, p);
+        Vec3 x = {g.origin[0] + g.spacing * i, g.origin[1] + g.spacing * j, zk};
+        Vec3 w = sub(x, p);
         double t = len2 > 0 ? std::clamp(dot(w, d) / len2, 0.0, 1.0) : 0.0;
-        Vec c = lerp(p, q, t);
-        Vec e = sub(x, c);
+        Vec3 c = lerp(p, q, t);
+        Vec3 e = sub(x, c);
         double v = std::sqrt(dot(e, e)) - (b.radii[s] + t * (b.radii[s + 1] - b.radii[s]));
         float& o = out[size_t(i) + size_t(g.nx) * size_t(j)];
         o = std::min(o, float(v));
@@ -257,8 +255,8 @@ void clip(SurfaceMesh& mesh, const EndCut& cut) {
   std::vector<double> dist(nv);
   const double reach2 = 9 * cut.radius * cut.radius;
   for (size_t v = 0; v < nv; ++v) {
-    Vec p = {mesh.points[3 * v], mesh.points[3 * v + 1], mesh.points[3 * v + 2]};
-    Vec r = sub(p, cut.center);
+    Vec3 p = {mesh.points[3 * v], mesh.points[3 * v + 1], mesh.points[3 * v + 2]};
+    Vec3 r = sub(p, cut.center);
     double d = dot(r, cut.normal);
     double lateral2 = dot(r, r) - d * d;
     // Outside the reach of this cut everything is kept.
@@ -318,7 +316,7 @@ void keep_largest_component(SurfaceMesh& mesh) {
 void close_by_fans(SurfaceMesh& mesh) {
   const TriangleAdjacency adj = build_adjacency(mesh);
   for (const std::vector<int32_t>& loop : boundary_loops(mesh, adj)) {
-    Vec c = {0, 0, 0};
+    Vec3 c = {0, 0, 0};
     for (int32_t v : loop)
       for (int k = 0; k < 3; ++k) c[k] += mesh.points[3 * size_t(v) + k] / double(loop.size());
     const int32_t center = int32_t(mesh.num_vertices());
@@ -339,7 +337,7 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
     return Result<SurfaceMesh>::Error("phantom noise must be between 0 and 2 voxels");
   Model m = build_model(o.kind);
   // Grid around the model, with 3 voxels of margin.
-  Vec lo = {1e30, 1e30, 1e30}, hi = {-1e30, -1e30, -1e30};
+  Vec3 lo = {1e30, 1e30, 1e30}, hi = {-1e30, -1e30, -1e30};
   for (const Branch& b : m.branches)
     for (size_t i = 0; i < b.points.size(); ++i)
       for (int k = 0; k < 3; ++k) {
@@ -381,8 +379,8 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
     if (m.has_bulb) {
       for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i) {
-          Vec x = {g.origin[0] + g.spacing * i, g.origin[1] + g.spacing * j, z};
-          Vec d = sub(x, m.bulb_center);
+          Vec3 x = {g.origin[0] + g.spacing * i, g.origin[1] + g.spacing * j, z};
+          Vec3 d = sub(x, m.bulb_center);
           double s = std::sqrt(dot(d, d)) - m.bulb_radius;
           float& v = out[size_t(i) + size_t(g.nx) * size_t(j)];
           v = float(smooth_min(v, s, 0.3));
@@ -417,8 +415,8 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
     truth->end_directions.clear();
     truth->end_radii.clear();
     for (const EndCut& e : m.ends) {
-      const Vec tip = {e.center[0] + e.radius * e.normal[0], e.center[1] + e.radius * e.normal[1],
-                       e.center[2] + e.radius * e.normal[2]};
+      const Vec3 tip = {e.center[0] + e.radius * e.normal[0], e.center[1] + e.radius * e.normal[1],
+                        e.center[2] + e.radius * e.normal[2]};
       truth->end_tips.push_back({tip[0] * o.scale, tip[1] * o.scale, tip[2] * o.scale});
       truth->end_directions.push_back(e.normal);
       truth->end_radii.push_back(e.radius * o.scale);

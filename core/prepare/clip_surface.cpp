@@ -15,9 +15,7 @@
 namespace vm {
 namespace {
 
-using Vec = std::array<double, 3>;
-
-std::string point_text(const Vec& p) {
+std::string point_text(const Vec3& p) {
   char buf[96];
   std::snprintf(buf, sizeof(buf), "(%.6g, %.6g, %.6g)", p[0], p[1], p[2]);
   return buf;
@@ -32,9 +30,9 @@ struct State {
 };
 
 /// Twice the area vector of triangle (a, b, c).
-Vec area_vector(const double* a, const double* b, const double* c) {
+Vec3 area_vector(const double* a, const double* b, const double* c) {
   double u[3], w[3];
-  Vec n;
+  Vec3 n;
   v3::sub(b, a, u);
   v3::sub(c, a, w);
   v3::cross(u, w, n.data());
@@ -43,15 +41,15 @@ Vec area_vector(const double* a, const double* b, const double* c) {
 
 double triangle_area(const SurfaceMesh& m, size_t t) {
   const int32_t* c = &m.triangles[3 * t];
-  const Vec n = area_vector(&m.points[3 * size_t(c[0])], &m.points[3 * size_t(c[1])],
-                            &m.points[3 * size_t(c[2])]);
+  const Vec3 n = area_vector(&m.points[3 * size_t(c[0])], &m.points[3 * size_t(c[1])],
+                             &m.points[3 * size_t(c[2])]);
   return 0.5 * v3::norm(n.data());
 }
 
 /// Shape quality of a triangle for choosing a quad's diagonal: area over the
 /// sum of squared edge lengths (0 when flat).
 double triangle_shape(const double* a, const double* b, const double* c) {
-  const Vec n = area_vector(a, b, c);
+  const Vec3 n = area_vector(a, b, c);
   double e[3], s = 0;
   v3::sub(b, a, e), s += v3::dot(e, e);
   v3::sub(c, b, e), s += v3::dot(e, e);
@@ -150,7 +148,7 @@ void PlaneCut::signed_distances() {
 /// same way with at least a quarter of its area.
 bool PlaneCut::snap_keeps_triangles(int32_t v) const {
   const SurfaceMesh& m = s_.mesh;
-  Vec moved;
+  Vec3 moved;
   for (int k = 0; k < 3; ++k)
     moved[size_t(k)] =
         m.points[3 * size_t(v) + size_t(k)] - d_[size_t(v)] * plane_.normal[size_t(k)];
@@ -162,8 +160,8 @@ bool PlaneCut::snap_keeps_triangles(int32_t v) const {
       p[k] = &m.points[3 * size_t(c[k])];
       q[k] = c[k] == v ? moved.data() : p[k];
     }
-    const Vec before = area_vector(p[0], p[1], p[2]);
-    const Vec after = area_vector(q[0], q[1], q[2]);
+    const Vec3 before = area_vector(p[0], p[1], p[2]);
+    const Vec3 after = area_vector(q[0], q[1], q[2]);
     if (v3::dot(before.data(), after.data()) <= 0.25 * v3::dot(before.data(), before.data()))
       return false;
   }
@@ -172,7 +170,7 @@ bool PlaneCut::snap_keeps_triangles(int32_t v) const {
 
 Status PlaneCut::choose_loop(LevelLoop& chosen) const {
   std::vector<LevelLoop> loops = level_loops(s_.mesh, adj_, dz_, 0.0);
-  const Vec& q = plane_.point;
+  const Vec3& q = plane_.point;
   if (loops.empty())
     return Status::Error("the plane at " + point_text(q) + " with normal " +
                          point_text(plane_.normal) +
@@ -206,8 +204,8 @@ Status PlaneCut::choose_loop(LevelLoop& chosen) const {
   }
   chosen = std::move(loops[size_t(best)]);
   if (!chosen.closed) {
-    const Vec end = {chosen.points[chosen.points.size() - 3],
-                     chosen.points[chosen.points.size() - 2], chosen.points.back()};
+    const Vec3 end = {chosen.points[chosen.points.size() - 3],
+                      chosen.points[chosen.points.size() - 2], chosen.points.back()};
     return Status::Error("the cut of the plane at " + point_text(q) +
                          " runs into an opening of the surface near " + point_text(end) +
                          ": move the plane away from the opening or turn it ({clip_plane})");
@@ -244,7 +242,7 @@ Status PlaneCut::run(ClipCut& report) {
   report.plane = plane_;
   adj_ = build_adjacency(m);
   no_snap_.assign(m.num_vertices(), 0);
-  const Vec& n = plane_.normal;
+  const Vec3& n = plane_.normal;
 
   // Trace and choose the loop; a vertex at the plane that the loop passes
   // twice is left off the plane (moved slightly back if it lies on it).
@@ -387,9 +385,9 @@ Status PlaneCut::run(ClipCut& report) {
   // crossed triangles lose what the pieces do not keep.
   double kept_area = 0;
   for (size_t i = 0; i < new_triangles.size(); i += 3) {
-    const Vec a = area_vector(&m.points[3 * size_t(new_triangles[i])],
-                              &m.points[3 * size_t(new_triangles[i + 1])],
-                              &m.points[3 * size_t(new_triangles[i + 2])]);
+    const Vec3 a = area_vector(&m.points[3 * size_t(new_triangles[i])],
+                               &m.points[3 * size_t(new_triangles[i + 1])],
+                               &m.points[3 * size_t(new_triangles[i + 2])]);
     if (!(v3::norm(a.data()) > 0))
       return Status::Internal("a zero-area triangle in the cut at " + point_text(plane_.point));
     kept_area += 0.5 * v3::norm(a.data());

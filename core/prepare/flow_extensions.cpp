@@ -21,7 +21,6 @@ namespace {
 
 Vec3 at(const SurfaceMesh& m, int32_t v) { return vm::at(m.points, v); }
 Vec3 add(const Vec3& a, const Vec3& b, double s = 1) { return a + s * b; }
-double length(const Vec3& a) { return norm(a); }
 Vec3 unit(const Vec3& a) {
   const double n = norm(a);
   return n > 0 ? Vec3{a[0] / n, a[1] / n, a[2] / n} : Vec3{0, 0, 0};
@@ -57,13 +56,13 @@ std::vector<Vec3> rim_directions(const SurfaceMesh& m, const TriangleAdjacency& 
       Vec3 d = cross(edge, cross(edge, inward));
       if (dot(d, inward) > 0)
         for (double& x : d) x = -x;
-      if (length(d) > 0) edge_dir[i] = unit(d);
+      if (norm(d) > 0) edge_dir[i] = unit(d);
     }
   }
   std::vector<Vec3> dirs(n);
   for (size_t i = 0; i < n; ++i) {
     Vec3 d = unit(add(edge_dir[(i + n - 1) % n], edge_dir[i]));
-    if (length(d) == 0) d = normal;
+    if (norm(d) == 0) d = normal;
     // A wall that leaves the rim backwards or sideways would fold the
     // extension: keep the direction within 60 degrees of the normal.
     for (int k = 0; k < 8 && dot(d, normal) < 0.5; ++k) d = unit(add(d, normal));
@@ -106,10 +105,10 @@ Result<std::vector<FlowExtension>> add_flow_extensions(SurfaceMesh& mesh,
     double edge = 0;
     for (size_t i = 0; i < n; ++i) {
       rim[i] = at(mesh, loop[i]);
-      edge += length(at(mesh, loop[(i + 1) % n]) - rim[i]) / double(n);
+      edge += norm(at(mesh, loop[(i + 1) % n]) - rim[i]) / double(n);
       const Vec3 r = (rim[i] - c);
       const Vec3 in_plane = add(r, axis, -dot(r, axis));
-      if (length(in_plane) < 1e-6 * op.radius)
+      if (norm(in_plane) < 1e-6 * op.radius)
         return R::Error("opening " + std::to_string(o + 1) + " at " + point_text(c) +
                         " folds back onto its axis: it cannot be extended; extend it less "
                         "({flow_extension} " +
@@ -157,7 +156,7 @@ Result<std::vector<FlowExtension>> add_flow_extensions(SurfaceMesh& mesh,
         const Vec3 mid = add(add(c, axis, half), ring_dir[i], radius);
         Vec3 p;
         if (z <= half) {
-          const double chord = length((mid - rim[i]));
+          const double chord = norm((mid - rim[i]));
           Vec3 t0 = dirs[i], t1 = axis;
           for (double& x : t0) x *= chord;
           for (double& x : t1) x *= chord;

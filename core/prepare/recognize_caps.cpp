@@ -13,15 +13,13 @@
 namespace vm {
 namespace {
 
-using Vec = std::array<double, 3>;
-
 const double* point(const SurfaceMesh& m, int32_t v) { return &m.points[3 * size_t(v)]; }
 
 /// Unit normal and area of triangle t.
-std::pair<Vec, double> triangle_normal(const SurfaceMesh& m, size_t t) {
+std::pair<Vec3, double> triangle_normal(const SurfaceMesh& m, size_t t) {
   const int32_t* c = &m.triangles[3 * t];
   double u[3], w[3];
-  Vec n;
+  Vec3 n;
   v3::sub(point(m, c[1]), point(m, c[0]), u);
   v3::sub(point(m, c[2]), point(m, c[0]), w);
   v3::cross(u, w, n.data());
@@ -43,7 +41,7 @@ double median(std::vector<double> v) {
 struct Region {
   std::vector<int32_t> triangles;
   std::vector<int32_t> rim_half_edges;  ///< half-edges of region triangles across the rim
-  Vec normal{}, centroid{};
+  Vec3 normal{}, centroid{};
   double area = 0;
 };
 
@@ -51,7 +49,7 @@ struct Region {
 struct Context {
   const SurfaceMesh& mesh;
   const TriangleAdjacency& adj;
-  const std::vector<Vec>& normals;
+  const std::vector<Vec3>& normals;
   const std::vector<double>& areas;
   const CapRecognitionOptions& options;
   double total_area = 0;
@@ -61,7 +59,7 @@ struct Context {
 /// an opening or a non-manifold edge.
 bool describe(const Context& ctx, const std::vector<uint8_t>& in_region, Region& r) {
   r.rim_half_edges.clear();
-  Vec weighted{};
+  Vec3 weighted{};
   r.area = 0;
   r.centroid = {};
   for (int32_t t : r.triangles) {
@@ -261,7 +259,7 @@ CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& 
                               const CapRecognitionOptions& options) {
   CapRecognition out;
   const size_t nt = mesh.num_triangles();
-  std::vector<Vec> normals(nt);
+  std::vector<Vec3> normals(nt);
   std::vector<double> areas(nt);
   double total = 0;
   for (size_t t = 0; t < nt; ++t) {

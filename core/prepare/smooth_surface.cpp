@@ -9,6 +9,7 @@
 #include <numbers>
 #include <vector>
 
+#include "core/geom/vec3.h"
 #include "core/mesh/boundary_loops.h"
 
 namespace vm {
@@ -37,12 +38,10 @@ const char* smoothing_mode_name(Smoothing::Mode mode) {
 
 namespace {
 
-using Vec = std::array<double, 3>;
-
 const double* point(const SurfaceMesh& m, int32_t v) { return &m.points[3 * size_t(v)]; }
 
 /// Area vector (b - a) x (c - a) / 2 of triangle t.
-Vec area_vector(const SurfaceMesh& m, size_t t) {
+Vec3 area_vector(const SurfaceMesh& m, size_t t) {
   const double* a = point(m, m.triangles[3 * t]);
   const double* b = point(m, m.triangles[3 * t + 1]);
   const double* c = point(m, m.triangles[3 * t + 2]);
@@ -51,10 +50,6 @@ Vec area_vector(const SurfaceMesh& m, size_t t) {
   return {0.5 * (u[1] * w[2] - u[2] * w[1]), 0.5 * (u[2] * w[0] - u[0] * w[2]),
           0.5 * (u[0] * w[1] - u[1] * w[0])};
 }
-
-double dot3(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-double length(const Vec& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
 double cos_degrees(double degrees) { return std::cos(degrees * std::numbers::pi / 180); }
 
@@ -100,14 +95,14 @@ double lattice_step(const std::vector<double>& sorted, double merge, double& ori
 /// The grid directions of a voxel of sides `spacing` (> 0): the normals of
 /// the planes through the middles of grid edges, (c0 / s0, c1 / s1, c2 /
 /// s2) normalized for c in {-1, 0, 1}^3, one of each opposite pair: 13.
-std::vector<Vec> grid_directions(const std::array<double, 3>& spacing) {
-  std::vector<Vec> directions;
+std::vector<Vec3> grid_directions(const std::array<double, 3>& spacing) {
+  std::vector<Vec3> directions;
   for (int code = 0; code < 27; ++code) {
     const int c[3] = {code % 3 - 1, code / 3 % 3 - 1, code / 9 - 1};  // each -1, 0 or 1
     const int first = c[0] != 0 ? c[0] : c[1] != 0 ? c[1] : c[2];
     if (first != 1) continue;  // one of each opposite pair, no zero vector
-    Vec d = {c[0] / spacing[0], c[1] / spacing[1], c[2] / spacing[2]};
-    const double len = length(d);
+    Vec3 d = {c[0] / spacing[0], c[1] / spacing[1], c[2] / spacing[2]};
+    const double len = norm(d);
     for (double& x : d) x /= len;
     directions.push_back(d);
   }
@@ -120,12 +115,12 @@ StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions
   StaircaseReport r;
   const size_t nt = mesh.num_triangles();
   if (nt == 0) return r;
-  std::vector<Vec> normals(nt);
+  std::vector<Vec3> normals(nt);
   std::vector<double> areas(nt);
   double total_area = 0;
   for (size_t t = 0; t < nt; ++t) {
-    Vec a = area_vector(mesh, t);
-    const double len = length(a);
+    Vec3 a = area_vector(mesh, t);
+    const double len = norm(a);
     areas[t] = len;
     total_area += len;
     if (len > 0)
@@ -140,12 +135,12 @@ StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions
   // Share of the area facing grid directions: the axes, the face diagonals
   // and the body diagonals of the voxel (of a cube until it is measured).
   auto direction_fraction = [&](const std::array<double, 3>& spacing) {
-    const std::vector<Vec> directions = grid_directions(spacing);
+    const std::vector<Vec3> directions = grid_directions(spacing);
     const double direction_cos = cos_degrees(options.direction_tolerance_degrees);
     double on_grid = 0;
     for (size_t t = 0; t < nt; ++t)
-      for (const Vec& d : directions)
-        if (std::fabs(dot3(normals[t], d)) >= direction_cos) {
+      for (const Vec3& d : directions)
+        if (std::fabs(dot(normals[t], d)) >= direction_cos) {
           on_grid += areas[t];
           break;
         }
@@ -269,7 +264,7 @@ enum : uint8_t { kFree = 0, kAlongLoop = 1, kInPlane = 2, kFixed = 3 };
 
 /// A plane vertices are held in.
 struct Plane {
-  Vec point{}, normal{};  ///< normal: unit
+  Vec3 point{}, normal{};  ///< normal: unit
 };
 
 /// Per vertex: how it may move, its plane (index into `planes`) and, along
@@ -326,7 +321,7 @@ std::vector<std::vector<int32_t>> hold_openings(const SurfaceMesh& mesh,
         p.normal[size_t(k)] += (a[k1] - b[k1]) * (a[k2] + b[k2]);
       }
     }
-    const double len = length(p.normal);
+    const double len = norm(p.normal);
     if (len > 0)
       for (double& x : p.normal) x /= len;
     const bool planar = len > 0 && n >= 3 && within_plane(mesh, loop, p, tolerance);
@@ -350,14 +345,14 @@ std::vector<std::vector<int32_t>> hold_openings(const SurfaceMesh& mesh,
 /// the plane, so caps stay flat with their sharp rims. Returns the number of
 /// regions held.
 size_t hold_flat_regions(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
-                         const std::vector<Vec>& grid, double angle_cos, double min_area,
+                         const std::vector<Vec3>& grid, double angle_cos, double min_area,
                          double tolerance, Constraints& c) {
   const size_t nt = mesh.num_triangles();
-  std::vector<Vec> normals(nt);
+  std::vector<Vec3> normals(nt);
   std::vector<double> areas(nt);
   for (size_t t = 0; t < nt; ++t) {
-    Vec a = area_vector(mesh, t);
-    areas[t] = length(a);
+    Vec3 a = area_vector(mesh, t);
+    areas[t] = norm(a);
     if (areas[t] > 0)
       for (double& x : a) x /= areas[t];
     normals[t] = a;
@@ -366,7 +361,7 @@ size_t hold_flat_regions(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
   std::vector<uint8_t> taken(nt, 0);
   for (size_t t = 0; t < nt; ++t) {
     bool terrace = false;
-    for (const Vec& d : grid) terrace = terrace || std::fabs(dot3(normals[t], d)) >= grid_cos;
+    for (const Vec3& d : grid) terrace = terrace || std::fabs(dot(normals[t], d)) >= grid_cos;
     if (terrace || !(areas[t] > 0)) taken[t] = 1;
   }
   std::vector<int32_t> region, stack;
@@ -383,7 +378,7 @@ size_t hold_flat_regions(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
       for (int k = 0; k < 3; ++k) {
         const int32_t o = adj.opposite[3 * size_t(t) + size_t(k)];
         if (o < 0 || taken[size_t(o / 3)]) continue;
-        if (dot3(normals[size_t(o / 3)], normals[seed]) < angle_cos) continue;
+        if (dot(normals[size_t(o / 3)], normals[seed]) < angle_cos) continue;
         taken[size_t(o / 3)] = 1;
         region.push_back(o / 3);
         stack.push_back(o / 3);
@@ -404,7 +399,7 @@ size_t hold_flat_regions(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
     }
     if (area < min_area) continue;
     for (double& x : p.point) x /= area;
-    const double len = length(p.normal);
+    const double len = norm(p.normal);
     if (!(len > 0)) continue;
     for (double& x : p.normal) x /= len;
     std::sort(vertices.begin(), vertices.end());
@@ -454,7 +449,7 @@ size_t hold_flat_regions(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
 /// from its centroid (reversed: the loops run along the triangles' boundary
 /// half-edges), relative to origin o.
 double closed_volume(const SurfaceMesh& m, const std::vector<std::vector<int32_t>>& loops,
-                     const Vec& o) {
+                     const Vec3& o) {
   auto det = [&](const double* a, const double* b, const double* c) {
     const double p[3] = {a[0] - o[0], a[1] - o[1], a[2] - o[2]};
     const double q[3] = {b[0] - o[0], b[1] - o[1], b[2] - o[2]};
@@ -467,7 +462,7 @@ double closed_volume(const SurfaceMesh& m, const std::vector<std::vector<int32_t
     sum += det(point(m, m.triangles[3 * t]), point(m, m.triangles[3 * t + 1]),
                point(m, m.triangles[3 * t + 2]));
   for (const std::vector<int32_t>& loop : loops) {
-    Vec c{};
+    Vec3 c{};
     for (int32_t v : loop)
       for (int k = 0; k < 3; ++k) c[size_t(k)] += point(m, v)[k] / double(loop.size());
     for (size_t i = 0; i < loop.size(); ++i)
@@ -482,7 +477,7 @@ SmoothReport smooth_surface(SurfaceMesh& mesh, const TriangleAdjacency& adj,
                             const SmoothOptions& options) {
   SmoothReport report;
   const size_t nv = mesh.num_vertices();
-  const Vec& radii = options.max_displacement;
+  const Vec3& radii = options.max_displacement;
   if (!(radii[0] > 0 && radii[1] > 0 && radii[2] > 0) || options.passes <= 0) return report;
   const std::vector<double> input = mesh.points;
   const Neighbors nb = vertex_neighbors(mesh, adj);
@@ -493,7 +488,7 @@ SmoothReport smooth_surface(SurfaceMesh& mesh, const TriangleAdjacency& adj,
   if (options.flat_min_area > 0) {
     const bool staircase = options.grid[0] > 0 && options.grid[1] > 0 && options.grid[2] > 0;
     report.flat_regions = hold_flat_regions(
-        mesh, adj, staircase ? grid_directions(options.grid) : std::vector<Vec>{},
+        mesh, adj, staircase ? grid_directions(options.grid) : std::vector<Vec3>{},
         cos_degrees(options.flat_angle_degrees), options.flat_min_area, tolerance, c);
   }
   for (uint8_t k : c.kind) {
@@ -502,8 +497,8 @@ SmoothReport smooth_surface(SurfaceMesh& mesh, const TriangleAdjacency& adj,
   }
 
   const BoundingBox box = bounding_box(mesh.points);
-  const Vec o = {0.5 * (box.min[0] + box.max[0]), 0.5 * (box.min[1] + box.max[1]),
-                 0.5 * (box.min[2] + box.max[2])};
+  const Vec3 o = {0.5 * (box.min[0] + box.max[0]), 0.5 * (box.min[1] + box.max[1]),
+                  0.5 * (box.min[2] + box.max[2])};
   report.volume_before = closed_volume(mesh, loops, o);
   report.volume_after = report.volume_before;
 
@@ -543,7 +538,7 @@ SmoothReport smooth_surface(SurfaceMesh& mesh, const TriangleAdjacency& adj,
         for (int k = 0; k < 3; ++k) d[k] = d[k] / double(end - begin) - p[k];
       }
       if (kind != kFree) {
-        const Vec& n = c.planes[size_t(c.plane[v])].normal;
+        const Vec3& n = c.planes[size_t(c.plane[v])].normal;
         const double along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
         for (int k = 0; k < 3; ++k) d[k] -= along * n[size_t(k)];
       }
@@ -559,14 +554,14 @@ SmoothReport smooth_surface(SurfaceMesh& mesh, const TriangleAdjacency& adj,
   // Restores the enclosed volume by a uniform offset of the free vertices
   // along their (area-weighted) normals, a few times since the clamp may
   // hold some back.
-  std::vector<Vec> vertex_normals(nv);
+  std::vector<Vec3> vertex_normals(nv);
   auto restore_volume = [&]() {
     for (int round = 0; round < 3; ++round) {
       const double now = closed_volume(mesh, loops, o);
       if (std::fabs(report.volume_before - now) <= 1e-9 * std::fabs(report.volume_before)) return;
-      std::fill(vertex_normals.begin(), vertex_normals.end(), Vec{});
+      std::fill(vertex_normals.begin(), vertex_normals.end(), Vec3{});
       for (size_t t = 0; t < mesh.num_triangles(); ++t) {
-        const Vec a = area_vector(mesh, t);
+        const Vec3 a = area_vector(mesh, t);
         for (int i = 0; i < 3; ++i)
           for (int k = 0; k < 3; ++k)
             vertex_normals[size_t(mesh.triangles[3 * t + size_t(i)])][size_t(k)] +=
@@ -576,11 +571,11 @@ SmoothReport smooth_surface(SurfaceMesh& mesh, const TriangleAdjacency& adj,
       // by about f |n_v| (its share of the area): f = dV / sum |n_v|.
       double moving_area = 0;
       for (size_t v = 0; v < nv; ++v)
-        if (c.kind[v] == kFree) moving_area += length(vertex_normals[v]);
+        if (c.kind[v] == kFree) moving_area += norm(vertex_normals[v]);
       if (!(moving_area > 0)) return;
       const double f = (report.volume_before - now) / moving_area;
       for (size_t v = 0; v < nv; ++v) {
-        const double len = length(vertex_normals[v]);
+        const double len = norm(vertex_normals[v]);
         if (c.kind[v] != kFree || !(len > 0)) continue;
         for (int k = 0; k < 3; ++k)
           mesh.points[3 * v + size_t(k)] += f * vertex_normals[v][size_t(k)] / len;

@@ -16,14 +16,12 @@
 namespace vm {
 namespace {
 
-using Vec = Vec3;
-
-Vec sub(const Vec& a, const Vec& b) { return a - b; }
+Vec3 sub(const Vec3& a, const Vec3& b) { return a - b; }
 /// y + s x.
-Vec axpy(double s, const Vec& x, const Vec& y) { return y + s * x; }
+Vec3 axpy(double s, const Vec3& x, const Vec3& y) { return y + s * x; }
 /// Distance of p from the line through c along unit a.
-double lateral(const Vec& p, const Vec& c, const Vec& a) {
-  const Vec d = sub(p, c);
+double lateral(const Vec3& p, const Vec3& c, const Vec3& a) {
+  const Vec3 d = sub(p, c);
   const double t = dot(d, a);
   return std::sqrt(std::max(0.0, dot(d, d) - t * t));
 }
@@ -36,27 +34,27 @@ double median(std::vector<double> v) {
 
 /// Principal direction of points (3 doubles each, about their mean), by
 /// power iteration on the scatter matrix from `guess`.
-Vec principal_direction(const std::vector<Vec>& pts, const Vec& guess) {
-  Vec mean{};
-  for (const Vec& p : pts)
+Vec3 principal_direction(const std::vector<Vec3>& pts, const Vec3& guess) {
+  Vec3 mean{};
+  for (const Vec3& p : pts)
     for (int k = 0; k < 3; ++k) mean[size_t(k)] += p[size_t(k)] / double(pts.size());
   double s[3][3] = {};
-  for (const Vec& p : pts) {
-    const Vec d = sub(p, mean);
+  for (const Vec3& p : pts) {
+    const Vec3 d = sub(p, mean);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) s[i][j] += d[size_t(i)] * d[size_t(j)];
   }
-  Vec v = normalized(guess);
+  Vec3 v = normalized(guess);
   if (dot(v, v) == 0) v = {1, 0, 0};
   for (int it = 0; it < 50; ++it) {
-    Vec w{};
+    Vec3 w{};
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) w[size_t(i)] += s[i][j] * v[size_t(j)];
-    const Vec u = normalized(w);
+    const Vec3 u = normalized(w);
     if (dot(u, u) == 0) break;
     v = u;
   }
-  return dot(v, guess) < 0 ? Vec{-v[0], -v[1], -v[2]} : v;
+  return dot(v, guess) < 0 ? Vec3{-v[0], -v[1], -v[2]} : v;
 }
 
 /// A plane section around an axis point.
@@ -69,15 +67,15 @@ struct Section {
 /// A geodesic ring around the tip.
 struct Ring {
   double s = 0;
-  Vec centroid{};
+  Vec3 centroid{};
   double radius = 0;
 };
 
 /// A section on the march from the tip along the vessel.
 struct Sample {
   double z = 0;     ///< depth from the tip along the march, in radii
-  Vec point{};      ///< the plane's point (on the axis as marched)
-  Vec dir{};        ///< the plane's normal: the axis there, toward the tip
+  Vec3 point{};     ///< the plane's point (on the axis as marched)
+  Vec3 dir{};       ///< the plane's normal: the axis there, toward the tip
   Section section;  ///< the loop around `point`, if any
 };
 
@@ -91,7 +89,7 @@ struct Shared {
   std::vector<uint8_t> touched_mark;  ///< scratch, per triangle, all 0 between analyses
   std::vector<double> plane_field;    ///< scratch, per vertex
 
-  Vec point(int32_t v) const {
+  Vec3 point(int32_t v) const {
     const double* p = &mesh.points[3 * size_t(v)];
     return {p[0], p[1], p[2]};
   }
@@ -120,13 +118,13 @@ class EndAnalysis {
   bool rings(std::vector<Ring>& out);
   /// The signed distances to the plane through q normal to a, for the
   /// vertices of the searched triangles.
-  void set_plane(const Vec& q, const Vec& a);
-  Section section(const Vec& q, const Vec& a);
+  void set_plane(const Vec3& q, const Vec3& a);
+  Section section(const Vec3& q, const Vec3& a);
   /// Sections every quarter radius from the tip inward to `deepest` radii:
   /// along the straight axis a0 up to `straight` radii in, then following
   /// the section centroids (the axis as the centroid of the last radius of
   /// sections), so that curved vessels are followed.
-  std::vector<Sample> march(const Vec& tip, const Vec& a0, double R, double straight,
+  std::vector<Sample> march(const Vec3& tip, const Vec3& a0, double R, double straight,
                             double deepest);
   /// The surface beyond a section loop (its "above" side), grown without
   /// crossing it; false if it leaves the searched region.
@@ -187,7 +185,7 @@ bool EndAnalysis::rings(std::vector<Ring>& out) {
   return out.size() >= 4;
 }
 
-void EndAnalysis::set_plane(const Vec& q, const Vec& a) {
+void EndAnalysis::set_plane(const Vec3& q, const Vec3& a) {
   for (int32_t t : touched_)
     for (int k = 0; k < 3; ++k) {
       const int32_t v = sh_.mesh.triangles[3 * size_t(t) + size_t(k)];
@@ -195,7 +193,7 @@ void EndAnalysis::set_plane(const Vec& q, const Vec& a) {
     }
 }
 
-Section EndAnalysis::section(const Vec& q, const Vec& a) {
+Section EndAnalysis::section(const Vec3& q, const Vec3& a) {
   Section sec;
   set_plane(q, a);
   std::vector<LevelLoop> loops = level_loops(sh_.mesh, sh_.adj, sh_.plane_field, 0.0, touched_);
@@ -213,12 +211,12 @@ Section EndAnalysis::section(const Vec& q, const Vec& a) {
   return sec;
 }
 
-std::vector<Sample> EndAnalysis::march(const Vec& tip, const Vec& a0, double R, double straight,
+std::vector<Sample> EndAnalysis::march(const Vec3& tip, const Vec3& a0, double R, double straight,
                                        double deepest) {
   constexpr double kStep = 0.25;
   const double kTurn = 6 * std::numbers::pi / 180;
   std::vector<Sample> out;
-  Vec dir = a0, last = tip;
+  Vec3 dir = a0, last = tip;
   for (int i = 1; i * kStep <= deepest + 1e-9; ++i) {
     Sample s;
     s.z = i * kStep;
@@ -232,16 +230,16 @@ std::vector<Sample> EndAnalysis::march(const Vec& tip, const Vec& a0, double R, 
     // at most kTurn a step (a bend of radius 2.4 R is followed; the corner
     // from an aneurysm's neck into its parent vessel is not).
     if (turn && out.size() > 4 && out.back().section.found && out[out.size() - 5].section.found) {
-      const Vec d = normalized(
+      const Vec3 d = normalized(
           sub(out[out.size() - 5].section.shape.centroid, out.back().section.shape.centroid));
       const double c = dot(d, dir);
       if (c >= std::cos(kTurn)) {
         dir = d;
       } else if (dot(d, d) > 0) {
-        const Vec across = normalized(axpy(-c, dir, d));
+        const Vec3 across = normalized(axpy(-c, dir, d));
         dir = normalized(axpy(
             std::sin(kTurn), across,
-            Vec{std::cos(kTurn) * dir[0], std::cos(kTurn) * dir[1], std::cos(kTurn) * dir[2]}));
+            Vec3{std::cos(kTurn) * dir[0], std::cos(kTurn) * dir[1], std::cos(kTurn) * dir[2]}));
       }
     }
   }
@@ -299,7 +297,7 @@ bool EndAnalysis::beyond(const LevelLoop& loop, std::vector<int32_t>& vertices, 
 bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   const VesselEndOptions& o = sh_.options;
   const double D = o.clip_distance;
-  const Vec tip_point = sh_.point(tip_);
+  const Vec3 tip_point = sh_.point(tip_);
   why.where = tip_point;
   auto reject = [&](std::string reason) {
     why.why = std::move(reason);
@@ -335,14 +333,14 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   for (size_t j = knee; j < ring.size() && ring[j].s <= ring[knee].s + 0.5 * ring[knee].radius; ++j)
     r0_ = std::max(r0_, ring[j].radius);
   if (r0_ <= 0) r0_ = ring[knee].radius;
-  std::vector<Vec> centres;
+  std::vector<Vec3> centres;
   for (size_t k = knee; k < ring.size() && ring[k].s <= ring[knee].s + 2 * r0_; ++k)
     centres.push_back(ring[k].centroid);
-  Vec a = normalized(sub(tip_point, centres.back()));
+  Vec3 a = normalized(sub(tip_point, centres.back()));
   if (centres.size() >= 3 && ring[knee + centres.size() - 1].s - ring[knee].s >= 0.75 * r0_)
     a = principal_direction(centres, a);
-  Vec c0{};
-  for (const Vec& c : centres)
+  Vec3 c0{};
+  for (const Vec3& c : centres)
     for (int k = 0; k < 3; ++k) c0[size_t(k)] += c[size_t(k)] / double(centres.size());
   if (persistence_ < o.min_persistence * r0_) return reject("a bump");
 
@@ -357,7 +355,7 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   for (int32_t v : geo_.settled())
     if (geo_.distances()[size_t(v)] <= ring[knee].s + R)
       h = std::max(h, dot(sub(sh_.point(v), c0), a));
-  Vec tip = axpy(h, a, c0);
+  Vec3 tip = axpy(h, a, c0);
   auto roundness = [](const Section& s) {
     return s.found && s.shape.max_distance > 0 ? s.shape.min_distance / s.shape.max_distance : 0.0;
   };
@@ -404,25 +402,25 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
       }
     if (z_cap < 0) return reject("no tube behind it");
     // The axis at the end, from the sections just behind the cap.
-    std::vector<Vec> centres_near;
+    std::vector<Vec3> centres_near;
     for (const Sample& s : samples)
       if (s.section.found && s.z >= z_cap - 1e-9 && s.z <= z_cap + 1.5 + 1e-9)
         centres_near.push_back(s.section.shape.centroid);
-    const Vec a_new = principal_direction(centres_near, a);
+    const Vec3 a_new = principal_direction(centres_near, a);
     // The tip: the farthest point beyond the cap's end along that axis.
     const Sample& ref = *at(samples, z_cap);
     set_plane(ref.point, ref.dir);
     cap.clear();
     if (!beyond(ref.section.loop, cap, cap_area))
       return reject("the part beyond " + number_text(z_cap, 3) + " radii in is not an end");
-    const Vec c_ref = ref.section.shape.centroid;
+    const Vec3 c_ref = ref.section.shape.centroid;
     double h_new = z_cap * R_new;
     if (!cap.empty()) {
       h_new = -1e300;
       for (int32_t v : cap) h_new = std::max(h_new, dot(sub(sh_.point(v), c_ref), a_new));
     }
-    const Vec tip_new = axpy(h_new, a_new, c_ref);
-    const Vec moved = sub(tip_new, tip);
+    const Vec3 tip_new = axpy(h_new, a_new, c_ref);
+    const Vec3 moved = sub(tip_new, tip);
     const bool settled = dot(a_new, a) > std::cos(std::numbers::pi / 180) &&
                          std::abs(R_new - R) < 0.02 * R && dot(moved, moved) < 0.0009 * R * R;
     a = a_new;
@@ -452,9 +450,9 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
       s.point = axpy(-z * R, a, tip);
     } else {
       s.dir = before->dir;
-      const Vec from = before->z > z_cap + 0.5 && before->section.found
-                           ? before->section.shape.centroid
-                           : before->point;
+      const Vec3 from = before->z > z_cap + 0.5 && before->section.found
+                            ? before->section.shape.centroid
+                            : before->point;
       s.point = axpy(-(z - before->z) * R, before->dir, from);
     }
     s.section = section(s.point, s.dir);
@@ -473,12 +471,12 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   // The cut's normal: the axis from the tube's sections at and behind it
   // (not in front of it, where an oblique or lopsided end would pull it
   // over), then the section again with that normal.
-  std::vector<Vec> behind_cut = {cut.section.shape.centroid};
+  std::vector<Vec3> behind_cut = {cut.section.shape.centroid};
   for (const Sample& s : samples)
     if (s.section.found && s.z > z_cut + 1e-9 && s.z <= std::max(z_cut, z_cap) + 1.5 + 1e-9)
       behind_cut.push_back(s.section.shape.centroid);
-  const Vec cut_axis = behind_cut.size() >= 3 ? principal_direction(behind_cut, cut.dir) : cut.dir;
-  const Vec cut_point = cut.section.shape.centroid;
+  const Vec3 cut_axis = behind_cut.size() >= 3 ? principal_direction(behind_cut, cut.dir) : cut.dir;
+  const Vec3 cut_point = cut.section.shape.centroid;
   const Section cut_section = section(cut_point, cut_axis);
   if (!cut_section.found) return reject("no section around its axis at the cut");
 
@@ -507,7 +505,7 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   if (!beyond(cut_section.loop, cap, cap_area))
     return reject("the part beyond a cut " + number_text(z_cut, 3) + " radii in is not an end");
   for (int32_t v : cap) {
-    const Vec p = sh_.point(v);
+    const Vec3 p = sh_.point(v);
     if (lateral(p, cut_point, cut_axis) > (2 + 0.25 * z_cut) * R ||
         dot(sub(p, cut_point), cut_axis) > (z_cut + 0.5) * R)
       return reject("the part beyond the cut is not a cap");
@@ -528,7 +526,7 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   for (int32_t t : touched_)
     for (int k = 0; k < 3; ++k) {
       const int32_t v = sh_.mesh.triangles[3 * size_t(t) + size_t(k)];
-      const Vec p = sh_.point(v);
+      const Vec3 p = sh_.point(v);
       if (dot(sub(p, cut_point), cut_axis) >= -R && lateral(p, cut_point, cut_axis) <= 2 * R)
         claimed_.push_back(v);
     }
@@ -611,14 +609,14 @@ VesselEnds find_vessel_ends(const SurfaceMesh& mesh, const VesselEndOptions& opt
     if (found) {
       bool duplicate = false;
       for (const VesselEnd& e : out.ends) {
-        const Vec d = sub(e.plane.point, end.plane.point);
+        const Vec3 d = sub(e.plane.point, end.plane.point);
         duplicate |= std::sqrt(dot(d, d)) < std::max(e.radius, end.radius);
       }
       if (!duplicate) out.ends.push_back(end);
     } else if (c.persistence >= 1.5 * analysis.first_radius() && analysis.first_radius() > 0) {
       bool again = false;
       for (const NotAVesselEnd& r : out.rejected) {
-        const Vec d = sub(r.where, why.where);
+        const Vec3 d = sub(r.where, why.where);
         again |= std::sqrt(dot(d, d)) < 2 * std::max(r.radius, why.radius);
       }
       if (!again) out.rejected.push_back(why);

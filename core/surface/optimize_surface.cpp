@@ -10,45 +10,38 @@
 #include <numbers>
 
 #include "core/geom/closest_point.h"
+#include "core/geom/vec3.h"
 #include "core/quality/triangle_quality.h"
 
 namespace vm {
 namespace {
 
-struct Vec {
-  double x[3];
-};
-
-Vec normal(const double* a, const double* b, const double* c) {
+Vec3 normal(const double* a, const double* b, const double* c) {
   double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
          w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  Vec n{{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]}};
-  double l = std::sqrt(n.x[0] * n.x[0] + n.x[1] * n.x[1] + n.x[2] * n.x[2]);
+  Vec3 n{{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]}};
+  double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   if (l > 0)
-    for (double& v : n.x) v /= l;
+    for (double& v : n) v /= l;
   return n;
 }
 
 /// (b - a) x (c - a): the normal scaled by twice the area.
-Vec area_normal(const double* a, const double* b, const double* c) {
+Vec3 area_normal(const double* a, const double* b, const double* c) {
   const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
                w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  return Vec{{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]}};
+  return Vec3{{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]}};
 }
 
 /// The unit vector along the sum of `parts` (zero if the sum is zero).
-Vec normal_sum(std::initializer_list<Vec> parts) {
-  Vec n{{0, 0, 0}};
-  for (const Vec& v : parts)
-    for (int k = 0; k < 3; ++k) n.x[k] += v.x[k];
-  const double l = std::sqrt(n.x[0] * n.x[0] + n.x[1] * n.x[1] + n.x[2] * n.x[2]);
+Vec3 normal_sum(std::initializer_list<Vec3> parts) {
+  Vec3 n{{0, 0, 0}};
+  for (const Vec3& v : parts)
+    for (int k = 0; k < 3; ++k) n[k] += v[k];
+  const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   if (l > 0)
-    for (double& v : n.x) v /= l;
+    for (double& v : n) v /= l;
   return n;
-}
-
-double dot(const Vec& a, const Vec& b) {
-  return a.x[0] * b.x[0] + a.x[1] * b.x[1] + a.x[2] * b.x[2];
 }
 
 /// Below this gamma_k a triangle's normal is not trusted by the guards.
@@ -282,12 +275,12 @@ class Optimizer {
     if (has_edge(c, d)) return false;
     // The normal guard; a nearly flat triangle's normal means nothing, so
     // next to one the pair's area-weighted normal stands for both.
-    Vec nt = normal(p(a), p(b), p(c)), nu = normal(p(b), p(a), p(d));
-    const Vec n1 = normal(p(a), p(d), p(c)), n2 = normal(p(d), p(b), p(c));
+    Vec3 nt = normal(p(a), p(b), p(c)), nu = normal(p(b), p(a), p(d));
+    const Vec3 n1 = normal(p(a), p(d), p(c)), n2 = normal(p(d), p(b), p(c));
     if (q_[size_t(t)] < kFlatGamma || q_[size_t(u)] < kFlatGamma)
       nt = nu = normal_sum({area_normal(p(a), p(b), p(c)), area_normal(p(b), p(a), p(d))});
     if (dot(nt, nu) < cos_turn_ || dot(n1, n2) < cos_turn_) return false;
-    for (const Vec& n : {n1, n2})
+    for (const Vec3& n : {n1, n2})
       if (dot(n, nt) < cos_turn_ || dot(n, nu) < cos_turn_) return false;
     T[0] = a, T[1] = d, T[2] = c;
     U[0] = d, U[1] = b, U[2] = c;
@@ -337,7 +330,7 @@ class Optimizer {
     const int32_t home = project_near(mid, home_[size_t(a)], in_, in_adj_, x);
     // Far from the edge (a crease between a and b): leave it.
     if (dist2(mid, x) > kMaxSplitOffset * kMaxSplitOffset * dist2(p(a), p(b))) return false;
-    Vec nt = normal(p(a), p(b), p(c)), nu = normal(p(b), p(a), p(d));
+    Vec3 nt = normal(p(a), p(b), p(c)), nu = normal(p(b), p(a), p(d));
     if (q_[size_t(t)] < kFlatGamma || q_[size_t(u)] < kFlatGamma)
       nt = nu = normal_sum({area_normal(p(a), p(b), p(c)), area_normal(p(b), p(a), p(d))});
     if (dot(normal(p(a), x, p(c)), nt) < cos_turn_ || dot(normal(x, p(b), p(c)), nt) < cos_turn_ ||
@@ -431,7 +424,7 @@ class Optimizer {
       const int32_t* T = tri(t);
       const double* q[3];
       for (int c = 0; c < 3; ++c) q[c] = T[c] == a || T[c] == b ? target : p(T[c]);
-      const Vec n_old = normal(p(T[0]), p(T[1]), p(T[2])), n_new = normal(q[0], q[1], q[2]);
+      const Vec3 n_old = normal(p(T[0]), p(T[1]), p(T[2])), n_new = normal(q[0], q[1], q[2]);
       if (dot(n_old, n_new) < cos_turn_) return false;
       for (int c = 0; c < 3; ++c) {
         const double* x = q[c];
@@ -486,10 +479,10 @@ class Optimizer {
       int c = 0;
       while (T[c] != v) ++c;
       const double *b = p(T[(c + 1) % 3]), *e = p(T[(c + 2) % 3]);
-      const Vec n = normal(p(v), b, e);
+      const Vec3 n = normal(p(v), b, e);
       const double d[3] = {e[0] - b[0], e[1] - b[1], e[2] - b[2]};
-      const double side[3] = {n.x[1] * d[2] - n.x[2] * d[1], n.x[2] * d[0] - n.x[0] * d[2],
-                              n.x[0] * d[1] - n.x[1] * d[0]};  // |side| = |d|, into the triangle
+      const double side[3] = {n[1] * d[2] - n[2] * d[1], n[2] * d[0] - n[0] * d[2],
+                              n[0] * d[1] - n[1] * d[0]};  // |side| = |d|, into the triangle
       for (int k = 0; k < 3; ++k) target[k] += 0.5 * (b[k] + e[k]) + 0.8660254037844386 * side[k];
     }
     for (double& x : target) x /= double(star.size());
@@ -514,12 +507,12 @@ class Optimizer {
     // The guard's reference normals: each triangle's own, or the star's
     // area-weighted normal for a nearly flat one.
     old_normals_.clear();
-    Vec star_normal{{0, 0, 0}};
+    Vec3 star_normal{{0, 0, 0}};
     for (int32_t t : star) {
       const int32_t* T = tri(t);
       old_normals_.push_back(normal(p(T[0]), p(T[1]), p(T[2])));
-      const Vec an = area_normal(p(T[0]), p(T[1]), p(T[2]));
-      for (int k = 0; k < 3; ++k) star_normal.x[k] += an.x[k];
+      const Vec3 an = area_normal(p(T[0]), p(T[1]), p(T[2]));
+      for (int k = 0; k < 3; ++k) star_normal[k] += an[k];
     }
     star_normal = normal_sum({star_normal});
     for (size_t i = 0; i < star.size(); ++i)
@@ -557,7 +550,7 @@ class Optimizer {
   const TriangleAdjacency& in_adj_;
   double cos_turn_ = 0;
   std::vector<std::vector<int32_t>> vt_;
-  std::vector<Vec> old_normals_;
+  std::vector<Vec3> old_normals_;
   double collapse_ratio_ = 0, split_ratio_ = 0;
   std::vector<uint8_t> dead_;  ///< collapsed vertices (empty until the first)
   std::vector<int32_t> na_, nb_, changed_;
