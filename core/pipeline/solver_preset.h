@@ -4,7 +4,7 @@
 // given explicitly, or an output name's extension, always wins). Why each:
 // - openfoam: finite volumes want the layers' prisms (split prisms gave
 //   checkMesh faces above 70 degrees of non-orthogonality, and simpleFoam
-//   did not converge on them, issue 23); gmshToFoam reads MSH 2.2; OpenFOAM
+//   did not converge on them; validation/solver_check.py); gmshToFoam reads MSH 2.2; OpenFOAM
 //   works in metres, so the mesh is converted from the input's unit.
 // - fenics: dolfinx reads one cell type: the prisms split into tetrahedra;
 //   MSH 4.1 (its Gmsh reader).
