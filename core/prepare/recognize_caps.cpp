@@ -130,21 +130,30 @@ RegionTopology region_topology(const Context& ctx, const Region& r) {
   return topo;
 }
 
-/// Why the region is not a planar disk, or "" when it is (planarity first:
-/// a labelled wall is not planar, and that needs no note).
-std::string planar_disk_problem(const Context& ctx, const Region& r, const RegionTopology& topo) {
+/// Whether every triangle of the region faces within the planar angle of
+/// its mean normal and every corner lies within the planar distance of its
+/// plane (tested before the region's topology, which most candidates of a
+/// curved wall never need).
+bool planar(const Context& ctx, const Region& r) {
   const CapRecognitionOptions& o = ctx.options;
   const double cos_limit = angle_cos(o.planar_angle_degrees);
   for (int32_t t : r.triangles)
     if (ctx.areas[size_t(t)] > 0 &&
         v3::dot(ctx.normals[size_t(t)].data(), r.normal.data()) < cos_limit)
-      return "not planar";
-  const double radius = std::sqrt(r.area / std::numbers::pi);
-  for (int32_t v : topo.vertices) {
-    double d[3];
-    v3::sub(point(ctx.mesh, v), r.centroid.data(), d);
-    if (std::abs(v3::dot(d, r.normal.data())) > o.planar_distance * radius) return "not planar";
-  }
+      return false;
+  const double limit = o.planar_distance * std::sqrt(r.area / std::numbers::pi);
+  for (int32_t t : r.triangles)
+    for (int k = 0; k < 3; ++k) {
+      double d[3];
+      v3::sub(point(ctx.mesh, ctx.mesh.triangles[3 * size_t(t) + size_t(k)]), r.centroid.data(), d);
+      if (std::abs(v3::dot(d, r.normal.data())) > limit) return false;
+    }
+  return true;
+}
+
+/// Why a planar region is not a cap-sized disk, or "" when it is one.
+std::string disk_problem(const Context& ctx, const Region& r, const RegionTopology& topo) {
+  const CapRecognitionOptions& o = ctx.options;
   if (r.area > o.max_area_fraction * ctx.total_area) return "too large a share of the surface";
   if (topo.rim_loops != 1 || topo.euler != 1) return "not a disk";
   if (int(topo.rim_vertices.size()) < o.min_rim_vertices) return "too small";
@@ -300,9 +309,13 @@ CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& 
     bool ok = describe(ctx, in_region, r);
     RegionTopology topo;
     std::string problem;
+    if (ok && !planar(ctx, r)) {
+      problem = "not planar";
+      ok = false;
+    }
     if (ok) {
       topo = region_topology(ctx, r);
-      problem = planar_disk_problem(ctx, r, topo);
+      problem = disk_problem(ctx, r, topo);
       ok = problem.empty() && (labelled || looks_like_a_vessel_end(ctx, in_region, r, topo));
     }
     for (int32_t t : r.triangles) in_region[size_t(t)] = 0;
