@@ -144,6 +144,13 @@ void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
         i + 1, h.perimeter, unit, h.radius, unit, h.vessel_radius, unit, h.centroid[0],
         h.centroid[1], h.centroid[2], h.closed ? ", closed" : ", open");
   }
+  if (!t.slits.empty()) {
+    const vm::Opening& o = t.slits[0];
+    std::printf(
+        "slits:       %zu (boundary loops of 2 vertices, no area: the free edges of a fin; "
+        "--repair auto removes it), e.g. at (%g, %g, %g)\n",
+        t.slits.size(), o.centroid[0], o.centroid[1], o.centroid[2]);
+  }
   const vm::SelfCrossings& x = s.self_crossings;
   if (!s.self_crossings_checked)
     std::printf("self-crossings: not looked for (over %zu triangles)\n",

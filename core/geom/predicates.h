@@ -14,6 +14,8 @@
 // builds one well-defined triangulation of any point set.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace vm {
@@ -49,5 +51,76 @@ double insphere(const double* a, const double* b, const double* c, const double*
 /// sphere of the others.
 int insphere_sos(const double* a, const double* b, const double* c, const double* d,
                  const double* e, int64_t ia, int64_t ib, int64_t ic, int64_t id, int64_t ie);
+
+// ---- Semi-static filters for hot paths (the 3D Delaunay kernel): the
+// fast-stage determinants of predicates.cpp, accepted against a bound on
+// Shewchuk's permanent from the largest coordinate difference m (permanent
+// <= 6 m^3 for orient3d, 72 m^5 for insphere), which costs a few max()
+// instead of the permanent. When the bound does not decide (or m is so
+// small or large that the bound could under- or overflow), the dynamically
+// filtered exact predicate decides. The sign is always exact; the
+// magnitude is that of whichever stage decided.
+namespace predicates_detail {
+constexpr double kEps = 0x1p-53;
+constexpr double kO3Static = (7.0 + 56.0 * kEps) * kEps * 6 * (1 + 1e-12);
+constexpr double kIsStatic = (16.0 + 224.0 * kEps) * kEps * 72 * (1 + 1e-12);
+
+// The largest |x| (a max tree, no temporary array).
+inline double max_abs(double a, double b, double c) {
+  return std::max(std::max(std::fabs(a), std::fabs(b)), std::fabs(c));
+}
+inline double max_abs(double a, double b, double c, double d, double e, double f) {
+  return std::max(max_abs(a, b, c), max_abs(d, e, f));
+}
+inline double max_abs(double a, double b, double c, double d, double e, double f, double g,
+                      double h, double i) {
+  return std::max(max_abs(a, b, c, d, e, f), max_abs(g, h, i));
+}
+
+}  // namespace predicates_detail
+
+/// orient3d() with a semi-static filter first (same sign).
+inline double orient3d_fast(const double* a, const double* b, const double* c, const double* d) {
+  const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
+  const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
+  const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
+  const double det =
+      adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
+  const double m = predicates_detail::max_abs(adx, ady, adz, bdx, bdy, bdz, cdx, cdy, cdz);
+  if (m > 1e-55 && m < 1e55) {
+    const double bound = predicates_detail::kO3Static * m * m * m;
+    if (det > bound || -det > bound) return det;
+  }
+  return orient3d(a, b, c, d);
+}
+
+/// insphere() with a semi-static filter first (same sign).
+inline double insphere_fast(const double* a, const double* b, const double* c, const double* d,
+                            const double* e) {
+  const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
+  const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
+  const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
+  const double dex = d[0] - e[0], dey = d[1] - e[1], dez = d[2] - e[2];
+  const double ab = aex * bey - bex * aey, bc = bex * cey - cex * bey;
+  const double cd = cex * dey - dex * cey, da = dex * aey - aex * dey;
+  const double ac = aex * cey - cex * aey, bd = bex * dey - dex * bey;
+  const double abc = aez * bc - bez * ac + cez * ab;
+  const double bcd = bez * cd - cez * bd + dez * bc;
+  const double cda = cez * da + dez * ac + aez * cd;
+  const double dab = dez * ab + aez * bd + bez * da;
+  const double alift = aex * aex + aey * aey + aez * aez;
+  const double blift = bex * bex + bey * bey + bez * bez;
+  const double clift = cex * cex + cey * cey + cez * cez;
+  const double dlift = dex * dex + dey * dey + dez * dez;
+  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+  const double m = std::max(predicates_detail::max_abs(aex, aey, aez, bex, bey, bez),
+                            predicates_detail::max_abs(cex, cey, cez, dex, dey, dez));
+  if (m > 1e-55 && m < 1e55) {
+    const double m2 = m * m;
+    const double bound = predicates_detail::kIsStatic * m2 * m2 * m;
+    if (det > bound || -det > bound) return det;
+  }
+  return insphere(a, b, c, d, e);
+}
 
 }  // namespace vm

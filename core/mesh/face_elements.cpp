@@ -60,10 +60,9 @@ FaceElements face_elements(const VolumeMesh& mesh) {
       if (same_cycle(face(size_t(s)), g, n) || r.element[s] < 0) r.element[s] = element;
     });
   };
-  static constexpr int kTetFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
   for (size_t e = 0; e < mesh.num_tets(); ++e) {
     const int32_t* t = &mesh.tets[4 * e];
-    for (const auto& f : kTetFaces) {
+    for (const auto& f : kFaceOut) {
       const int32_t g[3] = {t[f[0]], t[f[1]], t[f[2]]};
       visit(g, 3, int32_t(e));
     }

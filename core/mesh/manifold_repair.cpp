@@ -53,8 +53,8 @@ void for_each_edge(const std::vector<std::tuple<int32_t, int32_t, int32_t>>& hs,
 
 /// Removes fins: per non-manifold edge, triangles whose other two edges are
 /// free, as long as two triangles stay on the edge. Returns true if any.
-bool remove_fins(SurfaceMesh& mesh, std::vector<int32_t>* labels, ManifoldRepairStats& stats) {
-  const TriangleAdjacency adj = build_adjacency(mesh);
+bool remove_fins(SurfaceMesh& mesh, std::vector<int32_t>* labels, ManifoldRepairStats& stats,
+                 const TriangleAdjacency& adj) {
   if (adj.num_nonmanifold_edges == 0) return false;
   const auto hs = nonmanifold_half_edges(mesh, adj);
   std::vector<uint8_t> remove(mesh.num_triangles(), 0);
@@ -140,11 +140,13 @@ void split_fans(SurfaceMesh& mesh, const std::vector<int32_t>& partner,
 }  // namespace
 
 void split_nonmanifold_edges(SurfaceMesh& mesh, std::vector<int32_t>* labels,
-                             ManifoldRepairStats& stats) {
+                             ManifoldRepairStats& stats, TriangleAdjacency* given) {
   if (labels && labels->size() != mesh.num_triangles()) labels = nullptr;
-  for (int round = 0; round < 4 && remove_fins(mesh, labels, stats); ++round) {
-  }
-  const TriangleAdjacency adj = build_adjacency(mesh);
+  TriangleAdjacency own;
+  TriangleAdjacency& adj = given ? *given : own;
+  if (!given) adj = build_adjacency(mesh);
+  for (int round = 0; round < 4 && remove_fins(mesh, labels, stats, adj); ++round)
+    adj = build_adjacency(mesh);
   if (adj.num_nonmanifold_edges == 0) return;
   std::vector<int32_t> partner = adj.opposite;
   std::vector<int32_t> ends;
@@ -216,6 +218,7 @@ void split_nonmanifold_edges(SurfaceMesh& mesh, std::vector<int32_t>* labels,
     ends.push_back(b);
   });
   split_fans(mesh, partner, std::move(ends), stats);
+  if (given) *given = build_adjacency(mesh);
 }
 
 namespace {
@@ -293,11 +296,13 @@ std::vector<int32_t> twisted_triangles(const SurfaceMesh& mesh, const TriangleAd
 }  // namespace
 
 size_t remove_orientation_twists(SurfaceMesh& mesh, std::vector<int32_t>* labels,
-                                 ManifoldRepairStats& stats, size_t budget) {
+                                 ManifoldRepairStats& stats, size_t budget,
+                                 TriangleAdjacency* given) {
   if (labels && labels->size() != mesh.num_triangles()) labels = nullptr;
   std::vector<Vec3> rim;
   {
-    const TriangleAdjacency adj = build_adjacency(mesh);
+    TriangleAdjacency own;
+    const TriangleAdjacency& adj = given ? *given : (own = build_adjacency(mesh));
     if (!orientation_contradicts(mesh, adj)) return 0;  // the usual case
     // The input's free-edge vertices, by position (removals renumber): no
     // triangle touching them goes, so a band is never cut across.
@@ -317,6 +322,7 @@ size_t remove_orientation_twists(SurfaceMesh& mesh, std::vector<int32_t>* labels
         if (stats.twisted_removed == 0) stats.twisted_example = example;
         stats.twisted_removed += removed;
       }
+      if (given) *given = adj;
       return removed;
     }
     const std::vector<int32_t> twisted = twisted_triangles(mesh, adj, 3);
@@ -337,8 +343,10 @@ size_t remove_orientation_twists(SurfaceMesh& mesh, std::vector<int32_t>* labels
   return 0;
 }
 
-void split_nonmanifold_vertices(SurfaceMesh& mesh, ManifoldRepairStats& stats) {
-  const TriangleAdjacency adj = build_adjacency(mesh);
+void split_nonmanifold_vertices(SurfaceMesh& mesh, ManifoldRepairStats& stats,
+                                const TriangleAdjacency* given) {
+  TriangleAdjacency own;
+  const TriangleAdjacency& adj = given ? *given : (own = build_adjacency(mesh));
   // Every vertex: counting a star's fans costs about as much as finding
   // the candidates would.
   std::vector<int32_t> all(mesh.num_vertices());

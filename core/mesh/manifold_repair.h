@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/geom/vec3.h"
+#include "core/mesh/adjacency.h"
 #include "core/mesh/surface_mesh.h"
 
 namespace vm {
@@ -45,9 +46,11 @@ struct ManifoldRepairStats {
 /// then duplicated per fan (split_fans), so each pair becomes its own edge.
 /// `labels` (one per triangle, or null) follow the removals. Vertices and
 /// triangles keep their order; copies are appended. Precondition: no
-/// triangle with a repeated vertex, no duplicate triangles.
+/// triangle with a repeated vertex, no duplicate triangles. `adj`, when
+/// given, is build_adjacency(mesh) (saves building it again); on return it
+/// is the adjacency of the repaired mesh either way when given.
 void split_nonmanifold_edges(SurfaceMesh& mesh, std::vector<int32_t>* labels,
-                             ManifoldRepairStats& stats);
+                             ManifoldRepairStats& stats, TriangleAdjacency* adj = nullptr);
 
 /// Duplicates every vertex whose triangles form several fans (sets of
 /// triangles connected across edges at the vertex that have exactly two
@@ -55,8 +58,9 @@ void split_nonmanifold_edges(SurfaceMesh& mesh, std::vector<int32_t>* labels,
 /// other fan gets a copy at the same place, appended to the points.
 /// Triangles keep their order and orientation. Precondition: no edge with
 /// 3 or more triangles (run split_nonmanifold_edges first), else such
-/// edges are left as they are.
-void split_nonmanifold_vertices(SurfaceMesh& mesh, ManifoldRepairStats& stats);
+/// edges are left as they are. `adj`, when given, is build_adjacency(mesh).
+void split_nonmanifold_vertices(SurfaceMesh& mesh, ManifoldRepairStats& stats,
+                                const TriangleAdjacency* adj = nullptr);
 
 /// Makes a surface orientable that is not only because of a local twist
 /// (a crosscap of a few triangles): while orienting across the edges of
@@ -68,7 +72,10 @@ void split_nonmanifold_vertices(SurfaceMesh& mesh, ManifoldRepairStats& stats);
 /// Moebius band: its shortest one runs its whole length) or the twist
 /// needs more, the mesh is put back as it was. Returns the triangles
 /// removed. Cost: O(triangles * 2^6) when the surface is non-orientable.
+/// `adj`, when given, is build_adjacency(mesh); it is rebuilt for the
+/// returned mesh when triangles were removed.
 size_t remove_orientation_twists(SurfaceMesh& mesh, std::vector<int32_t>* labels,
-                                 ManifoldRepairStats& stats, size_t budget);
+                                 ManifoldRepairStats& stats, size_t budget,
+                                 TriangleAdjacency* adj = nullptr);
 
 }  // namespace vm

@@ -254,10 +254,12 @@ std::vector<int32_t> remove_triangles(SurfaceMesh& mesh, const std::vector<uint8
   return remove_unused_vertices(mesh, unused);
 }
 
-void orient_consistently(SurfaceMesh& mesh, RepairStats& stats, TriangleAdjacency* adjacency) {
+void orient_consistently(SurfaceMesh& mesh, RepairStats& stats, TriangleAdjacency* adjacency,
+                         bool adjacency_is_current) {
   const size_t nt = mesh.num_triangles();
   if (nt == 0) return;
-  TriangleAdjacency adj = build_adjacency(mesh);
+  TriangleAdjacency adj =
+      adjacency && adjacency_is_current ? std::move(*adjacency) : build_adjacency(mesh);
   auto& tri = mesh.triangles;
   // Phase 1: relative orientations across manifold edges, in memory order.
   // Two triangles agree when their shared edge runs in opposite directions.

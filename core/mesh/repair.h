@@ -48,8 +48,10 @@ std::vector<int32_t> remove_triangles(SurfaceMesh& mesh, const std::vector<uint8
 /// each component outward (positive enclosed volume, with openings closed by
 /// a fan to each loop's centroid). Non-manifold edges do not propagate the
 /// orientation. Precondition: no degenerate triangles. If `adjacency` is
-/// given it receives the adjacency of the oriented mesh.
+/// given it receives the adjacency of the oriented mesh; with
+/// `adjacency_is_current` it also holds build_adjacency(mesh) on entry
+/// (used instead of building it again).
 void orient_consistently(SurfaceMesh& mesh, RepairStats& stats,
-                         TriangleAdjacency* adjacency = nullptr);
+                         TriangleAdjacency* adjacency = nullptr, bool adjacency_is_current = false);
 
 }  // namespace vm

@@ -145,7 +145,7 @@ TopologyReport analyze_topology(const SurfaceMesh& mesh, const TriangleAdjacency
 
   // Openings, largest first.
   for (auto& loop : boundary_loops(mesh, adj))
-    r.openings.push_back(describe_loop(mesh, std::move(loop)));
+    (loop.size() < 3 ? r.slits : r.openings).push_back(describe_loop(mesh, std::move(loop)));
   std::stable_sort(r.openings.begin(), r.openings.end(),
                    [](const Opening& a, const Opening& b) { return a.radius > b.radius; });
   r.closed = r.boundary_edges == 0;
@@ -170,6 +170,7 @@ TopologyReport analyze_topology(const SurfaceMesh& mesh, const TriangleAdjacency
     for (size_t v = 0; v < nv; ++v)
       if (vcomp[v] >= 0) chi[vcomp[v]] += 1;  // V
     for (const Opening& op : r.openings) loops[vcomp[op.loop[0]]] += 1;
+    for (const Opening& op : r.slits) loops[vcomp[op.loop[0]]] += 1;
     long genus = 0;
     for (int c = 0; c < nc; ++c) genus += (2 - chi[c] - loops[c]) / 2;
     r.genus = int(genus);

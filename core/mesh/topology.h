@@ -32,6 +32,10 @@ struct TopologyReport {
   int components = 0;
   /// Openings sorted by decreasing radius.
   std::vector<Opening> openings;
+  /// Boundary loops of fewer than three vertices (the free edges of a fin
+  /// on a non-manifold edge, a cut of no width): no area, never an opening;
+  /// counted as boundaries in the genus.
+  std::vector<Opening> slits;
   size_t boundary_edges = 0;
   size_t nonmanifold_edges = 0;  ///< edges with more than two triangles
   /// Vertices whose incident triangles form more than one fan (bow-ties).

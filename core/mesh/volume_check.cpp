@@ -101,11 +101,10 @@ Result<VolumeCheck> check_volume_mesh(const VolumeMesh& m) {
   // Phase 2: every face use, outward orientation.
   std::vector<FaceUse> uses;
   uses.reserve(4 * m.num_tets() + 5 * m.num_prisms() + m.num_triangles() + m.num_quads());
-  static constexpr int kTetFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
   for (size_t e = 0; e < m.num_tets(); ++e) {
     const int32_t* t = &m.tets[4 * e];
     const int32_t region = m.tet_region.empty() ? 0 : m.tet_region[e];
-    for (const auto& f : kTetFaces) {
+    for (const auto& f : kFaceOut) {
       const int32_t g[3] = {t[f[0]], t[f[1]], t[f[2]]};
       uses.push_back(make_use(g, 3, region, int64_t(e)));
     }

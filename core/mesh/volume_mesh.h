@@ -20,6 +20,13 @@ inline double tet_volume6(const double* a, const double* b, const double* c, con
          (u[0] * v[1] - u[1] * v[0]) * w[2];
 }
 
+/// Face k of a positive tetrahedron (the face opposite vertex k), as slots
+/// ordered counterclockwise seen from outside: its normal points out of the
+/// tetrahedron, and orient3d(face, q) < 0 iff q is strictly outside face k.
+/// The one face table of the C++ code; web/src/clip.js keeps a copy
+/// (TET_FACES), compared with this one by web/test/clip-faces.test.js.
+inline constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
 /// A volume mesh with its boundary, as flat arrays.
 /// - points: 3 doubles per vertex.
 /// - tets: 4 vertex indices per tetrahedron, tet_volume6 > 0.

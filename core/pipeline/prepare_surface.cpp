@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <set>
 
 #include "core/geom/vec3.h"
@@ -122,10 +123,11 @@ std::vector<std::vector<int32_t>> simple_cycles(const std::vector<int32_t>& loop
 
 /// Phase 2, after orientation, always: specks, separate pieces with less than 1% of the
 /// largest piece's triangles or area (stray triangles, segmentation
-/// islands), are removed, saying where.
-void drop_specks(PreparedSurface& s, Work& w) {
-  const TopologyReport parts = analyze_topology(s.mesh, w.adjacency);
-  if (parts.components <= 1) return;
+/// islands), are removed, saying where. Returns the surface's topology
+/// when nothing was removed (the next phase reuses it), else nothing.
+std::optional<TopologyReport> drop_specks(PreparedSurface& s, Work& w) {
+  TopologyReport parts = analyze_topology(s.mesh, w.adjacency);
+  if (parts.components <= 1) return parts;
   std::vector<double> area(size_t(parts.components), 0);
   std::vector<Vec3> where(size_t(parts.components), Vec3{0, 0, 0});
   for (size_t t = 0; t < s.mesh.num_triangles(); ++t) {
@@ -147,7 +149,7 @@ void drop_specks(PreparedSurface& s, Work& w) {
       triangles += parts.component_triangles[k];
       if (example.empty()) example = point_text(where[k]);
     }
-  if (count == 0) return;
+  if (count == 0) return parts;
   std::vector<uint8_t> remove(s.mesh.num_triangles());
   for (size_t t = 0; t < remove.size(); ++t) remove[t] = speck[size_t(parts.triangle_component[t])];
   remove_triangles(s.mesh, remove, &w.labels);
@@ -159,12 +161,13 @@ void drop_specks(PreparedSurface& s, Work& w) {
                                  ", under 1% of the surface) at " + example
                            : "removed " + num(count) + " small separate pieces (" + num(triangles) +
                                  " triangles, each under 1% of the surface), e.g. at " + example);
+  return std::nullopt;
 }
 
 /// Phase 2b ({repair} auto): fins dropped, non-manifold edges split.
 void repair_edges(PreparedSurface& s, Work& w) {
   ManifoldRepairStats& m = s.manifold;
-  split_nonmanifold_edges(s.mesh, &w.labels, m);
+  split_nonmanifold_edges(s.mesh, &w.labels, m, &w.adjacency);
   if (m.fins_removed > 0)
     s.warnings.push_back(num(m.fins_removed) +
                          " fin triangles hanging on non-manifold edges were removed, e.g. at " +
@@ -172,7 +175,7 @@ void repair_edges(PreparedSurface& s, Work& w) {
   // A local twist (at most 20 triangles or 0.1% of them) is cut out; the
   // holes it leaves are closed with the others.
   const size_t budget = std::max<size_t>(20, s.mesh.num_triangles() / 1000);
-  if (remove_orientation_twists(s.mesh, &w.labels, m, budget) > 0)
+  if (remove_orientation_twists(s.mesh, &w.labels, m, budget, &w.adjacency) > 0)
     s.warnings.push_back(num(m.twisted_removed) +
                          " triangles whose orientation contradicted their neighbors' (a local "
                          "twist that made the surface non-orientable) were removed, e.g. at " +
@@ -194,9 +197,11 @@ void repair_edges(PreparedSurface& s, Work& w) {
 /// defect in the wall it is the vessel's, whatever the loop's size.
 /// Needs an orientable surface; the chords are cast on a copy whose
 /// non-manifold vertices are split (same vertex numbers, copies appended).
-void find_and_close_holes(PreparedSurface& s, Work& w, const PrepareOptions& options) {
+/// `known`: the surface's topology when already analyzed.
+void find_and_close_holes(PreparedSurface& s, Work& w, const PrepareOptions& options,
+                          std::optional<TopologyReport> known) {
   if (!s.repair.orientable || w.adjacency.num_nonmanifold_edges > 0) return;
-  const TopologyReport t = analyze_topology(s.mesh, w.adjacency);
+  const TopologyReport t = known ? std::move(*known) : analyze_topology(s.mesh, w.adjacency);
   if (t.openings.empty() || !(options.hole_fraction > 0) || s.mesh.num_triangles() > 2'000'000)
     return;
   std::vector<double> chord;
@@ -274,9 +279,9 @@ void find_and_close_holes(PreparedSurface& s, Work& w, const PrepareOptions& opt
 }
 
 /// Phase 2d ({repair} auto): vertices where several fans meet duplicated.
-void repair_vertices(PreparedSurface& s) {
+void repair_vertices(PreparedSurface& s, const TriangleAdjacency* adj) {
   ManifoldRepairStats& m = s.manifold;
-  split_nonmanifold_vertices(s.mesh, m);
+  split_nonmanifold_vertices(s.mesh, m, adj);
   if (m.vertices_split > 0)
     s.warnings.push_back(num(m.vertices_split) +
                          " non-manifold vertices (several triangle fans meeting) were split, one "
@@ -305,8 +310,10 @@ Status repair(PreparedSurface& s, Work& w, const PrepareOptions& options) {
     return Status::Error("no triangle left: all " + num(s.input_triangles) +
                          " triangles of the file have zero area");
   s.repaired = options.repair;
+  // One adjacency, kept current through the steps that change the mesh.
+  w.adjacency = build_adjacency(s.mesh);
   if (options.repair) repair_edges(s, w);
-  orient_consistently(s.mesh, s.repair, &w.adjacency);
+  orient_consistently(s.mesh, s.repair, &w.adjacency, true);
   if (!s.repair.orientable) {
     s.warnings.push_back("the surface is not orientable: it cannot bound a volume");
   } else if (s.repair.flipped == s.mesh.num_triangles()) {
@@ -316,10 +323,10 @@ Status repair(PreparedSurface& s, Work& w, const PrepareOptions& options) {
         num(s.repair.flipped) + (s.repair.flipped == 1 ? " triangle was" : " triangles were") +
         " re-oriented (consistent, outward), e.g. at " + point_text(s.repair.flipped_example));
   }
-  drop_specks(s, w);
-  find_and_close_holes(s, w, options);
+  find_and_close_holes(s, w, options, drop_specks(s, w));
   if (options.repair) {
-    repair_vertices(s);
+    // The adjacency is current unless holes were closed.
+    repair_vertices(s, s.holes.empty() ? &w.adjacency : nullptr);
     if (!s.holes.empty() || s.manifold.vertices_split > 0) w.adjacency = build_adjacency(s.mesh);
   }
   return Status::Ok();

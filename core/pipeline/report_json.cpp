@@ -105,6 +105,14 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
     j.end_object();
   }
   j.end_array();
+  j.key("slits").begin_array();
+  for (const Opening& o : t.slits) {
+    j.begin_object();
+    j.key("perimeter").value(o.perimeter);
+    j.key("centroid").array(o.centroid);
+    j.end_object();
+  }
+  j.end_array();
   j.key("caps_removed").value(s.caps_removed);
   j.key("smoothing");
   write_smoothing(j, s.smoothing);

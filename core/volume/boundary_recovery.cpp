@@ -25,6 +25,7 @@
 #include <utility>
 
 #include "core/geom/predicates.h"
+#include "core/volume/tet_topology.h"
 
 namespace vm {
 namespace {
@@ -37,10 +38,6 @@ uint64_t edge_key(int32_t a, int32_t b) {
 }
 
 int sgn(double x) { return (x > 0) - (x < 0); }
-
-// Face k of a positive tetrahedron, counterclockwise seen from outside
-// (same table as the kernel).
-constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 // The surface being recovered: its triangles as split so far, each with the
 // input triangle it came from, and the triangles on each edge.

@@ -31,19 +31,9 @@ namespace {
 // an insertion stays local).
 constexpr size_t kMaxCavity = 512;
 
-// Face k of a positive tetrahedron, as slots ordered counterclockwise seen
-// from outside (so orient3d(face, q) < 0 iff q is strictly outside face k).
-constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
 inline int inf_slot(const int32_t* v) {
   for (int k = 0; k < 4; ++k)
     if (v[k] == Delaunay3D::kInfinite) return k;
-  return -1;
-}
-
-inline int slot_of(const int32_t* v, int32_t x) {
-  for (int k = 0; k < 4; ++k)
-    if (v[k] == x) return k;
   return -1;
 }
 
@@ -60,77 +50,6 @@ constexpr int kOther[4][4][2] = {{{-1, -1}, {2, 3}, {1, 3}, {1, 2}},
 
 // kApexFaces[f]: the three slots other than f.
 constexpr int kApexFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-
-inline bool parity_even(int a, int b, int c, int d) {
-  int p[4] = {a, b, c, d}, inv = 0;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j) inv += p[i] > p[j];
-  return inv % 2 == 0;
-}
-
-// Semi-static filters for the hot paths: the fast-stage determinants of
-// predicates.cpp, accepted against a bound on Shewchuk's permanent from the
-// largest coordinate difference m (permanent <= 6 m^3 for orient3d, 72 m^5
-// for insphere), which costs a few max() instead of the permanent. When the
-// bound does not decide (or m is so small or large that the bound could
-// under- or overflow), the dynamically filtered exact predicate decides.
-constexpr double kEps = 0x1p-53;
-constexpr double kO3Static = (7.0 + 56.0 * kEps) * kEps * 6 * (1 + 1e-12);
-constexpr double kIsStatic = (16.0 + 224.0 * kEps) * kEps * 72 * (1 + 1e-12);
-
-// The largest |x| (a max tree, no temporary array).
-inline double max_abs(double a, double b, double c) {
-  return std::max(std::max(std::fabs(a), std::fabs(b)), std::fabs(c));
-}
-inline double max_abs(double a, double b, double c, double d, double e, double f) {
-  return std::max(max_abs(a, b, c), max_abs(d, e, f));
-}
-inline double max_abs(double a, double b, double c, double d, double e, double f, double g,
-                      double h, double i) {
-  return std::max(max_abs(a, b, c, d, e, f), max_abs(g, h, i));
-}
-
-inline double orient3d_fast(const double* a, const double* b, const double* c, const double* d) {
-  const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
-  const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
-  const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
-  const double det =
-      adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
-  const double m = max_abs(adx, ady, adz, bdx, bdy, bdz, cdx, cdy, cdz);
-  if (m > 1e-55 && m < 1e55) {
-    const double bound = kO3Static * m * m * m;
-    if (det > bound || -det > bound) return det;
-  }
-  return orient3d(a, b, c, d);
-}
-
-inline double insphere_fast(const double* a, const double* b, const double* c, const double* d,
-                            const double* e) {
-  const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
-  const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
-  const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
-  const double dex = d[0] - e[0], dey = d[1] - e[1], dez = d[2] - e[2];
-  const double ab = aex * bey - bex * aey, bc = bex * cey - cex * bey;
-  const double cd = cex * dey - dex * cey, da = dex * aey - aex * dey;
-  const double ac = aex * cey - cex * aey, bd = bex * dey - dex * bey;
-  const double abc = aez * bc - bez * ac + cez * ab;
-  const double bcd = bez * cd - cez * bd + dez * bc;
-  const double cda = cez * da + dez * ac + aez * cd;
-  const double dab = dez * ab + aez * bd + bez * da;
-  const double alift = aex * aex + aey * aey + aez * aez;
-  const double blift = bex * bex + bey * bey + bez * bez;
-  const double clift = cex * cex + cey * cey + cez * cez;
-  const double dlift = dex * dex + dey * dey + dez * dez;
-  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
-  const double m =
-      std::max(max_abs(aex, aey, aez, bex, bey, bez), max_abs(cex, cey, cez, dex, dey, dez));
-  if (m > 1e-55 && m < 1e55) {
-    const double m2 = m * m;
-    const double bound = kIsStatic * m2 * m2 * m;
-    if (det > bound || -det > bound) return det;
-  }
-  return insphere(a, b, c, d, e);
-}
 
 bool collinear(const double* a, const double* b, const double* c) {
   double a2[2] = {a[2], a[0]}, b2[2] = {b[2], b[0]}, c2[2] = {c[2], c[0]};
@@ -165,7 +84,7 @@ Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
       d.pts_[3 * size_t(i) + k] = points[3 * size_t(order[size_t(i)]) + k];
   d.sos_id_ = order;
   d.dup_.assign(size_t(n), -1);
-  d.vtet_.assign(size_t(n), -1);
+  d.topo_.vertex_tet.assign(size_t(n), -1);
 
   // Phase 1: the first tetrahedron from the first 4 affinely independent
   // points of the order.
@@ -180,10 +99,7 @@ Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
     return Result<Delaunay3D>::Error(
         "points: fewer than 4 affinely independent points (all coplanar, collinear or equal)");
   size_t expect = size_t(n) * 7 + 16;
-  d.tets_.reserve(expect);
-  d.tc_.reserve(expect);
-  d.tag_.reserve(expect);
-  d.stamp_.reserve(expect);
+  d.topo_.reserve(expect);
   d.init_first_tet(0, ib, ic, id);
 
   // Phase 2: the other points in order, each walk starting where the
@@ -195,16 +111,16 @@ Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
   }
 
   // Phase 3: back to input numbering.
-  for (TetRec& r : d.tets_)
+  for (TetTopology::Rec& r : d.topo_.tets)
     for (int32_t& v : r.v)
       if (v >= 0) v = order[size_t(v)];
   std::vector<int32_t> vtet(static_cast<size_t>(n)), dup(static_cast<size_t>(n));
   for (int64_t i = 0; i < n; ++i) {
-    vtet[size_t(order[size_t(i)])] = d.vtet_[size_t(i)];
+    vtet[size_t(order[size_t(i)])] = d.topo_.vertex_tet[size_t(i)];
     const int32_t o = d.dup_[size_t(i)];
     dup[size_t(order[size_t(i)])] = o >= 0 ? order[size_t(o)] : -1;
   }
-  d.vtet_.swap(vtet);
+  d.topo_.vertex_tet.swap(vtet);
   d.dup_.swap(dup);
   d.pts_.swap(points);
   d.sos_id_.clear();
@@ -215,10 +131,10 @@ void Delaunay3D::init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d) {
   if (orient3d(point(a), point(b), point(c), point(d)) > 0) std::swap(a, b);
   const int32_t base[4] = {a, b, c, d};
   int32_t ids[5];
-  for (int32_t& t : ids) t = new_tet_id();
-  std::copy(base, base + 4, tets_[size_t(ids[0])].v);
+  for (int32_t& t : ids) t = topo_.new_slot();
+  std::copy(base, base + 4, topo_.tets[size_t(ids[0])].v);
   for (int k = 0; k < 4; ++k) {
-    int32_t* g = tets_[size_t(ids[k + 1])].v;
+    int32_t* g = topo_.tets[size_t(ids[k + 1])].v;
     std::copy(base, base + 4, g);
     g[k] = kInfinite;
     // Replacing a vertex by a point on the other side of its face flips
@@ -229,50 +145,21 @@ void Delaunay3D::init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d) {
   // Link every pair of faces with the same vertex set.
   for (int x = 0; x < 5; ++x)
     for (int kx = 0; kx < 4; ++kx) {
-      const int32_t* vx = tets_[size_t(ids[x])].v;
+      const int32_t* vx = topo_.tets[size_t(ids[x])].v;
       for (int y = x + 1; y < 5; ++y)
         for (int ky = 0; ky < 4; ++ky) {
-          const int32_t* vy = tets_[size_t(ids[y])].v;
+          const int32_t* vy = topo_.tets[size_t(ids[y])].v;
           int shared = 0;
           for (int s = 0; s < 4; ++s)
             if (s != kx && slot_of(vy, vx[s]) >= 0 && slot_of(vy, vx[s]) != ky) ++shared;
           if (shared == 3) {
-            tets_[size_t(ids[x])].n[kx] = 4 * ids[y] + ky;
-            tets_[size_t(ids[y])].n[ky] = 4 * ids[x] + kx;
+            topo_.tets[size_t(ids[x])].n[kx] = 4 * ids[y] + ky;
+            topo_.tets[size_t(ids[y])].n[ky] = 4 * ids[x] + kx;
           }
         }
     }
-  for (int32_t v : base) vtet_[size_t(v)] = ids[0];
+  for (int32_t v : base) topo_.vertex_tet[size_t(v)] = ids[0];
   last_ = ids[0];
-}
-
-int32_t Delaunay3D::new_tet_id() {
-  if (!free_.empty()) {
-    int32_t t = free_.back();
-    free_.pop_back();
-    return t;
-  }
-  int32_t t = int32_t(tag_.size());
-  tets_.push_back({{kFree, kFree, kFree, kFree}, {-1, -1, -1, -1}});
-  tc_.push_back(0);
-  tag_.push_back(0);
-  stamp_.push_back(0);
-  return t;
-}
-
-void Delaunay3D::free_tet(int32_t t) {
-  tets_[size_t(t)].v[0] = kFree;
-  tc_[size_t(t)] = 0;
-  free_.push_back(t);
-}
-
-int32_t Delaunay3D::visit_stamp() const {
-  if (gen_ > 0xfffffff0u) {
-    std::fill(stamp_.begin(), stamp_.end(), 0);
-    gen_ = 0;
-  }
-  gen_ += 2;
-  return int32_t(gen_);
 }
 
 // ---------------------------------------------------------------- location
@@ -283,7 +170,7 @@ int32_t Delaunay3D::walk(const double* p, int32_t hint) const {
     t = 0;
     while (!is_live(t)) ++t;
   }
-  if (is_ghost(t)) t = tets_[size_t(t)].n[inf_slot(tet(t))] >> 2;
+  if (is_ghost(t)) t = neighbor(t, inf_slot(tet(t))) >> 2;
   int32_t prev = -1;
   const int64_t max_steps = int64_t(tet_capacity()) * 4 + 64;
   for (int64_t step = 0; step < max_steps; ++step) {
@@ -296,7 +183,7 @@ int32_t Delaunay3D::walk(const double* p, int32_t hint) const {
     int32_t next = -1;
     for (int j = 0; j < 4; ++j) {
       const int k = (start + j) & 3;
-      const int32_t n = tets_[size_t(t)].n[k] >> 2;
+      const int32_t n = neighbor(t, k) >> 2;
       if (n == prev) continue;  // p is strictly inside that face
       const int* f = kFaceOut[k];
       if (orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) < 0) {
@@ -333,7 +220,7 @@ int32_t Delaunay3D::walk(const double* p, int32_t hint) const {
 
 Delaunay3D::Location Delaunay3D::locate(const double* p, int32_t hint) const {
   Location loc;
-  if (tets_.empty()) return loc;
+  if (topo_.tets.empty()) return loc;
   loc.tet = walk(p, hint);
   if (is_ghost(loc.tet)) return loc;
   const int32_t* v = tet(loc.tet);
@@ -392,7 +279,7 @@ bool Delaunay3D::ghost_conflict(int32_t t, const double* p, int32_t pv, bool str
   // p in the plane of the hull face: inside the ghost's "sphere" iff inside
   // the circumcircle of the face, which every sphere through the face
   // shares; the finite neighbor decides (with the same perturbation).
-  return finite_conflict(tets_[size_t(t)].n[g] >> 2, p, pv);
+  return finite_conflict(neighbor(t, g) >> 2, p, pv);
 }
 
 template <bool kVerify>
@@ -411,25 +298,25 @@ bool Delaunay3D::bowyer_watson(int32_t t0, const double* p, int32_t pv, bool res
   // star-shaped region is reached from p across faces seen from inside)
   // without the shrinking passes.
   if (kVerify && is_ghost(t0)) return false;
-  const uint32_t in = uint32_t(visit_stamp()), out = in + 1;
+  const uint32_t in = uint32_t(topo_.visit_stamp()), out = in + 1;
   cavity_.clear();
   boundary_.clear();
   cavity_.push_back(t0);
-  stamp_[size_t(t0)] = in;
+  topo_.stamp[size_t(t0)] = in;
   for (size_t i = 0; i < cavity_.size(); ++i) {
     const int32_t t = cavity_[i];
-    const unsigned cons = kVerify && respect_constraints ? tc_[size_t(t)] : 0u;
+    const unsigned cons = kVerify && respect_constraints ? topo_.constrained[size_t(t)] : 0u;
     // The four neighbors' records and marks are fetched together (the
     // search is bound by memory latency, and the tests below serialize).
     for (int k = 0; k < 4; ++k) {
       const int32_t n = link(4 * t + k) >> 2;
-      __builtin_prefetch(&tets_[size_t(n)]);
-      __builtin_prefetch(&stamp_[size_t(n)]);
+      __builtin_prefetch(&topo_.tets[size_t(n)]);
+      __builtin_prefetch(&topo_.stamp[size_t(n)]);
     }
     for (int k = 0; k < 4; ++k) {
       const int32_t e = 4 * t + k;
       const int32_t n = link(e) >> 2;
-      const uint32_t s = stamp_[size_t(n)];
+      const uint32_t s = topo_.stamp[size_t(n)];
       if (kVerify && ((cons >> k) & 1u)) {
         if (s == in) return false;  // a constrained face inside the cavity
         boundary_.push_back(e);     // n may still be reached another way
@@ -441,10 +328,10 @@ bool Delaunay3D::bowyer_watson(int32_t t0, const double* p, int32_t pv, bool res
           const int32_t* v = tet(n);
           if ((v[0] | v[1] | v[2] | v[3]) < 0 || cavity_.size() >= kMaxCavity) return false;
         }
-        stamp_[size_t(n)] = in;
+        topo_.stamp[size_t(n)] = in;
         cavity_.push_back(n);
       } else {
-        stamp_[size_t(n)] = out;
+        topo_.stamp[size_t(n)] = out;
         boundary_.push_back(e);
       }
     }
@@ -480,12 +367,12 @@ bool Delaunay3D::shrink_to_star(int32_t t0, const double* p, uint32_t in) {
     const int32_t e = todo.back();
     todo.pop_back();
     const int32_t t = e >> 2;
-    if (stamp_[size_t(t)] != in || sees_face(e, p)) continue;
+    if (topo_.stamp[size_t(t)] != in || sees_face(e, p)) continue;
     if (t == t0) return false;
-    stamp_[size_t(t)] = out;
+    topo_.stamp[size_t(t)] = out;
     for (int k = 0; k < 4; ++k) {
       const int32_t across = link(4 * t + k);
-      if (stamp_[size_t(across >> 2)] == in) todo.push_back(across);
+      if (topo_.stamp[size_t(across >> 2)] == in) todo.push_back(across);
     }
   }
   keep_cavity(in);
@@ -496,12 +383,12 @@ bool Delaunay3D::shrink_to_star(int32_t t0, const double* p, uint32_t in) {
 void Delaunay3D::keep_cavity(uint32_t in) {
   size_t m = 0;
   for (int32_t t : cavity_)
-    if (stamp_[size_t(t)] == in) cavity_[m++] = t;
+    if (topo_.stamp[size_t(t)] == in) cavity_[m++] = t;
   cavity_.resize(m);
   boundary_.clear();
   for (int32_t t : cavity_)
     for (int k = 0; k < 4; ++k)
-      if (stamp_[size_t(link(4 * t + k) >> 2)] != in) boundary_.push_back(4 * t + k);
+      if (topo_.stamp[size_t(link(4 * t + k) >> 2)] != in) boundary_.push_back(4 * t + k);
 }
 
 bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
@@ -520,7 +407,7 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
       if (orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p) == 0) zero[nz++] = k;
     }
     if (nz == 1) {
-      pinned_.push_back(tets_[size_t(t0)].n[zero[0]] >> 2);
+      pinned_.push_back(neighbor(t0, zero[0]) >> 2);
     } else if (nz == 2) {
       int32_t e[2], m = 0;
       for (int s = 0; s < 4; ++s)
@@ -528,16 +415,16 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
       edge_ring(t0, e[0], e[1], pinned_, ring_scratch_);
     }
   }
-  const uint32_t in = uint32_t(visit_stamp()), out = in + 1;
+  const uint32_t in = uint32_t(topo_.visit_stamp()), out = in + 1;
   cavity_.clear();
   for (int32_t t : pinned_) {
     cavity_.push_back(t);
-    stamp_[size_t(t)] = in;
+    topo_.stamp[size_t(t)] = in;
   }
   if (respect_constraints)
     for (int32_t t : pinned_)
       for (int k = 0; k < 4; ++k)
-        if (is_constrained(t, k) && stamp_[size_t(tets_[size_t(t)].n[k] >> 2)] == in)
+        if (is_constrained(t, k) && topo_.stamp[size_t(neighbor(t, k) >> 2)] == in)
           return false;  // p on a constrained face
   // Phase 2b: conflict search, not crossing constrained faces, only
   // outward (across faces that p sees from inside: the triangulation need
@@ -561,16 +448,16 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
   for (size_t i = 0; i < cavity_.size() && cavity_.size() < kMaxCavity; ++i) {
     const int32_t t = cavity_[i];
     for (int k = 0; k < 4; ++k) {
-      const int32_t n = tets_[size_t(t)].n[k] >> 2;
-      const uint32_t s = stamp_[size_t(n)];
+      const int32_t n = neighbor(t, k) >> 2;
+      const uint32_t s = topo_.stamp[size_t(n)];
       if (s == in || s == out) continue;
       if (respect_constraints && is_constrained(t, k)) continue;
       if (!positive_with_p(t, k)) continue;
       if (conflict(n, p, pv, false)) {
-        stamp_[size_t(n)] = in;
+        topo_.stamp[size_t(n)] = in;
         cavity_.push_back(n);
       } else {
-        stamp_[size_t(n)] = out;
+        topo_.stamp[size_t(n)] = out;
       }
     }
   }
@@ -582,11 +469,11 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
     changed = false;
     for (size_t i = 0; i < cavity_.size(); ++i) {
       const int32_t t = cavity_[i];
-      if (stamp_[size_t(t)] != in) continue;
+      if (topo_.stamp[size_t(t)] != in) continue;
       for (int k = 0; k < 4; ++k) {
-        const int32_t n = tets_[size_t(t)].n[k] >> 2;
+        const int32_t n = neighbor(t, k) >> 2;
         int32_t drop = -1;
-        if (stamp_[size_t(n)] == in) {
+        if (topo_.stamp[size_t(n)] == in) {
           if (!(respect_constraints && is_constrained(t, k))) continue;
           // A constrained face inside: keep the side p is on.
           drop = positive_with_p(t, k) ? n : t;
@@ -595,7 +482,7 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
         }
         if (drop < 0) continue;
         if (std::find(pinned_.begin(), pinned_.end(), drop) != pinned_.end()) return false;
-        stamp_[size_t(drop)] = out;
+        topo_.stamp[size_t(drop)] = out;
         changed = true;
         if (drop == t) break;
       }
@@ -616,19 +503,19 @@ void Delaunay3D::star(int32_t pv) {
     const int32_t t = e >> 2;
     const int f = e & 3;
     BoundaryFace& b = faces_[i];
-    const int32_t* ov = tets_[size_t(t)].v;
+    const int32_t* ov = topo_.tets[size_t(t)].v;
     b.v[0] = ov[0], b.v[1] = ov[1], b.v[2] = ov[2], b.v[3] = ov[3];
     b.v[f] = pv;
     b.outer = link(e);
     b.f = f;
-    b.constrained = uint8_t(tc_[size_t(t)] & (1u << f));
-    b.tag = tag_[size_t(t)];
+    b.constrained = uint8_t(topo_.constrained[size_t(t)] & (1u << f));
+    b.tag = topo_.tags[size_t(t)];
   }
   // Phase 3b: slots: free or new ones, then the cavity's are freed (for
   // the next insertion: the free list gives them back last-freed first).
   new_.resize(nb);
-  for (size_t i = 0; i < nb; ++i) new_[i] = new_tet_id();
-  for (int32_t t : cavity_) free_tet(t);
+  for (size_t i = 0; i < nb; ++i) new_[i] = topo_.new_slot();
+  for (int32_t t : cavity_) topo_.free_slot(t);
   // Phase 3c: write, link to the outside through the old face, and to each
   // other through the hash of boundary edges: face j != f of a new
   // tetrahedron holds p and the boundary edge on the two other slots, and
@@ -649,16 +536,16 @@ void Delaunay3D::star(int32_t pv) {
     const int32_t n = new_[i];
     const BoundaryFace& b = faces_[i];
     const int f = b.f;
-    int32_t* nv = tets_[size_t(n)].v;
-    int32_t* nn = tets_[size_t(n)].n;
+    int32_t* nv = topo_.tets[size_t(n)].v;
+    int32_t* nn = topo_.tets[size_t(n)].n;
     nv[0] = b.v[0], nv[1] = b.v[1], nv[2] = b.v[2], nv[3] = b.v[3];
     nn[f] = b.outer;
     link(b.outer) = 4 * n + f;
-    tc_[size_t(n)] = b.constrained;
-    tag_[size_t(n)] = b.tag;
+    topo_.constrained[size_t(n)] = b.constrained;
+    topo_.tags[size_t(n)] = b.tag;
     for (int jj = 0; jj < 3; ++jj) {
       const int j = kApexFaces[f][jj];
-      if (b.v[j] >= 0) vtet_[size_t(b.v[j])] = n;
+      if (b.v[j] >= 0) topo_.vertex_tet[size_t(b.v[j])] = n;
       int32_t u = b.v[kOther[f][j][0]], w = b.v[kOther[f][j][1]];
       if (u > w) std::swap(u, w);
       uint32_t h = ((uint32_t(u) * 0x9e3779b1u) ^ (uint32_t(w) * 0x85ebca6bu)) >> (32 - bits);
@@ -676,7 +563,7 @@ void Delaunay3D::star(int32_t pv) {
       }
     }
   }
-  vtet_[size_t(pv)] = new_[0];
+  topo_.vertex_tet[size_t(pv)] = new_[0];
   stats_.cavity_tets += int64_t(nc);
   stats_.boundary_faces += int64_t(nb);
   last_ = new_[0];
@@ -722,17 +609,17 @@ Delaunay3D::InsertResult Delaunay3D::insert_vertex(int32_t v, int32_t hint,
 
 Delaunay3D::InsertResult Delaunay3D::insert(const double* p, int32_t hint, bool respect_constraints,
                                             double min_distance) {
-  if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]) || tets_.empty())
+  if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]) || topo_.tets.empty())
     return {InsertStatus::kInvalid, -1};
   const int32_t v = int32_t(num_vertices());
   pts_.insert(pts_.end(), {p[0], p[1], p[2]});
   dup_.push_back(-1);
-  vtet_.push_back(-1);
+  topo_.vertex_tet.push_back(-1);
   InsertResult r = insert_vertex(v, hint, respect_constraints, min_distance);
   if (r.status != InsertStatus::kInserted) {
     pts_.resize(pts_.size() - 3);
     dup_.pop_back();
-    vtet_.pop_back();
+    topo_.vertex_tet.pop_back();
   }
   return r;
 }
@@ -753,38 +640,14 @@ std::vector<int32_t> Delaunay3D::finite_tets() const {
 }
 
 void Delaunay3D::set_constrained(int32_t t, int k, bool on) {
-  const int32_t e = tets_[size_t(t)].n[k];
+  const int32_t e = neighbor(t, k);
   const int32_t u = e >> 2, j = e & 3;
   if (on) {
-    tc_[size_t(t)] |= uint8_t(1u << k);
-    tc_[size_t(u)] |= uint8_t(1u << j);
+    topo_.constrained[size_t(t)] |= uint8_t(1u << k);
+    topo_.constrained[size_t(u)] |= uint8_t(1u << j);
   } else {
-    tc_[size_t(t)] &= uint8_t(~(1u << k));
-    tc_[size_t(u)] &= uint8_t(~(1u << j));
-  }
-}
-
-void Delaunay3D::tets_around_vertex(int32_t v, std::vector<int32_t>& out) const {
-  out.clear();
-  const int32_t t0 = vtet_[size_t(v)];
-  if (t0 < 0) return;
-  const uint32_t mark = uint32_t(visit_stamp());
-  out.push_back(t0);
-  stamp_[size_t(t0)] = mark;
-  for (size_t i = 0; i < out.size(); ++i) {
-    const TetRec& r = tets_[size_t(out[i])];
-    for (int j = 0; j < 4; ++j) {  // as in bowyer_watson
-      __builtin_prefetch(&tets_[size_t(r.n[j] >> 2)]);
-      __builtin_prefetch(&stamp_[size_t(r.n[j] >> 2)]);
-    }
-    const int sv = slot_of(r.v, v);
-    for (int j = 0; j < 4; ++j) {
-      if (j == sv) continue;
-      const int32_t n = r.n[j] >> 2;
-      if (stamp_[size_t(n)] == mark) continue;
-      stamp_[size_t(n)] = mark;
-      out.push_back(n);
-    }
+    topo_.constrained[size_t(t)] &= uint8_t(~(1u << k));
+    topo_.constrained[size_t(u)] &= uint8_t(~(1u << j));
   }
 }
 
@@ -813,30 +676,7 @@ int32_t Delaunay3D::find_face(int32_t a, int32_t b, int32_t c, int* k) const {
 
 void Delaunay3D::edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>& ring_tets,
                            std::vector<int32_t>& ring_verts) const {
-  ring_tets.clear();
-  ring_verts.clear();
-  const int32_t* v = tet(t);
-  const int sa = slot_of(v, a), sb = slot_of(v, b);
-  int sc = -1, sd = -1;
-  for (int s = 0; s < 4; ++s)
-    if (s != sa && s != sb) (sc < 0 ? sc : sd) = s;
-  if (!parity_even(sa, sb, sc, sd)) std::swap(sc, sd);
-  int32_t c = v[sc], d = v[sd];
-  int32_t cur = t;
-  for (size_t guard = 0; guard <= tet_capacity(); ++guard) {
-    ring_tets.push_back(cur);
-    ring_verts.push_back(c);
-    // Next: across the face (a, b, d), i.e. opposite c.
-    const int32_t e = tets_[size_t(cur)].n[slot_of(tet(cur), c)];
-    cur = e >> 2;
-    if (cur == t) return;
-    const int32_t* w = tet(cur);
-    int32_t next_d = -1;
-    for (int s = 0; s < 4; ++s)
-      if (w[s] != a && w[s] != b && w[s] != d) next_d = w[s];
-    c = d;
-    d = next_d;
-  }
+  vm::edge_ring(topo_, t, a, b, ring_tets, ring_verts, {false, tet_capacity() + 1});
 }
 
 // ---------------------------------------------------------------- flips
@@ -868,40 +708,14 @@ Result<std::vector<int32_t>> Delaunay3D::replace_tets(
   for (int32_t t : old_tets)
     if (t < 0 || size_t(t) >= tet_capacity() || !is_live(t))
       return R::Error("replace_tets: an old tetrahedron is not live");
+  // Phase 1: orientation of the new set (a ghost: its hull face against
+  // the vertices of the old set).
   std::vector<int32_t> old_vertices;
   for (int32_t t : old_tets)
     for (int s = 0; s < 4; ++s)
       if (tet(t)[s] != kInfinite) old_vertices.push_back(tet(t)[s]);
   std::sort(old_vertices.begin(), old_vertices.end());
   old_vertices.erase(std::unique(old_vertices.begin(), old_vertices.end()), old_vertices.end());
-  // Phase 1: the boundary faces of the old set.
-  struct Face {
-    std::array<int32_t, 3> key;
-    int32_t link;  // old: encoded outer neighbor; new: encoded (index, face)
-    uint8_t constrained;
-    bool used;
-  };
-  auto sorted_face = [](const int32_t* v, int k) {
-    std::array<int32_t, 3> f;
-    for (int s = 0, n = 0; s < 4; ++s)
-      if (s != k) f[size_t(n++)] = v[s];
-    std::sort(f.begin(), f.end());
-    return f;
-  };
-  auto in_old = [&](int32_t u) {
-    return std::find(old_tets.begin(), old_tets.end(), u) != old_tets.end();
-  };
-  std::vector<Face> outer;
-  for (int32_t t : old_tets)
-    for (int k = 0; k < 4; ++k) {
-      const int32_t e = tets_[size_t(t)].n[k];
-      if (in_old(e >> 2)) {
-        if (is_constrained(t, k)) return R::Error("replace_tets: would remove a constrained face");
-        continue;
-      }
-      outer.push_back({sorted_face(tet(t), k), e, uint8_t(is_constrained(t, k)), false});
-    }
-  // Phase 2: orientation and face matching of the new set.
   for (const auto& q : new_tets) {
     int infs = 0;
     for (int32_t x : q) {
@@ -915,58 +729,19 @@ Result<std::vector<int32_t>> Delaunay3D::replace_tets(
     if (infs > 1 || !new_tet_valid(q, old_vertices))
       return R::Error("replace_tets: a new tetrahedron is not positive");
   }
-  std::vector<int32_t> match(4 * new_tets.size(), -1);  // outer index or -2 - (4i+k)
-  for (size_t i = 0; i < new_tets.size(); ++i)
-    for (int k = 0; k < 4; ++k) {
-      if (match[4 * i + size_t(k)] != -1) continue;
-      const auto key = sorted_face(new_tets[i].data(), k);
-      int32_t found = -1;
-      for (size_t o = 0; o < outer.size() && found < 0; ++o)
-        if (!outer[o].used && outer[o].key == key) found = int32_t(o);
-      if (found >= 0) {
-        outer[size_t(found)].used = true;
-        match[4 * i + size_t(k)] = found;
-        continue;
-      }
-      for (size_t j = i + 1; j < new_tets.size() && found < 0; ++j)
-        for (int l = 0; l < 4 && found < 0; ++l)
-          if (match[4 * j + size_t(l)] == -1 && sorted_face(new_tets[j].data(), l) == key) {
-            found = int32_t(4 * j + size_t(l));
-            match[size_t(found)] = -2 - int32_t(4 * i + size_t(k));
-            match[4 * i + size_t(k)] = -2 - found;
-          }
-      if (found < 0) return R::Error("replace_tets: the new set does not fill the old one");
-    }
-  for (const Face& f : outer)
-    if (!f.used) return R::Error("replace_tets: the new set leaves a boundary face uncovered");
-  // Phase 3: commit.
-  const int32_t tag = tag_[size_t(old_tets[0])];
-  for (int32_t v : old_vertices) vtet_[size_t(v)] = -1;
-  std::vector<int32_t> ids(new_tets.size());
-  for (size_t i = 0; i < ids.size(); ++i) ids[i] = i < old_tets.size() ? old_tets[i] : new_tet_id();
-  for (size_t i = ids.size(); i < old_tets.size(); ++i) free_tet(old_tets[i]);
-  for (size_t i = 0; i < ids.size(); ++i) {
-    const int32_t t = ids[i];
-    std::copy(new_tets[i].begin(), new_tets[i].end(), tets_[size_t(t)].v);
-    tag_[size_t(t)] = tag;
-    tc_[size_t(t)] = 0;
-    for (int32_t x : new_tets[i])
-      if (x != kInfinite) vtet_[size_t(x)] = t;
+  // Phase 2: face matching and commit.
+  std::vector<int32_t> ids;
+  switch (vm::replace_tets(topo_, old_tets.data(), int(old_tets.size()), new_tets.data(),
+                           int(new_tets.size()), ids, replace_scratch_)) {
+    case ReplaceError::kNone:
+      break;
+    case ReplaceError::kConstrainedInside:
+      return R::Error("replace_tets: would remove a constrained face");
+    case ReplaceError::kUnmatchedFace:
+      return R::Error("replace_tets: the new set does not fill the old one");
+    case ReplaceError::kUncoveredFace:
+      return R::Error("replace_tets: the new set leaves a boundary face uncovered");
   }
-  for (size_t i = 0; i < ids.size(); ++i)
-    for (int k = 0; k < 4; ++k) {
-      const int32_t m = match[4 * i + size_t(k)];
-      const int32_t e = 4 * ids[i] + k;
-      if (m >= 0) {
-        const Face& f = outer[size_t(m)];
-        link(e) = f.link;
-        link(f.link) = e;
-        tc_[size_t(ids[i])] |= uint8_t(f.constrained << k);
-      } else {
-        const int32_t other = -2 - m;
-        link(e) = 4 * ids[size_t(other / 4)] + other % 4;
-      }
-    }
   last_ = ids[0];
   delaunay_ = false;
   ++stats_.flips;
@@ -977,14 +752,10 @@ Result<std::array<int32_t, 3>> Delaunay3D::flip23(int32_t t, int k) {
   using R = Result<std::array<int32_t, 3>>;
   if (t < 0 || size_t(t) >= tet_capacity() || !is_live(t) || k < 0 || k > 3)
     return R::Error("flip23: invalid face");
-  const int32_t u = tets_[size_t(t)].n[k] >> 2;
+  const int32_t u = neighbor(t, k) >> 2;
   if (is_ghost(t) || is_ghost(u)) return R::Error("flip23: a hull face");
-  const int32_t* v = tet(t);
-  const int32_t x = v[k], y = tet(u)[tets_[size_t(t)].n[k] & 3];
-  const int* f = kFaceOut[k];
-  const int32_t r[3] = {v[f[0]], v[f[1]], v[f[2]]};  // clockwise seen from x
-  std::vector<std::array<int32_t, 4>> nt;
-  for (int i = 0; i < 3; ++i) nt.push_back({x, y, r[i], r[(i + 1) % 3]});
+  std::vector<std::array<int32_t, 4>> nt(3);
+  flip23_tets(topo_, t, k, nt.data());
   auto res = replace_tets({t, u}, nt);
   if (!res.ok()) return R::Error("flip23: " + res.message());
   return std::array<int32_t, 3>{res.value()[0], res.value()[1], res.value()[2]};
@@ -1013,8 +784,8 @@ Result<std::vector<int32_t>> Delaunay3D::remove_edge(int32_t t, int32_t a, int32
     double q = 1e300;
     for (size_t i = 1; i + 1 < n; ++i) {
       const int32_t x = ring[s], y = ring[(s + i) % n], z = ring[(s + i + 1) % n];
-      cand.push_back({x, y, z, b});
-      cand.push_back({y, x, z, a});
+      cand.resize(cand.size() + 2);
+      ring_triangle_tets(a, b, x, y, z, &cand[cand.size() - 2]);
     }
     for (const auto& c : cand) {
       if (!new_tet_valid(c, around)) {
@@ -1077,8 +848,8 @@ Result<std::array<int32_t, 4>> Delaunay3D::flip44(int32_t t, int32_t a, int32_t 
   std::vector<std::array<int32_t, 4>> nt;
   for (size_t i = 1; i <= 2; ++i) {
     const int32_t x = ring[s], y = ring[(s + i) % 4], z = ring[(s + i + 1) % 4];
-    nt.push_back({x, y, z, b});
-    nt.push_back({y, x, z, a});
+    nt.resize(nt.size() + 2);
+    ring_triangle_tets(a, b, x, y, z, &nt[nt.size() - 2]);
   }
   auto res = replace_tets(ring_tets, nt);
   if (!res.ok()) return R::Error("flip44: " + res.message());
@@ -1089,6 +860,7 @@ Result<std::array<int32_t, 4>> Delaunay3D::flip44(int32_t t, int32_t a, int32_t 
 // ---------------------------------------------------------------- checks
 
 Status Delaunay3D::check(bool delaunay) const {
+  if (Status s = check_topology(topo_, num_vertices(), true, false); !s.ok()) return s;
   auto fail = [](const std::string& what, int32_t t) {
     return Status::Error(what + " (tetrahedron " + std::to_string(t) + ")");
   };
@@ -1101,28 +873,14 @@ Status Delaunay3D::check(bool delaunay) const {
         ++infs;
         continue;
       }
-      if (v[k] < 0 || size_t(v[k]) >= num_vertices()) return fail("invalid vertex id", t);
       if (dup_[size_t(v[k])] >= 0) return fail("a duplicate point is a vertex", t);
-      const int32_t w = vtet_[size_t(v[k])];
-      if (w < 0 || !is_live(w) || slot_of(tet(w), v[k]) < 0)
-        return fail("vertex_tet of a vertex does not contain it", t);
-      for (int j = k + 1; j < 4; ++j)
-        if (v[j] == v[k]) return fail("repeated vertex", t);
     }
-    if (infs > 1) return fail("more than one infinite vertex", t);
     if (infs == 0 && orient3d(point(v[0]), point(v[1]), point(v[2]), point(v[3])) >= 0)
       return fail("finite tetrahedron not positive", t);
     for (int k = 0; k < 4; ++k) {
-      const int32_t e = tets_[size_t(t)].n[k];
+      const int32_t e = neighbor(t, k);
       const int32_t u = e >> 2, j = e & 3;
-      if (e < 0 || size_t(u) >= tet_capacity() || !is_live(u)) return fail("dead neighbor", t);
-      if (link(e) != 4 * t + k) return fail("neighbor links not symmetric", t);
-      if (is_constrained(u, j) != is_constrained(t, k))
-        return fail("constraint flags not symmetric", t);
       const int32_t* w = tet(u);
-      for (int s = 0; s < 4; ++s)
-        if (s != k && (slot_of(w, v[s]) < 0 || slot_of(w, v[s]) == j))
-          return fail("neighbors do not share the face", t);
       if (v[k] == w[j]) return fail("two tetrahedra with the same vertices", t);
       if (infs == 1 && v[k] == kInfinite) {
         // The finite neighbor's apex is on the inner side of the hull face.

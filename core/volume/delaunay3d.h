@@ -29,6 +29,7 @@
 
 #include "core/util/result.h"
 #include "core/volume/spatial_sort.h"
+#include "core/volume/tet_topology.h"
 
 namespace vm {
 
@@ -99,7 +100,7 @@ class Delaunay3D {
   /// The vertex point v coincides with, or -1 if v is itself a vertex.
   int32_t duplicate_of(int32_t v) const { return dup_[size_t(v)]; }
   /// A live tetrahedron incident to vertex v (-1 for duplicates).
-  int32_t vertex_tet(int32_t v) const { return vtet_[size_t(v)]; }
+  int32_t vertex_tet(int32_t v) const { return topo_.vertex_tet[size_t(v)]; }
 
   // ---- Tetrahedra. Ids index flat arrays of capacity tet_capacity(); a
   // slot is live or free (reused by later insertions). Vertex k of tet t is
@@ -107,16 +108,16 @@ class Delaunay3D {
   // positive: tet_volume6 > 0 (orient3d < 0). A ghost has one vertex
   // kInfinite; its finite face is a convex hull face, and replacing
   // kInfinite by a point beyond that face gives a positive tetrahedron.
-  size_t tet_capacity() const { return tets_.size(); }
-  bool is_live(int32_t t) const { return tets_[size_t(t)].v[0] != kFree; }
+  size_t tet_capacity() const { return topo_.capacity(); }
+  bool is_live(int32_t t) const { return topo_.is_live(t); }
   bool is_ghost(int32_t t) const {
-    const int32_t* v = tets_[size_t(t)].v;
+    const int32_t* v = topo_.tet(t);
     return v[0] == kInfinite || v[1] == kInfinite || v[2] == kInfinite || v[3] == kInfinite;
   }
-  const int32_t* tet(int32_t t) const { return tets_[size_t(t)].v; }
+  const int32_t* tet(int32_t t) const { return topo_.tet(t); }
   /// 4 * u + j: the tetrahedron u across face k of t, and the index j of
   /// that face in u (so neighbor(u, j) == 4 * t + k).
-  int32_t neighbor(int32_t t, int k) const { return tets_[size_t(t)].n[k]; }
+  int32_t neighbor(int32_t t, int k) const { return topo_.neighbor(t, k); }
   size_t num_finite_tets() const;
   /// 4 vertex ids per finite tetrahedron (positive), live slots in id order.
   std::vector<int32_t> finite_tets() const;
@@ -129,16 +130,18 @@ class Delaunay3D {
 
   /// Region tag per tetrahedron (0 by default); tetrahedra created by an
   /// insertion or a flip take the tag of the one they replace.
-  int32_t tag(int32_t t) const { return tag_[size_t(t)]; }
-  void set_tag(int32_t t, int32_t tag) { tag_[size_t(t)] = tag; }
+  int32_t tag(int32_t t) const { return topo_.tags[size_t(t)]; }
+  void set_tag(int32_t t, int32_t tag) { topo_.tags[size_t(t)] = tag; }
 
   // ---- Constrained faces (flags on both sides of the face).
-  bool is_constrained(int32_t t, int k) const { return (tc_[size_t(t)] >> k) & 1; }
+  bool is_constrained(int32_t t, int k) const { return topo_.is_constrained(t, k); }
   void set_constrained(int32_t t, int k, bool on);
 
   // ---- Topology queries.
   /// Live tetrahedra incident to vertex v (ghosts included), into `out`.
-  void tets_around_vertex(int32_t v, std::vector<int32_t>& out) const;
+  void tets_around_vertex(int32_t v, std::vector<int32_t>& out) const {
+    vm::tets_around_vertex(topo_, v, out);
+  }
   /// The tetrahedra created by the last successful insertion (insert() or
   /// build()), ghosts included: exactly the tetrahedra incident to the new
   /// vertex, as tets_around_vertex would list them (in another order). Valid
@@ -187,6 +190,9 @@ class Delaunay3D {
   Result<std::vector<int32_t>> replace_tets(const std::vector<int32_t>& old_tets,
                                             const std::vector<std::array<int32_t, 4>>& new_tets);
 
+  /// The shared topology (core/volume/tet_topology.h).
+  const TetTopology& topology() const { return topo_; }
+
   /// True until the first flip: insertions then use the fast cavity.
   bool is_delaunay() const { return delaunay_; }
 
@@ -215,7 +221,7 @@ class Delaunay3D {
   const Stats& stats() const { return stats_; }
 
  private:
-  static constexpr int32_t kFree = -2;
+  static constexpr int32_t kFree = TetTopology::kFree;
 
   InsertResult insert_vertex(int32_t v, int32_t hint, bool respect_constraints,
                              double min_distance = 0);
@@ -243,35 +249,23 @@ class Delaunay3D {
   /// boundary faces (neighbor not stamped `in`) into boundary_.
   void keep_cavity(uint32_t in);
   void star(int32_t pv);
-  int32_t new_tet_id();
   bool new_tet_valid(const std::array<int32_t, 4>& q, const std::vector<int32_t>& around) const;
-  void free_tet(int32_t t);
   void init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d);
-  int32_t visit_stamp() const;
   /// The link (4 * neighbor + face) stored at encoded face e = 4 * t + k.
-  int32_t& link(int32_t e) { return tets_[size_t(e >> 2)].n[e & 3]; }
-  int32_t link(int32_t e) const { return tets_[size_t(e >> 2)].n[e & 3]; }
+  int32_t& link(int32_t e) { return topo_.link(e); }
+  int32_t link(int32_t e) const { return topo_.link(e); }
 
   std::vector<double> pts_;      // 3 per vertex
   std::vector<int32_t> sos_id_;  // while building: vertex -> input index
   std::vector<int32_t> dup_;     // per vertex: coincident vertex or -1
-  std::vector<int32_t> vtet_;    // per vertex: an incident live tet or -1
-  // Per tet, in one 32-byte record (a cavity search reads both): the
-  // vertices (kFree at v[0] if free) and the links 4 * neighbor + face.
-  struct TetRec {
-    int32_t v[4];
-    int32_t n[4];
-  };
-  std::vector<TetRec> tets_;
-  std::vector<uint8_t> tc_;   // per tet: bit k = face k constrained
-  std::vector<int32_t> tag_;  // per tet
-  std::vector<int32_t> free_;
+  // Tetrahedra (records, constraint bits, tags, free slots), vertex_tet
+  // and visit marks.
+  TetTopology topo_;
+  ReplaceScratch replace_scratch_;
   bool delaunay_ = true;
   mutable Stats stats_;
 
   // Scratch (mutable: queries reuse them too; the class is not thread-safe).
-  mutable std::vector<uint32_t> stamp_;  // per tet
-  mutable uint32_t gen_ = 0;
   mutable int32_t last_ = 0;
   mutable uint64_t rng_ = 0x2545f4914f6cdd1dull;
   std::vector<int32_t> cavity_, boundary_;  // tets; encoded faces

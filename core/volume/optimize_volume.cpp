@@ -23,12 +23,11 @@
 #include "core/geom/vec3.h"
 #include "core/quality/tet_quality.h"
 #include "core/util/stage_timer.h"
+#include "core/volume/tet_topology.h"
 
 namespace vm {
 namespace {
 
-constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 constexpr int kMaxRing = 8;
 constexpr int kMaxCavity = 24;
 // Edges of a tetrahedron tried for removal before the shorter ones.
@@ -118,16 +117,14 @@ class Optimizer {
     // 2-3 on each interior face.
     for (int k = 0; k < 4; ++k) {
       if (m_.is_constrained(t, k)) continue;
-      const int32_t e = m_.neighbor(t, k);
-      const int32_t u = e >> 2;
-      const int32_t x = v[k], y = m_.tet(u)[e & 3];
-      const int* f = kFaceOut[k];
-      const int32_t r[3] = {v[f[0]], v[f[1]], v[f[2]]};
+      const int32_t u = m_.neighbor(t, k) >> 2;
+      std::array<int32_t, 4> q[3];
+      flip23_tets(m_.topology(), t, k, q);
       const double old_min = std::min(cached(t), cached(u));
       double new_min = 1e300;
       for (int i = 0; i < 3 && new_min > old_min; ++i)
-        new_min = std::min(
-            new_min, tet_gamma(m_.point(x), m_.point(y), m_.point(r[i]), m_.point(r[(i + 1) % 3])));
+        new_min = std::min(new_min, tet_gamma(m_.point(q[i][0]), m_.point(q[i][1]),
+                                              m_.point(q[i][2]), m_.point(q[i][3])));
       if (new_min - old_min > best_gain) {
         best_gain = new_min - old_min;
         best_kind = 1;
@@ -144,14 +141,14 @@ class Optimizer {
     for (int e = 0; e < 6; ++e) {
       edges[e] = e;
       double d[3];
-      sub(m_.point(v[kEdges[e][0]]), m_.point(v[kEdges[e][1]]), d);
+      sub(m_.point(v[kTetEdges[e][0]]), m_.point(v[kTetEdges[e][1]]), d);
       len2[e] = dot(d, d);
     }
     std::sort(edges, edges + 6, [&](int x, int y) { return len2[x] > len2[y]; });
     for (int rank = 0; rank < 6; ++rank) {
       if (rank == kLongEdges && best_kind != 0) break;
       const int e = edges[rank];
-      const int32_t a = v[kEdges[e][0]], b = v[kEdges[e][1]];
+      const int32_t a = v[kTetEdges[e][0]], b = v[kTetEdges[e][1]];
       if (!m_.edge_ring(t, a, b, ring_tets_, ring_, kMaxRing)) continue;
       const int n = int(ring_.size());
       if (n < 3) continue;
@@ -168,25 +165,19 @@ class Optimizer {
     std::array<int32_t, 4> nt[2 * kMaxRing];
     int n_new = 0;
     if (best_kind == 1) {
-      const int k = best_arg;
-      const int32_t e = m_.neighbor(t, k);
-      const int32_t u = e >> 2;
-      const int32_t x = v[k], y = m_.tet(u)[e & 3];
-      const int* f = kFaceOut[k];
-      const int32_t r[3] = {v[f[0]], v[f[1]], v[f[2]]};
-      for (int i = 0; i < 3; ++i) nt[n_new++] = {x, y, r[i], r[(i + 1) % 3]};
-      old_[0] = t, old_[1] = u;
-      if (!commit(old_, 2, nt, n_new, created)) return false;
+      flip23_tets(m_.topology(), t, best_arg, nt);
+      old_[0] = t, old_[1] = m_.neighbor(t, best_arg) >> 2;
+      if (!commit(old_, 2, nt, 3, created)) return false;
       ++st_.flips23;
       return true;
     }
-    const int32_t a = v[kEdges[best_arg][0]], b = v[kEdges[best_arg][1]];
+    const int32_t a = v[kTetEdges[best_arg][0]], b = v[kTetEdges[best_arg][1]];
     m_.edge_ring(t, a, b, ring_tets_, ring_, kMaxRing);
     if (!(best_ring_triangulation(a, b, 0, &tris_) > 0)) return false;
     for (const auto& tri : tris_) {
-      const int32_t x = ring_[size_t(tri[0])], y = ring_[size_t(tri[1])], z = ring_[size_t(tri[2])];
-      nt[n_new++] = {x, y, z, b};
-      nt[n_new++] = {y, x, z, a};
+      ring_triangle_tets(a, b, ring_[size_t(tri[0])], ring_[size_t(tri[1])], ring_[size_t(tri[2])],
+                         nt + n_new);
+      n_new += 2;
     }
     for (size_t i = 0; i < ring_tets_.size(); ++i) old_[i] = ring_tets_[i];
     if (!commit(old_, int(ring_tets_.size()), nt, n_new, created)) return false;
@@ -648,7 +639,7 @@ class Optimizer {
       hnew += 0.25 * h_[size_t(tv[s])];
       for (int k = 0; k < 3; ++k) cen[k] += 0.25 * x[s][k];
     }
-    for (const auto& e : kEdges) {
+    for (const auto& e : kTetEdges) {
       double d[3];
       sub(x[e[0]], x[e[1]], d);
       ht += std::sqrt(dot(d, d)) / 6;

@@ -26,6 +26,7 @@
 
 #include "core/geom/closest_point.h"
 #include "core/volume/spatial_sort.h"
+#include "core/volume/tet_topology.h"
 
 namespace vm {
 namespace {
@@ -45,8 +46,6 @@ inline double metric_length(double L, double ha, double hb) {
   if (std::fabs(d) <= 1e-9 * ha) return L / ha;
   return L * std::log(hb / ha) / d;
 }
-
-constexpr int kFaceVerts[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 }  // namespace
 
@@ -111,7 +110,7 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
           if (dist2(p, kernel.point(tv[k])) < r2) close = true;
         }
         if (!kernel.is_constrained(t, k)) continue;
-        const int* f = kFaceVerts[k];
+        const int* f = kFaceOut[k];
         if (tv[f[0]] < 0 || tv[f[1]] < 0 || tv[f[2]] < 0) continue;
         double q[3];
         if (closest_point_on_triangle(p, kernel.point(tv[f[0]]), kernel.point(tv[f[1]]),
@@ -167,9 +166,9 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
         if (!kernel.is_ghost(u) && kernel.tag(u) == tag) continue;
         for (int c = 0; c < 3; ++c) {
           double x = 0;
-          for (int s : kFaceVerts[k]) x += kernel.point(kernel.tet(t)[s])[c];
+          for (int s : kFaceOut[k]) x += kernel.point(kernel.tet(t)[s])[c];
           centroids.push_back(x / 3);
-          faces.push_back(kernel.tet(t)[kFaceVerts[k][c]]);
+          faces.push_back(kernel.tet(t)[kFaceOut[k][c]]);
         }
       }
     }
@@ -236,8 +235,7 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
   for (size_t qi = 0; qi < queue.size(); ++qi) {
     if ((qi & 1023) == 0) {
       last_fraction = std::max(last_fraction, double(qi) / double(queue.size() + 1));
-      if (!report_progress(progress, last_fraction, "refine volume"))
-        return Status::Cancelled();
+      if (!report_progress(progress, last_fraction, "refine volume")) return Status::Cancelled();
     }
     if (st.inserted >= options.max_points) {
       st.hit_max_points = true;

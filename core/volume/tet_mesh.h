@@ -7,10 +7,11 @@
 // boundary is implicit: a face with no neighbor is a boundary face, and is
 // never removed; interior faces may carry a constrained flag too.
 //
-// Layout: flat arrays indexed by tetrahedron id (slots are live or free,
-// free slots are reused). Vertex k of tet t is tet(t)[k]; face k is the face
-// opposite vertex k. Every live tetrahedron is positive: tet_volume6 > 0
-// (orient3d < 0 in the predicates' convention).
+// Layout: the points, fixed flags and the shared topology of
+// core/volume/tet_topology.h (the kernel's records and operations, with
+// kBoundary links on the region boundary). Vertex k of tet t is tet(t)[k];
+// face k is the face opposite vertex k. Every live tetrahedron is positive:
+// tet_volume6 > 0 (orient3d < 0 in the predicates' convention).
 #pragma once
 
 #include <array>
@@ -19,6 +20,7 @@
 
 #include "core/mesh/volume_mesh.h"
 #include "core/util/result.h"
+#include "core/volume/tet_topology.h"
 
 namespace vm {
 
@@ -59,24 +61,26 @@ class TetMesh {
     for (int k = 0; k < 3; ++k) pts_[3 * size_t(v) + size_t(k)] = p[k];
   }
   /// A live tetrahedron incident to v (-1 if v is used by none).
-  int32_t vertex_tet(int32_t v) const { return vtet_[size_t(v)]; }
+  int32_t vertex_tet(int32_t v) const { return topo_.vertex_tet[size_t(v)]; }
   /// Appends a vertex at p (3 doubles), not fixed and not yet used.
   int32_t add_vertex(const double* p);
 
   // ---- Tetrahedra.
-  size_t capacity() const { return tv_.size() / 4; }
-  bool is_live(int32_t t) const { return tv_[4 * size_t(t)] >= 0; }
-  const int32_t* tet(int32_t t) const { return &tv_[4 * size_t(t)]; }
+  size_t capacity() const { return topo_.capacity(); }
+  bool is_live(int32_t t) const { return topo_.is_live(t); }
+  const int32_t* tet(int32_t t) const { return topo_.tet(t); }
   /// 4 * u + j (u across face k of t, j the face's index in u), or kBoundary.
-  int32_t neighbor(int32_t t, int k) const { return tn_[4 * size_t(t) + size_t(k)]; }
+  int32_t neighbor(int32_t t, int k) const { return topo_.neighbor(t, k); }
   /// Whether face k of t may never be removed (boundary or constrained).
   bool is_constrained(int32_t t, int k) const {
-    return tn_[4 * size_t(t) + size_t(k)] < 0 || ((tc_[size_t(t)] >> k) & 1);
+    return topo_.neighbor(t, k) < 0 || topo_.is_constrained(t, k);
   }
-  size_t num_tets() const { return capacity() - free_.size(); }
+  size_t num_tets() const { return topo_.num_live(); }
+  /// The shared topology (core/volume/tet_topology.h; tags unused).
+  const TetTopology& topology() const { return topo_; }
 
   /// Live tetrahedra around vertex v, into out (cleared first).
-  void star(int32_t v, std::vector<int32_t>& out) const;
+  void star(int32_t v, std::vector<int32_t>& out) const { tets_around_vertex(topo_, v, out); }
   /// The tetrahedra around edge (a, b) of tetrahedron t in cyclic order and
   /// the ring vertices: ring_tets[i] is (a, b, ring[i], ring[i + 1]) up to
   /// an even permutation (positive). Returns false (outputs unspecified)
@@ -85,7 +89,10 @@ class TetMesh {
   /// max_size tetrahedra surround it. Precondition: a and b are vertices of
   /// live t.
   bool edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>& ring_tets,
-                 std::vector<int32_t>& ring, int max_size = 64) const;
+                 std::vector<int32_t>& ring, int max_size = 64) const {
+    return vm::edge_ring(topo_, t, a, b, ring_tets, ring,
+                         {true, max_size > 0 ? size_t(max_size) : 0});
+  }
 
   /// Replaces the live tetrahedra old_tets (connected) by new_tets with the
   /// same boundary; new ids into new_ids. Checks only the face matching
@@ -93,7 +100,11 @@ class TetMesh {
   /// is interior to the old set; the caller guarantees positive new
   /// tetrahedra. Returns false and changes nothing on mismatch.
   bool replace(const int32_t* old_tets, int n_old, const std::array<int32_t, 4>* new_tets,
-               int n_new, std::vector<int32_t>* new_ids);
+               int n_new, std::vector<int32_t>* new_ids) {
+    std::vector<int32_t>& ids = new_ids ? *new_ids : ids_;
+    return replace_tets(topo_, old_tets, n_old, new_tets, n_new, ids, scratch_) ==
+           ReplaceError::kNone;
+  }
 
   /// Positive tetrahedra (4 indices each) of the live slots in id order.
   std::vector<int32_t> tets() const;
@@ -103,27 +114,11 @@ class TetMesh {
   Status check() const;
 
  private:
-  int32_t new_slot();
-
   std::vector<double> pts_;
   std::vector<uint8_t> fixed_;
-  std::vector<int32_t> vtet_;
-  std::vector<int32_t> tv_;  // 4 per tet, -1 at [0] when free
-  std::vector<int32_t> tn_;  // 4 per tet
-  std::vector<uint8_t> tc_;  // per tet: bit k = interior face k constrained
-  std::vector<int32_t> free_;
-  mutable std::vector<uint32_t> stamp_;
-  mutable uint32_t gen_ = 0;
-  // Scratch of replace().
-  struct OuterFace {
-    std::array<int32_t, 3> key;
-    int32_t link;
-    uint8_t constrained;
-    uint8_t used;
-  };
-  std::vector<OuterFace> outer_;
-  std::vector<int32_t> match_;
-  std::vector<std::array<int32_t, 3>> new_keys_;
+  TetTopology topo_;
+  ReplaceScratch scratch_;
+  std::vector<int32_t> ids_;  // replace() without new_ids
 };
 
 }  // namespace vm

@@ -80,6 +80,9 @@ check "info json quality" [ "$(json "$T/info.json" "0 <= d['quality']['min'] <= 
 check "info text" expect_exit 0 "openings:    3" "$VM" info "$T/bif.stl"
 "$VM" phantom "$T/dirty.stl" --kind aneurysm --dirty > /dev/null && "$VM" info "$T/dirty.stl" --json > "$T/dirty.json"
 check "dirty phantom: info lists closed holes apart from the 3 openings, mesh succeeds" [ "$(json "$T/dirty.json" "len(d['openings']) == 3 and len(d['holes']) >= 5 and all(h['closed'] for h in d['holes'])")" = True ] && check "mesh dirty" expect_exit 0 "wrote" "$VM" mesh "$T/dirty.stl" -o "$T/dirty.msh"
+"$VM" info "$T/dirty.stl" --repair off > "$T/dirty-off.txt" 2>&1
+check "dirty phantom, repair off: the fin's 2-vertex loop is a slit with its place, not an opening of radius 0" grep -q "^slits:       1 .* e.g. at (" "$T/dirty-off.txt"
+check "dirty phantom, repair off: no opening of 2 vertices" bash -c "! grep -q ', 2 vertices' '$T/dirty-off.txt'"
 
 # A tube (radius 1 along z) whose wall near (1, 0, 4) is pushed through the
 # opposite wall: info says where it crosses itself, mesh fails saying so.

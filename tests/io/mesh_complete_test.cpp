@@ -59,7 +59,7 @@ bool outward_face_of(const VolumeMesh& m, int32_t e, const std::vector<int32_t>&
   std::vector<std::vector<int32_t>> faces;
   if (size_t(e) < m.num_tets()) {
     const int32_t* t = &m.tets[4 * size_t(e)];
-    for (const auto& f : testing::kTetOutwardFaces) faces.push_back({t[f[0]], t[f[1]], t[f[2]]});
+    for (const auto& f : kFaceOut) faces.push_back({t[f[0]], t[f[1]], t[f[2]]});
   } else {
     const int32_t* p = &m.prisms[6 * (size_t(e) - m.num_tets())];
     faces = {{p[0], p[2], p[1]},

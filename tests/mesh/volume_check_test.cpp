@@ -96,7 +96,7 @@ VolumeMesh cube() {
     m.tet_region.push_back(0);
   }
   // Boundary: the faces used once, oriented like their tetrahedron's.
-  const int f[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  const auto& f = kFaceOut;
   std::vector<std::array<int32_t, 3>> faces;
   for (size_t e = 0; e < m.num_tets(); ++e)
     for (const auto& k : f)

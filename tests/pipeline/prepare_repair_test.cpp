@@ -105,6 +105,14 @@ TEST_P(DirtyPhantom, RepairOffListsTheHolesAndRefuses) {
   EXPECT_GT(s.topology.nonmanifold_edges, 0u);
   EXPECT_FALSE(check_meshable(s).ok());
   for (const Hole& h : s.holes) EXPECT_FALSE(h.closed);
+  // The fin's free edges form a loop of 2 vertices: a slit, never an
+  // opening of radius 0; it is in the analysis with its place.
+  for (const Opening& op : s.topology.openings) {
+    EXPECT_GE(op.loop.size(), 3u);
+    EXPECT_GT(op.radius, 0);
+  }
+  ASSERT_FALSE(s.topology.slits.empty());
+  EXPECT_NE(analysis_json(s).find("\"slits\":[{\"perimeter\":"), std::string::npos);
 }
 
 INSTANTIATE_TEST_SUITE_P(Kinds, DirtyPhantom,

@@ -13,9 +13,6 @@
 
 namespace vm::testing {
 
-/// Outward faces of a positive tetrahedron (0,1,2,3).
-inline constexpr int kTetOutwardFaces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
 /// The cube [0, n]^3 as n^3 unit cubes, each split into the 6 tetrahedra
 /// around its main diagonal (the same in every cube, so they conform), all
 /// positive, region 0. Boundary triangles outward, tagged by the cube's face
@@ -47,7 +44,7 @@ inline VolumeMesh cube_tets(int n) {
           m.tet_region.push_back(0);
         }
   for (size_t e = 0; e < m.num_tets(); ++e)
-    for (const auto& f : kTetOutwardFaces) {
+    for (const auto& f : kFaceOut) {
       const int32_t g[3] = {m.tets[4 * e + f[0]], m.tets[4 * e + f[1]], m.tets[4 * e + f[2]]};
       for (int axis = 0; axis < 3; ++axis)
         for (int side = 0; side < 2; ++side) {
@@ -70,7 +67,7 @@ inline void split_regions(VolumeMesh& m, int32_t interface_tag) {
   for (size_t e = 0; e < m.num_tets(); ++e) m.tet_region[e] = e < half ? 0 : 1;
   std::map<std::array<int32_t, 3>, std::pair<size_t, std::array<int32_t, 3>>> faces;
   for (size_t e = 0; e < m.num_tets(); ++e)
-    for (const auto& f : kTetOutwardFaces) {
+    for (const auto& f : kFaceOut) {
       std::array<int32_t, 3> g = {m.tets[4 * e + f[0]], m.tets[4 * e + f[1]], m.tets[4 * e + f[2]]};
       std::array<int32_t, 3> key = g;
       std::sort(key.begin(), key.end());

@@ -13,6 +13,7 @@
 
 #include "core/mesh/surface_mesh.h"
 #include "core/volume/delaunay3d.h"
+#include "core/volume/tet_topology.h"
 #include "tests/support/icosphere.h"
 
 namespace vm::testing {
@@ -26,8 +27,6 @@ struct VolumeInput {
 };
 
 namespace detail {
-
-constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
 inline void fill_surface_and_sizes(VolumeInput& in) {
   const Delaunay3D& d = in.kernel;

@@ -197,14 +197,13 @@ RecoveredVolume recover_and_check(const Surf& s, const RecoveryOptions& options 
   // with the same (outward) orientation.
   std::map<std::array<int32_t, 3>, int> faces;  // outward oriented, canonical
   double volume = 0;
-  const int face_out[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
   for (size_t t = 0; t < m.num_tets(); ++t) {
     const int32_t* v = &m.tets[4 * t];
     const double* q[4];
     for (int k = 0; k < 4; ++k) q[k] = &m.points[3 * size_t(v[k])];
     EXPECT_LT(orient3d(q[0], q[1], q[2], q[3]), 0) << "tet " << t << " not positive";
     volume += tet_volume6(q[0], q[1], q[2], q[3]) / 6;
-    for (auto& f : face_out) {
+    for (auto& f : kFaceOut) {
       auto key = canonical({v[f[0]], v[f[1]], v[f[2]]});
       auto rev = canonical({key[0], key[2], key[1]});
       auto it = faces.find(rev);

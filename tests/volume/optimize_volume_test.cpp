@@ -15,8 +15,6 @@
 namespace vm {
 namespace {
 
-constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
 // The Delaunay tetrahedralization of the cube's surface grid plus random
 // interior points (many slivers), as a TetMesh with the surface fixed.
 TetMesh random_cube_mesh(int grid, int interior, uint32_t seed, std::vector<double>* h) {

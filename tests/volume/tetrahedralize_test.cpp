@@ -21,8 +21,6 @@
 namespace vm {
 namespace {
 
-constexpr int kFaceOut[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-
 std::array<int32_t, 3> rotated(std::array<int32_t, 3> f) {
   while (f[0] > f[1] || f[0] > f[2]) f = {f[1], f[2], f[0]};
   return f;

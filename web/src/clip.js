@@ -6,7 +6,8 @@
 //
 // Face f of tetrahedron t is the face opposite its vertex f, listed so that
 // its normal points out of t (tets have positive orientation:
-// ((b-a)x(c-a)).(d-a) > 0).
+// ((b-a)x(c-a)).(d-a) > 0). A copy of the core's face table (kFaceOut in
+// core/mesh/volume_mesh.h); web/test/clip-faces.test.js compares them.
 export const TET_FACES = [
   [1, 2, 3],
   [0, 3, 2],
