@@ -148,8 +148,9 @@ struct PreparedSurface {
   std::vector<std::string> warnings;
 };
 
-/// The largest surface whose self-crossings preparation looks for (about a
-/// tenth of the preparation's time is spent there up to this size).
+/// The largest surface whose self-crossings preparation looks for: the
+/// search costs about a quarter of the preparation's time at any size (2.5 s
+/// at 2M triangles) and ~60 bytes a triangle, so larger ones are skipped.
 inline constexpr size_t kSelfCrossingCheckLimit = 2'000'000;
 
 /// "the input crosses itself at (x, y, z) (N places): ", or "" when the
