@@ -33,8 +33,8 @@ struct SelfCrossings {
 /// (the ends of their intersection segment), in floating point; for
 /// coplanar overlaps, the mean of the six corners. Places are formed from
 /// the first `max_pairs` pairs found (the count of pairs is exact).
-/// Cost: find_self_intersections' plus O(pairs). Precondition: indices in
-/// range.
+/// Cost: find_self_intersections' plus, when it finds pairs, O(pairs +
+/// triangles + vertices). Precondition: indices in range.
 SelfCrossings find_self_crossings(const SurfaceMesh& mesh, size_t max_places = 5,
                                   size_t max_pairs = 1'000'000);
 
