@@ -151,6 +151,18 @@ void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
         "--repair auto removes it), e.g. at (%g, %g, %g)\n",
         t.slits.size(), o.centroid[0], o.centroid[1], o.centroid[2]);
   }
+  const vm::SelfCrossings& x = s.self_crossings;
+  if (!s.self_crossings_checked)
+    std::printf("self-crossings: not looked for (over %zu triangles)\n",
+                vm::kSelfCrossingCheckLimit);
+  else if (x.pairs == 0)
+    std::printf("self-crossings: none\n");
+  else
+    std::printf("self-crossings: %zu %s (%zu pairs of triangles)\n", x.place_count,
+                x.place_count == 1 ? "place" : "places", x.pairs);
+  for (size_t i = 0; i < x.places.size(); ++i)
+    std::printf("  %zu: at (%g, %g, %g) %s\n", i + 1, x.places[i][0], x.places[i][1],
+                x.places[i][2], unit);
   if (!s.clip_proposals.empty()) {
     std::printf("vessel ends: %zu (the cuts --clip auto would make)\n", s.clip_proposals.size());
     for (size_t i = 0; i < s.clip_proposals.size(); ++i) {

@@ -354,23 +354,9 @@ Status first_layer_from_yplus(MeshJobResult& r, MeshJobOptions& options) {
   return Status::Ok();
 }
 
-}  // namespace
-
-Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const MeshJobOptions& given,
-                                   const ProgressFn& progress) {
-  auto t0 = std::chrono::steady_clock::now();
-  MeshJobOptions options = given;  // with what the surface decides (a y+ height)
-  MeshJobResult r;
-  r.preset = options.preset;
-  // Stage 1 takes the first fifth of the progress bar, remeshing most of the rest.
-  ProgressFn sub = [&](double f, std::string_view stage) {
-    return report_progress(progress, 0.2 * f, stage);
-  };
-  Result<PreparedSurface> prepared = prepare_surface(file_bytes, options.prepare, sub);
-  if (!prepared.ok()) return prepared.status();
-  r.surface = std::move(prepared).value();
-  r.warnings = r.surface.warnings;
-
+/// Stages 2 to 7 on the prepared surface `r.surface`: checks, size field and
+/// remeshing, then mesh_volume. `options` gets what the surface decides.
+Status mesh_prepared(MeshJobResult& r, MeshJobOptions& options, const ProgressFn& progress) {
   Status meshable = check_meshable(r.surface);
   if (!meshable.ok()) return meshable;
   auto names = opening_names(r.surface, options.opening_names, options.inlet);
@@ -453,6 +439,32 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const Me
   }
   r.groups = output_groups(r);
   report_progress(progress, 1.0, "done");
+  return Status::Ok();
+}
+
+}  // namespace
+
+Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const MeshJobOptions& given,
+                                   const ProgressFn& progress) {
+  auto t0 = std::chrono::steady_clock::now();
+  MeshJobOptions options = given;  // with what the surface decides (a y+ height)
+  MeshJobResult r;
+  r.preset = options.preset;
+  // Stage 1 takes the first fifth of the progress bar, remeshing most of the rest.
+  ProgressFn sub = [&](double f, std::string_view stage) {
+    return report_progress(progress, 0.2 * f, stage);
+  };
+  Result<PreparedSurface> prepared = prepare_surface(file_bytes, options.prepare, sub);
+  if (!prepared.ok()) return prepared.status();
+  r.surface = std::move(prepared).value();
+  r.warnings = r.surface.warnings;
+  // Every later stage's error passes here: on a surface that crosses itself
+  // (the likely cause), it first says where (an option's value or a
+  // cancellation is not the surface's doing).
+  if (Status st = mesh_prepared(r, options, progress); !st.ok())
+    return st.cancelled() || st.kind() == ErrorKind::kBadOption
+               ? st
+               : st.Prefixed(self_crossing_prefix(r.surface));
   r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

@@ -628,7 +628,38 @@ void analyze(PreparedSurface& s, const Work& w) {
                          num(t.component_triangles[0]) + " of " + num(t.triangles) + " triangles");
 }
 
+/// Phase 9: where the surface crosses itself (up to kSelfCrossingCheckLimit
+/// triangles): later stages fail on such a surface, in their own terms.
+void find_crossings(PreparedSurface& s) {
+  if (s.mesh.num_triangles() > kSelfCrossingCheckLimit) {
+    s.warnings.push_back("the surface was not checked for crossing itself (" +
+                         num(s.mesh.num_triangles()) + " triangles, over " +
+                         num(kSelfCrossingCheckLimit) + ")");
+    return;
+  }
+  s.self_crossings = find_self_crossings(s.mesh);
+  s.self_crossings_checked = true;
+  const SelfCrossings& c = s.self_crossings;
+  if (c.pairs == 0) return;
+  std::string at;
+  for (size_t i = 0; i < c.places.size(); ++i) at += (i ? ", " : "") + point_text(c.places[i]);
+  s.warnings.push_back(
+      "the surface crosses itself at " +
+      (c.place_count == 1 ? std::string("1 place") : num(c.place_count) + " places") + " (" +
+      num(c.pairs) + " pairs of triangles)" + (c.place_count == 1 ? ", at " : ", e.g. at ") + at +
+      ": a wall passes through another there (a wall pushed through the opposite one, or "
+      "branches fused wrongly) and meshing may fail; fix it in the segmentation (or cut that "
+      "part off with {clip_plane})");
+}
+
 }  // namespace
+
+std::string self_crossing_prefix(const PreparedSurface& s) {
+  const SelfCrossings& c = s.self_crossings;
+  if (c.pairs == 0 || c.places.empty()) return "";
+  return "the input crosses itself at " + point_text(c.places[0]) + " (" +
+         (c.place_count == 1 ? std::string("1 place") : num(c.place_count) + " places") + "): ";
+}
 
 Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
                                         const PrepareOptions& options, const ProgressFn& progress) {
@@ -649,6 +680,8 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   if (Status st = extend_openings(s, w, options); !st.ok()) return st;
   if (!report_progress(progress, 0.6, "analyze")) return cancelled();
   analyze(s, w);
+  if (!report_progress(progress, 0.7, "self-crossings")) return cancelled();
+  find_crossings(s);
   s.unit = decide_unit(options.units, median_vessel_radius(s));
   if (w.smoothing_note != std::string::npos)
     s.warnings.insert(s.warnings.begin() + long(w.smoothing_note),

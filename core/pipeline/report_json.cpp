@@ -140,6 +140,14 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
     j.end_object();
   }
   j.end_array();
+  j.key("self_crossings").begin_object();
+  j.key("checked").value(s.self_crossings_checked);
+  j.key("pairs").value(s.self_crossings.pairs);
+  j.key("place_count").value(s.self_crossings.place_count);
+  j.key("places").begin_array();
+  for (const Vec3& p : s.self_crossings.places) j.array(p);
+  j.end_array();
+  j.end_object();
   j.key("closed").value(t.closed);
   if (t.genus >= 0)
     j.key("genus").value(t.genus);

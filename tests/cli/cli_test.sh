@@ -84,6 +84,31 @@ check "dirty phantom: info lists closed holes apart from the 3 openings, mesh su
 check "dirty phantom, repair off: the fin's 2-vertex loop is a slit with its place, not an opening of radius 0" grep -q "^slits:       1 .* e.g. at (" "$T/dirty-off.txt"
 check "dirty phantom, repair off: no opening of 2 vertices" bash -c "! grep -q ', 2 vertices' '$T/dirty-off.txt'"
 
+# A tube (radius 1 along z) whose wall near (1, 0, 4) is pushed through the
+# opposite wall: info says where it crosses itself, mesh fails saying so.
+python3 - "$T/dent.stl" <<'PY'
+import math, sys
+n, m, p = 48, 40, []
+for j in range(m + 1):
+    for i in range(n):
+        a, z = 2 * math.pi * i / n, 8.0 * j / m
+        d2 = 2 * (1 - math.cos(a)) + (z - 4) ** 2
+        p.append((math.cos(a) - 2.6 * math.exp(-d2 / (2 * 0.35 ** 2)), math.sin(a), z))
+with open(sys.argv[1], 'w') as f:
+    f.write('solid dent\n')
+    for j in range(m):
+        for i in range(n):
+            a, b = j * n + i, j * n + (i + 1) % n
+            for t in ((a, b, b + n), (a, b + n, a + n)):
+                f.write('facet normal 0 0 0\nouter loop\n' + ''.join('vertex %.9g %.9g %.9g\n' % p[v] for v in t) + 'endloop\nendfacet\n')
+    f.write('endsolid dent\n')
+PY
+check "self-crossing: info names the place" expect_exit 0 "self-crossings: 1 place (" "$VM" info "$T/dent.stl"
+check "self-crossing: a warning says where" expect_exit 0 "warning: the surface crosses itself at 1 place" "$VM" info "$T/dent.stl"
+check "self-crossing: json place near (-1, 0, 4)" [ "$("$VM" info "$T/dent.stl" --json | python3 -c "import json,sys; c=json.load(sys.stdin)['self_crossings']; print(c['pairs'] > 0 and c['place_count'] == 1 and abs(c['places'][0][0] + 1) < 0.1 and abs(c['places'][0][2] - 4) < 0.6)")" = True ]
+check "self-crossing: mesh fails naming it" expect_exit 1 "error: $T/dent.stl: the input crosses itself at (-" "$VM" mesh "$T/dent.stl" -o "$T/dent.msh"
+check "self-crossing: none on a clean phantom" expect_exit 0 "self-crossings: none" "$VM" info "$T/bif.stl"
+
 check "mesh needs -o" expect_exit 2 "-o OUT.msh" "$VM" mesh "$T/bif.stl"
 check "mesh bad version" expect_exit 2 "--msh-version needs 4.1 or 2.2" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --msh-version 3
 check "mesh 4.1" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif41.msh" --report "$T/report.json" --verify
