@@ -12,16 +12,33 @@
 
 namespace vm::testing {
 
-/// A generated vessel surface (empty, with a test failure, on error).
+/// A generated vessel surface (empty, with a test failure, on error); its
+/// truth in `truth` when given.
+inline SurfaceMesh phantom(const PhantomOptions& o, PhantomTruth* truth = nullptr) {
+  auto r = make_vessel_phantom(o, truth);
+  EXPECT_TRUE(r.ok()) << r.message();
+  return r.ok() ? r.value() : SurfaceMesh{};
+}
+
+/// The same for the options that most tests vary.
 inline SurfaceMesh phantom(PhantomKind kind, bool open_ends, double voxel, double noise = 0) {
   PhantomOptions o;
   o.kind = kind;
   o.open_ends = open_ends;
   o.voxel = voxel;
   o.noise = noise;
-  auto r = make_vessel_phantom(o);
-  EXPECT_TRUE(r.ok()) << r.message();
-  return r.ok() ? r.value() : SurfaceMesh{};
+  return phantom(o);
+}
+
+/// A capped model: the noisy bifurcation with its three cut ends closed by
+/// flat caps (closed, genus 0), voxel size `voxel`.
+inline SurfaceMesh flat_capped_bifurcation(double voxel, PhantomTruth* truth = nullptr) {
+  PhantomOptions o;
+  o.kind = PhantomKind::kBifurcation;
+  o.voxel = voxel;
+  o.noise = 0.3;
+  o.flat_caps = true;
+  return phantom(o, truth);
 }
 
 /// Index of the truth opening whose center is nearest to `centroid`.
