@@ -20,6 +20,7 @@
 #include "core/surface/caps.h"
 #include "core/surface/remesh_surface.h"
 #include "core/volume/boundary_recovery.h"
+#include "tests/support/phantoms.h"
 #include "tests/support/remesh_options.h"
 #include "tests/support/test_meshes.h"
 
@@ -252,13 +253,7 @@ TEST(LayerAssembly, TubeLumenAndVesselWall) {
 }
 
 TEST(LayerAssembly, BifurcationPhantomLumenAndVesselWall) {
-  PhantomOptions po;
-  po.kind = PhantomKind::kBifurcation;
-  po.voxel = 0.15;
-  po.noise = 0.3;
-  auto raw = make_vessel_phantom(po);
-  ASSERT_TRUE(raw.ok()) << raw.message();
-  auto remeshed = remesh_surface(raw.value(), testing::uniform_remesh(0.2));
+  auto remeshed = remesh_surface(testing::noisy_bifurcation(0.15), testing::uniform_remesh(0.2));
   ASSERT_TRUE(remeshed.ok()) << remeshed.message();
   const SurfaceMesh& wall = remeshed.value().mesh;
   const std::vector<double> radius = chord_radius(wall);

@@ -19,11 +19,6 @@
 namespace vm {
 namespace {
 
-// The noisy bifurcation phantom: 3 openings, genus 0.
-SurfaceMesh noisy_bifurcation() {
-  return testing::phantom(PhantomKind::kBifurcation, true, 0.1, 0.3);
-}
-
 std::vector<uint8_t> two_components_stl() {
   SurfaceMesh a = testing::open_tube(12, 4);
   SurfaceMesh b = testing::tetrahedron();
@@ -107,7 +102,7 @@ TEST(MeshJob, SeveralComponentsAreRefusedUnlessLargestIsKept) {
 }
 
 TEST(MeshJob, RemeshesKeepingTopologyAndWritesEveryTriangleAsWall) {
-  const SurfaceMesh phantom = noisy_bifurcation();
+  const SurfaceMesh phantom = testing::noisy_bifurcation(0.1);
   MeshJobOptions o;
   ASSERT_TRUE(set_option_text(o, "size", "0.15").ok());
   o.volume = false;
@@ -172,7 +167,7 @@ TEST(MeshJob, MeshesTheLumenWithNamedPlanarCaps) {
   // The bifurcation phantom: 3 openings, so inlet, outlet_1, outlet_2; the
   // volume is checked (positive, conforming, bounded by wall + caps) and
   // fills exactly the capped surface.
-  const SurfaceMesh phantom = noisy_bifurcation();
+  const SurfaceMesh phantom = testing::noisy_bifurcation(0.1);
   MeshJobOptions o;
   ASSERT_TRUE(set_option_text(o, "size", "0.2").ok());
   o.verify = true;

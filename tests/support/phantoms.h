@@ -30,13 +30,25 @@ inline SurfaceMesh phantom(PhantomKind kind, bool open_ends, double voxel, doubl
   return phantom(o);
 }
 
-/// A capped model: the noisy bifurcation with its three cut ends closed by
-/// flat caps (closed, genus 0), voxel size `voxel`.
-inline SurfaceMesh flat_capped_bifurcation(double voxel, PhantomTruth* truth = nullptr) {
+/// The options of the noisy bifurcation: 3 openings, genus 0, voxel noise
+/// 0.3, voxel size `voxel`.
+inline PhantomOptions noisy_bifurcation_options(double voxel) {
   PhantomOptions o;
   o.kind = PhantomKind::kBifurcation;
   o.voxel = voxel;
   o.noise = 0.3;
+  return o;
+}
+
+/// The noisy bifurcation phantom (open ends).
+inline SurfaceMesh noisy_bifurcation(double voxel, PhantomTruth* truth = nullptr) {
+  return phantom(noisy_bifurcation_options(voxel), truth);
+}
+
+/// A capped model: the noisy bifurcation with its three cut ends closed by
+/// flat caps (closed, genus 0).
+inline SurfaceMesh flat_capped_bifurcation(double voxel, PhantomTruth* truth = nullptr) {
+  PhantomOptions o = noisy_bifurcation_options(voxel);
   o.flat_caps = true;
   return phantom(o, truth);
 }

@@ -251,11 +251,14 @@ TEST(SizeField, InvalidOptionsAreErrors) {
   const SurfaceMesh tube = testing::open_tube(16, 8);
   auto fails = [&](const SizeOptions& o) { return !vertex_sizes(tube, o).ok(); };
   const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
-  for (double s : {0.0, -1.0, nan, inf}) {
+  auto uniform = [](double size) {
     SizeOptions o;
     o.mode = SizeMode::kUniform;
-    o.size = s;
-    EXPECT_TRUE(fails(o)) << "uniform size " << s;
+    o.size = size;
+    return o;
+  };
+  for (double s : {0.0, -1.0, nan, inf}) {
+    EXPECT_TRUE(fails(uniform(s))) << "uniform size " << s;
   }
   for (double n : {0.0, -4.0, nan, inf}) {
     SizeOptions o;
@@ -263,9 +266,7 @@ TEST(SizeField, InvalidOptionsAreErrors) {
     EXPECT_TRUE(fails(o)) << "per circumference " << n;
   }
   {
-    SizeOptions o;
-    o.mode = SizeMode::kUniform;
-    o.size = 0.5;
+    SizeOptions o = uniform(0.5);
     o.size_min = 0.4;
     o.size_max = 0.3;
     EXPECT_TRUE(fails(o)) << "min > max";
@@ -277,16 +278,12 @@ TEST(SizeField, InvalidOptionsAreErrors) {
     EXPECT_TRUE(fails(o)) << "zero max";
   }
   for (double g : {-0.1, nan, inf}) {
-    SizeOptions o;
-    o.mode = SizeMode::kUniform;
-    o.size = 0.5;
+    SizeOptions o = uniform(0.5);
     o.gradation = g;
     EXPECT_TRUE(fails(o)) << "gradation " << g;
   }
   for (double c : {-1.0, nan, inf}) {
-    SizeOptions o;
-    o.mode = SizeMode::kUniform;
-    o.size = 0.5;
+    SizeOptions o = uniform(0.5);
     o.curvature_points = c;
     EXPECT_TRUE(fails(o)) << "curvature points " << c;
   }
