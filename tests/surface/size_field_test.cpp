@@ -45,9 +45,7 @@ SurfaceMesh noisy_phantom(PhantomKind kind, PhantomTruth* truth = nullptr) {
   o.kind = kind;
   o.voxel = 0.1;
   o.noise = 0.3;
-  auto r = make_vessel_phantom(o, truth);
-  EXPECT_TRUE(r.ok()) << r.message();
-  return r.ok() ? r.value() : SurfaceMesh{};
+  return testing::phantom(o, truth);
 }
 
 TEST(SizeField, UniformIsConstant) {
