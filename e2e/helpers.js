@@ -100,6 +100,12 @@ export async function exportDownload(page) {
   return { name: download.suggestedFilename(), bytes: Buffer.concat(chunks) };
 }
 
+/** The same with the file as text. */
+export async function exportText(page) {
+  const { name, bytes } = await exportDownload(page);
+  return { name, text: bytes.toString() };
+}
+
 let api = null;
 /** A closed bifurcation phantom's STL (rounded vessel ends, as segmentation
  * tools export it: its cuts are proposed), made by the JS API here. */
