@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { exportText, openApp, screenshots } from './helpers.js';
+import { exportText, loadSample, meshAndCancel, openApp, screenshots } from './helpers.js';
 
 const num = async (page, id) => Number((await page.getByTestId(id).textContent()).replace(/,/g, ''));
 const drawn = async (page) => Number(await page.getByTestId('volume-view').getAttribute('data-triangles'));
@@ -184,16 +184,8 @@ test('surface only: no volume view; a bad core size is refused and the page keep
 });
 
 test('a volume mesh can be cancelled; the next one works', async ({ page }) => {
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(e.message));
-  await openApp(page);
-  await page.getByTestId('load-sample').click();
-  await expect(page.getByTestId('stat-openings')).toHaveText('3');
-  await page.getByTestId('size-value').fill('40'); // a few seconds of work
-  await page.getByTestId('remesh').click();
-  await expect(page.getByTestId('progress')).toBeVisible();
-  await page.getByRole('button', { name: 'Cancel' }).click();
-  await expect(page.getByTestId('error')).toHaveText('Cancelled.');
+  const { errors } = await loadSample(page);
+  await meshAndCancel(page);
   await expect(page.getByTestId('remesh-result')).toBeHidden();
   await page.getByTestId('size-value').fill('16');
   await page.getByTestId('remesh').click();
