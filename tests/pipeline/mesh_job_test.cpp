@@ -15,6 +15,7 @@
 #include "core/pipeline/write_outputs.h"
 #include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
+#include "tests/support/tet_volume.h"
 
 namespace vm {
 namespace {
@@ -256,13 +257,8 @@ TEST(MeshJob, GrowsTheViscousLayerAndTheVesselWall) {
   EXPECT_GE(res.core_quality_stats.min, 0.2);
   // Volumes: lumen + layer = the capped wall's; the vessel wall outside it.
   double lumen = 0, shell = 0;
-  for (size_t t = 0; t < res.volume.num_tets(); ++t) {
-    const int32_t* v = &res.volume.tets[4 * t];
-    const double v6 =
-        tet_volume6(&res.volume.points[3 * size_t(v[0])], &res.volume.points[3 * size_t(v[1])],
-                    &res.volume.points[3 * size_t(v[2])], &res.volume.points[3 * size_t(v[3])]);
-    (res.tet_part[t] == 2 ? shell : lumen) += v6 / 6;
-  }
+  for (size_t t = 0; t < res.volume.num_tets(); ++t)
+    (res.tet_part[t] == 2 ? shell : lumen) += testing::tet_volume6(res.volume, t) / 6;
   auto capped = cap_openings(res.output_surface, {});
   ASSERT_TRUE(capped.ok());
   const double expected = enclosed_volume(capped.value().mesh);

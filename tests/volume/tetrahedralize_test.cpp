@@ -16,6 +16,7 @@
 // names must not clash (remesh_patch.h has a SizeField3D alias).
 #include "core/surface/remesh_patch.h"
 #include "core/volume/size_field3d.h"
+#include "tests/support/tet_volume.h"
 #include "tests/support/volume_inputs.h"
 
 namespace vm {
@@ -83,12 +84,7 @@ Outcome fill_and_check(testing::VolumeInput& in, const FillOptions& options) {
   EXPECT_TRUE(mesh_boundary(m) == want);
   // Same volume as the enclosed one.
   double vol = 0;
-  for (size_t t = 0; t < m.num_tets(); ++t) {
-    const int32_t* v = &m.tets[4 * t];
-    vol += tet_volume6(&m.points[3 * size_t(v[0])], &m.points[3 * size_t(v[1])],
-                       &m.points[3 * size_t(v[2])], &m.points[3 * size_t(v[3])]) /
-           6;
-  }
+  for (size_t t = 0; t < m.num_tets(); ++t) vol += testing::tet_volume6(m, t) / 6;
   const double enclosed = enclosed_volume(surface);
   EXPECT_NEAR(vol, enclosed, 1e-9 * enclosed);
   // Every vertex is used.
