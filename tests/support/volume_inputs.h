@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "core/mesh/surface_mesh.h"
@@ -112,6 +113,16 @@ inline void jitter(std::vector<double>& p, double amount, double R = 0) {
 }
 
 }  // namespace detail
+
+/// n points uniformly random in the cube [-1, 1]^3 (x, y, z a point),
+/// the same for the same seed.
+inline std::vector<double> random_cube_points(int n, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<double> p(3 * size_t(n));
+  for (double& x : p) x = u(rng);
+  return p;
+}
 
 /// Vertices of the icosphere of `levels` subdivisions (radius r, radii
 /// jittered by 1e-7 relative).
