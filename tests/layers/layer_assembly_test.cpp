@@ -202,7 +202,7 @@ void check_assembly(const SurfaceMesh& wall, const LayerMesh& in, const LayerMes
   ASSERT_TRUE(capped_wall.ok());
   double lumen = 0, shell = 0;
   for (size_t t = 0; t < a.mesh.num_tets(); ++t)
-    (a.mesh.tet_region[t] == kLumen ? lumen : shell) += testing::tet_volume6(a.mesh, t) / 6;
+    (a.mesh.tet_region[t] == kLumen ? lumen : shell) += testing::mesh_tet_volume6(a.mesh, t) / 6;
   const double expected = enclosed_volume(capped_wall.value().mesh);
   EXPECT_NEAR(lumen, expected, 1e-9 * expected);
   // Each cap group (inner cap + ring; wall ring) lies in its opening's plane.

@@ -258,7 +258,7 @@ TEST(MeshJob, GrowsTheViscousLayerAndTheVesselWall) {
   // Volumes: lumen + layer = the capped wall's; the vessel wall outside it.
   double lumen = 0, shell = 0;
   for (size_t t = 0; t < res.volume.num_tets(); ++t)
-    (res.tet_part[t] == 2 ? shell : lumen) += testing::tet_volume6(res.volume, t) / 6;
+    (res.tet_part[t] == 2 ? shell : lumen) += testing::mesh_tet_volume6(res.volume, t) / 6;
   auto capped = cap_openings(res.output_surface, {});
   ASSERT_TRUE(capped.ok());
   const double expected = enclosed_volume(capped.value().mesh);

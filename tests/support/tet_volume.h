@@ -12,10 +12,10 @@ namespace vm::testing {
 
 /// Six times the signed volume of tetrahedron t of m (positive for a
 /// vesselmesh tetrahedron: core/mesh/volume_mesh.h).
-inline double tet_volume6(const VolumeMesh& m, size_t t) {
+inline double mesh_tet_volume6(const VolumeMesh& m, size_t t) {
   const int32_t* v = &m.tets[4 * t];
-  return vm::tet_volume6(&m.points[3 * size_t(v[0])], &m.points[3 * size_t(v[1])],
-                         &m.points[3 * size_t(v[2])], &m.points[3 * size_t(v[3])]);
+  return tet_volume6(&m.points[3 * size_t(v[0])], &m.points[3 * size_t(v[1])],
+                     &m.points[3 * size_t(v[2])], &m.points[3 * size_t(v[3])]);
 }
 
 /// The volume of a tetrahedralisation in progress: the sum over its live
@@ -24,8 +24,7 @@ inline double total_volume(const TetMesh& m) {
   double v = 0;
   const auto t = m.tets();
   for (size_t i = 0; i < t.size(); i += 4)
-    v +=
-        vm::tet_volume6(m.point(t[i]), m.point(t[i + 1]), m.point(t[i + 2]), m.point(t[i + 3])) / 6;
+    v += tet_volume6(m.point(t[i]), m.point(t[i + 1]), m.point(t[i + 2]), m.point(t[i + 3])) / 6;
   return v;
 }
 

@@ -13,22 +13,8 @@
 namespace vm {
 namespace {
 
-// The octahedron around the edge (0, 1) as 4 tetrahedra, plus a pyramid.
-TetMesh octahedron() {
-  std::vector<double> p = {0, 0, -1, 0, 0, 1, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0};
-  std::vector<int32_t> t;
-  for (int i = 0; i < 4; ++i) {
-    const int32_t c = 2 + i, d = 2 + (i + 1) % 4;
-    std::array<int32_t, 4> q = {0, 1, c, d};
-    if (tet_volume6(&p[3 * q[0]], &p[3 * q[1]], &p[3 * q[2]], &p[3 * q[3]]) < 0)
-      std::swap(q[2], q[3]);
-    t.insert(t.end(), q.begin(), q.end());
-  }
-  std::vector<uint8_t> fixed(6, 1);
-  auto r = TetMesh::from_arrays(p, t, fixed);
-  EXPECT_TRUE(r.ok()) << r.message();
-  return std::move(r.value());
-}
+// The octahedron around the edge (0, 1) as 4 tetrahedra, every vertex fixed.
+TetMesh octahedron() { return testing::octahedron_tets(1); }
 
 TEST(TetMesh, FromArraysAdjacencyAndRing) {
   TetMesh m = octahedron();

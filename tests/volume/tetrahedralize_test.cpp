@@ -84,7 +84,7 @@ Outcome fill_and_check(testing::VolumeInput& in, const FillOptions& options) {
   EXPECT_TRUE(mesh_boundary(m) == want);
   // Same volume as the enclosed one.
   double vol = 0;
-  for (size_t t = 0; t < m.num_tets(); ++t) vol += testing::tet_volume6(m, t) / 6;
+  for (size_t t = 0; t < m.num_tets(); ++t) vol += testing::mesh_tet_volume6(m, t) / 6;
   const double enclosed = enclosed_volume(surface);
   EXPECT_NEAR(vol, enclosed, 1e-9 * enclosed);
   // Every vertex is used.
