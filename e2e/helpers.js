@@ -51,6 +51,16 @@ export async function meshAgain(page) {
   await expect(page.getByTestId('error')).toBeHidden();
 }
 
+/** Starts meshing the loaded sample at a size that takes a few seconds and
+ * cancels it: the page says so. */
+export async function meshAndCancel(page) {
+  await page.getByTestId('size-value').fill('40'); // a few seconds of work
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('progress')).toBeVisible();
+  await page.getByRole('button', { name: 'Cancel' }).click();
+  await expect(page.getByTestId('error')).toHaveText('Cancelled.');
+}
+
 /** ASCII STL of a closed tetrahedron (4 triangles, 4 vertices, genus 0),
  * one facet inside out. */
 export const TETRA_ASCII = `solid tet
@@ -98,6 +108,12 @@ export async function exportDownload(page) {
   const chunks = [];
   for await (const chunk of await download.createReadStream()) chunks.push(chunk);
   return { name: download.suggestedFilename(), bytes: Buffer.concat(chunks) };
+}
+
+/** The same with the file as text. */
+export async function exportText(page) {
+  const { name, bytes } = await exportDownload(page);
+  return { name, text: bytes.toString() };
 }
 
 let api = null;

@@ -1,19 +1,9 @@
 import { expect, test } from '@playwright/test';
 
-import { loadSample, meshAgain as mesh } from './helpers.js';
+import { exportText, loadSample, meshAgain as mesh } from './helpers.js';
 
 const num = async (page, id) => Number((await page.getByTestId(id).textContent()).replace(/,/g, ''));
 const drawn = async (page) => Number(await page.getByTestId('volume-view').getAttribute('data-triangles'));
-
-async function downloadText(page) {
-  const [download] = await Promise.all([
-    page.waitForEvent('download'),
-    page.getByTestId('export').click(),
-  ]);
-  const chunks = [];
-  for await (const chunk of await download.createReadStream()) chunks.push(chunk);
-  return Buffer.concat(chunks).toString();
-}
 
 const elementCount = (text) => {
   const lines = text.split('\n');
@@ -86,7 +76,7 @@ test('default boundary layer: part colors, the layer in the cut, core gamma_t, l
     'lumen',
   ]);
 
-  const text = await downloadText(page);
+  const { text } = await exportText(page);
   expect(text).toMatch(/^3 \d+ "lumen"$/m);
   expect(text).not.toContain('"boundary_layer"');
   expect(text).not.toContain('"vessel_wall"');
@@ -125,7 +115,7 @@ test('the vessel wall and a separate boundary_layer group', async ({ page }) => 
     'vessel_wall',
   ]);
 
-  const text = await downloadText(page);
+  const { text } = await exportText(page);
   const groups = ['lumen', 'boundary_layer', 'vessel_wall', 'outer_wall', 'wall_inlet', 'wall_outlet_1'];
   for (const group of groups) expect(text).toContain(`"${group}"`);
   expect(elementCount(text)).toBe(Number(await page.getByTestId('remesh-result').getAttribute('data-elements')));
@@ -193,7 +183,7 @@ test('kept prisms: shown split in the cut, written as prisms and quads', async (
   await expect(page.getByTestId('part-legend').locator('li')).toHaveText(['core', 'boundary layer']);
   await expect(view).toHaveAttribute('data-cut-layer', /^[1-9]\d*$/);
   // The file: element blocks of prisms (type 6) and quads (type 3).
-  const text = await downloadText(page);
+  const { text } = await exportText(page);
   const lines = text.split('\n');
   const first = lines.indexOf('$Elements') + 2;
   const types = new Set();

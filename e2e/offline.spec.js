@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { openApp, screenshots, TETRA_ASCII, upload } from './helpers.js';
+import { meshAndCancel, openApp, screenshots, TETRA_ASCII, upload } from './helpers.js';
 import { freePort, startPreview } from './preview.js';
 
 test('no request leaves the origin, and the app works offline once loaded', async ({ page, context }) => {
@@ -62,11 +62,7 @@ test('installed: after one visit the app reloads and meshes with its server stop
   expect(await page.evaluate(() => crossOriginIsolated)).toBe(true); // the cached headers
   await page.getByTestId('load-sample').click();
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
-  await page.getByTestId('size-value').fill('40'); // a few seconds of work
-  await page.getByTestId('remesh').click();
-  await expect(page.getByTestId('progress')).toBeVisible();
-  await page.getByRole('button', { name: 'Cancel' }).click();
-  await expect(page.getByTestId('error')).toHaveText('Cancelled.');
+  await meshAndCancel(page);
   // The restarted worker's script and wasm come from the cache.
   await page.getByTestId('size-value').fill('16');
   await page.getByTestId('remesh').click();

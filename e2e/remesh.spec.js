@@ -3,7 +3,7 @@ import { readFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 
 import { createVesselmesh } from '../wasm/src/vesselmesh.js';
-import { openApp, upload } from './helpers.js';
+import { exportText, openApp, upload } from './helpers.js';
 
 const num = async (page, id) => Number((await page.getByTestId(id).textContent()).replace(/,/g, ''));
 
@@ -36,13 +36,7 @@ test('remesh the sample: quality shown beside the input, the views, export', asy
 
   // Export reuses the meshed result: the same elements in the file (the
   // remeshed wall, the caps and the tetrahedra).
-  const [download] = await Promise.all([
-    page.waitForEvent('download'),
-    page.getByTestId('export').click(),
-  ]);
-  const chunks = [];
-  for await (const chunk of await download.createReadStream()) chunks.push(chunk);
-  const text = Buffer.concat(chunks).toString();
+  const { text } = await exportText(page);
   const lines = text.split('\n');
   const elements = Number(lines[lines.indexOf('$Elements') + 1].split(' ')[1]);
   expect(elements).toBe(Number(await page.getByTestId('remesh-result').getAttribute('data-elements')));

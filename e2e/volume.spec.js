@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { openApp, screenshots } from './helpers.js';
+import { exportText, loadSample, meshAndCancel, openApp, screenshots } from './helpers.js';
 
 const num = async (page, id) => Number((await page.getByTestId(id).textContent()).replace(/,/g, ''));
 const drawn = async (page) => Number(await page.getByTestId('volume-view').getAttribute('data-triangles'));
@@ -46,16 +46,6 @@ function mshTriangleQualities(text) {
     i += n;
   }
   return out;
-}
-
-async function downloadText(page) {
-  const [download] = await Promise.all([
-    page.waitForEvent('download'),
-    page.getByTestId('export').click(),
-  ]);
-  const chunks = [];
-  for await (const chunk of await download.createReadStream()) chunks.push(chunk);
-  return { name: download.suggestedFilename(), text: Buffer.concat(chunks).toString() };
 }
 
 test('mesh the sample with its volume: clipped view, gamma_t histogram, groups, export', async ({ page }) => {
@@ -118,7 +108,7 @@ test('mesh the sample with its volume: clipped view, gamma_t histogram, groups, 
   await expect(view).toBeVisible();
 
   // Export: the volume MSH of what is shown (every group, every element).
-  const { name, text } = await downloadText(page);
+  const { name, text } = await exportText(page);
   expect(name).toBe('sample-bifurcation.msh');
   for (const group of ['2 1 "wall"', '"inlet"', '"outlet_1"', '"outlet_2"']) expect(text).toContain(group);
   expect(text).toMatch(/^3 \d+ "lumen"$/m);
@@ -155,7 +145,7 @@ test('the inlet chosen in the openings list is capped as the inlet', async ({ pa
   await expect(openings.nth(1)).toHaveAttribute('data-cap', 'inlet', { timeout: 60_000 });
   await expect(openings.nth(0)).toHaveAttribute('data-cap', /^outlet_\d$/);
   await expect(page.getByTestId('group-legend').locator('li')).toHaveText(['wall', 'inlet', 'outlet_1', 'outlet_2']);
-  const { text } = await downloadText(page);
+  const { text } = await exportText(page);
   expect(text).toContain('"inlet"');
 });
 
@@ -175,7 +165,7 @@ test('surface only: no volume view; a bad core size is refused and the page keep
   await expect(page.getByTestId('volume-result')).toBeHidden();
   await expect(page.getByTestId('group-legend')).toBeHidden();
   await expect(page.getByTestId('opening-item').nth(0)).toHaveAttribute('data-cap', '');
-  const surface = await downloadText(page);
+  const surface = await exportText(page);
   expect(surface.text).toContain('"wall"');
   expect(surface.text).not.toContain('"lumen"');
 
@@ -194,16 +184,8 @@ test('surface only: no volume view; a bad core size is refused and the page keep
 });
 
 test('a volume mesh can be cancelled; the next one works', async ({ page }) => {
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(e.message));
-  await openApp(page);
-  await page.getByTestId('load-sample').click();
-  await expect(page.getByTestId('stat-openings')).toHaveText('3');
-  await page.getByTestId('size-value').fill('40'); // a few seconds of work
-  await page.getByTestId('remesh').click();
-  await expect(page.getByTestId('progress')).toBeVisible();
-  await page.getByRole('button', { name: 'Cancel' }).click();
-  await expect(page.getByTestId('error')).toHaveText('Cancelled.');
+  const { errors } = await loadSample(page);
+  await meshAndCancel(page);
   await expect(page.getByTestId('remesh-result')).toBeHidden();
   await page.getByTestId('size-value').fill('16');
   await page.getByTestId('remesh').click();

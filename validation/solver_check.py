@@ -176,36 +176,35 @@ def set_up_simplefoam(case, speed):
                                                "uniform (0 0 0)", u_bc))
     write(os.path.join(case, "0", "p"), field("volScalarField", "p", "[0 2 -2 0 0 0 0]",
                                                "uniform 0", p_bc))
-    write(os.path.join(case, "constant", "transportProperties"),
-          header("dictionary", "transportProperties", "constant") +
-          f"transportModel  Newtonian;\n\nnu              {NU_BLOOD};\n")
-    write(os.path.join(case, "constant", "turbulenceProperties"),
-          header("dictionary", "turbulenceProperties", "constant") + "simulationType  laminar;\n")
-    write(os.path.join(case, "system", "controlDict"),
-          header("dictionary", "controlDict", "system") +
-          "application     simpleFoam;\nstartFrom       startTime;\nstartTime       0;\n"
-          "stopAt          endTime;\nendTime         1000;\ndeltaT          1;\n"
-          "writeControl    timeStep;\nwriteInterval   1000;\npurgeWrite      0;\n"
-          "writeFormat     ascii;\nwritePrecision  8;\ntimeFormat      general;\n"
-          "timePrecision   6;\nrunTimeModifiable false;\n")
-    write(os.path.join(case, "system", "fvSchemes"),
-          header("dictionary", "fvSchemes", "system") +
-          "ddtSchemes { default steadyState; }\n"
-          "gradSchemes { default Gauss linear; }\n"
-          "divSchemes\n{\n    default none;\n    div(phi,U) bounded Gauss linearUpwind grad(U);\n"
-          "    div((nuEff*dev2(T(grad(U))))) Gauss linear;\n}\n"
-          "laplacianSchemes { default Gauss linear limited corrected 0.5; }\n"
-          "interpolationSchemes { default linear; }\n"
-          "snGradSchemes { default limited corrected 0.5; }\n")
-    write(os.path.join(case, "system", "fvSolution"),
-          header("dictionary", "fvSolution", "system") +
-          "solvers\n{\n"
-          "    p { solver GAMG; smoother GaussSeidel; tolerance 1e-8; relTol 0.05; }\n"
-          "    U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-9; relTol 0.1; }\n"
-          "}\n"
-          "SIMPLE\n{\n    nNonOrthogonalCorrectors 1;\n    consistent yes;\n"
-          "    residualControl { p 1e-5; U 1e-6; }\n}\n"
-          "relaxationFactors { equations { U 0.9; \".*\" 0.9; } }\n")
+
+    def dictionary(location, obj, body):
+        write(os.path.join(case, location, obj), header("dictionary", obj, location) + body)
+
+    dictionary("constant", "transportProperties",
+               f"transportModel  Newtonian;\n\nnu              {NU_BLOOD};\n")
+    dictionary("constant", "turbulenceProperties", "simulationType  laminar;\n")
+    dictionary("system", "controlDict",
+               "application     simpleFoam;\nstartFrom       startTime;\nstartTime       0;\n"
+               "stopAt          endTime;\nendTime         1000;\ndeltaT          1;\n"
+               "writeControl    timeStep;\nwriteInterval   1000;\npurgeWrite      0;\n"
+               "writeFormat     ascii;\nwritePrecision  8;\ntimeFormat      general;\n"
+               "timePrecision   6;\nrunTimeModifiable false;\n")
+    dictionary("system", "fvSchemes",
+               "ddtSchemes { default steadyState; }\n"
+               "gradSchemes { default Gauss linear; }\n"
+               "divSchemes\n{\n    default none;\n    div(phi,U) bounded Gauss linearUpwind grad(U);\n"
+               "    div((nuEff*dev2(T(grad(U))))) Gauss linear;\n}\n"
+               "laplacianSchemes { default Gauss linear limited corrected 0.5; }\n"
+               "interpolationSchemes { default linear; }\n"
+               "snGradSchemes { default limited corrected 0.5; }\n")
+    dictionary("system", "fvSolution",
+               "solvers\n{\n"
+               "    p { solver GAMG; smoother GaussSeidel; tolerance 1e-8; relTol 0.05; }\n"
+               "    U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-9; relTol 0.1; }\n"
+               "}\n"
+               "SIMPLE\n{\n    nNonOrthogonalCorrectors 1;\n    consistent yes;\n"
+               "    residualControl { p 1e-5; U 1e-6; }\n}\n"
+               "relaxationFactors { equations { U 0.9; \".*\" 0.9; } }\n")
 
 
 def run_simplefoam(name, case, reynolds):

@@ -1,40 +1,14 @@
-// Expansion arithmetic after Shewchuk 1997 (two-sum, two-product with
-// Dekker's split, expansion sum with zero elimination, scale-expansion).
+// Expansion arithmetic after Shewchuk 1997 (expansion sum with zero
+// elimination, scale-expansion) on the error-free transformations of
+// error_free.h.
 #include "core/geom/expansion.h"
 
 #include <cmath>
 
+#include "core/geom/error_free.h"
+
 namespace vm::exact {
 namespace {
-
-// x + y = a + b exactly, |y| <= ulp(x)/2.
-inline void two_sum(double a, double b, double& x, double& y) {
-  x = a + b;
-  double bv = x - a;
-  double av = x - bv;
-  y = (a - av) + (b - bv);
-}
-
-// Dekker's split: a = hi + lo, each with at most 26 significant bits.
-inline void split(double a, double& hi, double& lo) {
-  constexpr double kSplitter = 134217729.0;  // 2^27 + 1
-  double c = kSplitter * a;
-  double big = c - a;
-  hi = c - big;
-  lo = a - hi;
-}
-
-// x + y = a * b exactly.
-inline void two_product(double a, double b, double& x, double& y) {
-  x = a * b;
-  double ahi, alo, bhi, blo;
-  split(a, ahi, alo);
-  split(b, bhi, blo);
-  double err1 = x - ahi * bhi;
-  double err2 = err1 - alo * bhi;
-  double err3 = err2 - ahi * blo;
-  y = alo * blo - err3;
-}
 
 // Sum of two expansions (each increasing, non-overlapping), zeros removed.
 std::vector<double> sum(const std::vector<double>& e, const std::vector<double>& f) {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/geom/error_free.h"
 #include "core/geom/expansion.h"
 
 namespace vm {
@@ -89,27 +90,8 @@ double insphere_exact(const double* a, const double* b, const double* c, const d
 // cases. What stage B cannot decide goes to the general exact path above.
 namespace fixed {
 
-inline void two_sum(double a, double b, double& x, double& y) {
-  x = a + b;
-  double bv = x - a;
-  double av = x - bv;
-  y = (a - av) + (b - bv);
-}
-
-inline void split(double a, double& hi, double& lo) {
-  double c = 134217729.0 * a;  // 2^27 + 1
-  double big = c - a;
-  hi = c - big;
-  lo = a - hi;
-}
-
-inline void two_product(double a, double b, double& x, double& y) {
-  x = a * b;
-  double ahi, alo, bhi, blo;
-  split(a, ahi, alo);
-  split(b, bhi, blo);
-  y = alo * blo - (((x - ahi * bhi) - alo * bhi) - ahi * blo);
-}
+using exact::two_product;
+using exact::two_sum;
 
 inline bool exact_diff(double a, double b, double& d) {
   double y;

@@ -176,8 +176,12 @@ class Reader {
   Result<std::vector<uint8_t>> binary_bytes(const ArrayRef& a, const DataType& t,
                                             std::optional<uint64_t> expected_values);
   Result<const DataType*> type_of(const ArrayRef& a);
-  Status ascii_tokens(const ArrayRef& a, std::optional<uint64_t> expected,
-                      std::vector<std::string_view>& tokens);
+  // The values of an ascii array, each token read by `parse` (parse_double or
+  // parse_int64); `what` names a value in the error for a token it rejects.
+  template <typename T>
+  Status ascii_values(const ArrayRef& a, std::optional<uint64_t> expected,
+                      bool (*parse)(std::string_view, T&), const char* what,
+                      std::vector<T>& values);
 
   std::span<const uint8_t> bytes_;
   std::string_view text_;
@@ -617,8 +621,11 @@ Result<std::vector<uint8_t>> Reader::binary_bytes(const ArrayRef& a, const DataT
   return out;
 }
 
-Status Reader::ascii_tokens(const ArrayRef& a, std::optional<uint64_t> expected,
-                            std::vector<std::string_view>& tokens) {
+template <typename T>
+Status Reader::ascii_values(const ArrayRef& a, std::optional<uint64_t> expected,
+                            bool (*parse)(std::string_view, T&), const char* what,
+                            std::vector<T>& values) {
+  std::vector<std::string_view> tokens;
   size_t i = 0, n = a.text.size();
   while (true) {
     while (i < n && is_text_space(a.text[i])) ++i;
@@ -631,6 +638,13 @@ Status Reader::ascii_tokens(const ArrayRef& a, std::optional<uint64_t> expected,
     return Status::Error("ascii array " + a.where + " has " + num(tokens.size()) +
                          " values but the header declares " + num(*expected));
   }
+  values.resize(tokens.size());
+  for (size_t k = 0; k < tokens.size(); ++k) {
+    if (!parse(tokens[k], values[k])) {
+      return Status::Error("ascii array " + a.where + ": value " + num(k + 1) + " " +
+                           quoted(tokens[k]) + " is not " + what);
+    }
+  }
   return Status::Ok();
 }
 
@@ -639,16 +653,8 @@ Result<std::vector<double>> Reader::doubles(const ArrayRef& a, std::optional<uin
   if (!t.ok()) return t.status();
   std::vector<double> v;
   if (a.format == ArrayFormat::kAscii) {
-    std::vector<std::string_view> tokens;
-    Status st = ascii_tokens(a, expected, tokens);
+    Status st = ascii_values(a, expected, parse_double, "a number", v);
     if (!st.ok()) return st;
-    v.resize(tokens.size());
-    for (size_t i = 0; i < tokens.size(); ++i) {
-      if (!parse_double(tokens[i], v[i])) {
-        return Status::Error("ascii array " + a.where + ": value " + num(i + 1) + " " +
-                             quoted(tokens[i]) + " is not a number");
-      }
-    }
     return v;
   }
   Result<std::vector<uint8_t>> b = binary_bytes(a, *t.value(), expected);
@@ -668,16 +674,8 @@ Result<std::vector<int64_t>> Reader::ints(const ArrayRef& a, std::optional<uint6
   }
   std::vector<int64_t> v;
   if (a.format == ArrayFormat::kAscii) {
-    std::vector<std::string_view> tokens;
-    Status st = ascii_tokens(a, expected, tokens);
+    Status st = ascii_values(a, expected, parse_int64, "an integer", v);
     if (!st.ok()) return st;
-    v.resize(tokens.size());
-    for (size_t i = 0; i < tokens.size(); ++i) {
-      if (!parse_int64(tokens[i], v[i])) {
-        return Status::Error("ascii array " + a.where + ": value " + num(i + 1) + " " +
-                             quoted(tokens[i]) + " is not an integer");
-      }
-    }
     return v;
   }
   Result<std::vector<uint8_t>> b = binary_bytes(a, *t.value(), expected);

@@ -20,6 +20,7 @@
 #include "core/surface/caps.h"
 #include "core/surface/remesh_surface.h"
 #include "core/surface/vessel_radius.h"
+#include "tests/support/phantoms.h"
 #include "tests/support/remesh_options.h"
 #include "tests/support/test_meshes.h"
 
@@ -425,13 +426,7 @@ TEST(Layers, BentTubeShrinksOnlyWhereNeeded) {
 // The bifurcation phantom remeshed at a uniform size.
 const SurfaceMesh& remeshed_bifurcation() {
   static const SurfaceMesh wall = [] {
-    PhantomOptions po;
-    po.kind = PhantomKind::kBifurcation;
-    po.voxel = 0.15;
-    po.noise = 0.3;
-    auto in = make_vessel_phantom(po);
-    EXPECT_TRUE(in.ok()) << in.message();
-    auto out = remesh_surface(in.value(), testing::uniform_remesh(0.15));
+    auto out = remesh_surface(testing::noisy_bifurcation(0.15), testing::uniform_remesh(0.15));
     EXPECT_TRUE(out.ok()) << out.message();
     return out.ok() ? out.value().mesh : SurfaceMesh{};
   }();

@@ -20,8 +20,10 @@
 #include "core/surface/caps.h"
 #include "core/surface/remesh_surface.h"
 #include "core/volume/boundary_recovery.h"
+#include "tests/support/phantoms.h"
 #include "tests/support/remesh_options.h"
 #include "tests/support/test_meshes.h"
+#include "tests/support/tet_volume.h"
 
 namespace vm {
 namespace {
@@ -199,13 +201,8 @@ void check_assembly(const SurfaceMesh& wall, const LayerMesh& in, const LayerMes
   auto capped_wall = cap_openings(wall, {});
   ASSERT_TRUE(capped_wall.ok());
   double lumen = 0, shell = 0;
-  for (size_t t = 0; t < a.mesh.num_tets(); ++t) {
-    const int32_t* v = &a.mesh.tets[4 * t];
-    const double v6 =
-        tet_volume6(&a.mesh.points[3 * size_t(v[0])], &a.mesh.points[3 * size_t(v[1])],
-                    &a.mesh.points[3 * size_t(v[2])], &a.mesh.points[3 * size_t(v[3])]);
-    (a.mesh.tet_region[t] == kLumen ? lumen : shell) += v6 / 6;
-  }
+  for (size_t t = 0; t < a.mesh.num_tets(); ++t)
+    (a.mesh.tet_region[t] == kLumen ? lumen : shell) += testing::mesh_tet_volume6(a.mesh, t) / 6;
   const double expected = enclosed_volume(capped_wall.value().mesh);
   EXPECT_NEAR(lumen, expected, 1e-9 * expected);
   // Each cap group (inner cap + ring; wall ring) lies in its opening's plane.
@@ -252,13 +249,7 @@ TEST(LayerAssembly, TubeLumenAndVesselWall) {
 }
 
 TEST(LayerAssembly, BifurcationPhantomLumenAndVesselWall) {
-  PhantomOptions po;
-  po.kind = PhantomKind::kBifurcation;
-  po.voxel = 0.15;
-  po.noise = 0.3;
-  auto raw = make_vessel_phantom(po);
-  ASSERT_TRUE(raw.ok()) << raw.message();
-  auto remeshed = remesh_surface(raw.value(), testing::uniform_remesh(0.2));
+  auto remeshed = remesh_surface(testing::noisy_bifurcation(0.15), testing::uniform_remesh(0.2));
   ASSERT_TRUE(remeshed.ok()) << remeshed.message();
   const SurfaceMesh& wall = remeshed.value().mesh;
   const std::vector<double> radius = chord_radius(wall);

@@ -24,14 +24,9 @@ TEST(ChordRadius, ExactOnTubeAndTorus) {
 }
 
 TEST(ChordRadius, RemeshedBifurcationNearTheOpenings) {
-  PhantomOptions po;
-  po.kind = PhantomKind::kBifurcation;
-  po.voxel = 0.15;
-  po.noise = 0.3;
   PhantomTruth truth;
-  auto raw = make_vessel_phantom(po, &truth);
-  ASSERT_TRUE(raw.ok()) << raw.message();
-  auto remeshed = remesh_surface(raw.value(), testing::uniform_remesh(0.15));
+  auto remeshed =
+      remesh_surface(testing::noisy_bifurcation(0.15, &truth), testing::uniform_remesh(0.15));
   ASSERT_TRUE(remeshed.ok()) << remeshed.message();
   const SurfaceMesh& wall = remeshed.value().mesh;
   const std::vector<double> radius = chord_radius(wall);

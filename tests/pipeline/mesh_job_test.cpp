@@ -15,6 +15,7 @@
 #include "core/pipeline/write_outputs.h"
 #include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
+#include "tests/support/tet_volume.h"
 
 namespace vm {
 namespace {
@@ -102,16 +103,11 @@ TEST(MeshJob, SeveralComponentsAreRefusedUnlessLargestIsKept) {
 }
 
 TEST(MeshJob, RemeshesKeepingTopologyAndWritesEveryTriangleAsWall) {
-  // A noisy bifurcation phantom: 3 openings, genus 0.
-  PhantomOptions po;
-  po.kind = PhantomKind::kBifurcation;
-  po.noise = 0.3;
-  auto phantom = make_vessel_phantom(po);
-  ASSERT_TRUE(phantom.ok()) << phantom.message();
+  const SurfaceMesh phantom = testing::noisy_bifurcation(0.1);
   MeshJobOptions o;
   ASSERT_TRUE(set_option_text(o, "size", "0.15").ok());
   o.volume = false;
-  auto r = run_mesh_job(write_stl_binary(phantom.value()), o);
+  auto r = run_mesh_job(write_stl_binary(phantom), o);
   ASSERT_TRUE(r.ok()) << r.message();
   const MeshJobResult& res = r.value();
   EXPECT_TRUE(res.remeshed);
@@ -172,15 +168,11 @@ TEST(MeshJob, MeshesTheLumenWithNamedPlanarCaps) {
   // The bifurcation phantom: 3 openings, so inlet, outlet_1, outlet_2; the
   // volume is checked (positive, conforming, bounded by wall + caps) and
   // fills exactly the capped surface.
-  PhantomOptions po;
-  po.kind = PhantomKind::kBifurcation;
-  po.noise = 0.3;
-  auto phantom = make_vessel_phantom(po);
-  ASSERT_TRUE(phantom.ok()) << phantom.message();
+  const SurfaceMesh phantom = testing::noisy_bifurcation(0.1);
   MeshJobOptions o;
   ASSERT_TRUE(set_option_text(o, "size", "0.2").ok());
   o.verify = true;
-  auto r = run_mesh_job(write_stl_binary(phantom.value()), o);
+  auto r = run_mesh_job(write_stl_binary(phantom), o);
   ASSERT_TRUE(r.ok()) << r.message();
   const MeshJobResult& res = r.value();
   std::vector<std::string> names;
@@ -214,7 +206,7 @@ TEST(MeshJob, MeshesTheLumenWithNamedPlanarCaps) {
   }
   // --inlet picks another opening: the inlet is then at that opening.
   ASSERT_TRUE(set_option_text(o, "inlet", "3").ok());
-  auto r3 = run_mesh_job(write_stl_binary(phantom.value()), o);
+  auto r3 = run_mesh_job(write_stl_binary(phantom), o);
   ASSERT_TRUE(r3.ok()) << r3.message();
   const auto& in3 = r3.value().surface.topology.openings[2].centroid;
   const auto& inlet3 = r3.value().capped.caps[0].centroid;
@@ -222,7 +214,7 @@ TEST(MeshJob, MeshesTheLumenWithNamedPlanarCaps) {
   EXPECT_LT(std::hypot(in3[0] - inlet3[0], in3[1] - inlet3[1], in3[2] - inlet3[2]),
             0.5 * r3.value().surface.topology.openings[2].radius);
   ASSERT_TRUE(set_option_text(o, "inlet", "4").ok());
-  auto r4 = run_mesh_job(write_stl_binary(phantom.value()), o);
+  auto r4 = run_mesh_job(write_stl_binary(phantom), o);
   ASSERT_FALSE(r4.ok());
   EXPECT_EQ(r4.status().kind(), ErrorKind::kBadOption) << r4.message();
   EXPECT_EQ(r4.status().option(), "inlet");
@@ -234,17 +226,14 @@ TEST(MeshJob, GrowsTheViscousLayerAndTheVesselWall) {
   // The bifurcation phantom with 4 viscous layers (default) and a vessel
   // wall of 0.1 R in 2 layers: named groups, a conforming mesh whose lumen
   // fills the capped wall, every layer present, ring caps in the cap planes.
-  PhantomOptions po;
-  po.kind = PhantomKind::kBifurcation;
-  auto phantom = make_vessel_phantom(po);
-  ASSERT_TRUE(phantom.ok()) << phantom.message();
+  const SurfaceMesh phantom = testing::phantom(PhantomKind::kBifurcation, true, 0.1);
   MeshJobOptions o;
   ASSERT_TRUE(set_option_text(o, "size", "0.2").ok());
   ASSERT_TRUE(set_option_text(o, "wall_thickness", "0.1").ok());
   ASSERT_TRUE(set_option_text(o, "wall_layers", "2").ok());
   o.tag_layer = true;
   o.verify = true;
-  auto r = run_mesh_job(write_stl_binary(phantom.value()), o);
+  auto r = run_mesh_job(write_stl_binary(phantom), o);
   ASSERT_TRUE(r.ok()) << r.message();
   const MeshJobResult& res = r.value();
   std::vector<std::string> names;
@@ -268,13 +257,8 @@ TEST(MeshJob, GrowsTheViscousLayerAndTheVesselWall) {
   EXPECT_GE(res.core_quality_stats.min, 0.2);
   // Volumes: lumen + layer = the capped wall's; the vessel wall outside it.
   double lumen = 0, shell = 0;
-  for (size_t t = 0; t < res.volume.num_tets(); ++t) {
-    const int32_t* v = &res.volume.tets[4 * t];
-    const double v6 =
-        tet_volume6(&res.volume.points[3 * size_t(v[0])], &res.volume.points[3 * size_t(v[1])],
-                    &res.volume.points[3 * size_t(v[2])], &res.volume.points[3 * size_t(v[3])]);
-    (res.tet_part[t] == 2 ? shell : lumen) += v6 / 6;
-  }
+  for (size_t t = 0; t < res.volume.num_tets(); ++t)
+    (res.tet_part[t] == 2 ? shell : lumen) += testing::mesh_tet_volume6(res.volume, t) / 6;
   auto capped = cap_openings(res.output_surface, {});
   ASSERT_TRUE(capped.ok());
   const double expected = enclosed_volume(capped.value().mesh);
@@ -283,7 +267,7 @@ TEST(MeshJob, GrowsTheViscousLayerAndTheVesselWall) {
   EXPECT_LT(shell, 0.4 * expected);
   // Prisms kept: the same lumen, prisms and ring quads instead of split tets.
   o.keep_prisms = true;
-  auto kept = run_mesh_job(write_stl_binary(phantom.value()), o);
+  auto kept = run_mesh_job(write_stl_binary(phantom), o);
   ASSERT_TRUE(kept.ok()) << kept.message();
   const VolumeMesh& km = kept.value().volume;
   EXPECT_GE(km.num_prisms(), 6 * nt);  // 4 + 2 layers over every wall triangle
@@ -299,7 +283,7 @@ TEST(MeshJob, GrowsTheViscousLayerAndTheVesselWall) {
   // Without layers: no layer part, and --layers 0 is accepted.
   ASSERT_TRUE(set_option_text(o, "layers", "0").ok());
   ASSERT_TRUE(set_option_text(o, "wall_layers", "0").ok());
-  auto plain = run_mesh_job(write_stl_binary(phantom.value()), o);
+  auto plain = run_mesh_job(write_stl_binary(phantom), o);
   ASSERT_TRUE(plain.ok()) << plain.message();
   for (uint8_t p : plain.value().tet_part) ASSERT_EQ(p, 0);
   // Bad values are refused with the option's name.
@@ -381,14 +365,7 @@ namespace vm {
 namespace {
 
 TEST(MeshJob, ACappedModelGetsItsCapsBackAsNamedOpenings) {
-  PhantomOptions po;
-  po.kind = PhantomKind::kBifurcation;
-  po.voxel = 0.12;
-  po.noise = 0.3;
-  po.flat_caps = true;
-  auto phantom = make_vessel_phantom(po);
-  ASSERT_TRUE(phantom.ok());
-  const std::vector<uint8_t> bytes = write_stl_binary(phantom.value());
+  const std::vector<uint8_t> bytes = write_stl_binary(testing::flat_capped_bifurcation(0.12));
   MeshJobOptions o;
   ASSERT_TRUE(set_option_text(o, "size", "0.3").ok());
   ASSERT_TRUE(set_option_text(o, "layers", "2").ok());

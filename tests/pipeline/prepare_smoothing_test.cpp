@@ -22,9 +22,7 @@ std::vector<uint8_t> binary_stl(PhantomKind kind, double voxel) {
   o.kind = kind;
   o.voxel = voxel;
   o.binary = true;
-  auto r = make_vessel_phantom(o);
-  EXPECT_TRUE(r.ok()) << r.message();
-  return write_stl_binary(r.ok() ? r.value() : SurfaceMesh{});
+  return write_stl_binary(testing::phantom(o));
 }
 
 PrepareOptions smoothing(const char* text) {

@@ -9,6 +9,7 @@
 #include "core/io/stl.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/prepare_surface.h"
+#include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -21,9 +22,7 @@ std::vector<uint8_t> closed_phantom_stl(PhantomKind kind, double noise, bool fla
   o.noise = noise;
   o.open_ends = flat_caps;
   o.flat_caps = flat_caps;
-  auto m = make_vessel_phantom(o);
-  EXPECT_TRUE(m.ok()) << m.message();
-  return write_stl_binary(m.ok() ? m.value() : SurfaceMesh{});
+  return write_stl_binary(testing::phantom(o));
 }
 
 bool has_warning(const PreparedSurface& s, const std::string& text) {
@@ -179,8 +178,9 @@ TEST(PrepareSpecks, SmallSeparatePiecesAreRemovedSayingWhere) {
   EXPECT_EQ(r.value().topology.components, 1);
   EXPECT_EQ(r.value().mesh.num_triangles(), size_t(2 * 32 * 16));
   EXPECT_LT(r.value().box.diagonal(), 10);
-  EXPECT_TRUE(has_warning(r.value(), "removed 2 small separate pieces (5 triangles, each under 1% "
-                                     "of the surface), e.g. at ("));
+  EXPECT_TRUE(has_warning(r.value(),
+                          "removed 2 small separate pieces (5 triangles, each under 1% "
+                          "of the surface), e.g. at ("));
   // A second vessel of its own size is no speck: several components remain.
   SurfaceMesh two = testing::open_tube(32, 16, 1.0, 6.0);
   m = two;

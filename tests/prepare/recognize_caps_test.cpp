@@ -110,16 +110,10 @@ TEST(RecognizeCaps, RoundedEndsAndStaircasesHaveNoCaps) {
 }
 
 TEST(RecognizeCaps, FlatCappedPhantomGivesOneCapPerVesselEnd) {
-  PhantomOptions o;
-  o.kind = PhantomKind::kBifurcation;
-  o.voxel = 0.1;
-  o.noise = 0.3;
-  o.flat_caps = true;
   PhantomTruth truth;
-  auto m = make_vessel_phantom(o, &truth);
-  ASSERT_TRUE(m.ok()) << m.message();
-  ASSERT_TRUE(analyze_topology(m.value()).closed);
-  const CapRecognition r = recognize(m.value());
+  const SurfaceMesh m = testing::flat_capped_bifurcation(0.1, &truth);
+  ASSERT_TRUE(analyze_topology(m).closed);
+  const CapRecognition r = recognize(m);
   ASSERT_EQ(r.caps.size(), truth.opening_centers.size());
   for (const RecognizedCap& c : r.caps) {
     const size_t i = testing::nearest_truth_opening(truth, c.centroid.data());

@@ -30,9 +30,7 @@ SurfaceMesh binary_phantom(PhantomKind kind, double voxel, bool open_ends = true
   o.binary = true;
   o.open_ends = open_ends;
   o.flat_caps = flat_caps;
-  auto r = make_vessel_phantom(o);
-  EXPECT_TRUE(r.ok()) << r.message();
-  return r.ok() ? r.value() : SurfaceMesh{};
+  return testing::phantom(o);
 }
 
 /// Marching cubes on the binary mask of a ball of radius r (voxel h).

@@ -8,6 +8,7 @@
 #include "core/mesh/topology.h"
 #include "core/phantom/vessel_phantom.h"
 #include "tests/support/implicit_vessels.h"
+#include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -171,15 +172,8 @@ TEST(VesselEnds, ClipDistanceMovesTheCut) {
 
 TEST(VesselEnds, FlatEndsAreEndsToo) {
   // A capped (flat-ended) bifurcation, its caps kept as wall.
-  PhantomOptions o;
-  o.kind = PhantomKind::kBifurcation;
-  o.voxel = 0.1;
-  o.noise = 0.3;
-  o.flat_caps = true;
   PhantomTruth truth;
-  auto m = make_vessel_phantom(o, &truth);
-  ASSERT_TRUE(m.ok()) << m.message();
-  const VesselEnds found = find_vessel_ends(m.value());
+  const VesselEnds found = find_vessel_ends(testing::flat_capped_bifurcation(0.1, &truth));
   ASSERT_EQ(found.ends.size(), truth.opening_centers.size());
   for (const VesselEnd& e : found.ends) {
     size_t best = 0;

@@ -12,16 +12,45 @@
 
 namespace vm::testing {
 
-/// A generated vessel surface (empty, with a test failure, on error).
+/// A generated vessel surface (empty, with a test failure, on error); its
+/// truth in `truth` when given.
+inline SurfaceMesh phantom(const PhantomOptions& o, PhantomTruth* truth = nullptr) {
+  auto r = make_vessel_phantom(o, truth);
+  EXPECT_TRUE(r.ok()) << r.message();
+  return r.ok() ? r.value() : SurfaceMesh{};
+}
+
+/// The same for the options that most tests vary.
 inline SurfaceMesh phantom(PhantomKind kind, bool open_ends, double voxel, double noise = 0) {
   PhantomOptions o;
   o.kind = kind;
   o.open_ends = open_ends;
   o.voxel = voxel;
   o.noise = noise;
-  auto r = make_vessel_phantom(o);
-  EXPECT_TRUE(r.ok()) << r.message();
-  return r.ok() ? r.value() : SurfaceMesh{};
+  return phantom(o);
+}
+
+/// The options of the noisy bifurcation: 3 openings, genus 0, voxel noise
+/// 0.3, voxel size `voxel`.
+inline PhantomOptions noisy_bifurcation_options(double voxel) {
+  PhantomOptions o;
+  o.kind = PhantomKind::kBifurcation;
+  o.voxel = voxel;
+  o.noise = 0.3;
+  return o;
+}
+
+/// The noisy bifurcation phantom (open ends).
+inline SurfaceMesh noisy_bifurcation(double voxel, PhantomTruth* truth = nullptr) {
+  return phantom(noisy_bifurcation_options(voxel), truth);
+}
+
+/// A capped model: the noisy bifurcation with its three cut ends closed by
+/// flat caps (closed, genus 0).
+inline SurfaceMesh flat_capped_bifurcation(double voxel, PhantomTruth* truth = nullptr) {
+  PhantomOptions o = noisy_bifurcation_options(voxel);
+  o.flat_caps = true;
+  return phantom(o, truth);
 }
 
 /// Index of the truth opening whose center is nearest to `centroid`.

@@ -5,14 +5,20 @@
 // torus whose fine surface triangles happen to be Delaunay faces.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "core/mesh/surface_mesh.h"
+#include "core/mesh/volume_mesh.h"
 #include "core/volume/delaunay3d.h"
+#include "core/volume/tet_mesh.h"
 #include "core/volume/tet_topology.h"
 #include "tests/support/icosphere.h"
 
@@ -113,6 +119,16 @@ inline void jitter(std::vector<double>& p, double amount, double R = 0) {
 
 }  // namespace detail
 
+/// n points uniformly random in the cube [-1, 1]^3 (x, y, z a point),
+/// the same for the same seed.
+inline std::vector<double> random_cube_points(int n, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<double> p(3 * size_t(n));
+  for (double& x : p) x = u(rng);
+  return p;
+}
+
 /// Vertices of the icosphere of `levels` subdivisions (radius r, radii
 /// jittered by 1e-7 relative).
 inline std::vector<double> sphere_points(int levels, double r = 1.0) {
@@ -202,6 +218,23 @@ inline bool torus_input(int nu, int nv, double R, double r, VolumeInput* out) {
   dk.for_each_finite_tet([&](int32_t t) { dk.set_tag(t, outside[size_t(t)] ? 0 : 1); });
   detail::fill_surface_and_sizes(*out);
   return out->surface.num_triangles() == tris.size() / 3;
+}
+
+/// The octahedron of vertices (0, 0, -1), (0, 0, 1) and the unit square
+/// around the z axis, as the 4 positive tetrahedra around its edge (0, 1),
+/// every vertex flagged `fixed` (a test failure on error).
+inline TetMesh octahedron_tets(uint8_t fixed) {
+  std::vector<double> p = {0, 0, -1, 0, 0, 1, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0};
+  std::vector<int32_t> t;
+  for (int i = 0; i < 4; ++i) {
+    std::array<int32_t, 4> q = {0, 1, 2 + i, 2 + (i + 1) % 4};
+    if (tet_volume6(&p[3 * q[0]], &p[3 * q[1]], &p[3 * q[2]], &p[3 * q[3]]) < 0)
+      std::swap(q[2], q[3]);
+    t.insert(t.end(), q.begin(), q.end());
+  }
+  auto r = TetMesh::from_arrays(p, t, std::vector<uint8_t>(6, fixed));
+  EXPECT_TRUE(r.ok()) << r.message();
+  return std::move(r.value());
 }
 
 }  // namespace vm::testing

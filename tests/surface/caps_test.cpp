@@ -293,16 +293,11 @@ TEST(Caps, NonPlanarRimsAreProjectedAndReported) {
 }
 
 TEST(Caps, RemeshedBifurcationGetsThreeNamedCaps) {
-  PhantomOptions po;
-  po.kind = PhantomKind::kBifurcation;
-  po.voxel = 0.15;
-  po.noise = 0.3;
   PhantomTruth truth;
-  auto in = make_vessel_phantom(po, &truth);
-  ASSERT_TRUE(in.ok()) << in.message();
+  const SurfaceMesh in = testing::noisy_bifurcation(0.15, &truth);
   ASSERT_EQ(truth.openings, 3);
   const double h = 0.2;
-  auto remeshed = remesh_surface(in.value(), testing::uniform_remesh(h));
+  auto remeshed = remesh_surface(in, testing::uniform_remesh(h));
   ASSERT_TRUE(remeshed.ok()) << remeshed.message();
   const SurfaceMesh& wall = remeshed.value().mesh;
   const std::vector<double> sizes(wall.num_vertices(), h);
@@ -327,8 +322,8 @@ TEST(Caps, RemeshedBifurcationGetsThreeNamedCaps) {
     max_projection = std::max(max_projection, cap.max_projection_distance);
   const std::vector<double> wall_points(c.mesh.points.begin(),
                                         c.mesh.points.begin() + 3 * long(c.wall_vertices));
-  const DistanceReport d = distances_to_surface(in.value(), wall_points);
-  EXPECT_LE(d.max, max_projection + 1e-6 * bounding_box(in.value().points).diagonal());
+  const DistanceReport d = distances_to_surface(in, wall_points);
+  EXPECT_LE(d.max, max_projection + 1e-6 * bounding_box(in.points).diagonal());
   EXPECT_LT(max_projection, 0.5 * h);
   // Small rims (about 20 vertices) lower the mean: a larger share of the
   // triangles touches the fixed rim.

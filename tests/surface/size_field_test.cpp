@@ -45,9 +45,7 @@ SurfaceMesh noisy_phantom(PhantomKind kind, PhantomTruth* truth = nullptr) {
   o.kind = kind;
   o.voxel = 0.1;
   o.noise = 0.3;
-  auto r = make_vessel_phantom(o, truth);
-  EXPECT_TRUE(r.ok()) << r.message();
-  return r.ok() ? r.value() : SurfaceMesh{};
+  return testing::phantom(o, truth);
 }
 
 TEST(SizeField, UniformIsConstant) {
@@ -251,11 +249,14 @@ TEST(SizeField, InvalidOptionsAreErrors) {
   const SurfaceMesh tube = testing::open_tube(16, 8);
   auto fails = [&](const SizeOptions& o) { return !vertex_sizes(tube, o).ok(); };
   const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
-  for (double s : {0.0, -1.0, nan, inf}) {
+  auto uniform = [](double size) {
     SizeOptions o;
     o.mode = SizeMode::kUniform;
-    o.size = s;
-    EXPECT_TRUE(fails(o)) << "uniform size " << s;
+    o.size = size;
+    return o;
+  };
+  for (double s : {0.0, -1.0, nan, inf}) {
+    EXPECT_TRUE(fails(uniform(s))) << "uniform size " << s;
   }
   for (double n : {0.0, -4.0, nan, inf}) {
     SizeOptions o;
@@ -263,9 +264,7 @@ TEST(SizeField, InvalidOptionsAreErrors) {
     EXPECT_TRUE(fails(o)) << "per circumference " << n;
   }
   {
-    SizeOptions o;
-    o.mode = SizeMode::kUniform;
-    o.size = 0.5;
+    SizeOptions o = uniform(0.5);
     o.size_min = 0.4;
     o.size_max = 0.3;
     EXPECT_TRUE(fails(o)) << "min > max";
@@ -277,16 +276,12 @@ TEST(SizeField, InvalidOptionsAreErrors) {
     EXPECT_TRUE(fails(o)) << "zero max";
   }
   for (double g : {-0.1, nan, inf}) {
-    SizeOptions o;
-    o.mode = SizeMode::kUniform;
-    o.size = 0.5;
+    SizeOptions o = uniform(0.5);
     o.gradation = g;
     EXPECT_TRUE(fails(o)) << "gradation " << g;
   }
   for (double c : {-1.0, nan, inf}) {
-    SizeOptions o;
-    o.mode = SizeMode::kUniform;
-    o.size = 0.5;
+    SizeOptions o = uniform(0.5);
     o.curvature_points = c;
     EXPECT_TRUE(fails(o)) << "curvature points " << c;
   }

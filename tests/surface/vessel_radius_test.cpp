@@ -82,13 +82,8 @@ TEST(VesselRadius, NoBallKeptAtTheInitialRadiusOnBranches) {
   // (the far side of a bend or a branch); keeping the initial ball there
   // gave R = half the bounding-box diagonal on 15% of this phantom's
   // vertices. Every estimate stays below 1.5 times the parent's radius (1).
-  PhantomOptions o;
-  o.kind = PhantomKind::kBifurcation;
-  o.voxel = 0.08;
-  o.noise = 0.3;
-  auto m = make_vessel_phantom(o);
-  ASSERT_TRUE(m.ok());
-  const std::vector<double> r = vessel_radius(m.value());
+  const SurfaceMesh m = testing::noisy_bifurcation(0.08);
+  const std::vector<double> r = vessel_radius(m);
   size_t above = 0;
   for (double x : r) above += x > 1.5;
   EXPECT_EQ(above, 0u) << "of " << r.size();

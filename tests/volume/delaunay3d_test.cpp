@@ -11,19 +11,12 @@
 
 #include "core/geom/predicates.h"
 #include "core/mesh/volume_mesh.h"
+#include "tests/support/volume_inputs.h"
 
 namespace vm {
 namespace {
 
 using D = Delaunay3D;
-
-std::vector<double> random_cube(int n, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<double> p(3 * size_t(n));
-  for (double& x : p) x = u(rng);
-  return p;
-}
 
 std::vector<double> grid(int n, double spacing = 1) {
   std::vector<double> p;
@@ -96,7 +89,7 @@ void expect_empty_spheres(const D& d) {
 
 TEST(Delaunay3D, RandomPointsSatisfyAllInvariants) {
   for (int n : {4, 5, 10, 100, 400}) {
-    auto r = D::build(random_cube(n, uint32_t(n)));
+    auto r = D::build(testing::random_cube_points(n, uint32_t(n)));
     ASSERT_TRUE(r.ok()) << r.message();
     const D& d = r.value();
     ASSERT_TRUE(d.check(true).ok()) << d.check(true).message();
@@ -107,7 +100,7 @@ TEST(Delaunay3D, RandomPointsSatisfyAllInvariants) {
 }
 
 TEST(Delaunay3D, LargerRandomSetIsLocallyDelaunay) {
-  auto r = D::build(random_cube(30000, 1));
+  auto r = D::build(testing::random_cube_points(30000, 1));
   ASSERT_TRUE(r.ok());
   EXPECT_TRUE(r.value().check(true).ok()) << r.value().check(true).message();
   expect_counting_identities(r.value());
@@ -160,7 +153,7 @@ TEST(Delaunay3D, PointsOnASphere) {
 }
 
 TEST(Delaunay3D, DuplicatePointsAreReported) {
-  auto p = random_cube(200, 9);
+  auto p = testing::random_cube_points(200, 9);
   auto g = grid(3);
   p.insert(p.end(), g.begin(), g.end());
   // Copies of points 5 and 7 and of a grid point.
@@ -213,10 +206,10 @@ TEST(Delaunay3D, DegenerateInputsAreClearErrors) {
 }
 
 TEST(Delaunay3D, InsertAfterBuildInsideOutsideAndDuplicate) {
-  auto r = D::build(random_cube(300, 2));
+  auto r = D::build(testing::random_cube_points(300, 2));
   ASSERT_TRUE(r.ok());
   D d = std::move(r.value());
-  auto more = random_cube(300, 3);
+  auto more = testing::random_cube_points(300, 3);
   for (double& x : more) x *= 1.5;  // some outside the hull
   for (size_t i = 0; i < more.size(); i += 3) {
     auto ins = d.insert(&more[i]);
@@ -235,13 +228,13 @@ TEST(Delaunay3D, InsertAfterBuildInsideOutsideAndDuplicate) {
 }
 
 TEST(Delaunay3D, InsertRefusesAPointTooCloseToACavityVertex) {
-  auto r = D::build(random_cube(400, 5));
+  auto r = D::build(testing::random_cube_points(400, 5));
   ASSERT_TRUE(r.ok());
   D d = std::move(r.value());
   // The nearest vertex of a query point is always a vertex of its cavity
   // (a Delaunay neighbor once inserted): refused within that distance,
   // accepted just below it, for both cavity searches.
-  auto queries = random_cube(50, 6);
+  auto queries = testing::random_cube_points(50, 6);
   for (double& x : queries) x *= 0.7;  // inside the hull
   auto nearest_to = [&](const double* q) {
     double nearest = 1e300;
@@ -289,7 +282,7 @@ TEST(Delaunay3D, LocateClassifiesThePosition) {
 }
 
 TEST(Delaunay3D, Flip23Then32RestoresTheTetrahedra) {
-  auto r = D::build(random_cube(60, 21));
+  auto r = D::build(testing::random_cube_points(60, 21));
   ASSERT_TRUE(r.ok());
   D d = std::move(r.value());
   auto before = d.finite_tets();
@@ -449,7 +442,7 @@ std::vector<int32_t> sorted_star(const D& d, int32_t v) {
 }
 
 TEST(Delaunay3D, LastInsertedTetsAreTheStarOfTheNewVertex) {
-  auto r = D::build(random_cube(300, 11));
+  auto r = D::build(testing::random_cube_points(300, 11));
   ASSERT_TRUE(r.ok());
   D d = std::move(r.value());
   std::mt19937 rng(12);
@@ -469,7 +462,7 @@ TEST(Delaunay3D, LastInsertedTetsAreTheStarOfTheNewVertex) {
 // mostly the verified Bowyer-Watson cavity, some grown and shrunk; either
 // way valid, no constrained face lost, the new vertex's star as reported.
 TEST(Delaunay3D, ConstrainedInsertionAfterFlipsStaysValid) {
-  auto r = D::build(random_cube(2000, 21));
+  auto r = D::build(testing::random_cube_points(2000, 21));
   ASSERT_TRUE(r.ok());
   D d = std::move(r.value());
   // Constrain the faces of a few tetrahedra, then flip some other faces.
@@ -577,7 +570,7 @@ TEST(Delaunay3D, HullFlipsKeepTheHullConvex) {
   EXPECT_DOUBLE_EQ(total_volume(d), 1.0);
   // Random points: hull edges join non-coplanar hull faces; removing one
   // would dent the hull and is refused.
-  auto q = D::build(random_cube(100, 6));
+  auto q = D::build(testing::random_cube_points(100, 6));
   ASSERT_TRUE(q.ok());
   D e = std::move(q.value());
   int refused = 0;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/quality/tet_quality.h"
+#include "tests/support/tet_volume.h"
 #include "tests/support/volume_inputs.h"
 
 namespace vm {
@@ -54,14 +55,6 @@ std::set<std::array<int32_t, 3>> boundary_faces(const TetMesh& m) {
   return norm;
 }
 
-double volume(const TetMesh& m) {
-  double v = 0;
-  const auto t = m.tets();
-  for (size_t i = 0; i < t.size(); i += 4)
-    v += tet_volume6(m.point(t[i]), m.point(t[i + 1]), m.point(t[i + 2]), m.point(t[i + 3])) / 6;
-  return v;
-}
-
 TEST(OptimizeVolume, RemovesSliversOfARandomDelaunayMesh) {
   std::vector<double> h;
   TetMesh m = random_cube_mesh(6, 400, 7, &h);
@@ -85,7 +78,7 @@ TEST(OptimizeVolume, RemovesSliversOfARandomDelaunayMesh) {
     for (int c = 0; c < 3; ++c) EXPECT_EQ(m.point(int32_t(v))[c], before_points[3 * v + c]);
   }
   EXPECT_EQ(boundary_faces(m), faces);
-  EXPECT_NEAR(volume(m), 1.0, 1e-12);
+  EXPECT_NEAR(testing::total_volume(m), 1.0, 1e-12);
   // The summaries (from the optimizer's cached qualities) match the meshes.
   const auto q = tet_qualities(m.points(), m.tets());
   EXPECT_FLOAT_EQ(float(st.after.min), *std::min_element(q.begin(), q.end()));

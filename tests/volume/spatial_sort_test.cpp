@@ -8,6 +8,8 @@
 #include <random>
 #include <vector>
 
+#include "tests/support/volume_inputs.h"
+
 namespace vm {
 namespace {
 
@@ -33,14 +35,6 @@ TEST(SpatialSort, HilbertIndexIsABijectionWithFaceAdjacentSteps) {
   }
 }
 
-std::vector<double> random_points(int n, uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<double> p(3 * size_t(n));
-  for (double& x : p) x = u(rng);
-  return p;
-}
-
 double mean_step(const std::vector<double>& p, const std::vector<int32_t>& order, size_t from,
                  size_t to) {
   double s = 0;
@@ -54,7 +48,7 @@ double mean_step(const std::vector<double>& p, const std::vector<int32_t>& order
 
 TEST(SpatialSort, BrioOrderIsAPermutation) {
   for (int n : {0, 1, 2, 63, 64, 65, 1000, 20000}) {
-    auto p = random_points(n, 7);
+    auto p = testing::random_cube_points(n, 7);
     auto order = brio_hilbert_order(p);
     ASSERT_EQ(order.size(), size_t(n));
     std::vector<int32_t> sorted = order;
@@ -66,7 +60,7 @@ TEST(SpatialSort, BrioOrderIsAPermutation) {
 
 TEST(SpatialSort, ConsecutivePointsOfTheLastRoundAreClose) {
   const int n = 50000;
-  auto p = random_points(n, 3);
+  auto p = testing::random_cube_points(n, 3);
   auto order = brio_hilbert_order(p);
   // The last round holds 7/8 of the points; in a random order the mean
   // step in the cube [-1,1]^3 is about 1.3; along the curve it is a few

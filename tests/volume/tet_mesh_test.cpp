@@ -7,35 +7,14 @@
 #include <vector>
 
 #include "core/mesh/volume_mesh.h"
+#include "tests/support/tet_volume.h"
 #include "tests/support/volume_inputs.h"
 
 namespace vm {
 namespace {
 
-double total_volume(const TetMesh& m) {
-  double v = 0;
-  const auto t = m.tets();
-  for (size_t i = 0; i < t.size(); i += 4)
-    v += tet_volume6(m.point(t[i]), m.point(t[i + 1]), m.point(t[i + 2]), m.point(t[i + 3])) / 6;
-  return v;
-}
-
-// The octahedron around the edge (0, 1) as 4 tetrahedra, plus a pyramid.
-TetMesh octahedron() {
-  std::vector<double> p = {0, 0, -1, 0, 0, 1, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0};
-  std::vector<int32_t> t;
-  for (int i = 0; i < 4; ++i) {
-    const int32_t c = 2 + i, d = 2 + (i + 1) % 4;
-    std::array<int32_t, 4> q = {0, 1, c, d};
-    if (tet_volume6(&p[3 * q[0]], &p[3 * q[1]], &p[3 * q[2]], &p[3 * q[3]]) < 0)
-      std::swap(q[2], q[3]);
-    t.insert(t.end(), q.begin(), q.end());
-  }
-  std::vector<uint8_t> fixed(6, 1);
-  auto r = TetMesh::from_arrays(p, t, fixed);
-  EXPECT_TRUE(r.ok()) << r.message();
-  return std::move(r.value());
-}
+// The octahedron around the edge (0, 1) as 4 tetrahedra, every vertex fixed.
+TetMesh octahedron() { return testing::octahedron_tets(1); }
 
 TEST(TetMesh, FromArraysAdjacencyAndRing) {
   TetMesh m = octahedron();
@@ -105,7 +84,7 @@ TEST(TetMesh, EdgeRingOrderAndSizeLimit) {
 
 TEST(TetMesh, ReplaceKeepsBoundaryAndRejectsMismatch) {
   TetMesh m = octahedron();
-  const double vol = total_volume(m);
+  const double vol = testing::total_volume(m);
   std::vector<int32_t> ring_tets, ring;
   ASSERT_TRUE(m.edge_ring(0, 0, 1, ring_tets, ring));
   // The 4-4 flip: diagonal ring[0]-ring[2].
@@ -122,7 +101,7 @@ TEST(TetMesh, ReplaceKeepsBoundaryAndRejectsMismatch) {
   ASSERT_TRUE(m.replace(ring_tets.data(), 4, nt.data(), 4, &ids));
   ASSERT_TRUE(m.check().ok()) << m.check().message();
   EXPECT_EQ(ids.size(), 4u);
-  EXPECT_NEAR(total_volume(m), vol, 1e-12);
+  EXPECT_NEAR(testing::total_volume(m), vol, 1e-12);
   int boundary = 0;
   for (int32_t t : ids)
     for (int k = 0; k < 4; ++k) boundary += m.neighbor(t, k) == TetMesh::kBoundary;
@@ -145,7 +124,7 @@ TEST(TetMesh, FromKernelKeepsRegionAndConstraints) {
   for (int32_t t = 0; t < int32_t(m.capacity()); ++t)
     for (int k = 0; k < 4; ++k) boundary += m.neighbor(t, k) == TetMesh::kBoundary;
   EXPECT_EQ(boundary, in.surface.num_triangles());
-  EXPECT_NEAR(total_volume(m), 1.0, 1e-12);
+  EXPECT_NEAR(testing::total_volume(m), 1.0, 1e-12);
   // Errors: wrong sizes.
   EXPECT_FALSE(TetMesh::from_kernel(d, 1, {}, 0, {}).ok());
   EXPECT_FALSE(TetMesh::from_arrays({0, 0, 0}, {0, 0, 0, 1}, {0}).ok());

@@ -8,25 +8,14 @@
 
 #include "core/mesh/volume_mesh.h"
 #include "core/volume/tet_mesh.h"
+#include "tests/support/volume_inputs.h"
 
 namespace vm {
 namespace {
 
 // The octahedron around edge (0, 1) as 4 positive tetrahedra (boundary
 // faces unlinked), built by TetMesh::from_arrays.
-TetTopology octahedron() {
-  std::vector<double> p = {0, 0, -1, 0, 0, 1, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0};
-  std::vector<int32_t> t;
-  for (int i = 0; i < 4; ++i) {
-    std::array<int32_t, 4> q = {0, 1, 2 + i, 2 + (i + 1) % 4};
-    if (tet_volume6(&p[3 * q[0]], &p[3 * q[1]], &p[3 * q[2]], &p[3 * q[3]]) < 0)
-      std::swap(q[2], q[3]);
-    t.insert(t.end(), q.begin(), q.end());
-  }
-  auto r = TetMesh::from_arrays(p, t, std::vector<uint8_t>(6, 0));
-  EXPECT_TRUE(r.ok()) << r.message();
-  return r.value().topology();
-}
+TetTopology octahedron() { return testing::octahedron_tets(0).topology(); }
 
 TEST(TetTopology, FaceTableIsOrientedAndHelpersAgree) {
   for (int k = 0; k < 4; ++k) {

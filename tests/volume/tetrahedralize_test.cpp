@@ -16,6 +16,7 @@
 // names must not clash (remesh_patch.h has a SizeField3D alias).
 #include "core/surface/remesh_patch.h"
 #include "core/volume/size_field3d.h"
+#include "tests/support/tet_volume.h"
 #include "tests/support/volume_inputs.h"
 
 namespace vm {
@@ -83,12 +84,7 @@ Outcome fill_and_check(testing::VolumeInput& in, const FillOptions& options) {
   EXPECT_TRUE(mesh_boundary(m) == want);
   // Same volume as the enclosed one.
   double vol = 0;
-  for (size_t t = 0; t < m.num_tets(); ++t) {
-    const int32_t* v = &m.tets[4 * t];
-    vol += tet_volume6(&m.points[3 * size_t(v[0])], &m.points[3 * size_t(v[1])],
-                       &m.points[3 * size_t(v[2])], &m.points[3 * size_t(v[3])]) /
-           6;
-  }
+  for (size_t t = 0; t < m.num_tets(); ++t) vol += testing::mesh_tet_volume6(m, t) / 6;
   const double enclosed = enclosed_volume(surface);
   EXPECT_NEAR(vol, enclosed, 1e-9 * enclosed);
   // Every vertex is used.
@@ -128,34 +124,27 @@ double median_edge_ratio(const VolumeMesh& m, const testing::VolumeInput& in, si
   return r[r.size() / 2];
 }
 
-TEST(FillVolume, CubeQualityAndSize) {
+// Fills the convex hull of `points` at gradations 0.25 and 0: quality at
+// least 0.2 (mean 0.67), more than `min_inserted` vertices inserted, and the
+// median edge within 15 % of the size field.
+void check_convex_fill(const std::vector<double>& points, size_t min_inserted) {
   for (double g : {0.25, 0.0}) {
     testing::VolumeInput in;
-    ASSERT_TRUE(testing::convex_input(testing::cube_surface_points(10), &in));
+    ASSERT_TRUE(testing::convex_input(points, &in));
     const size_t n0 = in.kernel.num_vertices();
     FillOptions o;
     o.gradation = g;
     Outcome out = fill_and_check(in, o);
     EXPECT_GE(out.quality.min, 0.2) << "g " << g;
     EXPECT_GE(out.quality.mean, 0.67) << "g " << g;
-    EXPECT_GT(out.stats.inserted_vertices, 100u);
+    EXPECT_GT(out.stats.inserted_vertices, min_inserted) << "g " << g;
     EXPECT_NEAR(median_edge_ratio(out.mesh, in, n0, g), 1.0, 0.15) << "g " << g;
   }
 }
 
-TEST(FillVolume, SphereQualityAndSize) {
-  for (double g : {0.25, 0.0}) {
-    testing::VolumeInput in;
-    ASSERT_TRUE(testing::convex_input(testing::sphere_points(3), &in));
-    const size_t n0 = in.kernel.num_vertices();
-    FillOptions o;
-    o.gradation = g;
-    Outcome out = fill_and_check(in, o);
-    EXPECT_GE(out.quality.min, 0.2) << "g " << g;
-    EXPECT_GE(out.quality.mean, 0.67) << "g " << g;
-    EXPECT_NEAR(median_edge_ratio(out.mesh, in, n0, g), 1.0, 0.15) << "g " << g;
-  }
-}
+TEST(FillVolume, CubeQualityAndSize) { check_convex_fill(testing::cube_surface_points(10), 100); }
+
+TEST(FillVolume, SphereQualityAndSize) { check_convex_fill(testing::sphere_points(3), 0); }
 
 TEST(FillVolume, CappedCylinderAndCoreSize) {
   testing::VolumeInput in;

@@ -7,9 +7,11 @@
 import fs from 'node:fs';
 import { fileURLToPath } from 'node:url';
 
+// [command, interface, what, the command whose interface it extends (all of
+// whose JS options it takes too)].
 const COMMANDS = [
   ['info', 'AnalyzeOptions', 'Options of analyze()'],
-  ['mesh', 'MeshOptions', 'Options of mesh()'],
+  ['mesh', 'MeshOptions', 'Options of mesh()', 'info'],
   ['phantom', 'PhantomOptions', 'Options of makePhantom()'],
 ];
 
@@ -57,11 +59,16 @@ export function typesFor(table) {
     'export type ProgressCallback = (fraction: number, stage: string) => boolean | void;',
     '',
   ];
-  for (const [command, name, what] of COMMANDS) {
-    lines.push(`/** ${what}. */`, `export interface ${name} {`);
-    if (command !== 'phantom') lines.push('  onProgress?: ProgressCallback;');
+  const declared = (spec, command) => spec.commands.includes(command) && spec.faces.includes('js');
+  for (const [command, name, what, base] of COMMANDS) {
+    if (base && table.some((spec) => declared(spec, base) && !declared(spec, command))) {
+      throw new Error(`${name} lacks an option of the ${base} command it extends`);
+    }
+    const baseName = base && COMMANDS.find((c) => c[0] === base)[1];
+    lines.push(`/** ${what}. */`, `export interface ${name}${base ? ` extends ${baseName}` : ''} {`);
+    if (command !== 'phantom' && !base) lines.push('  onProgress?: ProgressCallback;');
     for (const spec of table) {
-      if (!spec.commands.includes(command) || !spec.faces.includes('js')) continue;
+      if (!declared(spec, command) || (base && declared(spec, base))) continue;
       lines.push(docComment(spec), `  ${spec.js}?: ${optionType(spec)};`);
     }
     lines.push('}', '');

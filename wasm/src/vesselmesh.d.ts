@@ -46,44 +46,7 @@ export interface AnalyzeOptions {
 }
 
 /** Options of mesh(). */
-export interface MeshOptions {
-  onProgress?: ProgressCallback;
-  /** keep only the largest connected component instead of refusing several. Default false. */
-  largestComponentOnly?: boolean;
-  /** auto: split non-manifold edges and vertices into manifold sheets and close holes smaller than the hole fraction of the local radius; off: only the safe repairs (non-manifold surfaces are refused, holes stay openings) Needs auto or off. Default auto. */
-  repair?: 'off' | 'auto';
-  /** a boundary loop whose equivalent radius sqrt(area/pi) is below F local vessel radii is a hole (closed by repair auto), else an opening. Needs a fraction of the local vessel radius in [0, 1] (0: close no hole). Default 0.25. */
-  holeFraction?: number;
-  /** the unit of the file's numbers (default: guessed from the vessel radii: below 0.05 metres, else millimetres) Needs mm, cm or m. */
-  units?: 'mm' | 'cm' | 'm';
-  /** extend the openings (K=L: opening K) straight along their normals by L local radii. Needs a length in local radii from 0 (none) to 100, or K=L for opening K. Default 0. */
-  flowExtension?: number | Record<number, number> | number[];
-  /** keep planar caps as wall (else each recognised cap is removed and its rim becomes an opening) Default false. */
-  keepCaps?: boolean;
-  /** smooth the surface before meshing (volume-preserving, within half a voxel): auto smooths voxel staircases only; N passes on any surface. Needs auto, off or a number of smoothing passes from 1 to 1000. Default auto. */
-  smooth?: string;
-  /** auto: cut each vessel end of a closed surface open, perpendicular to the vessel. Needs off or auto. Default off. */
-  clip?: 'off' | 'auto';
-  /** with clip auto: cut D local radii in from each vessel end's tip. Needs a positive number of local vessel radii. Default 1. */
-  clipDistance?: number;
-  /** cut the surface open with this plane (the side the normal points to is removed) In the model's unit. Needs 6 numbers X,Y,Z,NX,NY,NZ: a point of the cut and the normal pointing out of the part to keep. */
-  clipPlanes?: number[] | number[][];
-  /** cut across the vessel at the surface point nearest X,Y,Z, perpendicular to the vessel, removing the side with less surface. In the model's unit. Needs 3 numbers X,Y,Z: a point on or near the vessel to cut across. */
-  clipAt?: number[] | number[][];
-  /** uniform target edge length. In the model's unit. Needs a positive length. */
-  size?: number;
-  /** h = 2 pi R(x) / N, R the local vessel radius (the default size mode) Needs a number of edges per circumference >= 3. Default 20. */
-  perCircumference?: number;
-  /** smallest edge length. In the model's unit. Needs a length >= 0. Default 0. */
-  sizeMin?: number;
-  /** largest edge length. In the model's unit. Needs a positive length. */
-  sizeMax?: number;
-  /** local refinement: edges of at most H within R of (X,Y,Z), graded out of it (wall and volume) In the model's unit. Needs 5 numbers X,Y,Z,R,H: a centre, a radius R > 0 and a size H > 0. */
-  refine?: number[] | number[][];
-  /** the size grows at most G per unit length. Needs a number >= 0 (size growth per unit length). Default 0.2. */
-  gradation?: number;
-  /** at least P edges per radian of curvature (0: off) Needs a number of points per radian >= 0. Default 0. */
-  curvature?: number;
+export interface MeshOptions extends AnalyzeOptions {
   /** keep creases sharper than A degrees (180: none) Needs an angle in degrees in (0, 180] (180: no sharp features). Default 60. */
   featureAngle?: number;
   /** input vertices farther than F h from the wall get a wall vertex pinned on them (0: bumps are smoothed over) Needs a fraction of h in [0, 1] (0: the wall may smooth over the input). Default 0.1. */
