@@ -3,6 +3,7 @@ import { readFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 
 import { createVesselmesh } from '../wasm/src/vesselmesh.js';
+import { dentedTubeStl } from '../wasm/test/dented-tube.js';
 import { openWatched as open, screenshots, upload } from './helpers.js';
 
 // Repairs in the Prepare step: a dirty segmentation (small holes, a fin,
@@ -122,5 +123,24 @@ test('the largest volume change refuses a wall too coarse for the vessel, and th
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('remesh-result')).toBeVisible({ timeout: 90_000 });
   await expect(error).toBeHidden();
+  expect(errors).toEqual([]);
+});
+
+test('a surface that crosses itself: the warning says where, meshing refuses saying so, the page keeps working', async ({ page }) => {
+  const errors = await open(page);
+  await upload(page, 'dented-tube.stl', Buffer.from(dentedTubeStl()));
+  const warnings = page.getByTestId('warnings');
+  await expect(warnings).toContainText(/the surface crosses itself at 1 place \(\d+ pairs of triangles\), at \(-?[\d.]+, -?[\d.e-]+, [\d.]+\) mm/);
+  await expect(warnings).toContainText('fix it in the segmentation');
+  await page.getByTestId('remesh').click();
+  const error = page.getByTestId('error');
+  await expect(error).toContainText(/the input crosses itself at \(-?[\d.]+, -?[\d.e-]+, [\d.]+\) mm \(1 place; fix it in the segmentation/);
+  await expect(error).toBeInViewport();
+  await screenshots(page, 'self-crossing-refused', error);
+  // The page keeps working: the sample loads and meshes.
+  await upload(page, 'bifurcation.stl', phantom());
+  await expect(error).toBeHidden();
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('remesh-result')).toBeVisible({ timeout: 90_000 });
   expect(errors).toEqual([]);
 });

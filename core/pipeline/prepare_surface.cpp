@@ -628,8 +628,8 @@ void analyze(PreparedSurface& s, const Work& w) {
                          num(t.component_triangles[0]) + " of " + num(t.triangles) + " triangles");
 }
 
-/// Phase 9: where the surface crosses itself (up to kSelfCrossingCheckLimit
-/// triangles): later stages fail on such a surface, in their own terms.
+/// Phase 9 (after the unit is decided): where the surface crosses itself (up to
+/// kSelfCrossingCheckLimit triangles): later stages fail on such a surface, in their own terms.
 void find_crossings(PreparedSurface& s) {
   if (s.mesh.num_triangles() > kSelfCrossingCheckLimit) {
     s.warnings.push_back("the surface was not checked for crossing itself (" +
@@ -643,6 +643,7 @@ void find_crossings(PreparedSurface& s) {
   if (c.pairs == 0) return;
   std::string at;
   for (size_t i = 0; i < c.places.size(); ++i) at += (i ? ", " : "") + point_text(c.places[i]);
+  at += " " + std::string(unit_symbol(s.unit.unit));
   s.warnings.push_back(
       "the surface crosses itself at " +
       (c.place_count == 1 ? std::string("1 place") : num(c.place_count) + " places") + " (" +
@@ -657,8 +658,10 @@ void find_crossings(PreparedSurface& s) {
 std::string self_crossing_prefix(const PreparedSurface& s) {
   const SelfCrossings& c = s.self_crossings;
   if (c.pairs == 0 || c.places.empty()) return "";
-  return "the input crosses itself at " + point_text(c.places[0]) + " (" +
-         (c.place_count == 1 ? std::string("1 place") : num(c.place_count) + " places") + "): ";
+  return "the input crosses itself at " + point_text(c.places[0]) + " " +
+         std::string(unit_symbol(s.unit.unit)) + " (" +
+         (c.place_count == 1 ? std::string("1 place") : num(c.place_count) + " places") +
+         "; fix it in the segmentation, or cut that part off with {clip_plane}): ";
 }
 
 Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
@@ -680,8 +683,6 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   if (Status st = extend_openings(s, w, options); !st.ok()) return st;
   if (!report_progress(progress, 0.6, "analyze")) return cancelled();
   analyze(s, w);
-  if (!report_progress(progress, 0.7, "self-crossings")) return cancelled();
-  find_crossings(s);
   s.unit = decide_unit(options.units, median_vessel_radius(s));
   if (w.smoothing_note != std::string::npos)
     s.warnings.insert(s.warnings.begin() + long(w.smoothing_note),
@@ -689,6 +690,8 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   if (s.unit.guessed && s.unit.unit == LengthUnit::kM)
     s.warnings.push_back("the model is in metres (" + s.unit.reason +
                          "): lengths are read and written in metres; say otherwise with {units}");
+  if (!report_progress(progress, 0.7, "self-crossings")) return cancelled();
+  find_crossings(s);
   if (!report_progress(progress, 0.85, "quality")) return cancelled();
   s.quality = triangle_qualities(s.mesh);
   s.quality_stats = quality_stats(s.quality, options.histogram_bins);

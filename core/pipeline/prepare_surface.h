@@ -153,7 +153,7 @@ struct PreparedSurface {
 /// at 2M triangles) and ~60 bytes a triangle, so larger ones are skipped.
 inline constexpr size_t kSelfCrossingCheckLimit = 2'000'000;
 
-/// "the input crosses itself at (x, y, z) (N places): ", or "" when the
+/// "the input crosses itself at (x, y, z) UNIT (N places; what to do): ", or "" when the
 /// surface was not found crossing itself: the prefix of a later stage's
 /// error on such a surface.
 std::string self_crossing_prefix(const PreparedSurface& surface);

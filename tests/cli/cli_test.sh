@@ -107,6 +107,7 @@ check "self-crossing: info names the place" expect_exit 0 "self-crossings: 1 pla
 check "self-crossing: a warning says where" expect_exit 0 "warning: the surface crosses itself at 1 place" "$VM" info "$T/dent.stl"
 check "self-crossing: json place near (-1, 0, 4)" [ "$("$VM" info "$T/dent.stl" --json | python3 -c "import json,sys; c=json.load(sys.stdin)['self_crossings']; print(c['pairs'] > 0 and c['place_count'] == 1 and abs(c['places'][0][0] + 1) < 0.1 and abs(c['places'][0][2] - 4) < 0.6)")" = True ]
 check "self-crossing: mesh fails naming it" expect_exit 1 "error: $T/dent.stl: the input crosses itself at (-" "$VM" mesh "$T/dent.stl" -o "$T/dent.msh"
+check "self-crossing: the refusal says what to do, in CLI words" expect_exit 1 "mm (1 place; fix it in the segmentation, or cut that part off with --clip-plane): " "$VM" mesh "$T/dent.stl" -o "$T/dent.msh"
 check "self-crossing: none on a clean phantom" expect_exit 0 "self-crossings: none" "$VM" info "$T/bif.stl"
 
 check "mesh needs -o" expect_exit 2 "-o OUT.msh" "$VM" mesh "$T/bif.stl"

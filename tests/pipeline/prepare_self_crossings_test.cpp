@@ -51,7 +51,12 @@ TEST(PrepareSelfCrossings, AFailingStageNamesTheCrossingFirst) {
   auto r = run_mesh_job(bytes);
   ASSERT_FALSE(r.ok());
   EXPECT_TRUE(r.message().starts_with("the input crosses itself at (")) << r.message();
-  EXPECT_NE(r.message().find("(1 place): "), std::string::npos) << r.message();
+  // With the model's unit and what to do, before the stage's own words.
+  EXPECT_NE(
+      r.message().find(
+          ") mm (1 place; fix it in the segmentation, or cut that part off with {clip_plane}): "),
+      std::string::npos)
+      << r.message();
   // An option's error is the option's alone.
   MeshJobOptions o;
   o.max_elements = 1000;

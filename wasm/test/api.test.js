@@ -6,6 +6,7 @@ import { before, describe, test } from 'node:test';
 
 import { transferables } from '../src/transfer.js';
 import { createVesselmesh } from '../src/vesselmesh.js';
+import { dentedTubeStl } from './dented-tube.js';
 
 let api;
 before(async () => {
@@ -246,23 +247,7 @@ describe('analyze', () => {
   });
 
   test('a tube with a dent pushed through the opposite wall: where it crosses itself, and mesh() says so', () => {
-    // Radius 1 along z (0 to 8), 48 around, 40 along; the wall near
-    // (1, 0, 4) moved 2.6 towards -x, through the opposite wall (x = -1).
-    const n = 48, m = 40, p = [];
-    for (let j = 0; j <= m; ++j)
-      for (let i = 0; i < n; ++i) {
-        const a = (2 * Math.PI * i) / n, z = (8 * j) / m;
-        const d2 = 2 * (1 - Math.cos(a)) + (z - 4) ** 2;
-        p.push([Math.cos(a) - 2.6 * Math.exp(-d2 / (2 * 0.35 ** 2)), Math.sin(a), z]);
-      }
-    let stl = 'solid dent\n';
-    for (let j = 0; j < m; ++j)
-      for (let i = 0; i < n; ++i) {
-        const a = j * n + i, b = j * n + ((i + 1) % n);
-        for (const t of [[a, b, b + n], [a, b + n, a + n]])
-          stl += `facet normal 0 0 0\nouter loop\n${t.map((v) => `vertex ${p[v].join(' ')}\n`).join('')}endloop\nendfacet\n`;
-      }
-    stl += 'endsolid dent\n';
+    const stl = dentedTubeStl();
     const r = api.analyze(ascii(stl));
     assert.equal(r.ok, true, r.error);
     const c = r.analysis.self_crossings;
@@ -273,7 +258,7 @@ describe('analyze', () => {
     assert.match(r.analysis.warnings.join('\n'), /the surface crosses itself at 1 place \(\d+ pairs of triangles\), at \(-?[\d.]+, /);
     const failed = api.mesh(ascii(stl));
     assert.equal(failed.ok, false);
-    assert.match(failed.error, /^the input crosses itself at \(-?[\d.]+, -?[\d.e-]+, [\d.]+\) \(1 place\): /);
+    assert.match(failed.error, /^the input crosses itself at \(-?[\d.]+, -?[\d.e-]+, [\d.]+\) mm \(1 place; fix it in the segmentation, or cut that part off with clipPlanes\): /);
     // A clean surface: checked, none.
     const clean = api.analyze(api.makePhantom({ kind: 'bifurcation', voxel: 0.12 }).stl).analysis.self_crossings;
     assert.deepEqual(clean, { checked: true, pairs: 0, place_count: 0, places: [] });
