@@ -244,6 +244,10 @@ describe('analyze', () => {
     assert.equal(off.ok, true, off.error);
     assert.ok(off.analysis.nonmanifold_edges > 0);
     assert.ok(off.analysis.holes.every((h) => !h.closed));
+    // The fin's free edges (2 vertices) are a slit with its place, never an opening.
+    assert.equal(off.analysis.slits.length, 1);
+    assert.equal(off.analysis.slits[0].centroid.length, 3);
+    assert.ok(off.analysis.openings.every((o) => o.vertices.length >= 3 && o.radius > 0));
   });
 
   test('a tube with a dent pushed through the opposite wall: where it crosses itself, and mesh() says so', () => {
