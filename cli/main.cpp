@@ -254,6 +254,9 @@ void print_mesh_summary(const std::string& out, const vm::MeshJobResult& res) {
         "time: size %.2f s, partition %.2f s, meshing %.2f s, optimization %.2f s\n",
         st.patches, st.seam_points, st.size_min, st.size_max, unit, st.size_median, unit,
         st.seconds_size, st.seconds_partition, st.seconds_mesh, st.seconds_optimize);
+    if (st.decimated_triangles > 0)
+      std::printf("decimated: %zu of the input's %zu triangles left before remeshing (%.2f s)\n",
+                  st.decimated_triangles, res.surface.mesh.num_triangles(), st.seconds_decimate);
   }
 }
 

@@ -3,7 +3,7 @@ import { readFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 
 import { createVesselmesh } from '../wasm/src/vesselmesh.js';
-import { exportText, openApp, upload } from './helpers.js';
+import { exportText, openApp, screenshots, upload } from './helpers.js';
 
 const num = async (page, id) => Number((await page.getByTestId(id).textContent()).replace(/,/g, ''));
 
@@ -80,4 +80,32 @@ test('pinning to far input vertices: on by default, off from the advanced option
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('out-pinned')).toHaveText('0');
   expect(await num(page, 'out-far')).toBeGreaterThan(far);
+});
+
+test('an oversampled surface is decimated before remeshing: said in the result, off from the advanced options', async ({ page }) => {
+  const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
+  const api = await createVesselmesh({ wasmBinary });
+  const stl = api.makePhantom({ kind: 'tube', voxel: 0.03 }).stl; // about 218,000 triangles
+  await openApp(page);
+  await upload(page, 'fine-tube.stl', Buffer.from(stl));
+  await expect(page.getByTestId('stat-openings')).toHaveText('2');
+  await page.getByTestId('size-mode').selectOption('size');
+  await page.getByTestId('size-value').fill('0.3');
+  await page.getByTestId('surface-only').check();
+  await page.locator('details summary').click();
+  await expect(page.getByTestId('decimate-on')).toBeChecked();
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('out-decimated')).toBeVisible();
+  const kept = await num(page, 'out-decimated-triangles');
+  expect(kept).toBeGreaterThan(0);
+  expect(kept).toBeLessThan(218000 / 8);
+  expect(await num(page, 'out-quality-min')).toBeGreaterThan(0.55);
+  await screenshots(page, 'remesh-decimated', page.getByTestId('remesh-result'));
+
+  await page.getByTestId('decimate-on').uncheck();
+  await page.getByTestId('out-triangles').evaluate((e) => (e.textContent = ''));
+  await page.getByTestId('remesh').click();
+  await expect(page.getByTestId('out-triangles')).not.toBeEmpty({ timeout: 60_000 });
+  await expect(page.getByTestId('out-decimated')).toBeHidden();
+  await expect(page.getByTestId('error')).toBeHidden();
 });

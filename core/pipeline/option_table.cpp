@@ -548,6 +548,18 @@ const OptionSpec kOptions[] = {
      .default_on = true,
      .doc = "remesh the surface (off: mesh the repaired input as it is)",
      .off_doc = "mesh the repaired input as it is, without remeshing"},
+    {.id = "decimate",
+     .cli = "decimate",
+     .js = "decimate",
+     .type = T::kChoice,
+     .group = "advanced",
+     .metavar = "auto|off",
+     .choices = kOffAuto,
+     .default_text = "auto",
+     .needs = "auto or off",
+     .doc = "auto: an input of 200,000 triangles or more, over 8 times the triangles the sizes "
+            "ask for, is first decimated (edge collapses within 0.02 h of it, edges up to h/2), "
+            "then remeshed; off: remeshed from the input as it is"},
     {.id = "param",
      .cli = "param",
      .js = "param",
@@ -931,6 +943,8 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
     o.prepare.hole_fraction = x;
   } else if (id == "remesh") {
     o.remesh = v.flag;
+  } else if (id == "decimate") {
+    o.remesh_options.decimate = v.text == "auto";
   } else if (id == "surface_only") {
     o.volume = !v.flag;
   } else if (id == "verify") {

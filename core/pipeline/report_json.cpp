@@ -253,11 +253,13 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
     j.key("pinning_reverted").value(st.fidelity_reverted);
     j.key("size_rounds").value(st.fidelity_size_rounds);
     j.end_object();
+    j.key("decimated_triangles").value(st.decimated_triangles);
     j.key("swaps").value(st.swaps);
     j.key("moves").value(st.moves);
     j.key("collapses").value(st.collapses);
     j.key("seconds").begin_object();
     j.key("size").value(st.seconds_size);
+    j.key("decimate").value(st.seconds_decimate);
     j.key("partition").value(st.seconds_partition);
     j.key("mesh").value(st.seconds_mesh);
     j.key("optimize").value(st.seconds_optimize);

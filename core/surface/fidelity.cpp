@@ -155,16 +155,7 @@ void restore(Pinning& p) {
 /// asked h.
 size_t measure_gaps(Pinning& p) {
   p.input_gaps = distances_to_surface(p.mesh, p.input.points, true).per_point;
-  p.stats.max_input_gap = 0;
-  p.stats.input_gap_vertices = 0;
-  size_t far = 0;
-  for (size_t v = 0; v < p.asked.size(); ++v) {
-    const double rel = p.input_gaps[v] / p.asked[v];
-    p.stats.max_input_gap = std::max(p.stats.max_input_gap, rel);
-    p.stats.input_gap_vertices += rel > kReportedGap;
-    far += rel > p.options.fidelity;
-  }
-  return far;
+  return count_gaps(p.input_gaps, p.asked, p.options.fidelity, p.stats);
 }
 
 /// Before the first round: the floors, the kept wall.
@@ -222,6 +213,20 @@ void settle_round(Pinning& p, const std::vector<uint8_t>& before, double min_qua
 }
 
 }  // namespace
+
+size_t count_gaps(const std::vector<double>& gaps, const std::vector<double>& asked,
+                  double fidelity, RemeshStats& stats) {
+  stats.max_input_gap = 0;
+  stats.input_gap_vertices = 0;
+  size_t far = 0;
+  for (size_t v = 0; v < asked.size(); ++v) {
+    const double rel = gaps[v] / asked[v];
+    stats.max_input_gap = std::max(stats.max_input_gap, rel);
+    stats.input_gap_vertices += rel > kReportedGap;
+    far += rel > fidelity;
+  }
+  return far;
+}
 
 void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& adj,
                             const std::vector<double>& h, const std::vector<double>& asked,

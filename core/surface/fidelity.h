@@ -29,6 +29,12 @@ std::vector<double> output_sizes(const SurfaceMesh& input, const std::vector<int
 /// percentile ({0, 0, 0} without edges).
 std::array<double, 3> edge_ratios(const RemeshedSurface& out, const std::vector<double>& size);
 
+/// Sets stats.max_input_gap and input_gap_vertices from `gaps` (each
+/// input vertex's distance to the wall) over `asked` (its asked size, > 0);
+/// returns how many gaps are beyond `fidelity` times the asked size.
+size_t count_gaps(const std::vector<double>& gaps, const std::vector<double>& asked,
+                  double fidelity, RemeshStats& stats);
+
 /// The pinning rounds (RemeshOptions::fidelity .. fidelity_floor_mean):
 /// output vertices pinned onto the input vertices farther than
 /// options.fidelity times `asked` from the output (pin_to_input), then

@@ -1,6 +1,7 @@
 // Whole-surface remeshing by finite element conformal maps (Marchandise et
 // al., section 2.1 and Fig. 2; qualities of section 3), in phases:
-//  1. the size field (seed eq. 11: core/surface/size_field);
+//  1. the size field (seed eq. 11: core/surface/size_field), and an input
+//     far finer than it decimated (core/mesh/decimate);
 //  2. the sharp features, and the partition into patches of disk topology
 //     and moderate aspect ratio, each mapped to the plane (Fig. 2 step 1);
 //  3. the seams (patch boundaries, features and openings) cut into curves
@@ -19,10 +20,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <unordered_map>
 
 #include "core/geom/vec3.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/mesh/decimate.h"
+#include "core/mesh/surface_distance.h"
+#include "core/mesh/triangle_bvh.h"
 #include "core/param/fixed_boundary_map.h"
 #include "core/surface/element_estimate.h"
 #include "core/surface/fidelity.h"
@@ -384,6 +389,52 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
   return out;
 }
 
+/// Phases 2-7 on `input` at the sizes `asked` (one per input vertex).
+Result<RemeshedSurface> remesh_at(const SurfaceMesh& input, const RemeshOptions& options,
+                                  const std::vector<double>& asked, RemeshStats& stats,
+                                  const ProgressFn& progress) {
+  auto t0 = std::chrono::steady_clock::now();
+  Partition part = find_features(input, options, asked, stats);
+  stats.seconds_partition += seconds_since(t0);
+  // Phases 2-6.
+  auto result = remesh_at_sizes(input, options, asked, asked, part, stats, progress);
+  // Phase 7: where more than a few input vertices stay far from the output
+  // (a bend tighter than h can follow, coarse facets), a finer size within
+  // h of each, and phases 3-6 again on the same partition.
+  const Status refined = refine_size_where_far(
+      input, options, asked, asked, result, stats,
+      [&](const std::vector<double>& finer, RemeshStats& round_stats) {
+        return remesh_at_sizes(input, options, finer, asked, part, round_stats, progress);
+      });
+  if (!refined.ok()) return refined;
+  if (result.ok()) {
+    // How well the edges follow the asked size (the finer sizes of the
+    // size rounds are the surface's own business).
+    const std::array<double, 3> ratios =
+        edge_ratios(result.value(), output_sizes(input, result.value().home, asked));
+    stats.edge_ratio_p10 = ratios[0];
+    stats.edge_ratio_median = ratios[1];
+    stats.edge_ratio_p90 = ratios[2];
+  }
+  return result;
+}
+
+/// Phase 1b: `input` decimated within the options' share of the sizes
+/// `asked`, when it is oversampled for them (else nothing).
+std::optional<DecimatedSurface> decimate_if_oversampled(const SurfaceMesh& input,
+                                                        const RemeshOptions& options,
+                                                        const std::vector<double>& asked) {
+  if (!options.decimate || input.num_triangles() < options.decimate_min_triangles ||
+      double(input.num_triangles()) <= options.decimate_ratio * estimate_triangles(input, asked))
+    return std::nullopt;
+  std::vector<double> max_error(asked.size()), max_edge(asked.size());
+  for (size_t v = 0; v < asked.size(); ++v) {
+    max_error[v] = options.decimate_error * asked[v];
+    max_edge[v] = options.decimate_edge * asked[v];
+  }
+  return decimate_surface(input, {.max_error = max_error, .max_edge = max_edge});
+}
+
 }  // namespace
 
 Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOptions& options,
@@ -408,27 +459,35 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
     }
   }
   t0 = std::chrono::steady_clock::now();
-  Partition part = find_features(input, options, asked, stats);
-  stats.seconds_partition = seconds_since(t0);
-  // Phases 2-6.
-  auto result = remesh_at_sizes(input, options, asked, asked, part, stats, progress);
-  // Phase 7: where more than a few input vertices stay far from the output
-  // (a bend tighter than h can follow, coarse facets), a finer size within
-  // h of each, and phases 3-6 again on the same partition.
-  const Status refined = refine_size_where_far(
-      input, options, asked, asked, result, stats,
-      [&](const std::vector<double>& finer, RemeshStats& round_stats) {
-        return remesh_at_sizes(input, options, finer, asked, part, round_stats, progress);
-      });
-  if (!refined.ok()) return refined;
+  const std::optional<DecimatedSurface> decimated = decimate_if_oversampled(input, options, asked);
+  stats.seconds_decimate = seconds_since(t0);
+  if (!decimated) {
+    auto result = remesh_at(input, options, asked, stats, progress);
+    if (stats_out) *stats_out = stats;
+    return result;
+  }
+  // Phases 2-7 on the decimated surface, at the sizes of its vertices.
+  stats.decimated_triangles = decimated->mesh.num_triangles();
+  std::vector<double> kept_asked(decimated->input_vertex.size());
+  for (size_t v = 0; v < kept_asked.size(); ++v)
+    kept_asked[v] = asked[size_t(decimated->input_vertex[v])];
+  auto result = remesh_at(decimated->mesh, options, kept_asked, stats, progress);
   if (result.ok()) {
-    // How well the edges follow the asked size (the finer sizes of the
-    // size rounds are the surface's own business).
-    const std::array<double, 3> ratios =
-        edge_ratios(result.value(), output_sizes(input, result.value().home, asked));
-    stats.edge_ratio_p10 = ratios[0];
-    stats.edge_ratio_median = ratios[1];
-    stats.edge_ratio_p90 = ratios[2];
+    // Every output vertex onto the input (it lay on the decimated surface,
+    // within about decimate_error h of it), homed there; then sizes and gaps
+    // of every input vertex, the gaps measured again.
+    t0 = std::chrono::steady_clock::now();
+    RemeshedSurface& out = result.value();
+    const TriangleBvh bvh = build_triangle_bvh(input);
+    for (size_t v = 0; v < out.home.size(); ++v) {
+      const SurfacePoint on = closest_surface_point(input, bvh, &out.mesh.points[3 * v]);
+      put(out.mesh.points, int32_t(v), on.point);
+      out.home[v] = on.triangle;
+    }
+    out.input_sizes = asked;
+    out.input_gaps = distances_to_surface(out.mesh, input.points, true).per_point;
+    count_gaps(out.input_gaps, asked, options.fidelity, stats);
+    stats.seconds_fidelity += seconds_since(t0);
   }
   if (stats_out) *stats_out = stats;
   return result;

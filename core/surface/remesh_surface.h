@@ -79,6 +79,16 @@ struct RemeshOptions {
   /// The element budget: a size field that would make more triangles than
   /// this (estimate_triangles) is refused before meshing (0: no limit).
   double max_triangles = 0;
+  /// Decimation of an oversampled input before phase 2: when the input has
+  /// at least decimate_min_triangles triangles and more than decimate_ratio
+  /// times the triangles the size field asks for, edges are collapsed
+  /// (decimate_surface) within decimate_error times h of the input's planes
+  /// and up to edges of decimate_edge times h; the later phases run on the
+  /// decimated surface, whose vertices are then moved onto the input (by
+  /// at most about decimate_error h). Off: phases 2-7 on the input as it is.
+  bool decimate = true;
+  size_t decimate_min_triangles = 200000;
+  double decimate_ratio = 8, decimate_error = 0.02, decimate_edge = 0.5;
 };
 
 /// The input-vertex distance to the output (over h) the statistics count.
@@ -89,6 +99,9 @@ struct RemeshStats {
   size_t bisections = 0;
   size_t rejected_maps = 0;  ///< maps refused (folded or crowded) before splitting
   size_t seam_points = 0;    ///< points on seams and openings, shared by patches
+  /// Triangles of the surface the phases ran on when the input was
+  /// decimated (else 0).
+  size_t decimated_triangles = 0;
   size_t feature_edges = 0;  ///< input edges kept as sharp features
   size_t retries = 0;        ///< partitions redone because a patch failed to mesh
   size_t swaps = 0, moves = 0, collapses = 0;
@@ -109,8 +122,8 @@ struct RemeshStats {
   /// has counted them exactly (it checks every pinning round against the
   /// surface before it), else -1.
   int64_t self_intersections = -1;
-  double seconds_size = 0, seconds_partition = 0, seconds_mesh = 0, seconds_optimize = 0,
-         seconds_fidelity = 0;
+  double seconds_size = 0, seconds_decimate = 0, seconds_partition = 0, seconds_mesh = 0,
+         seconds_optimize = 0, seconds_fidelity = 0;
 };
 
 /// The remeshed surface, with what ties it to the input.

@@ -22,10 +22,10 @@ namespace vm {
 /// of edge sqrt(area / samples)); every other
 /// vertex takes the value of the sample vertex nearest along the edges.
 /// The sample is far denser than any vessel radius for the surfaces this
-/// applies to (millions of triangles).
+/// applies to (a quarter million triangles and more).
 struct VesselRadiusSampling {
-  size_t sample_above = 400'000;
-  size_t samples = 100'000;
+  size_t sample_above = 120'000;
+  size_t samples = 50'000;
 };
 
 std::vector<double> vessel_radius(const SurfaceMesh& mesh,

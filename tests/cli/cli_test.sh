@@ -110,6 +110,13 @@ check "self-crossing: mesh fails naming it" expect_exit 1 "error: $T/dent.stl: t
 check "self-crossing: the refusal says what to do, in CLI words" expect_exit 1 "mm (1 place; fix it in the segmentation, or cut that part off with --clip-plane): " "$VM" mesh "$T/dent.stl" -o "$T/dent.msh"
 check "self-crossing: none on a clean phantom" expect_exit 0 "self-crossings: none" "$VM" info "$T/bif.stl"
 
+# An oversampled tube (voxel 0.03: about 218,000 triangles): decimated
+# before remeshing, unless --decimate off; the report says so.
+"$VM" phantom "$T/fine.stl" --kind tube --voxel 0.03 > /dev/null
+check "oversampled: decimated first" expect_exit 0 "decimated: " "$VM" mesh "$T/fine.stl" -o "$T/fine.msh" --surface-only --size 0.3 --report "$T/fine.json"
+check "oversampled: the report's count is under an eighth of the input's" [ "$(json "$T/fine.json" "0 < d['output']['remesh']['decimated_triangles'] < d['input']['triangles'] / 8")" = True ]
+check "oversampled, --decimate off: remeshed as it is" bash -c 'out=$("$1" mesh "$2" -o "$3" --surface-only --size 0.3 --decimate off) && [[ $out == *"wrote"* && $out != *"decimated:"* ]]' _ "$VM" "$T/fine.stl" "$T/fine-off.msh"
+check "--decimate takes auto or off" expect_exit 2 "--decimate needs auto or off" "$VM" mesh "$T/fine.stl" -o "$T/x.msh" --decimate yes
 check "mesh needs -o" expect_exit 2 "-o OUT.msh" "$VM" mesh "$T/bif.stl"
 check "mesh bad version" expect_exit 2 "--msh-version needs 4.1 or 2.2" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --msh-version 3
 check "mesh 4.1" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif41.msh" --report "$T/report.json" --verify

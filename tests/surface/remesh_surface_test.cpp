@@ -266,6 +266,36 @@ TEST(RemeshSurface, OtherMapsAndMeshersKeepTheTopology) {
   }
 }
 
+TEST(RemeshSurface, AnOversampledInputIsDecimatedFirstAndTheOutputStaysOnIt) {
+  // A tube with edges of about h/10: 50 times the triangles h asks for.
+  const SurfaceMesh in = testing::open_tube(320, 100, 1.0, 4.0);
+  const double h = 0.25;
+  RemeshOptions o = testing::uniform_remesh(h);
+  o.decimate_min_triangles = 10000;
+  RemeshStats on, off;
+  auto decimated = remesh_surface(in, o, &on);
+  ASSERT_TRUE(decimated.ok()) << decimated.status().message();
+  EXPECT_GT(on.decimated_triangles, 0u);
+  EXPECT_LT(on.decimated_triangles, in.num_triangles() / 5);  // the rims stay fine
+  // The full contract against the input itself: every vertex on its home
+  // triangle of the input, sizes and gaps per input vertex.
+  check_remesh(in, decimated.value(), h, {}, "decimated tube");
+  ASSERT_EQ(decimated.value().input_gaps.size(), in.num_vertices());
+  EXPECT_LE(on.max_input_gap, 0.1);
+
+  o.decimate = false;
+  auto full = remesh_surface(in, o, &off);
+  ASSERT_TRUE(full.ok()) << full.status().message();
+  EXPECT_EQ(off.decimated_triangles, 0u);
+  check_remesh(in, full.value(), h, {}, "tube as it is");
+  // Below the threshold nothing is decimated either.
+  o.decimate = true;
+  o.decimate_min_triangles = in.num_triangles() + 1;
+  RemeshStats small;
+  ASSERT_TRUE(remesh_surface(in, o, &small).ok());
+  EXPECT_EQ(small.decimated_triangles, 0u);
+}
+
 TEST(RemeshSurface, InvalidSizeIsAnError) {
   const SurfaceMesh tube = testing::open_tube(16, 8);
   for (double s : {0.0, -0.5}) {

@@ -99,6 +99,8 @@ export interface MeshOptions extends AnalyzeOptions {
   mshVersion?: '4.1' | '2.2';
   /** remesh the surface (off: mesh the repaired input as it is) Default true. */
   remesh?: boolean;
+  /** auto: an input of 200,000 triangles or more, over 8 times the triangles the sizes ask for, is first decimated (edge collapses within 0.02 h of it, edges up to h/2), then remeshed; off: remeshed from the input as it is. Needs auto or off. Default auto. */
+  decimate?: 'off' | 'auto';
   /** the map of each patch to the plane. Needs lscm, harmonic or floater. Default lscm. */
   param?: 'lscm' | 'harmonic' | 'floater';
   /** the planar mesher. Needs frontal, delaunay or adapt. Default frontal. */

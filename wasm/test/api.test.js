@@ -318,6 +318,23 @@ describe('analyze', () => {
 });
 
 describe('mesh', () => {
+  test('an oversampled surface is decimated before remeshing, unless decimate is off', () => {
+    const fine = api.makePhantom({ kind: 'tube', voxel: 0.03 }).stl;  // about 218,000 triangles
+    const r = api.mesh(fine, { size: 0.3, surfaceOnly: true });
+    assert.equal(r.ok, true, r.error);
+    const remesh = r.report.output.remesh;
+    assert.ok(remesh.decimated_triangles > 0 && remesh.decimated_triangles < r.report.input.triangles / 8);
+    // Still on the input, and as good as the seed's frontal row.
+    assert.ok(remesh.fidelity.max_vertex_offset < 1e-9);
+    assert.ok(r.report.output.quality.min > 0.55);
+    const off = api.mesh(fine, { size: 0.3, surfaceOnly: true, decimate: 'off' });
+    assert.equal(off.ok, true, off.error);
+    assert.equal(off.report.output.remesh.decimated_triangles, 0);
+    const bad = api.mesh(fine, { size: 0.3, decimate: true });
+    assert.equal(bad.ok, false);
+    assert.match(bad.error, /decimate/);
+  });
+
   const countElements = (msh) => {
     const lines = text(msh).split('\n');
     const i = lines.indexOf('$Elements');

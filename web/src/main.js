@@ -505,6 +505,7 @@ function meshOptions(names) {
     surfaceOnly: $('surface-only').checked,
   };
   if (!$('fidelity-on').checked) options.fidelity = 0;
+  if (!$('decimate-on').checked) options.decimate = 'off';
   const volumeChange = numberIn('max-volume-change') / 100;
   if (volumeChange !== Number($('max-volume-change').defaultValue) / 100) options.maxVolumeChange = volumeChange;
   const coreSize = $('core-size').value.trim();
@@ -751,6 +752,9 @@ function showMeshResult(result) {
   const out = result.report.output;
   $('out-triangles').textContent = out.triangles.toLocaleString('en');
   $('out-patches').textContent = out.remesh ? out.remesh.patches : '-';
+  const decimated = out.remesh?.decimated_triangles ?? 0;
+  $('out-decimated').hidden = decimated === 0;
+  $('out-decimated-triangles').textContent = decimated.toLocaleString('en');
   // The wall's quality as written (after boundary recovery) when the volume
   // was meshed, else the remeshed surface's (the same file).
   const wall = out.volume?.surfaces?.find((s) => s.name === 'wall')?.quality ?? out.quality;

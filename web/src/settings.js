@@ -33,6 +33,7 @@ export const SETTING_IDS = [
   'param',
   'mesher2d',
   'fidelity-on',
+  'decimate-on',
   'max-volume-change',
   'export-format',
   'output-units',
