@@ -150,25 +150,21 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts, double t
   const double cell = 64 * tol;
   const double inv_cell = 1.0 / cell;
   auto cell_of = [&](double x) { return floor_to_int(x * inv_cell); };
-  // Cell -> linked list of points in it.
+  // Cell -> linked list of points in it. A point's cell is recomputed
+  // where needed rather than stored (3 n int64 would be the largest array).
   IndexHashTable cells(n);
   std::vector<int32_t> next(n, -1);
   std::vector<int32_t> head(n, -1);  // the list head of each point's cell
-  std::vector<int64_t> key(3 * n);
-  for (size_t i = 0; i < n; ++i) {
-    for (int k = 0; k < 3; ++k) key[3 * i + k] = cell_of(pts[3 * i + k]);
-  }
-  auto same_cell = [&](size_t a, size_t b) {
-    return key[3 * a] == key[3 * b] && key[3 * a + 1] == key[3 * b + 1] &&
-           key[3 * a + 2] == key[3 * b + 2];
+  auto in_cell = [&](size_t a, int64_t x, int64_t y, int64_t z) {
+    return cell_of(pts[3 * a]) == x && cell_of(pts[3 * a + 1]) == y && cell_of(pts[3 * a + 2]) == z;
   };
   auto cell_hash = [&](int64_t x, int64_t y, int64_t z) {
     return hash3(uint64_t(x), uint64_t(y), uint64_t(z));
   };
   for (size_t i = 0; i < n; ++i) {
-    int32_t h =
-        cells.find_or_insert(cell_hash(key[3 * i], key[3 * i + 1], key[3 * i + 2]), int32_t(i),
-                             [&](int32_t s) { return same_cell(size_t(s), i); });
+    const int64_t x = cell_of(pts[3 * i]), y = cell_of(pts[3 * i + 1]), z = cell_of(pts[3 * i + 2]);
+    int32_t h = cells.find_or_insert(cell_hash(x, y, z), int32_t(i),
+                                     [&](int32_t s) { return in_cell(size_t(s), x, y, z); });
     if (h != int32_t(i)) {
       next[i] = next[h];
       next[h] = int32_t(i);
@@ -191,7 +187,7 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts, double t
         for (int64_t z = lo[2]; z <= hi[2]; ++z) {
           uint64_t h = cell_hash(x, y, z);
           cells.for_each_with_hash(h, [&](int32_t s) {
-            if (key[3 * s] != x || key[3 * s + 1] != y || key[3 * s + 2] != z) return;
+            if (!in_cell(size_t(s), x, y, z)) return;
             for (int32_t j = s; j >= 0; j = next[j]) {
               if (size_t(j) <= i) continue;  // each pair once
               const double* q = &pts[3 * j];
@@ -226,18 +222,20 @@ SurfaceMesh merge_and_index(const std::vector<double>& pts,
   double tol = options.relative_tolerance * bounding_box(pts).diagonal();
   // No far point may inflate the tolerance past the mesh's own scale: at
   // most a small fraction of the median edge.
-  std::vector<double> edges;
-  edges.reserve(corners);
-  for (size_t c = 0; c + 2 < corners; c += 3)
-    for (size_t k = 0; k < 3; ++k) {
-      const double* a = &pts[3 * size_t(corner_to_unique[c + k])];
-      const double* b = &pts[3 * size_t(corner_to_unique[c + (k + 1) % 3])];
-      const double d = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
-      if (d > 0) edges.push_back(d);
+  {
+    std::vector<double> edges;  // freed here, for the arrays that follow
+    edges.reserve(corners);
+    for (size_t c = 0; c + 2 < corners; c += 3)
+      for (size_t k = 0; k < 3; ++k) {
+        const double* a = &pts[3 * size_t(corner_to_unique[c + k])];
+        const double* b = &pts[3 * size_t(corner_to_unique[c + (k + 1) % 3])];
+        const double d = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+        if (d > 0) edges.push_back(d);
+      }
+    if (!edges.empty()) {
+      std::nth_element(edges.begin(), edges.begin() + long(edges.size() / 2), edges.end());
+      tol = std::min(tol, options.edge_fraction * edges[edges.size() / 2]);
     }
-  if (!edges.empty()) {
-    std::nth_element(edges.begin(), edges.begin() + long(edges.size() / 2), edges.end());
-    tol = std::min(tol, options.edge_fraction * edges[edges.size() / 2]);
   }
   size_t merged = 0;
   std::vector<int32_t> rep = merge_close_points(pts, tol, &merged);
