@@ -262,20 +262,34 @@ SurfaceMesh merge_and_index(const std::vector<double>& pts,
   return mesh;
 }
 
-}  // namespace
-
-SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options, WeldStats* stats) {
+// Phase 1 of the soup weld: the distinct points (3 doubles each) and each
+// corner's index among them.
+std::vector<double> distinct_corners(const TriangleSoup& soup,
+                                     std::vector<int32_t>& corner_to_unique) {
   const size_t corners = soup.coords.size() / 3;
   const float* c = soup.coords.data();
-  // Phase 1: exact duplicates.
-  std::vector<int32_t> corner_to_unique(corners);
+  corner_to_unique.resize(corners);
   std::vector<int32_t> unique_corner;  // first corner of each unique point
   if (!weld_exact(c, corners, locality_cell_size(soup), corner_to_unique, unique_corner))
     weld_exact(c, corners, 0.0, corner_to_unique, unique_corner);
   std::vector<double> pts(3 * unique_corner.size());
   for (size_t u = 0; u < unique_corner.size(); ++u)
     for (int k = 0; k < 3; ++k) pts[3 * u + k] = c[3 * size_t(unique_corner[u]) + k];
-  unique_corner = {};
+  return pts;
+}
+
+}  // namespace
+
+SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options, WeldStats* stats) {
+  std::vector<int32_t> corner_to_unique;
+  const std::vector<double> pts = distinct_corners(soup, corner_to_unique);
+  return merge_and_index(pts, corner_to_unique, options, stats);
+}
+
+SurfaceMesh weld(TriangleSoup&& soup, const WeldOptions& options, WeldStats* stats) {
+  std::vector<int32_t> corner_to_unique;
+  const std::vector<double> pts = distinct_corners(soup, corner_to_unique);
+  soup.coords = {};
   return merge_and_index(pts, corner_to_unique, options, stats);
 }
 

@@ -91,7 +91,7 @@ Status read_and_weld(PreparedSurface& s, Work& w, std::span<const uint8_t> bytes
   w.face_names = std::move(f.face_names);
   s.label_array = f.label_array;
   if (!f.soup.coords.empty())
-    s.mesh = weld(f.soup, options.weld, &s.weld);
+    s.mesh = weld(std::move(f.soup), options.weld, &s.weld);
   else
     s.mesh = weld(f.points, f.triangles, options.weld, &s.weld);
   if (s.weld.merged_by_tolerance > 0)
