@@ -273,13 +273,15 @@ void orient_consistently(SurfaceMesh& mesh, RepairStats& stats, TriangleAdjacenc
   // Phase 2: flip every triangle that disagrees with its component's root.
   std::vector<uint8_t> flip(nt);
   std::vector<int32_t> root(nt);
+  bool any_flipped = false;
   for (size_t t = 0; t < nt; ++t) {
     auto [r, p] = uf.find(int32_t(t));
     root[t] = r;
     flip[t] = p;
     if (p) std::swap(tri[3 * t + 1], tri[3 * t + 2]);
+    any_flipped |= p != 0;
   }
-  remap_after_flips(adj, flip);
+  if (any_flipped) remap_after_flips(adj, flip);
   // Phase 3: outward. Signed volume per component (keyed by root), each
   // opening closed by a fan from its centroid against the loop direction.
   BoundingBox box = bounding_box(mesh.points);
