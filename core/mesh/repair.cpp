@@ -41,6 +41,7 @@ std::vector<int32_t> remove_unused_vertices(SurfaceMesh& mesh, RepairStats& stat
     ++next;
   }
   stats.unused_vertices_removed += remap.size() - size_t(next);
+  if (size_t(next) == remap.size()) return remap;  // all used: nothing moved
   mesh.points.resize(3 * size_t(next));
   for (int32_t& v : mesh.triangles) v = remap[v];
   return remap;
