@@ -268,12 +268,16 @@ CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& 
                               const CapRecognitionOptions& options) {
   CapRecognition out;
   const size_t nt = mesh.num_triangles();
-  std::vector<Vec3> normals(nt);
-  std::vector<double> areas(nt);
+  std::vector<Vec3> normals;  // filled, not zeroed first
+  std::vector<double> areas;
+  normals.reserve(nt);
+  areas.reserve(nt);
   double total = 0;
   for (size_t t = 0; t < nt; ++t) {
-    std::tie(normals[t], areas[t]) = triangle_normal(mesh, t);
-    total += areas[t];
+    const auto [n, a] = triangle_normal(mesh, t);
+    normals.push_back(n);
+    areas.push_back(a);
+    total += a;
   }
   Context ctx{mesh, adj, normals, areas, options, total};
   // Labels tell faces apart only when there are two or more (a file with

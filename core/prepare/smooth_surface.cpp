@@ -116,17 +116,19 @@ StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions
   StaircaseReport r;
   const size_t nt = mesh.num_triangles();
   if (nt == 0) return r;
-  std::vector<Vec3> normals(nt);
-  std::vector<double> areas(nt);
+  std::vector<Vec3> normals;  // filled, not zeroed first
+  std::vector<double> areas;
+  normals.reserve(nt);
+  areas.reserve(nt);
   double total_area = 0;
   for (size_t t = 0; t < nt; ++t) {
     Vec3 a = area_vector(mesh, t);
     const double len = norm(a);
-    areas[t] = len;
+    areas.push_back(len);
     total_area += len;
     if (len > 0)
       for (double& x : a) x /= len;
-    normals[t] = a;
+    normals.push_back(a);
   }
   if (!(total_area > 0)) return r;
   const BoundingBox box = bounding_box(mesh.points);
