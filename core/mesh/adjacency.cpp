@@ -83,10 +83,13 @@ void remap_after_flips(TriangleAdjacency& adj, const std::vector<uint8_t>& flipp
     int32_t t = h / 3, k = h % 3;
     return flipped[t] ? 3 * t + (2 - k) : h;
   };
-  std::vector<int32_t> old = std::move(adj.opposite);
-  adj.opposite.assign(old.size(), TriangleAdjacency::kBoundary);
-  for (size_t h = 0; h < old.size(); ++h)
-    adj.opposite[map(int32_t(h))] = old[h] >= 0 ? map(old[h]) : old[h];
+  // In place: the entries of each flipped triangle move (0 and 2 trade),
+  // then every opposite half-edge is mapped.
+  std::vector<int32_t>& opposite = adj.opposite;
+  for (size_t t = 0; t < flipped.size(); ++t)
+    if (flipped[t]) std::swap(opposite[3 * t], opposite[3 * t + 2]);
+  for (int32_t& o : opposite)
+    if (o >= 0) o = map(o);
 }
 
 }  // namespace vm
