@@ -182,29 +182,36 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts, double t
     }
     // Fast path: alone in its cell and farther than tol from its faces.
     if (next[head[i]] < 0 && lo[0] == hi[0] && lo[1] == hi[1] && lo[2] == hi[2]) continue;
+    // The points j > i of the list from s within tol of p.
+    auto visit = [&](int32_t s) {
+      for (int32_t j = s; j >= 0; j = next[j]) {
+        if (size_t(j) <= i) continue;  // each pair once
+        const double* q = &pts[3 * j];
+        double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                    (p[2] - q[2]) * (p[2] - q[2]);
+        if (d2 <= tol2) {
+          int32_t ri = find_root(parent, int32_t(i));
+          int32_t rj = find_root(parent, j);
+          if (ri != rj) {
+            if (ri < rj)
+              parent[rj] = ri;
+            else
+              parent[ri] = rj;
+            ++*merged;
+          }
+        }
+      }
+    };
+    const int64_t own[3] = {cell_of(p[0]), cell_of(p[1]), cell_of(p[2])};
     for (int64_t x = lo[0]; x <= hi[0]; ++x)
       for (int64_t y = lo[1]; y <= hi[1]; ++y)
         for (int64_t z = lo[2]; z <= hi[2]; ++z) {
-          uint64_t h = cell_hash(x, y, z);
-          cells.for_each_with_hash(h, [&](int32_t s) {
-            if (!in_cell(size_t(s), x, y, z)) return;
-            for (int32_t j = s; j >= 0; j = next[j]) {
-              if (size_t(j) <= i) continue;  // each pair once
-              const double* q = &pts[3 * j];
-              double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                          (p[2] - q[2]) * (p[2] - q[2]);
-              if (d2 <= tol2) {
-                int32_t ri = find_root(parent, int32_t(i));
-                int32_t rj = find_root(parent, j);
-                if (ri != rj) {
-                  if (ri < rj)
-                    parent[rj] = ri;
-                  else
-                    parent[ri] = rj;
-                  ++*merged;
-                }
-              }
-            }
+          if (x == own[0] && y == own[1] && z == own[2]) {
+            visit(head[i]);  // its own cell's list, without a lookup
+            continue;
+          }
+          cells.for_each_with_hash(cell_hash(x, y, z), [&](int32_t s) {
+            if (in_cell(size_t(s), x, y, z)) visit(s);
           });
         }
   }
