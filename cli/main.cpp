@@ -70,9 +70,9 @@ int fail(const std::string& msg) {
 
 /// The input file's bytes ('-': standard input) within the read limits of
 /// `options`; the error message on failure.
-std::optional<std::vector<uint8_t>> read_file(const std::string& path,
-                                              const vm::MeshJobOptions& options,
-                                              std::string& error) {
+std::optional<vm::cli::InputBytes> read_file(const std::string& path,
+                                             const vm::MeshJobOptions& options,
+                                             std::string& error) {
   vm::SurfaceReadOptions limits;
   limits.max_triangles = options.prepare.read.max_triangles;
   auto bytes = vm::cli::read_input(path, limits);

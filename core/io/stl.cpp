@@ -220,11 +220,18 @@ Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes, const StlReadOptio
   soup.coords.resize(9 * count);
   const uint8_t* p = bytes.data() + kHeaderBytes;
   float* out = soup.coords.data();
+  uint32_t non_finite = 0;  // any coordinate with all exponent bits set
   for (uint64_t t = 0; t < count; ++t, p += kTriangleBytes, out += 9) {
-    for (int k = 0; k < 9; ++k) out[k] = load_f32le(p + 12 + 4 * k);
+    for (int k = 0; k < 9; ++k) {
+      const uint32_t u = load_u32le(p + 12 + 4 * k);
+      non_finite |= (u & 0x7F800000u) == 0x7F800000u;
+      out[k] = float_from_bits(u);
+    }
   }
-  Status finite = check_finite(soup.coords, 0);
-  if (!finite.ok()) return finite;
+  if (non_finite) {
+    Status finite = check_finite(soup.coords, 0);
+    if (!finite.ok()) return finite;
+  }
   return soup;
 }
 

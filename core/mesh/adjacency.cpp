@@ -21,44 +21,58 @@ TriangleAdjacency build_vertex_stars(const SurfaceMesh& mesh) {
 
 TriangleAdjacency build_adjacency(const SurfaceMesh& mesh) {
   const auto& tri = mesh.triangles;
+  const size_t nv = mesh.num_vertices();
   // Phase 1: vertex stars by counting sort.
   TriangleAdjacency adj = build_vertex_stars(mesh);
 
-  // Phase 2: each edge once, from the first half-edge that meets it: the
-  // triangles of the star of its smaller vertex that contain the other one.
-  constexpr int32_t kUnset = -3;
-  adj.opposite.assign(tri.size(), kUnset);
-  std::vector<int32_t> sharing;  // half-edges on the current edge
-  for (size_t h0 = 0; h0 < tri.size(); ++h0) {
-    if (adj.opposite[h0] != kUnset) continue;
-    const int32_t t = int32_t(h0 / 3);
-    const int32_t a = tri[h0], b = half_edge_to(mesh, int32_t(h0));
-    const int32_t lo = std::min(a, b), hi = std::max(a, b);
-    sharing.assign(1, int32_t(h0));
+  // Phase 2: each edge once, at its smaller vertex lo: the half-edges of the
+  // star of lo whose other end is larger, grouped by that end (one star
+  // read per vertex).
+  adj.opposite.assign(tri.size(), TriangleAdjacency::kBoundary);
+  struct Spoke {
+    int32_t hi, h;  // the other end, the half-edge
+  };
+  std::vector<Spoke> spokes;
+  // The smallest half-edge of a non-manifold edge: the example is the first
+  // such edge in half-edge order.
+  int32_t first_nonmanifold = -1;
+  for (size_t lo = 0; lo < nv; ++lo) {
+    spokes.clear();
     for (int32_t i = adj.star_offsets[lo]; i < adj.star_offsets[lo + 1]; ++i) {
-      int32_t s = adj.star[i];
-      if (s == t) continue;
-      int32_t ilo = -1, ihi = -1;
+      const int32_t t3 = 3 * adj.star[size_t(i)];
       for (int q = 0; q < 3; ++q) {
-        if (tri[3 * s + q] == lo) ilo = q;
-        if (tri[3 * s + q] == hi) ihi = q;
+        if (tri[size_t(t3 + q)] != int32_t(lo)) continue;
+        const int32_t out = t3 + q, in = t3 + (q + 2) % 3;  // from lo, to lo
+        const int32_t to = tri[size_t(t3 + (q + 1) % 3)], from = tri[size_t(in)];
+        if (to > int32_t(lo)) spokes.push_back({to, out});
+        if (from > int32_t(lo)) spokes.push_back({from, in});
       }
-      if (ihi < 0) continue;
-      // The half-edge of s on {lo, hi} starts at whichever precedes the other.
-      sharing.push_back((ilo + 1) % 3 == ihi ? 3 * s + ilo : 3 * s + ihi);
     }
-    ++adj.num_edges;
-    if (sharing.size() == 1) {
-      adj.opposite[h0] = TriangleAdjacency::kBoundary;
-    } else if (sharing.size() == 2) {
-      adj.opposite[sharing[0]] = sharing[1];
-      adj.opposite[sharing[1]] = sharing[0];
-    } else {
-      for (int32_t h : sharing) adj.opposite[h] = TriangleAdjacency::kNonManifold;
-      if (adj.num_nonmanifold_edges == 0) adj.nonmanifold_example = {a, b};
-      ++adj.num_nonmanifold_edges;
+    // Group by the other end (insertion sort: a star has a few spokes).
+    for (size_t i = 1; i < spokes.size(); ++i)
+      for (size_t j = i; j > 0 && spokes[j - 1].hi > spokes[j].hi; --j)
+        std::swap(spokes[j - 1], spokes[j]);
+    for (size_t i = 0; i < spokes.size();) {
+      size_t j = i + 1;
+      while (j < spokes.size() && spokes[j].hi == spokes[i].hi) ++j;
+      ++adj.num_edges;
+      if (j - i == 2) {
+        adj.opposite[size_t(spokes[i].h)] = spokes[i + 1].h;
+        adj.opposite[size_t(spokes[i + 1].h)] = spokes[i].h;
+      } else if (j - i > 2) {
+        for (size_t k = i; k < j; ++k) {
+          const int32_t h = spokes[k].h;
+          adj.opposite[size_t(h)] = TriangleAdjacency::kNonManifold;
+          if (first_nonmanifold < 0 || h < first_nonmanifold) first_nonmanifold = h;
+        }
+        ++adj.num_nonmanifold_edges;
+      }
+      i = j;
     }
   }
+  if (first_nonmanifold >= 0)
+    adj.nonmanifold_example = {tri[size_t(first_nonmanifold)],
+                               half_edge_to(mesh, first_nonmanifold)};
   return adj;
 }
 
@@ -69,10 +83,13 @@ void remap_after_flips(TriangleAdjacency& adj, const std::vector<uint8_t>& flipp
     int32_t t = h / 3, k = h % 3;
     return flipped[t] ? 3 * t + (2 - k) : h;
   };
-  std::vector<int32_t> old = std::move(adj.opposite);
-  adj.opposite.assign(old.size(), TriangleAdjacency::kBoundary);
-  for (size_t h = 0; h < old.size(); ++h)
-    adj.opposite[map(int32_t(h))] = old[h] >= 0 ? map(old[h]) : old[h];
+  // In place: the entries of each flipped triangle move (0 and 2 trade),
+  // then every opposite half-edge is mapped.
+  std::vector<int32_t>& opposite = adj.opposite;
+  for (size_t t = 0; t < flipped.size(); ++t)
+    if (flipped[t]) std::swap(opposite[3 * t], opposite[3 * t + 2]);
+  for (int32_t& o : opposite)
+    if (o >= 0) o = map(o);
 }
 
 }  // namespace vm

@@ -227,6 +227,14 @@ namespace {
 /// breadth-first propagation of relative orientations across the edges of
 /// exactly two triangles meets a triangle from both sides.
 bool orientation_contradicts(const SurfaceMesh& mesh, const TriangleAdjacency& adj) {
+  // Usually every shared edge runs opposite ways already: every triangle
+  // keeps its side, and there is nothing to propagate.
+  bool consistent = true;
+  for (size_t h = 0; h < adj.opposite.size(); ++h) {
+    const int32_t o = adj.opposite[h];
+    if (o >= 0) consistent &= half_edge_from(mesh, int32_t(h)) != half_edge_from(mesh, o);
+  }
+  if (consistent) return false;
   const size_t nt = mesh.num_triangles();
   std::vector<int8_t> side(nt, -1);  // 0: as given, 1: reversed; -1 unseen
   std::vector<int32_t> queue;

@@ -41,6 +41,7 @@ std::vector<int32_t> remove_unused_vertices(SurfaceMesh& mesh, RepairStats& stat
     ++next;
   }
   stats.unused_vertices_removed += remap.size() - size_t(next);
+  if (size_t(next) == remap.size()) return remap;  // all used: nothing moved
   mesh.points.resize(3 * size_t(next));
   for (int32_t& v : mesh.triangles) v = remap[v];
   return remap;
@@ -204,32 +205,38 @@ void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats,
   repair_collinear_triangles(mesh, stats, labels);
   const size_t kept = mesh.num_triangles();
   // Phase 2: duplicates share their smallest vertex; bucket the triangles by
-  // it (counting sort) and compare within each bucket.
+  // it (counting sort), each with its other two corners so that a bucket is
+  // compared without reading the triangles again, and compare within each
+  // bucket: a triangle is a duplicate when an earlier one has its corners.
   const size_t nv = mesh.num_vertices();
-  std::vector<int32_t> offset(nv + 1, 0);
-  auto min_vertex = [&](size_t t) {
-    return std::min({tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]});
-  };
-  for (size_t t = 0; t < kept; ++t) ++offset[min_vertex(t) + 1];
-  for (size_t v = 0; v < nv; ++v) offset[v + 1] += offset[v];
-  std::vector<int32_t> bucket(kept);
-  {
-    std::vector<int32_t> fill(offset.begin(), offset.end() - 1);
-    for (size_t t = 0; t < kept; ++t) bucket[fill[min_vertex(t)]++] = int32_t(t);
-  }
-  auto sorted = [&](int32_t t) {
+  auto sorted = [&](size_t t) {
     std::array<int32_t, 3> s = {tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]};
     std::sort(s.begin(), s.end());
     return s;
   };
+  std::vector<int32_t> offset(nv + 1, 0);
+  for (size_t t = 0; t < kept; ++t)
+    ++offset[std::min({tri[3 * t], tri[3 * t + 1], tri[3 * t + 2]}) + 1];
+  for (size_t v = 0; v < nv; ++v) offset[v + 1] += offset[v];
+  struct Entry {
+    int32_t t, mid, max;  // a triangle and its corners above the bucket's vertex
+  };
+  std::vector<Entry> bucket(kept);
+  {
+    std::vector<int32_t> fill(offset.begin(), offset.end() - 1);
+    for (size_t t = 0; t < kept; ++t) {
+      const std::array<int32_t, 3> s = sorted(t);
+      bucket[size_t(fill[s[0]]++)] = Entry{int32_t(t), s[1], s[2]};
+    }
+  }
   std::vector<uint8_t> duplicate(kept, 0);
   for (size_t v = 0; v < nv; ++v) {
-    for (int32_t i = offset[v]; i < offset[v + 1]; ++i) {
-      auto si = sorted(bucket[i]);
+    for (int32_t i = offset[v] + 1; i < offset[v + 1]; ++i) {
+      const Entry& e = bucket[size_t(i)];
       for (int32_t j = offset[v]; j < i; ++j) {
         // Buckets are filled in triangle order: j is the earlier triangle.
-        if (!duplicate[bucket[j]] && sorted(bucket[j]) == si) {
-          duplicate[bucket[i]] = 1;
+        if (bucket[size_t(j)].mid == e.mid && bucket[size_t(j)].max == e.max) {
+          duplicate[size_t(e.t)] = 1;
           break;
         }
       }
@@ -273,13 +280,15 @@ void orient_consistently(SurfaceMesh& mesh, RepairStats& stats, TriangleAdjacenc
   // Phase 2: flip every triangle that disagrees with its component's root.
   std::vector<uint8_t> flip(nt);
   std::vector<int32_t> root(nt);
+  bool any_flipped = false;
   for (size_t t = 0; t < nt; ++t) {
     auto [r, p] = uf.find(int32_t(t));
     root[t] = r;
     flip[t] = p;
     if (p) std::swap(tri[3 * t + 1], tri[3 * t + 2]);
+    any_flipped |= p != 0;
   }
-  remap_after_flips(adj, flip);
+  if (any_flipped) remap_after_flips(adj, flip);
   // Phase 3: outward. Signed volume per component (keyed by root), each
   // opening closed by a fan from its centroid against the loop direction.
   BoundingBox box = bounding_box(mesh.points);

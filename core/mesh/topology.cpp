@@ -49,6 +49,44 @@ bool single_fan(const SurfaceMesh& m, const TriangleAdjacency& adj, int32_t v) {
   return reached == d;
 }
 
+// single_fan for a star of at most kSmallStar triangles, the same walk on
+// each triangle's two half-edges at v and their opposites gathered first:
+// those loads are independent, where the walk waits on each step.
+constexpr int32_t kSmallStar = 16;
+bool single_small_fan(const SurfaceMesh& m, const TriangleAdjacency& adj, int32_t v) {
+  const int32_t b = adj.star_offsets[v], d = adj.star_offsets[v + 1] - b;
+  int32_t tri[kSmallStar], he[kSmallStar][2], op[kSmallStar][2];
+  for (int32_t i = 0; i < d; ++i) {
+    const int32_t t = adj.star[size_t(b + i)];
+    const int32_t* c = &m.triangles[3 * size_t(t)];
+    if ((c[0] == v) + (c[1] == v) + (c[2] == v) != 1) return single_fan(m, adj, v);  // degenerate
+    const int32_t k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
+    // The half-edge from v and the one to v, in index order (as
+    // other_half_edge_at finds them).
+    const int32_t out = 3 * t + k, in = 3 * t + (k + 2) % 3;
+    tri[i] = t;
+    he[i][0] = std::min(out, in);
+    he[i][1] = std::max(out, in);
+    op[i][0] = adj.opposite[size_t(he[i][0])];
+    op[i][1] = adj.opposite[size_t(he[i][1])];
+  }
+  int32_t reached = 1;
+  for (int first = 0; first < 2; ++first) {
+    int32_t o = op[0][first];
+    for (int32_t steps = 0; steps < d; ++steps) {
+      if (o < 0) break;  // boundary or non-manifold edge: the fan ends
+      const int32_t t = o / 3;
+      if (t == tri[0]) return reached == d;  // closed around v
+      ++reached;
+      int32_t j = 1;
+      while (j < d && tri[j] != t) ++j;
+      if (j == d) return single_fan(m, adj, v);  // not in the star: cannot be
+      o = op[j][he[j][0] == o ? 1 : 0];
+    }
+  }
+  return reached == d;
+}
+
 }  // namespace
 
 Opening describe_loop(const SurfaceMesh& m, std::vector<int32_t> loop) {
@@ -140,7 +178,10 @@ TopologyReport analyze_topology(const SurfaceMesh& mesh, const TriangleAdjacency
   // Bow-tie vertices.
   for (size_t v = 0; v < nv; ++v) {
     if (adj.star_offsets[v + 1] == adj.star_offsets[v]) continue;
-    if (!single_fan(mesh, adj, int32_t(v))) ++r.nonmanifold_vertices;
+    const int32_t d = adj.star_offsets[v + 1] - adj.star_offsets[v];
+    if (!(d <= kSmallStar ? single_small_fan(mesh, adj, int32_t(v))
+                          : single_fan(mesh, adj, int32_t(v))))
+      ++r.nonmanifold_vertices;
   }
 
   // Openings, largest first.

@@ -150,25 +150,21 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts, double t
   const double cell = 64 * tol;
   const double inv_cell = 1.0 / cell;
   auto cell_of = [&](double x) { return floor_to_int(x * inv_cell); };
-  // Cell -> linked list of points in it.
+  // Cell -> linked list of points in it. A point's cell is recomputed
+  // where needed rather than stored (3 n int64 would be the largest array).
   IndexHashTable cells(n);
   std::vector<int32_t> next(n, -1);
   std::vector<int32_t> head(n, -1);  // the list head of each point's cell
-  std::vector<int64_t> key(3 * n);
-  for (size_t i = 0; i < n; ++i) {
-    for (int k = 0; k < 3; ++k) key[3 * i + k] = cell_of(pts[3 * i + k]);
-  }
-  auto same_cell = [&](size_t a, size_t b) {
-    return key[3 * a] == key[3 * b] && key[3 * a + 1] == key[3 * b + 1] &&
-           key[3 * a + 2] == key[3 * b + 2];
+  auto in_cell = [&](size_t a, int64_t x, int64_t y, int64_t z) {
+    return cell_of(pts[3 * a]) == x && cell_of(pts[3 * a + 1]) == y && cell_of(pts[3 * a + 2]) == z;
   };
   auto cell_hash = [&](int64_t x, int64_t y, int64_t z) {
     return hash3(uint64_t(x), uint64_t(y), uint64_t(z));
   };
   for (size_t i = 0; i < n; ++i) {
-    int32_t h =
-        cells.find_or_insert(cell_hash(key[3 * i], key[3 * i + 1], key[3 * i + 2]), int32_t(i),
-                             [&](int32_t s) { return same_cell(size_t(s), i); });
+    const int64_t x = cell_of(pts[3 * i]), y = cell_of(pts[3 * i + 1]), z = cell_of(pts[3 * i + 2]);
+    int32_t h = cells.find_or_insert(cell_hash(x, y, z), int32_t(i),
+                                     [&](int32_t s) { return in_cell(size_t(s), x, y, z); });
     if (h != int32_t(i)) {
       next[i] = next[h];
       next[h] = int32_t(i);
@@ -186,29 +182,36 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts, double t
     }
     // Fast path: alone in its cell and farther than tol from its faces.
     if (next[head[i]] < 0 && lo[0] == hi[0] && lo[1] == hi[1] && lo[2] == hi[2]) continue;
+    // The points j > i of the list from s within tol of p.
+    auto visit = [&](int32_t s) {
+      for (int32_t j = s; j >= 0; j = next[j]) {
+        if (size_t(j) <= i) continue;  // each pair once
+        const double* q = &pts[3 * j];
+        double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                    (p[2] - q[2]) * (p[2] - q[2]);
+        if (d2 <= tol2) {
+          int32_t ri = find_root(parent, int32_t(i));
+          int32_t rj = find_root(parent, j);
+          if (ri != rj) {
+            if (ri < rj)
+              parent[rj] = ri;
+            else
+              parent[ri] = rj;
+            ++*merged;
+          }
+        }
+      }
+    };
+    const int64_t own[3] = {cell_of(p[0]), cell_of(p[1]), cell_of(p[2])};
     for (int64_t x = lo[0]; x <= hi[0]; ++x)
       for (int64_t y = lo[1]; y <= hi[1]; ++y)
         for (int64_t z = lo[2]; z <= hi[2]; ++z) {
-          uint64_t h = cell_hash(x, y, z);
-          cells.for_each_with_hash(h, [&](int32_t s) {
-            if (key[3 * s] != x || key[3 * s + 1] != y || key[3 * s + 2] != z) return;
-            for (int32_t j = s; j >= 0; j = next[j]) {
-              if (size_t(j) <= i) continue;  // each pair once
-              const double* q = &pts[3 * j];
-              double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                          (p[2] - q[2]) * (p[2] - q[2]);
-              if (d2 <= tol2) {
-                int32_t ri = find_root(parent, int32_t(i));
-                int32_t rj = find_root(parent, j);
-                if (ri != rj) {
-                  if (ri < rj)
-                    parent[rj] = ri;
-                  else
-                    parent[ri] = rj;
-                  ++*merged;
-                }
-              }
-            }
+          if (x == own[0] && y == own[1] && z == own[2]) {
+            visit(head[i]);  // its own cell's list, without a lookup
+            continue;
+          }
+          cells.for_each_with_hash(cell_hash(x, y, z), [&](int32_t s) {
+            if (in_cell(size_t(s), x, y, z)) visit(s);
           });
         }
   }
@@ -226,18 +229,20 @@ SurfaceMesh merge_and_index(const std::vector<double>& pts,
   double tol = options.relative_tolerance * bounding_box(pts).diagonal();
   // No far point may inflate the tolerance past the mesh's own scale: at
   // most a small fraction of the median edge.
-  std::vector<double> edges;
-  edges.reserve(corners);
-  for (size_t c = 0; c + 2 < corners; c += 3)
-    for (size_t k = 0; k < 3; ++k) {
-      const double* a = &pts[3 * size_t(corner_to_unique[c + k])];
-      const double* b = &pts[3 * size_t(corner_to_unique[c + (k + 1) % 3])];
-      const double d = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
-      if (d > 0) edges.push_back(d);
+  {
+    std::vector<double> edges;  // freed here, for the arrays that follow
+    edges.reserve(corners);
+    for (size_t c = 0; c + 2 < corners; c += 3)
+      for (size_t k = 0; k < 3; ++k) {
+        const double* a = &pts[3 * size_t(corner_to_unique[c + k])];
+        const double* b = &pts[3 * size_t(corner_to_unique[c + (k + 1) % 3])];
+        const double d = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+        if (d > 0) edges.push_back(d);
+      }
+    if (!edges.empty()) {
+      std::nth_element(edges.begin(), edges.begin() + long(edges.size() / 2), edges.end());
+      tol = std::min(tol, options.edge_fraction * edges[edges.size() / 2]);
     }
-  if (!edges.empty()) {
-    std::nth_element(edges.begin(), edges.begin() + long(edges.size() / 2), edges.end());
-    tol = std::min(tol, options.edge_fraction * edges[edges.size() / 2]);
   }
   size_t merged = 0;
   std::vector<int32_t> rep = merge_close_points(pts, tol, &merged);
@@ -264,20 +269,34 @@ SurfaceMesh merge_and_index(const std::vector<double>& pts,
   return mesh;
 }
 
-}  // namespace
-
-SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options, WeldStats* stats) {
+// Phase 1 of the soup weld: the distinct points (3 doubles each) and each
+// corner's index among them.
+std::vector<double> distinct_corners(const TriangleSoup& soup,
+                                     std::vector<int32_t>& corner_to_unique) {
   const size_t corners = soup.coords.size() / 3;
   const float* c = soup.coords.data();
-  // Phase 1: exact duplicates.
-  std::vector<int32_t> corner_to_unique(corners);
+  corner_to_unique.resize(corners);
   std::vector<int32_t> unique_corner;  // first corner of each unique point
   if (!weld_exact(c, corners, locality_cell_size(soup), corner_to_unique, unique_corner))
     weld_exact(c, corners, 0.0, corner_to_unique, unique_corner);
   std::vector<double> pts(3 * unique_corner.size());
   for (size_t u = 0; u < unique_corner.size(); ++u)
     for (int k = 0; k < 3; ++k) pts[3 * u + k] = c[3 * size_t(unique_corner[u]) + k];
-  unique_corner = {};
+  return pts;
+}
+
+}  // namespace
+
+SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options, WeldStats* stats) {
+  std::vector<int32_t> corner_to_unique;
+  const std::vector<double> pts = distinct_corners(soup, corner_to_unique);
+  return merge_and_index(pts, corner_to_unique, options, stats);
+}
+
+SurfaceMesh weld(TriangleSoup&& soup, const WeldOptions& options, WeldStats* stats) {
+  std::vector<int32_t> corner_to_unique;
+  const std::vector<double> pts = distinct_corners(soup, corner_to_unique);
+  soup.coords = {};
   return merge_and_index(pts, corner_to_unique, options, stats);
 }
 

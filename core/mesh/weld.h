@@ -30,6 +30,11 @@ struct WeldStats {
 SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options = {},
                  WeldStats* stats = nullptr);
 
+/// The same, freeing the soup's coordinates (the largest array of the
+/// input) as soon as the distinct points are taken from them, so that the
+/// rest of the weld reuses that memory; `soup` is left without triangles.
+SurfaceMesh weld(TriangleSoup&& soup, const WeldOptions& options = {}, WeldStats* stats = nullptr);
+
 /// The same for an indexed surface as the non-STL readers give it (see
 /// surface_file.h): points (3 doubles each) that are bit-identical (-0 and
 /// +0 alike) become one vertex, then points closer than the tolerance

@@ -47,6 +47,9 @@ struct Work {
   std::vector<int32_t> labels;
   std::vector<std::pair<int32_t, std::string>> face_names;
   TriangleAdjacency adjacency;
+  /// The topology of the current mesh when it is known (analyze_topology
+  /// with `adjacency`); reset by every phase that changes the mesh.
+  std::optional<TopologyReport> topology;
   std::vector<OpeningSource> sources;
   std::vector<int32_t> source_of_vertex;
   /// Set by flow extensions: per vertex, the opening it bounds in the
@@ -55,6 +58,12 @@ struct Work {
   std::vector<int32_t> order_of_vertex;
   /// Where phase 4's note goes among the warnings (none: npos).
   size_t smoothing_note = std::string::npos;
+
+  /// The topology of the current mesh, analyzed once.
+  const TopologyReport& current_topology(const SurfaceMesh& mesh) {
+    if (!topology) topology = analyze_topology(mesh, adjacency);
+    return *topology;
+  }
 
   /// After vertices were renumbered (old -> new, -1 removed).
   void remap_vertices(const std::vector<int32_t>& remap, size_t new_count) {
@@ -82,7 +91,7 @@ Status read_and_weld(PreparedSurface& s, Work& w, std::span<const uint8_t> bytes
   w.face_names = std::move(f.face_names);
   s.label_array = f.label_array;
   if (!f.soup.coords.empty())
-    s.mesh = weld(f.soup, options.weld, &s.weld);
+    s.mesh = weld(std::move(f.soup), options.weld, &s.weld);
   else
     s.mesh = weld(f.points, f.triangles, options.weld, &s.weld);
   if (s.weld.merged_by_tolerance > 0)
@@ -123,11 +132,10 @@ std::vector<std::vector<int32_t>> simple_cycles(const std::vector<int32_t>& loop
 
 /// Phase 2, after orientation, always: specks, separate pieces with less than 1% of the
 /// largest piece's triangles or area (stray triangles, segmentation
-/// islands), are removed, saying where. Returns the surface's topology
-/// when nothing was removed (the next phase reuses it), else nothing.
-std::optional<TopologyReport> drop_specks(PreparedSurface& s, Work& w) {
-  TopologyReport parts = analyze_topology(s.mesh, w.adjacency);
-  if (parts.components <= 1) return parts;
+/// islands), are removed, saying where.
+void drop_specks(PreparedSurface& s, Work& w) {
+  const TopologyReport& parts = w.current_topology(s.mesh);
+  if (parts.components <= 1) return;
   std::vector<double> area(size_t(parts.components), 0);
   std::vector<Vec3> where(size_t(parts.components), Vec3{0, 0, 0});
   for (size_t t = 0; t < s.mesh.num_triangles(); ++t) {
@@ -149,11 +157,12 @@ std::optional<TopologyReport> drop_specks(PreparedSurface& s, Work& w) {
       triangles += parts.component_triangles[k];
       if (example.empty()) example = point_text(where[k]);
     }
-  if (count == 0) return parts;
+  if (count == 0) return;
   std::vector<uint8_t> remove(s.mesh.num_triangles());
   for (size_t t = 0; t < remove.size(); ++t) remove[t] = speck[size_t(parts.triangle_component[t])];
   remove_triangles(s.mesh, remove, &w.labels);
   w.adjacency = build_adjacency(s.mesh);
+  w.topology.reset();
   s.specks_removed = count;
   s.warnings.push_back(count == 1
                            ? "removed a small separate piece (" + num(triangles) +
@@ -161,7 +170,6 @@ std::optional<TopologyReport> drop_specks(PreparedSurface& s, Work& w) {
                                  ", under 1% of the surface) at " + example
                            : "removed " + num(count) + " small separate pieces (" + num(triangles) +
                                  " triangles, each under 1% of the surface), e.g. at " + example);
-  return std::nullopt;
 }
 
 /// Phase 2b ({repair} auto): fins dropped, non-manifold edges split.
@@ -197,11 +205,9 @@ void repair_edges(PreparedSurface& s, Work& w) {
 /// defect in the wall it is the vessel's, whatever the loop's size.
 /// Needs an orientable surface; the chords are cast on a copy whose
 /// non-manifold vertices are split (same vertex numbers, copies appended).
-/// `known`: the surface's topology when already analyzed.
-void find_and_close_holes(PreparedSurface& s, Work& w, const PrepareOptions& options,
-                          std::optional<TopologyReport> known) {
+void find_and_close_holes(PreparedSurface& s, Work& w, const PrepareOptions& options) {
   if (!s.repair.orientable || w.adjacency.num_nonmanifold_edges > 0) return;
-  const TopologyReport t = known ? std::move(*known) : analyze_topology(s.mesh, w.adjacency);
+  const TopologyReport& t = w.current_topology(s.mesh);
   if (t.openings.empty() || !(options.hole_fraction > 0) || s.mesh.num_triangles() > 2'000'000)
     return;
   std::vector<double> chord;
@@ -259,6 +265,7 @@ void find_and_close_holes(PreparedSurface& s, Work& w, const PrepareOptions& opt
     return;
   }
   const std::vector<HoleFill> fills = fill_holes(s.mesh, loops, &w.labels);
+  w.topology.reset();  // `t` is not used below
   std::vector<Vec3> closed, open;
   for (size_t i = 0; i < fills.size(); ++i) {
     Hole& h = s.holes[i];
@@ -279,9 +286,13 @@ void find_and_close_holes(PreparedSurface& s, Work& w, const PrepareOptions& opt
 }
 
 /// Phase 2d ({repair} auto): vertices where several fans meet duplicated.
-void repair_vertices(PreparedSurface& s, const TriangleAdjacency* adj) {
+/// Nothing to do when the current topology is known to have none.
+void repair_vertices(PreparedSurface& s, Work& w) {
+  if (w.topology && w.topology->nonmanifold_vertices == 0) return;
   ManifoldRepairStats& m = s.manifold;
-  split_nonmanifold_vertices(s.mesh, m, adj);
+  // The adjacency is current unless holes were closed.
+  split_nonmanifold_vertices(s.mesh, m, s.holes.empty() ? &w.adjacency : nullptr);
+  if (m.vertices_split > 0) w.topology.reset();
   if (m.vertices_split > 0)
     s.warnings.push_back(num(m.vertices_split) +
                          " non-manifold vertices (several triangle fans meeting) were split, one "
@@ -323,10 +334,10 @@ Status repair(PreparedSurface& s, Work& w, const PrepareOptions& options) {
         num(s.repair.flipped) + (s.repair.flipped == 1 ? " triangle was" : " triangles were") +
         " re-oriented (consistent, outward), e.g. at " + point_text(s.repair.flipped_example));
   }
-  find_and_close_holes(s, w, options, drop_specks(s, w));
+  drop_specks(s, w);
+  find_and_close_holes(s, w, options);
   if (options.repair) {
-    // The adjacency is current unless holes were closed.
-    repair_vertices(s, s.holes.empty() ? &w.adjacency : nullptr);
+    repair_vertices(s, w);
     if (!s.holes.empty() || s.manifold.vertices_split > 0) w.adjacency = build_adjacency(s.mesh);
   }
   return Status::Ok();
@@ -334,12 +345,13 @@ Status repair(PreparedSurface& s, Work& w, const PrepareOptions& options) {
 
 /// Phase 3: only the largest component, when asked.
 void keep_largest_component(PreparedSurface& s, Work& w) {
-  const TopologyReport parts = analyze_topology(s.mesh, w.adjacency);
+  const TopologyReport parts = w.current_topology(s.mesh);
   if (parts.components <= 1) return;
   std::vector<uint8_t> other(s.mesh.num_triangles());
   for (size_t t = 0; t < other.size(); ++t) other[t] = parts.triangle_component[t] != 0;
   remove_triangles(s.mesh, other, &w.labels);
   w.adjacency = build_adjacency(s.mesh);
+  w.topology.reset();
   s.warnings.push_back("kept the largest of " + std::to_string(parts.components) + " components (" +
                        num(parts.component_triangles[0]) + " of " + num(parts.triangles) +
                        " triangles)");
@@ -390,6 +402,7 @@ void smooth(PreparedSurface& s, Work& w, const PrepareOptions& options) {
                                                   : staircase_passes(s.mesh, out.voxel);
   out.report = smooth_surface(s.mesh, w.adjacency, o);
   out.applied = true;
+  w.topology.reset();                    // the openings' measures changed
   w.smoothing_note = s.warnings.size();  // written once the unit is known
 }
 
@@ -432,6 +445,7 @@ void open_caps(PreparedSurface& s, Work& w, const PrepareOptions& options) {
   w.remap_vertices(remap, s.mesh.num_vertices());
   s.caps_removed = caps.caps.size();
   w.adjacency = build_adjacency(s.mesh);
+  w.topology.reset();
   s.warnings.push_back(num(caps.caps.size()) + " planar caps were recognised and removed: " +
                        "their rims are openings now (keep them with {keep_caps})");
 }
@@ -440,7 +454,7 @@ void open_caps(PreparedSurface& s, Work& w, const PrepareOptions& options) {
 /// keeping where the openings came from.
 Status extend_openings(PreparedSurface& s, Work& w, const PrepareOptions& options) {
   if (options.flow_extension <= 0 && options.flow_extensions.empty()) return Status::Ok();
-  const TopologyReport before = analyze_topology(s.mesh, w.adjacency);
+  const TopologyReport before = w.current_topology(s.mesh);
   const size_t n = before.openings.size();
   std::vector<double> lengths(n, options.flow_extension);
   for (const auto& [k, length] : options.flow_extensions) {
@@ -468,6 +482,7 @@ Status extend_openings(PreparedSurface& s, Work& w, const PrepareOptions& option
   }
   for (int32_t o : opening_of_new_vertex)
     w.source_of_vertex.push_back(source_of_opening[size_t(o)]);
+  w.topology.reset();
   w.order_of_vertex.assign(s.mesh.num_vertices(), -1);
   for (size_t o = 0; o < n; ++o)
     for (int32_t v : before.openings[o].loop) w.order_of_vertex[size_t(v)] = int32_t(o);
@@ -504,6 +519,7 @@ Status clip_one(PreparedSurface& s, Work& w, const ClipPlane& plane) {
   s.mesh = std::move(c.mesh);
   w.labels = std::move(c.labels);
   s.clips.push_back(c.cuts[0]);
+  w.topology.reset();
   if (c.components_dropped > 0)
     s.warnings.push_back("the cut at " + point_text(plane.point) + " left " +
                          std::to_string(c.components_dropped) + " separate pieces (" +
@@ -602,8 +618,10 @@ Status clip(PreparedSurface& s, Work& w, const PrepareOptions& options) {
 
 /// Phase 8: topology, where each opening comes from, what later stages
 /// will refuse.
-void analyze(PreparedSurface& s, const Work& w) {
-  s.topology = analyze_topology(s.mesh, w.adjacency);
+void analyze(PreparedSurface& s, Work& w) {
+  w.current_topology(s.mesh);
+  s.topology = std::move(*w.topology);
+  w.topology.reset();
   if (!w.order_of_vertex.empty())
     std::stable_sort(s.topology.openings.begin(), s.topology.openings.end(),
                      [&](const Opening& a, const Opening& b) {

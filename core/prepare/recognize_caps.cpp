@@ -55,8 +55,8 @@ struct Context {
   double total_area = 0;
 };
 
-/// Fills rim, area, mean normal and centroid; false when the region touches
-/// an opening or a non-manifold edge.
+/// Fills rim, area and mean normal; false when the region touches an
+/// opening or a non-manifold edge. The centroid is left to planar().
 bool describe(const Context& ctx, const std::vector<uint8_t>& in_region, Region& r) {
   r.rim_half_edges.clear();
   Vec3 weighted{};
@@ -67,8 +67,6 @@ bool describe(const Context& ctx, const std::vector<uint8_t>& in_region, Region&
     r.area += a;
     for (int k = 0; k < 3; ++k) {
       weighted[size_t(k)] += a * ctx.normals[size_t(t)][size_t(k)];
-      for (int c = 0; c < 3; ++c)
-        r.centroid[size_t(k)] += a / 3 * point(ctx.mesh, ctx.mesh.triangles[3 * size_t(t) + c])[k];
       const int32_t h = 3 * t + k;
       const int32_t o = ctx.adj.opposite[size_t(h)];
       if (o < 0) return false;  // an opening or a non-manifold edge
@@ -76,7 +74,6 @@ bool describe(const Context& ctx, const std::vector<uint8_t>& in_region, Region&
     }
   }
   if (r.area <= 0) return false;
-  for (double& x : r.centroid) x /= r.area;
   const double len = v3::norm(weighted.data());
   if (len <= 0) return false;
   for (int k = 0; k < 3; ++k) r.normal[size_t(k)] = weighted[size_t(k)] / len;
@@ -133,14 +130,22 @@ RegionTopology region_topology(const Context& ctx, const Region& r) {
 /// Whether every triangle of the region faces within the planar angle of
 /// its mean normal and every corner lies within the planar distance of its
 /// plane (tested before the region's topology, which most candidates of a
-/// curved wall never need).
-bool planar(const Context& ctx, const Region& r) {
+/// curved wall never need). Fills the centroid (area-weighted) once the
+/// normals pass.
+bool planar(const Context& ctx, Region& r) {
   const CapRecognitionOptions& o = ctx.options;
   const double cos_limit = angle_cos(o.planar_angle_degrees);
   for (int32_t t : r.triangles)
     if (ctx.areas[size_t(t)] > 0 &&
         v3::dot(ctx.normals[size_t(t)].data(), r.normal.data()) < cos_limit)
       return false;
+  for (int32_t t : r.triangles) {
+    const double a = ctx.areas[size_t(t)];
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c)
+        r.centroid[size_t(k)] += a / 3 * point(ctx.mesh, ctx.mesh.triangles[3 * size_t(t) + c])[k];
+  }
+  for (double& x : r.centroid) x /= r.area;
   const double limit = o.planar_distance * std::sqrt(r.area / std::numbers::pi);
   for (int32_t t : r.triangles)
     for (int k = 0; k < 3; ++k) {
@@ -268,12 +273,16 @@ CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& 
                               const CapRecognitionOptions& options) {
   CapRecognition out;
   const size_t nt = mesh.num_triangles();
-  std::vector<Vec3> normals(nt);
-  std::vector<double> areas(nt);
+  std::vector<Vec3> normals;  // filled, not zeroed first
+  std::vector<double> areas;
+  normals.reserve(nt);
+  areas.reserve(nt);
   double total = 0;
   for (size_t t = 0; t < nt; ++t) {
-    std::tie(normals[t], areas[t]) = triangle_normal(mesh, t);
-    total += areas[t];
+    const auto [n, a] = triangle_normal(mesh, t);
+    normals.push_back(n);
+    areas.push_back(a);
+    total += a;
   }
   Context ctx{mesh, adj, normals, areas, options, total};
   // Labels tell faces apart only when there are two or more (a file with

@@ -11,6 +11,7 @@
 
 #include "core/geom/vec3.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/util/radix_sort.h"
 
 namespace vm {
 
@@ -115,17 +116,19 @@ StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions
   StaircaseReport r;
   const size_t nt = mesh.num_triangles();
   if (nt == 0) return r;
-  std::vector<Vec3> normals(nt);
-  std::vector<double> areas(nt);
+  std::vector<Vec3> normals;  // filled, not zeroed first
+  std::vector<double> areas;
+  normals.reserve(nt);
+  areas.reserve(nt);
   double total_area = 0;
   for (size_t t = 0; t < nt; ++t) {
     Vec3 a = area_vector(mesh, t);
     const double len = norm(a);
-    areas[t] = len;
+    areas.push_back(len);
     total_area += len;
     if (len > 0)
       for (double& x : a) x /= len;
-    normals[t] = a;
+    normals.push_back(a);
   }
   if (!(total_area > 0)) return r;
   const BoundingBox box = bounding_box(mesh.points);
@@ -154,7 +157,7 @@ StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions
   std::vector<double> values(nv);
   for (int k = 0; k < 3; ++k) {
     for (size_t v = 0; v < nv; ++v) values[v] = mesh.points[3 * v + size_t(k)];
-    std::sort(values.begin(), values.end());
+    radix_sort(values);
     half[size_t(k)] = lattice_step(values, merge, origin[size_t(k)]);
     if (!(half[size_t(k)] > 0)) {  // no lattice: not a staircase
       r.direction_fraction = direction_fraction({1, 1, 1});
@@ -194,7 +197,7 @@ StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions
     for (size_t t = 0; t < nt; ++t)
       if (std::fabs(normals[t][size_t(k)]) >= terrace_cos)
         values.push_back(point(mesh, mesh.triangles[3 * t])[k]);
-    std::sort(values.begin(), values.end());
+    radix_sort(values);
     for (size_t i = 0; i < values.size(); ++i)
       r.terraces += i == 0 || values[i] - values[i - 1] > merge;
   }
