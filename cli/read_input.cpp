@@ -1,17 +1,16 @@
 // Reading the CLI's input file (see read_input.h).
 #include "cli/read_input.h"
 
-#include <fcntl.h>
-#include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <optional>
+#include <memory>
 
 namespace vm::cli {
 namespace {
@@ -37,45 +36,7 @@ Result<InputBytes> read_stream(std::istream& in, const std::string& name, uint64
   return InputBytes(std::move(bytes));
 }
 
-/// The regular file `path` of `size` bytes (> 0) mapped read-only and
-/// populated, or nothing when it cannot be mapped.
-std::optional<InputBytes> map_file(const std::string& path, uint64_t size) {
-  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return std::nullopt;
-#ifdef MAP_POPULATE
-  constexpr int kPopulate = MAP_POPULATE;  // Linux: all pages at once, not a fault each
-#else
-  constexpr int kPopulate = 0;
-#endif
-  void* p = mmap(nullptr, size_t(size), PROT_READ, MAP_PRIVATE | kPopulate, fd, 0);
-  close(fd);  // the mapping stays
-  if (p == MAP_FAILED) return std::nullopt;
-  return InputBytes(p, size_t(size));
-}
-
 }  // namespace
-
-InputBytes::InputBytes(InputBytes&& other) noexcept
-    : read_(std::move(other.read_)), mapped_(other.mapped_), size_(other.size_) {
-  other.mapped_ = nullptr;
-  other.size_ = 0;
-}
-
-InputBytes& InputBytes::operator=(InputBytes&& other) noexcept {
-  if (this != &other) {
-    if (mapped_) munmap(const_cast<uint8_t*>(mapped_), size_);
-    read_ = std::move(other.read_);
-    mapped_ = other.mapped_;
-    size_ = other.size_;
-    other.mapped_ = nullptr;
-    other.size_ = 0;
-  }
-  return *this;
-}
-
-InputBytes::~InputBytes() {
-  if (mapped_) munmap(const_cast<uint8_t*>(mapped_), size_);
-}
 
 Result<InputBytes> read_input(const std::string& path, const SurfaceReadOptions& options) {
   if (path == "-") {
@@ -102,20 +63,18 @@ Result<InputBytes> read_input(const std::string& path, const SurfaceReadOptions&
   }
   const uint64_t size = fs::file_size(path, ec);
   if (ec) return fail("cannot read '" + path + "': " + ec.message());
-  std::vector<uint8_t> bytes(std::min<uint64_t>(size, 84));
-  in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
-  if (Status s = check_surface_size(bytes, size, options); !s.ok()) {
+  std::vector<uint8_t> head(std::min<uint64_t>(size, 84));
+  in.read(reinterpret_cast<char*>(head.data()), std::streamsize(head.size()));
+  if (Status s = check_surface_size(head, size, options); !s.ok()) {
     return fail(path + ": " + s.message());
   }
-  if (size > 84) {
-    if (std::optional<InputBytes> mapped = map_file(path, size)) return std::move(*mapped);
-  }
-  bytes.resize(size);
-  if (size > 84 &&
-      !in.read(reinterpret_cast<char*>(bytes.data() + 84), std::streamsize(size - 84))) {
+  std::unique_ptr<uint8_t[]> bytes(new uint8_t[size]);  // not zeroed: every byte is read
+  std::copy(head.begin(), head.end(), bytes.get());
+  if (size > head.size() && !in.read(reinterpret_cast<char*>(bytes.get() + head.size()),
+                                     std::streamsize(size - head.size()))) {
     return fail("cannot read '" + path + "'");
   }
-  return InputBytes(std::move(bytes));
+  return InputBytes(std::move(bytes), size_t(size));
 }
 
 }  // namespace vm::cli

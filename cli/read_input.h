@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -13,35 +14,31 @@
 
 namespace vm::cli {
 
-/// An input file's bytes: a regular file mapped read-only (no copy, and no
-/// zeroed memory to fault in first), else the bytes read into memory.
-/// Move-only; the mapping ends with the object.
+/// An input file's bytes: a regular file read into memory that is not
+/// zeroed first (no page to fault in twice), or a stream's bytes.
 class InputBytes {
  public:
   explicit InputBytes(std::vector<uint8_t> bytes) : read_(std::move(bytes)) {}
-  /// Takes over a mapping of `size` bytes at `mapped` (from mmap).
-  InputBytes(const void* mapped, size_t size)
-      : mapped_(static_cast<const uint8_t*>(mapped)), size_(size) {}
-  InputBytes(InputBytes&& other) noexcept;
-  InputBytes& operator=(InputBytes&& other) noexcept;
-  ~InputBytes();
+  /// Takes over `size` bytes at `buffer`.
+  InputBytes(std::unique_ptr<uint8_t[]> buffer, size_t size)
+      : buffer_(std::move(buffer)), size_(size) {}
 
   std::span<const uint8_t> span() const {
-    return mapped_ ? std::span<const uint8_t>(mapped_, size_) : std::span<const uint8_t>(read_);
+    return buffer_ ? std::span<const uint8_t>(buffer_.get(), size_)
+                   : std::span<const uint8_t>(read_);
   }
   operator std::span<const uint8_t>() const { return span(); }  // NOLINT: a view of the bytes
 
  private:
   std::vector<uint8_t> read_;
-  const uint8_t* mapped_ = nullptr;
+  std::unique_ptr<uint8_t[]> buffer_;
   size_t size_ = 0;
 };
 
 /// The bytes of `path` ('-': standard input). Errors name the path and say
 /// what it is ("a directory", "a device", "a terminal") or why it cannot be
-/// read; a regular file is checked with check_surface_size first (then
-/// mapped, or read if it cannot be), a stream is read in chunks up to
-/// options.max_file_bytes.
+/// read; a regular file is checked with check_surface_size first, then
+/// read whole; a stream is read in chunks up to options.max_file_bytes.
 Result<InputBytes> read_input(const std::string& path, const SurfaceReadOptions& options = {});
 
 }  // namespace vm::cli
