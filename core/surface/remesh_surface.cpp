@@ -20,7 +20,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <optional>
 #include <unordered_map>
 
 #include "core/geom/vec3.h"
@@ -419,14 +418,18 @@ Result<RemeshedSurface> remesh_at(const SurfaceMesh& input, const RemeshOptions&
   return result;
 }
 
+/// Whether `input` has far more triangles than the sizes `asked` call for
+/// (RemeshOptions::decimate ... decimate_ratio).
+bool oversampled(const SurfaceMesh& input, const RemeshOptions& options,
+                 const std::vector<double>& asked) {
+  return options.decimate && input.num_triangles() >= options.decimate_min_triangles &&
+         double(input.num_triangles()) > options.decimate_ratio * estimate_triangles(input, asked);
+}
+
 /// Phase 1b: `input` decimated within the options' share of the sizes
-/// `asked`, when it is oversampled for them (else nothing).
-std::optional<DecimatedSurface> decimate_if_oversampled(const SurfaceMesh& input,
-                                                        const RemeshOptions& options,
-                                                        const std::vector<double>& asked) {
-  if (!options.decimate || input.num_triangles() < options.decimate_min_triangles ||
-      double(input.num_triangles()) <= options.decimate_ratio * estimate_triangles(input, asked))
-    return std::nullopt;
+/// `asked` (one per input vertex).
+DecimatedSurface decimate_for_sizes(const SurfaceMesh& input, const RemeshOptions& options,
+                                    const std::vector<double>& asked) {
   std::vector<double> max_error(asked.size()), max_edge(asked.size());
   for (size_t v = 0; v < asked.size(); ++v) {
     max_error[v] = options.decimate_error * asked[v];
@@ -458,20 +461,21 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
           options.size.mode == SizeMode::kUniform ? "size" : "per_circumference", buf);
     }
   }
-  t0 = std::chrono::steady_clock::now();
-  const std::optional<DecimatedSurface> decimated = decimate_if_oversampled(input, options, asked);
-  stats.seconds_decimate = seconds_since(t0);
-  if (!decimated) {
+  if (!oversampled(input, options, asked)) {
     auto result = remesh_at(input, options, asked, stats, progress);
     if (stats_out) *stats_out = stats;
     return result;
   }
+  if (!report_progress(progress, 0.05, "decimating")) return Status::Cancelled();
+  t0 = std::chrono::steady_clock::now();
+  const DecimatedSurface decimated = decimate_for_sizes(input, options, asked);
+  stats.seconds_decimate = seconds_since(t0);
   // Phases 2-7 on the decimated surface, at the sizes of its vertices.
-  stats.decimated_triangles = decimated->mesh.num_triangles();
-  std::vector<double> kept_asked(decimated->input_vertex.size());
+  stats.decimated_triangles = decimated.mesh.num_triangles();
+  std::vector<double> kept_asked(decimated.input_vertex.size());
   for (size_t v = 0; v < kept_asked.size(); ++v)
-    kept_asked[v] = asked[size_t(decimated->input_vertex[v])];
-  auto result = remesh_at(decimated->mesh, options, kept_asked, stats, progress);
+    kept_asked[v] = asked[size_t(decimated.input_vertex[v])];
+  auto result = remesh_at(decimated.mesh, options, kept_asked, stats, progress);
   if (result.ok()) {
     // Every output vertex onto the input (it lay on the decimated surface,
     // within about decimate_error h of it), homed there; then sizes and gaps

@@ -294,6 +294,15 @@ TEST(RemeshSurface, AnOversampledInputIsDecimatedFirstAndTheOutputStaysOnIt) {
   RemeshStats small;
   ASSERT_TRUE(remesh_surface(in, o, &small).ok());
   EXPECT_EQ(small.decimated_triangles, 0u);
+  // The decimation says so to the progress callback, which may cancel it.
+  o.decimate_min_triangles = 10000;
+  std::vector<std::string> stages;
+  auto cancelled = remesh_surface(in, o, nullptr, [&](double, std::string_view stage) {
+    stages.emplace_back(stage);
+    return stage != "decimating";
+  });
+  EXPECT_TRUE(cancelled.cancelled());
+  EXPECT_EQ(stages, std::vector<std::string>{"decimating"});
 }
 
 TEST(RemeshSurface, InvalidSizeIsAnError) {
