@@ -58,17 +58,22 @@ test('a bad size gives a readable error and the page keeps working', async ({ pa
   expect(await num(page, 'out-quality-min')).toBeGreaterThan(0.3);
 });
 
-test('pinning to far input vertices: on by default, off from the advanced options', async ({ page }) => {
-  // A mildly noisy phantom whose bumps a 0.3 wall partly misses.
+/** Opens the app with a phantom (`makePhantom` options) of `openings`
+ * openings, set to mesh its wall alone at h = 0.3. */
+async function openPhantomForWall(page, phantom, openings) {
   const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
   const api = await createVesselmesh({ wasmBinary });
-  const stl = api.makePhantom({ kind: 'bifurcation', voxel: 0.1, noise: 0.1 }).stl;
   await openApp(page);
-  await upload(page, 'bumpy.stl', Buffer.from(stl));
-  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  await upload(page, `${phantom.kind}.stl`, Buffer.from(api.makePhantom(phantom).stl));
+  await expect(page.getByTestId('stat-openings')).toHaveText(String(openings));
   await page.getByTestId('size-mode').selectOption('size');
   await page.getByTestId('size-value').fill('0.3');
   await page.getByTestId('surface-only').check();
+}
+
+test('pinning to far input vertices: on by default, off from the advanced options', async ({ page }) => {
+  // A mildly noisy phantom whose bumps a 0.3 wall partly misses.
+  await openPhantomForWall(page, { kind: 'bifurcation', voxel: 0.1, noise: 0.1 }, 3);
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('out-fidelity')).toBeVisible();
   const pinned = await num(page, 'out-pinned');
@@ -83,15 +88,7 @@ test('pinning to far input vertices: on by default, off from the advanced option
 });
 
 test('an oversampled surface is decimated before remeshing: said in the result, off from the advanced options', async ({ page }) => {
-  const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
-  const api = await createVesselmesh({ wasmBinary });
-  const stl = api.makePhantom({ kind: 'tube', voxel: 0.03 }).stl; // about 218,000 triangles
-  await openApp(page);
-  await upload(page, 'fine-tube.stl', Buffer.from(stl));
-  await expect(page.getByTestId('stat-openings')).toHaveText('2');
-  await page.getByTestId('size-mode').selectOption('size');
-  await page.getByTestId('size-value').fill('0.3');
-  await page.getByTestId('surface-only').check();
+  await openPhantomForWall(page, { kind: 'tube', voxel: 0.03 }, 2); // about 218,000 triangles
   await page.locator('details summary').click();
   await expect(page.getByTestId('decimate-on')).toBeChecked();
   await page.getByTestId('remesh').click();
