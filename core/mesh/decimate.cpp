@@ -2,7 +2,8 @@
 // condition (Dey et al. 1999), in phases:
 //  1. plane quadrics per vertex (area-weighted, about the centre of the
 //     bounding box), boundary vertices marked;
-//  2. vertex stars as linked lists of corners, which collapses splice;
+//  2. vertex stars as lists of corners, each with room for what
+//     collapses add (renumbered along a Hilbert curve for locality);
 //  3. per vertex, its cheapest valid collapse, in a bucket queue by cost;
 //  4. collapses cheapest first; a candidate is checked again against the
 //     current mesh when it comes out of the queue (lazy invalidation);
