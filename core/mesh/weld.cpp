@@ -1,8 +1,9 @@
 // Welding a triangle soup: phase 1 merges bit-identical corners through a
 // hash table laid out by spatial cell (see weld_exact); phase 2 merges
-// distinct points closer than the tolerance with a hashed grid of cells much
-// larger than the tolerance (so most points look at one cell) and a
-// union-find, keeping the first-seen point as the representative.
+// distinct points closer than the tolerance with a grid of cells much larger
+// than the tolerance (so most points look at one cell), bucketed by a radix
+// sort of the cells' hashes, and a union-find keeping the first-seen point
+// as the representative.
 #include "core/mesh/weld.h"
 
 #include <algorithm>
@@ -11,6 +12,8 @@
 #include <cstring>
 
 #include "core/util/index_hash_table.h"
+#include "core/util/parallel.h"
+#include "core/util/radix_sort.h"
 
 namespace vm {
 namespace {
@@ -140,80 +143,99 @@ bool weld_exact(const float* c, size_t corners, double cell, std::vector<int32_t
 
 // Phase 2: returns for each unique point the index of its representative
 // (the smallest index among the points merged with it, transitively).
-std::vector<int32_t> merge_close_points(const std::vector<double>& pts, double tol,
+// `pts`: n points, 3 doubles each. Points are bucketed in cells of side
+// `cell` (>= 2 tol, so a point's tol-neighbourhood spans at most 2 cells an
+// axis) by sorting keys (cell hash above, point index below): the points
+// of a cell are then contiguous, found by binary search, with no scattered
+// hash-table access per point. Hash collisions only put two cells in one
+// run; every pair is still tested by its cells.
+std::vector<int32_t> merge_close_points(const std::vector<double>& pts, double tol, double cell,
                                         size_t* merged) {
-  size_t n = pts.size() / 3;
+  const size_t n = pts.size() / 3;
   std::vector<int32_t> parent(n);
   for (size_t i = 0; i < n; ++i) parent[i] = int32_t(i);
   *merged = 0;
-  if (tol <= 0 || n == 0) return parent;
-  const double cell = 64 * tol;
+  if (!(tol > 0) || n == 0) return parent;
+  cell = std::max(cell, 2 * tol);
   const double inv_cell = 1.0 / cell;
   auto cell_of = [&](double x) { return floor_to_int(x * inv_cell); };
-  // Cell -> linked list of points in it. A point's cell is recomputed
-  // where needed rather than stored (3 n int64 would be the largest array).
-  IndexHashTable cells(n);
-  std::vector<int32_t> next(n, -1);
-  std::vector<int32_t> head(n, -1);  // the list head of each point's cell
-  auto in_cell = [&](size_t a, int64_t x, int64_t y, int64_t z) {
-    return cell_of(pts[3 * a]) == x && cell_of(pts[3 * a + 1]) == y && cell_of(pts[3 * a + 2]) == z;
+  // Key bits, high to low: the cell's hash, whether the point lies within
+  // tol of its cell's faces, the point's index. The loop below reads the
+  // coordinates of a point only when it shares its run or lies near a face
+  // (a few in a hundred): the sorted order is random in memory.
+  const int index_bits = std::max(1, int(std::bit_width(n)));
+  const uint64_t index_mask = (uint64_t(1) << index_bits) - 1;
+  const uint64_t near_face = uint64_t(1) << index_bits;
+  const uint64_t low_mask = (near_face << 1) - 1;
+  auto cell_key = [&](int64_t x, int64_t y, int64_t z) {
+    return IndexHashTable::mix(hash3(uint64_t(x), uint64_t(y), uint64_t(z))) & ~low_mask;
   };
-  auto cell_hash = [&](int64_t x, int64_t y, int64_t z) {
-    return hash3(uint64_t(x), uint64_t(y), uint64_t(z));
-  };
-  for (size_t i = 0; i < n; ++i) {
-    const int64_t x = cell_of(pts[3 * i]), y = cell_of(pts[3 * i + 1]), z = cell_of(pts[3 * i + 2]);
-    int32_t h = cells.find_or_insert(cell_hash(x, y, z), int32_t(i),
-                                     [&](int32_t s) { return in_cell(size_t(s), x, y, z); });
-    if (h != int32_t(i)) {
-      next[i] = next[h];
-      next[h] = int32_t(i);
-    }
-    head[i] = h;
-  }
-  const double tol2 = tol * tol;
-  for (size_t i = 0; i < n; ++i) {
-    const double* p = &pts[3 * i];
-    // Cells within tol of p along each axis: at most 2 per axis.
-    int64_t lo[3], hi[3];
+  // The cells within tol of p along each axis (at most 2 per axis).
+  auto reach = [&](const double* p, int64_t lo[3], int64_t hi[3]) {
     for (int k = 0; k < 3; ++k) {
       lo[k] = cell_of(p[k] - tol);
       hi[k] = cell_of(p[k] + tol);
     }
-    // Fast path: alone in its cell and farther than tol from its faces.
-    if (next[head[i]] < 0 && lo[0] == hi[0] && lo[1] == hi[1] && lo[2] == hi[2]) continue;
-    // The points j > i of the list from s within tol of p.
-    auto visit = [&](int32_t s) {
-      for (int32_t j = s; j >= 0; j = next[j]) {
-        if (size_t(j) <= i) continue;  // each pair once
-        const double* q = &pts[3 * j];
-        double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                    (p[2] - q[2]) * (p[2] - q[2]);
-        if (d2 <= tol2) {
-          int32_t ri = find_root(parent, int32_t(i));
-          int32_t rj = find_root(parent, j);
-          if (ri != rj) {
-            if (ri < rj)
-              parent[rj] = ri;
-            else
-              parent[ri] = rj;
-            ++*merged;
-          }
-        }
+    return lo[0] != hi[0] || lo[1] != hi[1] || lo[2] != hi[2];
+  };
+  std::vector<uint64_t> sorted(n);
+  parallel_for(n, 1 << 16, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const double* p = &pts[3 * i];
+      int64_t lo[3], hi[3];
+      sorted[i] = cell_key(cell_of(p[0]), cell_of(p[1]), cell_of(p[2])) |
+                  (reach(p, lo, hi) ? near_face : 0) | i;
+    }
+  });
+  radix_sort(sorted);
+  auto in_cell = [&](size_t a, int64_t x, int64_t y, int64_t z) {
+    return cell_of(pts[3 * a]) == x && cell_of(pts[3 * a + 1]) == y && cell_of(pts[3 * a + 2]) == z;
+  };
+  const double tol2 = tol * tol;
+  auto unite_if_close = [&](size_t i, size_t j) {
+    const double* p = &pts[3 * i];
+    const double* q = &pts[3 * j];
+    const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                      (p[2] - q[2]) * (p[2] - q[2]);
+    if (d2 > tol2) return;
+    const int32_t ri = find_root(parent, int32_t(i));
+    const int32_t rj = find_root(parent, int32_t(j));
+    if (ri == rj) return;
+    parent[size_t(std::max(ri, rj))] = std::min(ri, rj);
+    ++*merged;
+  };
+  for (size_t a = 0; a < n;) {
+    const uint64_t run_key = sorted[a] & ~low_mask;
+    size_t end = a + 1;
+    while (end < n && (sorted[end] & ~low_mask) == run_key) ++end;
+    for (size_t b = a; b < end; ++b) {
+      const bool shared = end - a > 1, near = (sorted[b] & near_face) != 0;
+      if (!shared && !near) continue;  // alone in its cell, far from its faces
+      const size_t i = size_t(sorted[b] & index_mask);
+      const double* p = &pts[3 * i];
+      const int64_t own[3] = {cell_of(p[0]), cell_of(p[1]), cell_of(p[2])};
+      // The later points of its own run (each pair once).
+      for (size_t c = b + 1; c < end; ++c) {
+        const size_t j = size_t(sorted[c] & index_mask);
+        if (in_cell(j, own[0], own[1], own[2])) unite_if_close(i, j);
       }
-    };
-    const int64_t own[3] = {cell_of(p[0]), cell_of(p[1]), cell_of(p[2])};
-    for (int64_t x = lo[0]; x <= hi[0]; ++x)
-      for (int64_t y = lo[1]; y <= hi[1]; ++y)
-        for (int64_t z = lo[2]; z <= hi[2]; ++z) {
-          if (x == own[0] && y == own[1] && z == own[2]) {
-            visit(head[i]);  // its own cell's list, without a lookup
-            continue;
+      if (!near) continue;
+      int64_t lo[3], hi[3];
+      reach(p, lo, hi);
+      for (int64_t x = lo[0]; x <= hi[0]; ++x)
+        for (int64_t y = lo[1]; y <= hi[1]; ++y)
+          for (int64_t z = lo[2]; z <= hi[2]; ++z) {
+            if (x == own[0] && y == own[1] && z == own[2]) continue;
+            // The points j > i of that cell (j sees i likewise).
+            const uint64_t key = cell_key(x, y, z);
+            for (auto it = std::lower_bound(sorted.begin(), sorted.end(), key);
+                 it != sorted.end() && (*it & ~low_mask) == key; ++it) {
+              const size_t j = size_t(*it & index_mask);
+              if (j > i && in_cell(j, x, y, z)) unite_if_close(i, j);
+            }
           }
-          cells.for_each_with_hash(cell_hash(x, y, z), [&](int32_t s) {
-            if (in_cell(size_t(s), x, y, z)) visit(s);
-          });
-        }
+    }
+    a = end;
   }
   for (size_t i = 0; i < n; ++i) parent[i] = find_root(parent, int32_t(i));
   return parent;
@@ -228,24 +250,33 @@ SurfaceMesh merge_and_index(const std::vector<double>& pts,
   const size_t corners = corner_to_unique.size();
   double tol = options.relative_tolerance * bounding_box(pts).diagonal();
   // No far point may inflate the tolerance past the mesh's own scale: at
-  // most a small fraction of the median edge.
+  // most a small fraction of the median edge (of at most about 3M edges,
+  // every k-th triangle's, on larger meshes).
+  double median_edge = 0;
   {
-    std::vector<double> edges;  // freed here, for the arrays that follow
-    edges.reserve(corners);
-    for (size_t c = 0; c + 2 < corners; c += 3)
+    std::vector<double> edges2;  // squared lengths; freed here
+    const size_t triangles = corners / 3;
+    const size_t step = std::max<size_t>(1, triangles / 1'000'000);
+    edges2.reserve(3 * (triangles / step + 1));
+    for (size_t c = 0; c + 2 < corners; c += 3 * step)
       for (size_t k = 0; k < 3; ++k) {
         const double* a = &pts[3 * size_t(corner_to_unique[c + k])];
         const double* b = &pts[3 * size_t(corner_to_unique[c + (k + 1) % 3])];
-        const double d = std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
-        if (d > 0) edges.push_back(d);
+        const double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                          (a[2] - b[2]) * (a[2] - b[2]);
+        if (d2 > 0) edges2.push_back(d2);
       }
-    if (!edges.empty()) {
-      std::nth_element(edges.begin(), edges.begin() + long(edges.size() / 2), edges.end());
-      tol = std::min(tol, options.edge_fraction * edges[edges.size() / 2]);
+    if (!edges2.empty()) {
+      std::nth_element(edges2.begin(), edges2.begin() + long(edges2.size() / 2), edges2.end());
+      median_edge = std::sqrt(edges2[edges2.size() / 2]);
+      tol = std::min(tol, options.edge_fraction * median_edge);
     }
   }
   size_t merged = 0;
-  std::vector<int32_t> rep = merge_close_points(pts, tol, &merged);
+  // Cells of a tenth of an edge hold about one point each, and few points lie
+  // within tol of their faces.
+  std::vector<int32_t> rep =
+      merge_close_points(pts, tol, std::max(64 * tol, 0.1 * median_edge), &merged);
 
   SurfaceMesh mesh;
   std::vector<int32_t> new_index(rep.size(), -1);

@@ -1,5 +1,6 @@
-// Least-significant-digit radix sort of doubles, for the sorts of millions
-// of coordinates where std::sort's comparisons dominate.
+// Least-significant-digit radix sorts of 64-bit keys and of doubles, for the
+// sorts of millions of keys or coordinates where std::sort's comparisons
+// dominate.
 #pragma once
 
 #include <array>
@@ -9,37 +10,18 @@
 
 namespace vm {
 
-/// Sorts `values` (n doubles, no NaN) ascending: the same sequence as
-/// std::sort, except that -0 comes before +0 (std::sort leaves equal values
-/// in any order). Six passes of 11 bits over an order-preserving image of
-/// the bits, skipping the digits all values share; O(n) time, n extra
-/// doubles.
-inline void radix_sort(std::vector<double>& values) {
-  const size_t n = values.size();
+/// Sorts `keys` (n unsigned 64-bit integers) ascending. Six passes of 11
+/// bits, skipping the digits all keys share; O(n) time, n extra keys.
+inline void radix_sort(std::vector<uint64_t>& keys) {
+  const size_t n = keys.size();
   if (n < 2) return;
-  // The bit image of a double that orders as unsigned integers: negatives
-  // reversed, positives above them.
-  auto to_key = [](double x) {
-    uint64_t u;
-    std::memcpy(&u, &x, 8);
-    return (u >> 63) ? ~u : u | (uint64_t(1) << 63);
-  };
-  auto from_key = [](uint64_t k) {
-    const uint64_t u = (k >> 63) ? k & ~(uint64_t(1) << 63) : ~k;
-    double x;
-    std::memcpy(&x, &u, 8);
-    return x;
-  };
   constexpr int kBits = 11, kPasses = 6;
   constexpr size_t kBuckets = size_t(1) << kBits;
-  std::vector<uint64_t> keys(n), other(n);
+  std::vector<uint64_t> other(n);
   std::vector<std::array<uint32_t, kBuckets>> count(kPasses);
   for (auto& c : count) c.fill(0);
-  for (size_t i = 0; i < n; ++i) {
-    const uint64_t k = to_key(values[i]);
-    keys[i] = k;
+  for (const uint64_t k : keys)
     for (int p = 0; p < kPasses; ++p) ++count[size_t(p)][(k >> (kBits * p)) & (kBuckets - 1)];
-  }
   for (int p = 0; p < kPasses; ++p) {
     std::array<uint32_t, kBuckets>& c = count[size_t(p)];
     const int shift = kBits * p;
@@ -53,7 +35,29 @@ inline void radix_sort(std::vector<double>& values) {
     for (size_t i = 0; i < n; ++i) other[c[(keys[i] >> shift) & (kBuckets - 1)]++] = keys[i];
     keys.swap(other);
   }
-  for (size_t i = 0; i < n; ++i) values[i] = from_key(keys[i]);
+}
+
+/// Sorts `values` (n doubles, no NaN) ascending: the same sequence as
+/// std::sort, except that -0 comes before +0 (std::sort leaves equal values
+/// in any order). Sorts an order-preserving image of the bits.
+inline void radix_sort(std::vector<double>& values) {
+  // The bit image of a double that orders as unsigned integers: negatives
+  // reversed, positives above them.
+  auto to_key = [](double x) {
+    uint64_t u;
+    std::memcpy(&u, &x, 8);
+    return (u >> 63) ? ~u : u | (uint64_t(1) << 63);
+  };
+  auto from_key = [](uint64_t k) {
+    const uint64_t u = (k >> 63) ? k & ~(uint64_t(1) << 63) : ~k;
+    double x;
+    std::memcpy(&x, &u, 8);
+    return x;
+  };
+  std::vector<uint64_t> keys(values.size());
+  for (size_t i = 0; i < values.size(); ++i) keys[i] = to_key(values[i]);
+  radix_sort(keys);
+  for (size_t i = 0; i < values.size(); ++i) values[i] = from_key(keys[i]);
 }
 
 }  // namespace vm
