@@ -1,7 +1,10 @@
 // Benchmark: read + weld + repair + analysis (+ gamma_k) throughput, native.
 // Median of several runs per input; peak resident memory of the process.
 //
-// usage: read_analyze_bench [--runs N] [--generated-voxel V] [FILES.stl...]
+// usage: read_analyze_bench [--runs N] [--threads N] [--stages] [--generated-voxel V]
+//                           [FILES.stl...]
+//   --threads N: threads the loops may use (default: all cores)
+//   --stages: also the median seconds of each stage of the preparation
 //   FILES: STL files read in place (e.g. ../shared/data/vascular/*.stl)
 //   --generated-voxel V: also bench a generated bifurcation phantom at voxel V
 //     (0.0115 gives about 2M triangles); 0 disables. Default 0.0123.
@@ -13,6 +16,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,6 +25,7 @@
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/prepare_surface.h"
 #include "core/util/allocator_tuning.h"
+#include "core/util/parallel.h"
 
 namespace {
 
@@ -42,12 +47,17 @@ double peak_rss_mb() {
 int main(int argc, char** argv) {
   vm::keep_freed_memory_for_reuse();  // as the CLI does
   int runs = 7;
+  bool stages = false;
   double voxel = 0.0115;
   std::vector<Input> inputs;
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a == "--runs" && i + 1 < argc) {
       runs = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "--threads" && i + 1 < argc) {
+      vm::set_thread_count(std::atoi(argv[++i]));
+    } else if (a == "--stages") {
+      stages = true;
     } else if (a == "--generated-voxel" && i + 1 < argc) {
       voxel = std::atof(argv[++i]);
     } else {
@@ -78,10 +88,28 @@ int main(int argc, char** argv) {
   for (const Input& in : inputs) {
     std::vector<double> times;
     size_t triangles = 0;
+    // Per stage (in the order reported), the seconds of each run.
+    std::vector<std::pair<std::string, std::vector<double>>> stage_times;
     for (int r = 0; r < runs; ++r) {
       auto t0 = std::chrono::steady_clock::now();
-      auto s = vm::prepare_surface(in.bytes);
-      double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      auto since = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      };
+      std::string stage;
+      double stage_start = 0;
+      size_t stage_index = 0;
+      auto progress = [&](double, std::string_view next) {
+        const double now = since();
+        if (!stage.empty()) {
+          if (stage_index >= stage_times.size()) stage_times.push_back({stage, {}});
+          stage_times[stage_index++].second.push_back(now - stage_start);
+        }
+        stage = next;
+        stage_start = now;
+        return true;
+      };
+      auto s = vm::prepare_surface(in.bytes, {}, progress);
+      double dt = since();
       if (!s.ok()) {
         std::fprintf(stderr, "%s: %s\n", in.name.c_str(), s.message().c_str());
         return 1;
@@ -92,7 +120,11 @@ int main(int argc, char** argv) {
     double m = median(times);
     std::printf("%-44s %10zu %10.4f %12.2f\n", in.name.c_str(), triangles, m,
                 double(triangles) / m / 1e6);
+    if (stages)
+      for (auto& [name, seconds] : stage_times)
+        std::printf("  %-42s %10s %10.4f\n", name.c_str(), "", median(seconds));
   }
-  std::printf("peak resident memory: %.0f MB (runs: %d)\n", peak_rss_mb(), runs);
+  std::printf("peak resident memory: %.0f MB (runs: %d, threads: %d)\n", peak_rss_mb(), runs,
+              vm::thread_count());
   return 0;
 }

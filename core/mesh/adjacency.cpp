@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/util/parallel.h"
+
 namespace vm {
 
 TriangleAdjacency build_vertex_stars(const SurfaceMesh& mesh) {
@@ -27,48 +29,65 @@ TriangleAdjacency build_adjacency(const SurfaceMesh& mesh) {
 
   // Phase 2: each edge once, at its smaller vertex lo: the half-edges of the
   // star of lo whose other end is larger, grouped by that end (one star
-  // read per vertex).
+  // read per vertex). Chunks of vertices run on the threads: an edge's
+  // half-edges are written by the chunk of its lo only.
   adj.opposite.assign(tri.size(), TriangleAdjacency::kBoundary);
   struct Spoke {
     int32_t hi, h;  // the other end, the half-edge
   };
-  std::vector<Spoke> spokes;
-  // The smallest half-edge of a non-manifold edge: the example is the first
-  // such edge in half-edge order.
-  int32_t first_nonmanifold = -1;
-  for (size_t lo = 0; lo < nv; ++lo) {
-    spokes.clear();
-    for (int32_t i = adj.star_offsets[lo]; i < adj.star_offsets[lo + 1]; ++i) {
-      const int32_t t3 = 3 * adj.star[size_t(i)];
-      for (int q = 0; q < 3; ++q) {
-        if (tri[size_t(t3 + q)] != int32_t(lo)) continue;
-        const int32_t out = t3 + q, in = t3 + (q + 2) % 3;  // from lo, to lo
-        const int32_t to = tri[size_t(t3 + (q + 1) % 3)], from = tri[size_t(in)];
-        if (to > int32_t(lo)) spokes.push_back({to, out});
-        if (from > int32_t(lo)) spokes.push_back({from, in});
-      }
-    }
-    // Group by the other end (insertion sort: a star has a few spokes).
-    for (size_t i = 1; i < spokes.size(); ++i)
-      for (size_t j = i; j > 0 && spokes[j - 1].hi > spokes[j].hi; --j)
-        std::swap(spokes[j - 1], spokes[j]);
-    for (size_t i = 0; i < spokes.size();) {
-      size_t j = i + 1;
-      while (j < spokes.size() && spokes[j].hi == spokes[i].hi) ++j;
-      ++adj.num_edges;
-      if (j - i == 2) {
-        adj.opposite[size_t(spokes[i].h)] = spokes[i + 1].h;
-        adj.opposite[size_t(spokes[i + 1].h)] = spokes[i].h;
-      } else if (j - i > 2) {
-        for (size_t k = i; k < j; ++k) {
-          const int32_t h = spokes[k].h;
-          adj.opposite[size_t(h)] = TriangleAdjacency::kNonManifold;
-          if (first_nonmanifold < 0 || h < first_nonmanifold) first_nonmanifold = h;
+  struct Counts {
+    size_t edges = 0, nonmanifold = 0;
+    // The smallest half-edge of a non-manifold edge: the example is the
+    // first such edge in half-edge order.
+    int32_t first_nonmanifold = -1;
+  };
+  constexpr size_t kGrain = size_t(1) << 15;
+  std::vector<Counts> counts((nv + kGrain - 1) / kGrain);
+  parallel_for(nv, kGrain, [&](size_t begin, size_t end) {
+    Counts& c = counts[begin / kGrain];
+    std::vector<Spoke> spokes;
+    for (size_t lo = begin; lo < end; ++lo) {
+      spokes.clear();
+      for (int32_t i = adj.star_offsets[lo]; i < adj.star_offsets[lo + 1]; ++i) {
+        const int32_t t3 = 3 * adj.star[size_t(i)];
+        for (int q = 0; q < 3; ++q) {
+          if (tri[size_t(t3 + q)] != int32_t(lo)) continue;
+          const int32_t out = t3 + q, in = t3 + (q + 2) % 3;  // from lo, to lo
+          const int32_t to = tri[size_t(t3 + (q + 1) % 3)], from = tri[size_t(in)];
+          if (to > int32_t(lo)) spokes.push_back({to, out});
+          if (from > int32_t(lo)) spokes.push_back({from, in});
         }
-        ++adj.num_nonmanifold_edges;
       }
-      i = j;
+      // Group by the other end (insertion sort: a star has a few spokes).
+      for (size_t i = 1; i < spokes.size(); ++i)
+        for (size_t j = i; j > 0 && spokes[j - 1].hi > spokes[j].hi; --j)
+          std::swap(spokes[j - 1], spokes[j]);
+      for (size_t i = 0; i < spokes.size();) {
+        size_t j = i + 1;
+        while (j < spokes.size() && spokes[j].hi == spokes[i].hi) ++j;
+        ++c.edges;
+        if (j - i == 2) {
+          adj.opposite[size_t(spokes[i].h)] = spokes[i + 1].h;
+          adj.opposite[size_t(spokes[i + 1].h)] = spokes[i].h;
+        } else if (j - i > 2) {
+          for (size_t k = i; k < j; ++k) {
+            const int32_t h = spokes[k].h;
+            adj.opposite[size_t(h)] = TriangleAdjacency::kNonManifold;
+            if (c.first_nonmanifold < 0 || h < c.first_nonmanifold) c.first_nonmanifold = h;
+          }
+          ++c.nonmanifold;
+        }
+        i = j;
+      }
     }
+  });
+  int32_t first_nonmanifold = -1;
+  for (const Counts& c : counts) {
+    adj.num_edges += c.edges;
+    adj.num_nonmanifold_edges += c.nonmanifold;
+    if (c.first_nonmanifold >= 0 &&
+        (first_nonmanifold < 0 || c.first_nonmanifold < first_nonmanifold))
+      first_nonmanifold = c.first_nonmanifold;
   }
   if (first_nonmanifold >= 0)
     adj.nonmanifold_example = {tri[size_t(first_nonmanifold)],

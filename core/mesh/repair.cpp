@@ -10,6 +10,7 @@
 #include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/util/parallel.h"
 
 namespace vm {
 namespace {
@@ -118,9 +119,8 @@ void repair_collinear_triangles(SurfaceMesh& mesh, RepairStats& stats,
                                 std::vector<int32_t>* labels) {
   auto& tri = mesh.triangles;
   for (int pass = 0; pass < 4; ++pass) {
-    std::vector<int32_t> flat;
-    for (size_t t = 0; t < mesh.num_triangles(); ++t)
-      if (zero_area(mesh, t)) flat.push_back(int32_t(t));
+    const std::vector<int32_t> flat = parallel_select(mesh.num_triangles(), 1 << 16,
+                                                      [&](size_t t) { return zero_area(mesh, t); });
     if (flat.empty()) return;
     const bool last_pass = pass == 3;
     // Vertex -> triangles, for the neighbors of the flat triangles.

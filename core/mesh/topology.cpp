@@ -11,6 +11,7 @@
 
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/util/parallel.h"
 
 namespace vm {
 namespace {
@@ -22,6 +23,9 @@ int32_t find_root(std::vector<int32_t>& parent, int32_t i) {
   }
   return i;
 }
+
+/// Chunk of the loops over vertices, triangles or half-edges (parallel.h).
+constexpr size_t kGrain = size_t(1) << 16;
 
 void unite(std::vector<int32_t>& parent, int32_t a, int32_t b) {
   a = find_root(parent, a);
@@ -143,7 +147,28 @@ TopologyReport analyze_topology(const SurfaceMesh& mesh, const TriangleAdjacency
       r.nonmanifold_edge_example[k] = 0.5 * (mesh.points[3 * adj.nonmanifold_example[0] + k] +
                                              mesh.points[3 * adj.nonmanifold_example[1] + k]);
   }
-  for (int32_t o : adj.opposite) r.boundary_edges += o == TriangleAdjacency::kBoundary;
+  // Boundary half-edges, and the edges as the Euler characteristic counts
+  // them: each manifold edge from its half-edge with the smaller index, each
+  // boundary edge once.
+  struct EdgeCounts {
+    size_t boundary = 0, euler = 0;
+    EdgeCounts& operator+=(const EdgeCounts& o) {
+      boundary += o.boundary;
+      euler += o.euler;
+      return *this;
+    }
+  };
+  const EdgeCounts edge_counts =
+      parallel_sum<EdgeCounts>(adj.opposite.size(), kGrain, [&](size_t b, size_t e) {
+        EdgeCounts n;
+        for (size_t h = b; h < e; ++h) {
+          const int32_t o = adj.opposite[h];
+          n.boundary += o == TriangleAdjacency::kBoundary;
+          n.euler += o == TriangleAdjacency::kBoundary || o > int32_t(h);
+        }
+        return n;
+      });
+  r.boundary_edges = edge_counts.boundary;
 
   // Components over shared vertices, numbered by decreasing size.
   std::vector<int32_t> parent(nv);
@@ -152,10 +177,13 @@ TopologyReport analyze_topology(const SurfaceMesh& mesh, const TriangleAdjacency
     unite(parent, tri[3 * t], tri[3 * t + 1]);
     unite(parent, tri[3 * t], tri[3 * t + 2]);
   }
+  // Every parent is at most its child (unite keeps the smaller root), so one
+  // pass in vertex order points each vertex at its root.
+  for (size_t v = 0; v < nv; ++v) parent[v] = parent[size_t(parent[v])];
   std::vector<int32_t> root_id(nv, -1);
   std::vector<size_t> sizes;
   for (size_t t = 0; t < nt; ++t) {
-    int32_t root = find_root(parent, tri[3 * t]);
+    const int32_t root = parent[size_t(tri[3 * t])];
     if (root_id[root] < 0) {
       root_id[root] = int32_t(sizes.size());
       sizes.push_back(0);
@@ -172,17 +200,33 @@ TopologyReport analyze_topology(const SurfaceMesh& mesh, const TriangleAdjacency
   r.component_triangles.resize(sizes.size());
   for (size_t i = 0; i < order.size(); ++i) r.component_triangles[i] = sizes[order[i]];
   r.triangle_component.resize(nt);
-  for (size_t t = 0; t < nt; ++t)
-    r.triangle_component[t] = rank[root_id[find_root(parent, tri[3 * t])]];
+  parallel_for(nt, kGrain, [&](size_t b, size_t e) {
+    for (size_t t = b; t < e; ++t)
+      r.triangle_component[t] = rank[size_t(root_id[size_t(parent[size_t(tri[3 * t])])])];
+  });
 
-  // Bow-tie vertices.
-  for (size_t v = 0; v < nv; ++v) {
-    if (adj.star_offsets[v + 1] == adj.star_offsets[v]) continue;
-    const int32_t d = adj.star_offsets[v + 1] - adj.star_offsets[v];
-    if (!(d <= kSmallStar ? single_small_fan(mesh, adj, int32_t(v))
-                          : single_fan(mesh, adj, int32_t(v))))
-      ++r.nonmanifold_vertices;
-  }
+  // Bow-tie vertices, and the vertices in use.
+  struct VertexCounts {
+    size_t bow_ties = 0, used = 0;
+    VertexCounts& operator+=(const VertexCounts& o) {
+      bow_ties += o.bow_ties;
+      used += o.used;
+      return *this;
+    }
+  };
+  const VertexCounts vc = parallel_sum<VertexCounts>(nv, kGrain, [&](size_t b, size_t e) {
+    VertexCounts c;
+    for (size_t v = b; v < e; ++v) {
+      const int32_t d = adj.star_offsets[v + 1] - adj.star_offsets[v];
+      if (d == 0) continue;
+      ++c.used;
+      if (!(d <= kSmallStar ? single_small_fan(mesh, adj, int32_t(v))
+                            : single_fan(mesh, adj, int32_t(v))))
+        ++c.bow_ties;
+    }
+    return c;
+  });
+  r.nonmanifold_vertices = vc.bow_ties;
 
   // Openings, largest first.
   for (auto& loop : boundary_loops(mesh, adj))
@@ -193,7 +237,11 @@ TopologyReport analyze_topology(const SurfaceMesh& mesh, const TriangleAdjacency
 
   // Euler characteristic and genus, per component.
   r.euler_characteristic = long(nv) - long(r.edges) + long(nt);
-  if (r.nonmanifold_edges == 0 && r.nonmanifold_vertices == 0) {
+  if (r.nonmanifold_edges == 0 && r.nonmanifold_vertices == 0 && r.components == 1) {
+    // One component: its used vertices, all edges, all triangles.
+    const long chi = long(vc.used) - long(edge_counts.euler) + long(nt);
+    r.genus = int((2 - chi - long(r.openings.size() + r.slits.size())) / 2);
+  } else if (r.nonmanifold_edges == 0 && r.nonmanifold_vertices == 0) {
     const int nc = r.components;
     std::vector<long> chi(nc, 0), loops(nc, 0);
     std::vector<int32_t> vcomp(nv, -1);

@@ -9,6 +9,7 @@
 
 #include "core/geom/vec3.h"
 #include "core/mesh/chord_radius.h"
+#include "core/util/parallel.h"
 
 namespace vm {
 namespace {
@@ -53,6 +54,9 @@ struct Context {
   const std::vector<double>& areas;
   const CapRecognitionOptions& options;
   double total_area = 0;
+  /// Per vertex, -1 outside a geodesic search (looks_like_a_vessel_end's
+  /// buffer, allocated once).
+  std::vector<double>& distance;
 };
 
 /// Fills rim, area and mean normal; false when the region touches an
@@ -192,11 +196,13 @@ bool looks_like_a_vessel_end(const Context& ctx, const std::vector<uint8_t>& in_
     rim_radius += v3::norm(d);
   }
   rim_radius /= double(topo.rim_vertices.size());
-  // Geodesic distances from the rim over the wall, up to one rim radius.
-  std::vector<double> dist(m.num_vertices(), -1);
+  // Geodesic distances from the rim over the wall, up to one rim radius
+  // (in the context's buffer, reset to -1 where it was written).
+  std::vector<double>& dist = ctx.distance;
+  std::vector<int32_t> reached;
   using Item = std::pair<double, int32_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-  for (int32_t v : topo.rim_vertices) dist[size_t(v)] = 0, queue.push({0, v});
+  for (int32_t v : topo.rim_vertices) dist[size_t(v)] = 0, queue.push({0, v}), reached.push_back(v);
   std::vector<double> rate, radius_ratio;
   while (!queue.empty()) {
     auto [d, v] = queue.top();
@@ -220,12 +226,14 @@ bool looks_like_a_vessel_end(const Context& ctx, const std::vector<uint8_t>& in_
         v3::sub(point(m, w), point(m, v), e);
         const double dw = d + v3::norm(e);
         if (dw <= rim_radius && (dist[size_t(w)] < 0 || dw < dist[size_t(w)])) {
+          if (dist[size_t(w)] < 0) reached.push_back(w);
           dist[size_t(w)] = dw;
           queue.push({dw, w});
         }
       }
     }
   }
+  for (int32_t v : reached) dist[size_t(v)] = -1;
   if (rate.size() < 3) return false;
   const double ratio = median(radius_ratio);
   return median(rate) >= o.min_depth_rate && ratio >= o.min_radius_ratio &&
@@ -233,15 +241,19 @@ bool looks_like_a_vessel_end(const Context& ctx, const std::vector<uint8_t>& in_
 }
 
 /// Connected parts of the triangles with in_set != 0, joined across manifold
-/// edges whose both triangles pass `joins(t, s)`.
+/// edges whose both triangles pass `joins(t, s)`; those of at least
+/// `min_size` triangles (grown in one reused buffer: most parts of a curved
+/// wall are single triangles).
 template <class Joins>
 std::vector<std::vector<int32_t>> grow_regions(const Context& ctx,
-                                               const std::vector<uint8_t>& in_set, Joins joins) {
+                                               const std::vector<uint8_t>& in_set, size_t min_size,
+                                               Joins joins) {
   std::vector<std::vector<int32_t>> regions;
   std::vector<uint8_t> done(in_set.size(), 0);
+  std::vector<int32_t> region;
   for (size_t seed = 0; seed < in_set.size(); ++seed) {
     if (!in_set[seed] || done[seed]) continue;
-    std::vector<int32_t> region = {int32_t(seed)};
+    region.assign(1, int32_t(seed));
     done[seed] = 1;
     for (size_t i = 0; i < region.size(); ++i) {
       const int32_t t = region[i];
@@ -254,7 +266,7 @@ std::vector<std::vector<int32_t>> grow_regions(const Context& ctx,
         region.push_back(s);
       }
     }
-    regions.push_back(std::move(region));
+    if (region.size() >= min_size) regions.push_back(region);
   }
   return regions;
 }
@@ -273,18 +285,18 @@ CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& 
                               const CapRecognitionOptions& options) {
   CapRecognition out;
   const size_t nt = mesh.num_triangles();
-  std::vector<Vec3> normals;  // filled, not zeroed first
-  std::vector<double> areas;
-  normals.reserve(nt);
-  areas.reserve(nt);
-  double total = 0;
-  for (size_t t = 0; t < nt; ++t) {
-    const auto [n, a] = triangle_normal(mesh, t);
-    normals.push_back(n);
-    areas.push_back(a);
-    total += a;
-  }
-  Context ctx{mesh, adj, normals, areas, options, total};
+  std::vector<Vec3> normals(nt);
+  std::vector<double> areas(nt);
+  const double total = parallel_sum<double>(nt, 1 << 16, [&](size_t begin, size_t end) {
+    double sum = 0;
+    for (size_t t = begin; t < end; ++t) {
+      std::tie(normals[t], areas[t]) = triangle_normal(mesh, t);
+      sum += areas[t];
+    }
+    return sum;
+  });
+  std::vector<double> distance(mesh.num_vertices(), -1);
+  Context ctx{mesh, adj, normals, areas, options, total, distance};
   // Labels tell faces apart only when there are two or more (a file with
   // one group for the whole surface says nothing about caps).
   const bool labelled =
@@ -295,12 +307,13 @@ CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& 
   std::vector<std::vector<int32_t>> candidates;
   const std::vector<uint8_t> all(nt, 1);
   if (labelled) {
-    candidates = grow_regions(ctx, all, [&](int32_t, int32_t t, int32_t s) {
+    candidates = grow_regions(ctx, all, 1, [&](int32_t, int32_t t, int32_t s) {
       return labels[size_t(t)] == labels[size_t(s)];
     });
   } else {
     const double flat = angle_cos(options.planar_angle_degrees);
-    candidates = grow_regions(ctx, all, [&](int32_t seed, int32_t, int32_t s) {
+    // A single triangle is no cap of an unlabelled surface.
+    candidates = grow_regions(ctx, all, 2, [&](int32_t seed, int32_t, int32_t s) {
       return v3::dot(normals[size_t(seed)].data(), normals[size_t(s)].data()) >= flat;
     });
   }
@@ -310,7 +323,6 @@ CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& 
   std::vector<int32_t> owner(mesh.num_vertices(), -1);
   std::vector<std::vector<int32_t>> kept_vertices, kept_rims;
   for (auto& triangles : candidates) {
-    if (!labelled && triangles.size() < 2) continue;
     Region r;
     r.triangles = std::move(triangles);
     for (int32_t t : r.triangles) in_region[size_t(t)] = 1;

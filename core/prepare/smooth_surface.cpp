@@ -11,6 +11,7 @@
 
 #include "core/geom/vec3.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/util/parallel.h"
 #include "core/util/radix_sort.h"
 
 namespace vm {
@@ -51,6 +52,9 @@ Vec3 area_vector(const SurfaceMesh& m, size_t t) {
   return {0.5 * (u[1] * w[2] - u[2] * w[1]), 0.5 * (u[2] * w[0] - u[0] * w[2]),
           0.5 * (u[0] * w[1] - u[1] * w[0])};
 }
+
+/// Chunk of the loops over triangles or vertices (parallel.h).
+constexpr size_t kGrain = size_t(1) << 16;
 
 double cos_degrees(double degrees) { return std::cos(degrees * std::numbers::pi / 180); }
 
@@ -116,20 +120,21 @@ StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions
   StaircaseReport r;
   const size_t nt = mesh.num_triangles();
   if (nt == 0) return r;
-  std::vector<Vec3> normals;  // filled, not zeroed first
-  std::vector<double> areas;
-  normals.reserve(nt);
-  areas.reserve(nt);
-  double total_area = 0;
-  for (size_t t = 0; t < nt; ++t) {
-    Vec3 a = area_vector(mesh, t);
-    const double len = norm(a);
-    areas.push_back(len);
-    total_area += len;
-    if (len > 0)
-      for (double& x : a) x /= len;
-    normals.push_back(a);
-  }
+  std::vector<Vec3> normals(nt);
+  std::vector<double> areas(nt);
+  const double total_area = parallel_sum<double>(nt, kGrain, [&](size_t begin, size_t end) {
+    double sum = 0;
+    for (size_t t = begin; t < end; ++t) {
+      Vec3 a = area_vector(mesh, t);
+      const double len = norm(a);
+      areas[t] = len;
+      sum += len;
+      if (len > 0)
+        for (double& x : a) x /= len;
+      normals[t] = a;
+    }
+    return sum;
+  });
   if (!(total_area > 0)) return r;
   const BoundingBox box = bounding_box(mesh.points);
   const double merge = 1e-6 * box.diagonal();
@@ -140,13 +145,16 @@ StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions
   auto direction_fraction = [&](const std::array<double, 3>& spacing) {
     const std::vector<Vec3> directions = grid_directions(spacing);
     const double direction_cos = cos_degrees(options.direction_tolerance_degrees);
-    double on_grid = 0;
-    for (size_t t = 0; t < nt; ++t)
-      for (const Vec3& d : directions)
-        if (std::fabs(dot(normals[t], d)) >= direction_cos) {
-          on_grid += areas[t];
-          break;
-        }
+    const double on_grid = parallel_sum<double>(nt, kGrain, [&](size_t begin, size_t end) {
+      double sum = 0;
+      for (size_t t = begin; t < end; ++t)
+        for (const Vec3& d : directions)
+          if (std::fabs(dot(normals[t], d)) >= direction_cos) {
+            sum += areas[t];
+            break;
+          }
+      return sum;
+    });
     return on_grid / total_area;
   };
 
@@ -167,25 +175,33 @@ StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions
   // Vertices on the lattice, and edges spanning two half steps along an axis
   // (edge middles of opposite grid edges: the lattice is of half voxels)
   // rather than one at most (voxel corners: the lattice is of voxels).
-  size_t on_lattice = 0;
-  for (size_t v = 0; v < nv; ++v) {
-    bool on = true;
-    for (int k = 0; k < 3 && on; ++k) {
-      const double u = (mesh.points[3 * v + size_t(k)] - origin[size_t(k)]) / half[size_t(k)];
-      on = std::fabs(u - std::round(u)) <= 0.5 * options.lattice_tolerance;
+  const size_t on_lattice = parallel_sum<size_t>(nv, kGrain, [&](size_t begin, size_t end) {
+    size_t count = 0;
+    for (size_t v = begin; v < end; ++v) {
+      bool on = true;
+      for (int k = 0; k < 3 && on; ++k) {
+        const double u = (mesh.points[3 * v + size_t(k)] - origin[size_t(k)]) / half[size_t(k)];
+        on = std::fabs(u - std::round(u)) <= 0.5 * options.lattice_tolerance;
+      }
+      count += on;
     }
-    on_lattice += on;
-  }
+    return count;
+  });
   r.lattice_fraction = nv ? double(on_lattice) / double(nv) : 0;
-  size_t edges = 0, double_steps = 0;
-  for (size_t h = 0; h < mesh.triangles.size(); ++h) {
-    const double* a = point(mesh, mesh.triangles[h]);
-    const double* b = point(mesh, mesh.triangles[h - h % 3 + (h % 3 + 1) % 3]);
-    double steps = 0;
-    for (int k = 0; k < 3; ++k) steps = std::max(steps, std::fabs(b[k] - a[k]) / half[size_t(k)]);
-    ++edges;
-    double_steps += std::fabs(steps - 2) < options.lattice_tolerance;
-  }
+  const size_t edges = mesh.triangles.size();
+  const size_t double_steps =
+      parallel_sum<size_t>(edges, 3 * kGrain, [&](size_t begin, size_t end) {
+        size_t count = 0;
+        for (size_t h = begin; h < end; ++h) {
+          const double* a = point(mesh, mesh.triangles[h]);
+          const double* b = point(mesh, mesh.triangles[h - h % 3 + (h % 3 + 1) % 3]);
+          double steps = 0;
+          for (int k = 0; k < 3; ++k)
+            steps = std::max(steps, std::fabs(b[k] - a[k]) / half[size_t(k)]);
+          count += std::fabs(steps - 2) < options.lattice_tolerance;
+        }
+        return count;
+      });
   const bool midpoints = double(double_steps) >= 0.05 * double(edges);
   for (int k = 0; k < 3; ++k) r.spacing[size_t(k)] = (midpoints ? 2 : 1) * half[size_t(k)];
   r.voxel = std::max({r.spacing[0], r.spacing[1], r.spacing[2]});

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/util/parallel.h"
+
 namespace vm {
 
 double triangle_gamma(const double* a, const double* b, const double* c) {
@@ -30,11 +32,12 @@ double triangle_gamma(const double* a, const double* b, const double* c) {
 
 std::vector<float> triangle_qualities(const SurfaceMesh& mesh) {
   std::vector<float> q(mesh.num_triangles());
-  for (size_t t = 0; t < q.size(); ++t) {
-    q[t] = float(triangle_gamma(&mesh.points[3 * mesh.triangles[3 * t]],
-                                &mesh.points[3 * mesh.triangles[3 * t + 1]],
-                                &mesh.points[3 * mesh.triangles[3 * t + 2]]));
-  }
+  parallel_for(q.size(), 1 << 15, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t)
+      q[t] = float(triangle_gamma(&mesh.points[3 * mesh.triangles[3 * t]],
+                                  &mesh.points[3 * mesh.triangles[3 * t + 1]],
+                                  &mesh.points[3 * mesh.triangles[3 * t + 2]]));
+  });
   return q;
 }
 
