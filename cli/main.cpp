@@ -27,6 +27,7 @@
 #include "core/pipeline/solver_preset.h"
 #include "core/pipeline/write_outputs.h"
 #include "core/util/allocator_tuning.h"
+#include "core/util/parallel.h"
 #include "core/util/version.h"
 
 namespace {
@@ -305,6 +306,7 @@ int cmd_info(int argc, char** argv) {
   if (a.positional.size() != 1) return usage_error("info needs exactly one FILE");
   vm::MeshJobOptions options;
   if (std::string e = vm::cli::apply_all(a, options); !e.empty()) return usage_error(e);
+  vm::set_thread_count(options.threads);
   std::string err;
   auto bytes = read_file(a.positional[0], options, err);
   if (!bytes) return fail(err);

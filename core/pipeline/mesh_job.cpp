@@ -25,6 +25,7 @@
 #include "core/pipeline/write_outputs.h"
 #include "core/quality/tet_quality.h"
 #include "core/surface/element_estimate.h"
+#include "core/util/parallel.h"
 #include "core/util/stage_timer.h"
 #include "core/volume/boundary_recovery.h"
 #include "core/volume/tetrahedralize.h"
@@ -448,6 +449,7 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const Me
                                    const ProgressFn& progress) {
   auto t0 = std::chrono::steady_clock::now();
   MeshJobOptions options = given;  // with what the surface decides (a y+ height)
+  set_thread_count(options.threads);
   MeshJobResult r;
   r.preset = options.preset;
   // Stage 1 takes the first fifth of the progress bar, remeshing most of the rest.

@@ -111,6 +111,9 @@ struct MeshJobOptions {
   /// Check the volume mesh fully before writing it (conformity, boundary =
   /// surface triangles), not only that no element is inverted.
   bool verify = false;
+  /// Threads the loops use (set_thread_count, core/util/parallel.h): 0 all
+  /// cores. The output is the same with any number.
+  int threads = 0;
 };
 
 /// Counts and timings of the volume stages.

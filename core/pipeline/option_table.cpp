@@ -560,6 +560,19 @@ const OptionSpec kOptions[] = {
      .doc = "auto: an input of 200,000 triangles or more, over 8 times the triangles the sizes "
             "ask for, is first decimated (edge collapses within 0.02 h of it, edges up to h/2), "
             "then remeshed; off: remeshed from the input as it is"},
+    {.id = "threads",
+     .cli = "threads",
+     .js = "threads",
+     .type = T::kInteger,
+     .commands = kCommandInfo | kCommandMesh,
+     .group = "advanced",
+     .metavar = "N",
+     .min = 0,
+     .max = 256,
+     .default_text = "0",
+     .needs = "an integer from 0 (all cores) to 256",
+     .doc = "threads the preparation's loops use (0: all cores); the mesh is the same with any "
+            "number; the browser build uses one"},
     {.id = "param",
      .cli = "param",
      .js = "param",
@@ -892,6 +905,8 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
     if (v.text == "openfoam") o.solver = Solver::kOpenFoam;
     if (v.text == "fenics") o.solver = Solver::kFenics;
     if (v.text == "svfsi") o.solver = Solver::kSvFsi;
+  } else if (id == "threads") {
+    o.threads = int(x);
   } else if (id == "param") {
     o.remesh_options.param = v.text == "harmonic"  ? ParamMethod::kHarmonic
                              : v.text == "floater" ? ParamMethod::kFloater
@@ -1023,7 +1038,8 @@ std::string option_value_text(const OptionSpec& spec, const OptionValue& v) {
 std::string options_provenance(std::span<const std::pair<const OptionSpec*, OptionValue>> values) {
   std::string out;
   for (const auto& [spec, value] : values) {
-    if (spec->faces == kFaceCli) continue;  // paths and printing change no mesh
+    // Paths, printing and the thread count change no mesh.
+    if (spec->faces == kFaceCli || spec->id == "threads") continue;
     if (!out.empty()) out += " ";
     out += std::string(spec->id) + "=" + option_value_text(*spec, value);
   }

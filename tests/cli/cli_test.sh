@@ -117,6 +117,13 @@ check "oversampled: decimated first" expect_exit 0 "decimated: " "$VM" mesh "$T/
 check "oversampled: the report's count is under an eighth of the input's" [ "$(json "$T/fine.json" "0 < d['output']['remesh']['decimated_triangles'] < d['input']['triangles'] / 8")" = True ]
 check "oversampled, --decimate off: remeshed as it is" bash -c 'out=$("$1" mesh "$2" -o "$3" --surface-only --size 0.3 --decimate off) && [[ $out == *"wrote"* && $out != *"decimated:"* ]]' _ "$VM" "$T/fine.stl" "$T/fine-off.msh"
 check "--decimate takes auto or off" expect_exit 2 "--decimate needs auto or off" "$VM" mesh "$T/fine.stl" -o "$T/x.msh" --decimate yes
+# Threads: the same file with 1 and 2 (the 218,000 triangles span several
+# chunks of the parallel loops); the count is not written into it.
+check "--threads 1 meshes" expect_exit 0 "wrote" "$VM" mesh "$T/fine.stl" -o "$T/fine-t1.msh" --surface-only --size 0.3 --threads 1
+check "--threads 2 meshes" expect_exit 0 "wrote" "$VM" mesh "$T/fine.stl" -o "$T/fine-t2.msh" --surface-only --size 0.3 --threads 2
+check "--threads 1 and 2 write the same bytes" cmp -s "$T/fine-t1.msh" "$T/fine-t2.msh"
+check "info takes --threads" expect_exit 0 "welded:" "$VM" info "$T/fine.stl" --threads 2
+check "--threads needs a count" expect_exit 2 "--threads needs an integer from 0 (all cores) to 256" "$VM" info "$T/fine.stl" --threads -1
 check "mesh needs -o" expect_exit 2 "-o OUT.msh" "$VM" mesh "$T/bif.stl"
 check "mesh bad version" expect_exit 2 "--msh-version needs 4.1 or 2.2" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --msh-version 3
 check "mesh 4.1" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/bif41.msh" --report "$T/report.json" --verify

@@ -335,6 +335,18 @@ describe('mesh', () => {
     assert.match(bad.error, /decimate/);
   });
 
+  test('threads is accepted (one thread in this build), changes nothing, and is checked', () => {
+    const stl = api.makePhantom({ noise: 0.3, voxel: 0.15 }).stl;
+    const plain = api.mesh(stl, { surfaceOnly: true });
+    const two = api.mesh(stl, { surfaceOnly: true, threads: 2 });
+    assert.equal(two.ok, true, two.error);
+    assert.deepEqual(two.msh, plain.msh);
+    assert.equal(api.analyze(stl, { threads: 4 }).ok, true);
+    const bad = api.mesh(stl, { threads: -1 });
+    assert.equal(bad.ok, false);
+    assert.match(bad.error, /threads needs an integer from 0 \(all cores\) to 256/);
+  });
+
   const countElements = (msh) => {
     const lines = text(msh).split('\n');
     const i = lines.indexOf('$Elements');
