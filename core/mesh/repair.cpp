@@ -10,10 +10,14 @@
 #include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/util/concurrent_union_find.h"
 #include "core/util/parallel.h"
 
 namespace vm {
 namespace {
+
+/// Chunk of the loops over triangles or vertices (parallel.h).
+constexpr size_t kGrain = size_t(1) << 16;
 
 bool zero_area(const SurfaceMesh& m, size_t t) {
   const double* a = &m.points[3 * m.triangles[3 * t]];
@@ -119,8 +123,8 @@ void repair_collinear_triangles(SurfaceMesh& mesh, RepairStats& stats,
                                 std::vector<int32_t>* labels) {
   auto& tri = mesh.triangles;
   for (int pass = 0; pass < 4; ++pass) {
-    const std::vector<int32_t> flat = parallel_select(mesh.num_triangles(), 1 << 16,
-                                                      [&](size_t t) { return zero_area(mesh, t); });
+    const std::vector<int32_t> flat =
+        parallel_select(mesh.num_triangles(), kGrain, [&](size_t t) { return zero_area(mesh, t); });
     if (flat.empty()) return;
     const bool last_pass = pass == 3;
     // Vertex -> triangles, for the neighbors of the flat triangles.
@@ -192,15 +196,17 @@ void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats,
   auto& tri = mesh.triangles;
   if (labels && labels->size() != nt) labels = nullptr;
   // Phase 1: drop triangles with a repeated vertex.
-  std::vector<uint8_t> keep(nt, 1);
-  for (size_t t = 0; t < nt; ++t) {
-    int32_t a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
-    if (a == b || b == c || a == c) {
-      if (stats.degenerate_removed++ == 0) stats.degenerate_example = centroid(mesh, t);
-      keep[t] = 0;
-    }
+  const std::vector<int32_t> repeated = parallel_select(nt, kGrain, [&](size_t t) {
+    const int32_t a = tri[3 * t], b = tri[3 * t + 1], c = tri[3 * t + 2];
+    return a == b || b == c || a == c;
+  });
+  if (!repeated.empty()) {
+    stats.degenerate_example = centroid(mesh, size_t(repeated[0]));
+    stats.degenerate_removed += repeated.size();
+    std::vector<uint8_t> keep(nt, 1);
+    for (int32_t t : repeated) keep[size_t(t)] = 0;
+    keep_triangles(mesh, keep, labels);
   }
-  keep_triangles(mesh, keep, labels);
   // Phase 1b: flat triangles with three distinct collinear corners.
   repair_collinear_triangles(mesh, stats, labels);
   const size_t kept = mesh.num_triangles();
@@ -229,25 +235,33 @@ void remove_degenerate_and_duplicates(SurfaceMesh& mesh, RepairStats& stats,
       bucket[size_t(fill[s[0]]++)] = Entry{int32_t(t), s[1], s[2]};
     }
   }
+  // Each triangle is in one bucket: chunks of vertices mark only their own.
   std::vector<uint8_t> duplicate(kept, 0);
-  for (size_t v = 0; v < nv; ++v) {
-    for (int32_t i = offset[v] + 1; i < offset[v + 1]; ++i) {
-      const Entry& e = bucket[size_t(i)];
-      for (int32_t j = offset[v]; j < i; ++j) {
-        // Buckets are filled in triangle order: j is the earlier triangle.
-        if (bucket[size_t(j)].mid == e.mid && bucket[size_t(j)].max == e.max) {
-          duplicate[size_t(e.t)] = 1;
-          break;
+  const size_t found = parallel_sum<size_t>(nv, kGrain, [&](size_t begin, size_t end) {
+    size_t count = 0;
+    for (size_t v = begin; v < end; ++v) {
+      for (int32_t i = offset[v] + 1; i < offset[v + 1]; ++i) {
+        const Entry& e = bucket[size_t(i)];
+        for (int32_t j = offset[v]; j < i; ++j) {
+          // Buckets are filled in triangle order: j is the earlier triangle.
+          if (bucket[size_t(j)].mid == e.mid && bucket[size_t(j)].max == e.max) {
+            duplicate[size_t(e.t)] = 1;
+            ++count;
+            break;
+          }
         }
       }
     }
+    return count;
+  });
+  if (found > 0) {
+    for (size_t t = 0; t < kept; ++t) {
+      if (duplicate[t] && stats.duplicates_removed++ == 0)
+        stats.duplicate_example = centroid(mesh, t);
+      duplicate[t] = !duplicate[t];
+    }
+    keep_triangles(mesh, duplicate, labels);
   }
-  for (size_t t = 0; t < kept; ++t) {
-    if (duplicate[t] && stats.duplicates_removed++ == 0)
-      stats.duplicate_example = centroid(mesh, t);
-    duplicate[t] = !duplicate[t];
-  }
-  keep_triangles(mesh, duplicate, labels);
   remove_unused_vertices(mesh, stats);
 }
 
@@ -270,25 +284,49 @@ void orient_consistently(SurfaceMesh& mesh, RepairStats& stats, TriangleAdjacenc
   auto& tri = mesh.triangles;
   // Phase 1: relative orientations across manifold edges, in memory order.
   // Two triangles agree when their shared edge runs in opposite directions.
-  ParityUnionFind uf(nt);
-  for (size_t h = 0; h < adj.opposite.size(); ++h) {
-    int32_t o = adj.opposite[h];
-    if (o <= int32_t(h)) continue;  // boundary, non-manifold, or seen
-    uint8_t rel = half_edge_from(mesh, int32_t(h)) == half_edge_from(mesh, o);
-    if (!uf.unite(int32_t(h / 3), o / 3, rel)) stats.orientable = false;
-  }
-  // Phase 2: flip every triangle that disagrees with its component's root.
-  std::vector<uint8_t> flip(nt);
+  // The usual case, checked first on the threads: every edge agrees. Then
+  // nothing flips, and the components (the keys of phase 3's volumes) come
+  // from a union-find whose unions run on the threads.
+  const size_t half_edges = adj.opposite.size();
+  auto disagrees = [&](size_t h) {
+    const int32_t o = adj.opposite[h];
+    return o > int32_t(h) && half_edge_from(mesh, int32_t(h)) == half_edge_from(mesh, o);
+  };
+  const size_t disagreeing = parallel_sum<size_t>(half_edges, 3 * kGrain, [&](size_t b, size_t e) {
+    size_t n = 0;
+    for (size_t h = b; h < e; ++h) n += disagrees(h);
+    return n;
+  });
+  std::vector<uint8_t> flip(nt, 0);
   std::vector<int32_t> root(nt);
   bool any_flipped = false;
-  for (size_t t = 0; t < nt; ++t) {
-    auto [r, p] = uf.find(int32_t(t));
-    root[t] = r;
-    flip[t] = p;
-    if (p) std::swap(tri[3 * t + 1], tri[3 * t + 2]);
-    any_flipped |= p != 0;
+  if (disagreeing == 0) {
+    ConcurrentUnionFind components(nt);
+    parallel_for(half_edges, 3 * kGrain, [&](size_t b, size_t e) {
+      for (size_t h = b; h < e; ++h) {
+        const int32_t o = adj.opposite[h];
+        if (o > int32_t(h)) components.unite(int32_t(h / 3), o / 3);
+      }
+    });
+    root = std::move(components).roots();
+  } else {
+    ParityUnionFind uf(nt);
+    for (size_t h = 0; h < half_edges; ++h) {
+      int32_t o = adj.opposite[h];
+      if (o <= int32_t(h)) continue;  // boundary, non-manifold, or seen
+      uint8_t rel = half_edge_from(mesh, int32_t(h)) == half_edge_from(mesh, o);
+      if (!uf.unite(int32_t(h / 3), o / 3, rel)) stats.orientable = false;
+    }
+    // Phase 2: flip every triangle that disagrees with its component's root.
+    for (size_t t = 0; t < nt; ++t) {
+      auto [r, p] = uf.find(int32_t(t));
+      root[t] = r;
+      flip[t] = p;
+      if (p) std::swap(tri[3 * t + 1], tri[3 * t + 2]);
+      any_flipped |= p != 0;
+    }
+    if (any_flipped) remap_after_flips(adj, flip);
   }
-  if (any_flipped) remap_after_flips(adj, flip);
   // Phase 3: outward. Signed volume per component (keyed by root), each
   // opening closed by a fan from its centroid against the loop direction.
   BoundingBox box = bounding_box(mesh.points);
@@ -302,23 +340,40 @@ void orient_consistently(SurfaceMesh& mesh, RepairStats& stats, TriangleAdjacenc
            a[2] * (b[0] * c[1] - b[1] * c[0]);
   };
   std::vector<double> volume(nt, 0.0);  // indexed by root
-  double a[3], b[3], c[3];
-  for (size_t t = 0; t < nt; ++t) {
-    rel(tri[3 * t], a);
-    rel(tri[3 * t + 1], b);
-    rel(tri[3 * t + 2], c);
-    volume[root[t]] += det(a, b, c);
+  double a[3], b[3];
+  auto triangle_volume = [&](size_t t) {
+    double p[3], q[3], r[3];
+    rel(tri[3 * t], p);
+    rel(tri[3 * t + 1], q);
+    rel(tri[3 * t + 2], r);
+    return det(p, q, r);
+  };
+  // One component (all roots 0), the usual case: a sum on the threads.
+  const bool one_component = parallel_sum<size_t>(nt, kGrain, [&](size_t b0, size_t e0) {
+                               size_t others = 0;
+                               for (size_t t = b0; t < e0; ++t) others += root[t] != 0;
+                               return others;
+                             }) == 0;
+  if (one_component) {
+    volume[0] = parallel_sum<double>(nt, kGrain, [&](size_t b0, size_t e0) {
+      double sum = 0;
+      for (size_t t = b0; t < e0; ++t) sum += triangle_volume(t);
+      return sum;
+    });
+  } else {
+    for (size_t t = 0; t < nt; ++t) volume[size_t(root[t])] += triangle_volume(t);
   }
-  std::vector<int32_t> vertex_root(mesh.num_vertices(), -1);
-  for (size_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) vertex_root[tri[3 * t + k]] = root[t];
+  // A vertex's component: that of the last triangle of its star.
+  auto vertex_root = [&](int32_t v) {
+    return root[size_t(adj.star[size_t(adj.star_offsets[size_t(v) + 1] - 1)])];
+  };
   for (const auto& loop : boundary_loops(mesh, adj)) {
     double cen[3] = {0, 0, 0};
     for (int32_t v : loop) {
       rel(v, a);
       for (int k = 0; k < 3; ++k) cen[k] += a[k] / double(loop.size());
     }
-    double& vol = volume[vertex_root[loop[0]]];
+    double& vol = volume[size_t(vertex_root(loop[0]))];
     for (size_t i = 0; i < loop.size(); ++i) {
       rel(loop[(i + 1) % loop.size()], a);
       rel(loop[i], b);

@@ -11,27 +11,14 @@
 
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/util/concurrent_union_find.h"
 #include "core/util/parallel.h"
 
 namespace vm {
 namespace {
 
-int32_t find_root(std::vector<int32_t>& parent, int32_t i) {
-  while (parent[i] != i) {
-    parent[i] = parent[parent[i]];
-    i = parent[i];
-  }
-  return i;
-}
-
 /// Chunk of the loops over vertices, triangles or half-edges (parallel.h).
 constexpr size_t kGrain = size_t(1) << 16;
-
-void unite(std::vector<int32_t>& parent, int32_t a, int32_t b) {
-  a = find_root(parent, a);
-  b = find_root(parent, b);
-  if (a != b) parent[std::max(a, b)] = std::min(a, b);
-}
 
 // Whether the triangles around v form a single fan: walking from one of them
 // across the manifold edges incident to v, both ways, reaches all of them.
@@ -170,16 +157,19 @@ TopologyReport analyze_topology(const SurfaceMesh& mesh, const TriangleAdjacency
       });
   r.boundary_edges = edge_counts.boundary;
 
-  // Components over shared vertices, numbered by decreasing size.
-  std::vector<int32_t> parent(nv);
-  std::iota(parent.begin(), parent.end(), 0);
-  for (size_t t = 0; t < nt; ++t) {
-    unite(parent, tri[3 * t], tri[3 * t + 1]);
-    unite(parent, tri[3 * t], tri[3 * t + 2]);
+  // Components over shared vertices, numbered by decreasing size. Each set
+  // is rooted at its smallest vertex.
+  std::vector<int32_t> parent;
+  {
+    ConcurrentUnionFind uf(nv);
+    parallel_for(nt, kGrain, [&](size_t b, size_t e) {
+      for (size_t t = b; t < e; ++t) {
+        uf.unite(tri[3 * t], tri[3 * t + 1]);
+        uf.unite(tri[3 * t], tri[3 * t + 2]);
+      }
+    });
+    parent = std::move(uf).roots();
   }
-  // Every parent is at most its child (unite keeps the smaller root), so one
-  // pass in vertex order points each vertex at its root.
-  for (size_t v = 0; v < nv; ++v) parent[v] = parent[size_t(parent[v])];
   std::vector<int32_t> root_id(nv, -1);
   std::vector<size_t> sizes;
   for (size_t t = 0; t < nt; ++t) {

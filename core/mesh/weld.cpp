@@ -244,8 +244,7 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts, double t
 // Phases 2 and 3, shared by both weld() overloads: merges the distinct
 // points `pts` closer than the tolerance and builds the mesh whose corner i
 // is unique point corner_to_unique[i].
-SurfaceMesh merge_and_index(const std::vector<double>& pts,
-                            const std::vector<int32_t>& corner_to_unique,
+SurfaceMesh merge_and_index(std::vector<double> pts, std::vector<int32_t> corner_to_unique,
                             const WeldOptions& options, WeldStats* stats) {
   const size_t corners = corner_to_unique.size();
   double tol = options.relative_tolerance * bounding_box(pts).diagonal();
@@ -279,6 +278,16 @@ SurfaceMesh merge_and_index(const std::vector<double>& pts,
       merge_close_points(pts, tol, std::max(64 * tol, 0.1 * median_edge), &merged);
 
   SurfaceMesh mesh;
+  if (stats) {
+    stats->corners = corners;
+    stats->exact_unique = rep.size();
+    stats->merged_by_tolerance = merged;
+  }
+  if (merged == 0) {  // the usual case: the distinct points are the vertices
+    mesh.points = std::move(pts);
+    mesh.triangles = std::move(corner_to_unique);
+    return mesh;
+  }
   std::vector<int32_t> new_index(rep.size(), -1);
   int32_t next_vertex = 0;
   for (size_t u = 0; u < rep.size(); ++u) {
@@ -292,11 +301,6 @@ SurfaceMesh merge_and_index(const std::vector<double>& pts,
   }
   mesh.triangles.resize(corners);
   for (size_t i = 0; i < corners; ++i) mesh.triangles[i] = new_index[corner_to_unique[i]];
-  if (stats) {
-    stats->corners = corners;
-    stats->exact_unique = rep.size();
-    stats->merged_by_tolerance = merged;
-  }
   return mesh;
 }
 
@@ -320,15 +324,15 @@ std::vector<double> distinct_corners(const TriangleSoup& soup,
 
 SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options, WeldStats* stats) {
   std::vector<int32_t> corner_to_unique;
-  const std::vector<double> pts = distinct_corners(soup, corner_to_unique);
-  return merge_and_index(pts, corner_to_unique, options, stats);
+  std::vector<double> pts = distinct_corners(soup, corner_to_unique);
+  return merge_and_index(std::move(pts), std::move(corner_to_unique), options, stats);
 }
 
 SurfaceMesh weld(TriangleSoup&& soup, const WeldOptions& options, WeldStats* stats) {
   std::vector<int32_t> corner_to_unique;
-  const std::vector<double> pts = distinct_corners(soup, corner_to_unique);
+  std::vector<double> pts = distinct_corners(soup, corner_to_unique);
   soup.coords = {};
-  return merge_and_index(pts, corner_to_unique, options, stats);
+  return merge_and_index(std::move(pts), std::move(corner_to_unique), options, stats);
 }
 
 SurfaceMesh weld(const std::vector<double>& points, const std::vector<int32_t>& triangles,
@@ -369,7 +373,7 @@ SurfaceMesh weld(const std::vector<double>& points, const std::vector<int32_t>& 
   std::vector<int32_t> corner_to_unique(corners);
   for (size_t i = 0; i < corners; ++i)
     corner_to_unique[i] = used_to_unique[size_t(first_use[triangles[i]])];
-  return merge_and_index(pts, corner_to_unique, options, stats);
+  return merge_and_index(std::move(pts), std::move(corner_to_unique), options, stats);
 }
 
 }  // namespace vm

@@ -13,6 +13,7 @@
 #include "core/prepare/fill_holes.h"
 #include "core/prepare/flow_extensions.h"
 #include "core/prepare/vessel_ends.h"
+#include "core/util/parallel.h"
 
 namespace vm {
 namespace {
@@ -372,10 +373,11 @@ std::string voxel_text(const std::array<double, 3>& spacing) {
 /// Phase 4: smoothing, per options.smoothing: auto smooths voxel staircases
 /// (the passes from the voxel), N passes any surface, off nothing. The
 /// staircase test runs in every mode, for the report.
-void smooth(PreparedSurface& s, Work& w, const PrepareOptions& options) {
+void smooth(PreparedSurface& s, Work& w, const PrepareOptions& options,
+            const StaircaseReport& staircase_test) {
   SmoothingOutcome& out = s.smoothing;
   out.mode = options.smoothing.mode;
-  out.staircase = detect_staircase(s.mesh);
+  out.staircase = staircase_test;
   if (out.mode == Smoothing::Mode::kOff) return;
   const bool staircase = out.staircase.staircase;
   if (out.mode == Smoothing::Mode::kAuto && !staircase) return;
@@ -423,11 +425,21 @@ std::string smoothing_note(const SmoothingOutcome& out, const std::string& unit)
          "), every vertex within half the median edge length (" + voxel + ")";
 }
 
-/// Phase 5: planar caps removed, their rims openings of source "cap".
-void open_caps(PreparedSurface& s, Work& w, const PrepareOptions& options) {
-  if (options.keep_caps || w.adjacency.num_nonmanifold_edges > 0 || !s.repair.orientable) return;
-  const CapRecognition caps =
-      recognize_caps(s.mesh, w.adjacency, w.labels, w.face_names, options.caps);
+/// Whether phase 5 looks for caps on this surface.
+bool caps_wanted(const PreparedSurface& s, const Work& w, const PrepareOptions& options) {
+  return !options.keep_caps && w.adjacency.num_nonmanifold_edges == 0 && s.repair.orientable;
+}
+
+CapRecognition find_caps(const PreparedSurface& s, const Work& w, const PrepareOptions& options) {
+  return recognize_caps(s.mesh, w.adjacency, w.labels, w.face_names, options.caps);
+}
+
+/// Phase 5: planar caps removed, their rims openings of source "cap";
+/// `found`: the caps already recognised on the current surface, if any.
+void open_caps(PreparedSurface& s, Work& w, const PrepareOptions& options,
+               std::optional<CapRecognition> found) {
+  if (!caps_wanted(s, w, options)) return;
+  const CapRecognition caps = found ? std::move(*found) : find_caps(s, w, options);
   for (const std::string& note : caps.notes) s.warnings.push_back(note);
   if (caps.caps.empty()) return;
   std::vector<uint8_t> remove(s.mesh.num_triangles(), 0);
@@ -692,9 +704,22 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   if (Status st = repair(s, w, options); !st.ok()) return st;
   if (options.largest_component_only) keep_largest_component(s, w);
   if (!report_progress(progress, 0.4, "smooth")) return cancelled();
-  smooth(s, w, options);
+  // The staircase test (phase 4) and the cap search (phase 5) read the same
+  // surface: with threads they run side by side, and the caps are searched
+  // again if the smoothing moved the surface.
+  StaircaseReport staircase;
+  std::optional<CapRecognition> caps;
+  const bool side_by_side = thread_count() > 1 && caps_wanted(s, w, options);
+  parallel_for(side_by_side ? 2 : 1, 1, [&](size_t task, size_t) {
+    if (task == 0)
+      staircase = detect_staircase(s.mesh);
+    else
+      caps = find_caps(s, w, options);
+  });
+  smooth(s, w, options, staircase);
+  if (s.smoothing.applied) caps.reset();
   if (!report_progress(progress, 0.5, "caps")) return cancelled();
-  open_caps(s, w, options);
+  open_caps(s, w, options, std::move(caps));
   if (!report_progress(progress, 0.55, "clip")) return cancelled();
   if (Status st = clip(s, w, options); !st.ok()) return st;
   if (!report_progress(progress, 0.6, "extend")) return cancelled();

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/util/concurrent_union_find.h"
 #include "core/util/radix_sort.h"
 
 namespace vm {
@@ -91,6 +92,38 @@ TEST(ParallelFor, ThreadCountFollowsTheSetting) {
   EXPECT_EQ(thread_count(), threads_supported() ? 3 : 1);
   set_thread_count(0);
   EXPECT_GE(thread_count(), 1);
+}
+
+TEST(ConcurrentUnionFind, SetsRootedAtTheirSmallestElementWithAnyThreadCount) {
+  // Random pairs over 200,000 elements: the sets are those of a plain
+  // sequential union-find, each rooted at its smallest element.
+  const size_t n = 200'000;
+  std::vector<std::pair<int32_t, int32_t>> pairs(150'000);
+  uint64_t s = 99;
+  for (auto& [a, b] : pairs) {
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    a = int32_t((s >> 20) % n);
+    b = int32_t((s >> 40) % n);
+  }
+  std::vector<int32_t> expected(n);
+  std::iota(expected.begin(), expected.end(), 0);
+  auto find = [&](int32_t x) {
+    while (expected[size_t(x)] != x) x = expected[size_t(x)];
+    return x;
+  };
+  for (auto [a, b] : pairs) {
+    const int32_t ra = find(a), rb = find(b);
+    if (ra != rb) expected[size_t(std::max(ra, rb))] = std::min(ra, rb);
+  }
+  for (size_t i = 0; i < n; ++i) expected[i] = find(int32_t(i));
+  for (int threads : {1, 2, 4}) {
+    ThreadCount tc(threads);
+    ConcurrentUnionFind uf(n);
+    parallel_for(pairs.size(), 1000, [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) uf.unite(pairs[i].first, pairs[i].second);
+    });
+    EXPECT_EQ(std::move(uf).roots(), expected) << threads << " threads";
+  }
 }
 
 TEST(RadixSort, KeysAndDoublesSortAsStdSort) {
