@@ -3,11 +3,15 @@
 // triangles (e.g. aortic-arch.stl, 41,176 triangles: three 1-to-4 splits and
 // a centroid split give 7.9M triangles, a 395 MB binary STL).
 //
-// usage: subdivide_surface IN.stl OUT.stl [--four N] [--centroid]
+// usage: subdivide_surface IN.stl OUT.stl [--four N] [--centroid] [--until T]
 //   --four N: N rounds of the 1-to-4 split (edge midpoints); default 3
 //   --centroid: then split every triangle at its centroid into 3 (long,
 //     thin triangles as a fine segmentation has); default on, --no-centroid
 //     turns it off
+//   --until T: the centroid split only on the first triangles, until the
+//     surface has T triangles (e.g. --four 4 --until 25000000 on the arch:
+//     a 25M-triangle surface, the readers' limit)
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -51,13 +55,20 @@ SurfaceMesh split_four(const SurfaceMesh& m) {
 }
 
 /// Every triangle (a, b, c) becomes (a, b, g), (b, c, g), (c, a, g) with g
-/// its centroid.
-SurfaceMesh split_centroid(const SurfaceMesh& m) {
+/// its centroid, in order, while the surface has fewer than `until`
+/// triangles; the rest stay as they are.
+SurfaceMesh split_centroid(const SurfaceMesh& m, size_t until) {
   SurfaceMesh out;
   out.points = m.points;
   out.triangles.reserve(3 * m.triangles.size());
+  size_t count = m.num_triangles();
   for (size_t t = 0; t < m.num_triangles(); ++t) {
     const int32_t v[3] = {m.triangles[3 * t], m.triangles[3 * t + 1], m.triangles[3 * t + 2]};
+    if (count + 2 > until) {
+      out.triangles.insert(out.triangles.end(), v, v + 3);
+      continue;
+    }
+    count += 2;
     const int32_t g = int32_t(out.points.size() / 3);
     for (int k = 0; k < 3; ++k)
       out.points.push_back((m.points[3 * size_t(v[0]) + k] + m.points[3 * size_t(v[1]) + k] +
@@ -70,7 +81,8 @@ SurfaceMesh split_centroid(const SurfaceMesh& m) {
 }
 
 int usage() {
-  std::fprintf(stderr, "usage: subdivide_surface IN.stl OUT.stl [--four N] [--no-centroid]\n");
+  std::fprintf(stderr,
+               "usage: subdivide_surface IN.stl OUT.stl [--four N] [--no-centroid] [--until T]\n");
   return 2;
 }
 
@@ -80,6 +92,7 @@ int main(int argc, char** argv) {
   if (argc < 3) return usage();
   int four = 3;
   bool centroid = true;
+  size_t until = SIZE_MAX;
   for (int i = 3; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--four") && i + 1 < argc) {
       four = std::atoi(argv[++i]);
@@ -88,6 +101,8 @@ int main(int argc, char** argv) {
       centroid = false;
     } else if (!std::strcmp(argv[i], "--centroid")) {
       centroid = true;
+    } else if (!std::strcmp(argv[i], "--until") && i + 1 < argc) {
+      until = size_t(std::atoll(argv[++i]));
     } else {
       return usage();
     }
@@ -107,7 +122,7 @@ int main(int argc, char** argv) {
   exact.relative_tolerance = 0;
   SurfaceMesh m = vm::weld(soup.value(), exact);
   for (int r = 0; r < four; ++r) m = split_four(m);
-  if (centroid) m = split_centroid(m);
+  if (centroid) m = split_centroid(m, until);
   const std::vector<uint8_t> out = vm::write_stl_binary(m, "subdivide_surface");
   std::ofstream os(argv[2], std::ios::binary);
   os.write(reinterpret_cast<const char*>(out.data()), std::streamsize(out.size()));

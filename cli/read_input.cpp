@@ -1,9 +1,11 @@
 // Reading the CLI's input file (see read_input.h).
 #include "cli/read_input.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -11,6 +13,8 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+
+#include "core/util/parallel.h"
 
 namespace vm::cli {
 namespace {
@@ -69,11 +73,25 @@ Result<InputBytes> read_input(const std::string& path, const SurfaceReadOptions&
     return fail(path + ": " + s.message());
   }
   std::unique_ptr<uint8_t[]> bytes(new uint8_t[size]);  // not zeroed: every byte is read
-  std::copy(head.begin(), head.end(), bytes.get());
-  if (size > head.size() && !in.read(reinterpret_cast<char*>(bytes.get() + head.size()),
-                                     std::streamsize(size - head.size()))) {
-    return fail("cannot read '" + path + "'");
-  }
+  // The body in chunks read side by side (parallel.h): copying from the page
+  // cache is a tenth of a second per 400 MB and thread.
+  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return fail("cannot open '" + path + "': " + std::strerror(errno));
+  constexpr size_t kChunk = size_t(32) << 20;
+  std::atomic<bool> short_read{false};
+  parallel_for(size_t(size), kChunk, [&](size_t begin, size_t end) {
+    for (size_t at = begin; at < end;) {
+      const ssize_t got = pread(fd, bytes.get() + at, end - at, off_t(at));
+      if (got <= 0) {
+        if (got < 0 && errno == EINTR) continue;
+        short_read = true;  // the file shrank, or a read error
+        return;
+      }
+      at += size_t(got);
+    }
+  });
+  close(fd);
+  if (short_read) return fail("cannot read '" + path + "' (did it change while being read?)");
   return InputBytes(std::move(bytes), size_t(size));
 }
 

@@ -12,6 +12,7 @@
 
 #include "core/io/float_bits.h"
 #include "core/io/text_scan.h"
+#include "core/util/parallel.h"
 
 namespace vm {
 namespace {
@@ -218,16 +219,21 @@ Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes, const StlReadOptio
   }
   soup.header = trim(std::string_view(reinterpret_cast<const char*>(bytes.data()), 80));
   soup.coords.resize(9 * count);
-  const uint8_t* p = bytes.data() + kHeaderBytes;
-  float* out = soup.coords.data();
-  uint32_t non_finite = 0;  // any coordinate with all exponent bits set
-  for (uint64_t t = 0; t < count; ++t, p += kTriangleBytes, out += 9) {
-    for (int k = 0; k < 9; ++k) {
-      const uint32_t u = load_u32le(p + 12 + 4 * k);
-      non_finite |= (u & 0x7F800000u) == 0x7F800000u;
-      out[k] = float_from_bits(u);
-    }
-  }
+  // Coordinates with all exponent bits set (Inf, NaN), counted.
+  const size_t non_finite =
+      parallel_sum<size_t>(size_t(count), size_t(1) << 16, [&](size_t begin, size_t end) {
+        size_t n = 0;
+        for (size_t t = begin; t < end; ++t) {
+          const uint8_t* p = bytes.data() + kHeaderBytes + kTriangleBytes * t + 12;
+          float* out = soup.coords.data() + 9 * t;
+          for (int k = 0; k < 9; ++k) {
+            const uint32_t u = load_u32le(p + 4 * k);
+            n += (u & 0x7F800000u) == 0x7F800000u;
+            out[k] = float_from_bits(u);
+          }
+        }
+        return n;
+      });
   if (non_finite) {
     Status finite = check_finite(soup.coords, 0);
     if (!finite.ok()) return finite;

@@ -14,6 +14,7 @@
 
 #include "core/mesh/adjacency.h"
 #include "core/mesh/repair.h"
+#include "core/util/parallel.h"
 
 namespace vm {
 namespace {
@@ -229,12 +230,16 @@ namespace {
 bool orientation_contradicts(const SurfaceMesh& mesh, const TriangleAdjacency& adj) {
   // Usually every shared edge runs opposite ways already: every triangle
   // keeps its side, and there is nothing to propagate.
-  bool consistent = true;
-  for (size_t h = 0; h < adj.opposite.size(); ++h) {
-    const int32_t o = adj.opposite[h];
-    if (o >= 0) consistent &= half_edge_from(mesh, int32_t(h)) != half_edge_from(mesh, o);
-  }
-  if (consistent) return false;
+  const size_t disagreeing =
+      parallel_sum<size_t>(adj.opposite.size(), size_t(3) << 16, [&](size_t b, size_t e) {
+        size_t n = 0;
+        for (size_t h = b; h < e; ++h) {
+          const int32_t o = adj.opposite[h];
+          n += o >= 0 && half_edge_from(mesh, int32_t(h)) == half_edge_from(mesh, o);
+        }
+        return n;
+      });
+  if (disagreeing == 0) return false;
   const size_t nt = mesh.num_triangles();
   std::vector<int8_t> side(nt, -1);  // 0: as given, 1: reversed; -1 unseen
   std::vector<int32_t> queue;

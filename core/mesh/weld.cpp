@@ -187,7 +187,8 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts, double t
                   (reach(p, lo, hi) ? near_face : 0) | i;
     }
   });
-  radix_sort(sorted);
+  // Sorted by cell hash only: a run keeps its points in index order.
+  radix_sort(sorted, index_bits + 1);
   auto in_cell = [&](size_t a, int64_t x, int64_t y, int64_t z) {
     return cell_of(pts[3 * a]) == x && cell_of(pts[3 * a + 1]) == y && cell_of(pts[3 * a + 2]) == z;
   };

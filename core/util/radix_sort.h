@@ -10,21 +10,25 @@
 
 namespace vm {
 
-/// Sorts `keys` (n unsigned 64-bit integers) ascending. Six passes of 11
-/// bits, skipping the digits all keys share; O(n) time, n extra keys.
-inline void radix_sort(std::vector<uint64_t>& keys) {
+/// Sorts `keys` (n unsigned 64-bit integers) ascending by their bits from
+/// `from_bit` up (0: the whole key); keys equal there keep their order.
+/// Passes of 11 bits, skipping the digits all keys share; O(n) time, n
+/// extra keys.
+inline void radix_sort(std::vector<uint64_t>& keys, int from_bit = 0) {
   const size_t n = keys.size();
   if (n < 2) return;
-  constexpr int kBits = 11, kPasses = 6;
+  constexpr int kBits = 11;
   constexpr size_t kBuckets = size_t(1) << kBits;
+  const int passes = (64 - from_bit + kBits - 1) / kBits;
   std::vector<uint64_t> other(n);
-  std::vector<std::array<uint32_t, kBuckets>> count(kPasses);
+  std::vector<std::array<uint32_t, kBuckets>> count(static_cast<size_t>(passes));
   for (auto& c : count) c.fill(0);
   for (const uint64_t k : keys)
-    for (int p = 0; p < kPasses; ++p) ++count[size_t(p)][(k >> (kBits * p)) & (kBuckets - 1)];
-  for (int p = 0; p < kPasses; ++p) {
+    for (int p = 0; p < passes; ++p)
+      ++count[size_t(p)][(k >> (from_bit + kBits * p)) & (kBuckets - 1)];
+  for (int p = 0; p < passes; ++p) {
     std::array<uint32_t, kBuckets>& c = count[size_t(p)];
-    const int shift = kBits * p;
+    const int shift = from_bit + kBits * p;
     if (c[(keys[0] >> shift) & (kBuckets - 1)] == n) continue;  // one digit for all
     uint32_t sum = 0;
     for (uint32_t& x : c) {

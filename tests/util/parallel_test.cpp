@@ -138,6 +138,12 @@ TEST(RadixSort, KeysAndDoublesSortAsStdSort) {
   std::sort(expected.begin(), expected.end());
   radix_sort(keys);
   EXPECT_EQ(keys, expected);
+  // By the bits from 40 up only: equal there, keys keep their order.
+  std::vector<uint64_t> high = {(uint64_t(3) << 40) | 7, (uint64_t(1) << 40) | 9,
+                                (uint64_t(3) << 40) | 2, (uint64_t(1) << 40) | 1};
+  radix_sort(high, 40);
+  EXPECT_EQ(high, (std::vector<uint64_t>{(uint64_t(1) << 40) | 9, (uint64_t(1) << 40) | 1,
+                                         (uint64_t(3) << 40) | 7, (uint64_t(3) << 40) | 2}));
   std::vector<double> values = {3.5, -1e300, 0.0, 2.0, -0.5, 1e-300, -2.0, 7.0, 3.5};
   std::vector<double> sorted = values;
   std::sort(sorted.begin(), sorted.end());
