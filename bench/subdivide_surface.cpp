@@ -105,7 +105,8 @@ int main(int argc, char** argv) {
   }
   vm::WeldOptions exact;
   exact.relative_tolerance = 0;
-  SurfaceMesh m = vm::weld(soup.value(), exact);
+  const vm::TriangleSoup& s = soup.value();  // binary: coords; ASCII: indexed
+  SurfaceMesh m = s.ascii ? vm::weld(s.points, s.triangles, exact) : vm::weld(s, exact);
   for (int r = 0; r < four; ++r) m = split_four(m);
   if (centroid) m = split_centroid(m);
   const std::vector<uint8_t> out = vm::write_stl_binary(m, "subdivide_surface");
