@@ -19,7 +19,7 @@ namespace vm {
 /// only corners whose three numbers are bit-identical (-0 as +0) share a
 /// point. Exactly one of `coords` and `points`/`triangles` is non-empty;
 /// weld the first with weld(soup), the second with weld(points, triangles)
-/// (weld.h).
+/// (weld.h; weld(soup) reads `coords` only).
 struct TriangleSoup {
   /// Binary STL: 9 * num_triangles() floats (x y z of corners a, b, c).
   std::vector<float> coords;
