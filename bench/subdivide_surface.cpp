@@ -120,7 +120,7 @@ int main(int argc, char** argv) {
   }
   vm::WeldOptions exact;
   exact.relative_tolerance = 0;
-  SurfaceMesh m = vm::weld(soup.value(), exact);
+  SurfaceMesh m = vm::weld(soup.value(), exact);  // binary or ASCII
   for (int r = 0; r < four; ++r) m = split_four(m);
   if (centroid) m = split_centroid(m, until);
   const std::vector<uint8_t> out = vm::write_stl_binary(m, "subdivide_surface");

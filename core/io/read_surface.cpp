@@ -144,6 +144,12 @@ Result<SurfaceFile> read_stl_file(std::span<const uint8_t> bytes,
   if (!soup.ok()) return soup.status();
   SurfaceFile file;
   file.soup = std::move(soup.value());
+  // An ASCII STL's indexed doubles go where every indexed format's go; the
+  // soup keeps its `ascii` flag and header, without coordinates.
+  file.points = std::move(file.soup.points);
+  file.triangles = std::move(file.soup.triangles);
+  file.soup.points = {};
+  file.soup.triangles = {};
   file.warnings = file.soup.warnings;
   file.format = file.soup.ascii ? "ASCII STL" : "binary STL";
   file.format_id = "stl";

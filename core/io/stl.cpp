@@ -8,10 +8,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <string_view>
 
 #include "core/io/float_bits.h"
 #include "core/io/text_scan.h"
+#include "core/util/index_hash_table.h"
 #include "core/util/parallel.h"
 
 namespace vm {
@@ -31,25 +33,95 @@ std::string trim(std::string_view s) {
 
 std::string fmt_count(size_t n) { return std::to_string(n); }
 
-Status check_finite(const std::vector<float>& coords, size_t first) {
-  for (size_t i = first; i < coords.size(); ++i) {
-    if (!std::isfinite(coords[i])) {
-      return Status::Error("triangle " + fmt_count(i / 9 + 1) + " has a non-finite coordinate (" +
-                           (std::isnan(coords[i]) ? "NaN" : "Inf") + "): the file is corrupt");
-    }
-  }
-  return Status::Ok();
+/// Message for a NaN or infinite coordinate of triangle t (0-based).
+std::string non_finite_text(size_t t, double x) {
+  return "triangle " + fmt_count(t + 1) + " has a non-finite coordinate (" +
+         (std::isnan(x) ? "NaN" : "Inf") + "): the file is corrupt";
 }
 
 // ---- ASCII -----------------------------------------------------------------
 
-/// A coordinate: the correctly rounded double of the text, as a float.
-bool parse_float(std::string_view tok, float& out) {
-  double v = 0;
-  if (!parse_double(tok, v)) return false;
-  out = static_cast<float>(v);
-  return true;
+uint64_t double_bits(double x) {
+  if (x == 0.0) x = 0.0;  // -0 and +0 are the same point
+  uint64_t u;
+  std::memcpy(&u, &x, 8);
+  return u;
 }
+
+/// The distinct corner positions of an ASCII STL in order of first
+/// appearance: corners whose three doubles are bit-identical (-0 as +0)
+/// get one index. Appends to `points` (3 doubles a point). An open-addressing
+/// table of point indices (load <= 1/2, grown by doubling) behind a small
+/// cache of recently seen corners: a vertex recurs in about six triangles,
+/// usually close together in the file.
+class CornerIndex {
+ public:
+  explicit CornerIndex(std::vector<double>& points) : points_(points) {
+    slots_.assign(1 << 12, -1);
+    recent_.assign(kRecent, Recent{{0, 0, 0}, -1});
+  }
+
+  /// The index of point p (3 doubles), added if new; -1 when there would be
+  /// more than 2^31 - 1 points.
+  int32_t add(const double* p) {
+    const uint64_t h = hash_of(p);
+    Recent& r = recent_[h >> (64 - kRecentBits)];
+    if (r.id >= 0 && r.p[0] == p[0] && r.p[1] == p[1] && r.p[2] == p[2]) return r.id;
+    size_t j = h & (slots_.size() - 1);
+    while (slots_[j] >= 0) {
+      if (same(size_t(slots_[j]), p)) return remember(r, p, slots_[j]);
+      j = (j + 1) & (slots_.size() - 1);
+    }
+    const size_t id = points_.size() / 3;
+    if (id >= size_t(std::numeric_limits<int32_t>::max())) return -1;
+    slots_[j] = int32_t(id);
+    points_.insert(points_.end(), p, p + 3);
+    if (2 * (id + 1) > slots_.size()) grow();
+    return remember(r, p, int32_t(id));
+  }
+
+ private:
+  static constexpr int kRecentBits = 12;
+  static constexpr size_t kRecent = size_t(1) << kRecentBits;
+
+  /// A recently seen point with its coordinates, so that a hit reads no
+  /// other memory.
+  struct Recent {
+    double p[3];
+    int32_t id;  // -1: empty
+  };
+
+  static int32_t remember(Recent& r, const double* p, int32_t id) {
+    r = Recent{{p[0], p[1], p[2]}, id};
+    return id;
+  }
+
+  /// Whether stored point i equals p (-0 equals +0).
+  bool same(size_t i, const double* p) const {
+    const double* q = &points_[3 * i];
+    return q[0] == p[0] && q[1] == p[1] && q[2] == p[2];
+  }
+
+  static uint64_t hash_of(const double* p) {
+    return IndexHashTable::mix((double_bits(p[0]) * 0x9E3779B97F4A7C15ULL) ^
+                               (double_bits(p[1]) * 0xC2B2AE3D27D4EB4FULL) ^
+                               (double_bits(p[2]) * 0x165667B19E3779F9ULL));
+  }
+
+  void grow() {
+    slots_.assign(2 * slots_.size(), -1);
+    const size_t mask = slots_.size() - 1;
+    for (size_t i = 0; i < points_.size() / 3; ++i) {
+      size_t j = hash_of(&points_[3 * i]) & mask;
+      while (slots_[j] >= 0) j = (j + 1) & mask;
+      slots_[j] = int32_t(i);
+    }
+  }
+
+  std::vector<double>& points_;
+  std::vector<int32_t> slots_;  // point index or -1, power-of-two size
+  std::vector<Recent> recent_;  // kRecent slots, by hash
+};
 
 bool iequals(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
@@ -61,9 +133,12 @@ bool iequals(std::string_view a, std::string_view b) {
   return true;
 }
 
+/// Reads an ASCII STL into soup.points / soup.triangles, each coordinate the
+/// correctly rounded double of its text.
 Result<TriangleSoup> read_ascii(std::span<const uint8_t> bytes, const StlReadOptions& options) {
   TriangleSoup soup;
   soup.ascii = true;
+  CornerIndex corners(soup.points);
   TextCursor cur(bytes);
   auto fail = [&](const std::string& what) {
     return Result<TriangleSoup>::Error("ASCII STL, line " + std::to_string(cur.line()) + ": " +
@@ -94,21 +169,26 @@ Result<TriangleSoup> read_ascii(std::span<const uint8_t> bytes, const StlReadOpt
       return fail("expected 'facet' or 'endsolid', found '" + std::string(tok.substr(0, 32)) + "'");
     }
     if (!expect("normal")) return fail("expected 'normal' after 'facet'");
-    float dummy;
+    double dummy;
     for (int k = 0; k < 3; ++k) {
-      if (!parse_float(cur.next(), dummy)) return fail("bad normal component");
+      if (!parse_double(cur.next(), dummy)) return fail("bad normal component");
     }
     if (!expect("outer") || !expect("loop")) return fail("expected 'outer loop'");
     for (int v = 0; v < 3; ++v) {
       if (!expect("vertex")) return fail("expected 'vertex'");
+      double p[3];
       for (int k = 0; k < 3; ++k) {
-        float x;
         std::string_view t = cur.next();
-        if (!parse_float(t, x)) {
+        if (!parse_double(t, p[k])) {
           return fail("bad vertex coordinate '" + std::string(t.substr(0, 32)) + "'");
         }
-        soup.coords.push_back(x);
+        if (!std::isfinite(p[k])) {
+          return Result<TriangleSoup>::Error(non_finite_text(soup.triangles.size() / 3, p[k]));
+        }
       }
+      const int32_t id = corners.add(p);
+      if (id < 0) return fail("more than 2^31 distinct vertices");
+      soup.triangles.push_back(id);
     }
     if (!expect("endloop")) {
       return fail("expected 'endloop' (facets must have exactly 3 vertices)");
@@ -181,8 +261,6 @@ Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes, const StlReadOptio
     if (r.value().num_triangles() == 0) {
       return Result<TriangleSoup>::Error("ASCII STL contains no facet");
     }
-    Status finite = check_finite(r.value().coords, 0);
-    if (!finite.ok()) return finite;
     return r;
   }
   if (bytes.size() < kHeaderBytes) {
@@ -235,8 +313,9 @@ Result<TriangleSoup> read_stl(std::span<const uint8_t> bytes, const StlReadOptio
         return n;
       });
   if (non_finite) {
-    Status finite = check_finite(soup.coords, 0);
-    if (!finite.ok()) return finite;
+    for (size_t i = 0; i < soup.coords.size(); ++i)
+      if (!std::isfinite(soup.coords[i]))
+        return Status::Error(non_finite_text(i / 9, soup.coords[i]));
   }
   return soup;
 }

@@ -14,11 +14,14 @@
 
 namespace vm {
 
-/// One surface file's contents. Exactly one of `soup` (STL: unwelded corner
-/// triples, float as in the file) and `points`/`triangles` (every other
-/// format: the file's own indexed points, as doubles) is non-empty.
+/// One surface file's contents. Exactly one of `soup.coords` (binary STL:
+/// unwelded corner triples, float as in the file) and `points`/`triangles`
+/// (every other format, ASCII STL included: the file's own indexed points,
+/// as doubles) is non-empty.
 struct SurfaceFile {
-  /// STL only: 9 floats per triangle (see stl.h).
+  /// STL only: `ascii` and `header`; binary STL: `coords`, 9 floats per
+  /// triangle (see stl.h). Its `points`/`triangles` are always empty (an
+  /// ASCII STL's are moved to the fields below).
   TriangleSoup soup;
   /// Indexed formats: 3 doubles per point (x y z), 3 point indices per
   /// triangle, in the file's orientation. Polygons are split into triangles

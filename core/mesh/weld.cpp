@@ -324,12 +324,20 @@ std::vector<double> distinct_corners(const TriangleSoup& soup,
 }  // namespace
 
 SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options, WeldStats* stats) {
+  if (soup.coords.empty() && !soup.triangles.empty())  // an ASCII STL: indexed doubles
+    return weld(soup.points, soup.triangles, options, stats);
   std::vector<int32_t> corner_to_unique;
   std::vector<double> pts = distinct_corners(soup, corner_to_unique);
   return merge_and_index(std::move(pts), std::move(corner_to_unique), options, stats);
 }
 
 SurfaceMesh weld(TriangleSoup&& soup, const WeldOptions& options, WeldStats* stats) {
+  if (soup.coords.empty() && !soup.triangles.empty()) {
+    SurfaceMesh mesh = weld(soup.points, soup.triangles, options, stats);
+    soup.points = {};
+    soup.triangles = {};
+    return mesh;
+  }
   std::vector<int32_t> corner_to_unique;
   std::vector<double> pts = distinct_corners(soup, corner_to_unique);
   soup.coords = {};

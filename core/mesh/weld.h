@@ -26,7 +26,8 @@ struct WeldStats {
 /// Merges coincident corners. Output vertices keep first-seen order; each
 /// triangle keeps its corner order (it may become degenerate: see repair.h).
 /// Runs in expected linear time (hash on exact bits, then a grid of cells of
-/// the tolerance size for the near-coincident ones).
+/// the tolerance size for the near-coincident ones). An ASCII soup (indexed
+/// doubles) is welded as an indexed surface (below).
 SurfaceMesh weld(const TriangleSoup& soup, const WeldOptions& options = {},
                  WeldStats* stats = nullptr);
 

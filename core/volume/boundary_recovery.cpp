@@ -101,6 +101,10 @@ Status validate(const std::vector<double>& points, const std::vector<int32_t>& t
     if (!std::isfinite(x)) return Status::Error("points: non-finite coordinate");
   std::unordered_map<uint64_t, int> directed;
   directed.reserve(3 * nt);
+  // Six times the enclosed volume, summed about the first point rather than
+  // the origin: about the origin the terms of a model far from it (1e5 away)
+  // are ~1e15 times its own and their rounding drowns the volume.
+  const double o[3] = {points[0], points[1], points[2]};
   double volume6 = 0;
   for (size_t t = 0; t < nt; ++t) {
     const int32_t* v = &triangles[3 * t];
@@ -115,8 +119,11 @@ Status validate(const std::vector<double>& points, const std::vector<int32_t>& t
     const double a2[2] = {a[2], a[0]}, b2[2] = {b[2], b[0]}, c2[2] = {c[2], c[0]};
     if (orient2d(a, b, c) == 0 && orient2d(a + 1, b + 1, c + 1) == 0 && orient2d(a2, b2, c2) == 0)
       return Status::Error("triangle " + std::to_string(t) + ": degenerate (collinear corners)");
-    volume6 += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-               a[2] * (b[0] * c[1] - b[1] * c[0]);
+    const double p[3] = {a[0] - o[0], a[1] - o[1], a[2] - o[2]};
+    const double q[3] = {b[0] - o[0], b[1] - o[1], b[2] - o[2]};
+    const double r[3] = {c[0] - o[0], c[1] - o[1], c[2] - o[2]};
+    volume6 += p[0] * (q[1] * r[2] - q[2] * r[1]) - p[1] * (q[0] * r[2] - q[2] * r[0]) +
+               p[2] * (q[0] * r[1] - q[1] * r[0]);
     for (int k = 0; k < 3; ++k) {
       const uint64_t d = (uint64_t(uint32_t(v[k])) << 32) | uint32_t(v[(k + 1) % 3]);
       if (++directed[d] > 1)

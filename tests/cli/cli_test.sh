@@ -110,6 +110,30 @@ check "self-crossing: mesh fails naming it" expect_exit 1 "error: $T/dent.stl: t
 check "self-crossing: the refusal says what to do, in CLI words" expect_exit 1 "mm (1 place; fix it in the segmentation, or cut that part off with --clip-plane): " "$VM" mesh "$T/dent.stl" -o "$T/dent.msh"
 check "self-crossing: none on a clean phantom" expect_exit 0 "self-crossings: none" "$VM" info "$T/bif.stl"
 
+# Full precision from ASCII STL: a small tube (radius 0.01) 1e5 from the
+# origin, written with 17 digits. Float32 corners (spacing 2^-7 there) would
+# collapse it; it meshes as the same tube at the origin does.
+"$VM" phantom "$T/small.stl" --kind tube --scale 0.01 > /dev/null
+python3 - "$T/small.stl" "$T/far.stl" <<'PY'
+import struct, sys
+b = open(sys.argv[1], "rb").read()
+out = ["solid far\n"]
+for t in range(struct.unpack_from("<I", b, 80)[0]):
+    f = struct.unpack_from("<12f", b, 84 + 50 * t)
+    out.append("facet normal 0 0 0\nouter loop\n")
+    for k in range(3):
+        out.append("vertex %.17g %.17g %.17g\n" % tuple(x + 1e5 for x in f[3 + 3 * k:6 + 3 * k]))
+    out.append("endloop\nendfacet\n")
+open(sys.argv[2], "w").write("".join(out) + "endsolid far\n")
+PY
+check "ASCII 1e5 from the origin: meshed" expect_exit 0 "wrote" "$VM" mesh "$T/far.stl" -o "$T/far.msh" --report "$T/far.json"
+"$VM" mesh "$T/small.stl" -o "$T/small.msh" --report "$T/small.json" > /dev/null 2>&1
+check "ASCII 1e5 from the origin: every vertex kept, the lumen's volume" [ "$(python3 -c "
+import json
+f, s = (json.load(open('$T/' + n + '.json')) for n in ('far', 'small'))
+print(f['input']['format'], f['input']['vertices'] == s['input']['vertices'], f['input']['bounding_box']['min'][0] > 99999,
+      abs(f['output']['volume']['lumen_volume'] / s['output']['volume']['lumen_volume'] - 1) < 0.01)")" = "ASCII STL True True True" ]
+
 # An oversampled tube (voxel 0.03: about 218,000 triangles): decimated
 # before remeshing, unless --decimate off; the report says so.
 "$VM" phantom "$T/fine.stl" --kind tube --voxel 0.03 > /dev/null

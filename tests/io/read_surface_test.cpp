@@ -2,13 +2,17 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstring>
 #include <random>
+#include <set>
 #include <string>
 
+#include "core/mesh/enclosed_volume.h"
 #include "core/mesh/weld.h"
 #include "core/pipeline/prepare_surface.h"
 #include "tests/io/surface_writers.h"
+#include "tests/support/icosphere.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -122,6 +126,52 @@ TEST(ReadSurface, PreparedSurfaceIsTheSameFromEveryFormat) {
     EXPECT_EQ(p.value().topology.openings.size(), 2u);
     EXPECT_EQ(p.value().topology.genus, 0);
   }
+}
+
+/// `m` moved by (d, d, d).
+SurfaceMesh moved(SurfaceMesh m, double d) {
+  for (double& x : m.points) x += d;
+  return m;
+}
+
+/// How many distinct points `m` has once its coordinates are float32.
+size_t distinct_as_floats(const SurfaceMesh& m) {
+  std::set<std::array<float, 3>> seen;
+  for (size_t v = 0; v < m.num_vertices(); ++v)
+    seen.insert({float(m.points[3 * v]), float(m.points[3 * v + 1]), float(m.points[3 * v + 2])});
+  return seen.size();
+}
+
+TEST(ReadSurface, AsciiStlFarFromTheOriginKeepsItsShape) {
+  // A small sphere (edges ~0.01) and an open tube (edges ~0.005) 1e5 from the
+  // origin, written with 17 digits. Rounded to float32 (spacing 2^-7 there)
+  // their vertices would collide: the check below shows it.
+  constexpr double kOffset = 1e5;
+  const SurfaceMesh sphere = testing::icosphere(3, 0.05);
+  const SurfaceMesh far_sphere = moved(sphere, kOffset);
+  ASSERT_LT(distinct_as_floats(far_sphere), far_sphere.num_vertices());
+  auto r = prepare_surface(to_bytes(testing::ascii_stl(far_sphere)));
+  ASSERT_TRUE(r.ok()) << r.message();
+  const PreparedSurface& s = r.value();
+  EXPECT_TRUE(s.ascii);
+  EXPECT_EQ(s.format, "ASCII STL");
+  EXPECT_EQ(s.weld.merged_by_tolerance, 0u);
+  EXPECT_EQ(s.mesh.num_vertices(), sphere.num_vertices());
+  EXPECT_EQ(s.mesh.num_triangles(), sphere.num_triangles());
+  EXPECT_TRUE(s.topology.openings.empty());
+  EXPECT_EQ(s.topology.genus, 0);
+  EXPECT_NEAR(enclosed_volume(s.mesh), enclosed_volume(sphere), 1e-6 * enclosed_volume(sphere));
+  EXPECT_NEAR(s.box.min[0], bounding_box(sphere.points).min[0] + kOffset, 1e-9);
+
+  const SurfaceMesh tube = testing::open_tube(24, 8, 0.02, 0.1);
+  const SurfaceMesh far_tube = moved(tube, kOffset);
+  ASSERT_LT(distinct_as_floats(far_tube), far_tube.num_vertices());
+  r = prepare_surface(to_bytes(testing::ascii_stl(far_tube)));
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(r.value().mesh.num_vertices(), tube.num_vertices());
+  EXPECT_EQ(r.value().mesh.num_triangles(), tube.num_triangles());
+  EXPECT_EQ(r.value().topology.openings.size(), 2u);
+  EXPECT_TRUE(check_meshable(r.value()).ok()) << check_meshable(r.value()).message();
 }
 
 std::string error_of(const Bytes& b, const SurfaceReadOptions& o = {}) {

@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
+#include "core/mesh/weld.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -46,7 +48,57 @@ TEST(Stl, AsciiIsRead) {
   EXPECT_TRUE(r.value().ascii);
   EXPECT_EQ(r.value().num_triangles(), 4u);
   EXPECT_EQ(r.value().header, "tet");
-  EXPECT_FLOAT_EQ(r.value().coords[3 + 1], 1.0f);  // second corner (0,1,0)
+  EXPECT_TRUE(r.value().coords.empty());
+  // Indexed: the tetrahedron's 4 distinct corners once each, every corner
+  // where the tetrahedron has it.
+  const SurfaceMesh tet = testing::tetrahedron();
+  const TriangleSoup& soup = r.value();
+  ASSERT_EQ(soup.points.size(), 12u);
+  ASSERT_EQ(soup.triangles.size(), 12u);
+  for (size_t c = 0; c < 12; ++c)
+    for (size_t k = 0; k < 3; ++k)
+      EXPECT_EQ(soup.points[3 * size_t(soup.triangles[c]) + k],
+                tet.points[3 * size_t(tet.triangles[c]) + k]);
+}
+
+TEST(Stl, AsciiKeepsEveryDigitFarFromTheOrigin) {
+  // Two triangles 1e5 from the origin written with 17 digits. Corner d is
+  // corner a moved by one part in 1e9 (1e-4): float32 (spacing 2^-7 there)
+  // would make them one point, doubles keep them apart. Repeated text is one
+  // point, and so are a (z = -0) and a0 (z = 0).
+  const double o = 1e5 + 0.123456789;
+  const double a[3] = {o, o, -0.0}, b[3] = {o + 1, o, 0.0}, c[3] = {o, o + 1, 0.0};
+  const double a0[3] = {o, o, 0.0}, d[3] = {o * (1 + 1e-9), o, 0.0};
+  ASSERT_EQ(float(a[0]), float(d[0]));  // what float32 would have done
+  std::string text = "solid far\n";
+  const double* const triangles[2][3] = {{a, b, c}, {a0, c, d}};
+  for (const auto& t : triangles) {
+    text += "facet normal 0 0 1\nouter loop\n";
+    for (int k = 0; k < 3; ++k) {
+      char buf[128];
+      std::snprintf(buf, sizeof(buf), "vertex %.17g %.17g %.17g\n", t[k][0], t[k][1], t[k][2]);
+      text += buf;
+    }
+    text += "endloop\nendfacet\n";
+  }
+  text += "endsolid far\n";
+  auto r = read_stl(bytes_of(text));
+  ASSERT_TRUE(r.ok()) << r.message();
+  const TriangleSoup& soup = r.value();
+  EXPECT_EQ(soup.num_triangles(), 2u);
+  EXPECT_EQ(soup.triangles, (std::vector<int32_t>{0, 1, 2, 0, 2, 3}));
+  ASSERT_EQ(soup.points.size(), 12u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(soup.points[k], a[k]);
+    EXPECT_EQ(soup.points[3 + k], b[k]);
+    EXPECT_EQ(soup.points[6 + k], c[k]);
+    EXPECT_EQ(soup.points[9 + k], d[k]);
+  }
+  EXPECT_NE(soup.points[9], soup.points[0]);
+  // The weld keeps them apart too (1e-4 is far above its tolerance here).
+  const SurfaceMesh m = weld(soup.points, soup.triangles);
+  EXPECT_EQ(m.num_vertices(), 4u);
+  EXPECT_EQ(m.points, soup.points);
 }
 
 TEST(Stl, AsciiAcceptsUpperCaseAndCrLf) {
@@ -59,7 +111,7 @@ TEST(Stl, AsciiAcceptsUpperCaseAndCrLf) {
 }
 
 TEST(Stl, AsciiNumbersParseLikeStrtod) {
-  // Every syntax the reader accepts, compared with strtod rounded to float.
+  // Every syntax the reader accepts, compared with strtod (kept as a double).
   const char* numbers[] = {"0",           "-0",
                            "1",           "-1.5",
                            "+2.25",       "3.",
@@ -74,7 +126,8 @@ TEST(Stl, AsciiNumbersParseLikeStrtod) {
                     " 0 0\nvertex 0 1 0\nvertex 0 0 1\nendloop\nendfacet\nendsolid n\n";
     auto r = read_stl(bytes_of(s));
     ASSERT_TRUE(r.ok()) << num << ": " << r.message();
-    EXPECT_EQ(r.value().coords[0], float(std::strtod(num, nullptr))) << num;
+    ASSERT_EQ(r.value().triangles[0], 0);
+    EXPECT_EQ(r.value().points[0], std::strtod(num, nullptr)) << num;
   }
   for (const char* bad : {"1e", "--1", "1.2.3", "e5", "+", "0x1p3z"}) {
     std::string s = "solid n\nfacet normal 0 0 0\nouter loop\nvertex " + std::string(bad) +
@@ -207,7 +260,7 @@ TEST(Stl, AsciiAsSegmentationToolsWriteIt) {
     ASSERT_TRUE(r.ok()) << r.message();
     EXPECT_TRUE(r.value().ascii);
     EXPECT_EQ(r.value().num_triangles(), 1u);
-    EXPECT_FLOAT_EQ(r.value().coords[3], 1.0f);
+    EXPECT_EQ(r.value().points[3 * size_t(r.value().triangles[1])], 1.0);
   }
   // Lines are counted with lone CRs too.
   std::string bad = "solid t\rfacet normal 0 0 1\router loop\rvertex 0 0 0\rvertex 1 x 0\r";

@@ -86,7 +86,8 @@ inline SurfaceMesh torus(int n, int m, double R = 3.0, double r = 1.0) {
   return s;
 }
 
-/// ASCII STL text of a surface (one facet per triangle).
+/// ASCII STL text of a surface (one facet per triangle), every coordinate
+/// with 17 significant digits (it reads back as the same double).
 inline std::string ascii_stl(const SurfaceMesh& m, const std::string& name = "t") {
   std::string s = "solid " + name + "\n";
   char buf[128];
@@ -94,7 +95,7 @@ inline std::string ascii_stl(const SurfaceMesh& m, const std::string& name = "t"
     s += "  facet normal 0 0 0\n    outer loop\n";
     for (int k = 0; k < 3; ++k) {
       const double* p = &m.points[3 * m.triangles[3 * t + k]];
-      std::snprintf(buf, sizeof(buf), "      vertex %.9g %.9g %.9g\n", p[0], p[1], p[2]);
+      std::snprintf(buf, sizeof(buf), "      vertex %.17g %.17g %.17g\n", p[0], p[1], p[2]);
       s += buf;
     }
     s += "    endloop\n  endfacet\n";

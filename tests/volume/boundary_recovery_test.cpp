@@ -434,6 +434,22 @@ TEST(BoundaryRecovery, KernelAcceptsMorePointsInside) {
   EXPECT_NEAR(inside, enclosed_volume(s.points, s.tris), 1e-9);
 }
 
+TEST(BoundaryRecovery, SmallTubeFarFromTheOrigin) {
+  // A closed tube of radius 0.01 moved 1e5 away (as an ASCII STL in
+  // survey coordinates gives it): its orientation is still told from its
+  // volume, outward recovered, inward refused.
+  Surf s = tube(0.01, 0.1, 16, 4);
+  for (double& x : s.points) x += 1e5;
+  auto r = recover_boundary(s.points, s.tris, s.tags);
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_GE(r.value().mesh.num_triangles(), s.tags.size());  // split where needed
+  EXPECT_GT(r.value().mesh.num_tets(), 0u);
+  for (size_t t = 0; t < s.tris.size(); t += 3) std::swap(s.tris[t + 1], s.tris[t + 2]);
+  r = recover_boundary(s.points, s.tris, s.tags);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("inward"), std::string::npos) << r.message();
+}
+
 TEST(BoundaryRecovery, BadSurfacesAreClearErrors) {
   Surf cube = box({1, 1, 1}, {1, 1, 1});
   // Open: drop a triangle.

@@ -38,8 +38,9 @@ function unzip(bytes) {
 /** The capped tube VTP (capped-tube-vtp.js) as file bytes. */
 const cappedTubeVtp = (n, m) => new TextEncoder().encode(cappedTubeText(n, m));
 
-/** An ASCII STL of the phantom tube's triangles, as text. */
-function asciiStl(stl) {
+/** An ASCII STL of the phantom tube's triangles moved by (offset, offset,
+ * offset), as text; every number exact (JavaScript's shortest round trip). */
+function asciiStl(stl, offset = 0) {
   const view = new DataView(stl.buffer, stl.byteOffset, stl.byteLength);
   const n = view.getUint32(80, true);
   const lines = ['solid tube'];
@@ -47,7 +48,7 @@ function asciiStl(stl) {
     lines.push('facet normal 0 0 0', 'outer loop');
     for (let c = 0; c < 3; ++c) {
       const at = 84 + 50 * t + 12 + 12 * c;
-      lines.push(`vertex ${[0, 4, 8].map((k) => view.getFloat32(at + k, true)).join(' ')}`);
+      lines.push(`vertex ${[0, 4, 8].map((k) => view.getFloat32(at + k, true) + offset).join(' ')}`);
     }
     lines.push('endloop', 'endfacet');
   }
@@ -80,6 +81,23 @@ describe('files in', () => {
     const bad = api.analyze(new TextEncoder().encode(`${'not a mesh '.repeat(20)}\n`));
     assert.equal(bad.ok, false);
     assert.match(bad.error, /not a surface file this tool reads/);
+  });
+
+  test('ASCII STL 1e5 from the origin: every digit kept, meshed as at the origin', () => {
+    // A tube of radius 0.01: float32 corners (spacing 2^-7 at 1e5) would
+    // collapse it.
+    const stl = api.makePhantom({ kind: 'tube', voxel: 0.3, scale: 0.01 }).stl;
+    const want = api.analyze(stl);
+    assert.equal(want.ok, true, want.error);
+    const far = new TextEncoder().encode(asciiStl(stl, 1e5));
+    const got = api.analyze(far);
+    assert.equal(got.ok, true, got.error);
+    assert.equal(got.analysis.format, 'ASCII STL');
+    assert.equal(got.analysis.vertices, want.analysis.vertices);
+    assert.equal(got.analysis.openings.length, 2);
+    const meshed = api.mesh(far);
+    assert.equal(meshed.ok, true, meshed.error);
+    assert.ok(meshed.report.output.volume.tetrahedra > 0);
   });
 
   test('a labelled VTP: its caps become openings, the unit is given or guessed', () => {
