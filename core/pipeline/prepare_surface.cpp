@@ -430,16 +430,19 @@ bool caps_wanted(const PreparedSurface& s, const Work& w, const PrepareOptions& 
   return !options.keep_caps && w.adjacency.num_nonmanifold_edges == 0 && s.repair.orientable;
 }
 
-CapRecognition find_caps(const PreparedSurface& s, const Work& w, const PrepareOptions& options) {
-  return recognize_caps(s.mesh, w.adjacency, w.labels, w.face_names, options.caps);
+/// `normals`: triangle_normals(s.mesh) if known.
+CapRecognition find_caps(const PreparedSurface& s, const Work& w, const PrepareOptions& options,
+                         const TriangleNormals* normals) {
+  return recognize_caps(s.mesh, w.adjacency, w.labels, w.face_names, options.caps, normals);
 }
 
 /// Phase 5: planar caps removed, their rims openings of source "cap";
-/// `found`: the caps already recognised on the current surface, if any.
+/// `found`: the caps already recognised on the current surface, if any;
+/// `normals`: the current surface's, if known.
 void open_caps(PreparedSurface& s, Work& w, const PrepareOptions& options,
-               std::optional<CapRecognition> found) {
+               std::optional<CapRecognition> found, const TriangleNormals* normals) {
   if (!caps_wanted(s, w, options)) return;
-  const CapRecognition caps = found ? std::move(*found) : find_caps(s, w, options);
+  const CapRecognition caps = found ? std::move(*found) : find_caps(s, w, options, normals);
   for (const std::string& note : caps.notes) s.warnings.push_back(note);
   if (caps.caps.empty()) return;
   std::vector<uint8_t> remove(s.mesh.num_triangles(), 0);
@@ -707,19 +710,23 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   // The staircase test (phase 4) and the cap search (phase 5) read the same
   // surface: with threads they run side by side, and the caps are searched
   // again if the smoothing moved the surface.
-  StaircaseReport staircase;
-  std::optional<CapRecognition> caps;
-  const bool side_by_side = thread_count() > 1 && caps_wanted(s, w, options);
-  parallel_for(side_by_side ? 2 : 1, 1, [&](size_t task, size_t) {
-    if (task == 0)
-      staircase = detect_staircase(s.mesh);
-    else
-      caps = find_caps(s, w, options);
-  });
-  smooth(s, w, options, staircase);
-  if (s.smoothing.applied) caps.reset();
-  if (!report_progress(progress, 0.5, "caps")) return cancelled();
-  open_caps(s, w, options, std::move(caps));
+  // Both read the triangles' normals, computed once.
+  {
+    const TriangleNormals normals = triangle_normals(s.mesh);
+    StaircaseReport staircase;
+    std::optional<CapRecognition> caps;
+    const bool side_by_side = thread_count() > 1 && caps_wanted(s, w, options);
+    parallel_for(side_by_side ? 2 : 1, 1, [&](size_t task, size_t) {
+      if (task == 0)
+        staircase = detect_staircase(s.mesh, {}, &normals);
+      else
+        caps = find_caps(s, w, options, &normals);
+    });
+    smooth(s, w, options, staircase);
+    if (s.smoothing.applied) caps.reset();
+    if (!report_progress(progress, 0.5, "caps")) return cancelled();
+    open_caps(s, w, options, std::move(caps), s.smoothing.applied ? nullptr : &normals);
+  }
   if (!report_progress(progress, 0.55, "clip")) return cancelled();
   if (Status st = clip(s, w, options); !st.ok()) return st;
   if (!report_progress(progress, 0.6, "extend")) return cancelled();

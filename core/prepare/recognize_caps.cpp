@@ -9,26 +9,11 @@
 
 #include "core/geom/vec3.h"
 #include "core/mesh/chord_radius.h"
-#include "core/util/parallel.h"
 
 namespace vm {
 namespace {
 
 const double* point(const SurfaceMesh& m, int32_t v) { return &m.points[3 * size_t(v)]; }
-
-/// Unit normal and area of triangle t.
-std::pair<Vec3, double> triangle_normal(const SurfaceMesh& m, size_t t) {
-  const int32_t* c = &m.triangles[3 * t];
-  double u[3], w[3];
-  Vec3 n;
-  v3::sub(point(m, c[1]), point(m, c[0]), u);
-  v3::sub(point(m, c[2]), point(m, c[0]), w);
-  v3::cross(u, w, n.data());
-  const double len = v3::norm(n.data());
-  if (len > 0)
-    for (double& x : n) x /= len;
-  return {n, 0.5 * len};
-}
 
 double angle_cos(double degrees) { return std::cos(degrees * std::numbers::pi / 180); }
 
@@ -282,21 +267,14 @@ std::string label_text(int32_t label, std::span<const std::pair<int32_t, std::st
 CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
                               std::span<const int32_t> labels,
                               std::span<const std::pair<int32_t, std::string>> label_names,
-                              const CapRecognitionOptions& options) {
+                              const CapRecognitionOptions& options, const TriangleNormals* known) {
   CapRecognition out;
   const size_t nt = mesh.num_triangles();
-  std::vector<Vec3> normals(nt);
-  std::vector<double> areas(nt);
-  const double total = parallel_sum<double>(nt, 1 << 16, [&](size_t begin, size_t end) {
-    double sum = 0;
-    for (size_t t = begin; t < end; ++t) {
-      std::tie(normals[t], areas[t]) = triangle_normal(mesh, t);
-      sum += areas[t];
-    }
-    return sum;
-  });
+  TriangleNormals own;
+  const TriangleNormals& tn = known ? *known : (own = triangle_normals(mesh));
+  const std::vector<Vec3>& normals = tn.normal;
   std::vector<double> distance(mesh.num_vertices(), -1);
-  Context ctx{mesh, adj, normals, areas, options, total, distance};
+  Context ctx{mesh, adj, normals, tn.area, options, tn.total_area, distance};
   // Labels tell faces apart only when there are two or more (a file with
   // one group for the whole surface says nothing about caps).
   const bool labelled =

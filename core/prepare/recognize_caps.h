@@ -26,6 +26,7 @@
 
 #include "core/mesh/adjacency.h"
 #include "core/mesh/surface_mesh.h"
+#include "core/mesh/triangle_normals.h"
 
 namespace vm {
 
@@ -81,10 +82,12 @@ struct CapRecognition {
 /// oriented, as prepare_surface leaves it). `labels`: one face label per
 /// triangle, or empty (a single label for all is as good as none: the
 /// caps are then found by shape); `label_names`: names of labels where the file gives
-/// them. `adj` is build_adjacency(mesh).
+/// them. `adj` is build_adjacency(mesh); `normals`: triangle_normals(mesh)
+/// when already known (else computed here).
 CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
                               std::span<const int32_t> labels,
                               std::span<const std::pair<int32_t, std::string>> label_names,
-                              const CapRecognitionOptions& options = {});
+                              const CapRecognitionOptions& options = {},
+                              const TriangleNormals* normals = nullptr);
 
 }  // namespace vm

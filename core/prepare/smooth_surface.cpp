@@ -118,25 +118,16 @@ std::vector<Vec3> grid_directions(const std::array<double, 3>& spacing) {
 
 }  // namespace
 
-StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions& options) {
+StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions& options,
+                                 const TriangleNormals* known) {
   StaircaseReport r;
   const size_t nt = mesh.num_triangles();
   if (nt == 0) return r;
-  std::vector<Vec3> normals(nt);
-  std::vector<double> areas(nt);
-  const double total_area = parallel_sum<double>(nt, kGrain, [&](size_t begin, size_t end) {
-    double sum = 0;
-    for (size_t t = begin; t < end; ++t) {
-      Vec3 a = area_vector(mesh, t);
-      const double len = norm(a);
-      areas[t] = len;
-      sum += len;
-      if (len > 0)
-        for (double& x : a) x /= len;
-      normals[t] = a;
-    }
-    return sum;
-  });
+  TriangleNormals own;
+  const TriangleNormals& tn = known ? *known : (own = triangle_normals(mesh));
+  const std::vector<Vec3>& normals = tn.normal;
+  const std::vector<double>& areas = tn.area;
+  const double total_area = tn.total_area;
   if (!(total_area > 0)) return r;
   const BoundingBox box = bounding_box(mesh.points);
   const double merge = 1e-6 * box.diagonal();
@@ -170,8 +161,7 @@ StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions
   const size_t stride = (nv + kLatticeSample - 1) / kLatticeSample;
   std::vector<double> values((nv + stride - 1) / stride);
   for (int k = 0; k < 3; ++k) {
-    for (size_t i = 0; i < values.size(); ++i)
-      values[i] = mesh.points[3 * i * stride + size_t(k)];
+    for (size_t i = 0; i < values.size(); ++i) values[i] = mesh.points[3 * i * stride + size_t(k)];
     radix_sort(values);
     half[size_t(k)] = lattice_step(values, merge, origin[size_t(k)]);
     if (!(half[size_t(k)] > 0)) {  // no lattice: not a staircase

@@ -28,6 +28,7 @@
 
 #include "core/mesh/adjacency.h"
 #include "core/mesh/surface_mesh.h"
+#include "core/mesh/triangle_normals.h"
 
 namespace vm {
 
@@ -81,8 +82,10 @@ struct StaircaseReport {
 
 /// Decides whether `mesh` is the raw staircase of a binary voxel mask and
 /// measures its voxel. Cost: O(n log n) in the triangles. Any mesh is
-/// accepted (an empty one is not a staircase).
-StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions& options = {});
+/// accepted (an empty one is not a staircase). `normals`:
+/// triangle_normals(mesh) when already known (else computed here).
+StaircaseReport detect_staircase(const SurfaceMesh& mesh, const StaircaseOptions& options = {},
+                                 const TriangleNormals* normals = nullptr);
 
 struct SmoothOptions {
   int passes = 10;  ///< lambda|mu passes (0: none)
