@@ -425,14 +425,15 @@ int cmd_mesh(int argc, char** argv) {
   if (!dest) return usage_error(err);
   auto bytes = read_file(a.positional[0], options, err);
   if (!bytes) return fail(err);
-  auto r = vm::run_mesh_job(*bytes, options);
+  // The file's hash for the provenance; its bytes are freed once prepared.
+  const std::string hash = vm::input_hash(*bytes);
+  auto r = vm::run_mesh_job(*bytes, options, {}, [&] { bytes.reset(); });
   if (!r.ok()) return fail(a.positional[0], r.status());
   const vm::MeshJobResult& res = r.value();
   vm::WriteOptions wo;
   wo.msh_version = options.msh_version;
   wo.units = options.output_units;
-  wo.provenance =
-      vm::provenance_text(vm::kVersion, vm::input_hash(*bytes), vm::options_provenance(a.values));
+  wo.provenance = vm::provenance_text(vm::kVersion, hash, vm::options_provenance(a.values));
   auto files = vm::write_outputs(res, dest->format, wo);
   if (!files.ok()) return fail(a.positional[0], files.status());
   if (!write_outputs(out->text, *dest, files.value(), err)) return fail(err);

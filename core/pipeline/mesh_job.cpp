@@ -446,7 +446,8 @@ Status mesh_prepared(MeshJobResult& r, MeshJobOptions& options, const ProgressFn
 }  // namespace
 
 Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const MeshJobOptions& given,
-                                   const ProgressFn& progress) {
+                                   const ProgressFn& progress,
+                                   const std::function<void()>& input_read) {
   auto t0 = std::chrono::steady_clock::now();
   MeshJobOptions options = given;  // with what the surface decides (a y+ height)
   set_thread_count(options.threads);
@@ -457,6 +458,7 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const Me
     return report_progress(progress, 0.2 * f, stage);
   };
   Result<PreparedSurface> prepared = prepare_surface(file_bytes, options.prepare, sub);
+  if (input_read) input_read();
   if (!prepared.ok()) return prepared.status();
   r.surface = std::move(prepared).value();
   r.warnings = r.surface.warnings;

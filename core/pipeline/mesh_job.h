@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -204,8 +205,13 @@ struct MeshJobResult {
   double seconds_total = 0;
 };
 
+/// Meshes the surface file `file_bytes` per `options`. `input_read`, if
+/// given, is called once the bytes are no longer needed (after the
+/// preparation), so that the caller may free them before the later stages
+/// (a 25M-triangle binary STL is 1.25 GB).
 Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes,
                                    const MeshJobOptions& options = {},
-                                   const ProgressFn& progress = {});
+                                   const ProgressFn& progress = {},
+                                   const std::function<void()>& input_read = {});
 
 }  // namespace vm

@@ -4,9 +4,9 @@
 // unions, and the result does not depend on the thread count.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 namespace vm {
@@ -21,10 +21,10 @@ class ConcurrentUnionFind {
   /// The root of x (path halving; safe during concurrent unions).
   int32_t find(int32_t x) {
     while (true) {
-      int32_t p = ref(x).load(std::memory_order_relaxed);
+      int32_t p = load(x);
       if (p == x) return x;
-      const int32_t g = ref(p).load(std::memory_order_relaxed);
-      if (g != p) ref(x).compare_exchange_weak(p, g, std::memory_order_relaxed);
+      const int32_t g = load(p);
+      if (g != p) swap_parent(x, p, g);
       x = g;
     }
   }
@@ -36,8 +36,7 @@ class ConcurrentUnionFind {
       b = find(b);
       if (a == b) return;
       if (a < b) std::swap(a, b);  // link the larger root under the smaller
-      int32_t expected = a;
-      if (ref(a).compare_exchange_strong(expected, b, std::memory_order_acq_rel)) return;
+      if (swap_parent(a, a, b)) return;
     }
   }
 
@@ -49,7 +48,14 @@ class ConcurrentUnionFind {
   }
 
  private:
-  std::atomic_ref<int32_t> ref(int32_t i) { return std::atomic_ref<int32_t>(parent_[size_t(i)]); }
+  // The compiler's atomic builtins on the plain array (std::atomic_ref is
+  // missing from the WebAssembly toolchain's library).
+  int32_t load(int32_t i) const { return __atomic_load_n(&parent_[size_t(i)], __ATOMIC_RELAXED); }
+  /// parent[i]: from `expected` to `desired` if it still is `expected`.
+  bool swap_parent(int32_t i, int32_t expected, int32_t desired) {
+    return __atomic_compare_exchange_n(&parent_[size_t(i)], &expected, desired, false,
+                                       __ATOMIC_ACQ_REL, __ATOMIC_RELAXED);
+  }
 
   std::vector<int32_t> parent_;
 };
