@@ -340,9 +340,12 @@ val mesh(val stl, val opts, val progress) {
   const vm::OutputFormat format = vm::resolve_output_format(options, std::nullopt);
   if (vm::Status st = vm::check_format(format, options); !st.ok()) return error(st);
   std::vector<uint8_t> bytes = bytes_from(stl);
-  auto result = vm::run_mesh_job(bytes, options, progress_from(progress));
+  // The file's hash for the provenance; its bytes are freed once prepared.
+  const std::string hash = vm::input_hash(bytes);
+  auto result = vm::run_mesh_job(bytes, options, progress_from(progress),
+                                 [&] { std::vector<uint8_t>().swap(bytes); });
   if (!result.ok()) return error(result.status());
-  last_mesh = LastMesh{std::move(result).value(), vm::input_hash(bytes), std::move(applied)};
+  last_mesh = LastMesh{std::move(result).value(), hash, std::move(applied)};
   const vm::MeshJobResult& res = last_mesh->result;
   val r = val::object();
   r.set("ok", true);
