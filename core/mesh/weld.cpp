@@ -149,15 +149,19 @@ bool weld_exact(const float* c, size_t corners, double cell, std::vector<int32_t
 // of a cell are then contiguous, found by binary search, with no scattered
 // hash-table access per point. Hash collisions only put two cells in one
 // run; every pair is still tested by its cells.
+// Cells hold about one point each; should one hold more than kMaxRun
+// (points packed far closer than the median edge), the cells shrink to
+// `fallback_cell`, so that no run's pairs grow quadratic past what that
+// size allows.
 std::vector<int32_t> merge_close_points(const std::vector<double>& pts, double tol, double cell,
-                                        size_t* merged) {
+                                        double fallback_cell, size_t* merged) {
+  constexpr size_t kMaxRun = 256;
   const size_t n = pts.size() / 3;
   std::vector<int32_t> parent(n);
   for (size_t i = 0; i < n; ++i) parent[i] = int32_t(i);
   *merged = 0;
   if (!(tol > 0) || n == 0) return parent;
-  cell = std::max(cell, 2 * tol);
-  const double inv_cell = 1.0 / cell;
+  double inv_cell = 0;
   auto cell_of = [&](double x) { return floor_to_int(x * inv_cell); };
   // Key bits, high to low: the cell's hash, whether the point lies within
   // tol of its cell's faces, the point's index. The loop below reads the
@@ -179,16 +183,26 @@ std::vector<int32_t> merge_close_points(const std::vector<double>& pts, double t
     return lo[0] != hi[0] || lo[1] != hi[1] || lo[2] != hi[2];
   };
   std::vector<uint64_t> sorted(n);
-  parallel_for(n, 1 << 16, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      const double* p = &pts[3 * i];
-      int64_t lo[3], hi[3];
-      sorted[i] = cell_key(cell_of(p[0]), cell_of(p[1]), cell_of(p[2])) |
-                  (reach(p, lo, hi) ? near_face : 0) | i;
+  auto bucket = [&](double side) {
+    inv_cell = 1.0 / std::max(side, 2 * tol);
+    parallel_for(n, 1 << 16, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        const double* p = &pts[3 * i];
+        int64_t lo[3], hi[3];
+        sorted[i] = cell_key(cell_of(p[0]), cell_of(p[1]), cell_of(p[2])) |
+                    (reach(p, lo, hi) ? near_face : 0) | i;
+      }
+    });
+    // Sorted by cell hash only: a run keeps its points in index order.
+    radix_sort(sorted, index_bits + 1);
+    size_t longest = 0;
+    for (size_t a = 0, b = 0; a < n; a = b) {
+      while (b < n && (sorted[b] & ~low_mask) == (sorted[a] & ~low_mask)) ++b;
+      longest = std::max(longest, b - a);
     }
-  });
-  // Sorted by cell hash only: a run keeps its points in index order.
-  radix_sort(sorted, index_bits + 1);
+    return longest;
+  };
+  if (bucket(cell) > kMaxRun && fallback_cell < cell) bucket(fallback_cell);
   auto in_cell = [&](size_t a, int64_t x, int64_t y, int64_t z) {
     return cell_of(pts[3 * a]) == x && cell_of(pts[3 * a + 1]) == y && cell_of(pts[3 * a + 2]) == z;
   };
@@ -276,7 +290,7 @@ SurfaceMesh merge_and_index(std::vector<double> pts, std::vector<int32_t> corner
   // Cells of a tenth of an edge hold about one point each, and few points lie
   // within tol of their faces.
   std::vector<int32_t> rep =
-      merge_close_points(pts, tol, std::max(64 * tol, 0.1 * median_edge), &merged);
+      merge_close_points(pts, tol, std::max(64 * tol, 0.1 * median_edge), 64 * tol, &merged);
 
   SurfaceMesh mesh;
   if (stats) {

@@ -95,6 +95,40 @@ TEST(Weld, FarFromTheOriginStillWelds) {
 namespace vm {
 namespace {
 
+TEST(Weld, ADenseClusterAmongCoarseTrianglesMergesExactlyThePairsWithinTolerance) {
+  // 3,000 coarse triangles (edges ~1: cells of a tenth of an edge; the
+  // tolerance is 1e-7 of the diagonal, 1.3e-5) and 2,000 small ones packed
+  // into a box 0.004 x 0.004 x 0.125: their 6,000 corners crowd a few cells,
+  // so the cells shrink. There every 10th triangle's first corner has a
+  // twin 5e-6 away (merged); the other corners are 2e-4 or more apart.
+  TriangleSoup soup;
+  auto add = [&](float x, float y, float z) { soup.coords.insert(soup.coords.end(), {x, y, z}); };
+  for (int t = 0; t < 3000; ++t) {
+    const float x = float(t % 60), y = float(t / 60);
+    add(x, y, 100);
+    add(x + 1, y, 100);
+    add(x, y + 1, 100);
+  }
+  size_t twins = 0;
+  for (int t = 0; t < 2000; ++t) {
+    const float x = 0.001f * float(t % 4), y = 0.001f * float(t / 4 % 4),
+                z = 0.001f * float(t / 16);
+    add(x, y, z);
+    add(x + 0.0002f, y + 0.0005f, z);
+    if (t % 10 == 0) {
+      add(x + 0.000005f, y, z);
+      ++twins;
+    } else {
+      add(x + 0.0005f, y + 0.0002f, z + 0.0003f);
+    }
+  }
+  WeldStats stats;
+  const SurfaceMesh w = weld(soup, {}, &stats);
+  EXPECT_EQ(stats.merged_by_tolerance, twins);
+  EXPECT_EQ(w.num_triangles(), 5000u);
+  EXPECT_EQ(w.num_vertices(), stats.exact_unique - twins);
+}
+
 TEST(WeldIndexed, SameAsTheSoupWeldForFloatCoordinates) {
   SurfaceMesh tube = testing::open_tube(16, 6);
   for (double& x : tube.points) x = double(float(x));
