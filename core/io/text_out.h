@@ -3,9 +3,11 @@
 // as the shortest text that reads back exactly.
 #pragma once
 
+#include <fmt/compile.h>
+#include <fmt/format.h>
+
 #include <charconv>
 #include <cstddef>
-#include <cstdio>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -22,18 +24,12 @@ class TextOut {
     auto r = std::to_chars(tmp, tmp + sizeof(tmp), v);
     buf_.append(tmp, r.ptr);
   }
-  /// Shortest text that reads back to exactly v (to_chars where the
-  /// standard library has it for doubles; %.17g, also exact, elsewhere, e.g.
-  /// Emscripten's libc++ 14).
+  /// Shortest text that reads back to exactly v, by {fmt}'s Dragonbox: the
+  /// same bytes in every build (native and WebAssembly).
   void real(double v) {
     char tmp[32];
-#if defined(__cpp_lib_to_chars)
-    auto r = std::to_chars(tmp, tmp + sizeof(tmp), v);
-    buf_.append(tmp, r.ptr);
-#else
-    int n = std::snprintf(tmp, sizeof(tmp), "%.17g", v);
-    buf_.append(tmp, size_t(n));
-#endif
+    char* end = fmt::format_to(tmp, FMT_COMPILE("{}"), v);
+    buf_.append(tmp, end);
   }
   std::string take() { return std::move(buf_); }
   void reserve(size_t n) { buf_.reserve(n); }
