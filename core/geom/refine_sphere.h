@@ -15,6 +15,8 @@
 #include <limits>
 #include <vector>
 
+#include "core/util/portable_math.h"
+
 namespace vm {
 
 struct RefineSphere {
@@ -28,7 +30,7 @@ inline double refine_size(const std::vector<RefineSphere>& spheres, const double
                           double gradation) {
   double h = std::numeric_limits<double>::infinity();
   for (const RefineSphere& s : spheres) {
-    const double d = std::hypot(x[0] - s.center[0], x[1] - s.center[1], x[2] - s.center[2]);
+    const double d = pm::hypot(x[0] - s.center[0], x[1] - s.center[1], x[2] - s.center[2]);
     h = std::min(h, s.size + gradation * std::max(0.0, d - s.radius));
   }
   return h;

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/mesh/star_visibility.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 using namespace layers;  // NOLINT: the layer stage's own vector helpers
@@ -48,7 +49,7 @@ void gouraud_normals(const SurfaceMesh& m, double sign, std::vector<double>& vn,
     for (int d = 0; d < 3; ++d) tn[3 * t + size_t(d)] = n[d];
     for (int k = 0; k < 3; ++k) {
       const Vec3 a = normalized(p[(k + 1) % 3] - p[k]), b = normalized(p[(k + 2) % 3] - p[k]);
-      const double angle = std::acos(std::clamp(dot(a, b), -1.0, 1.0));
+      const double angle = pm::acos(std::clamp(dot(a, b), -1.0, 1.0));
       for (int d = 0; d < 3; ++d) vn[3 * size_t(v[k]) + size_t(d)] += angle * n[d];
     }
   }
@@ -72,7 +73,7 @@ Vec3 rim_direction(const SurfaceMesh& m, const LayerOpening& op, size_t i, const
   const auto a = uv(i + n - 1), b = uv(i), c = uv(i + 1);
   // The rim runs clockwise around the normal: the inside is on the right.
   auto right = [](const std::array<double, 2>& p, const std::array<double, 2>& q) {
-    const double du = q[0] - p[0], dv = q[1] - p[1], l = std::hypot(du, dv);
+    const double du = q[0] - p[0], dv = q[1] - p[1], l = pm::hypot(du, dv);
     return l > 0 ? std::array<double, 2>{dv / l, -du / l} : std::array<double, 2>{0, 0};
   };
   const auto r1 = right(a, b), r2 = right(b, c);

@@ -16,6 +16,7 @@
 
 #include "core/geom/point_kdtree.h"
 #include "core/mesh/edge_lengths.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 
@@ -25,7 +26,7 @@ std::vector<double> empty_ball_radius(const SurfaceMesh& wall, const std::vector
   const size_t nv = wall.num_vertices();
   std::vector<double> radius(needed);
   if (nv == 0) return radius;
-  const double cos_sep = std::cos(separation_degrees * std::numbers::pi / 180);
+  const double cos_sep = pm::cos(separation_degrees * std::numbers::pi / 180);
   PointCloud cloud{wall.points};
   PointKdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   std::vector<std::pair<uint32_t, double>> found;

@@ -10,6 +10,7 @@
 
 #include "core/geom/vec3.h"
 #include "core/mesh/triangle_bvh.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 
@@ -44,7 +45,7 @@ std::vector<double> half_chords(const SurfaceMesh& wall, const std::vector<int32
     const Vec3 n = normalized(cross(p[1] - p[0], p[2] - p[0]));
     for (int k = 0; k < 3; ++k) {
       const Vec3 a = normalized(p[(k + 1) % 3] - p[k]), b = normalized(p[(k + 2) % 3] - p[k]);
-      const double angle = std::acos(std::clamp(dot(a, b), -1.0, 1.0));
+      const double angle = pm::acos(std::clamp(dot(a, b), -1.0, 1.0));
       for (int d = 0; d < 3; ++d) normal[3 * size_t(v[k]) + size_t(d)] -= angle * n[d];
     }
   }

@@ -19,6 +19,7 @@
 #include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/quality/triangle_quality.h"
+#include "core/util/portable_math.h"
 #include "core/volume/spatial_sort.h"
 
 namespace vm {
@@ -66,7 +67,7 @@ class Decimator {
       max_error_[v] = limits.max_error[size_t(old)];
       max_edge_[v] = limits.max_edge[size_t(old)];
     }
-    cos_turn_ = std::cos(limits.max_normal_turn_degrees * std::numbers::pi / 180);
+    cos_turn_ = pm::cos(limits.max_normal_turn_degrees * std::numbers::pi / 180);
     quadrics();
     boundary(input);
     stars();

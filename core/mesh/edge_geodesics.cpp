@@ -5,6 +5,8 @@
 #include <cmath>
 #include <functional>
 
+#include "core/util/portable_math.h"
+
 namespace vm {
 
 VertexGraph build_vertex_graph(const SurfaceMesh& mesh) {
@@ -29,7 +31,7 @@ VertexGraph build_vertex_graph(const SurfaceMesh& mesh) {
     g.neighbors.push_back(b);
     const double* p = &mesh.points[3 * size_t(a)];
     const double* q = &mesh.points[3 * size_t(b)];
-    g.lengths.push_back(std::hypot(q[0] - p[0], q[1] - p[1], q[2] - p[2]));
+    g.lengths.push_back(pm::hypot(q[0] - p[0], q[1] - p[1], q[2] - p[2]));
   }
   for (size_t v = 0; v < nv; ++v) g.offsets[v + 1] += g.offsets[v];
   return g;

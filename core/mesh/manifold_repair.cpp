@@ -15,6 +15,7 @@
 #include "core/mesh/adjacency.h"
 #include "core/mesh/repair.h"
 #include "core/util/parallel.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -175,7 +176,7 @@ void split_nonmanifold_edges(SurfaceMesh& mesh, std::vector<int32_t>* labels,
         u = normalized(r);
         w = cross(d, u);
       }
-      angle[k] = std::atan2(dot(r, w), dot(r, u));
+      angle[k] = pm::atan2(dot(r, w), dot(r, u));
       forward[k] = half_edge_from(mesh, h) == a;
     }
     std::vector<size_t> order(n);

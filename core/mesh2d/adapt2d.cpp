@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/mesh2d/triangulation2d.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 
@@ -32,7 +33,7 @@ Result<Mesh2D> adapt_mesh2d(const std::vector<double>& points, const std::vector
         const double m[2] = {0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])};
         const double h = size(m[0], m[1]);
         if (!(h > 0)) return R::Error("the size field must be positive");
-        if (std::hypot(pb[0] - pa[0], pb[1] - pa[1]) > options.size_tolerance * h)
+        if (pm::hypot(pb[0] - pa[0], pb[1] - pa[1]) > options.size_tolerance * h)
           midpoints.insert(midpoints.end(), {m[0], m[1], h});
       }
     }
@@ -43,7 +44,7 @@ Result<Mesh2D> adapt_mesh2d(const std::vector<double>& points, const std::vector
       bool ok = tr.tri(s).in && !tr.has_super_vertex(s) && !detail::encroaches(tr, s, q);
       for (int j = 0; j < 3 && ok; ++j) {
         const double* v = tr.pt(tr.tri(s).v[j]);
-        ok = std::hypot(v[0] - q[0], v[1] - q[1]) > 0.3 * q[2];
+        ok = pm::hypot(v[0] - q[0], v[1] - q[1]) > 0.3 * q[2];
       }
       if (!ok) continue;
       tr.insert(tr.add_point(q[0], q[1]));

@@ -9,6 +9,7 @@
 #include <unordered_set>
 
 #include "core/mesh2d/triangulation2d.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -33,7 +34,7 @@ Result<Mesh2D> delaunay_refinement(const std::vector<double>& points,
   Status st = detail::build_constrained(points, segments, tr, alias);
   if (!st.ok()) return st;
 
-  const double sin_min = std::sin(options.min_angle_degrees * std::numbers::pi / 180);
+  const double sin_min = pm::sin(options.min_angle_degrees * std::numbers::pi / 180);
   const double max_ratio = 1.0 / (2 * sin_min);  // circumradius / shortest edge
   std::unordered_set<uint64_t> tried;            // circumcenter already tried
   size_t inserted = 0;
@@ -54,7 +55,7 @@ Result<Mesh2D> delaunay_refinement(const std::vector<double>& points,
       for (int k = 0; k < 3; ++k) {
         if (!T.c[k]) continue;
         const double *p = tr.pt(T.v[(k + 1) % 3]), *q = tr.pt(T.v[(k + 2) % 3]);
-        h = std::max(h, std::hypot(p[0] - q[0], p[1] - q[1]));
+        h = std::max(h, pm::hypot(p[0] - q[0], p[1] - q[1]));
       }
       Circle cc = detail::circumcircle(a, b, c);
       const double e2[3] = {(a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]),

@@ -9,6 +9,7 @@
 #include <queue>
 
 #include "core/mesh2d/triangulation2d.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -88,7 +89,7 @@ Result<Mesh2D> frontal_delaunay(const std::vector<double>& points,
     const double *a = tr.pt(T.v[(k + 1) % 3]), *b = tr.pt(T.v[(k + 2) % 3]), *c = tr.pt(T.v[k]);
     const double m[2] = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
     const double ex = b[0] - a[0], ey = b[1] - a[1];
-    const double len = std::hypot(ex, ey), p = 0.5 * len;
+    const double len = pm::hypot(ex, ey), p = 0.5 * len;
     double n[2] = {-ey / len, ex / len};  // left of a -> b: into t (ccw)
     const double h = size(m[0], m[1]);
     if (!(h > 0)) return R::Error("the size field must be positive");
@@ -105,7 +106,7 @@ Result<Mesh2D> frontal_delaunay(const std::vector<double>& points,
     bool ok = tr.tri(s).in && !tr.has_super_vertex(s) && !detail::encroaches(tr, s, x);
     for (int j = 0; j < 3 && ok; ++j) {
       const double* v = tr.pt(tr.tri(s).v[j]);
-      ok = std::hypot(v[0] - x[0], v[1] - x[1]) > 0.3 * std::min(h, len);
+      ok = pm::hypot(v[0] - x[0], v[1] - x[1]) > 0.3 * std::min(h, len);
     }
     if (!ok) {
       state[size_t(t)].accepted = 1;

@@ -12,6 +12,7 @@
 
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -28,7 +29,7 @@ double angle_at(const double* p, const double* q, const double* r) {
     nw += w[k] * w[k];
   }
   double c = d / std::sqrt(nu * nw);
-  return std::acos(std::max(-1.0, std::min(1.0, c)));
+  return pm::acos(std::max(-1.0, std::min(1.0, c)));
 }
 
 double distance(const double* p, const double* q) {
@@ -58,8 +59,8 @@ Result<Parametrization> map_to_disk(const SurfaceMesh& m, DiskWeights weights) {
     // The loop runs along the boundary half-edges, counterclockwise around
     // the patch seen from its normal side: keep that direction on the circle.
     double a = 2 * std::numbers::pi * along[i] / along.back();
-    out.uv[2 * size_t(loop[i])] = std::cos(a);
-    out.uv[2 * size_t(loop[i]) + 1] = std::sin(a);
+    out.uv[2 * size_t(loop[i])] = pm::cos(a);
+    out.uv[2 * size_t(loop[i]) + 1] = pm::sin(a);
     row[loop[i]] = -1;
   }
   int32_t n = 0;
@@ -85,8 +86,8 @@ Result<Parametrization> map_to_disk(const SurfaceMesh& m, DiskWeights weights) {
         int32_t j = v[(k + s) % 3];
         int other = (k + 3 - s) % 3;  // the third corner, opposite edge ij
         double w = weights == DiskWeights::kHarmonic
-                       ? 0.5 / std::tan(ang[other])
-                       : std::tan(0.5 * ang[k]) / distance(point(m, i), point(m, j));
+                       ? 0.5 / pm::tan(ang[other])
+                       : pm::tan(0.5 * ang[k]) / distance(point(m, i), point(m, j));
         triplets.emplace_back(row[i], row[i], w);
         if (row[j] >= 0) {
           triplets.emplace_back(row[i], row[j], -w);

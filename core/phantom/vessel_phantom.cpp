@@ -17,6 +17,7 @@
 #include "core/mesh/topology.h"
 #include "core/phantom/dirty_phantom.h"
 #include "core/phantom/marching_cubes.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -111,11 +112,11 @@ void grow_tree(Model& m, const Vec3& start, const Vec3& dir, const Vec3& side, d
   const double angles[2] = {32.0, -42.0};
   for (int c = 0; c < 2; ++c) {
     const double a = angles[c] * std::numbers::pi / 180;
-    const Vec3 d = unit({std::cos(a) * dir[0] + std::sin(a) * side[0],
-                         std::cos(a) * dir[1] + std::sin(a) * side[1],
-                         std::cos(a) * dir[2] + std::sin(a) * side[2]});
+    const Vec3 d = unit({pm::cos(a) * dir[0] + pm::sin(a) * side[0],
+                         pm::cos(a) * dir[1] + pm::sin(a) * side[1],
+                         pm::cos(a) * dir[2] + pm::sin(a) * side[2]});
     const Vec3 turned = unit(cross(d, side));
-    grow_tree(m, end, d, turned, rr * std::cbrt(shares[c]), 0.78 * len, depth - 1);
+    grow_tree(m, end, d, turned, rr * pm::cbrt(shares[c]), 0.78 * len, depth - 1);
   }
 }
 
@@ -126,7 +127,7 @@ Model build_model(PhantomKind kind) {
     case PhantomKind::kTube: {
       m.branches.push_back(spline_branch(
           {{0, 0, -5}, {0.8, 0.3, -2}, {-0.4, 0.2, 1}, {0.5, -0.5, 4}, {0.2, 0, 6.5}}, n,
-          [](double s) { return 1.0 + 0.18 * std::sin(2 * std::numbers::pi * s); }));
+          [](double s) { return 1.0 + 0.18 * pm::sin(2 * std::numbers::pi * s); }));
       break;
     }
     case PhantomKind::kBifurcation:
@@ -167,13 +168,12 @@ Model build_model(PhantomKind kind) {
       std::vector<Vec3> ring;
       for (int i = 0; i <= 8; ++i) {
         double a = 2 * std::numbers::pi * i / 8;
-        ring.push_back({3.2 * std::cos(a), 2.6 * std::sin(a), 0.4 * std::sin(2 * a)});
+        ring.push_back({3.2 * pm::cos(a), 2.6 * pm::sin(a), 0.4 * pm::sin(2 * a)});
       }
       // Close the loop: repeat the first span's neighbors for the spline.
       ring.push_back(ring[1]);
-      Branch b = spline_branch(ring, n, [](double s) {
-        return 0.8 + 0.12 * std::cos(2 * std::numbers::pi * s * 9 / 8);
-      });
+      Branch b = spline_branch(
+          ring, n, [](double s) { return 0.8 + 0.12 * pm::cos(2 * std::numbers::pi * s * 9 / 8); });
       // Keep one full turn (8 spans).
       size_t keep = size_t(8 * n + 1);
       b.points.resize(keep);

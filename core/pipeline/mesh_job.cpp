@@ -43,8 +43,10 @@ std::vector<size_t> cap_openings_map(const CappedSurface& capped,
   for (size_t c = 0; c < capped.caps.size(); ++c)
     for (size_t i = 0; i < openings.size(); ++i) {
       double d2 = 0;
-      for (int k = 0; k < 3; ++k)
-        d2 += std::pow(capped.caps[c].centroid[size_t(k)] - openings[i].centroid[size_t(k)], 2);
+      for (int k = 0; k < 3; ++k) {
+        const double d = capped.caps[c].centroid[size_t(k)] - openings[i].centroid[size_t(k)];
+        d2 += d * d;
+      }
       pairs.emplace_back(d2, c, i);
     }
   std::sort(pairs.begin(), pairs.end());

@@ -8,6 +8,7 @@
 
 #include "core/pipeline/write_outputs.h"
 #include "core/util/json_writer.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -939,7 +940,7 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
   } else if (id == "clip_distance") {
     o.prepare.clip_distance = x;
   } else if (id == "clip_plane") {
-    const double n = std::hypot(v.numbers[3], v.numbers[4], v.numbers[5]);
+    const double n = pm::hypot(v.numbers[3], v.numbers[4], v.numbers[5]);
     if (!(n > 0)) return needs(spec);
     o.prepare.clip_planes.push_back({{v.numbers[0], v.numbers[1], v.numbers[2]},
                                      {v.numbers[3] / n, v.numbers[4] / n, v.numbers[5] / n}});

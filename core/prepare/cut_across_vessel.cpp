@@ -10,6 +10,7 @@
 
 #include "core/geom/vec3.h"
 #include "core/mesh/level_loops.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -170,7 +171,7 @@ Result<VesselCut> cut_across_vessel(const SurfaceMesh& mesh, const TriangleAdjac
     const AxisFit next = fit_axis(mesh, adj, normals, v0, centre, 1.5 * shape.radius, seen);
     fit = next;
     const Vec3 a = dot(next.axis, axis) < 0 ? -1.0 * next.axis : next.axis;
-    const bool settled = dot(a, axis) > std::cos(0.5 * std::numbers::pi / 180);
+    const bool settled = dot(a, axis) > pm::cos(0.5 * std::numbers::pi / 180);
     axis = a;
     if (settled) break;
   }
@@ -210,14 +211,14 @@ Result<VesselCut> cut_across_vessel(const SurfaceMesh& mesh, const TriangleAdjac
     Vec3 along = normalized(centres[1] - centres[0]);
     if (dot(along, axis) < 0) along = -1.0 * along;
     const double cos_tilt = dot(along, axis);
-    if (cos_tilt > std::cos(3 * std::numbers::pi / 180)) break;
-    if (round == 3 && cos_tilt > std::cos(10 * std::numbers::pi / 180)) break;
+    if (cos_tilt > pm::cos(3 * std::numbers::pi / 180)) break;
+    if (round == 3 && cos_tilt > pm::cos(10 * std::numbers::pi / 180)) break;
     if (round == 3)
       return refuse(
           "the vessel's axis there is not found (the sections half a radius away "
           "lean " +
           std::to_string(
-              int(std::lround(std::acos(std::min(1.0, cos_tilt)) * 180 / std::numbers::pi))) +
+              int(std::lround(pm::acos(std::min(1.0, cos_tilt)) * 180 / std::numbers::pi))) +
           " degrees from the cut: a bend, or a vessel's end)");
     axis = along;
     if (!section_through(mesh, adj, p, axis, field, shape))

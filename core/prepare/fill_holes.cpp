@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "core/geom/vec3.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -25,7 +26,7 @@ Edge key(int32_t a, int32_t b) { return {std::min(a, b), std::max(a, b)}; }
 double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
   auto angle = [](const Vec3& p, const Vec3& q, const Vec3& r) {
     const Vec3 u = q - p, v = r - p;
-    return std::atan2(norm(cross(u, v)), dot(u, v));
+    return pm::atan2(norm(cross(u, v)), dot(u, v));
   };
   return std::min({angle(a, b, c), angle(b, c, a), angle(c, a, b)});
 }
@@ -33,7 +34,7 @@ double min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
 /// Angle at p of triangle (p, q, r), radians.
 double angle_at(const Vec3& p, const Vec3& q, const Vec3& r) {
   const Vec3 u = q - p, v = r - p;
-  return std::atan2(norm(cross(u, v)), dot(u, v));
+  return pm::atan2(norm(cross(u, v)), dot(u, v));
 }
 
 struct Patch {

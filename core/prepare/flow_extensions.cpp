@@ -15,6 +15,7 @@
 #include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/self_intersection.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -98,7 +99,7 @@ Result<std::vector<FlowExtension>> add_flow_extensions(SurfaceMesh& mesh,
     // area, so the opening keeps its equivalent radius (and its place in
     // the analysis' order).
     const double angle = 2 * std::numbers::pi / double(n);
-    const double radius = op.radius * std::sqrt(angle / std::sin(angle));
+    const double radius = op.radius * std::sqrt(angle / pm::sin(angle));
     // Phase 1: directions and the end circle's points.
     std::vector<Vec3> dirs = rim_directions(mesh, stars, loop, axis);
     std::vector<Vec3> rim(n), ring_dir(n);
@@ -120,23 +121,23 @@ Result<std::vector<FlowExtension>> add_flow_extensions(SurfaceMesh& mesh,
     // rim's as closely as possible (the circular mean of the differences).
     const Vec3 e1 = ring_dir[0], e2 = cross(axis, e1);
     std::vector<double> phi(n);
-    for (size_t i = 0; i < n; ++i) phi[i] = std::atan2(dot(ring_dir[i], e2), dot(ring_dir[i], e1));
+    for (size_t i = 0; i < n; ++i) phi[i] = pm::atan2(dot(ring_dir[i], e2), dot(ring_dir[i], e1));
     // The loop's sense of rotation about the axis (clockwise for an
     // outward surface's boundary, as the normal is against its area).
     double winding = 0;
-    for (size_t i = 0; i < n; ++i) winding += std::sin(phi[(i + 1) % n] - phi[i]);
+    for (size_t i = 0; i < n; ++i) winding += pm::sin(phi[(i + 1) % n] - phi[i]);
     const double step = winding < 0 ? -angle : angle;
     double sum_cos = 0, sum_sin = 0;
     for (size_t i = 0; i < n; ++i) {
-      sum_cos += std::cos(phi[i] - step * double(i));
-      sum_sin += std::sin(phi[i] - step * double(i));
+      sum_cos += pm::cos(phi[i] - step * double(i));
+      sum_sin += pm::sin(phi[i] - step * double(i));
     }
-    const double turn = std::atan2(sum_sin, sum_cos);
+    const double turn = pm::atan2(sum_sin, sum_cos);
     for (size_t i = 0; i < n; ++i) {
       const double theta = turn + step * double(i);
       ring_dir[i] =
-          add(Vec3{e1[0] * std::cos(theta), e1[1] * std::cos(theta), e1[2] * std::cos(theta)}, e2,
-              std::sin(theta));
+          add(Vec3{e1[0] * pm::cos(theta), e1[1] * pm::cos(theta), e1[2] * pm::cos(theta)}, e2,
+              pm::sin(theta));
       // The join leaves the rim in the wall's meridian plane (axis, radial
       // direction): a circumferential component would twist the extension.
       const Vec3 around = cross(axis, unit(rim[i] - add(c, axis, dot(rim[i] - c, axis))));

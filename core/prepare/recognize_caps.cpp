@@ -9,13 +9,14 @@
 
 #include "core/geom/vec3.h"
 #include "core/mesh/chord_radius.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
 
 const double* point(const SurfaceMesh& m, int32_t v) { return &m.points[3 * size_t(v)]; }
 
-double angle_cos(double degrees) { return std::cos(degrees * std::numbers::pi / 180); }
+double angle_cos(double degrees) { return pm::cos(degrees * std::numbers::pi / 180); }
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -167,11 +168,12 @@ bool looks_like_a_vessel_end(const Context& ctx, const std::vector<uint8_t>& in_
     const size_t other = size_t(ctx.adj.opposite[size_t(h)] / 3);
     const double c = v3::dot(ctx.normals[size_t(h / 3)].data(), ctx.normals[other].data());
     if (c > sharp) return false;
-    sin_sum += std::sqrt(
-        std::max(0.0, 1 - std::pow(v3::dot(ctx.normals[other].data(), r.normal.data()), 2)));
+    sin_sum +=
+        std::sqrt(std::max(0.0, 1 - v3::dot(ctx.normals[other].data(), r.normal.data()) *
+                                        v3::dot(ctx.normals[other].data(), r.normal.data())));
   }
   const double mean_angle =
-      std::asin(std::min(1.0, sin_sum / double(r.rim_half_edges.size()))) * 180 / std::numbers::pi;
+      pm::asin(std::min(1.0, sin_sum / double(r.rim_half_edges.size()))) * 180 / std::numbers::pi;
   if (mean_angle < o.wall_angle_degrees) return false;
   // The rim's mean radius about the centroid.
   double rim_radius = 0;

@@ -12,6 +12,7 @@
 #include "core/geom/vec3.h"
 #include "core/mesh/boundary_loops.h"
 #include "core/util/parallel.h"
+#include "core/util/portable_math.h"
 #include "core/util/radix_sort.h"
 
 namespace vm {
@@ -58,7 +59,7 @@ constexpr size_t kGrain = size_t(1) << 16;
 /// Vertices whose coordinates measure the lattice, at most.
 constexpr size_t kLatticeSample = 1'000'000;
 
-double cos_degrees(double degrees) { return std::cos(degrees * std::numbers::pi / 180); }
+double cos_degrees(double degrees) { return pm::cos(degrees * std::numbers::pi / 180); }
 
 /// The step of the lattice that most of the sorted values lie on: the
 /// median gap between the values shared by at least 3 (closer than `merge`
@@ -233,7 +234,7 @@ double median_edge_length(const SurfaceMesh& mesh) {
     const size_t next = h - h % 3 + (h % 3 + 1) % 3;
     const double* a = point(mesh, mesh.triangles[h]);
     const double* b = point(mesh, mesh.triangles[next]);
-    lengths.push_back(std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]));
+    lengths.push_back(pm::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]));
   }
   if (lengths.empty()) return 0;
   std::nth_element(lengths.begin(), lengths.begin() + long(lengths.size() / 2), lengths.end());
@@ -373,7 +374,7 @@ size_t hold_flat_regions(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
       for (double& x : a) x /= areas[t];
     normals[t] = a;
   }
-  const double grid_cos = std::cos(2 * std::numbers::pi / 180);
+  const double grid_cos = pm::cos(2 * std::numbers::pi / 180);
   std::vector<uint8_t> taken(nt, 0);
   for (size_t t = 0; t < nt; ++t) {
     bool terrace = false;
@@ -524,7 +525,10 @@ SmoothReport smooth_surface(SurfaceMesh& mesh, const TriangleAdjacency& adj,
     double* p = &mesh.points[3 * v];
     const double* q = &input[3 * v];
     double e = 0;
-    for (int k = 0; k < 3; ++k) e += std::pow((p[k] - q[k]) / radii[size_t(k)], 2);
+    for (int k = 0; k < 3; ++k) {
+      const double d = (p[k] - q[k]) / radii[size_t(k)];
+      e += d * d;
+    }
     if (e > 1) {
       const double f = 1 / std::sqrt(e);
       for (int k = 0; k < 3; ++k) p[k] = q[k] + f * (p[k] - q[k]);
@@ -612,7 +616,7 @@ SmoothReport smooth_surface(SurfaceMesh& mesh, const TriangleAdjacency& adj,
     for (int k = 0; k < 3; ++k) {
       const double d = mesh.points[3 * v + size_t(k)] - input[3 * v + size_t(k)];
       d2 += d * d;
-      e += std::pow(d / radii[size_t(k)], 2);
+      e += (d / radii[size_t(k)]) * (d / radii[size_t(k)]);
     }
     report.max_displacement = std::max(report.max_displacement, std::sqrt(d2));
     report.max_displacement_ratio = std::max(report.max_displacement_ratio, std::sqrt(e));

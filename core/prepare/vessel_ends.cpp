@@ -12,6 +12,7 @@
 #include "core/mesh/edge_geodesics.h"
 #include "core/mesh/level_loops.h"
 #include "core/mesh/persistent_maxima.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -233,13 +234,13 @@ std::vector<Sample> EndAnalysis::march(const Vec3& tip, const Vec3& a0, double R
       const Vec3 d = normalized(
           sub(out[out.size() - 5].section.shape.centroid, out.back().section.shape.centroid));
       const double c = dot(d, dir);
-      if (c >= std::cos(kTurn)) {
+      if (c >= pm::cos(kTurn)) {
         dir = d;
       } else if (dot(d, d) > 0) {
         const Vec3 across = normalized(axpy(-c, dir, d));
-        dir = normalized(axpy(
-            std::sin(kTurn), across,
-            Vec3{std::cos(kTurn) * dir[0], std::cos(kTurn) * dir[1], std::cos(kTurn) * dir[2]}));
+        dir = normalized(
+            axpy(pm::sin(kTurn), across,
+                 Vec3{pm::cos(kTurn) * dir[0], pm::cos(kTurn) * dir[1], pm::cos(kTurn) * dir[2]}));
       }
     }
   }
@@ -421,7 +422,7 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
     }
     const Vec3 tip_new = axpy(h_new, a_new, c_ref);
     const Vec3 moved = sub(tip_new, tip);
-    const bool settled = dot(a_new, a) > std::cos(std::numbers::pi / 180) &&
+    const bool settled = dot(a_new, a) > pm::cos(std::numbers::pi / 180) &&
                          std::abs(R_new - R) < 0.02 * R && dot(moved, moved) < 0.0009 * R * R;
     a = a_new;
     R = R_new;

@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "core/geom/vec3.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -64,7 +65,7 @@ DihedralRange tet_dihedral_range(const double* a, const double* b, const double*
       continue;
     }
     cross(u, w, uw);
-    angle = std::atan2(norm(uw), dot(u, w)) * (180.0 / std::numbers::pi);
+    angle = pm::atan2(norm(uw), dot(u, w)) * (180.0 / std::numbers::pi);
     r.min = std::min(r.min, angle);
     r.max = std::max(r.max, angle);
   }

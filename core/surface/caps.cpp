@@ -23,6 +23,7 @@
 #include "core/mesh2d/frontal_delaunay.h"
 #include "core/mesh2d/optimize2d.h"
 #include "core/quality/triangle_quality.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -133,8 +134,8 @@ class CapSize {
     target_.resize(n);
     for (size_t i = 0; i < n; ++i) {
       const size_t j = (i + 1) % n, h = (i + n - 1) % n;
-      edge_[i] = 0.5 * (std::hypot(uv_[2 * j] - uv_[2 * i], uv_[2 * j + 1] - uv_[2 * i + 1]) +
-                        std::hypot(uv_[2 * h] - uv_[2 * i], uv_[2 * h + 1] - uv_[2 * i + 1]));
+      edge_[i] = 0.5 * (pm::hypot(uv_[2 * j] - uv_[2 * i], uv_[2 * j + 1] - uv_[2 * i + 1]) +
+                        pm::hypot(uv_[2 * h] - uv_[2 * i], uv_[2 * h + 1] - uv_[2 * i + 1]));
       target_[i] = vertex_size.empty() ? edge_[i] : vertex_size[size_t(op.loop[i])];
     }
   }

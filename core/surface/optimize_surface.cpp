@@ -12,6 +12,7 @@
 #include "core/geom/closest_point.h"
 #include "core/geom/vec3.h"
 #include "core/quality/triangle_quality.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -81,7 +82,7 @@ class Optimizer {
       const int32_t* T = &m.triangles[3 * t];
       q_[t] = gamma(T[0], T[1], T[2]);
     }
-    cos_turn_ = std::cos(o.max_normal_turn_degrees * std::numbers::pi / 180);
+    cos_turn_ = pm::cos(o.max_normal_turn_degrees * std::numbers::pi / 180);
     vt_.assign(m.num_vertices(), {});
     for (size_t t = 0; t < m.num_triangles(); ++t)
       for (int c = 0; c < 3; ++c) vt_[size_t(m.triangles[3 * t + c])].push_back(int32_t(t));

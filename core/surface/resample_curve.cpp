@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/util/portable_math.h"
+
 namespace vm {
 
 std::vector<CurveSample> resample_curve(const std::vector<double>& points,
@@ -26,7 +28,7 @@ std::vector<CurveSample> resample_curve(const std::vector<double>& points,
     // Exact integral of 1 / h for h linear along the segment.
     const double h0 = sizes[i], h1 = sizes[j];
     lengths[i] = std::sqrt(d2);
-    const double inv = graded(i) ? std::log(h1 / h0) / (h1 - h0) : 1 / h0;
+    const double inv = graded(i) ? pm::log(h1 / h0) / (h1 - h0) : 1 / h0;
     steps[i + 1] = steps[i] + lengths[i] * inv;
   }
   const size_t count = std::max(min_segments, size_t(std::lround(steps[segs])));
@@ -40,7 +42,7 @@ std::vector<CurveSample> resample_curve(const std::vector<double>& points,
     const double part = target - steps[i], h0 = sizes[i], h1 = sizes[(i + 1) % n];
     double f = 0;
     if (steps[i + 1] > steps[i] && lengths[i] > 0)
-      f = graded(i) ? (h0 * std::exp(part * (h1 - h0) / lengths[i]) - h0) / (h1 - h0)
+      f = graded(i) ? (h0 * pm::exp(part * (h1 - h0) / lengths[i]) - h0) / (h1 - h0)
                     : part * h0 / lengths[i];
     out.push_back({i, std::clamp(f, 0.0, 1.0)});
   }

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/util/portable_math.h"
+
 namespace vm {
 
 std::vector<uint8_t> sharp_feature_edges(const SurfaceMesh& m, const TriangleAdjacency& adj,
@@ -28,7 +30,7 @@ std::vector<uint8_t> sharp_feature_edges(const SurfaceMesh& m, const TriangleAdj
     if (l > 0)
       for (int k = 0; k < 3; ++k) normal[3 * t + size_t(k)] = n[k] / l;
   }
-  const double cos_limit = std::cos(angle_degrees * std::numbers::pi / 180);
+  const double cos_limit = pm::cos(angle_degrees * std::numbers::pi / 180);
   std::vector<int> degree(nv, 0);
   std::vector<uint8_t> on_opening(nv, 0);
   for (size_t he = 0; he < adj.opposite.size(); ++he) {

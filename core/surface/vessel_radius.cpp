@@ -15,6 +15,7 @@
 #include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/chord_radius.h"
+#include "core/util/portable_math.h"
 
 namespace vm {
 namespace {
@@ -46,7 +47,7 @@ std::vector<double> inward_normals(const SurfaceMesh& m) {
 // point, seen from the center. The wall across a tube is at about 180
 // degrees; 110 rejects the staircase bumps of segmentation surfaces (tested
 // on phantoms and the reference data: rim estimates within about 10%).
-const double kCosSeparation = std::cos(110.0 * std::numbers::pi / 180);
+const double kCosSeparation = pm::cos(110.0 * std::numbers::pi / 180);
 
 /// Shrinks the ball at `x` with inward normal `n`, from radius r_max,
 /// against the points of `tree` (indices into `pts`); `self` is x's own

@@ -25,6 +25,7 @@
 #include <utility>
 
 #include "core/geom/predicates.h"
+#include "core/util/portable_math.h"
 #include "core/volume/tet_topology.h"
 
 namespace vm {
@@ -388,7 +389,7 @@ class Recovery {
       double l2 = 0;
       for (int k = 0; k < 3; ++k) l2 += (P(b)[k] - P(a)[k]) * (P(b)[k] - P(a)[k]);
       const double len = std::sqrt(l2);
-      const double shell = std::exp2(std::round(std::log2(0.5 * len)));
+      const double shell = pm::exp2(std::round(pm::log2(0.5 * len)));
       t = ia ? shell / len : 1 - shell / len;
       if (!(t > 0.25 && t < 0.75)) t = 0.5;
     }

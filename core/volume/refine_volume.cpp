@@ -25,6 +25,7 @@
 #include <string>
 
 #include "core/geom/closest_point.h"
+#include "core/util/portable_math.h"
 #include "core/volume/spatial_sort.h"
 #include "core/volume/tet_topology.h"
 
@@ -44,7 +45,7 @@ inline double dist2(const double* a, const double* b) {
 inline double metric_length(double L, double ha, double hb) {
   const double d = hb - ha;
   if (std::fabs(d) <= 1e-9 * ha) return L / ha;
-  return L * std::log(hb / ha) / d;
+  return L * pm::log(hb / ha) / d;
 }
 
 }  // namespace
@@ -277,7 +278,7 @@ Status refine_volume(Delaunay3D& kernel, const VolumeSizeField& field,
         d = std::fabs(dh) <= 1e-9 * hv ? 0.5 * L : L * (std::sqrt(hv * hw) - hv) / dh;
       } else {
         const double gam = std::clamp((hw - hv) / L, -g, g);
-        d = std::fabs(gam) < 1e-12 ? hv : hv * std::expm1(gam) / gam;
+        d = std::fabs(gam) < 1e-12 ? hv : hv * pm::expm1(gam) / gam;
       }
       const double s = d / L;
       const double p[3] = {xv[0] + s * (xw[0] - xv[0]), xv[1] + s * (xw[1] - xv[1]),
