@@ -41,6 +41,12 @@ function failure(raw) {
   };
 }
 
+/** A core result as the API returns it: a success as it is, a failure by
+ * failure(). */
+function answer(raw) {
+  return raw.ok ? raw : failure(raw);
+}
+
 /**
  * Loads the WebAssembly module and returns the API.
  * @param {{ wasmBinary?: ArrayBuffer|Uint8Array }} [options] In Node pass
@@ -124,8 +130,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      *   | {ok: false, error: string}}
      */
     export(format, options = {}) {
-      const raw = core.exportMesh({ ...options, format });
-      return raw.ok ? raw : failure(raw);
+      return answer(core.exportMesh({ ...options, format }));
     },
 
     /**
@@ -148,8 +153,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * @returns {{ok: true, names: string[]} | {ok: false, error: string}}
      */
     openingNames(options = {}) {
-      const raw = core.openingNames(options);
-      return raw.ok ? raw : failure(raw);
+      return answer(core.openingNames(options));
     },
 
     /**
@@ -164,8 +168,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      *   | {ok: false, error: string}}
      */
     sizeField(options = {}) {
-      const raw = core.sizeField(options);
-      return raw.ok ? raw : failure(raw);
+      return answer(core.sizeField(options));
     },
 
     /**
@@ -175,8 +178,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * @returns {{ok: true, fractions: Float64Array} | {ok: false, error: string}}
      */
     layerFractions(options = {}) {
-      const raw = core.layerFractions(options);
-      return raw.ok ? raw : failure(raw);
+      return answer(core.layerFractions(options));
     },
 
     /**
@@ -184,8 +186,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * @returns {{ok: true, stl: Uint8Array} | {ok: false, error: string}}
      */
     makePhantom(options = {}) {
-      const raw = core.makePhantom(options);
-      return raw.ok ? raw : failure(raw);
+      return answer(core.makePhantom(options));
     },
   };
 }
