@@ -201,6 +201,13 @@ void check_remesh(const SurfaceMesh& in, const RemeshedSurface& out, double h,
             << " mean " << q.mean << "\n";
 }
 
+// Remeshes `in` at the uniform size h and checks the result (check_remesh).
+void remesh_uniform_and_check(const SurfaceMesh& in, double h, const std::string& name) {
+  auto r = remesh_surface(in, testing::uniform_remesh(h));
+  ASSERT_TRUE(r.ok()) << r.message();
+  check_remesh(in, r.value(), h, {}, name);
+}
+
 TEST(RemeshSurface, NoisyBifurcationAtUniformSize) {
   const SurfaceMesh in = phantom(PhantomKind::kBifurcation, true, 0.15, 0.3);
   ASSERT_GT(in.num_triangles(), 0u);
@@ -223,20 +230,14 @@ TEST(RemeshSurface, ClosedPhantomAtUniformSize) {
   const SurfaceMesh in = phantom(PhantomKind::kTube, false, 0.15, 0.3);
   ASSERT_GT(in.num_triangles(), 0u);
   ASSERT_TRUE(analyze_topology(in).closed);
-  const double h = 0.2;
-  auto r = remesh_surface(in, testing::uniform_remesh(h));
-  ASSERT_TRUE(r.ok()) << r.message();
-  check_remesh(in, r.value(), h, {}, "closed tube");
+  remesh_uniform_and_check(in, 0.2, "closed tube");
 }
 
 TEST(RemeshSurface, TorusKeepsItsGenus) {
   const SurfaceMesh in = phantom(PhantomKind::kTorus, true, 0.15, 0.3);
   ASSERT_GT(in.num_triangles(), 0u);
   ASSERT_EQ(analyze_topology(in).genus, 1);
-  const double h = 0.2;
-  auto r = remesh_surface(in, testing::uniform_remesh(h));
-  ASSERT_TRUE(r.ok()) << r.message();
-  check_remesh(in, r.value(), h, {}, "torus");
+  remesh_uniform_and_check(in, 0.2, "torus");
 }
 
 TEST(RemeshSurface, OtherMapsAndMeshersKeepTheTopology) {
