@@ -22,6 +22,16 @@ function progressCallback(onProgress) {
   return onProgress;
 }
 
+/** The input bytes and progress callback of a job (`name`: analyze, mesh),
+ * or {failed} saying which of them is unusable. */
+function jobInput(name, bytesIn, onProgress) {
+  const bytes = asBytes(bytesIn);
+  if (!bytes) return { failed: fail(`${name}: the input must be a Uint8Array or ArrayBuffer`) };
+  const progress = progressCallback(onProgress);
+  if (progress === null) return { failed: fail(`${name}: onProgress must be a function`) };
+  return { bytes, progress };
+}
+
 async function loadWasmBinary() {
   const url = new URL('../dist/vesselmesh_core.wasm', import.meta.url);
   const response = await fetch(url);
@@ -81,10 +91,8 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      *   triangles: Uint32Array, quality: Float32Array}} | {ok: false, error: string}}
      */
     analyze(bytesIn, { onProgress, ...options } = {}) {
-      const bytes = asBytes(bytesIn);
-      if (!bytes) return fail('analyze: the input must be a Uint8Array or ArrayBuffer');
-      const progress = progressCallback(onProgress);
-      if (progress === null) return fail('analyze: onProgress must be a function');
+      const { bytes, progress, failed } = jobInput('analyze', bytesIn, onProgress);
+      if (failed) return failed;
       const raw = core.analyze(bytes, options, progress);
       if (!raw.ok) return failure(raw);
       return withSurface(raw, { analysis: JSON.parse(raw.analysisJson) });
@@ -104,10 +112,8 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      *   | {ok: false, error: string}} (no volume when surfaceOnly)
      */
     mesh(bytesIn, { onProgress, ...options } = {}) {
-      const bytes = asBytes(bytesIn);
-      if (!bytes) return fail('mesh: the input must be a Uint8Array or ArrayBuffer');
-      const progress = progressCallback(onProgress);
-      if (progress === null) return fail('mesh: onProgress must be a function');
+      const { bytes, progress, failed } = jobInput('mesh', bytesIn, onProgress);
+      if (failed) return failed;
       const raw = core.mesh(bytes, options, progress);
       if (!raw.ok) return failure(raw);
       return withSurface(raw, {
