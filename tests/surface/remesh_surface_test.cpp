@@ -328,6 +328,17 @@ TEST(RemeshSurface, CancelledByProgress) {
 
 // ---- optimize_on_surface / project_near ------------------------------------
 
+// The boundary edges of m, each as its sorted pair of vertices, sorted.
+std::vector<std::pair<int32_t, int32_t>> sorted_boundary_edges(const SurfaceMesh& m) {
+  const TriangleAdjacency adj = build_adjacency(m);
+  std::vector<std::pair<int32_t, int32_t>> edges;
+  for (size_t he = 0; he < adj.opposite.size(); ++he)
+    if (adj.opposite[he] == TriangleAdjacency::kBoundary)
+      edges.push_back(std::minmax(half_edge_from(m, int32_t(he)), half_edge_to(m, int32_t(he))));
+  std::sort(edges.begin(), edges.end());
+  return edges;
+}
+
 TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
   // Input: a fine cylinder. Mesh: a coarse one whose vertices are points of
   // the input, jittered along it, so it is poorly shaped.
@@ -376,13 +387,7 @@ TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
   }
   const SurfaceMesh before = m;
   const QualityStats qb = quality_stats(triangle_qualities(m));
-  const TriangleAdjacency adj_before = build_adjacency(m);
-  std::vector<std::pair<int32_t, int32_t>> boundary_before;
-  for (size_t he = 0; he < adj_before.opposite.size(); ++he)
-    if (adj_before.opposite[he] == TriangleAdjacency::kBoundary)
-      boundary_before.push_back(
-          std::minmax(half_edge_from(m, int32_t(he)), half_edge_to(m, int32_t(he))));
-  std::sort(boundary_before.begin(), boundary_before.end());
+  const std::vector<std::pair<int32_t, int32_t>> boundary_before = sorted_boundary_edges(m);
 
   // No sizes (wall.size empty), no collapse: the vertex count stays.
   SurfaceOptimizeStats s = optimize_on_surface(m, wall, in, in_adj);
@@ -401,14 +406,7 @@ TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
     EXPECT_LE(distance_to_triangle(in, size_t(home[v]), pt(m, int32_t(v))), tol) << "vertex " << v;
   }
   // The boundary edges never change; the mesh stays a manifold tube.
-  const TriangleAdjacency adj_after = build_adjacency(m);
-  std::vector<std::pair<int32_t, int32_t>> boundary_after;
-  for (size_t he = 0; he < adj_after.opposite.size(); ++he)
-    if (adj_after.opposite[he] == TriangleAdjacency::kBoundary)
-      boundary_after.push_back(
-          std::minmax(half_edge_from(m, int32_t(he)), half_edge_to(m, int32_t(he))));
-  std::sort(boundary_after.begin(), boundary_after.end());
-  EXPECT_EQ(boundary_after, boundary_before);
+  EXPECT_EQ(sorted_boundary_edges(m), boundary_before);
   const TopologyReport t = analyze_topology(m);
   EXPECT_EQ(t.nonmanifold_edges, 0u);
   EXPECT_EQ(t.openings.size(), 2u);
