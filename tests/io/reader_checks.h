@@ -1,5 +1,5 @@
 // Checks shared by the tests of the surface readers: a message that holds
-// a phrase, and damaged inputs (truncated, corrupted) that must be answered
+// a phrase (EXPECT_HAS), and damaged inputs (truncated, corrupted) that must be answered
 // with a result or a message, never a crash (the sanitizer build runs the
 // tests).
 #pragma once
@@ -10,9 +10,7 @@
 #include <string>
 
 #include "tests/io/surface_writers.h"
-
-#define EXPECT_HAS(haystack, needle) \
-  EXPECT_NE((haystack).find(needle), std::string::npos) << (haystack)
+#include "tests/support/expect_has.h"
 
 namespace vm::testing {
 
