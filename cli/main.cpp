@@ -300,10 +300,17 @@ int write_size_field(const std::string& file, const std::string& path,
   return 0;
 }
 
+/// The usage error of a command that takes exactly one positional argument
+/// (`what`), or "" when its arguments parsed.
+std::string one_argument_error(const Args& a, const std::string& command, const char* what) {
+  if (!a.error.empty()) return a.error;
+  if (a.positional.size() != 1) return command + " needs exactly one " + what;
+  return "";
+}
+
 int cmd_info(int argc, char** argv) {
   Args a = vm::cli::parse_args(argc, argv, 2, vm::kCommandInfo);
-  if (!a.error.empty()) return usage_error(a.error);
-  if (a.positional.size() != 1) return usage_error("info needs exactly one FILE");
+  if (std::string e = one_argument_error(a, "info", "FILE"); !e.empty()) return usage_error(e);
   vm::MeshJobOptions options;
   if (std::string e = vm::cli::apply_all(a, options); !e.empty()) return usage_error(e);
   vm::set_thread_count(options.threads);
@@ -414,8 +421,7 @@ bool write_outputs(const std::string& path, const Destination& d,
 
 int cmd_mesh(int argc, char** argv) {
   Args a = vm::cli::parse_args(argc, argv, 2, vm::kCommandMesh);
-  if (!a.error.empty()) return usage_error(a.error);
-  if (a.positional.size() != 1) return usage_error("mesh needs exactly one FILE");
+  if (std::string e = one_argument_error(a, "mesh", "FILE"); !e.empty()) return usage_error(e);
   const vm::OptionValue* out = a.get("output");
   if (!out) return usage_error("mesh needs an output file: -o OUT.msh");
   vm::MeshJobOptions options;
@@ -447,8 +453,8 @@ int cmd_mesh(int argc, char** argv) {
 
 int cmd_phantom(int argc, char** argv) {
   Args a = vm::cli::parse_args(argc, argv, 2, vm::kCommandPhantom);
-  if (!a.error.empty()) return usage_error(a.error);
-  if (a.positional.size() != 1) return usage_error("phantom needs exactly one OUT.stl");
+  if (std::string e = one_argument_error(a, "phantom", "OUT.stl"); !e.empty())
+    return usage_error(e);
   vm::PhantomOptions o;
   if (std::string e = vm::cli::apply_all(a, o); !e.empty()) return usage_error(e);
   auto r = vm::make_vessel_phantom(o);

@@ -65,3 +65,17 @@ inline double dot(const double* u, const double* v) {
 inline double norm(const double* u) { return std::sqrt(dot(u, u)); }
 
 }  // namespace vm::v3
+
+namespace vm {
+
+/// (b - a) x (c - a): the normal of triangle (a, b, c), twice its area long.
+inline Vec3 triangle_cross(const double* a, const double* b, const double* c) {
+  double u[3], w[3];
+  Vec3 n;
+  v3::sub(b, a, u);
+  v3::sub(c, a, w);
+  v3::cross(u, w, n.data());
+  return n;
+}
+
+}  // namespace vm

@@ -8,6 +8,7 @@
 #include <array>
 #include <charconv>
 #include <cstdio>
+#include <ranges>
 #include <set>
 
 #include "core/io/text_out.h"
@@ -67,6 +68,30 @@ void label_list(TextOut& t, size_t n, Get get) {
     t.ch(i % 10 == 9 || i + 1 == n ? '\n' : ' ');
   }
   t.str(")\n");
+}
+
+/// The file `location`/`object` of class `cls`: the header, then an
+/// OpenFOAM list "n\n(\n...)\n" of the n `items`, each written by
+/// `entry(t, item)`.
+template <class Items, class Entry>
+OutputFile list_file(std::string_view cls, const std::string& location, const std::string& object,
+                     const std::string& comment, const Items& items, Entry entry) {
+  TextOut t;
+  header(t, cls, location, object, comment);
+  t.integer(int64_t(items.size()));
+  t.str("\n(\n");
+  for (const auto& item : items) entry(t, item);
+  t.str(")\n");
+  return {location + "/" + object, t.take()};
+}
+
+/// The dictionary system/`object`: the header, then `body`.
+OutputFile system_dictionary(const std::string& object, const std::string& comment,
+                             std::string_view body) {
+  TextOut t;
+  header(t, "dictionary", "system", object, comment);
+  t.str(body);
+  return {"system/" + object, t.take()};
 }
 
 /// An OpenFOAM word we write: letters, digits, '_', '-', '.'.
@@ -276,42 +301,27 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
   // Phase 5: the files.
   const std::string poly = "constant/polyMesh";
   std::vector<OutputFile> files;
-  {
-    TextOut t;
-    header(t, "vectorField", poly, "points", comment);
-    t.integer(int64_t(nv));
-    t.str("\n(\n");
-    for (size_t v = 0; v < nv; ++v) {
-      t.ch('(');
-      for (int k = 0; k < 3; ++k) {
-        if (k) t.ch(' ');
-        t.real(mesh.points[3 * v + size_t(k)]);
-      }
-      t.str(")\n");
+  files.push_back(list_file("vectorField", poly, "points", comment, std::views::iota(size_t(0), nv),
+                            [&](TextOut& t, size_t v) {
+                              t.ch('(');
+                              for (int k = 0; k < 3; ++k) {
+                                if (k) t.ch(' ');
+                                t.real(mesh.points[3 * v + size_t(k)]);
+                              }
+                              t.str(")\n");
+                            }));
+  files.push_back(list_file("faceList", poly, "faces", comment, order, [&](TextOut& t, size_t g) {
+    const CellFace& owner = faces[group_first[g]];
+    int32_t v[4];
+    const int n = cell_face(owner.cell, owner.local, v);
+    t.integer(n);
+    t.ch('(');
+    for (int k = 0; k < n; ++k) {
+      if (k) t.ch(' ');
+      t.integer(v[k]);
     }
     t.str(")\n");
-    files.push_back({poly + "/points", t.take()});
-  }
-  {
-    TextOut t;
-    header(t, "faceList", poly, "faces", comment);
-    t.integer(int64_t(ngroups));
-    t.str("\n(\n");
-    for (size_t g : order) {
-      const CellFace& owner = faces[group_first[g]];
-      int32_t v[4];
-      const int n = cell_face(owner.cell, owner.local, v);
-      t.integer(n);
-      t.ch('(');
-      for (int k = 0; k < n; ++k) {
-        if (k) t.ch(' ');
-        t.integer(v[k]);
-      }
-      t.str(")\n");
-    }
-    t.str(")\n");
-    files.push_back({poly + "/faces", t.take()});
-  }
+  }));
   const std::string note = "nPoints:" + std::to_string(nv) + "  nCells:" + std::to_string(ncells) +
                            "  nFaces:" + std::to_string(ngroups) +
                            "  nInternalFaces:" + std::to_string(ninternal);
@@ -327,84 +337,53 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
     label_list(t, ninternal, [&](size_t i) { return faces[group_first[order[i]] + 1].cell; });
     files.push_back({poly + "/neighbour", t.take()});
   }
-  {
-    TextOut t;
-    header(t, "polyBoundaryMesh", poly, "boundary", comment);
-    t.integer(int64_t(patches.size()));
-    t.str("\n(\n");
-    for (size_t tag : patches) {
-      const std::string name = name_or(surface_names, tag, "patch_");
-      const bool wall = name == "wall" || name == "outer_wall";
-      t.str("    " + name + "\n    {\n        type            ");
-      t.str(wall ? "wall;\n        inGroups        List<word> 1(wall);\n" : "patch;\n");
-      t.str("        nFaces          ");
-      t.integer(int64_t(patch_size[tag]));
-      t.str(";\n        startFace       ");
-      t.integer(int64_t(patch_start[tag]));
-      t.str(";\n    }\n");
-    }
-    t.str(")\n");
-    files.push_back({poly + "/boundary", t.take()});
-  }
-  {
-    TextOut t;
-    header(t, "regIOobject", poly, "cellZones", comment);
-    t.integer(int64_t(zones_used.size()));
-    t.str("\n(\n");
-    for (size_t r : zones_used) {
-      t.str(name_or(region_names, r, "zone_") +
-            "\n{\n    type cellZone;\n    cellLabels List<label> ");
-      label_list(t, cells_of[r].size(), [&](size_t i) { return cells_of[r][i]; });
-      t.str(";\n}\n");
-    }
-    t.str(")\n");
-    files.push_back({poly + "/cellZones", t.take()});
-  }
+  files.push_back(list_file(
+      "polyBoundaryMesh", poly, "boundary", comment, patches, [&](TextOut& t, size_t tag) {
+        const std::string name = name_or(surface_names, tag, "patch_");
+        const bool wall = name == "wall" || name == "outer_wall";
+        t.str("    " + name + "\n    {\n        type            ");
+        t.str(wall ? "wall;\n        inGroups        List<word> 1(wall);\n" : "patch;\n");
+        t.str("        nFaces          ");
+        t.integer(int64_t(patch_size[tag]));
+        t.str(";\n        startFace       ");
+        t.integer(int64_t(patch_start[tag]));
+        t.str(";\n    }\n");
+      }));
+  files.push_back(
+      list_file("regIOobject", poly, "cellZones", comment, zones_used, [&](TextOut& t, size_t r) {
+        t.str(name_or(region_names, r, "zone_") +
+              "\n{\n    type cellZone;\n    cellLabels List<label> ");
+        label_list(t, cells_of[r].size(), [&](size_t i) { return cells_of[r][i]; });
+        t.str(";\n}\n");
+      }));
   if (!face_zones.empty()) {
-    TextOut t;
-    header(t, "regIOobject", poly, "faceZones", comment);
-    t.integer(int64_t(face_zones.size()));
-    t.str("\n(\n");
-    for (size_t tag : face_zones) {
-      size_t first = 0;
-      while (size_t(zone_faces[first].tag) != tag) ++first;
-      size_t last = first;
-      while (last < zone_faces.size() && size_t(zone_faces[last].tag) == tag) ++last;
-      t.str(name_or(surface_names, tag, "patch_") +
-            "\n{\n    type faceZone;\n    faceLabels List<label> ");
-      label_list(t, last - first,
-                 [&](size_t i) { return face_of_group[zone_faces[first + i].group]; });
-      t.str(";\n    flipMap List<bool> ");
-      label_list(t, last - first, [&](size_t i) { return zone_faces[first + i].flip ? 1 : 0; });
-      t.str(";\n}\n");
-    }
-    t.str(")\n");
-    files.push_back({poly + "/faceZones", t.take()});
+    files.push_back(list_file(
+        "regIOobject", poly, "faceZones", comment, face_zones, [&](TextOut& t, size_t tag) {
+          size_t first = 0;
+          while (size_t(zone_faces[first].tag) != tag) ++first;
+          size_t last = first;
+          while (last < zone_faces.size() && size_t(zone_faces[last].tag) == tag) ++last;
+          t.str(name_or(surface_names, tag, "patch_") +
+                "\n{\n    type faceZone;\n    faceLabels List<label> ");
+          label_list(t, last - first,
+                     [&](size_t i) { return face_of_group[zone_faces[first + i].group]; });
+          t.str(";\n    flipMap List<bool> ");
+          label_list(t, last - first, [&](size_t i) { return zone_faces[first + i].flip ? 1 : 0; });
+          t.str(";\n}\n");
+        }));
   }
-  {
-    TextOut t;
-    header(t, "dictionary", "system", "controlDict", comment);
-    t.str(
-        "startFrom       startTime;\nstartTime       0;\nstopAt          endTime;\n"
-        "endTime         1;\ndeltaT          1;\nwriteControl    timeStep;\n"
-        "writeInterval   1;\nwriteFormat     ascii;\nwritePrecision  12;\n"
-        "timeFormat      general;\ntimePrecision   6;\nrunTimeModifiable false;\n");
-    files.push_back({"system/controlDict", t.take()});
-  }
-  {
-    TextOut t;
-    header(t, "dictionary", "system", "fvSchemes", comment);
-    t.str(
-        "ddtSchemes { default steadyState; }\ngradSchemes { default Gauss linear; }\n"
-        "divSchemes { default none; }\nlaplacianSchemes { default Gauss linear corrected; }\n"
-        "interpolationSchemes { default linear; }\nsnGradSchemes { default corrected; }\n");
-    files.push_back({"system/fvSchemes", t.take()});
-  }
-  {
-    TextOut t;
-    header(t, "dictionary", "system", "fvSolution", comment);
-    files.push_back({"system/fvSolution", t.take()});
-  }
+  files.push_back(system_dictionary(
+      "controlDict", comment,
+      "startFrom       startTime;\nstartTime       0;\nstopAt          endTime;\n"
+      "endTime         1;\ndeltaT          1;\nwriteControl    timeStep;\n"
+      "writeInterval   1;\nwriteFormat     ascii;\nwritePrecision  12;\n"
+      "timeFormat      general;\ntimePrecision   6;\nrunTimeModifiable false;\n"));
+  files.push_back(system_dictionary(
+      "fvSchemes", comment,
+      "ddtSchemes { default steadyState; }\ngradSchemes { default Gauss linear; }\n"
+      "divSchemes { default none; }\nlaplacianSchemes { default Gauss linear corrected; }\n"
+      "interpolationSchemes { default linear; }\nsnGradSchemes { default corrected; }\n"));
+  files.push_back(system_dictionary("fvSolution", comment, ""));
   files.push_back({"case.foam", ""});
   return files;
 }

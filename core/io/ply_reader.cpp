@@ -17,38 +17,28 @@
 #include "core/io/cells_to_triangles.h"
 #include "core/io/float_bits.h"
 #include "core/io/text_scan.h"
+#include "core/io/value_type.h"
 
 namespace vm {
 namespace {
 
 std::string num(uint64_t n) { return std::to_string(n); }
 
-enum class Kind { kSigned, kUnsigned, kFloat };
-
-struct PlyType {
-  std::string_view name;
-  size_t size;
-  Kind kind;
-};
-
-constexpr PlyType kTypes[] = {
-    {"char", 1, Kind::kSigned},     {"int8", 1, Kind::kSigned},     {"uchar", 1, Kind::kUnsigned},
-    {"uint8", 1, Kind::kUnsigned},  {"short", 2, Kind::kSigned},    {"int16", 2, Kind::kSigned},
-    {"ushort", 2, Kind::kUnsigned}, {"uint16", 2, Kind::kUnsigned}, {"int", 4, Kind::kSigned},
-    {"int32", 4, Kind::kSigned},    {"uint", 4, Kind::kUnsigned},   {"uint32", 4, Kind::kUnsigned},
-    {"float", 4, Kind::kFloat},     {"float32", 4, Kind::kFloat},   {"double", 8, Kind::kFloat},
-    {"float64", 8, Kind::kFloat},   {"int64", 8, Kind::kSigned},    {"uint64", 8, Kind::kUnsigned}};
-
-const PlyType* find_type(std::string_view name) {
-  for (const PlyType& t : kTypes)
-    if (t.name == name) return &t;
-  return nullptr;
-}
+constexpr ValueType kTypes[] = {
+    {"char", 1, ValueKind::kSigned},     {"int8", 1, ValueKind::kSigned},
+    {"uchar", 1, ValueKind::kUnsigned},  {"uint8", 1, ValueKind::kUnsigned},
+    {"short", 2, ValueKind::kSigned},    {"int16", 2, ValueKind::kSigned},
+    {"ushort", 2, ValueKind::kUnsigned}, {"uint16", 2, ValueKind::kUnsigned},
+    {"int", 4, ValueKind::kSigned},      {"int32", 4, ValueKind::kSigned},
+    {"uint", 4, ValueKind::kUnsigned},   {"uint32", 4, ValueKind::kUnsigned},
+    {"float", 4, ValueKind::kFloat},     {"float32", 4, ValueKind::kFloat},
+    {"double", 8, ValueKind::kFloat},    {"float64", 8, ValueKind::kFloat},
+    {"int64", 8, ValueKind::kSigned},    {"uint64", 8, ValueKind::kUnsigned}};
 
 struct Property {
   std::string name;
-  const PlyType* type = nullptr;        // value type (list: item type)
-  const PlyType* count_type = nullptr;  // list only
+  const ValueType* type = nullptr;        // value type (list: item type)
+  const ValueType* count_type = nullptr;  // list only
   bool is_list() const { return count_type != nullptr; }
 };
 
@@ -79,7 +69,7 @@ class Reader {
   Status read_element(const Element& e);
   // One value of a scalar type at the cursor: as a double and, for integer
   // types, as an int64.
-  Status value(const PlyType& t, const Element& e, uint64_t index, double& d, int64_t& i);
+  Status value(const ValueType& t, const Element& e, uint64_t index, double& d, int64_t& i);
 
   TextCursor cur_;
   const SurfaceReadOptions& options_;
@@ -145,17 +135,17 @@ Status Reader::parse_header() {
       if (tok.size() >= 2 && tok[1] == "list") {
         if (tok.size() != 5)
           return fail("list property needs a count type, an item type and a name");
-        p.count_type = find_type(tok[2]);
+        p.count_type = find_value_type(kTypes, tok[2]);
         if (!p.count_type) return fail("unknown property type " + quoted(tok[2]));
-        if (p.count_type->kind == Kind::kFloat) {
+        if (p.count_type->kind == ValueKind::kFloat) {
           return fail("list count type " + quoted(tok[2]) + " is not an integer type");
         }
-        p.type = find_type(tok[3]);
+        p.type = find_value_type(kTypes, tok[3]);
         if (!p.type) return fail("unknown property type " + quoted(tok[3]));
         p.name = std::string(tok[4]);
       } else {
         if (tok.size() != 3) return fail("property needs a type and a name");
-        p.type = find_type(tok[1]);
+        p.type = find_value_type(kTypes, tok[1]);
         if (!p.type) return fail("unknown property type " + quoted(tok[1]));
         p.name = std::string(tok[2]);
       }
@@ -168,7 +158,7 @@ Status Reader::parse_header() {
   return Status::Ok();
 }
 
-Status Reader::value(const PlyType& t, const Element& e, uint64_t index, double& d, int64_t& i) {
+Status Reader::value(const ValueType& t, const Element& e, uint64_t index, double& d, int64_t& i) {
   auto cut = [&]() {
     return Status::Error("PLY data ends in element '" + e.name + "' number " + num(index) + " of " +
                          num(e.count) + " (the file is truncated or the header's " +
@@ -177,7 +167,7 @@ Status Reader::value(const PlyType& t, const Element& e, uint64_t index, double&
   if (format_ == Format::kAscii) {
     std::string_view tok = cur_.next();
     if (tok.empty()) return cut();
-    if (t.kind == Kind::kFloat) {
+    if (t.kind == ValueKind::kFloat) {
       if (!parse_double(tok, d)) {
         return Status::Error("PLY line " + num(cur_.line()) + ": " + quoted(tok) +
                              " is not a number (element '" + e.name + "' number " + num(index) +
@@ -202,10 +192,10 @@ Status Reader::value(const PlyType& t, const Element& e, uint64_t index, double&
     u = u << 8 | p[byte];
   }
   cur_.skip(t.size);
-  if (t.kind == Kind::kFloat) {
+  if (t.kind == ValueKind::kFloat) {
     d = t.size == 4 ? double(float_from_bits(uint32_t(u))) : double_from_bits(u);
     i = 0;
-  } else if (t.kind == Kind::kSigned) {
+  } else if (t.kind == ValueKind::kSigned) {
     int shift = int(64 - 8 * t.size);
     i = int64_t(u << shift) >> shift;
     d = double(i);
@@ -247,7 +237,7 @@ Status Reader::read_element(const Element& e) {
     }
     if (is_face && p.is_list() && (p.name == "vertex_indices" || p.name == "vertex_index") &&
         list < 0) {
-      if (p.type->kind == Kind::kFloat) {
+      if (p.type->kind == ValueKind::kFloat) {
         return Status::Error("PLY face property '" + p.name + "' has item type " +
                              std::string(p.type->name) + " but must hold integers");
       }
@@ -255,7 +245,7 @@ Status Reader::read_element(const Element& e) {
     }
     if (is_face && !p.is_list()) {
       int r = label_rank(p.name);
-      if (r >= 0 && r < best && p.type->kind != Kind::kFloat) {
+      if (r >= 0 && r < best && p.type->kind != ValueKind::kFloat) {
         best = r;
         label = int(k);
       }

@@ -56,6 +56,13 @@ bool parse_decimal_fast(std::string_view tok, double& out) {
   return true;
 }
 
+// A byte as \xNN (two lowercase hex digits).
+void append_hex_escape(std::string& s, unsigned char c) {
+  char buf[8];
+  std::snprintf(buf, sizeof(buf), "\\x%02x", c);
+  s += buf;
+}
+
 }  // namespace
 
 bool parse_double(std::string_view tok, double& out) {
@@ -84,9 +91,7 @@ std::string quoted(std::string_view tok) {
     if (c >= 32 && c < 127) {
       s += char(c);
     } else {
-      char buf[8];
-      std::snprintf(buf, sizeof(buf), "\\x%02x", c);
-      s += buf;
+      append_hex_escape(s, c);
     }
   }
   if (tok.size() > n) s += "...";
@@ -107,9 +112,7 @@ std::string printable_prefix(std::span<const uint8_t> bytes, size_t max_bytes) {
     } else if (c >= 32 && c < 127 && c != '\\') {
       s += char(c);
     } else {
-      char buf[8];
-      std::snprintf(buf, sizeof(buf), "\\x%02x", c);
-      s += buf;
+      append_hex_escape(s, c);
     }
   }
   if (bytes.size() > n) s += "...";

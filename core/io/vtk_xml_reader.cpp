@@ -32,6 +32,7 @@
 #include "core/io/float_bits.h"
 #include "core/io/inflate.h"
 #include "core/io/text_scan.h"
+#include "core/io/value_type.h"
 #include "core/io/xml_scanner.h"
 
 namespace vm {
@@ -43,73 +44,60 @@ std::string num(uint64_t n) { return std::to_string(n); }
 
 // ---- data types -------------------------------------------------------------
 
-enum class Kind { kSigned, kUnsigned, kFloat };
-
-struct DataType {
-  std::string_view name;
-  size_t size;
-  Kind kind;
-};
-
-constexpr DataType kTypes[] = {{"Int8", 1, Kind::kSigned},   {"UInt8", 1, Kind::kUnsigned},
-                               {"Int16", 2, Kind::kSigned},  {"UInt16", 2, Kind::kUnsigned},
-                               {"Int32", 4, Kind::kSigned},  {"UInt32", 4, Kind::kUnsigned},
-                               {"Int64", 8, Kind::kSigned},  {"UInt64", 8, Kind::kUnsigned},
-                               {"Float32", 4, Kind::kFloat}, {"Float64", 8, Kind::kFloat}};
-
-const DataType* find_type(std::string_view name) {
-  for (const DataType& t : kTypes)
-    if (t.name == name) return &t;
-  return nullptr;
-}
+constexpr ValueType kTypes[] = {
+    {"Int8", 1, ValueKind::kSigned},   {"UInt8", 1, ValueKind::kUnsigned},
+    {"Int16", 2, ValueKind::kSigned},  {"UInt16", 2, ValueKind::kUnsigned},
+    {"Int32", 4, ValueKind::kSigned},  {"UInt32", 4, ValueKind::kUnsigned},
+    {"Int64", 8, ValueKind::kSigned},  {"UInt64", 8, ValueKind::kUnsigned},
+    {"Float32", 4, ValueKind::kFloat}, {"Float64", 8, ValueKind::kFloat}};
 
 // Reads value i of a native-endian array of type t as a double / an int64
 // (false for UInt64 values beyond int64 and for float types).
-double value_as_double(const uint8_t* p, const DataType& t) {
+double value_as_double(const uint8_t* p, const ValueType& t) {
   switch (t.size) {
     case 1:
-      return t.kind == Kind::kSigned ? double(int8_t(*p)) : double(*p);
+      return t.kind == ValueKind::kSigned ? double(int8_t(*p)) : double(*p);
     case 2: {
       uint16_t u;
       std::memcpy(&u, p, 2);
-      return t.kind == Kind::kSigned ? double(int16_t(u)) : double(u);
+      return t.kind == ValueKind::kSigned ? double(int16_t(u)) : double(u);
     }
     case 4: {
       uint32_t u;
       std::memcpy(&u, p, 4);
-      if (t.kind == Kind::kFloat) return double(float_from_bits(u));
-      return t.kind == Kind::kSigned ? double(int32_t(u)) : double(u);
+      if (t.kind == ValueKind::kFloat) return double(float_from_bits(u));
+      return t.kind == ValueKind::kSigned ? double(int32_t(u)) : double(u);
     }
     default: {
       uint64_t u;
       std::memcpy(&u, p, 8);
-      if (t.kind == Kind::kFloat) return double_from_bits(u);
-      return t.kind == Kind::kSigned ? double(int64_t(u)) : double(u);
+      if (t.kind == ValueKind::kFloat) return double_from_bits(u);
+      return t.kind == ValueKind::kSigned ? double(int64_t(u)) : double(u);
     }
   }
 }
 
-bool value_as_int(const uint8_t* p, const DataType& t, int64_t& out) {
+bool value_as_int(const uint8_t* p, const ValueType& t, int64_t& out) {
   switch (t.size) {
     case 1:
-      out = t.kind == Kind::kSigned ? int64_t(int8_t(*p)) : int64_t(*p);
+      out = t.kind == ValueKind::kSigned ? int64_t(int8_t(*p)) : int64_t(*p);
       return true;
     case 2: {
       uint16_t u;
       std::memcpy(&u, p, 2);
-      out = t.kind == Kind::kSigned ? int64_t(int16_t(u)) : int64_t(u);
+      out = t.kind == ValueKind::kSigned ? int64_t(int16_t(u)) : int64_t(u);
       return true;
     }
     case 4: {
       uint32_t u;
       std::memcpy(&u, p, 4);
-      out = t.kind == Kind::kSigned ? int64_t(int32_t(u)) : int64_t(u);
+      out = t.kind == ValueKind::kSigned ? int64_t(int32_t(u)) : int64_t(u);
       return true;
     }
     default: {
       uint64_t u;
       std::memcpy(&u, p, 8);
-      if (t.kind == Kind::kUnsigned && u > uint64_t(std::numeric_limits<int64_t>::max()))
+      if (t.kind == ValueKind::kUnsigned && u > uint64_t(std::numeric_limits<int64_t>::max()))
         return false;
       out = int64_t(u);
       return true;
@@ -173,15 +161,23 @@ class Reader {
   Result<std::vector<double>> doubles(const ArrayRef& a, std::optional<uint64_t> expected);
   Result<std::vector<int64_t>> ints(const ArrayRef& a, std::optional<uint64_t> expected);
   // The native-endian bytes of a binary (base64 or appended) array.
-  Result<std::vector<uint8_t>> binary_bytes(const ArrayRef& a, const DataType& t,
+  Result<std::vector<uint8_t>> binary_bytes(const ArrayRef& a, const ValueType& t,
                                             std::optional<uint64_t> expected_values);
-  Result<const DataType*> type_of(const ArrayRef& a);
+  Result<const ValueType*> type_of(const ArrayRef& a);
   // The values of an ascii array, each token read by `parse` (parse_double or
   // parse_int64); `what` names a value in the error for a token it rejects.
   template <typename T>
   Status ascii_values(const ArrayRef& a, std::optional<uint64_t> expected,
                       bool (*parse)(std::string_view, T&), const char* what,
                       std::vector<T>& values);
+  // The values of array `a` of type `t`: an ascii array's by ascii_values, a
+  // binary array's each converted by `from_bytes` (value_as_double or
+  // value_as_int; false: the value is too large for an index).
+  template <typename T>
+  Result<std::vector<T>> values(const ArrayRef& a, const ValueType& t,
+                                std::optional<uint64_t> expected,
+                                bool (*parse)(std::string_view, T&), const char* what,
+                                bool (*from_bytes)(const uint8_t*, const ValueType&, T&));
 
   std::span<const uint8_t> bytes_;
   std::string_view text_;
@@ -435,8 +431,8 @@ Status Reader::scan() {
 
 // ---- phase 2: decode arrays -----------------------------------------------------
 
-Result<const DataType*> Reader::type_of(const ArrayRef& a) {
-  const DataType* t = find_type(a.type);
+Result<const ValueType*> Reader::type_of(const ArrayRef& a) {
+  const ValueType* t = find_value_type(kTypes, a.type);
   if (!t) {
     return Status::Error("array " + a.where + " has data type " + quoted(a.type) +
                          ", which is not a VTK XML numeric type (Int8, UInt8, Int16, UInt16, "
@@ -491,7 +487,7 @@ class ByteSource {
   std::string where_;
 };
 
-Result<std::vector<uint8_t>> Reader::binary_bytes(const ArrayRef& a, const DataType& t,
+Result<std::vector<uint8_t>> Reader::binary_bytes(const ArrayRef& a, const ValueType& t,
                                                   std::optional<uint64_t> expected_values) {
   std::optional<ByteSource> src;
   if (a.format == ArrayFormat::kBinary) {
@@ -648,47 +644,48 @@ Status Reader::ascii_values(const ArrayRef& a, std::optional<uint64_t> expected,
   return Status::Ok();
 }
 
-Result<std::vector<double>> Reader::doubles(const ArrayRef& a, std::optional<uint64_t> expected) {
-  Result<const DataType*> t = type_of(a);
-  if (!t.ok()) return t.status();
-  std::vector<double> v;
+template <typename T>
+Result<std::vector<T>> Reader::values(const ArrayRef& a, const ValueType& t,
+                                      std::optional<uint64_t> expected,
+                                      bool (*parse)(std::string_view, T&), const char* what,
+                                      bool (*from_bytes)(const uint8_t*, const ValueType&, T&)) {
+  std::vector<T> v;
   if (a.format == ArrayFormat::kAscii) {
-    Status st = ascii_values(a, expected, parse_double, "a number", v);
+    Status st = ascii_values(a, expected, parse, what, v);
     if (!st.ok()) return st;
     return v;
   }
-  Result<std::vector<uint8_t>> b = binary_bytes(a, *t.value(), expected);
+  Result<std::vector<uint8_t>> b = binary_bytes(a, t, expected);
   if (!b.ok()) return b.status();
-  const size_t size = t.value()->size, count = b.value().size() / size;
-  v.resize(count);
-  for (size_t i = 0; i < count; ++i) v[i] = value_as_double(&b.value()[i * size], *t.value());
-  return v;
-}
-
-Result<std::vector<int64_t>> Reader::ints(const ArrayRef& a, std::optional<uint64_t> expected) {
-  Result<const DataType*> t = type_of(a);
-  if (!t.ok()) return t.status();
-  if (t.value()->kind == Kind::kFloat) {
-    return Status::Error("array " + a.where + " has type " + a.type +
-                         ", but it must hold integers");
-  }
-  std::vector<int64_t> v;
-  if (a.format == ArrayFormat::kAscii) {
-    Status st = ascii_values(a, expected, parse_int64, "an integer", v);
-    if (!st.ok()) return st;
-    return v;
-  }
-  Result<std::vector<uint8_t>> b = binary_bytes(a, *t.value(), expected);
-  if (!b.ok()) return b.status();
-  const size_t size = t.value()->size, count = b.value().size() / size;
+  const size_t size = t.size, count = b.value().size() / size;
   v.resize(count);
   for (size_t i = 0; i < count; ++i) {
-    if (!value_as_int(&b.value()[i * size], *t.value(), v[i])) {
+    if (!from_bytes(&b.value()[i * size], t, v[i])) {
       return Status::Error("array " + a.where + ": value " + num(i + 1) +
                            " is too large for an index");
     }
   }
   return v;
+}
+
+Result<std::vector<double>> Reader::doubles(const ArrayRef& a, std::optional<uint64_t> expected) {
+  Result<const ValueType*> t = type_of(a);
+  if (!t.ok()) return t.status();
+  return values<double>(a, *t.value(), expected, parse_double, "a number",
+                        [](const uint8_t* p, const ValueType& type, double& out) {
+                          out = value_as_double(p, type);
+                          return true;
+                        });
+}
+
+Result<std::vector<int64_t>> Reader::ints(const ArrayRef& a, std::optional<uint64_t> expected) {
+  Result<const ValueType*> t = type_of(a);
+  if (!t.ok()) return t.status();
+  if (t.value()->kind == ValueKind::kFloat) {
+    return Status::Error("array " + a.where + " has type " + a.type +
+                         ", but it must hold integers");
+  }
+  return values<int64_t>(a, *t.value(), expected, parse_int64, "an integer", value_as_int);
 }
 
 // ---- phase 3: assemble a piece -------------------------------------------------
@@ -733,8 +730,8 @@ Status Reader::read_piece(const PieceRefs& p, size_t index, SurfaceFile& file) {
   for (const ArrayRef& a : p.cell_data) {
     int rank = face_label_rank(a.name);
     if (rank < 0 || rank >= best) continue;
-    const DataType* t = find_type(a.type);
-    if (!t || t->kind == Kind::kFloat || a.components != 1) {
+    const ValueType* t = find_value_type(kTypes, a.type);
+    if (!t || t->kind == ValueKind::kFloat || a.components != 1) {
       file.warnings.push_back("cell array '" + a.name + "' (" + a.type + ", " + num(a.components) +
                               " components) is not used as face labels");
       continue;

@@ -59,14 +59,7 @@ Status check_spec(const LayerSpec& s) {
 // Phase 0: the wall's structure (indices, manifold, orientation, every
 // vertex used).
 Status check_wall(const SurfaceMesh& wall, const TriangleAdjacency& adj) {
-  if (adj.num_nonmanifold_edges > 0)
-    return Status::Error("the wall has " + std::to_string(adj.num_nonmanifold_edges) +
-                         " non-manifold edges");
-  for (size_t h = 0; h < adj.opposite.size(); ++h) {
-    const int32_t o = adj.opposite[h];
-    if (o >= 0 && half_edge_from(wall, int32_t(h)) != half_edge_to(wall, o))
-      return Status::Error("the wall is not consistently oriented");
-  }
+  if (Status s = check_manifold_oriented(wall, adj); !s.ok()) return s;
   for (size_t v = 0; v < wall.num_vertices(); ++v)
     if (adj.star_offsets[v] == adj.star_offsets[v + 1])
       return Status::Error("wall vertex " + std::to_string(v) + " " +

@@ -1,5 +1,5 @@
 // Small geometry helpers shared by the boundary-layer phases (Marchandise et
-// al., section 2.2): the vertex 1-rings of a triangle surface.
+// al., section 2.2): the core's vectors and vertex 1-rings, by their short names.
 #pragma once
 
 #include <array>
@@ -16,33 +16,8 @@ namespace vm::layers {
 // The vector helpers are the core's (vm::Vec3, core/geom/vec3.h).
 using vm::Vec3;
 
-/// Vertex 1-rings, CSR: the neighbors of v are ids[offsets[v] .. offsets[v + 1]).
-struct VertexRings {
-  std::vector<int32_t> offsets;  ///< num_vertices + 1
-  std::vector<int32_t> ids;
-};
-
-/// The distinct neighbors of every vertex (through the triangles of its star).
-inline VertexRings vertex_rings(const SurfaceMesh& m, const TriangleAdjacency& adj) {
-  const size_t nv = m.num_vertices();
-  VertexRings r;
-  r.offsets.assign(nv + 1, 0);
-  std::vector<int32_t> scratch;
-  for (size_t v = 0; v < nv; ++v) {
-    scratch.clear();
-    for (int32_t i = adj.star_offsets[v]; i < adj.star_offsets[v + 1]; ++i) {
-      const int32_t* t = &m.triangles[3 * size_t(adj.star[size_t(i)])];
-      for (int k = 0; k < 3; ++k)
-        if (size_t(t[k]) != v) {
-          bool seen = false;
-          for (int32_t u : scratch) seen = seen || u == t[k];
-          if (!seen) scratch.push_back(t[k]);
-        }
-    }
-    r.ids.insert(r.ids.end(), scratch.begin(), scratch.end());
-    r.offsets[v + 1] = int32_t(r.ids.size());
-  }
-  return r;
-}
+// The vertex 1-rings are the mesh module's (vm::VertexRings, core/mesh/adjacency.h).
+using vm::vertex_rings;
+using vm::VertexRings;
 
 }  // namespace vm::layers

@@ -1,6 +1,7 @@
 #include "core/mesh/adjacency.h"
 
 #include <algorithm>
+#include <string>
 
 #include "core/util/parallel.h"
 
@@ -109,6 +110,40 @@ void remap_after_flips(TriangleAdjacency& adj, const std::vector<uint8_t>& flipp
     if (flipped[t]) std::swap(opposite[3 * t], opposite[3 * t + 2]);
   for (int32_t& o : opposite)
     if (o >= 0) o = map(o);
+}
+
+VertexRings vertex_rings(const SurfaceMesh& m, const TriangleAdjacency& adj) {
+  const size_t nv = m.num_vertices();
+  VertexRings r;
+  r.offsets.assign(nv + 1, 0);
+  std::vector<int32_t> scratch;
+  for (size_t v = 0; v < nv; ++v) {
+    scratch.clear();
+    for (int32_t i = adj.star_offsets[v]; i < adj.star_offsets[v + 1]; ++i) {
+      const int32_t* t = &m.triangles[3 * size_t(adj.star[size_t(i)])];
+      for (int k = 0; k < 3; ++k)
+        if (size_t(t[k]) != v) {
+          bool seen = false;
+          for (int32_t u : scratch) seen = seen || u == t[k];
+          if (!seen) scratch.push_back(t[k]);
+        }
+    }
+    r.ids.insert(r.ids.end(), scratch.begin(), scratch.end());
+    r.offsets[v + 1] = int32_t(r.ids.size());
+  }
+  return r;
+}
+
+Status check_manifold_oriented(const SurfaceMesh& wall, const TriangleAdjacency& adj) {
+  if (adj.num_nonmanifold_edges > 0)
+    return Status::Error("the wall has " + std::to_string(adj.num_nonmanifold_edges) +
+                         " non-manifold edges");
+  for (size_t h = 0; h < adj.opposite.size(); ++h) {
+    const int32_t o = adj.opposite[h];
+    if (o >= 0 && half_edge_from(wall, int32_t(h)) != half_edge_to(wall, o))
+      return Status::Error("the wall is not consistently oriented");
+  }
+  return Status::Ok();
 }
 
 }  // namespace vm

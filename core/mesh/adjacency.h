@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/mesh/surface_mesh.h"
+#include "core/util/result.h"
 
 namespace vm {
 
@@ -36,6 +37,21 @@ TriangleAdjacency build_adjacency(const SurfaceMesh& mesh);
 /// Updates `adj` after the triangles t with flipped[t] != 0 were reversed
 /// by swapping their corners 1 and 2 (stars are unchanged).
 void remap_after_flips(TriangleAdjacency& adj, const std::vector<uint8_t>& flipped);
+
+/// Vertex 1-rings, CSR: the neighbors of v are ids[offsets[v] .. offsets[v + 1]).
+struct VertexRings {
+  std::vector<int32_t> offsets;  ///< num_vertices + 1
+  std::vector<int32_t> ids;
+};
+
+/// The distinct neighbors of every vertex (through the triangles of its
+/// star), each ring in the order its star first meets them.
+VertexRings vertex_rings(const SurfaceMesh& m, const TriangleAdjacency& adj);
+
+/// The structure the layers and the caps need of a wall: an error "the wall
+/// has N non-manifold edges" or "the wall is not consistently oriented" (two
+/// triangles run their shared edge the same way), else Ok.
+Status check_manifold_oriented(const SurfaceMesh& wall, const TriangleAdjacency& adj);
 
 /// Vertex a of half-edge h and vertex b (its end).
 inline int32_t half_edge_from(const SurfaceMesh& m, int32_t h) { return m.triangles[h]; }

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "core/mesh/triangle_normals.h"
+
 namespace vm {
 
 double enclosed_volume(const SurfaceMesh& mesh) {
@@ -28,13 +30,7 @@ double enclosed_volume(const SurfaceMesh& mesh) {
 double surface_area(const SurfaceMesh& mesh) {
   double sum = 0;
   for (size_t t = 0; t < mesh.num_triangles(); ++t) {
-    const double* a = &mesh.points[3 * size_t(mesh.triangles[3 * t])];
-    const double* b = &mesh.points[3 * size_t(mesh.triangles[3 * t + 1])];
-    const double* c = &mesh.points[3 * size_t(mesh.triangles[3 * t + 2])];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                         u[0] * v[1] - u[1] * v[0]};
+    const Vec3 n = triangle_cross(mesh, t);
     sum += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   }
   return sum;

@@ -13,14 +13,7 @@ TriangleNormals triangle_normals(const SurfaceMesh& mesh) {
   out.total_area = parallel_sum<double>(nt, size_t(1) << 16, [&](size_t begin, size_t end) {
     double sum = 0;
     for (size_t t = begin; t < end; ++t) {
-      const double* a = &mesh.points[3 * size_t(mesh.triangles[3 * t])];
-      const double* b = &mesh.points[3 * size_t(mesh.triangles[3 * t + 1])];
-      const double* c = &mesh.points[3 * size_t(mesh.triangles[3 * t + 2])];
-      double u[3], w[3];
-      Vec3 n;
-      v3::sub(b, a, u);
-      v3::sub(c, a, w);
-      v3::cross(u, w, n.data());
+      Vec3 n = triangle_cross(mesh, t);
       const double len = v3::norm(n.data());
       if (len > 0)
         for (double& x : n) x /= len;

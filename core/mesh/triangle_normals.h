@@ -19,6 +19,14 @@ struct TriangleNormals {
   double total_area = 0;
 };
 
+/// (b - a) x (c - a) of triangle t (corners a, b, c): its normal, twice its
+/// area long.
+inline Vec3 triangle_cross(const SurfaceMesh& mesh, size_t t) {
+  return triangle_cross(&mesh.points[3 * size_t(mesh.triangles[3 * t])],
+                        &mesh.points[3 * size_t(mesh.triangles[3 * t + 1])],
+                        &mesh.points[3 * size_t(mesh.triangles[3 * t + 2])]);
+}
+
 /// The normals and areas of every triangle of `mesh` (on the threads).
 TriangleNormals triangle_normals(const SurfaceMesh& mesh);
 

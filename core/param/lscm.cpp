@@ -58,6 +58,33 @@ bool shape_gradients(const SurfaceMesh& m, size_t t, Vec3 grad[3], double& area)
   return true;
 }
 
+// The gradient in triangle t (g: its shape_gradients) of the P1 function
+// with value f(v) at vertex v.
+template <class F>
+Vec3 p1_gradient(const SurfaceMesh& m, size_t t, const Vec3 g[3], F f) {
+  Vec3 grad = {0, 0, 0};
+  for (int i = 0; i < 3; ++i) {
+    const double fi = f(size_t(m.triangles[3 * t + i]));
+    grad = {grad[0] + fi * g[i][0], grad[1] + fi * g[i][1], grad[2] + fi * g[i][2]};
+  }
+  return grad;
+}
+
+// The integral over the surface of an energy density constant in each
+// triangle: the sum of density(t, g) times the area over the triangles of
+// nonzero area (g: their shape_gradients).
+template <class Density>
+double integrate(const SurfaceMesh& m, Density density) {
+  double e = 0;
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    Vec3 g[3];
+    double area;
+    if (!shape_gradients(m, t, g, area)) continue;
+    e += density(t, g) * area;
+  }
+  return e;
+}
+
 // Twice the signed area of the image of triangle t under uv.
 double twice_uv_area(const SurfaceMesh& m, const std::vector<double>& uv, size_t t) {
   const double* a = &uv[2 * size_t(m.triangles[3 * t])];
@@ -147,19 +174,10 @@ Result<Parametrization> lscm(const SurfaceMesh& m) {
 }
 
 double dirichlet_energy(const SurfaceMesh& m, const std::vector<double>& f) {
-  double e = 0;
-  for (size_t t = 0; t < m.num_triangles(); ++t) {
-    Vec3 g[3];
-    double area;
-    if (!shape_gradients(m, t, g, area)) continue;
-    Vec3 grad = {0, 0, 0};
-    for (int i = 0; i < 3; ++i) {
-      double fi = f[size_t(m.triangles[3 * t + i])];
-      grad = {grad[0] + fi * g[i][0], grad[1] + fi * g[i][1], grad[2] + fi * g[i][2]};
-    }
-    e += 0.5 * dot(grad, grad) * area;
-  }
-  return e;
+  return integrate(m, [&](size_t t, const Vec3 g[3]) {
+    const Vec3 grad = p1_gradient(m, t, g, [&](size_t v) { return f[v]; });
+    return 0.5 * dot(grad, grad);
+  });
 }
 
 double signed_area(const SurfaceMesh& m, const std::vector<double>& uv) {
@@ -175,28 +193,17 @@ size_t count_flipped(const SurfaceMesh& m, const std::vector<double>& uv) {
 }
 
 double conformal_energy(const SurfaceMesh& m, const std::vector<double>& uv) {
-  double e = 0;
-  for (size_t t = 0; t < m.num_triangles(); ++t) {
-    Vec3 g[3];
-    double area;
-    if (!shape_gradients(m, t, g, area)) continue;
+  return integrate(m, [&](size_t t, const Vec3 g[3]) {
     Vec3 n = cross(sub(point(m, m.triangles[3 * t + 1]), point(m, m.triangles[3 * t])),
                    sub(point(m, m.triangles[3 * t + 2]), point(m, m.triangles[3 * t])));
     double nn = norm(n);
     n = {n[0] / nn, n[1] / nn, n[2] / nn};
-    Vec3 gu = {0, 0, 0}, gv = {0, 0, 0};
-    for (int i = 0; i < 3; ++i) {
-      size_t vi = size_t(m.triangles[3 * t + i]);
-      gu = {gu[0] + uv[2 * vi] * g[i][0], gu[1] + uv[2 * vi] * g[i][1],
-            gu[2] + uv[2 * vi] * g[i][2]};
-      gv = {gv[0] + uv[2 * vi + 1] * g[i][0], gv[1] + uv[2 * vi + 1] * g[i][1],
-            gv[2] + uv[2 * vi + 1] * g[i][2]};
-    }
+    const Vec3 gu = p1_gradient(m, t, g, [&](size_t v) { return uv[2 * v]; });
+    const Vec3 gv = p1_gradient(m, t, g, [&](size_t v) { return uv[2 * v + 1]; });
     Vec3 r = cross(n, gu);  // grad u rotated by +90 degrees in the plane
     Vec3 d = {r[0] - gv[0], r[1] - gv[1], r[2] - gv[2]};
-    e += 0.5 * dot(d, d) * area;
-  }
-  return e;
+    return 0.5 * dot(d, d);
+  });
 }
 
 }  // namespace vm

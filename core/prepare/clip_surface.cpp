@@ -29,27 +29,17 @@ struct State {
   std::vector<int32_t> input_vertex;
 };
 
-/// Twice the area vector of triangle (a, b, c).
-Vec3 area_vector(const double* a, const double* b, const double* c) {
-  double u[3], w[3];
-  Vec3 n;
-  v3::sub(b, a, u);
-  v3::sub(c, a, w);
-  v3::cross(u, w, n.data());
-  return n;
-}
-
 double triangle_area(const SurfaceMesh& m, size_t t) {
   const int32_t* c = &m.triangles[3 * t];
-  const Vec3 n = area_vector(&m.points[3 * size_t(c[0])], &m.points[3 * size_t(c[1])],
-                             &m.points[3 * size_t(c[2])]);
+  const Vec3 n = triangle_cross(&m.points[3 * size_t(c[0])], &m.points[3 * size_t(c[1])],
+                                &m.points[3 * size_t(c[2])]);
   return 0.5 * v3::norm(n.data());
 }
 
 /// Shape quality of a triangle for choosing a quad's diagonal: area over the
 /// sum of squared edge lengths (0 when flat).
 double triangle_shape(const double* a, const double* b, const double* c) {
-  const Vec3 n = area_vector(a, b, c);
+  const Vec3 n = triangle_cross(a, b, c);
   double e[3], s = 0;
   v3::sub(b, a, e), s += v3::dot(e, e);
   v3::sub(c, b, e), s += v3::dot(e, e);
@@ -160,8 +150,8 @@ bool PlaneCut::snap_keeps_triangles(int32_t v) const {
       p[k] = &m.points[3 * size_t(c[k])];
       q[k] = c[k] == v ? moved.data() : p[k];
     }
-    const Vec3 before = area_vector(p[0], p[1], p[2]);
-    const Vec3 after = area_vector(q[0], q[1], q[2]);
+    const Vec3 before = triangle_cross(p[0], p[1], p[2]);
+    const Vec3 after = triangle_cross(q[0], q[1], q[2]);
     if (v3::dot(before.data(), after.data()) <= 0.25 * v3::dot(before.data(), before.data()))
       return false;
   }
@@ -385,9 +375,9 @@ Status PlaneCut::run(ClipCut& report) {
   // crossed triangles lose what the pieces do not keep.
   double kept_area = 0;
   for (size_t i = 0; i < new_triangles.size(); i += 3) {
-    const Vec3 a = area_vector(&m.points[3 * size_t(new_triangles[i])],
-                               &m.points[3 * size_t(new_triangles[i + 1])],
-                               &m.points[3 * size_t(new_triangles[i + 2])]);
+    const Vec3 a = triangle_cross(&m.points[3 * size_t(new_triangles[i])],
+                                  &m.points[3 * size_t(new_triangles[i + 1])],
+                                  &m.points[3 * size_t(new_triangles[i + 2])]);
     if (!(v3::norm(a.data()) > 0))
       return Status::Internal("a zero-area triangle in the cut at " + point_text(plane_.point));
     kept_area += 0.5 * v3::norm(a.data());

@@ -250,29 +250,12 @@ int staircase_passes(const SurfaceMesh& mesh, double voxel) {
 
 namespace {
 
-/// Vertex neighbors (CSR), each once.
-struct Neighbors {
-  std::vector<int32_t> offsets, ids;
-};
-
-Neighbors vertex_neighbors(const SurfaceMesh& mesh, const TriangleAdjacency& adj) {
-  Neighbors n;
-  const size_t nv = mesh.num_vertices();
-  n.offsets.assign(nv + 1, 0);
-  std::vector<int32_t> scratch;
-  for (size_t v = 0; v < nv; ++v) {
-    scratch.clear();
-    for (int32_t i = adj.star_offsets[v]; i < adj.star_offsets[v + 1]; ++i) {
-      const int32_t* c = &mesh.triangles[3 * size_t(adj.star[size_t(i)])];
-      for (int k = 0; k < 3; ++k)
-        if (c[k] != int32_t(v)) scratch.push_back(c[k]);
-    }
-    std::sort(scratch.begin(), scratch.end());
-    scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
-    n.ids.insert(n.ids.end(), scratch.begin(), scratch.end());
-    n.offsets[v + 1] = int32_t(n.ids.size());
-  }
-  return n;
+/// Vertex neighbors (CSR), each once, each ring sorted by index.
+VertexRings sorted_vertex_rings(const SurfaceMesh& mesh, const TriangleAdjacency& adj) {
+  VertexRings r = vertex_rings(mesh, adj);
+  for (size_t v = 0; v + 1 < r.offsets.size(); ++v)
+    std::sort(r.ids.begin() + r.offsets[v], r.ids.begin() + r.offsets[v + 1]);
+  return r;
 }
 
 /// How a vertex may move: freely, along its loop (an opening's rim or a
@@ -497,7 +480,7 @@ SmoothReport smooth_surface(SurfaceMesh& mesh, const TriangleAdjacency& adj,
   const Vec3& radii = options.max_displacement;
   if (!(radii[0] > 0 && radii[1] > 0 && radii[2] > 0) || options.passes <= 0) return report;
   const std::vector<double> input = mesh.points;
-  const Neighbors nb = vertex_neighbors(mesh, adj);
+  const VertexRings nb = sorted_vertex_rings(mesh, adj);
   const double tolerance = options.planar_tolerance * std::min({radii[0], radii[1], radii[2]});
 
   Constraints c(nv);

@@ -247,14 +247,8 @@ Result<CappedSurface> cap_openings(const SurfaceMesh& wall, const std::vector<do
 
   // Phase 1: openings; the wall must be manifold and consistently oriented.
   const TriangleAdjacency adj = build_adjacency(wall);
-  if (adj.num_nonmanifold_edges > 0)
-    return R::Error("caps: the wall has " + std::to_string(adj.num_nonmanifold_edges) +
-                    " non-manifold edges");
-  for (size_t h = 0; h < adj.opposite.size(); ++h) {
-    const int32_t o = adj.opposite[h];
-    if (o >= 0 && half_edge_from(wall, int32_t(h)) != half_edge_to(wall, o))
-      return R::Error("caps: the wall is not consistently oriented");
-  }
+  if (Status s = check_manifold_oriented(wall, adj); !s.ok())
+    return R::Error("caps: " + s.message());
   CappedSurface out;
   out.mesh = wall;
   out.wall_vertices = nv;

@@ -65,6 +65,8 @@ constexpr double kMaxSplitOffset = 0.2;
 
 class Optimizer {
  public:
+  enum class SwapGoal { kQuality, kValence };
+
   Optimizer(SurfaceMesh& m, std::vector<int32_t>& home, std::vector<uint8_t>& fixed,
             std::vector<double>& size, const SurfaceMesh& input, const TriangleAdjacency& input_adj,
             const SurfaceOptimizeOptions& o, const PinSlack* pins, std::vector<int32_t>* pin_of)
@@ -164,25 +166,16 @@ class Optimizer {
     return renumber;
   }
 
-  size_t swap_pass() {
+  /// One pass of edge swaps toward `goal`, at most one a triangle: kQuality
+  /// swaps that improve the worse triangle; kValence swaps that bring the
+  /// valences of their four vertices closer to the regular ones (6 inside, 4
+  /// on an opening), when neither new triangle is poor (the smoothing that
+  /// follows restores the shapes).
+  size_t swap_pass(SwapGoal goal) {
     size_t swaps = 0;
     for (int32_t t = 0; t < int32_t(m_.num_triangles()); ++t)
       for (int k = 0; k < 3 && active(t); ++k)
-        if (try_swap(t, k, SwapGoal::kQuality)) {
-          ++swaps;
-          break;
-        }
-    return swaps;
-  }
-
-  /// Swaps edges that bring the valences of their four vertices closer to
-  /// the regular ones (6 inside, 4 on an opening), when neither new triangle
-  /// is poor; the smoothing that follows restores the shapes.
-  size_t valence_pass() {
-    size_t swaps = 0;
-    for (int32_t t = 0; t < int32_t(m_.num_triangles()); ++t)
-      for (int k = 0; k < 3 && active(t); ++k)
-        if (try_swap(t, k, SwapGoal::kValence)) {
+        if (try_swap(t, k, goal)) {
           ++swaps;
           break;
         }
@@ -228,8 +221,6 @@ class Optimizer {
   static void erase(std::vector<int32_t>& list, int32_t x) {
     list.erase(std::find(list.begin(), list.end(), x));
   }
-
-  enum class SwapGoal { kQuality, kValence };
 
   /// An edge between two vertices on openings or creases may be a crease
   /// (or an opening edge): it stays.
@@ -614,8 +605,8 @@ SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, WallVertices& wall,
   for (int pass = 0; pass < options.passes; ++pass) {
     size_t splits = pass < options.valence_passes ? opt.split_pass() : 0;
     size_t collapses = pass < options.valence_passes ? opt.collapse_pass() : 0;
-    size_t swaps = pass < options.valence_passes ? opt.valence_pass() : 0;
-    swaps += opt.swap_pass();
+    size_t swaps = pass < options.valence_passes ? opt.swap_pass(Optimizer::SwapGoal::kValence) : 0;
+    swaps += opt.swap_pass(Optimizer::SwapGoal::kQuality);
     size_t moves = opt.smooth_pass();
     stats.collapses += collapses;
     stats.splits += splits;

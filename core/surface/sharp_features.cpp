@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/mesh/triangle_normals.h"
 #include "core/util/portable_math.h"
 
 namespace vm {
@@ -20,12 +21,7 @@ std::vector<uint8_t> sharp_feature_edges(const SurfaceMesh& m, const TriangleAdj
   // Phase 1: candidates, by the angle between the triangles' unit normals.
   std::vector<double> normal(3 * nt, 0.0);
   for (size_t t = 0; t < nt; ++t) {
-    const double* a = &m.points[3 * size_t(m.triangles[3 * t])];
-    const double* b = &m.points[3 * size_t(m.triangles[3 * t + 1])];
-    const double* c = &m.points[3 * size_t(m.triangles[3 * t + 2])];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    const Vec3 n = triangle_cross(m, t);
     const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (l > 0)
       for (int k = 0; k < 3; ++k) normal[3 * t + size_t(k)] = n[k] / l;

@@ -820,14 +820,22 @@ Result<std::vector<int32_t>> Delaunay3D::remove_edge(int32_t t, int32_t a, int32
   return res;
 }
 
-Result<std::array<int32_t, 2>> Delaunay3D::flip32(int32_t t, int32_t a, int32_t b) {
-  using R = Result<std::array<int32_t, 2>>;
+Status Delaunay3D::flip_ring(const char* name, int32_t t, int32_t a, int32_t b, size_t n,
+                             std::vector<int32_t>& ring_tets, std::vector<int32_t>& ring) const {
   if (t < 0 || size_t(t) >= tet_capacity() || !is_live(t) || slot_of(tet(t), a) < 0 ||
       slot_of(tet(t), b) < 0 || a == b)
-    return R::Error("flip32: (a, b) is not an edge of t");
-  std::vector<int32_t> ring_tets, ring;
+    return Status::Error(std::string(name) + ": (a, b) is not an edge of t");
   edge_ring(t, a, b, ring_tets, ring);
-  if (ring.size() != 3) return R::Error("flip32: the edge is not in exactly 3 tetrahedra");
+  if (ring.size() != n)
+    return Status::Error(std::string(name) + ": the edge is not in exactly " + std::to_string(n) +
+                         " tetrahedra");
+  return Status::Ok();
+}
+
+Result<std::array<int32_t, 2>> Delaunay3D::flip32(int32_t t, int32_t a, int32_t b) {
+  using R = Result<std::array<int32_t, 2>>;
+  std::vector<int32_t> ring_tets, ring;
+  if (Status st = flip_ring("flip32", t, a, b, 3, ring_tets, ring); !st.ok()) return st;
   auto res = remove_edge(t, a, b);
   if (!res.ok()) return R::Error(res.message());
   return std::array<int32_t, 2>{res.value()[0], res.value()[1]};
@@ -835,12 +843,8 @@ Result<std::array<int32_t, 2>> Delaunay3D::flip32(int32_t t, int32_t a, int32_t 
 
 Result<std::array<int32_t, 4>> Delaunay3D::flip44(int32_t t, int32_t a, int32_t b, int32_t c) {
   using R = Result<std::array<int32_t, 4>>;
-  if (t < 0 || size_t(t) >= tet_capacity() || !is_live(t) || slot_of(tet(t), a) < 0 ||
-      slot_of(tet(t), b) < 0 || a == b)
-    return R::Error("flip44: (a, b) is not an edge of t");
   std::vector<int32_t> ring_tets, ring;
-  edge_ring(t, a, b, ring_tets, ring);
-  if (ring.size() != 4) return R::Error("flip44: the edge is not in exactly 4 tetrahedra");
+  if (Status st = flip_ring("flip44", t, a, b, 4, ring_tets, ring); !st.ok()) return st;
   auto it = std::find(ring.begin(), ring.end(), c);
   if (it == ring.end() || c == kInfinite)
     return R::Error("flip44: c is not a finite vertex on the ring of the edge");

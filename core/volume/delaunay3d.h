@@ -223,6 +223,12 @@ class Delaunay3D {
  private:
   static constexpr int32_t kFree = TetTopology::kFree;
 
+  /// The ring of edge (a, b) of t (edge_ring) for flip `name`, which needs
+  /// exactly n tetrahedra around it; an error naming the flip when (a, b) is
+  /// not an edge of a live t or the ring has another size.
+  Status flip_ring(const char* name, int32_t t, int32_t a, int32_t b, size_t n,
+                   std::vector<int32_t>& ring_tets, std::vector<int32_t>& ring) const;
+
   InsertResult insert_vertex(int32_t v, int32_t hint, bool respect_constraints,
                              double min_distance = 0);
   /// A finite vertex of the cavity's boundary faces closer than

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "tests/io/reader_checks.h"
 #include "tests/io/surface_writers.h"
 #include "tests/support/test_meshes.h"
 
@@ -11,9 +12,6 @@ namespace vm {
 namespace {
 
 using testing::to_bytes;
-
-#define EXPECT_HAS(haystack, needle) \
-  EXPECT_NE((haystack).find(needle), std::string::npos) << (haystack)
 
 TEST(ObjReader, GroupsBecomeLabelsInOrderOfFirstUse) {
   SurfaceMesh tube = testing::open_tube(6, 2);

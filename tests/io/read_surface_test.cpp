@@ -11,6 +11,7 @@
 #include "core/mesh/enclosed_volume.h"
 #include "core/mesh/weld.h"
 #include "core/pipeline/prepare_surface.h"
+#include "tests/io/reader_checks.h"
 #include "tests/io/surface_writers.h"
 #include "tests/support/icosphere.h"
 #include "tests/support/test_meshes.h"
@@ -20,9 +21,6 @@ namespace {
 
 using testing::Bytes;
 using testing::to_bytes;
-
-#define EXPECT_HAS(haystack, needle) \
-  EXPECT_NE((haystack).find(needle), std::string::npos) << (haystack)
 
 constexpr const char* kNotASurface =
     "not a surface file this tool reads (binary or ASCII STL, VTK XML PolyData .vtp, legacy VTK "

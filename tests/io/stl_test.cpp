@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/mesh/weld.h"
+#include "tests/io/reader_checks.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -16,6 +17,13 @@ namespace {
 
 using testing::ascii_stl;
 using testing::bytes_of;
+
+// The message of read_stl's refusal of `bytes` (a test failure if it reads them).
+std::string error_of(std::span<const uint8_t> bytes, const StlReadOptions& options = {}) {
+  auto r = read_stl(bytes, options);
+  EXPECT_FALSE(r.ok());
+  return r.message();
+}
 
 TEST(Stl, BinaryRoundTripKeepsCoordinates) {
   SurfaceMesh tube = testing::open_tube(12, 5);
@@ -145,18 +153,15 @@ TEST(Stl, EmptyFileIsRefused) {
 TEST(Stl, TruncatedBinaryIsRefusedWithCounts) {
   std::vector<uint8_t> bytes = write_stl_binary(testing::open_tube(8, 2));
   bytes.resize(bytes.size() - 30);
-  auto r = read_stl(bytes);
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("truncated binary STL"), std::string::npos) << r.message();
-  EXPECT_NE(r.message().find("32 triangles"), std::string::npos) << r.message();
+  const std::string error = error_of(bytes);
+  EXPECT_HAS(error, "truncated binary STL");
+  EXPECT_HAS(error, "32 triangles");
 }
 
 TEST(Stl, HeaderCountLargerThanFileIsRefused) {
   std::vector<uint8_t> bytes = write_stl_binary(testing::tetrahedron());
   bytes[80] = 200;  // claims 200 triangles, has 4
-  auto r = read_stl(bytes);
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("announces 200 triangles"), std::string::npos) << r.message();
+  EXPECT_HAS(error_of(bytes), "announces 200 triangles");
 }
 
 TEST(Stl, TrailingBytesAreToleratedWithWarning) {
@@ -171,49 +176,38 @@ TEST(Stl, TrailingBytesAreToleratedWithWarning) {
 }
 
 TEST(Stl, AsciiGarbageIsRefusedWithLine) {
-  auto r = read_stl(bytes_of("hello world, this is not a mesh\n"));
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("not an STL"), std::string::npos) << r.message();
+  EXPECT_HAS(error_of(bytes_of("hello world, this is not a mesh\n")), "not an STL");
 
   std::string bad =
       "solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n"
       " vertex 1 zero 0\n";
-  r = read_stl(bytes_of(bad));
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("line 5"), std::string::npos) << r.message();
-  EXPECT_NE(r.message().find("zero"), std::string::npos) << r.message();
+  const std::string error = error_of(bytes_of(bad));
+  EXPECT_HAS(error, "line 5");
+  EXPECT_HAS(error, "zero");
 }
 
 TEST(Stl, AsciiQuadFacetIsRefused) {
   std::string s =
       "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
       "vertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid q\n";
-  auto r = read_stl(bytes_of(s));
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("exactly 3 vertices"), std::string::npos) << r.message();
+  EXPECT_HAS(error_of(bytes_of(s)), "exactly 3 vertices");
 }
 
 TEST(Stl, AsciiWithoutEndsolidIsRefused) {
   std::string s = ascii_stl(testing::tetrahedron());
   s.resize(s.find("endsolid"));
-  auto r = read_stl(bytes_of(s));
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("missing 'endsolid'"), std::string::npos) << r.message();
+  EXPECT_HAS(error_of(bytes_of(s)), "missing 'endsolid'");
 }
 
 TEST(Stl, NonFiniteCoordinatesAreRefused) {
   SurfaceMesh tet = testing::tetrahedron();
   tet.points[4] = std::numeric_limits<double>::quiet_NaN();  // vertex 1, y
-  auto r = read_stl(write_stl_binary(tet));
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("NaN"), std::string::npos) << r.message();
+  EXPECT_HAS(error_of(write_stl_binary(tet)), "NaN");
 
   std::string s =
       "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex inf 0 0\n"
       "vertex 0 1 0\nendloop\nendfacet\nendsolid x\n";
-  r = read_stl(bytes_of(s));
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("Inf"), std::string::npos) << r.message();
+  EXPECT_HAS(error_of(bytes_of(s)), "Inf");
 }
 
 TEST(Stl, TooManyTrianglesIsRefusedBeforeAllocating) {
@@ -222,24 +216,16 @@ TEST(Stl, TooManyTrianglesIsRefusedBeforeAllocating) {
   std::memcpy(bytes.data() + 80, &huge, 4);
   // 84 bytes that claim 4e9 triangles are a truncated file, refused
   // without allocating for the claim.
-  auto r = read_stl(bytes);
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("truncated binary STL: the header announces 4000000000 triangles"),
-            std::string::npos)
-      << r.message();
+  EXPECT_HAS(error_of(bytes), "truncated binary STL: the header announces 4000000000 triangles");
 
   StlReadOptions small;
   small.max_triangles = 3;
-  r = read_stl(write_stl_binary(testing::tetrahedron()), small);
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("too large"), std::string::npos) << r.message();
+  EXPECT_HAS(error_of(write_stl_binary(testing::tetrahedron()), small), "too large");
 }
 
 TEST(Stl, ShortBinaryIsRefused) {
   std::vector<uint8_t> bytes = {1, 2, 3, 0, 0};
-  auto r = read_stl(bytes);
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("shorter than a binary STL header"), std::string::npos) << r.message();
+  EXPECT_HAS(error_of(bytes), "shorter than a binary STL header");
 }
 
 TEST(Stl, AsciiAsSegmentationToolsWriteIt) {
@@ -264,17 +250,13 @@ TEST(Stl, AsciiAsSegmentationToolsWriteIt) {
   }
   // Lines are counted with lone CRs too.
   std::string bad = "solid t\rfacet normal 0 0 1\router loop\rvertex 0 0 0\rvertex 1 x 0\r";
-  auto r = read_stl(bytes_of(bad));
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("line 5"), std::string::npos) << r.message();
+  EXPECT_HAS(error_of(bytes_of(bad)), "line 5");
 }
 
 TEST(Stl, TextThatIsNotStlSaysSo) {
-  auto r = read_stl(bytes_of(std::string(200, 'a') + "\n"));
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("not an STL file: text that is not an ASCII STL"), std::string::npos)
-      << r.message();
-  EXPECT_EQ(r.message().find("too large"), std::string::npos) << r.message();
+  const std::string error = error_of(bytes_of(std::string(200, 'a') + "\n"));
+  EXPECT_HAS(error, "not an STL file: text that is not an ASCII STL");
+  EXPECT_EQ(error.find("too large"), std::string::npos) << error;
 }
 
 }  // namespace

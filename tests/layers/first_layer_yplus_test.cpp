@@ -5,6 +5,18 @@
 namespace vm {
 namespace {
 
+// Expects the values of a hand computation: the Reynolds number within
+// reynolds_tol, the others to their last digit given.
+void expect_hand_computed(const YPlusHeight& h, double reynolds, double reynolds_tol,
+                          double skin_friction, double wall_shear_stress, double friction_velocity,
+                          double height) {
+  EXPECT_NEAR(h.reynolds, reynolds, reynolds_tol);
+  EXPECT_NEAR(h.skin_friction, skin_friction, 1e-8);
+  EXPECT_NEAR(h.wall_shear_stress, wall_shear_stress, 1e-5);
+  EXPECT_NEAR(h.friction_velocity, friction_velocity, 1e-7);
+  EXPECT_NEAR(h.height, height, 1e-9);
+}
+
 // Hand computation, water in a 10 cm pipe at 1 m/s, y+ 30:
 //   Re = 1000 * 1 * 0.1 / 0.001 = 1e5;  Re^(1/7) = 10^(5/7) = 5.17947
 //   Cf = 0.026 / 5.17947 = 5.01981e-3
@@ -13,11 +25,7 @@ namespace {
 //   y = 30 * (0.001 / 1000) / 0.0500990 = 5.98815e-4 m
 TEST(FirstLayerYPlus, MatchesAHandComputation) {
   const YPlusHeight h = first_layer_height_for_yplus({30, 1.0, 1000, 0.001}, 0.1);
-  EXPECT_NEAR(h.reynolds, 1e5, 1e-6);
-  EXPECT_NEAR(h.skin_friction, 5.01981e-3, 1e-8);
-  EXPECT_NEAR(h.wall_shear_stress, 2.50991, 1e-5);
-  EXPECT_NEAR(h.friction_velocity, 0.0500990, 1e-7);
-  EXPECT_NEAR(h.height, 5.98815e-4, 1e-9);
+  expect_hand_computed(h, 1e5, 1e-6, 5.01981e-3, 2.50991, 0.0500990, 5.98815e-4);
 }
 
 // Blood (the defaults) at 0.5 m/s in a 2 cm artery, y+ 1:
@@ -30,11 +38,7 @@ TEST(FirstLayerYPlus, BloodDefaults) {
   t.yplus = 1;
   t.velocity = 0.5;
   const YPlusHeight h = first_layer_height_for_yplus(t, 0.02);
-  EXPECT_NEAR(h.reynolds, 3028.571, 1e-3);
-  EXPECT_NEAR(h.skin_friction, 8.27282e-3, 1e-8);
-  EXPECT_NEAR(h.wall_shear_stress, 1.09615, 1e-5);
-  EXPECT_NEAR(h.friction_velocity, 0.0321575, 1e-7);
-  EXPECT_NEAR(h.height, 1.02679e-4, 1e-9);
+  expect_hand_computed(h, 3028.571, 1e-3, 8.27282e-3, 1.09615, 0.0321575, 1.02679e-4);
 }
 
 TEST(FirstLayerYPlus, HeightIsProportionalToYPlus) {

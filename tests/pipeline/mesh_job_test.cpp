@@ -36,6 +36,16 @@ size_t count(const std::string& s, const std::string& what) {
   return n;
 }
 
+// The names of the job's groups; every group must hold elements.
+std::vector<std::string> group_names(const MeshJobResult& res) {
+  std::vector<std::string> names;
+  for (const OutputGroup& g : res.groups) {
+    names.push_back(g.name);
+    EXPECT_GT(g.elements, 0u) << g.name;
+  }
+  return names;
+}
+
 TEST(PrepareSurface, InsideOutTubeIsReversedAndAnalyzed) {
   SurfaceMesh tube = testing::open_tube(16, 5);
   for (size_t t = 0; t < tube.num_triangles(); ++t) testing::flip_triangle(tube, t);
@@ -175,12 +185,8 @@ TEST(MeshJob, MeshesTheLumenWithNamedPlanarCaps) {
   auto r = run_mesh_job(write_stl_binary(phantom), o);
   ASSERT_TRUE(r.ok()) << r.message();
   const MeshJobResult& res = r.value();
-  std::vector<std::string> names;
-  for (const OutputGroup& g : res.groups) {
-    names.push_back(g.name);
-    EXPECT_GT(g.elements, 0u) << g.name;
-  }
-  EXPECT_EQ(names, (std::vector<std::string>{"wall", "inlet", "outlet_1", "outlet_2", "lumen"}));
+  EXPECT_EQ(group_names(res),
+            (std::vector<std::string>{"wall", "inlet", "outlet_1", "outlet_2", "lumen"}));
   auto check = check_volume_mesh(res.volume);
   ASSERT_TRUE(check.ok()) << check.message();
   // The lumen (layer + core) fills the wall closed by planar caps.
@@ -236,14 +242,10 @@ TEST(MeshJob, GrowsTheViscousLayerAndTheVesselWall) {
   auto r = run_mesh_job(write_stl_binary(phantom), o);
   ASSERT_TRUE(r.ok()) << r.message();
   const MeshJobResult& res = r.value();
-  std::vector<std::string> names;
-  for (const OutputGroup& g : res.groups) {
-    names.push_back(g.name);
-    EXPECT_GT(g.elements, 0u) << g.name;
-  }
-  EXPECT_EQ(names, (std::vector<std::string>{"wall", "inlet", "outlet_1", "outlet_2", "outer_wall",
-                                             "wall_inlet", "wall_outlet_1", "wall_outlet_2",
-                                             "lumen", "boundary_layer", "vessel_wall"}));
+  EXPECT_EQ(group_names(res),
+            (std::vector<std::string>{"wall", "inlet", "outlet_1", "outlet_2", "outer_wall",
+                                      "wall_inlet", "wall_outlet_1", "wall_outlet_2", "lumen",
+                                      "boundary_layer", "vessel_wall"}));
   // Layer tets: 3 per prism, 4 viscous and 2 wall layers over every wall
   // triangle (the front may have a few more triangles from Steiner points).
   const size_t nt = res.output_surface.num_triangles();

@@ -14,6 +14,7 @@
 #include "core/io/stl.h"
 #include "core/pipeline/option_table.h"
 #include "core/pipeline/write_outputs.h"
+#include "tests/support/meshed_tube.h"
 #include "tests/support/test_meshes.h"
 #include "tests/support/vtk_xml_reader.h"
 
@@ -34,9 +35,7 @@ const MeshJobResult& tube_with_all_groups(bool prisms) {
       EXPECT_TRUE(set_option_text(o, id, text).ok()) << id;
     o.tag_layer = true;
     o.keep_prisms = keep_prisms;
-    auto r = run_mesh_job(write_stl_binary(testing::open_tube(24, 8, 1.0, 4.0)), o);
-    EXPECT_TRUE(r.ok()) << r.message();
-    return r.ok() ? std::move(r).value() : MeshJobResult{};
+    return testing::meshed_tube(o);
   };
   static const MeshJobResult tets = make(false), prisms_kept = make(true);
   return prisms ? prisms_kept : tets;
@@ -173,33 +172,31 @@ TEST(PhysicalTags, AreUniqueAcrossDimensionsInMsh41And22) {
   }
 }
 
+// Writes r in `format` (one VTK XML file) and counts its cells by their id
+// in the cell array `array`; each group of dimension `dim` must have as many
+// cells of its tag as it has elements.
+void count_cells_by_id(const MeshJobResult& r, OutputFormat format, const char* array, int dim,
+                       std::map<int, size_t>& count) {
+  auto files = write_outputs(r, format);
+  ASSERT_TRUE(files.ok()) << files.message();
+  auto data = testing::read_vtk_xml(files.value()[0].bytes);
+  ASSERT_TRUE(data.ok()) << data.message();
+  for (int32_t id : data.value().values<int32_t>("CellData", array)) ++count[id];
+  for (const OutputGroup& g : r.groups)
+    if (g.dim == dim) {
+      EXPECT_EQ(count[g.tag], g.elements) << g.name;
+    }
+}
+
 TEST(PhysicalTags, VtkAndMeshCompleteIdsAreTheMshTags) {
   const MeshJobResult& r = tube_with_all_groups(false);
   std::set<int> surface_tags, volume_tags;
   for (const OutputGroup& g : r.groups) (g.dim == 2 ? surface_tags : volume_tags).insert(g.tag);
 
-  auto vtu = write_outputs(r, OutputFormat::kVtu);
-  ASSERT_TRUE(vtu.ok()) << vtu.message();
-  auto grid = testing::read_vtk_xml(vtu.value()[0].bytes);
-  ASSERT_TRUE(grid.ok()) << grid.message();
-  std::map<int, size_t> per_region;
-  for (int32_t id : grid.value().values<int32_t>("CellData", "ModelRegionID")) ++per_region[id];
-  for (const OutputGroup& g : r.groups)
-    if (g.dim == 3) {
-      EXPECT_EQ(per_region[g.tag], g.elements) << g.name;
-    }
+  std::map<int, size_t> per_region, per_face;
+  count_cells_by_id(r, OutputFormat::kVtu, "ModelRegionID", 3, per_region);
   for (const auto& [id, n] : per_region) EXPECT_TRUE(volume_tags.count(id)) << id;
-
-  auto vtp = write_outputs(r, OutputFormat::kVtp);
-  ASSERT_TRUE(vtp.ok()) << vtp.message();
-  auto poly = testing::read_vtk_xml(vtp.value()[0].bytes);
-  ASSERT_TRUE(poly.ok()) << poly.message();
-  std::map<int, size_t> per_face;
-  for (int32_t id : poly.value().values<int32_t>("CellData", "ModelFaceID")) ++per_face[id];
-  for (const OutputGroup& g : r.groups)
-    if (g.dim == 2) {
-      EXPECT_EQ(per_face[g.tag], g.elements) << g.name;
-    }
+  count_cells_by_id(r, OutputFormat::kVtp, "ModelFaceID", 2, per_face);
 
   auto folder = write_outputs(r, OutputFormat::kMeshComplete);
   ASSERT_TRUE(folder.ok()) << folder.message();

@@ -33,6 +33,13 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+/// The default mesh options with one refinement sphere.
+MeshJobOptions refining(const RefineSphere& sphere) {
+  MeshJobOptions o;
+  o.remesh_options.size.spheres = {sphere};
+  return o;
+}
+
 TEST(SizePreview, RadiusIsThePhantomsNearEachVesselEnd) {
   PhantomTruth truth;
   const PreparedSurface s = prepared_bifurcation(truth);
@@ -110,13 +117,9 @@ TEST(SizePreview, IsTheFieldTheRemeshingAsksFor) {
 TEST(SizePreview, RefinementSphereBoundsTheSizeInsideIt) {
   PhantomTruth truth;
   const PreparedSurface s = prepared_bifurcation(truth);
-  MeshJobOptions o;
-  RefineSphere sphere;
-  sphere.center = truth.opening_centers[0];
-  sphere.radius = 1.5;  // the rim is about 1 from the opening's centre
-  sphere.size = 0.03;
-  o.remesh_options.size.spheres = {sphere};
-  auto p = size_preview(s, o);
+  // Radius 1.5: the rim is about 1 from the opening's centre.
+  const RefineSphere sphere{truth.opening_centers[0], 1.5, 0.03};
+  auto p = size_preview(s, refining(sphere));
   ASSERT_TRUE(p.ok()) << p.message();
   auto plain = size_preview(s, MeshJobOptions{});
   ASSERT_TRUE(plain.ok());
@@ -139,13 +142,7 @@ TEST(SizePreview, RefinementSphereBoundsTheSizeInsideIt) {
 TEST(SizePreview, RefusesWhatTheJobRefuses) {
   PhantomTruth truth;
   const PreparedSurface s = prepared_bifurcation(truth);
-  MeshJobOptions o;
-  RefineSphere tiny;
-  tiny.center = truth.opening_centers[0];
-  tiny.radius = 0.5;
-  tiny.size = 1e-9;
-  o.remesh_options.size.spheres = {tiny};
-  auto p = size_preview(s, o);
+  auto p = size_preview(s, refining({truth.opening_centers[0], 0.5, 1e-9}));
   ASSERT_FALSE(p.ok());
   EXPECT_EQ(p.status().kind(), ErrorKind::kBadOption);
   EXPECT_EQ(p.status().option(), "refine");

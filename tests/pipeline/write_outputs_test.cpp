@@ -8,6 +8,7 @@
 
 #include "core/io/stl.h"
 #include "core/pipeline/option_table.h"
+#include "tests/support/meshed_tube.h"
 #include "tests/support/test_meshes.h"
 #include "tests/support/vtk_xml_reader.h"
 
@@ -23,9 +24,7 @@ const MeshJobResult& tube(bool volume) {
     EXPECT_TRUE(set_option_text(o, "layers", "2").ok());
     EXPECT_TRUE(set_option_text(o, "units", "mm").ok());
     o.volume = with_volume;
-    auto r = run_mesh_job(write_stl_binary(testing::open_tube(24, 8, 1.0, 4.0)), o);
-    EXPECT_TRUE(r.ok()) << r.message();
-    return r.ok() ? std::move(r).value() : MeshJobResult{};
+    return testing::meshed_tube(o);
   };
   static const MeshJobResult with = make(true), without = make(false);
   return volume ? with : without;

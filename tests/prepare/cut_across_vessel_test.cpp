@@ -10,6 +10,7 @@
 #include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/phantom/vessel_phantom.h"
+#include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {
@@ -22,15 +23,8 @@ struct Phantom {
 };
 
 Phantom closed_phantom(PhantomKind kind, double noise) {
-  PhantomOptions o;
-  o.kind = kind;
-  o.voxel = 0.1;
-  o.noise = noise;
-  o.open_ends = false;
   Phantom p;
-  auto m = make_vessel_phantom(o, &p.truth);
-  EXPECT_TRUE(m.ok()) << m.message();
-  if (m.ok()) p.mesh = std::move(m).value();
+  p.mesh = testing::phantom(kind, /*open_ends=*/false, 0.1, noise, &p.truth);
   p.adj = build_adjacency(p.mesh);
   return p;
 }

@@ -20,15 +20,8 @@ struct Closed {
 };
 
 Closed closed_phantom(PhantomKind kind, double noise = 0, double voxel = 0.1) {
-  PhantomOptions o;
-  o.kind = kind;
-  o.open_ends = false;
-  o.voxel = voxel;
-  o.noise = noise;
   Closed c;
-  auto m = make_vessel_phantom(o, &c.truth);
-  EXPECT_TRUE(m.ok()) << m.message();
-  if (m.ok()) c.mesh = std::move(m.value());
+  c.mesh = testing::phantom(kind, /*open_ends=*/false, voxel, noise, &c.truth);
   return c;
 }
 

@@ -21,13 +21,14 @@ inline SurfaceMesh phantom(const PhantomOptions& o, PhantomTruth* truth = nullpt
 }
 
 /// The same for the options that most tests vary.
-inline SurfaceMesh phantom(PhantomKind kind, bool open_ends, double voxel, double noise = 0) {
+inline SurfaceMesh phantom(PhantomKind kind, bool open_ends, double voxel, double noise = 0,
+                           PhantomTruth* truth = nullptr) {
   PhantomOptions o;
   o.kind = kind;
   o.open_ends = open_ends;
   o.voxel = voxel;
   o.noise = noise;
-  return phantom(o);
+  return phantom(o, truth);
 }
 
 /// The options of the noisy bifurcation: 3 openings, genus 0, voxel noise

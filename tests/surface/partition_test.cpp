@@ -87,15 +87,31 @@ void check_partition(const SurfaceMesh& in, const std::vector<MappedPatch>& patc
   }
 }
 
+// Partitions `m` for LSCM maps with options `o`, checks the result
+// (check_partition) and returns it; a failure fails the test (and gives no
+// patches).
+std::vector<MappedPatch> checked_partition(const SurfaceMesh& m, const std::string& name,
+                                           PartitionStats* stats = nullptr,
+                                           const PartitionOptions& o = {}) {
+  auto r = partition_for_maps(m, build_adjacency(m), kLscm, o, stats);
+  EXPECT_TRUE(r.ok()) << r.message();
+  if (!r.ok()) return {};
+  check_partition(m, r.value(), o, name);
+  return r.value();
+}
+
+void print_partition(const std::string& name, const SurfaceMesh& m,
+                     const std::vector<MappedPatch>& patches, const PartitionStats& stats) {
+  std::cout << "[ info ] " << name << ": " << m.num_triangles() << " triangles -> "
+            << patches.size() << " patches, " << stats.bisections << " bisections, "
+            << stats.rejected_maps << " rejected maps\n";
+}
+
 TEST(Partition, OpenTubeIsSplitIntoDisks) {
   // Two openings: an annulus, not a disk, so it must be cut.
   const SurfaceMesh tube = testing::open_tube(24, 16, 1.0, 4.0);
-  PartitionOptions o;
   PartitionStats stats;
-  auto r = partition_for_maps(tube, build_adjacency(tube), kLscm, o, &stats);
-  ASSERT_TRUE(r.ok()) << r.message();
-  check_partition(tube, r.value(), o, "open tube");
-  EXPECT_GE(r.value().size(), 2u);
+  EXPECT_GE(checked_partition(tube, "open tube", &stats).size(), 2u);
   EXPECT_GE(stats.bisections, 1u);
 }
 
@@ -105,17 +121,12 @@ TEST(Partition, ClosedPhantomWithoutBoundary) {
   const TopologyReport topo = analyze_topology(m);
   ASSERT_TRUE(topo.closed);
   ASSERT_EQ(topo.genus, 0);
-  PartitionOptions o;
-  PartitionStats stats;
-  auto r = partition_for_maps(m, build_adjacency(m), kLscm, o, &stats);
-  ASSERT_TRUE(r.ok()) << r.message();
   // A closed surface is not a disk (and LSCM needs a boundary): cut.
-  check_partition(m, r.value(), o, "closed tube phantom");
-  EXPECT_GE(r.value().size(), 2u);
+  PartitionStats stats;
+  const auto patches = checked_partition(m, "closed tube phantom", &stats);
+  EXPECT_GE(patches.size(), 2u);
   EXPECT_GE(stats.bisections, 1u);
-  std::cout << "[ info ] closed tube: " << m.num_triangles() << " triangles -> " << r.value().size()
-            << " patches, " << stats.bisections << " bisections, " << stats.rejected_maps
-            << " rejected maps\n";
+  print_partition("closed tube", m, patches, stats);
 }
 
 TEST(Partition, TorusPhantomOfGenusOne) {
@@ -124,25 +135,16 @@ TEST(Partition, TorusPhantomOfGenusOne) {
   const TopologyReport topo = analyze_topology(m);
   ASSERT_EQ(topo.genus, 1);
   ASSERT_TRUE(topo.closed);
-  PartitionOptions o;
   PartitionStats stats;
-  auto r = partition_for_maps(m, build_adjacency(m), kLscm, o, &stats);
-  ASSERT_TRUE(r.ok()) << r.message();
-  check_partition(m, r.value(), o, "torus phantom");
-  EXPECT_GE(r.value().size(), 2u);
-  std::cout << "[ info ] torus: " << m.num_triangles() << " triangles -> " << r.value().size()
-            << " patches, " << stats.bisections << " bisections, " << stats.rejected_maps
-            << " rejected maps\n";
+  const auto patches = checked_partition(m, "torus phantom", &stats);
+  EXPECT_GE(patches.size(), 2u);
+  print_partition("torus", m, patches, stats);
 }
 
 TEST(Partition, NoisyBifurcationPhantom) {
   const SurfaceMesh m = phantom(PhantomKind::kBifurcation, true, 0.15, 0.3);
   ASSERT_GT(m.num_triangles(), 0u);
-  PartitionOptions o;
-  auto r = partition_for_maps(m, build_adjacency(m), kLscm, o);
-  ASSERT_TRUE(r.ok()) << r.message();
-  check_partition(m, r.value(), o, "noisy bifurcation");
-  EXPECT_GE(r.value().size(), 3u);
+  EXPECT_GE(checked_partition(m, "noisy bifurcation").size(), 3u);
 }
 
 TEST(Partition, TighterLimitsGiveMoreSmallerPatches) {
@@ -180,16 +182,13 @@ TEST(Partition, AFlatDiskIsOnePatch) {
   const SurfaceMesh m = testing::disk(8, 6, 0.3, [](double x, double y) {
     return std::array<double, 3>{x, y, 0.0};
   });
-  PartitionOptions o;
   PartitionStats stats;
-  auto r = partition_for_maps(m, build_adjacency(m), kLscm, o, &stats);
-  ASSERT_TRUE(r.ok()) << r.message();
-  check_partition(m, r.value(), o, "flat disk");
-  ASSERT_EQ(r.value().size(), 1u);
+  const auto patches = checked_partition(m, "flat disk", &stats);
+  ASSERT_EQ(patches.size(), 1u);
   EXPECT_EQ(stats.bisections, 0u);
   EXPECT_EQ(stats.rejected_maps, 0u);
   // LSCM of a planar patch is a similarity: no crowding at all.
-  EXPECT_NEAR(r.value()[0].factor_ratio, 1.0, 1e-6);
+  EXPECT_NEAR(patches[0].factor_ratio, 1.0, 1e-6);
 }
 
 TEST(Partition, ErrorsAreReported) {

@@ -201,6 +201,13 @@ void check_remesh(const SurfaceMesh& in, const RemeshedSurface& out, double h,
             << " mean " << q.mean << "\n";
 }
 
+// Remeshes `in` at the uniform size h and checks the result (check_remesh).
+void remesh_uniform_and_check(const SurfaceMesh& in, double h, const std::string& name) {
+  auto r = remesh_surface(in, testing::uniform_remesh(h));
+  ASSERT_TRUE(r.ok()) << r.message();
+  check_remesh(in, r.value(), h, {}, name);
+}
+
 TEST(RemeshSurface, NoisyBifurcationAtUniformSize) {
   const SurfaceMesh in = phantom(PhantomKind::kBifurcation, true, 0.15, 0.3);
   ASSERT_GT(in.num_triangles(), 0u);
@@ -223,20 +230,14 @@ TEST(RemeshSurface, ClosedPhantomAtUniformSize) {
   const SurfaceMesh in = phantom(PhantomKind::kTube, false, 0.15, 0.3);
   ASSERT_GT(in.num_triangles(), 0u);
   ASSERT_TRUE(analyze_topology(in).closed);
-  const double h = 0.2;
-  auto r = remesh_surface(in, testing::uniform_remesh(h));
-  ASSERT_TRUE(r.ok()) << r.message();
-  check_remesh(in, r.value(), h, {}, "closed tube");
+  remesh_uniform_and_check(in, 0.2, "closed tube");
 }
 
 TEST(RemeshSurface, TorusKeepsItsGenus) {
   const SurfaceMesh in = phantom(PhantomKind::kTorus, true, 0.15, 0.3);
   ASSERT_GT(in.num_triangles(), 0u);
   ASSERT_EQ(analyze_topology(in).genus, 1);
-  const double h = 0.2;
-  auto r = remesh_surface(in, testing::uniform_remesh(h));
-  ASSERT_TRUE(r.ok()) << r.message();
-  check_remesh(in, r.value(), h, {}, "torus");
+  remesh_uniform_and_check(in, 0.2, "torus");
 }
 
 TEST(RemeshSurface, OtherMapsAndMeshersKeepTheTopology) {
@@ -327,6 +328,17 @@ TEST(RemeshSurface, CancelledByProgress) {
 
 // ---- optimize_on_surface / project_near ------------------------------------
 
+// The boundary edges of m, each as its sorted pair of vertices, sorted.
+std::vector<std::pair<int32_t, int32_t>> sorted_boundary_edges(const SurfaceMesh& m) {
+  const TriangleAdjacency adj = build_adjacency(m);
+  std::vector<std::pair<int32_t, int32_t>> edges;
+  for (size_t he = 0; he < adj.opposite.size(); ++he)
+    if (adj.opposite[he] == TriangleAdjacency::kBoundary)
+      edges.push_back(std::minmax(half_edge_from(m, int32_t(he)), half_edge_to(m, int32_t(he))));
+  std::sort(edges.begin(), edges.end());
+  return edges;
+}
+
 TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
   // Input: a fine cylinder. Mesh: a coarse one whose vertices are points of
   // the input, jittered along it, so it is poorly shaped.
@@ -375,13 +387,7 @@ TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
   }
   const SurfaceMesh before = m;
   const QualityStats qb = quality_stats(triangle_qualities(m));
-  const TriangleAdjacency adj_before = build_adjacency(m);
-  std::vector<std::pair<int32_t, int32_t>> boundary_before;
-  for (size_t he = 0; he < adj_before.opposite.size(); ++he)
-    if (adj_before.opposite[he] == TriangleAdjacency::kBoundary)
-      boundary_before.push_back(
-          std::minmax(half_edge_from(m, int32_t(he)), half_edge_to(m, int32_t(he))));
-  std::sort(boundary_before.begin(), boundary_before.end());
+  const std::vector<std::pair<int32_t, int32_t>> boundary_before = sorted_boundary_edges(m);
 
   // No sizes (wall.size empty), no collapse: the vertex count stays.
   SurfaceOptimizeStats s = optimize_on_surface(m, wall, in, in_adj);
@@ -400,14 +406,7 @@ TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
     EXPECT_LE(distance_to_triangle(in, size_t(home[v]), pt(m, int32_t(v))), tol) << "vertex " << v;
   }
   // The boundary edges never change; the mesh stays a manifold tube.
-  const TriangleAdjacency adj_after = build_adjacency(m);
-  std::vector<std::pair<int32_t, int32_t>> boundary_after;
-  for (size_t he = 0; he < adj_after.opposite.size(); ++he)
-    if (adj_after.opposite[he] == TriangleAdjacency::kBoundary)
-      boundary_after.push_back(
-          std::minmax(half_edge_from(m, int32_t(he)), half_edge_to(m, int32_t(he))));
-  std::sort(boundary_after.begin(), boundary_after.end());
-  EXPECT_EQ(boundary_after, boundary_before);
+  EXPECT_EQ(sorted_boundary_edges(m), boundary_before);
   const TopologyReport t = analyze_topology(m);
   EXPECT_EQ(t.nonmanifold_edges, 0u);
   EXPECT_EQ(t.openings.size(), 2u);

@@ -39,15 +39,20 @@ Sample random_sample(int n, uint32_t seed) {
   return out;
 }
 
+/// The field of the sample with core size H (0: none) and gradation g.
+auto field_of(const Sample& s, double H, double g) {
+  VolumeSizeOptions o;
+  o.core_size = H;
+  o.gradation = g;
+  return VolumeSizeField::build(s.pts, s.h, o);
+}
+
 TEST(VolumeSizeField, MatchesBruteForceExactly) {
   for (int n : {1, 7, 9, 100, 2000}) {
     const Sample s = random_sample(n, 11u + uint32_t(n));
     for (double H : {0.0, 0.05, 0.3})
       for (double g : {0.0, 0.1, 0.25, 1.0}) {
-        VolumeSizeOptions o;
-        o.core_size = H;
-        o.gradation = g;
-        auto f = VolumeSizeField::build(s.pts, s.h, o);
+        auto f = field_of(s, H, g);
         ASSERT_TRUE(f.ok()) << f.message();
         std::mt19937 rng(5);
         std::uniform_real_distribution<double> u(-2, 2);
@@ -68,9 +73,7 @@ TEST(VolumeSizeField, MatchesBruteForceExactly) {
 
 TEST(VolumeSizeField, ToleranceBoundsTheError) {
   const Sample s = random_sample(3000, 21);
-  VolumeSizeOptions o;
-  o.gradation = 0.1;
-  auto f = VolumeSizeField::build(s.pts, s.h, o);
+  auto f = field_of(s, 0, 0.1);
   ASSERT_TRUE(f.ok());
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> u(-1.2, 1.2);
@@ -86,9 +89,7 @@ TEST(VolumeSizeField, ToleranceBoundsTheError) {
 
 TEST(VolumeSizeField, AtBoundaryPointsAndLipschitz) {
   const Sample s = random_sample(500, 3);
-  VolumeSizeOptions o;
-  o.gradation = 0.2;
-  auto f = VolumeSizeField::build(s.pts, s.h, o);
+  auto f = field_of(s, 0, 0.2);
   ASSERT_TRUE(f.ok());
   for (size_t i = 0; i < s.h.size(); ++i) EXPECT_LE(f.value()(&s.pts[3 * i]), s.h[i]);
   std::mt19937 rng(9);

@@ -22,6 +22,16 @@ function progressCallback(onProgress) {
   return onProgress;
 }
 
+/** The input bytes and progress callback of a job (`name`: analyze, mesh),
+ * or {failed} saying which of them is unusable. */
+function jobInput(name, bytesIn, onProgress) {
+  const bytes = asBytes(bytesIn);
+  if (!bytes) return { failed: fail(`${name}: the input must be a Uint8Array or ArrayBuffer`) };
+  const progress = progressCallback(onProgress);
+  if (progress === null) return { failed: fail(`${name}: onProgress must be a function`) };
+  return { bytes, progress };
+}
+
 async function loadWasmBinary() {
   const url = new URL('../dist/vesselmesh_core.wasm', import.meta.url);
   const response = await fetch(url);
@@ -39,6 +49,12 @@ function failure(raw) {
     ...(raw.option && { option: raw.option }),
     ...(raw.cancelled && { cancelled: true }),
   };
+}
+
+/** A core result as the API returns it: a success as it is, a failure by
+ * failure(). */
+function answer(raw) {
+  return raw.ok ? raw : failure(raw);
 }
 
 /**
@@ -75,10 +91,8 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      *   triangles: Uint32Array, quality: Float32Array}} | {ok: false, error: string}}
      */
     analyze(bytesIn, { onProgress, ...options } = {}) {
-      const bytes = asBytes(bytesIn);
-      if (!bytes) return fail('analyze: the input must be a Uint8Array or ArrayBuffer');
-      const progress = progressCallback(onProgress);
-      if (progress === null) return fail('analyze: onProgress must be a function');
+      const { bytes, progress, failed } = jobInput('analyze', bytesIn, onProgress);
+      if (failed) return failed;
       const raw = core.analyze(bytes, options, progress);
       if (!raw.ok) return failure(raw);
       return withSurface(raw, { analysis: JSON.parse(raw.analysisJson) });
@@ -98,10 +112,8 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      *   | {ok: false, error: string}} (no volume when surfaceOnly)
      */
     mesh(bytesIn, { onProgress, ...options } = {}) {
-      const bytes = asBytes(bytesIn);
-      if (!bytes) return fail('mesh: the input must be a Uint8Array or ArrayBuffer');
-      const progress = progressCallback(onProgress);
-      if (progress === null) return fail('mesh: onProgress must be a function');
+      const { bytes, progress, failed } = jobInput('mesh', bytesIn, onProgress);
+      if (failed) return failed;
       const raw = core.mesh(bytes, options, progress);
       if (!raw.ok) return failure(raw);
       return withSurface(raw, {
@@ -124,8 +136,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      *   | {ok: false, error: string}}
      */
     export(format, options = {}) {
-      const raw = core.exportMesh({ ...options, format });
-      return raw.ok ? raw : failure(raw);
+      return answer(core.exportMesh({ ...options, format }));
     },
 
     /**
@@ -148,8 +159,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * @returns {{ok: true, names: string[]} | {ok: false, error: string}}
      */
     openingNames(options = {}) {
-      const raw = core.openingNames(options);
-      return raw.ok ? raw : failure(raw);
+      return answer(core.openingNames(options));
     },
 
     /**
@@ -164,8 +174,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      *   | {ok: false, error: string}}
      */
     sizeField(options = {}) {
-      const raw = core.sizeField(options);
-      return raw.ok ? raw : failure(raw);
+      return answer(core.sizeField(options));
     },
 
     /**
@@ -175,8 +184,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * @returns {{ok: true, fractions: Float64Array} | {ok: false, error: string}}
      */
     layerFractions(options = {}) {
-      const raw = core.layerFractions(options);
-      return raw.ok ? raw : failure(raw);
+      return answer(core.layerFractions(options));
     },
 
     /**
@@ -184,8 +192,7 @@ export async function createVesselmesh({ wasmBinary } = {}) {
      * @returns {{ok: true, stl: Uint8Array} | {ok: false, error: string}}
      */
     makePhantom(options = {}) {
-      const raw = core.makePhantom(options);
-      return raw.ok ? raw : failure(raw);
+      return answer(core.makePhantom(options));
     },
   };
 }

@@ -29,6 +29,10 @@ const apiPromise = createVesselmesh().then(
   },
 );
 
+// The operations but the two jobs (which report progress): the API's method
+// of that name called with the message's arguments.
+const ANSWERED_AS_IS = new Set(['makePhantom', 'export', 'openingNames', 'cutAt', 'layerFractions', 'sizeField']);
+
 self.onmessage = async (event) => {
   const { id, op, args = [] } = event.data;
   const api = await apiPromise;
@@ -46,33 +50,8 @@ self.onmessage = async (event) => {
     return true;
   };
   let result;
-  switch (op) {
-    case 'analyze':
-      result = api.analyze(args[0], { ...args[1], onProgress });
-      break;
-    case 'mesh':
-      result = api.mesh(args[0], { ...args[1], onProgress });
-      break;
-    case 'makePhantom':
-      result = api.makePhantom(args[0]);
-      break;
-    case 'export':
-      result = api.export(args[0], args[1]);
-      break;
-    case 'openingNames':
-      result = api.openingNames(args[0]);
-      break;
-    case 'cutAt':
-      result = api.cutAt(args[0]);
-      break;
-    case 'layerFractions':
-      result = api.layerFractions(args[0]);
-      break;
-    case 'sizeField':
-      result = api.sizeField(args[0]);
-      break;
-    default:
-      result = { ok: false, error: `unknown operation '${op}'` };
-  }
+  if (op === 'analyze' || op === 'mesh') result = api[op](args[0], { ...args[1], onProgress });
+  else if (ANSWERED_AS_IS.has(op)) result = api[op](...args);
+  else result = { ok: false, error: `unknown operation '${op}'` };
   self.postMessage({ id, type: 'result', result }, transferables(result));
 };

@@ -8,26 +8,6 @@ const STOPS = [
   [1.0, [0.2, 0.45, 0.8]],
 ];
 
-/** Writes the RGB (0..1) color of quality q into out[offset..offset+3). */
-export function qualityColor(q, out, offset = 0) {
-  const x = Math.min(1, Math.max(0, q));
-  let i = 1;
-  while (i < STOPS.length - 1 && x > STOPS[i][0]) i++;
-  const [x0, c0] = STOPS[i - 1];
-  const [x1, c1] = STOPS[i];
-  const t = (x - x0) / (x1 - x0);
-  for (let k = 0; k < 3; k++) out[offset + k] = c0[k] + t * (c1[k] - c0[k]);
-}
-
-/** CSS linear-gradient of the colormap, for the legend. */
-export function qualityGradientCss() {
-  const stops = STOPS.map(([x, c]) => {
-    const rgb = c.map((v) => Math.round(v * 255)).join(',');
-    return `rgb(${rgb}) ${Math.round(x * 100)}%`;
-  });
-  return `linear-gradient(to right, ${stops.join(', ')})`;
-}
-
 // Sequential colormap for lengths (the vessel radius, the edge size): dark
 // blue (small) through teal and green to yellow (large), even in lightness
 // so that a larger value always looks lighter.
@@ -39,20 +19,44 @@ const SCALAR_STOPS = [
   [1.0, [0.99, 0.91, 0.14]],
 ];
 
+/** Writes the RGB (0..1) color at x in [0, 1] of the colormap `stops`
+ * ([x, [r, g, b]] by increasing x; linear between them) into
+ * out[offset..offset+3). */
+function stopsColor(stops, x, out, offset) {
+  let i = 1;
+  while (i < stops.length - 1 && x > stops[i][0]) i++;
+  const [x0, c0] = stops[i - 1];
+  const [x1, c1] = stops[i];
+  const t = (x - x0) / (x1 - x0);
+  for (let k = 0; k < 3; k++) out[offset + k] = c0[k] + t * (c1[k] - c0[k]);
+}
+
+/** CSS linear-gradient of the colormap `stops`, for a legend. */
+function stopsGradientCss(stops) {
+  const css = stops.map(([x, c]) => {
+    const rgb = c.map((v) => Math.round(v * 255)).join(',');
+    return `rgb(${rgb}) ${Math.round(x * 100)}%`;
+  });
+  return `linear-gradient(to right, ${css.join(', ')})`;
+}
+
+/** Writes the RGB (0..1) color of quality q into out[offset..offset+3). */
+export function qualityColor(q, out, offset = 0) {
+  stopsColor(STOPS, Math.min(1, Math.max(0, q)), out, offset);
+}
+
+/** CSS linear-gradient of the colormap, for the legend. */
+export function qualityGradientCss() {
+  return stopsGradientCss(STOPS);
+}
+
 /** Writes the RGB (0..1) color of t in [0, 1] (clamped) on the length
  * colormap into out[offset..offset+3). */
 export function scalarColor(t, out, offset = 0) {
-  const x = Math.min(1, Math.max(0, Number.isFinite(t) ? t : 0));
-  let i = 1;
-  while (i < SCALAR_STOPS.length - 1 && x > SCALAR_STOPS[i][0]) i++;
-  const [x0, c0] = SCALAR_STOPS[i - 1];
-  const [x1, c1] = SCALAR_STOPS[i];
-  const f = (x - x0) / (x1 - x0);
-  for (let k = 0; k < 3; k++) out[offset + k] = c0[k] + f * (c1[k] - c0[k]);
+  stopsColor(SCALAR_STOPS, Math.min(1, Math.max(0, Number.isFinite(t) ? t : 0)), out, offset);
 }
 
 /** CSS linear-gradient of the length colormap, for its legend. */
 export function scalarGradientCss() {
-  const stops = SCALAR_STOPS.map(([x, c]) => `rgb(${c.map((v) => Math.round(v * 255)).join(',')}) ${x * 100}%`);
-  return `linear-gradient(to right, ${stops.join(', ')})`;
+  return stopsGradientCss(SCALAR_STOPS);
 }

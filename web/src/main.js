@@ -65,11 +65,7 @@ const openings = new OpeningsTable($('openings'), {
 let prepHistory = null; // undo and redo of the preparation (below)
 const prepare = new Prepare({
   viewer,
-  cutAt: async (point) => {
-    if (busy || acting) return { ok: false, error: 'a job is running; try again when it ends' };
-    if (!(await ensureAnalyzed())) return { ok: false, error: 'the surface could not be analyzed' };
-    return client.cutAt(point);
-  },
+  cutAt: (point) => whenAnalyzed('a job is running; try again when it ends', () => client.cutAt(point)),
   reanalyze: () => reanalyze({ onError: () => {} }),
   showInput: () => {
     if (!current || shown === 'input') return;
@@ -105,11 +101,7 @@ $('add-cut').addEventListener('click', () => {
 // The size field before meshing (size-view.js) and measurements (measure.js).
 const sizeView = new SizeView({
   viewer,
-  sizeField: async (options) => {
-    if (busy || acting) return { ok: false, error: 'a job is running; the colours follow when it ends' };
-    if (!(await ensureAnalyzed())) return { ok: false, error: 'the surface could not be analyzed' };
-    return client.sizeField(options);
-  },
+  sizeField: (options) => whenAnalyzed('a job is running; the colours follow when it ends', () => client.sizeField(options)),
   sizeOptions: () => {
     const refine = refinements.options().filter(([, , , r, h]) => r > 0 && h > 0);
     return { [$('size-mode').value]: numberIn('size-value'), ...(refine.length && { refine }) };
@@ -226,6 +218,14 @@ async function ensureAnalyzed() {
   if (busy || !(await analyze(current.name, current.bytes, current.prep)).ok) return false;
   held.analysis = current;
   return true;
+}
+
+/** call()'s answer on the analyzed surface, or {ok: false, error} when a job
+ * is running (`whileBusy`) or the surface could not be analyzed. */
+async function whenAnalyzed(whileBusy, call) {
+  if (busy || acting) return { ok: false, error: whileBusy };
+  if (!(await ensureAnalyzed())) return { ok: false, error: 'the surface could not be analyzed' };
+  return call();
 }
 
 /** The core's names of the openings (openings.js asks as the user types). */

@@ -7,7 +7,7 @@
 import * as THREE from 'three';
 
 import { disposeOverlay } from './overlay.js';
-import { listenSurfaceClicks, viewCentre } from './surface-clicks.js';
+import { listenSurfaceClicks, showClickMode, viewCentre } from './surface-clicks.js';
 import { length, point } from './units.js';
 
 const $ = (id) => document.getElementById(id);
@@ -61,12 +61,13 @@ export class Measure {
       this.onStart();
       if (!this.canPick()) this.showSurface();
     }
-    $('measure').setAttribute('aria-pressed', String(this.active));
-    $('measure').textContent = this.active ? 'Stop measuring (Esc)' : 'Measure';
-    $('measure-center').hidden = !this.active;
-    $('viewer').classList.toggle('picking', this.active);
-    $('pick-info').hidden = !this.active;
-    if (this.active) $('pick-info').textContent = 'Click a point: its vessel radius; a second point: the distance';
+    showClickMode(this.active, {
+      button: 'measure',
+      centre: 'measure-center',
+      onLabel: 'Stop measuring (Esc)',
+      offLabel: 'Measure',
+      hint: 'Click a point: its vessel radius; a second point: the distance',
+    });
     this._show();
   }
 

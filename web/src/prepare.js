@@ -11,7 +11,7 @@
 import { CutDiscs } from './cut-discs.js';
 import { alongVessel, cutPlane, keepSide } from './cut-geometry.js';
 import { Repairs } from './repair.js';
-import { CLICK_SLOP_PX, listenSurfaceClicks, viewCentre } from './surface-clicks.js';
+import { CLICK_SLOP_PX, listenSurfaceClicks, showClickMode, viewCentre } from './surface-clicks.js';
 import { length, point, withUnit } from './units.js';
 
 const $ = (id) => document.getElementById(id);
@@ -212,12 +212,14 @@ export class Prepare {
   setAdding(on) {
     this.adding = on && !this.busy;
     if (this.adding) this.showInput();
-    $('add-cut').setAttribute('aria-pressed', String(this.adding));
-    $('add-cut').textContent = this.adding ? 'Click on a vessel… (Esc: stop)' : 'Add a cut';
-    $('cut-center').hidden = !this.adding;
-    $('viewer').classList.toggle('picking', this.adding);
-    $('pick-info').hidden = !this.adding;
-    $('pick-info').textContent = this.adding ? 'Click on a vessel where it should end' : '';
+    showClickMode(this.adding, {
+      button: 'add-cut',
+      centre: 'cut-center',
+      onLabel: 'Click on a vessel… (Esc: stop)',
+      offLabel: 'Add a cut',
+      hint: 'Click on a vessel where it should end',
+    });
+    if (!this.adding) $('pick-info').textContent = '';
   }
 
   /** Says where a click would cut (the surface point `at`), or that the

@@ -7,7 +7,7 @@
 import * as THREE from 'three';
 
 import { disposeOverlay } from './overlay.js';
-import { listenSurfaceClicks } from './surface-clicks.js';
+import { listenSurfaceClicks, showClickMode, viewCentre } from './surface-clicks.js';
 import { point } from './units.js';
 
 const $ = (id) => document.getElementById(id);
@@ -39,10 +39,7 @@ export class Refinements {
     this.unit = 'mm';
     this.scale = 1;
     // By keyboard: the view turned (arrow keys) to have the spot in its centre.
-    $('refine-center').addEventListener('click', () => {
-      const rect = this.viewer.renderer.domElement.getBoundingClientRect();
-      this._addAt(rect.left + rect.width / 2, rect.top + rect.height / 2);
-    });
+    $('refine-center').addEventListener('click', () => this._addAt(...viewCentre(this.viewer)));
     $('add-refine').addEventListener('click', () => this.setAdding(!this.adding));
     listenSurfaceClicks($('viewer'), {
       active: () => this.adding,
@@ -101,12 +98,13 @@ export class Refinements {
       this.onAdding();
       if (!this.canPick()) this.showSurface();
     }
-    $('add-refine').setAttribute('aria-pressed', String(this.adding));
-    $('add-refine').textContent = this.adding ? 'Click on the surface… (Esc: stop)' : 'Add a refinement';
-    $('refine-center').hidden = !this.adding;
-    $('viewer').classList.toggle('picking', this.adding);
-    $('pick-info').hidden = !this.adding;
-    if (this.adding) $('pick-info').textContent = 'Click on the surface where the mesh should be finer';
+    showClickMode(this.adding, {
+      button: 'add-refine',
+      centre: 'refine-center',
+      onLabel: 'Click on the surface… (Esc: stop)',
+      offLabel: 'Add a refinement',
+      hint: 'Click on the surface where the mesh should be finer',
+    });
   }
 
   _addAt(x, y) {

@@ -43,6 +43,24 @@ export function listenSurfaceClicks(view, { active, onClick, onHover, onEscape }
   }
 }
 
+/**
+ * Shows a click mode on or off: its toggle button pressed and labelled, its
+ * "at the view's centre" button shown, the picking cursor on the view and,
+ * when on, the hint in #pick-info (hidden when off).
+ * @param {boolean} on
+ * @param {{button: string, centre: string, onLabel: string, offLabel: string,
+ *   hint: string}} mode the ids of the two buttons, the toggle's labels
+ */
+export function showClickMode(on, { button, centre, onLabel, offLabel, hint }) {
+  const $ = (id) => document.getElementById(id);
+  $(button).setAttribute('aria-pressed', String(on));
+  $(button).textContent = on ? onLabel : offLabel;
+  $(centre).hidden = !on;
+  $('viewer').classList.toggle('picking', on);
+  $('pick-info').hidden = !on;
+  if (on) $('pick-info').textContent = hint;
+}
+
 /** The page coordinates of the centre of the viewer's canvas: where a
  * keyboard user aims by orbiting the view (arrow keys). */
 export function viewCentre(viewer) {

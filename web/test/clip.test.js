@@ -7,7 +7,7 @@ import { before, describe, test } from 'node:test';
 
 import { createVesselmesh } from '../../wasm/src/vesselmesh.js';
 import { ClipBuffers, clipBoundary, faceAdjacency, tetCentroids, UNKNOWN_TAG } from '../src/clip.js';
-import { kuhnGrid } from './kuhn-grid.js';
+import { facesByVertices, kuhnGrid } from './kuhn-grid.js';
 
 const TAG_COLORS = new Uint8Array([10, 0, 0, 20, 0, 0, 30, 0, 0, 40, 0, 0, 50, 0, 0, 60, 0, 0, 70, 0, 0]);
 const CUT = [1, 2, 3];
@@ -168,20 +168,7 @@ describe('clip: the volume of the bifurcation phantom', () => {
   test('adjacency agrees with a brute-force face map; boundary = tagged triangles', () => {
     const { tets, triangles, triangleTag, positions } = volume;
     const across = faceAdjacency(tets, positions.length / 3, triangles, triangleTag);
-    const faces = new Map();
-    const order = [
-      [1, 2, 3],
-      [0, 3, 2],
-      [0, 1, 3],
-      [0, 2, 1],
-    ];
-    for (let t = 0; t < tets.length / 4; t++) {
-      order.forEach((f, i) => {
-        const key = f.map((k) => tets[4 * t + k]).sort((a, b) => a - b).join();
-        if (!faces.has(key)) faces.set(key, []);
-        faces.get(key).push(4 * t + i);
-      });
-    }
+    const faces = facesByVertices(tets);
     const tags = new Map();
     triangleTag.forEach((g, b) => tags.set(Array.from(triangles.subarray(3 * b, 3 * b + 3)).sort((x, y) => x - y).join(), g));
     for (const [key, list] of faces) {

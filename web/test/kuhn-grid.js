@@ -1,7 +1,24 @@
 // A test input for the clipped view: the cube [0, n]^3 split into n^3 unit
 // cubes of 6 positively oriented tetrahedra each (Kuhn: the paths along the
 // edges from corner 000 to 111), with its boundary triangles tagged by side
-// (0: x = 0, 1: x = n, 2: y = 0, ..., 5: z = n).
+// (0: x = 0, 1: x = n, 2: y = 0, ..., 5: z = n). And the brute-force face
+// map the tests check the clipped view's adjacency against.
+import { TET_FACES } from '../src/clip.js';
+
+/** The faces of the tetrahedra (face f of t: TET_FACES[f], outward) by their
+ * sorted vertices ("a,b,c"): the ids 4 t + f that have each, the faces in
+ * order of first appearance. */
+export function facesByVertices(tets) {
+  const faces = new Map();
+  for (let t = 0; t < tets.length / 4; t++) {
+    TET_FACES.forEach((f, i) => {
+      const key = f.map((k) => tets[4 * t + k]).sort((a, b) => a - b).join();
+      if (!faces.has(key)) faces.set(key, []);
+      faces.get(key).push(4 * t + i);
+    });
+  }
+  return faces;
+}
 
 /** @returns {{positions: Float32Array, tets: Uint32Array, triangles:
  *   Uint32Array, triangleTag: Int32Array, vertexCount: number}} */
@@ -45,24 +62,12 @@ export function kuhnGrid(n, { boundary = true } = {}) {
   const result = { positions, tets, vertexCount: m * m * m };
   if (!boundary) return result;
   // Boundary: the faces of one tet only, outward (opposite corner inside).
-  const faces = new Map();
-  const order = [
-    [1, 2, 3],
-    [0, 3, 2],
-    [0, 1, 3],
-    [0, 2, 1],
-  ];
-  for (let s = 0; s < tets.length; s += 4) {
-    for (const f of order) {
-      const tri = f.map((x) => tets[s + x]);
-      const key = [...tri].sort((a, b) => a - b).join();
-      if (faces.has(key)) faces.delete(key);
-      else faces.set(key, tri);
-    }
-  }
-  const triangles = new Uint32Array(3 * faces.size);
-  const triangleTag = new Int32Array(faces.size);
-  [...faces.values()].forEach((tri, b) => {
+  const faces = [...facesByVertices(tets).values()]
+    .filter((ids) => ids.length === 1)
+    .map(([f]) => TET_FACES[f % 4].map((x) => tets[f - (f % 4) + x]));
+  const triangles = new Uint32Array(3 * faces.length);
+  const triangleTag = new Int32Array(faces.length);
+  faces.forEach((tri, b) => {
     triangles.set(tri, 3 * b);
     for (let axis = 0; axis < 3; axis++) {
       const x = tri.map((v) => positions[3 * v + axis]);
