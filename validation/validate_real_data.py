@@ -432,6 +432,42 @@ def check_vtk_outputs(fname, path, tmp, args):
           f"({len(lines) - len(failed)} of {len(lines)} checks){': ' + failed[0] if failed else ''}")
 
 
+WASM_MESH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "wasm_mesh.mjs")
+WASM_BINARY = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "wasm", "dist",
+                           "vesselmesh_core.wasm")
+
+
+def check_same_everywhere(fname, path, tmp, args):
+    """Default options: the CLI on 1 and 2 threads and the WebAssembly build
+    (Node, through the JS API) must write the same bytes."""
+    outs = {}
+    for threads in ("1", "2"):
+        out = os.path.join(tmp, f"{fname}.t{threads}.msh")
+        r = subprocess.run([args.vesselmesh, "mesh", path, "-o", out, "--threads", threads, "--quiet"],
+                           capture_output=True, text=True)
+        check(fname, r.returncode == 0, f"mesh --threads {threads} exit 0 {r.stderr.strip()}")
+        outs[f"native, {threads} thread(s)"] = out
+    if os.path.exists(WASM_BINARY):
+        out = os.path.join(tmp, f"{fname}.wasm.msh")
+        r = subprocess.run(["node", WASM_MESH, path, out], capture_output=True, text=True)
+        check(fname, r.returncode == 0, f"wasm mesh exit 0 {r.stderr.strip()}")
+        outs["WebAssembly (Node)"] = out
+    else:
+        print("  note: wasm/dist missing (build it first); native-versus-wasm comparison skipped")
+    datas = {k: open(v, "rb").read() if os.path.exists(v) else b"" for k, v in outs.items()}
+    ref_name = next(iter(datas))
+    for k, data in datas.items():
+        if k == ref_name:
+            continue
+        same = data == datas[ref_name] and data != b""
+        where = ""
+        if not same:
+            a, b = datas[ref_name].split(b"\n"), data.split(b"\n")
+            line = next((i for i, (x, y) in enumerate(zip(a, b)) if x != y), min(len(a), len(b)))
+            where = f" (first difference on line {line + 1})"
+        check(fname, same, f"the same MSH bytes from {k} as from {ref_name}{where}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--data", required=True)
@@ -494,6 +530,7 @@ def main():
             check_volume(fname, path, tmp, args, d, have_gmsh, "volume (boundary layer)", [], ["viscous"])
             check_volume(fname, path, tmp, args, d, have_gmsh, "volume (layer + vessel wall)",
                          ["--wall-thickness", "0.1"], ["viscous", "vessel"])
+            check_same_everywhere(fname, path, tmp, args)
             if fname in FLOW_EXTENSION_FILES:
                 check_flow_extensions(fname, path, tmp, args, d, have_gmsh)
             if fname in VTK_OUTPUT_FILES:

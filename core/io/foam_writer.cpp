@@ -8,7 +8,6 @@
 #include <array>
 #include <charconv>
 #include <cstdio>
-#include <ranges>
 #include <set>
 
 #include "core/io/text_out.h"
@@ -69,6 +68,24 @@ void label_list(TextOut& t, size_t n, Get get) {
   }
   t.str(")\n");
 }
+
+/// The indices 0..n-1 as a range (Emscripten's libc++ 14 has no
+/// std::views::iota).
+struct Indices {
+  size_t n;
+  struct iterator {
+    size_t i;
+    size_t operator*() const { return i; }
+    iterator& operator++() {
+      ++i;
+      return *this;
+    }
+    bool operator!=(const iterator& o) const { return i != o.i; }
+  };
+  iterator begin() const { return {0}; }
+  iterator end() const { return {n}; }
+  size_t size() const { return n; }
+};
 
 /// The file `location`/`object` of class `cls`: the header, then an
 /// OpenFOAM list "n\n(\n...)\n" of the n `items`, each written by
@@ -301,7 +318,7 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
   // Phase 5: the files.
   const std::string poly = "constant/polyMesh";
   std::vector<OutputFile> files;
-  files.push_back(list_file("vectorField", poly, "points", comment, std::views::iota(size_t(0), nv),
+  files.push_back(list_file("vectorField", poly, "points", comment, Indices{nv},
                             [&](TextOut& t, size_t v) {
                               t.ch('(');
                               for (int k = 0; k < 3; ++k) {

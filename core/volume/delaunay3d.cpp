@@ -37,11 +37,6 @@ inline int inf_slot(const int32_t* v) {
   return -1;
 }
 
-// Slot of x in v, branch-free; precondition: x is in v.
-inline int slot_present(const int32_t* v, int32_t x) {
-  return (v[1] == x) + 2 * (v[2] == x) + 3 * (v[3] == x);
-}
-
 // kOther[f][j]: the two slots other than f and j (f != j).
 constexpr int kOther[4][4][2] = {{{-1, -1}, {2, 3}, {1, 3}, {1, 2}},
                                  {{2, 3}, {-1, -1}, {0, 3}, {0, 2}},

@@ -1,0 +1,60 @@
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+import { expect, test } from '@playwright/test';
+
+import { exportDownload, meshAgain, openApp, upload } from './helpers.js';
+
+// A clinician gets the same mesh from the page as from the CLI: the MSH the
+// page downloads equals, byte for byte, what the native CLI writes for the
+// same file with the options the MSH's provenance line records.
+
+const native = process.env.VM_NATIVE ?? fileURLToPath(new URL('../build/vesselmesh', import.meta.url));
+const cli = (...args) => execFileSync(native, args, { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
+
+/** CLI arguments for the provenance line's "id=value" pairs. */
+function cliArguments(provenance) {
+  const table = new Map(JSON.parse(cli('options', '--json')).map((o) => [o.id, o]));
+  const args = [];
+  for (const pair of provenance.split(' ').filter(Boolean)) {
+    const [id, value] = pair.split('=');
+    const o = table.get(id);
+    expect(o, `option ${id} in the provenance line`).toBeTruthy();
+    if (o.type === 'flag') {
+      // A default-on flag's CLI name is its "off" form (--no-remesh).
+      if ((value === 'true') !== o.defaultOn) args.push(`--${o.cli}`);
+    } else {
+      args.push(`--${o.cli}`, value);
+    }
+  }
+  return args;
+}
+
+test('the page and the CLI write the same MSH bytes', async ({ page }) => {
+  test.setTimeout(120_000);
+  const dir = mkdtempSync(join(tmpdir(), 'vm-e2e-same-'));
+  try {
+    const stl = join(dir, 'tree.stl');
+    cli('phantom', stl, '--kind', 'bifurcation', '--voxel', '0.1', '--noise', '0.2');
+    await openApp(page);
+    await upload(page, 'tree.stl', readFileSync(stl));
+    await expect(page.getByTestId('stat-openings')).toHaveText('3');
+    await page.getByTestId('export-format').selectOption('msh-4.1');
+    await meshAgain(page);
+    const { bytes } = await exportDownload(page);
+    const text = bytes.toString('latin1');
+    const provenance = text.split('\n').find((l) => l.startsWith('vesselmesh '));
+    const options = provenance.split('; options: ')[1] ?? '';
+    const out = join(dir, 'cli.msh');
+    cli('mesh', stl, '-o', out, '--quiet', ...cliArguments(options));
+    const theirs = readFileSync(out);
+    expect(theirs.length).toBeGreaterThan(1000);
+    expect(text.includes('$Elements')).toBe(true);
+    expect(bytes.equals(theirs), `page options: ${options}`).toBe(true);
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
