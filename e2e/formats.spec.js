@@ -1,9 +1,6 @@
-import { readFileSync } from 'node:fs';
-
 import { expect, test } from '@playwright/test';
 
-import { createVesselmesh } from '../wasm/src/vesselmesh.js';
-import { cappedTubeVtp, exportDownload, openApp, screenshots, upload } from './helpers.js';
+import { cappedTubeVtp, exportDownload, nodeApi, openApp, screenshots, upload } from './helpers.js';
 
 // The files a vascular pipeline exchanges: a capped SimVascular-like VTP
 // whose caps become named openings, every export format written from one
@@ -178,8 +175,7 @@ test('names the core refuses are marked at their input and nothing is meshed', a
 });
 
 test('units: metres guessed plainly, an unsure guess asked and changed; caps kept as wall', async ({ page }) => {
-  const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
-  const api = await createVesselmesh({ wasmBinary });
+  const api = await nodeApi();
   const phantom = (scale) => Buffer.from(api.makePhantom({ kind: 'tube', voxel: 0.12, flatCaps: true, scale }).stl);
   const { errors } = await open(page);
   const units = page.getByTestId('stat-units');

@@ -117,11 +117,21 @@ export async function exportText(page) {
 }
 
 let api = null;
+/** The JS API on the built WebAssembly module, in Node (the specs' own
+ * inputs and reference results), loaded once. */
+export async function nodeApi() {
+  api ??= await createVesselmesh({ wasmBinary: readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url)) });
+  return api;
+}
+
+/** A bifurcation phantom's STL (parent radius 1 along -z, branches up +z),
+ * voxel 0.15, with `options` of makePhantom. */
+export const bifurcationStl = (vm, options = {}) => Buffer.from(vm.makePhantom({ kind: 'bifurcation', voxel: 0.15, ...options }).stl);
+
 /** A closed bifurcation phantom's STL (rounded vessel ends, as segmentation
  * tools export it: its cuts are proposed), made by the JS API here. */
 export async function closedBifurcation() {
-  api ??= await createVesselmesh({ wasmBinary: readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url)) });
-  return Buffer.from(api.makePhantom({ kind: 'bifurcation', voxel: 0.15, openEnds: false }).stl);
+  return bifurcationStl(await nodeApi(), { openEnds: false });
 }
 
 /** A PNG's first bytes: a file that is not a surface. */

@@ -1,9 +1,6 @@
-import { readFileSync } from 'node:fs';
-
 import { expect, test } from '@playwright/test';
 
-import { createVesselmesh } from '../wasm/src/vesselmesh.js';
-import { openWatched, screenshots, upload } from './helpers.js';
+import { bifurcationStl, nodeApi, openWatched, screenshots, upload } from './helpers.js';
 
 // Undo and redo of the Prepare step: on a closed bifurcation, the proposed
 // cuts made, the units changed, an opening renamed, the inlet chosen, a flow
@@ -17,11 +14,10 @@ test.use({ viewport: { width: 1440, height: 900 } });
 
 let api;
 test.beforeAll(async () => {
-  const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
-  api = await createVesselmesh({ wasmBinary });
+  api = await nodeApi();
 });
 
-const bifurcation = () => Buffer.from(api.makePhantom({ kind: 'bifurcation', voxel: 0.15, openEnds: false }).stl);
+const bifurcation = () => bifurcationStl(api, { openEnds: false });
 
 test('every preparation change is undone and redone', async ({ page }) => {
   const errors = await openWatched(page);

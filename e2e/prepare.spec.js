@@ -1,9 +1,6 @@
-import { readFileSync } from 'node:fs';
-
 import { expect, test } from '@playwright/test';
 
-import { createVesselmesh } from '../wasm/src/vesselmesh.js';
-import { openWatched as open, screenshots, upload } from './helpers.js';
+import { bifurcationStl, nodeApi, openWatched as open, screenshots, upload } from './helpers.js';
 
 // The Prepare step: a closed surface (a bifurcation with rounded ends, as
 // segmentation tools export it) gets cuts proposed at its vessel ends, made
@@ -15,12 +12,11 @@ test.use({ viewport: { width: 1440, height: 900 } });
 
 let api;
 test.beforeAll(async () => {
-  const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
-  api = await createVesselmesh({ wasmBinary });
+  api = await nodeApi();
 });
 
 /** A bifurcation phantom's STL (parent radius 1 along -z, branches up +z). */
-const bifurcation = (options) => Buffer.from(api.makePhantom({ kind: 'bifurcation', voxel: 0.15, ...options }).stl);
+const bifurcation = (options) => bifurcationStl(api, options);
 
 /** Small and quick: a uniform size of 0.35 and one boundary layer. */
 async function coarse(page) {

@@ -1,9 +1,6 @@
-import { readFileSync } from 'node:fs';
-
 import { expect, test } from '@playwright/test';
 
-import { createVesselmesh } from '../wasm/src/vesselmesh.js';
-import { exportText, openApp, screenshots, upload } from './helpers.js';
+import { exportText, nodeApi, openApp, screenshots, upload } from './helpers.js';
 
 const num = async (page, id) => Number((await page.getByTestId(id).textContent()).replace(/,/g, ''));
 
@@ -61,8 +58,7 @@ test('a bad size gives a readable error and the page keeps working', async ({ pa
 /** Opens the app with a phantom (`makePhantom` options) of `openings`
  * openings, set to mesh its wall alone at h = 0.3. */
 async function openPhantomForWall(page, phantom, openings) {
-  const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
-  const api = await createVesselmesh({ wasmBinary });
+  const api = await nodeApi();
   await openApp(page);
   await upload(page, `${phantom.kind}.stl`, Buffer.from(api.makePhantom(phantom).stl));
   await expect(page.getByTestId('stat-openings')).toHaveText(String(openings));

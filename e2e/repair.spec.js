@@ -1,10 +1,7 @@
-import { readFileSync } from 'node:fs';
-
 import { expect, test } from '@playwright/test';
 
-import { createVesselmesh } from '../wasm/src/vesselmesh.js';
 import { dentedTubeStl } from '../wasm/test/dented-tube.js';
-import { openWatched as open, screenshots, upload } from './helpers.js';
+import { bifurcationStl, nodeApi, openWatched as open, screenshots, upload } from './helpers.js';
 
 // Repairs in the Prepare step: a dirty segmentation (small holes, a fin,
 // touching holes, duplicates, a flipped patch: makePhantom's dirty) is
@@ -18,11 +15,10 @@ test.use({ viewport: { width: 1440, height: 900 } });
 
 let api;
 test.beforeAll(async () => {
-  const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
-  api = await createVesselmesh({ wasmBinary });
+  api = await nodeApi();
 });
 
-const phantom = (options) => Buffer.from(api.makePhantom({ kind: 'bifurcation', voxel: 0.15, ...options }).stl);
+const phantom = (options) => bifurcationStl(api, options);
 
 /** The numbers of the first '(x, y, z)' in a text. */
 const coordinates = (text) => text.match(/\(([^)]*)\)/)[1].split(',').map(Number);

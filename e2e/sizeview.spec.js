@@ -1,10 +1,7 @@
-import { readFileSync } from 'node:fs';
-
 import AxeBuilder from '@axe-core/playwright';
 import { expect, test } from '@playwright/test';
 
-import { createVesselmesh } from '../wasm/src/vesselmesh.js';
-import { loadSample, screenshots, surfacePoint } from './helpers.js';
+import { loadSample, nodeApi, screenshots, surfacePoint } from './helpers.js';
 
 // The size field before meshing and measurements on the surface (issue 19):
 // "Colour by" the vessel radius R or the asked edge size h, with a legend
@@ -19,8 +16,7 @@ test.use({ viewport: { width: 1440, height: 900 } });
 /** The core, in Node, with the page's sample analyzed (the sample is
  * generated deterministically: the same surface as in the page). */
 async function coreWithSample() {
-  const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
-  const api = await createVesselmesh({ wasmBinary });
+  const api = await nodeApi();
   const { stl } = api.makePhantom({ kind: 'bifurcation', voxel: 0.08, noise: 0.3 });
   const analyzed = api.analyze(stl);
   expect(analyzed.ok).toBe(true);
