@@ -181,7 +181,8 @@ void split_nonmanifold_edges(SurfaceMesh& mesh, std::vector<int32_t>* labels,
     }
     std::vector<size_t> order(n);
     std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](size_t x, size_t y) { return angle[x] < angle[y]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t x, size_t y) { return angle[x] < angle[y]; });
     // Pairings: consecutive in angular order, starting after `skip` (odd
     // counts: the skipped triangle stays unpaired) or at offset 0 / 1.
     auto pairs_of = [&](size_t start, size_t count) {

@@ -44,7 +44,7 @@ int projection_axis(const double* a, const double* b, const double* c) {
   const double n[3] = {std::abs(u[1] * v[2] - u[2] * v[1]), std::abs(u[2] * v[0] - u[0] * v[2]),
                        std::abs(u[0] * v[1] - u[1] * v[0])};
   int axes[3] = {0, 1, 2};
-  std::sort(axes, axes + 3, [&](int p, int q) { return n[p] > n[q]; });
+  std::stable_sort(axes, axes + 3, [&](int p, int q) { return n[p] > n[q]; });
   for (int d : axes) {
     const P2 A = project(a, d), B = project(b, d), C = project(c, d);
     if (orient2d(A.x, B.x, C.x) != 0) return d;

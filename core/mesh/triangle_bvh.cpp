@@ -48,6 +48,9 @@ TriangleBvh build_triangle_bvh(const SurfaceMesh& mesh, int leaf_size) {
     const Task task = stack.back();
     stack.pop_back();
     if (task.count <= leaf_size) {
+      // Within a leaf, by id (nth_element leaves each side in no set order).
+      std::sort(items.begin() + task.first, items.begin() + task.first + task.count,
+                [](const Item& a, const Item& b) { return a.id < b.id; });
       bvh.nodes[size_t(task.node)].first = task.first;
       bvh.nodes[size_t(task.node)].count = task.count;
       continue;
@@ -67,8 +70,12 @@ TriangleBvh build_triangle_bvh(const SurfaceMesh& mesh, int leaf_size) {
     for (int d = 1; d < 3; ++d)
       if (chi[d] - clo[d] > chi[axis] - clo[axis]) axis = d;
     const int32_t half = task.count / 2;
-    std::nth_element(begin, begin + half, begin + task.count,
-                     [axis](const Item& a, const Item& b) { return a.c[axis] < b.c[axis]; });
+    // A total order (ties by id): the same halves from every standard
+    // library, so queries that meet equal distances pick the same triangle
+    // natively and in WebAssembly.
+    std::nth_element(begin, begin + half, begin + task.count, [axis](const Item& a, const Item& b) {
+      return a.c[axis] != b.c[axis] ? a.c[axis] < b.c[axis] : a.id < b.id;
+    });
     const int32_t left = int32_t(bvh.nodes.size());
     bvh.nodes[size_t(task.node)].first = left;
     bvh.nodes[size_t(task.node)].count = 0;

@@ -73,7 +73,8 @@ Result<CappedSurface> cap_and_name(const MeshJobResult& r, const SurfaceMesh& su
   std::vector<size_t> order(of_cap.size());  // caps in their new tag order
   std::iota(order.begin(), order.end(), 0);
   auto rank = [&](size_t c) { return of_cap[c] == size_t(inlet) ? 0 : of_cap[c] + 1; };
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return rank(a) < rank(b); });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return rank(a) < rank(b); });
   std::vector<CapInfo> caps;
   std::vector<int32_t> new_tag(capped.caps.size() + 1, 0);
   for (size_t k = 0; k < order.size(); ++k) {

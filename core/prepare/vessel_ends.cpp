@@ -623,8 +623,8 @@ VesselEnds find_vessel_ends(const SurfaceMesh& mesh, const VesselEndOptions& opt
       if (!again) out.rejected.push_back(why);
     }
   }
-  std::sort(out.ends.begin(), out.ends.end(),
-            [](const VesselEnd& x, const VesselEnd& y) { return x.radius > y.radius; });
+  std::stable_sort(out.ends.begin(), out.ends.end(),
+                   [](const VesselEnd& x, const VesselEnd& y) { return x.radius > y.radius; });
   return out;
 }
 

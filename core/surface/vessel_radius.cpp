@@ -15,6 +15,7 @@
 #include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/chord_radius.h"
+#include "core/util/parallel.h"
 #include "core/util/portable_math.h"
 
 namespace vm {
@@ -130,8 +131,11 @@ std::vector<double> vessel_radius(const SurfaceMesh& m, const VesselRadiusSampli
   if (nv <= sampling.sample_above) {
     PointCloud cloud{m.points};
     PointKdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-    for (size_t p = 0; p < nv; ++p)
-      radius[p] = shrink_ball(tree, m.points, &m.points[3 * p], &normal[3 * p], int64_t(p), r_max);
+    parallel_for(nv, 256, [&](size_t begin, size_t end) {
+      for (size_t p = begin; p < end; ++p)
+        radius[p] =
+            shrink_ball(tree, m.points, &m.points[3 * p], &normal[3 * p], int64_t(p), r_max);
+    });
   } else {
     // The sample's balls start at the half chord along the inward normal
     // (a ball tangent at p inside the lumen is at most that large), not at
@@ -147,10 +151,15 @@ std::vector<double> vessel_radius(const SurfaceMesh& m, const VesselRadiusSampli
     PointKdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
     std::vector<int32_t> source(nv, -1), queue;
     queue.reserve(nv);
+    parallel_for(sample.size(), 256, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        const size_t p = size_t(sample[i]);
+        const double r0 = chord[i] > 0 ? std::min(r_max, 1.001 * chord[i]) : r_max;
+        radius[p] = shrink_ball(tree, pts, &m.points[3 * p], &normal[3 * p], int64_t(i), r0);
+      }
+    });
     for (size_t i = 0; i < sample.size(); ++i) {
       const size_t p = size_t(sample[i]);
-      const double r0 = chord[i] > 0 ? std::min(r_max, 1.001 * chord[i]) : r_max;
-      radius[p] = shrink_ball(tree, pts, &m.points[3 * p], &normal[3 * p], int64_t(i), r0);
       // Unclosed, or still the bounding-box ball (no chord, nothing met):
       // not spread, the medians fill it.
       if (!(radius[p] > 0) || radius[p] >= r_max) {
@@ -174,23 +183,26 @@ std::vector<double> vessel_radius(const SurfaceMesh& m, const VesselRadiusSampli
   }
 
   // Phase 2: 1-ring medians (unclosed balls take their neighbors' value).
-  std::vector<double> ring, next(nv);
+  std::vector<double> next(nv);
   for (int pass = 0; pass < 2; ++pass) {
-    for (size_t v = 0; v < nv; ++v) {
-      ring.clear();
-      if (radius[v] > 0) ring.push_back(radius[v]);
-      for (int32_t i = adj.star_offsets[v]; i < adj.star_offsets[v + 1]; ++i) {
-        const int32_t* t = &m.triangles[3 * size_t(adj.star[i])];
-        for (int k = 0; k < 3; ++k)
-          if (size_t(t[k]) != v && radius[t[k]] > 0) ring.push_back(radius[t[k]]);
+    parallel_for(nv, 4096, [&](size_t begin, size_t end) {
+      std::vector<double> ring;
+      for (size_t v = begin; v < end; ++v) {
+        ring.clear();
+        if (radius[v] > 0) ring.push_back(radius[v]);
+        for (int32_t i = adj.star_offsets[v]; i < adj.star_offsets[v + 1]; ++i) {
+          const int32_t* t = &m.triangles[3 * size_t(adj.star[i])];
+          for (int k = 0; k < 3; ++k)
+            if (size_t(t[k]) != v && radius[t[k]] > 0) ring.push_back(radius[t[k]]);
+        }
+        if (ring.empty()) {
+          next[v] = -1;
+          continue;
+        }
+        std::nth_element(ring.begin(), ring.begin() + ring.size() / 2, ring.end());
+        next[v] = ring[ring.size() / 2];
       }
-      if (ring.empty()) {
-        next[v] = -1;
-        continue;
-      }
-      std::nth_element(ring.begin(), ring.begin() + ring.size() / 2, ring.end());
-      next[v] = ring[ring.size() / 2];
-    }
+    });
     radius.swap(next);
   }
   for (double& r : radius)

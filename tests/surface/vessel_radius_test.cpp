@@ -7,6 +7,7 @@
 
 #include "core/mesh/topology.h"
 #include "core/phantom/vessel_phantom.h"
+#include "core/util/parallel.h"
 #include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
 
@@ -88,6 +89,23 @@ TEST(VesselRadius, NoBallKeptAtTheInitialRadiusOnBranches) {
   for (double x : r) above += x > 1.5;
   EXPECT_EQ(above, 0u) << "of " << r.size();
   EXPECT_LT(*std::max_element(r.begin(), r.end()), 1.5);
+}
+
+TEST(VesselRadius, TheSameWithOneOrTwoThreads) {
+  // Every ball and every median is computed on its own: the radii must not
+  // depend on the thread count, densely and on a grid sample.
+  auto m = make_vessel_phantom(noisy(PhantomKind::kBifurcation));
+  ASSERT_TRUE(m.ok());
+  for (VesselRadiusSampling sampling :
+       {VesselRadiusSampling{}, VesselRadiusSampling{.sample_above = 1000, .samples = 3000}}) {
+    set_thread_count(1);
+    const std::vector<double> one = vessel_radius(m.value(), sampling);
+    set_thread_count(2);
+    const std::vector<double> two = vessel_radius(m.value(), sampling);
+    set_thread_count(0);
+    ASSERT_EQ(one.size(), m.value().num_vertices());
+    EXPECT_TRUE(one == two);
+  }
 }
 
 }  // namespace

@@ -37,6 +37,8 @@ const firstDifference = (a, b) => {
 const cases = [
   { name: 'noisy voxel bifurcation', phantom: { kind: 'bifurcation', voxel: 0.12, noise: 0.3 },
     cliPhantom: ['--kind', 'bifurcation', '--voxel', '0.12', '--noise', '0.3'] },
+  { name: 'dirty aneurysm (repaired)', phantom: { kind: 'aneurysm', voxel: 0.12, dirty: true },
+    cliPhantom: ['--kind', 'aneurysm', '--voxel', '0.12', '--dirty'] },
   { name: '17-branch tree', phantom: { kind: 'tree' }, cliPhantom: ['--kind', 'tree'],
     options: { size: 0.3, layers: 2 }, cliOptions: ['--size', '0.3', '--layers', '2'] },
 ];
