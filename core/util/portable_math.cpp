@@ -119,12 +119,9 @@ double log_kernel(double m, double plus_lo = 0) {
   return f - (hfsq - (s * (hfsq + r) + plus_lo));
 }
 
-}  // namespace
-
-double sin(double x) {
-  if (!(std::fabs(x) < kReduceLimit)) return std::isfinite(x) ? std::sin(x) : kNaN;
-  double r;
-  switch (reduce(x, r)) {
+/// sin(r + q pi/2) for |r| <= pi/4.
+double sin_quadrant(double r, int q) {
+  switch (q & 3) {
     case 0:
       return sin_kernel(r);
     case 1:
@@ -136,19 +133,20 @@ double sin(double x) {
   }
 }
 
+}  // namespace
+
+double sin(double x) {
+  if (!(std::fabs(x) < kReduceLimit)) return std::isfinite(x) ? std::sin(x) : kNaN;
+  double r;
+  const int q = reduce(x, r);
+  return sin_quadrant(r, q);
+}
+
 double cos(double x) {
   if (!(std::fabs(x) < kReduceLimit)) return std::isfinite(x) ? std::cos(x) : kNaN;
   double r;
-  switch (reduce(x, r)) {
-    case 0:
-      return cos_kernel(r);
-    case 1:
-      return -sin_kernel(r);
-    case 2:
-      return -cos_kernel(r);
-    default:
-      return sin_kernel(r);
-  }
+  const int q = reduce(x, r);
+  return sin_quadrant(r, q + 1);  // cos x = sin(x + pi/2)
 }
 
 double tan(double x) {
