@@ -20,6 +20,9 @@ namespace {
 // top on its positive side, so it is reversed for inward layers.
 constexpr int kInwardOrder[3] = {0, 2, 1};
 constexpr int kOutwardOrder[3] = {0, 1, 2};
+// cos 65 degrees: the most a face between two stacked prisms may lean from
+// the line between their centroids.
+constexpr double kMaxLeanCos = 0.42261826174069944;
 }  // namespace
 
 LayerValidity::LayerValidity(const SurfaceMesh& wall, const LayerDirections& dirs,
@@ -92,6 +95,27 @@ double LayerValidity::score(size_t t, const double f[3], double* volume_ratio) c
     }
   }
   worst = worst_ratio / margin_[t];
+  // Orthogonality between stacked prisms: the line between their centroids
+  // is the mean of the three column steps; the face between them (the
+  // triangle at fraction k + 1, k + 2 < N + 1) must not lean more than
+  // kMaxLean from it (finite-volume solvers count faces beyond 70 degrees as
+  // severely non-orthogonal), or more than the wall itself does (so small
+  // enough factors always pass: the faces tend to the wall triangle).
+  if (layers > 1) {
+    const Vec3 axis = step[0] + step[1] + step[2];  // 3 times the mean: only its direction matters
+    const double axis_len = norm(axis);
+    auto lean_cos = [&](double fr) {
+      const Vec3 q0 = base[0] + fr * step[0], q1 = base[1] + fr * step[1],
+                 q2 = base[2] + fr * step[2];
+      const Vec3 n = cross(q1 - q0, q2 - q0);
+      const double len = norm(n) * axis_len;
+      return len > 0 ? dot(n, axis) / len : 1.0;
+    };
+    const double wall_cos = lean_cos(0);
+    const double need = std::min(kMaxLeanCos, 0.9 * wall_cos);
+    if (axis_len > 0 && need > 0)
+      for (size_t k = 1; k < layers; ++k) worst = std::min(worst, lean_cos(fraction_[k]) / need);
+  }
   if (min_front_quality_ratio_ > 0) {
     Vec3 q[3];
     for (int j = 0; j < 3; ++j) q[j] = base[j] + step[j];
