@@ -233,21 +233,26 @@ double split_exponent(double x, int& e) {
   }
   return m;
 }
+
+/// The logarithms' results outside finite x > 0 (NaN, -infinity, +infinity);
+/// false for finite x > 0.
+bool log_edge(double x, double& out) {
+  if (std::isnan(x) || x < 0) return out = kNaN, true;
+  if (x == 0) return out = -kInf, true;
+  if (std::isinf(x)) return out = x, true;
+  return false;
+}
 }  // namespace
 
 double log(double x) {
-  if (std::isnan(x) || x < 0) return kNaN;
-  if (x == 0) return -kInf;
-  if (std::isinf(x)) return x;
+  if (double edge; log_edge(x, edge)) return edge;
   int e;
   const double m = split_exponent(x, e);
   return e * kLn2Hi + log_kernel(m, e * kLn2Lo);
 }
 
 double log2(double x) {
-  if (std::isnan(x) || x < 0) return kNaN;
-  if (x == 0) return -kInf;
-  if (std::isinf(x)) return x;
+  if (double edge; log_edge(x, edge)) return edge;
   int e;
   const double m = split_exponent(x, e);
   return m == 1 ? double(e) : e + log_kernel(m) * kInvLn2;
