@@ -79,13 +79,34 @@ inline double max_abs(double a, double b, double c, double d, double e, double f
 
 }  // namespace predicates_detail
 
-/// orient3d() with a semi-static filter first (same sign).
-inline double orient3d_fast(const double* a, const double* b, const double* c, const double* d) {
+/// Static filter bounds for the *_fast predicates below, from an upper
+/// bound `extent` on every coordinate difference of the points (the largest
+/// side of their bounding box): the fast-stage determinant of points in
+/// that box is certain when its magnitude exceeds the bound, which costs
+/// one comparison. Infinity (never decides) when the extent is not in the
+/// range where the bound is safe from under- and overflow.
+inline double orient3d_static_bound(double extent) {
+  if (!(extent > 1e-55 && extent < 1e55)) return HUGE_VAL;
+  return predicates_detail::kO3Static * extent * extent * extent;
+}
+inline double insphere_static_bound(double extent) {
+  if (!(extent > 1e-55 && extent < 1e55)) return HUGE_VAL;
+  const double e2 = extent * extent;
+  return predicates_detail::kIsStatic * e2 * e2 * extent;
+}
+
+/// orient3d() with a static filter (static_bound from
+/// orient3d_static_bound(), if the caller knows a box of the points), then
+/// a semi-static one, first (same sign).
+[[gnu::always_inline]] inline double orient3d_fast(const double* a, const double* b,
+                                                   const double* c, const double* d,
+                                                   double static_bound = HUGE_VAL) {
   const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
   const double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
   const double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
   const double det =
       adz * (bdx * cdy - cdx * bdy) + bdz * (cdx * ady - adx * cdy) + cdz * (adx * bdy - bdx * ady);
+  if (det > static_bound || -det > static_bound) return det;
   const double m = predicates_detail::max_abs(adx, ady, adz, bdx, bdy, bdz, cdx, cdy, cdz);
   if (m > 1e-55 && m < 1e55) {
     const double bound = predicates_detail::kO3Static * m * m * m;
@@ -94,9 +115,12 @@ inline double orient3d_fast(const double* a, const double* b, const double* c, c
   return orient3d(a, b, c, d);
 }
 
-/// insphere() with a semi-static filter first (same sign).
-inline double insphere_fast(const double* a, const double* b, const double* c, const double* d,
-                            const double* e) {
+/// insphere() with a static filter (static_bound from
+/// insphere_static_bound()), then a semi-static one, first (same sign).
+[[gnu::always_inline]] inline double insphere_fast(const double* a, const double* b,
+                                                   const double* c, const double* d,
+                                                   const double* e,
+                                                   double static_bound = HUGE_VAL) {
   const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
   const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
   const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
@@ -113,6 +137,7 @@ inline double insphere_fast(const double* a, const double* b, const double* c, c
   const double clift = cex * cex + cey * cey + cez * cez;
   const double dlift = dex * dex + dey * dey + dez * dez;
   const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+  if (det > static_bound || -det > static_bound) return det;
   const double m = std::max(predicates_detail::max_abs(aex, aey, aez, bex, bey, bez),
                             predicates_detail::max_abs(cex, cey, cez, dex, dey, dez));
   if (m > 1e-55 && m < 1e55) {

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -234,7 +235,12 @@ class Delaunay3D {
   /// A finite vertex of the cavity's boundary faces closer than
   /// sqrt(d2) to p.
   bool cavity_vertex_within(const double* p, double d2) const;
-  int32_t walk(const double* p, int32_t hint) const;
+  /// The walk to a tetrahedron holding p; o3_bound: orient3d's static
+  /// filter bound for a box holding p and every vertex (HUGE_VAL: none).
+  int32_t walk(const double* p, int32_t hint, double o3_bound) const;
+  /// Whether p is in the box of the vertices, which grow_box() extends.
+  bool in_box(const double* p) const;
+  void grow_box(const double* p);
   bool conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const;
   bool finite_conflict(int32_t t, const double* p, int32_t pv) const;
   bool sos_conflict(int32_t t, const double* p, int32_t pv) const;
@@ -255,6 +261,11 @@ class Delaunay3D {
   /// boundary faces (neighbor not stamped `in`) into boundary_.
   void keep_cavity(uint32_t in);
   void star(int32_t pv);
+  /// star(): the links between the new tetrahedra (new_, faces_) by a
+  /// table indexed by local ids of the boundary's directed edges, or, for
+  /// cavities too large for it, by a hash of the boundary edges.
+  void link_star_by_matrix();
+  void link_star_by_hash();
   bool new_tet_valid(const std::array<int32_t, 4>& q, const std::vector<int32_t>& around) const;
   void init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d);
   /// The link (4 * neighbor + face) stored at encoded face e = 4 * t + k.
@@ -264,6 +275,10 @@ class Delaunay3D {
   std::vector<double> pts_;      // 3 per vertex
   std::vector<int32_t> sos_id_;  // while building: vertex -> input index
   std::vector<int32_t> dup_;     // per vertex: coincident vertex or -1
+  // The bounding box of the vertices and the static filter bounds of the
+  // predicates for points in it (core/geom/predicates.h).
+  double lo_[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi_[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  double o3_bound_ = HUGE_VAL, is_bound_ = HUGE_VAL;
   // Tetrahedra (records, constraint bits, tags, free slots), vertex_tet
   // and visit marks.
   TetTopology topo_;
@@ -282,8 +297,16 @@ class Delaunay3D {
     int32_t tag;
     int32_t f;
     uint8_t constrained;  // bit f
+    uint8_t local[4];     // link_star_by_matrix(): local vertex ids
   };
   std::vector<BoundaryFace> faces_;
+  /// link_star_by_matrix(): the local id table's side, and the most
+  /// boundary faces it serves (a closed triangulated sphere with V vertices
+  /// has 2 V - 4 faces).
+  static constexpr int kLocal = 64;
+  static constexpr size_t kMaxMatrixFaces = 2 * kLocal - 4;
+  std::vector<int32_t> local_id_ = {};  // per vertex + 1, scratch
+  std::vector<int32_t> edge_matrix_ = std::vector<int32_t>(kLocal * kLocal);
   struct EdgeSlot {  // star(): open-addressing hash of boundary edges
     int32_t u, w;    // the edge, u < w
     int32_t face;    // encoded face (p, u, w) of the first new tet seen
