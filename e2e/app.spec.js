@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { openApp, openBoxBinary, TETRA_ASCII, upload } from './helpers.js';
+import { expectStats, openApp, openBoxBinary, TETRA_ASCII, upload } from './helpers.js';
 
 const num = async (page, id) => Number((await page.getByTestId(id).textContent()).replace(/,/g, ''));
 
@@ -29,23 +29,14 @@ test('the sample loads, is analyzed and shown', async ({ page }) => {
 test('an ASCII STL picked with the file input', async ({ page }) => {
   await openApp(page);
   await upload(page, 'tetra.stl', Buffer.from(TETRA_ASCII));
-  await expect(page.getByTestId('stat-triangles')).toHaveText('4');
-  await expect(page.getByTestId('stat-vertices')).toHaveText('4');
-  await expect(page.getByTestId('stat-openings')).toHaveText('0');
-  await expect(page.getByTestId('stat-closed')).toHaveText('yes');
-  await expect(page.getByTestId('stat-genus')).toHaveText('0');
-  await expect(page.getByTestId('stat-format')).toHaveText('ASCII STL');
+  await expectStats(page, { triangles: '4', vertices: '4', openings: '0', closed: 'yes', genus: '0', format: 'ASCII STL' });
   await expect(page.getByTestId('warnings')).toContainText('re-oriented');
 });
 
 test('a binary STL of an open box', async ({ page }) => {
   await openApp(page);
   await upload(page, 'box.stl', openBoxBinary());
-  await expect(page.getByTestId('stat-triangles')).toHaveText('10');
-  await expect(page.getByTestId('stat-vertices')).toHaveText('8');
-  await expect(page.getByTestId('stat-openings')).toHaveText('1');
-  await expect(page.getByTestId('stat-closed')).toHaveText('no');
-  await expect(page.getByTestId('stat-format')).toHaveText('binary STL');
+  await expectStats(page, { triangles: '10', vertices: '8', openings: '1', closed: 'no', format: 'binary STL' });
   await expect(page.getByTestId('opening-item')).toContainText('perimeter 4');
 });
 

@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { cappedTubeVtp, exportDownload, nodeApi, openApp, screenshots, upload } from './helpers.js';
+import { cappedTubeVtp, exportDownload, nodeApi, openApp, screenshots, setSizeAndLayers, upload } from './helpers.js';
 
 // The files a vascular pipeline exchanges: a capped SimVascular-like VTP
 // whose caps become named openings, every export format written from one
@@ -28,9 +28,7 @@ async function pickVtp(page) {
 
 /** Small and quick: a uniform size of 0.4 and one boundary layer. */
 async function coarse(page) {
-  await page.getByTestId('size-mode').selectOption('size');
-  await page.getByTestId('size-value').fill('0.4');
-  await page.getByTestId('layers').fill('1');
+  await setSizeAndLayers(page, '0.4', '1');
 }
 
 const meshJobs = (page) => page.locator('body').getAttribute('data-mesh-jobs');

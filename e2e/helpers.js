@@ -137,6 +137,20 @@ export async function closedBifurcation() {
 /** A PNG's first bytes: a file that is not a surface. */
 export const PNG_BYTES = Buffer.concat([Buffer.from([0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]), Buffer.alloc(200)]);
 
+/** Sets the mesh options most specs mesh with: a uniform edge size h (a
+ * string, as typed) and the number of boundary layers. */
+export async function setSizeAndLayers(page, size, layers) {
+  await page.getByTestId('size-mode').selectOption('size');
+  await page.getByTestId('size-value').fill(size);
+  await page.getByTestId('layers').fill(layers);
+}
+
+/** Expects the analysis summary to show these texts, in this order: keys are
+ * the statistics' names (`triangles` for stat-triangles, ...). */
+export async function expectStats(page, stats) {
+  for (const [name, text] of Object.entries(stats)) await expect(page.getByTestId(`stat-${name}`)).toHaveText(text);
+}
+
 /** The workflow's steps, in order, as walkSteps() stops at them. */
 export const STEP_NAMES = ['load', 'prepare', 'mesh', 'inspect', 'export', 'error'];
 
@@ -162,9 +176,7 @@ export async function walkSteps(page, at) {
   await page.getByTestId('apply-cuts').click();
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
   // Fine enough to be still running while `at` looks at it.
-  await page.getByTestId('size-mode').selectOption('size');
-  await page.getByTestId('size-value').fill('0.06');
-  await page.getByTestId('layers').fill('4');
+  await setSizeAndLayers(page, '0.06', '4');
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('progress')).toBeVisible();
   await expect(page.getByTestId('progress-stage')).toContainText('mesh');

@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { bifurcationStl, nodeApi, openWatched as open, screenshots, upload } from './helpers.js';
+import { bifurcationStl, nodeApi, openWatched as open, screenshots, setSizeAndLayers, upload } from './helpers.js';
 
 // The Prepare step: a closed surface (a bifurcation with rounded ends, as
 // segmentation tools export it) gets cuts proposed at its vessel ends, made
@@ -20,9 +20,7 @@ const bifurcation = (options) => bifurcationStl(api, options);
 
 /** Small and quick: a uniform size of 0.35 and one boundary layer. */
 async function coarse(page) {
-  await page.getByTestId('size-mode').selectOption('size');
-  await page.getByTestId('size-value').fill('0.35');
-  await page.getByTestId('layers').fill('1');
+  await setSizeAndLayers(page, '0.35', '1');
 }
 
 /** The numbers of a '(x, y, z)' in a text. */

@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { openWatched, screenshots, upload } from './helpers.js';
+import { openWatched, screenshots, setSizeAndLayers, upload } from './helpers.js';
 import { treeStl } from './tree.js';
 
 // The progress of a mesh on a generated 10-branch vessel tree (tree.js):
@@ -15,9 +15,7 @@ test('meshing a 10-branch tree: the progress only moves forward, stage by stage'
   const { stl, ends } = treeStl();
   await upload(page, 'tree.stl', stl);
   await expect(page.getByTestId('stat-openings')).toHaveText(String(ends));
-  await page.getByTestId('size-mode').selectOption('size');
-  await page.getByTestId('size-value').fill('0.2');
-  await page.getByTestId('layers').fill('2');
+  await setSizeAndLayers(page, '0.2', '2');
 
   // Every value and stage the bar shows, and every time text.
   await page.evaluate(() => {

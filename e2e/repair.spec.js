@@ -1,7 +1,7 @@
 import { expect, test } from '@playwright/test';
 
 import { dentedTubeStl } from '../wasm/test/dented-tube.js';
-import { bifurcationStl, nodeApi, openWatched as open, screenshots, upload } from './helpers.js';
+import { bifurcationStl, nodeApi, openWatched as open, screenshots, setSizeAndLayers, upload } from './helpers.js';
 
 // Repairs in the Prepare step: a dirty segmentation (small holes, a fin,
 // touching holes, duplicates, a flipped patch: makePhantom's dirty) is
@@ -86,9 +86,7 @@ test('a dirty surface is repaired, its holes listed and closed; repair off leave
   await page.getByTestId('hole-fraction').press('Enter');
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
   await expect(page.getByTestId('hole-row')).toHaveCount(analysis.analysis.holes.length);
-  await page.getByTestId('size-mode').selectOption('size');
-  await page.getByTestId('size-value').fill('0.35');
-  await page.getByTestId('layers').fill('1');
+  await setSizeAndLayers(page, '0.35', '1');
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('remesh-result')).toBeVisible({ timeout: 90_000 });
   await expect(page.locator('#out-caps')).toHaveText('inlet, outlet_1, outlet_2');
@@ -99,9 +97,7 @@ test('the largest volume change refuses a wall too coarse for the vessel, and th
   const errors = await open(page);
   await upload(page, 'bifurcation.stl', phantom());
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
-  await page.getByTestId('size-mode').selectOption('size');
-  await page.getByTestId('size-value').fill('3');
-  await page.getByTestId('layers').fill('0');
+  await setSizeAndLayers(page, '3', '0');
   await page.getByTestId('remesh').click();
   const error = page.getByTestId('error');
   await expect(error).toContainText(/less volume/);

@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { openApp, screenshots, STEP_NAMES, upload, walkSteps } from './helpers.js';
+import { openApp, screenshots, setSizeAndLayers, STEP_NAMES, upload, walkSteps } from './helpers.js';
 
 // A large surface generated in the worker, analyzed while the main thread
 // keeps painting frames and answering clicks; then a job is cancelled.
@@ -102,9 +102,7 @@ test('on a phone the page fits its width and every action is reachable', async (
   await page.getByTestId('load-sample').click();
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
   await fits('loaded');
-  await page.getByTestId('size-mode').selectOption('size');
-  await page.getByTestId('size-value').fill('0.35');
-  await page.getByTestId('layers').fill('1');
+  await setSizeAndLayers(page, '0.35', '1');
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('volume-result')).toBeVisible({ timeout: 60_000 });
   await fits('meshed');

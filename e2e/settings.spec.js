@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { openApp, screenshots } from './helpers.js';
+import { openApp, screenshots, setSizeAndLayers } from './helpers.js';
 
 // The mesh and export options are remembered in the browser: changed,
 // still there after a reload; Reset puts the defaults back, also after a
@@ -249,9 +249,7 @@ test('Reset everything puts back every option, the preparation and the view; Und
   await page.getByTestId('add-refine').click();
   await clickSurface(page);
   await expect(page.getByTestId('refine-row')).toHaveCount(1);
-  await page.getByTestId('size-mode').selectOption('size');
-  await page.getByTestId('size-value').fill('0.35');
-  await page.getByTestId('layers').fill('1');
+  await setSizeAndLayers(page, '0.35', '1');
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('volume-result')).toBeVisible({ timeout: 60_000 });
   // A flow extension (for the next mesh).

@@ -1,7 +1,7 @@
 import AxeBuilder from '@axe-core/playwright';
 import { expect, test } from '@playwright/test';
 
-import { loadSample, nodeApi, screenshots, surfacePoint } from './helpers.js';
+import { loadSample, nodeApi, screenshots, setSizeAndLayers, surfacePoint } from './helpers.js';
 
 // The size field before meshing and measurements on the surface (issue 19):
 // "Colour by" the vessel radius R or the asked edge size h, with a legend
@@ -115,9 +115,7 @@ test('colour by the vessel radius and the asked size, legends in mm with the cor
   // the colours are; the input surface shown again, they are back.
   await page.getByTestId('colour-by').selectOption('radius');
   await expect(legend).toHaveAttribute('data-mode', 'radius');
-  await page.getByTestId('size-mode').selectOption('size');
-  await page.getByTestId('size-value').fill('0.35');
-  await page.getByTestId('layers').fill('1');
+  await setSizeAndLayers(page, '0.35', '1');
   await page.getByTestId('refine-remove').click();
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('volume-result')).toBeVisible({ timeout: 60_000 });
@@ -203,9 +201,7 @@ test('measure: the radius at a point, the distance between two, by mouse and by 
 
   // Inspect: meshed, the volume is shown; measuring shows the remeshed
   // surface to click on, and R is still the input's nearest vertex's.
-  await page.getByTestId('size-mode').selectOption('size');
-  await page.getByTestId('size-value').fill('0.35');
-  await page.getByTestId('layers').fill('1');
+  await setSizeAndLayers(page, '0.35', '1');
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('volume-result')).toBeVisible({ timeout: 60_000 });
   await expect(page.getByTestId('show')).toHaveValue('volume');

@@ -265,6 +265,20 @@ std::optional<vm::PreparedSurface> last_analysis;
 /// surface only), else empty.
 std::vector<double> last_radius;
 
+/// Why a call on the last analyzed surface cannot run: nothing analyzed yet.
+vm::Status nothing_analyzed() {
+  return vm::Status::Error("nothing analyzed yet: analyze a surface first");
+}
+
+/// The mesh options `opts` for a call on the last analyzed surface, or the
+/// error: nothing analyzed yet, or an option's.
+vm::Result<vm::MeshJobOptions> options_on_last_analysis(const val& opts) {
+  if (!last_analysis) return nothing_analyzed();
+  vm::MeshJobOptions options;
+  if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh); !st.ok()) return st;
+  return options;
+}
+
 /// options: the JS API's analyze options (the table's info options).
 val analyze(val stl, val opts, val progress) {
   last_analysis.reset();
@@ -394,11 +408,10 @@ val export_mesh(val opts) {
 /// these mesh options (names, inlet; others ignored): {ok, names} or the
 /// error meshing would give.
 val opening_names(val opts) {
-  if (!last_analysis)
-    return error(vm::Status::Error("nothing analyzed yet: analyze a surface first"));
-  vm::MeshJobOptions options;
-  if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh); !st.ok()) return error(st);
-  auto names = vm::opening_names(*last_analysis, options.opening_names, options.inlet);
+  auto options = options_on_last_analysis(opts);
+  if (!options.ok()) return error(options.status());
+  auto names =
+      vm::opening_names(*last_analysis, options.value().opening_names, options.value().inlet);
   if (!names.ok()) return error(names.status());
   val r = val::object();
   r.set("ok", true);
@@ -412,8 +425,7 @@ val opening_names(val opts) {
 /// surface nearest `point` ([x, y, z], model coordinates):
 /// {ok, point, normal (toward the side removed), radius, areaRemoved}.
 val cut_at(val point) {
-  if (!last_analysis)
-    return error(vm::Status::Error("nothing analyzed yet: analyze a surface first"));
+  if (!last_analysis) return error(nothing_analyzed());
   if (!point.isArray() || point["length"].as<size_t>() != 3)
     return error(vm::Status::Error("cutAt needs a point [x, y, z]"));
   std::array<double, 3> p{};
@@ -439,11 +451,9 @@ val cut_at(val point) {
 /// triangles, as analyze() gave them), radius (R a vertex), size (h a
 /// vertex), unit} or the error mesh() would give for these size options.
 val size_field(val opts) {
-  if (!last_analysis)
-    return error(vm::Status::Error("nothing analyzed yet: analyze a surface first"));
-  vm::MeshJobOptions options;
-  if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh); !st.ok()) return error(st);
-  auto preview = vm::size_preview(*last_analysis, options, last_radius);
+  auto options = options_on_last_analysis(opts);
+  if (!options.ok()) return error(options.status());
+  auto preview = vm::size_preview(*last_analysis, options.value(), last_radius);
   if (!preview.ok()) return error(preview.status());
   const vm::SurfaceMesh& m = last_analysis->mesh;
   last_radius = preview.value().radius;

@@ -12,6 +12,7 @@
 
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/param/sparse_solve.h"
 #include "core/util/portable_math.h"
 
 namespace vm {
@@ -101,13 +102,9 @@ Result<Parametrization> map_to_disk(const SurfaceMesh& m, DiskWeights weights) {
   if (n > 0) {
     Eigen::SparseMatrix<double> L(n, n);
     L.setFromTriplets(triplets.begin(), triplets.end());
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;
-    solver.compute(L);
-    if (solver.info() != Eigen::Success)
-      return Result<Parametrization>::Error("disk map: the sparse factorization failed");
-    Eigen::MatrixXd x = solver.solve(rhs);
-    if (solver.info() != Eigen::Success || !x.allFinite())
-      return Result<Parametrization>::Error("disk map: the sparse solve failed");
+    auto solved = solve_sparse<Eigen::SparseLU<Eigen::SparseMatrix<double>>>(L, rhs, "disk map");
+    if (!solved.ok()) return solved.status();
+    const Eigen::MatrixXd& x = solved.value();
     for (size_t v = 0; v < nv; ++v) {
       if (row[v] < 0) continue;
       out.uv[2 * v] = x(row[v], 0);

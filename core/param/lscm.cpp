@@ -13,6 +13,7 @@
 #include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/param/sparse_solve.h"
 
 namespace vm {
 namespace {
@@ -157,12 +158,10 @@ Result<Parametrization> lscm(const SurfaceMesh& m) {
   }
   Eigen::SparseMatrix<double> L(2 * nf, 2 * nf);
   L.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
-  if (solver.info() != Eigen::Success)
-    return Result<Parametrization>::Error("conformal map: the sparse factorization failed");
-  Eigen::VectorXd x = solver.solve(rhs);
-  if (solver.info() != Eigen::Success || !x.allFinite())
-    return Result<Parametrization>::Error("conformal map: the sparse solve failed");
+  auto solved =
+      solve_sparse<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>(L, rhs, "conformal map");
+  if (!solved.ok()) return solved.status();
+  const Eigen::VectorXd& x = solved.value();
   for (size_t v = 0; v < nv; ++v) {
     if (row[v] < 0) continue;
     out.uv[2 * v] = x[row[v]];

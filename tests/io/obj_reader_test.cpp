@@ -13,6 +13,8 @@ namespace {
 
 using testing::to_bytes;
 
+constexpr auto kRead = [](const testing::Bytes& b) { return read_obj(b); };
+
 TEST(ObjReader, GroupsBecomeLabelsInOrderOfFirstUse) {
   SurfaceMesh tube = testing::open_tube(6, 2);
   testing::CellMesh m;
@@ -70,11 +72,7 @@ TEST(ObjReader, WithoutGroupsNoLabels) {
   EXPECT_HAS(r.value().warnings[0], "1 faces with fewer than 3 vertices were skipped");
 }
 
-std::string error_of(const std::string& text) {
-  auto r = read_obj(to_bytes(text));
-  EXPECT_FALSE(r.ok());
-  return r.message();
-}
+std::string error_of(const std::string& text) { return testing::error_of(kRead, text); }
 
 TEST(ObjReader, BadIndicesAndNumbers) {
   const std::string v = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";

@@ -14,6 +14,8 @@ namespace {
 using testing::PlyFormat;
 using testing::to_bytes;
 
+constexpr auto kRead = [](const testing::Bytes& b) { return read_ply(b); };
+
 testing::CellMesh sample() {
   SurfaceMesh tube = testing::open_tube(6, 2);
   testing::CellMesh m;
@@ -50,11 +52,7 @@ TEST(PlyReader, PreferredLabelName) {
   EXPECT_TRUE(r.value().face_labels.empty());
 }
 
-std::string error_of(const std::string& text) {
-  auto r = read_ply(to_bytes(text));
-  EXPECT_FALSE(r.ok());
-  return r.message();
-}
+std::string error_of(const std::string& text) { return testing::error_of(kRead, text); }
 
 TEST(PlyReader, BadInputsGiveSpecificMessages) {
   const std::string head =
@@ -89,9 +87,8 @@ TEST(PlyReader, BadInputsGiveSpecificMessages) {
 TEST(PlyReader, TruncationsNeverCrash) {
   for (PlyFormat f : {PlyFormat::kAscii, PlyFormat::kLittle, PlyFormat::kBig}) {
     std::string text = testing::ply(sample(), f);
-    auto read = [](const testing::Bytes& b) { return read_ply(b); };
-    testing::expect_prefixes_answered(read, text, 3);
-    testing::expect_changes_answered(read, text, 2, [](char c) { return char(c ^ 0xa5); });
+    testing::expect_prefixes_answered(kRead, text, 3);
+    testing::expect_changes_answered(kRead, text, 2, [](char c) { return char(c ^ 0xa5); });
   }
 }
 

@@ -1,7 +1,7 @@
 // Checks shared by the tests of the surface readers: a message that holds
-// a phrase (EXPECT_HAS), and damaged inputs (truncated, corrupted) that must be answered
-// with a result or a message, never a crash (the sanitizer build runs the
-// tests).
+// a phrase (EXPECT_HAS), the message of an input that must fail, and damaged inputs (truncated,
+// corrupted) that must be answered with a result or a message, never a crash (the sanitizer build
+// runs the tests).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -21,6 +21,14 @@ void expect_answered(const Read& read, const std::string& text) {
   if (!r.ok()) {
     EXPECT_FALSE(r.message().empty());
   }
+}
+
+/// The message of read(bytes of `text`), which must fail (empty if it did not).
+template <class Read>
+std::string error_of(const Read& read, const std::string& text) {
+  auto r = read(to_bytes(text));
+  EXPECT_FALSE(r.ok());
+  return r.message();
 }
 
 /// The same for every prefix of `text` whose length is a multiple of `step`.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 
 #include "tests/io/reader_checks.h"
 #include "tests/io/surface_writers.h"
@@ -14,6 +15,8 @@ namespace {
 using testing::CellMesh;
 using testing::to_bytes;
 using testing::VtkStyle;
+
+constexpr auto kRead = [](const testing::Bytes& b) { return read_vtk_legacy(b); };
 
 // open_tube(6, 2): ring 0 as quads (label 3), ring 1 as one strip (label 5),
 // two vertex cells and a line before them (labels 90, 91, 92: VTK's cell
@@ -104,31 +107,29 @@ TEST(VtkLegacyReader, UnstructuredGridOfSurfaceCells) {
   EXPECT_HAS(r.value().warnings[0], "1 cells that are not surface cells");
 }
 
-std::string error_of(const std::string& text) {
-  auto r = read_vtk_legacy(to_bytes(text));
-  EXPECT_FALSE(r.ok());
-  return r.message();
-}
+std::string error_of(const std::string& text) { return testing::error_of(kRead, text); }
 
 TEST(VtkLegacyReader, BadInputsGiveSpecificMessages) {
   const std::string head = "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\n";
-  EXPECT_HAS(error_of(head + "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 1 4\n3 0 1 3\n"),
-             "POLYGONS cell 0 refers to point 3 but there are 3 points");
-  EXPECT_HAS(error_of(head + "POINTS 3 float16\n0 0 0 1 0 0 0 1 0\n"),
-             "line 5: POINTS has data type 'float16', which is not a legacy VTK type");
-  EXPECT_HAS(error_of(head + "POINTS 3 float\n0 0 0 1 0 0 0 1\n"),
-             "POINTS: the file ends after 8 of 9 values");
-  EXPECT_HAS(error_of(head + "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 2 4\n3 0 1 2\n"),
-             "POLYGONS declares 2 cells but its 4 values hold only 1");
-  EXPECT_HAS(error_of(head + "POINTS 3 float\n0 0 0 1 nan 0 0 1 0\nPOLYGONS 1 4\n3 0 1 2\n"),
-             "point 1 has a non-finite coordinate (NaN)");
-  EXPECT_HAS(error_of(head + "POINTS 99999999999 float\n0 0 0\n"),
-             "file too large: 99999999999 points");
-  EXPECT_HAS(error_of(head + "POINTS 300000000 float\n0 0 0\n"),
-             "POINTS: 900000000 values are announced but the file has only");
-  EXPECT_HAS(error_of(head + "BOGUS 3\n"), "unknown keyword 'BOGUS'");
-  EXPECT_HAS(error_of("# vtk DataFile Version 3.0\nx\nASCII\nDATASET STRUCTURED_POINTS\n"),
-             "DATASET STRUCTURED_POINTS: only POLYDATA");
+  // Each text and a phrase of its message.
+  const std::pair<std::string, std::string> cases[] = {
+      {head + "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 1 4\n3 0 1 3\n",
+       "POLYGONS cell 0 refers to point 3 but there are 3 points"},
+      {head + "POINTS 3 float16\n0 0 0 1 0 0 0 1 0\n",
+       "line 5: POINTS has data type 'float16', which is not a legacy VTK type"},
+      {head + "POINTS 3 float\n0 0 0 1 0 0 0 1\n", "POINTS: the file ends after 8 of 9 values"},
+      {head + "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 2 4\n3 0 1 2\n",
+       "POLYGONS declares 2 cells but its 4 values hold only 1"},
+      {head + "POINTS 3 float\n0 0 0 1 nan 0 0 1 0\nPOLYGONS 1 4\n3 0 1 2\n",
+       "point 1 has a non-finite coordinate (NaN)"},
+      {head + "POINTS 99999999999 float\n0 0 0\n", "file too large: 99999999999 points"},
+      {head + "POINTS 300000000 float\n0 0 0\n",
+       "POINTS: 900000000 values are announced but the file has only"},
+      {head + "BOGUS 3\n", "unknown keyword 'BOGUS'"},
+      {"# vtk DataFile Version 3.0\nx\nASCII\nDATASET STRUCTURED_POINTS\n",
+       "DATASET STRUCTURED_POINTS: only POLYDATA"},
+  };
+  for (const auto& [text, phrase] : cases) EXPECT_HAS(error_of(text), phrase);
   // Binary data cut short.
   VtkStyle s;
   s.binary = true;
@@ -147,9 +148,8 @@ TEST(VtkLegacyReader, TruncationsNeverCrash) {
       s.field_labels = true;
       s.metadata = true;
       std::string text = testing::vtk_legacy(sample(), s);
-      auto read = [](const testing::Bytes& b) { return read_vtk_legacy(b); };
-      testing::expect_prefixes_answered(read, text, 3);
-      testing::expect_changes_answered(read, text, 3, [](char c) { return char(c ^ 0x5a); });
+      testing::expect_prefixes_answered(kRead, text, 3);
+      testing::expect_changes_answered(kRead, text, 3, [](char c) { return char(c ^ 0x5a); });
     }
 }
 

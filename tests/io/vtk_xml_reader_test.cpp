@@ -234,9 +234,7 @@ TEST(VtkXmlReader, InlineDataAfterInformationKeysAndComments) {
 // ---- bad input --------------------------------------------------------------------
 
 std::string error_of(const std::string& text, const SurfaceReadOptions& o = {}) {
-  auto r = read_vtk_xml(to_bytes(text), o);
-  EXPECT_FALSE(r.ok());
-  return r.message();
+  return testing::error_of([&o](const Bytes& b) { return read_vtk_xml(b, o); }, text);
 }
 
 TEST(VtkXmlReader, AppendedDataCutShort) {

@@ -193,6 +193,18 @@ void print_stats(const std::string& name, const LayerStats& s) {
             << s.seconds_measure << ")\n";
 }
 
+/// extrude_layers(wall, radius, spec, st); when it succeeds, its layers
+/// checked (check_layers) and its stats printed, both under `name`.
+Result<LayerMesh> extrude_checked(const SurfaceMesh& wall, const std::vector<double>& radius,
+                                  const LayerSpec& spec, LayerStats* st, const std::string& name) {
+  auto r = extrude_layers(wall, radius, spec, st);
+  if (r.ok()) {
+    check_layers(wall, r.value(), spec, name);
+    print_stats(name, *st);
+  }
+  return r;
+}
+
 TEST(Layers, StraightTubeInwardUniform) {
   const int n = 40;
   const SurfaceMesh wall = testing::open_tube(n, 30, 1.0, 4.0);
@@ -200,11 +212,9 @@ TEST(Layers, StraightTubeInwardUniform) {
   LayerSpec spec;  // 4 layers, 0.2 R
   spec.measure = true;
   LayerStats st;
-  auto r = extrude_layers(wall, radius, spec, &st);
+  auto r = extrude_checked(wall, radius, spec, &st, "tube inward");
   ASSERT_TRUE(r.ok()) << r.message();
   const LayerMesh& m = r.value();
-  check_layers(wall, m, spec, "tube");
-  print_stats("tube inward", st);
   // Thickness F R everywhere measured from the wall's facets (the column
   // is lengthened by 1 / cos(pi / n), the facets' tilt from a vertex
   // normal), nothing reduced, the first layer a quarter of it; columns
@@ -301,11 +311,9 @@ TEST(Layers, StraightTubeOutwardWallRings) {
   spec.outward = true;
   spec.thickness_fraction = 0.1;  // seed 4.3: 0.1 R in 4 layers
   LayerStats st;
-  auto r = extrude_layers(wall, radius, spec, &st);
+  auto r = extrude_checked(wall, radius, spec, &st, "tube outward");
   ASSERT_TRUE(r.ok()) << r.message();
   const LayerMesh& m = r.value();
-  check_layers(wall, m, spec, "tube outward");
-  print_stats("tube outward", st);
   EXPECT_EQ(st.reduced_area, 0);
   for (size_t v = 0; v < wall.num_vertices(); ++v) {
     const double* q = pt(m.points, m.layer_vertex(int32_t(v), 4));
@@ -355,10 +363,8 @@ TEST(Layers, TorusInwardUnreducedOutwardShrinksOnlyInside) {
   const std::vector<double> radius(wall.num_vertices(), 1.0);
   LayerSpec spec;
   LayerStats st;
-  auto r = extrude_layers(wall, radius, spec, &st);
+  auto r = extrude_checked(wall, radius, spec, &st, "torus inward");
   ASSERT_TRUE(r.ok()) << r.message();
-  check_layers(wall, r.value(), spec, "torus inward");
-  print_stats("torus inward", st);
   EXPECT_EQ(st.reduced_area, 0);
   EXPECT_TRUE(r.value().openings.empty());
 
@@ -367,10 +373,9 @@ TEST(Layers, TorusInwardUnreducedOutwardShrinksOnlyInside) {
   const SurfaceMesh tight = testing::torus(48, 24, 1.6, 1.0);
   spec.outward = true;
   spec.thickness_fraction = 1.0;
-  r = extrude_layers(tight, std::vector<double>(tight.num_vertices(), 1.0), spec, &st);
+  r = extrude_checked(tight, std::vector<double>(tight.num_vertices(), 1.0), spec, &st,
+                      "tight torus outward");
   ASSERT_TRUE(r.ok()) << r.message();
-  check_layers(tight, r.value(), spec, "tight torus outward");
-  print_stats("tight torus outward", st);
   EXPECT_GT(st.reduced_area_fraction, 0.05);
   EXPECT_LT(st.reduced_area_fraction, 0.6);
   for (size_t v = 0; v < tight.num_vertices(); ++v) {
@@ -394,10 +399,9 @@ TEST(Layers, BentTubeShrinksOnlyWhereNeeded) {
     spec.outward = outward;
     spec.thickness_fraction = outward ? 0.1 : 0.2;
     LayerStats st;
-    auto r = extrude_layers(wall, radius, spec, &st);
+    auto r = extrude_checked(wall, radius, spec, &st,
+                             outward ? "bent tube outward 0.1R" : "bent tube inward 0.2R");
     ASSERT_TRUE(r.ok()) << r.message();
-    check_layers(wall, r.value(), spec, outward ? "bend outward" : "bend inward");
-    print_stats(outward ? "bent tube outward 0.1R" : "bent tube inward 0.2R", st);
     EXPECT_EQ(st.reduced_area, 0) << "nothing needs reducing";
   }
   // Outward by 0.9 R: the inside of the bend (distance 1 from the bend's
@@ -406,10 +410,8 @@ TEST(Layers, BentTubeShrinksOnlyWhereNeeded) {
   spec.outward = true;
   spec.thickness_fraction = 0.9;
   LayerStats st;
-  auto r = extrude_layers(wall, radius, spec, &st);
+  auto r = extrude_checked(wall, radius, spec, &st, "bent tube outward 0.9R");
   ASSERT_TRUE(r.ok()) << r.message();
-  check_layers(wall, r.value(), spec, "bend outward thick");
-  print_stats("bent tube outward 0.9R", st);
   EXPECT_GT(st.reduced_area_fraction, 0.02);
   for (size_t v = 0; v < wall.num_vertices(); ++v) {
     const double* p = pt(wall.points, int32_t(v));
@@ -467,10 +469,8 @@ TEST(Layers, NarrowBranchFrontsWouldCollide) {
   LayerSpec spec;
   spec.first_height = 0.125;
   LayerStats st;
-  auto r = extrude_layers(wall, {}, spec, &st);
+  auto r = extrude_checked(wall, {}, spec, &st, "bifurcation inward 4 x 0.125");
   ASSERT_TRUE(r.ok()) << r.message();
-  check_layers(wall, r.value(), spec, "narrow branch");
-  print_stats("bifurcation inward 4 x 0.125", st);
   EXPECT_GT(st.reduced_area_fraction, 0.1);
   EXPECT_LT(st.min_factor, 1);
   EXPECT_GT(st.limited_by_gap, 0u);
@@ -498,10 +498,8 @@ TEST(Layers, BifurcationCrotchOutward) {
   spec.outward = true;
   spec.thickness_fraction = 0.6;
   LayerStats st;
-  auto r = extrude_layers(wall, chord_radius(wall), spec, &st);
+  auto r = extrude_checked(wall, chord_radius(wall), spec, &st, "bifurcation outward 0.6R");
   ASSERT_TRUE(r.ok()) << r.message();
-  check_layers(wall, r.value(), spec, "crotch");
-  print_stats("bifurcation outward 0.6R", st);
   EXPECT_GT(st.reduced_area_fraction, 0.005);
   EXPECT_GT(st.limited_by_gap, 0u);
   // The most reduced vertices lie between the branches: above the

@@ -62,19 +62,19 @@ void expect_ends_of(const Closed& c, const VesselEnds& found, double D) {
   for (size_t i = 0; i < hits.size(); ++i) EXPECT_EQ(hits[i], 1) << "end " << i;
 }
 
-TEST(VesselEnds, ClosedTubeHasTwo) {
-  const Closed c = closed_phantom(PhantomKind::kTube);
-  ASSERT_EQ(c.truth.end_tips.size(), 2u);
+/// The closed phantom of `kind` has `count` true ends, each found once (cut
+/// one radius in).
+void expect_closed_ends(PhantomKind kind, double noise, size_t count) {
+  SCOPED_TRACE(noise);
+  const Closed c = closed_phantom(kind, noise);
+  ASSERT_EQ(c.truth.end_tips.size(), count);
   expect_ends_of(c, find_vessel_ends(c.mesh), 1.0);
 }
 
+TEST(VesselEnds, ClosedTubeHasTwo) { expect_closed_ends(PhantomKind::kTube, 0, 2); }
+
 TEST(VesselEnds, ClosedBifurcationHasThree) {
-  for (double noise : {0.0, 0.3}) {
-    SCOPED_TRACE(noise);
-    const Closed c = closed_phantom(PhantomKind::kBifurcation, noise);
-    ASSERT_EQ(c.truth.end_tips.size(), 3u);
-    expect_ends_of(c, find_vessel_ends(c.mesh), 1.0);
-  }
+  for (double noise : {0.0, 0.3}) expect_closed_ends(PhantomKind::kBifurcation, noise, 3);
 }
 
 TEST(VesselEnds, TheAneurysmBulbIsNotAnEnd) {

@@ -23,8 +23,8 @@ int64_t ulps(double a, double b) {
 }
 
 /// The C library's result (correct to about 1 ulp) as the reference.
-template <class F, class G>
-void expect_close(const char* name, F ours, G libm, double lo, double hi, int64_t max_ulps) {
+void expect_close(const char* name, double (*ours)(double), double (*libm)(double), double lo,
+                  double hi, int64_t max_ulps) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(lo, hi);
   int64_t worst = 0;
@@ -39,38 +39,35 @@ void expect_close(const char* name, F ours, G libm, double lo, double hi, int64_
   EXPECT_LE(worst, max_ulps) << name << " at x = " << at;
 }
 
+/// One function against the C library's on uniform samples of [lo, hi].
+struct CloseCase {
+  const char* name;
+  double (*ours)(double);
+  double (*libm)(double);
+  double lo, hi;
+  int64_t max_ulps;
+};
+
 TEST(PortableMath, WithinAFewUlpsOfTheCLibrary) {
-  expect_close(
-      "sin", pm::sin, [](double x) { return std::sin(x); }, -40, 40, 2);
-  expect_close(
-      "cos", pm::cos, [](double x) { return std::cos(x); }, -40, 40, 2);
-  expect_close(
-      "sin small", pm::sin, [](double x) { return std::sin(x); }, -1e-3, 1e-3, 1);
-  expect_close(
-      "tan", pm::tan, [](double x) { return std::tan(x); }, -1.5, 1.5, 3);
-  expect_close(
-      "atan", pm::atan, [](double x) { return std::atan(x); }, -30, 30, 2);
-  expect_close(
-      "asin", pm::asin, [](double x) { return std::asin(x); }, -1, 1, 3);
-  expect_close(
-      "acos", pm::acos, [](double x) { return std::acos(x); }, -1, 1, 3);
-  expect_close(
-      "exp", pm::exp, [](double x) { return std::exp(x); }, -700, 700, 2);
-  expect_close(
-      "expm1", pm::expm1, [](double x) { return std::expm1(x); }, -2, 2, 2);
-  expect_close(
-      "exp2", pm::exp2, [](double x) { return std::exp2(x); }, -60, 60, 2);
-  expect_close(
-      "log", pm::log, [](double x) { return std::log(x); }, 1e-9, 1e9, 2);
-  expect_close(
-      "log near 1", pm::log, [](double x) { return std::log(x); }, 0.9, 1.1, 2);
-  expect_close(
-      "log2", pm::log2, [](double x) { return std::log2(x); }, 1e-9, 1e9, 2);
-  expect_close(
-      "cbrt", pm::cbrt, [](double x) { return std::cbrt(x); }, -1e6, 1e6, 3);
-  expect_close(
-      "pow", [](double x) { return pm::pow(x, -1.0 / 7); },
-      [](double x) { return std::pow(x, -1.0 / 7); }, 1, 1e6, 2);
+  const CloseCase cases[] = {
+      {"sin", pm::sin, [](double x) { return std::sin(x); }, -40, 40, 2},
+      {"cos", pm::cos, [](double x) { return std::cos(x); }, -40, 40, 2},
+      {"sin small", pm::sin, [](double x) { return std::sin(x); }, -1e-3, 1e-3, 1},
+      {"tan", pm::tan, [](double x) { return std::tan(x); }, -1.5, 1.5, 3},
+      {"atan", pm::atan, [](double x) { return std::atan(x); }, -30, 30, 2},
+      {"asin", pm::asin, [](double x) { return std::asin(x); }, -1, 1, 3},
+      {"acos", pm::acos, [](double x) { return std::acos(x); }, -1, 1, 3},
+      {"exp", pm::exp, [](double x) { return std::exp(x); }, -700, 700, 2},
+      {"expm1", pm::expm1, [](double x) { return std::expm1(x); }, -2, 2, 2},
+      {"exp2", pm::exp2, [](double x) { return std::exp2(x); }, -60, 60, 2},
+      {"log", pm::log, [](double x) { return std::log(x); }, 1e-9, 1e9, 2},
+      {"log near 1", pm::log, [](double x) { return std::log(x); }, 0.9, 1.1, 2},
+      {"log2", pm::log2, [](double x) { return std::log2(x); }, 1e-9, 1e9, 2},
+      {"cbrt", pm::cbrt, [](double x) { return std::cbrt(x); }, -1e6, 1e6, 3},
+      {"pow", [](double x) { return pm::pow(x, -1.0 / 7); },
+       [](double x) { return std::pow(x, -1.0 / 7); }, 1, 1e6, 2},
+  };
+  for (const CloseCase& c : cases) expect_close(c.name, c.ours, c.libm, c.lo, c.hi, c.max_ulps);
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-50, 50);
   int64_t worst_atan2 = 0, worst_hypot = 0;

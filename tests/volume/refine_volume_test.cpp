@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/mesh/volume_mesh.h"
@@ -19,7 +20,10 @@ struct Prepared {
   std::vector<double> vertex_h;
 };
 
-void prepare(Prepared& p, double gradation) {
+/// The convex region of the surface `points` (testing::convex_input), its
+/// size field (the points' sizes graded by `gradation`) and h at each vertex.
+void prepare(Prepared& p, std::vector<double> points, double gradation) {
+  ASSERT_TRUE(testing::convex_input(std::move(points), &p.in));
   std::vector<double> pts, sizes;
   for (size_t v = 0; v < p.in.kernel.num_vertices(); ++v) {
     pts.insert(pts.end(), p.in.kernel.point(int32_t(v)), p.in.kernel.point(int32_t(v)) + 3);
@@ -46,8 +50,7 @@ double region_volume(const Delaunay3D& d) {
 
 TEST(RefineVolume, CubeInteriorPointsOnlyAndSurfaceKept) {
   Prepared p;
-  ASSERT_TRUE(testing::convex_input(testing::cube_surface_points(8), &p.in));
-  prepare(p, 0.25);
+  ASSERT_NO_FATAL_FAILURE(prepare(p, testing::cube_surface_points(8), 0.25));
   const size_t n0 = p.in.kernel.num_vertices();
   RefineStats st;
   ASSERT_TRUE(refine_volume(p.in.kernel, p.field, p.vertex_h, RefineOptions{}, &st).ok());
@@ -86,8 +89,7 @@ TEST(RefineVolume, CubeInteriorPointsOnlyAndSurfaceKept) {
 
 TEST(RefineVolume, SpacingRespectedNearSurfaceAndFront) {
   Prepared p;
-  ASSERT_TRUE(testing::convex_input(testing::sphere_points(3), &p.in));
-  prepare(p, 0.2);
+  ASSERT_NO_FATAL_FAILURE(prepare(p, testing::sphere_points(3), 0.2));
   const size_t n0 = p.in.kernel.num_vertices();
   RefineOptions o;
   RefineStats st;
@@ -115,8 +117,7 @@ TEST(RefineVolume, SpacingRespectedNearSurfaceAndFront) {
 TEST(RefineVolume, DeterministicAndCancellable) {
   auto run = [](std::vector<double>* pts) {
     Prepared p;
-    ASSERT_TRUE(testing::convex_input(testing::capped_cylinder_points(1, 3, 0.3), &p.in));
-    prepare(p, 0.25);
+    ASSERT_NO_FATAL_FAILURE(prepare(p, testing::capped_cylinder_points(1, 3, 0.3), 0.25));
     ASSERT_TRUE(refine_volume(p.in.kernel, p.field, p.vertex_h, RefineOptions{}, nullptr).ok());
     *pts = p.in.kernel.points();
   };
@@ -126,8 +127,7 @@ TEST(RefineVolume, DeterministicAndCancellable) {
   EXPECT_EQ(a, b);
 
   Prepared p;
-  ASSERT_TRUE(testing::convex_input(testing::capped_cylinder_points(1, 3, 0.3), &p.in));
-  prepare(p, 0.25);
+  ASSERT_NO_FATAL_FAILURE(prepare(p, testing::capped_cylinder_points(1, 3, 0.3), 0.25));
   Status s = refine_volume(p.in.kernel, p.field, p.vertex_h, RefineOptions{}, nullptr,
                            [](double, std::string_view) { return false; });
   EXPECT_FALSE(s.ok());
@@ -136,8 +136,7 @@ TEST(RefineVolume, DeterministicAndCancellable) {
 
 TEST(RefineVolume, Errors) {
   Prepared p;
-  ASSERT_TRUE(testing::convex_input(testing::cube_surface_points(3), &p.in));
-  prepare(p, 0.25);
+  ASSERT_NO_FATAL_FAILURE(prepare(p, testing::cube_surface_points(3), 0.25));
   std::vector<double> wrong(3, 0.1);
   EXPECT_FALSE(refine_volume(p.in.kernel, p.field, wrong, RefineOptions{}, nullptr).ok());
   RefineOptions bad;
