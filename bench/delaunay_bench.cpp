@@ -24,6 +24,11 @@
 #include "core/util/allocator_tuning.h"
 #include "core/volume/delaunay3d.h"
 
+#ifdef VM_HAVE_CGAL
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#endif
+
 namespace {
 
 using vm::bench::median;
@@ -51,6 +56,23 @@ std::vector<double> make_points(const std::string& kind, int n, uint32_t seed) {
   return p;
 }
 
+#ifdef VM_HAVE_CGAL
+/// CGAL's Delaunay triangulation of pts (3 doubles each): thread CPU
+/// seconds of the construction (the conversion to CGAL points excluded),
+/// and its finite cells into *cells.
+double cgal_build_cpu(const std::vector<double>& pts, size_t* cells) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  std::vector<K::Point_3> p;
+  p.reserve(pts.size() / 3);
+  for (size_t i = 0; i + 2 < pts.size(); i += 3) p.emplace_back(pts[i], pts[i + 1], pts[i + 2]);
+  const double c0 = thread_cpu();
+  CGAL::Delaunay_triangulation_3<K> dt(p.begin(), p.end());
+  const double c = thread_cpu() - c0;
+  *cells = dt.number_of_finite_cells();
+  return c;
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -58,7 +80,7 @@ int main(int argc, char** argv) {
   int runs = 5;
   std::vector<int> sizes = {100000, 1000000};
   std::vector<std::string> kinds = {"cube", "sphere", "cylinder"};
-  bool constrained = false;
+  bool constrained = false, cgal = false;
   auto split = [](const std::string& s) {
     std::vector<std::string> out;
     for (size_t pos = 0; pos <= s.size();) {
@@ -80,10 +102,18 @@ int main(int argc, char** argv) {
       kinds = split(argv[++i]);
     } else if (a == "--constrained") {
       constrained = true;
+    } else if (a == "--cgal") {
+#ifdef VM_HAVE_CGAL
+      cgal = true;
+#else
+      std::fprintf(stderr,
+                   "delaunay_bench: built without CGAL (install libcgal-dev, reconfigure)\n");
+      return 2;
+#endif
     } else {
       std::fprintf(stderr,
                    "usage: delaunay_bench [--runs N] [--sizes N1,...] [--kinds K1,...] "
-                   "[--constrained]\n");
+                   "[--constrained] [--cgal]\n");
       return 2;
     }
   }
@@ -92,11 +122,14 @@ int main(int argc, char** argv) {
               "cavity", "created");
   for (const std::string& kind : kinds) {
     for (int n : sizes) {
-      std::vector<double> times, cpu, ccpu;
-      size_t tets = 0;
+      std::vector<double> times, cpu, ccpu, cgal_cpu;
+      size_t tets = 0, cgal_cells = 0;
       int64_t steps = 0, cavity = 0, created = 0;
       for (int r = 0; r < runs; ++r) {
         std::vector<double> pts = make_points(kind, n, uint32_t(r + 1));
+#ifdef VM_HAVE_CGAL
+        if (cgal) cgal_cpu.push_back(cgal_build_cpu(pts, &cgal_cells));
+#endif
         auto t0 = std::chrono::steady_clock::now();
         const double c0 = thread_cpu();
         auto d = vm::Delaunay3D::build(std::move(pts));
@@ -131,6 +164,11 @@ int main(int argc, char** argv) {
       std::printf("%-9s %9d %6d %10.4f %14.0f %10.4f %14.0f %8.2f %9.2f %9.2f %9.2f\n",
                   kind.c_str(), n, runs, t, n / t, c, n / c, double(tets) / n, double(steps) / n,
                   double(cavity) / n, double(created) / n);
+      if (cgal)
+        std::printf(
+            "  CGAL Delaunay_triangulation_3: cpu %.4f s, %.0f points/cpu s, %.2f tets/pt; "
+            "ours %.2fx CGAL's points/cpu s\n",
+            median(cgal_cpu), n / median(cgal_cpu), double(cgal_cells) / n, median(cgal_cpu) / c);
       if (constrained)
         std::printf("  constrained insertion of %d more: cpu %.4f s, %.0f points/cpu s\n", n / 4,
                     median(ccpu), (n / 4) / median(ccpu));

@@ -254,7 +254,8 @@ Delaunay3D::Location Delaunay3D::locate(const double* p, int32_t hint) const {
 
 // ---------------------------------------------------------------- insertion
 
-inline bool Delaunay3D::finite_conflict(int32_t t, const double* p, int32_t pv) const {
+[[gnu::always_inline]] inline bool Delaunay3D::finite_conflict(int32_t t, const double* p,
+                                                               int32_t pv) const {
   const int32_t* v = tet(t);
   // Positive tetrahedra have orient3d < 0, so "inside" is insphere < 0.
   const double s = insphere_fast(point(v[0]), point(v[1]), point(v[2]), point(v[3]), p, is_bound_);
@@ -273,7 +274,8 @@ bool Delaunay3D::sos_conflict(int32_t t, const double* p, int32_t pv) const {
   return insphere_sos(a, b, c, d, p, id[v[0]], id[v[1]], id[v[2]], id[v[3]], id[pv]) < 0;
 }
 
-inline bool Delaunay3D::conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const {
+[[gnu::always_inline]] inline bool Delaunay3D::conflict(int32_t t, const double* p, int32_t pv,
+                                                        bool strict_hull) const {
   const int32_t* v = tet(t);
   // Live tetrahedra have no kFree vertex: negative only for kInfinite.
   if ((v[0] | v[1] | v[2] | v[3]) >= 0) return finite_conflict(t, p, pv);
@@ -506,110 +508,94 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
 }
 
 void Delaunay3D::star(int32_t pv) {
-  // Phase 3a: the boundary faces, read before the cavity slots are reused:
-  // the new tetrahedron on face f of cavity tetrahedron t is t with slot f
-  // replaced by p (so it is positive and its face f is the old face).
+  // Phase 3a: slots for the new tetrahedra, free or appended ones; the
+  // cavity's are freed last (the free list gives them to the next
+  // insertion, last-freed first), so the cavity is read while writing.
   const size_t nb = boundary_.size(), nc = cavity_.size();
-  faces_.resize(nb);
+  new_.resize(nb);
+  for (size_t i = 0; i < nb; ++i) new_[i] = topo_.new_slot();
+  // Phase 3b: the new tetrahedron on face f of cavity tetrahedron t is t
+  // with slot f replaced by p (so it is positive and its face f is the old
+  // face); it is linked to the outside through that face. Face j != f holds
+  // p and the boundary edge on the two other slots; the cavity boundary is
+  // a closed surface, oriented by kFaceOut, so every boundary edge is in
+  // exactly two boundary faces, with opposite directions, whose new
+  // tetrahedra share that face. In kFaceOut order (a, b, c) the edges are
+  // a->b (the face opposite slot c), b->c (opposite a) and c->a (opposite
+  // b). Small cavities link through a table indexed by local ids of the
+  // boundary vertices (Marot, Pellerin, Remacle, "One machine, one minute,
+  // three billion tetrahedra", IJNME 117, 2019, section 3.3): every new
+  // tetrahedron writes its three faces under their directed edges, then
+  // reads its neighbors under the reversed edges, with no search and no
+  // branch on the data. Larger ones use a hash of the boundary edges.
+  const bool by_table = nb <= kMaxTableFaces;
+  uint32_t gen = 0;
+  if (by_table) {
+    if (local_id_.size() < num_vertices() + 1) local_id_.resize(num_vertices() + 1, 0);
+    if (++local_gen_ >= (1u << 24)) {
+      std::fill(local_id_.begin(), local_id_.end(), 0u);
+      local_gen_ = 1;
+    }
+    gen = local_gen_ << 8;
+  }
+  uint32_t* lid = local_id_.data() + 1;  // indexed by vertex + 1: kInfinite is one like the others
+  uint32_t next = 0;
+  int32_t* table = edge_table_.data();
+  sides_.resize(nb);
   for (size_t i = 0; i < nb; ++i) {
     const int32_t e = boundary_[i];
     const int32_t t = e >> 2;
     const int f = e & 3;
-    BoundaryFace& b = faces_[i];
-    const int32_t* ov = topo_.tets[size_t(t)].v;
-    b.v[0] = ov[0], b.v[1] = ov[1], b.v[2] = ov[2], b.v[3] = ov[3];
-    b.v[f] = pv;
-    b.outer = link(e);
-    b.f = f;
-    b.constrained = uint8_t(topo_.constrained[size_t(t)] & (1u << f));
-    b.tag = topo_.tags[size_t(t)];
-  }
-  // Phase 3b: slots: free or new ones, then the cavity's are freed (for
-  // the next insertion: the free list gives them back last-freed first).
-  new_.resize(nb);
-  for (size_t i = 0; i < nb; ++i) new_[i] = topo_.new_slot();
-  for (int32_t t : cavity_) topo_.free_slot(t);
-  // Phase 3c: write, and link to the outside through the old face. Face
-  // j != f of a new tetrahedron holds p and the boundary edge on the two
-  // other slots; the cavity boundary is a closed surface, oriented by
-  // kFaceOut, so every boundary edge is in exactly two boundary faces, with
-  // opposite directions, whose new tetrahedra share that face.
-  for (size_t i = 0; i < nb; ++i) {
     const int32_t n = new_[i];
-    const BoundaryFace& b = faces_[i];
-    const int f = b.f;
+    const TetTopology::Rec& o = topo_.tets[size_t(t)];
     TetTopology::Rec& r = topo_.tets[size_t(n)];
-    r.v[0] = b.v[0], r.v[1] = b.v[1], r.v[2] = b.v[2], r.v[3] = b.v[3];
-    r.n[f] = b.outer;
-    link(b.outer) = 4 * n + f;
-    topo_.constrained[size_t(n)] = b.constrained;
-    topo_.tags[size_t(n)] = b.tag;
+    r.v[0] = o.v[0], r.v[1] = o.v[1], r.v[2] = o.v[2], r.v[3] = o.v[3];
+    r.v[f] = pv;
+    r.n[f] = o.n[f];
+    link(o.n[f]) = 4 * n + f;
+    topo_.constrained[size_t(n)] = uint8_t(topo_.constrained[size_t(t)] & (1u << f));
+    topo_.tags[size_t(n)] = topo_.tags[size_t(t)];
+    const int* fo = kFaceOut[f];
     for (int jj = 0; jj < 3; ++jj) {
-      const int32_t w = b.v[kApexFaces[f][jj]];
+      const int32_t w = r.v[fo[jj]];
       if (w >= 0) topo_.vertex_tet[size_t(w)] = n;
     }
+    if (!by_table) continue;
+    uint32_t id[3];
+    for (int jj = 0; jj < 3; ++jj) {
+      const int32_t w = r.v[fo[jj]];
+      const uint32_t x = lid[w];
+      const bool fresh = (x & ~0xffu) != gen;
+      id[jj] = fresh ? next : (x & 0xffu);
+      next += fresh;
+      lid[w] = gen | id[jj];
+    }
+    sides_[i] = {{uint8_t(id[0]), uint8_t(id[1]), uint8_t(id[2])}};
+    table[id[0] * kLocal + id[1]] = 4 * n + fo[2];
+    table[id[1] * kLocal + id[2]] = 4 * n + fo[0];
+    table[id[2] * kLocal + id[0]] = 4 * n + fo[1];
   }
-  if (nb <= kMaxMatrixFaces) {
-    link_star_by_matrix();
+  if (by_table) {
+    for (size_t i = 0; i < nb; ++i) {
+      const uint8_t* side = sides_[i].local;
+      TetTopology::Rec& r = topo_.tets[size_t(new_[i])];
+      const int* fo = kFaceOut[boundary_[i] & 3];
+      r.n[fo[2]] = table[side[1] * kLocal + side[0]];
+      r.n[fo[0]] = table[side[2] * kLocal + side[1]];
+      r.n[fo[1]] = table[side[0] * kLocal + side[2]];
+    }
   } else {
     link_star_by_hash();
   }
+  for (int32_t t : cavity_) topo_.free_slot(t);
   topo_.vertex_tet[size_t(pv)] = new_[0];
   stats_.cavity_tets += int64_t(nc);
   stats_.boundary_faces += int64_t(nb);
   last_ = new_[0];
 }
 
-void Delaunay3D::link_star_by_matrix() {
-  // Each boundary vertex gets a small local id, so that a directed
-  // boundary edge (x, y) indexes a kLocal x kLocal table: every new
-  // tetrahedron writes its three faces under their edges, then reads its
-  // neighbors under the reversed edges. No search, and no branch on the data
-  // (Marot, Pellerin, Remacle, "One machine, one minute, three billion
-  // tetrahedra", IJNME 117, 2019, section 3.3). local_id_ is indexed by
-  // vertex + 1, so that the infinite vertex is one like the others.
-  const size_t nb = faces_.size();
-  if (local_id_.size() < num_vertices() + 1) local_id_.resize(num_vertices() + 1);
-  int32_t* lid = local_id_.data() + 1;
-  for (const BoundaryFace& b : faces_)
-    for (int s = 0; s < 4; ++s) lid[b.v[s]] = -1;  // p included: harmless
-  int32_t next = 0;
-  for (BoundaryFace& b : faces_)
-    for (int jj = 0; jj < 3; ++jj) {
-      const int s = kApexFaces[b.f][jj];
-      const int32_t old = lid[b.v[s]];
-      const int32_t id = old < 0 ? next : old;
-      next += old < 0;
-      lid[b.v[s]] = id;
-      b.local[s] = uint8_t(id);
-    }
-  // The face opposite slot j holds the boundary triangle's edge that skips
-  // j; in kFaceOut order (a, b, c) the edges are a->b, b->c and c->a.
-  int32_t* map = edge_matrix_.data();
-  for (size_t i = 0; i < nb; ++i) {
-    const BoundaryFace& b = faces_[i];
-    const int* o = kFaceOut[b.f];
-    const int32_t base = 4 * new_[i];
-    const int la = b.local[o[0]], lb = b.local[o[1]], lc = b.local[o[2]];
-    map[la * kLocal + lb] = base + o[2];
-    map[lb * kLocal + lc] = base + o[0];
-    map[lc * kLocal + la] = base + o[1];
-  }
-  for (size_t i = 0; i < nb; ++i) {
-    const BoundaryFace& b = faces_[i];
-    const int* o = kFaceOut[b.f];
-    int32_t* nn = topo_.tets[size_t(new_[i])].n;
-    const int la = b.local[o[0]], lb = b.local[o[1]], lc = b.local[o[2]];
-    nn[o[2]] = map[lb * kLocal + la];
-    nn[o[0]] = map[lc * kLocal + lb];
-    nn[o[1]] = map[la * kLocal + lc];
-  }
-}
-
 void Delaunay3D::link_star_by_hash() {
-  // Large cavities (more boundary vertices than the local table holds): an
-  // open-addressing hash of the boundary edges.
-  const size_t nb = faces_.size();
+  const size_t nb = new_.size();
   int bits = 4;
   while ((size_t(1) << bits) < 3 * nb) ++bits;
   const size_t hsize = size_t(1) << bits;
@@ -623,12 +609,11 @@ void Delaunay3D::link_star_by_hash() {
   EdgeSlot* table = edge_hash_.data();
   for (size_t i = 0; i < nb; ++i) {
     const int32_t n = new_[i];
-    const BoundaryFace& b = faces_[i];
-    const int f = b.f;
-    int32_t* nn = topo_.tets[size_t(n)].n;
+    const int f = boundary_[i] & 3;
+    TetTopology::Rec& r = topo_.tets[size_t(n)];
     for (int jj = 0; jj < 3; ++jj) {
       const int j = kApexFaces[f][jj];
-      int32_t u = b.v[kOther[f][j][0]], w = b.v[kOther[f][j][1]];
+      int32_t u = r.v[kOther[f][j][0]], w = r.v[kOther[f][j][1]];
       if (u > w) std::swap(u, w);
       uint32_t h = ((uint32_t(u) * 0x9e3779b1u) ^ (uint32_t(w) * 0x85ebca6bu)) >> (32 - bits);
       for (;; h = (h + 1) & mask) {
@@ -638,7 +623,7 @@ void Delaunay3D::link_star_by_hash() {
           break;
         }
         if (s.u == u && s.w == w) {
-          nn[j] = s.face;
+          r.n[j] = s.face;
           link(s.face) = 4 * n + j;
           break;
         }

@@ -261,10 +261,8 @@ class Delaunay3D {
   /// boundary faces (neighbor not stamped `in`) into boundary_.
   void keep_cavity(uint32_t in);
   void star(int32_t pv);
-  /// star(): the links between the new tetrahedra (new_, faces_) by a
-  /// table indexed by local ids of the boundary's directed edges, or, for
-  /// cavities too large for it, by a hash of the boundary edges.
-  void link_star_by_matrix();
+  /// star(): the links between the new tetrahedra (new_, on boundary_)
+  /// of a cavity too large for the table, by a hash of the boundary edges.
   void link_star_by_hash();
   bool new_tet_valid(const std::array<int32_t, 4>& q, const std::vector<int32_t>& around) const;
   void init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d);
@@ -291,22 +289,21 @@ class Delaunay3D {
   mutable uint64_t rng_ = 0x2545f4914f6cdd1dull;
   std::vector<int32_t> cavity_, boundary_;  // tets; encoded faces
   std::vector<int32_t> new_, pinned_, ring_scratch_;
-  struct BoundaryFace {  // star(): a cavity boundary face and its new tet
-    int32_t v[4];        // the new tet's vertices (p at slot f)
-    int32_t outer;       // encoded face of the outer neighbor
-    int32_t tag;
-    int32_t f;
-    uint8_t constrained;  // bit f
-    uint8_t local[4];     // link_star_by_matrix(): local vertex ids
+  // star(): per boundary face, the local ids of its vertices in kFaceOut
+  // order; per vertex + 1, the generation (high 24 bits) and local id (low
+  // 8 bits) of the last star that numbered it; the table of directed
+  // boundary edges between local ids. A closed triangulated sphere with V
+  // vertices has 2 V - 4 faces, so kMaxTableFaces faces have at most kLocal
+  // vertices.
+  struct FaceSide {
+    uint8_t local[3];
   };
-  std::vector<BoundaryFace> faces_;
-  /// link_star_by_matrix(): the local id table's side, and the most
-  /// boundary faces it serves (a closed triangulated sphere with V vertices
-  /// has 2 V - 4 faces).
+  std::vector<FaceSide> sides_;
   static constexpr int kLocal = 64;
-  static constexpr size_t kMaxMatrixFaces = 2 * kLocal - 4;
-  std::vector<int32_t> local_id_ = {};  // per vertex + 1, scratch
-  std::vector<int32_t> edge_matrix_ = std::vector<int32_t>(kLocal * kLocal);
+  static constexpr size_t kMaxTableFaces = 2 * kLocal - 4;
+  std::vector<uint32_t> local_id_;
+  uint32_t local_gen_ = 0;
+  std::vector<int32_t> edge_table_ = std::vector<int32_t>(kLocal * kLocal);
   struct EdgeSlot {  // star(): open-addressing hash of boundary edges
     int32_t u, w;    // the edge, u < w
     int32_t face;    // encoded face (p, u, w) of the first new tet seen
