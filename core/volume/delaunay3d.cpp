@@ -313,24 +313,23 @@ bool Delaunay3D::bowyer_watson(int32_t t0, const double* p, int32_t pv, bool res
   // without the shrinking passes.
   if (kVerify && is_ghost(t0)) return false;
   const uint32_t in = uint32_t(topo_.visit_stamp()), out = in + 1;
+  // Local copies of the arrays' bases: the searches below write through
+  // int32 pointers, so the compiler would reload them from the vectors.
+  const TetTopology::Rec* const tets = topo_.tets.data();
+  uint32_t* const stamp = topo_.stamp.data();
+  const uint8_t* const constrained = topo_.constrained.data();
   cavity_.clear();
   boundary_.clear();
   cavity_.push_back(t0);
-  topo_.stamp[size_t(t0)] = in;
+  stamp[size_t(t0)] = in;
   for (size_t i = 0; i < cavity_.size(); ++i) {
     const int32_t t = cavity_[i];
-    const unsigned cons = kVerify && respect_constraints ? topo_.constrained[size_t(t)] : 0u;
-    // The four neighbors' records and marks are fetched together (the
-    // search is bound by memory latency, and the tests below serialize).
-    for (int k = 0; k < 4; ++k) {
-      const int32_t n = link(4 * t + k) >> 2;
-      __builtin_prefetch(&topo_.tets[size_t(n)]);
-      __builtin_prefetch(&topo_.stamp[size_t(n)]);
-    }
+    const int32_t* links = tets[size_t(t)].n;
+    const unsigned cons = kVerify && respect_constraints ? constrained[size_t(t)] : 0u;
     for (int k = 0; k < 4; ++k) {
       const int32_t e = 4 * t + k;
-      const int32_t n = link(e) >> 2;
-      const uint32_t s = topo_.stamp[size_t(n)];
+      const int32_t n = links[k] >> 2;
+      const uint32_t s = stamp[size_t(n)];
       if (kVerify && ((cons >> k) & 1u)) {
         if (s == in) return false;  // a constrained face inside the cavity
         boundary_.push_back(e);     // n may still be reached another way
@@ -339,13 +338,13 @@ bool Delaunay3D::bowyer_watson(int32_t t0, const double* p, int32_t pv, bool res
       if (s == in) continue;
       if (s != out && conflict(n, p, pv, false)) {
         if (kVerify) {
-          const int32_t* v = tet(n);
+          const int32_t* v = tets[size_t(n)].v;
           if ((v[0] | v[1] | v[2] | v[3]) < 0 || cavity_.size() >= kMaxCavity) return false;
         }
-        topo_.stamp[size_t(n)] = in;
+        stamp[size_t(n)] = in;
         cavity_.push_back(n);
       } else {
-        topo_.stamp[size_t(n)] = out;
+        stamp[size_t(n)] = out;
         boundary_.push_back(e);
       }
     }
@@ -542,23 +541,28 @@ void Delaunay3D::star(int32_t pv) {
   uint32_t next = 0;
   int32_t* table = edge_table_.data();
   sides_.resize(nb);
+  // Local copies of the arrays' bases (the slots are all allocated above).
+  TetTopology::Rec* const tets = topo_.tets.data();
+  uint8_t* const constrained = topo_.constrained.data();
+  int32_t* const tags = topo_.tags.data();
+  int32_t* const vertex_tet = topo_.vertex_tet.data();
   for (size_t i = 0; i < nb; ++i) {
     const int32_t e = boundary_[i];
     const int32_t t = e >> 2;
     const int f = e & 3;
     const int32_t n = new_[i];
-    const TetTopology::Rec& o = topo_.tets[size_t(t)];
-    TetTopology::Rec& r = topo_.tets[size_t(n)];
+    const TetTopology::Rec& o = tets[size_t(t)];
+    TetTopology::Rec& r = tets[size_t(n)];
     r.v[0] = o.v[0], r.v[1] = o.v[1], r.v[2] = o.v[2], r.v[3] = o.v[3];
     r.v[f] = pv;
     r.n[f] = o.n[f];
-    link(o.n[f]) = 4 * n + f;
-    topo_.constrained[size_t(n)] = uint8_t(topo_.constrained[size_t(t)] & (1u << f));
-    topo_.tags[size_t(n)] = topo_.tags[size_t(t)];
+    tets[size_t(o.n[f] >> 2)].n[o.n[f] & 3] = 4 * n + f;
+    constrained[size_t(n)] = uint8_t(constrained[size_t(t)] & (1u << f));
+    tags[size_t(n)] = tags[size_t(t)];
     const int* fo = kFaceOut[f];
     for (int jj = 0; jj < 3; ++jj) {
       const int32_t w = r.v[fo[jj]];
-      if (w >= 0) topo_.vertex_tet[size_t(w)] = n;
+      if (w >= 0) vertex_tet[size_t(w)] = n;
     }
     if (!by_table) continue;
     uint32_t id[3];
@@ -578,7 +582,7 @@ void Delaunay3D::star(int32_t pv) {
   if (by_table) {
     for (size_t i = 0; i < nb; ++i) {
       const uint8_t* side = sides_[i].local;
-      TetTopology::Rec& r = topo_.tets[size_t(new_[i])];
+      TetTopology::Rec& r = tets[size_t(new_[i])];
       const int* fo = kFaceOut[boundary_[i] & 3];
       r.n[fo[2]] = table[side[1] * kLocal + side[0]];
       r.n[fo[0]] = table[side[2] * kLocal + side[1]];
