@@ -5,21 +5,23 @@
 // a blank page; the STL is handed to the page as bytes. Prints one JSON
 // object: per-run wall seconds (performance.now() in the page), median, the
 // output's counts and quality, the page's peak JS heap, the browser version.
+// With --serve it runs once per line read from stdin, prints each run as a
+// JSON line {run, seconds}, and the object above when stdin closes.
 //
 // usage: node bench/wasm_chromium_bench.mjs FILE.stl [--size H | --per-circumference N]
-//          [--runs N] [--surface-only] [--layers N] [--core-size H]
+//          [--runs N | --serve] [--surface-only] [--layers N] [--core-size H]
 import { createReadStream, readFileSync, statSync } from 'node:fs';
 import { createServer } from 'node:http';
 import { basename, extname, join, normalize } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 import { chromium } from 'playwright-core';
-import { median, parseBenchArgs } from './benchutil.mjs';
+import { median, parseBenchArgs, runIndices } from './benchutil.mjs';
 
 const ROOT = fileURLToPath(new URL('..', import.meta.url));
 const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.wasm': 'application/wasm' };
 
-const { file, runs, options } = await parseBenchArgs(process.argv.slice(2), 'wasm_chromium_bench.mjs');
+const { file, runs, serve, options } = await parseBenchArgs(process.argv.slice(2), 'wasm_chromium_bench.mjs');
 
 // The repository's files under / (no directory listing), and a blank page.
 const server = createServer((req, res) => {
@@ -50,39 +52,51 @@ let result;
 try {
   const page = await browser.newPage();
   await page.goto(`${origin}/`);
-  const bytes = Array.from(readFileSync(file));
-  result = await page.evaluate(
-    async ({ bytes, options, runs }) => {
+  // The module and the input stay in the page between runs (one evaluate per
+  // run, so that runs can be driven one at a time from stdin).
+  await page.evaluate(
+    async ({ bytes }) => {
       const { createVesselmesh } = await import('/wasm/src/vesselmesh.js');
-      const api = await createVesselmesh();
-      const input = new Uint8Array(bytes);
-      const seconds = [];
-      let last = null;
-      let heap = 0;
-      for (let r = 0; r < runs; r++) {
-        const t = performance.now();
-        last = api.mesh(input, options);
-        seconds.push((performance.now() - t) / 1000);
-        if (!last.ok) return { ok: false, error: last.error };
-        heap = Math.max(heap, performance.memory?.usedJSHeapSize ?? 0);
-      }
-      const out = last.report.output;
+      window.bench = { api: await createVesselmesh(), input: new Uint8Array(bytes), last: null, heap: 0 };
+    },
+    { bytes: Array.from(readFileSync(file)) },
+  );
+  const seconds = [];
+  for await (const r of runIndices(runs, serve)) {
+    const run = await page.evaluate((options) => {
+      const b = window.bench;
+      const t = performance.now();
+      b.last = b.api.mesh(b.input, options);
+      const dt = (performance.now() - t) / 1000;
+      b.heap = Math.max(b.heap, performance.memory?.usedJSHeapSize ?? 0);
+      return b.last.ok ? { ok: true, seconds: dt } : { ok: false, error: b.last.error };
+    }, options);
+    if (!run.ok) {
+      result = run;
+      break;
+    }
+    seconds.push(run.seconds);
+    if (serve) console.log(JSON.stringify({ run: r + 1, seconds: run.seconds }));
+  }
+  if (!result && !seconds.length) result = { ok: false, error: 'no run' };
+  if (!result) {
+    result = await page.evaluate(() => {
+      const out = window.bench.last.report.output;
       return {
         ok: true,
-        seconds,
         triangles: out.triangles,
         tets: out.volume?.tetrahedra ?? 0,
         quality: { min: out.quality.min, mean: out.quality.mean },
-        peak_js_heap_mb: heap / 2 ** 20,
+        peak_js_heap_mb: window.bench.heap / 2 ** 20,
       };
-    },
-    { bytes, options, runs },
-  );
+    });
+    result.seconds = seconds;
+  }
   result.browser = `Chromium ${browser.version()}`;
 } finally {
   await browser.close();
   server.close();
 }
 if (result.ok) result.median_seconds = median(result.seconds);
-console.log(JSON.stringify({ file: basename(file), options, runs, ...result }));
+console.log(JSON.stringify({ file: basename(file), options, runs: result.seconds?.length ?? 0, ...result }));
 process.exit(result.ok ? 0 : 1);

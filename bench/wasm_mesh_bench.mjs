@@ -6,20 +6,21 @@
 // own helper threads, e.g. the JIT compiler), medians, the output's counts and
 // quality, and the process's peak RSS (process.resourceUsage().maxRSS, which
 // includes Node itself: baseline_rss_mb is the RSS before the module loads).
+// With --serve it runs once per line read from stdin, prints each run as a
+// JSON line {run, seconds, cpu_seconds}, and the object above when stdin closes.
 //
 // usage: node bench/wasm_mesh_bench.mjs FILE.stl [--size H | --per-circumference N]
-//          [--param lscm|harmonic|floater] [--mesher2d frontal|delaunay|adapt] [--runs N]
+//          [--param lscm|harmonic|floater] [--mesher2d frontal|delaunay|adapt] [--runs N | --serve]
 //          [--surface-only] [--layers N] [--core-size H]
 import { readFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import { performance } from 'node:perf_hooks';
-import { median, parseBenchArgs } from './benchutil.mjs';
+import { median, parseBenchArgs, runIndices } from './benchutil.mjs';
 
 const baselineRss = process.memoryUsage().rss;
 const { createVesselmesh } = await import('../wasm/src/vesselmesh.js');
 
-const { file, runs, options } = await parseBenchArgs(process.argv.slice(2), 'wasm_mesh_bench.mjs');
-
+const { file, runs, serve, options } = await parseBenchArgs(process.argv.slice(2), 'wasm_mesh_bench.mjs');
 
 const t0 = performance.now();
 const wasmBinary = readFileSync(new URL('../wasm/dist/vesselmesh_core.wasm', import.meta.url));
@@ -30,7 +31,7 @@ const bytes = new Uint8Array(readFileSync(file));
 const seconds = [];
 const cpuSeconds = [];
 let last = null;
-for (let r = 0; r < runs; r++) {
+for await (const r of runIndices(runs, serve)) {
   const c = process.cpuUsage();
   const t = performance.now();
   const res = api.mesh(bytes, options);
@@ -43,6 +44,11 @@ for (let r = 0; r < runs; r++) {
   }
   seconds.push(dt);
   last = res;
+  if (serve) console.log(JSON.stringify({ run: r + 1, seconds: dt, cpu_seconds: cpuSeconds[r] }));
+}
+if (!last) {
+  console.log(JSON.stringify({ ok: false, file: basename(file), options, error: 'no run' }));
+  process.exit(1);
 }
 const out = last.report.output;
 console.log(
@@ -50,7 +56,7 @@ console.log(
     ok: true,
     file: basename(file),
     options,
-    runs,
+    runs: seconds.length,
     seconds,
     median_seconds: median(seconds),
     cpu_seconds: cpuSeconds,
