@@ -1,21 +1,32 @@
 #!/usr/bin/env python3
-"""Speed benchmark of issue 3 (and, with --volume, of the volume issue):
-one input at one uniform size, medians of repeated runs, one at a time.
+"""Speed benchmark of issue 3 (and, with --volume, of the volume issue;
+with --threads, the side-by-side run of issue 22): one input at one uniform
+size, medians of repeated runs, one at a time, alternating run by run.
 
-  native  `vesselmesh mesh IN --surface-only -o OUT --size H`  (>= 5 runs,
-          alternating with Gmsh's runs while both have runs left):
-          wall time of the process and its peak RSS (GNU time %M)
+  native  `vesselmesh mesh IN --surface-only -o OUT --size H [--threads T]`
+          (>= 5 runs): wall time of the process, its CPU time and peak RSS
+          (GNU time %U+%S, %M); without --threads the CLI's default (all cores)
   wasm    bench/wasm_mesh_bench.mjs: api.mesh(bytes, {size: H}) under Node
           in one process (>= 5 runs; module loaded once via wasmBinary),
-          process peak RSS (includes Node itself; its baseline is shown)
-  Gmsh    bench/gmsh_reference.py (>= 3 runs), one thread: per-stage
-          medians; its time is the sum of its stages (merge, classify,
-          createGeometry, surface[, caps + volume]) without Python/Gmsh
-          start-up, i.e. the comparison is generous to Gmsh.
+          process peak RSS (includes Node itself; its baseline is shown);
+          with --chromium (or --chromium-runs N) also in Chromium
+          (bench/wasm_chromium_bench.mjs; wall time only, peak = JS heap).
+          One thread: the wasm build has no threads. Both run with --serve,
+          one run per line sent, so that their runs alternate with the others.
+  Gmsh    bench/gmsh_reference.py (>= 3 runs), one thread (--threads: each
+          T): per-stage medians; its time is the sum of its stages (merge,
+          classify, createGeometry, surface[, caps + volume]) without
+          Python/Gmsh start-up, i.e. the comparison is generous to Gmsh.
+
+Every round runs each variant once (native per T, Gmsh per T, Node,
+Chromium) while it has runs left, so that a drift of the (shared) machine's
+speed weighs on all alike. The table has one row per variant and its
+speed-up against Gmsh with one thread and with the same threads.
 
 Wall-clock medians decide the targets; CPU-time medians (user + system of
-the process, Gmsh: of its stages) are printed beside them because the
-machine is shared and wall time then includes waiting for a core.
+the process over all its threads, Gmsh: of its stages) are printed beside
+them because the machine is shared and wall time then includes waiting for
+a core.
 
 Targets (issue 3): aortic-arch.stl at h = 0.06 natively >= 3x faster than
 Gmsh's surface pipeline; wasm within 1.6x of native. With --volume: the full
@@ -25,15 +36,24 @@ its output has no tetrahedra (the comparison is then not valid). The median
 tetrahedron edge of both outputs is printed: Gmsh's HXT fills the volume
 coarser than h (about 1.4 h on the aortic arch at h = 0.06, where
 vesselmesh's is 1.0 h), so a like-for-like run passes --core-size 1.4h.
+Targets with --threads (issue 22, full pipeline, --core-size 0.084): native
+on 1 thread >= 4.5x faster than Gmsh on 1 thread, on 2 threads >= 6.5x than
+Gmsh on 2 threads; Chromium within 1.4x of native at the same thread count
+(the wasm build has one thread, so: of native on 1 thread).
 
 usage: remesh_speed.py [--file aortic-arch.stl] [--size 0.06] [--runs 5]
                        [--wasm-runs 5] [--gmsh-runs 3] [--volume [--layers N] [--core-size H]]
-                       [--no-wasm] [--chromium] [--no-gmsh] [--json OUT.json]
+                       [--threads 1,2] [--no-wasm] [--chromium | --chromium-runs N]
+                       [--no-gmsh] [--json OUT.json]
+e.g. the side-by-side run of issue 22:
+  remesh_speed.py --volume --size 0.06 --core-size 0.084 --layers 0 --threads 1,2 \
+                  --chromium-runs 3 --json out/speed/side_by_side.json
 """
 import argparse
 import json
 import os
 import shutil
+import subprocess
 import sys
 import tempfile
 
@@ -45,18 +65,26 @@ import meshquality  # noqa: E402
 
 TARGET_GMSH_RATIO = 3.0
 TARGET_WASM_RATIO = 1.6
+# Issue 22 (--threads): Gmsh with T threads / native with T threads, by T;
+# Chromium / native at the same thread count.
+TARGET_GMSH_RATIO_BY_THREADS = {1: 4.5, 2: 6.5}
+TARGET_CHROMIUM_RATIO = 1.4
 
 
 class NativeBench:
-    """`vesselmesh mesh` runs, one at a time (run() may be interleaved with
-    Gmsh's so that both see the same machine); summary() aggregates them."""
+    """`vesselmesh mesh` runs with `--threads T` (None: the CLI's default, all
+    cores), one at a time (run() is interleaved with the other variants' so
+    that all see the same machine); summary() aggregates them."""
 
-    def __init__(self, a, path, tmp):
-        self.a = a
-        self.out = os.path.join(tmp, "native.msh")
-        self.rep = os.path.join(tmp, "native.json")
+    def __init__(self, a, path, tmp, threads=None):
+        self.a, self.threads = a, threads
+        self.name = "native" if threads is None else f"native {threads}T"
+        tag = "" if threads is None else str(threads)
+        self.out = os.path.join(tmp, f"native{tag}.msh")
+        self.rep = os.path.join(tmp, f"native{tag}.json")
         self.cmd = [a.vesselmesh, "mesh", path, "-o", self.out, "--report", self.rep, "--quiet",
-                    "--size", repr(a.size)] + volume_flags(a)
+                    "--size", repr(a.size)] + volume_flags(a) + \
+            ([] if threads is None else ["--threads", str(threads)])
         self.runs, self.error, self.report = [], None, None
 
     def run(self):
@@ -70,20 +98,20 @@ class NativeBench:
         self.runs.append(dict(seconds=r["seconds"], cpu_seconds=r["cpu_seconds"], peak_rss_mb=r["peak_rss_mb"],
                               core_seconds=self.report["seconds"],
                               stages=self.report["output"].get("remesh", {}).get("seconds")))
-        print(f"  native run {len(self.runs)}: {r['seconds']:.3f} s (CPU {r['cpu_seconds']:.2f} s), "
+        print(f"  {self.name} run {len(self.runs)}: {r['seconds']:.3f} s (CPU {r['cpu_seconds']:.2f} s), "
               f"{r['peak_rss_mb']:.0f} MB", flush=True)
 
     def summary(self):
         a, runs = self.a, self.runs
         if self.error or not runs:
-            return dict(ok=False, error=self.error or "no run", cmd=" ".join(self.cmd))
+            return dict(ok=False, error=self.error or "no run", cmd=" ".join(self.cmd), threads=self.threads)
         o = self.report["output"]
         tets = sum(g["elements"] for g in o.get("groups", []) if g["dim"] == 3)
         # How finely the volume follows h: the median edge of the last run's
         # tetrahedra (Gmsh's is measured the same way in gmsh_reference.py).
         tet_edge = meshquality.msh_quality(self.out).get("median_tet_edge") if a.volume and tets else None
         stages = {k: benchutil.median([x["stages"][k] for x in runs]) for k in (runs[0]["stages"] or {})}
-        return dict(ok=True, cmd=" ".join(self.cmd), runs=runs,
+        return dict(ok=True, cmd=" ".join(self.cmd), threads=self.threads, runs=runs,
                     median_seconds=benchutil.median([x["seconds"] for x in runs]),
                     median_core_seconds=benchutil.median([x["core_seconds"] for x in runs]),
                     median_cpu_seconds=benchutil.median([x["cpu_seconds"] for x in runs]),
@@ -105,37 +133,81 @@ def volume_flags(a):
     return flags
 
 
-def bench_wasm(a, path, chromium=False):
-    node = shutil.which("node")
-    if not node:
-        return dict(ok=False, error="node not found")
-    wasm = os.path.join(benchutil.ROOT, "wasm", "dist", "vesselmesh_core.wasm")
-    if not os.path.exists(wasm):
-        return dict(ok=False, error="wasm/dist/vesselmesh_core.wasm missing (build the wasm target)")
-    script = "wasm_chromium_bench.mjs" if chromium else "wasm_mesh_bench.mjs"
-    cmd = [node, os.path.join(benchutil.BENCH, script), path, "--size", repr(a.size),
-           "--runs", str(a.wasm_runs)] + volume_flags(a)
-    r = benchutil.run_measured(cmd)
-    try:
-        res = json.loads(r["stdout"].strip().splitlines()[-1])
-    except (ValueError, IndexError):
-        return dict(ok=False, error=(r["stderr"].strip() or f"exit {r['rc']}")[-500:])
-    res["process_peak_rss_mb"] = r["peak_rss_mb"]
-    if res.get("ok"):
-        for i, s in enumerate(res["seconds"]):
-            cpu = f" (CPU {res['cpu_seconds'][i]:.2f} s)" if "cpu_seconds" in res else ""
-            print(f"  wasm run {i + 1}: {s:.3f} s{cpu}", flush=True)
-    return res
+class WasmBench:
+    """The wasm build (one thread) under Node (bench/wasm_mesh_bench.mjs) or
+    in Chromium (wasm_chromium_bench.mjs): one process for all runs (the
+    module loaded once), started with --serve, which runs once per line it
+    reads, so that its runs alternate with the other variants'."""
+
+    def __init__(self, a, path, chromium=False):
+        self.name = "chromium" if chromium else "node"
+        self.proc, self.err, self.seconds, self.error = None, None, [], None
+        node = shutil.which("node")
+        script = "wasm_chromium_bench.mjs" if chromium else "wasm_mesh_bench.mjs"
+        self.cmd = [node or "node", os.path.join(benchutil.BENCH, script), path, "--size", repr(a.size),
+                    "--serve"] + volume_flags(a)
+        if not node:
+            self.error = "node not found"
+        elif not os.path.exists(os.path.join(benchutil.ROOT, "wasm", "dist", "vesselmesh_core.wasm")):
+            self.error = "wasm/dist/vesselmesh_core.wasm missing (build the wasm target)"
+
+    def _fail(self, res=None):
+        self.err.seek(0)
+        self.error = (res or {}).get("error") or \
+            (self.err.read().decode(errors="replace").strip() or f"exit {self.proc.poll()}")[-500:]
+
+    def run(self):
+        if self.error:
+            return
+        if self.proc is None:
+            self.err = tempfile.TemporaryFile()
+            self.proc = subprocess.Popen(self.cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=self.err)
+        try:
+            self.proc.stdin.write(b"run\n")
+            self.proc.stdin.flush()
+        except BrokenPipeError:
+            return self._fail()
+        for line in iter(self.proc.stdout.readline, b""):
+            try:
+                r = json.loads(line)
+            except ValueError:
+                continue  # not ours (the module's own output)
+            if "run" in r:
+                self.seconds.append(r["seconds"])
+                cpu = f" (CPU {r['cpu_seconds']:.2f} s)" if "cpu_seconds" in r else ""
+                print(f"  wasm ({self.name}) run {r['run']}: {r['seconds']:.3f} s{cpu}", flush=True)
+                return
+            if r.get("ok") is False:
+                return self._fail(r)
+        self._fail()
+
+    def summary(self):
+        """The script's own summary (printed when its stdin closes)."""
+        if self.proc is None:
+            return dict(ok=False, error=self.error or "no run")
+        self.proc.stdin.close()
+        lines = self.proc.stdout.read().decode(errors="replace").strip().splitlines()
+        self.proc.wait()
+        try:
+            res = json.loads(lines[-1])
+        except (ValueError, IndexError):
+            res = None
+        if self.error or not res or not res.get("ok"):
+            if not self.error:
+                self._fail(res)
+            return dict(ok=False, error=self.error)
+        res["process_peak_rss_mb"] = res.get("peak_rss_mb")
+        return res
 
 
 class GmshBench:
-    """gmsh_reference.py runs, one at a time, like NativeBench."""
+    """gmsh_reference.py runs with `--threads T`, one at a time, like NativeBench."""
 
-    def __init__(self, a, path, tmp):
-        self.a = a
-        self.out = os.path.join(tmp, "gmsh.json")
+    def __init__(self, a, path, tmp, threads=1):
+        self.a, self.threads, self.name = a, threads, f"gmsh {threads}T"
+        self.out = os.path.join(tmp, f"gmsh{threads}.json")
         self.cmd = [a.gmsh_python, os.path.join(benchutil.BENCH, "gmsh_reference.py"), path, "--size",
-                    repr(a.size), "--json", self.out] + (["--volume"] if a.volume else [])
+                    repr(a.size), "--threads", str(threads), "--json", self.out] + (["--volume"] if a.volume else [])
         self.runs = []
         self.error = None if benchutil.have_gmsh(a.gmsh_python) else "gmsh Python module not importable"
 
@@ -155,23 +227,25 @@ class GmshBench:
         g["process_seconds"] = r["seconds"]
         g["process_peak_rss_mb"] = r["peak_rss_mb"]
         self.runs.append(g)
-        print(f"  gmsh run {len(self.runs)}: " + ", ".join(f"{k} {v:.2f}" for k, v in g["seconds"].items()) +
+        print(f"  {self.name} run {len(self.runs)}: " + ", ".join(f"{k} {v:.2f}" for k, v in g["seconds"].items()) +
               f" s (CPU {g['cpu_seconds']['total']:.2f} s; process {r['seconds']:.2f} s), "
               f"{r['peak_rss_mb']:.0f} MB", flush=True)
 
     def summary(self):
         runs = self.runs
         if self.error or not runs:
-            return dict(ok=False, error=self.error or "no run")
+            return dict(ok=False, error=self.error or "no run", threads=self.threads)
         keys = list(runs[0]["seconds"])
         med = {k: benchutil.median([g["seconds"][k] for g in runs]) for k in keys}
         last = runs[-1]
-        res = dict(ok=True, cmd=" ".join(self.cmd), stage_medians=med, median_seconds=med["total"],
+        res = dict(ok=True, cmd=" ".join(self.cmd), threads=self.threads, stage_medians=med,
+                   median_seconds=med["total"],
                    median_process_seconds=benchutil.median([g["process_seconds"] for g in runs]),
                    median_cpu_seconds=benchutil.median([g["cpu_seconds"]["total"] for g in runs]),
                    peak_rss_mb=max(g["process_peak_rss_mb"] for g in runs), triangles=last["triangles"],
                    quality=dict(min=last["gamma_k"]["min"], mean=last["gamma_k"]["mean"]),
-                   runs=[dict(seconds=g["seconds"], process_seconds=g["process_seconds"],
+                   runs=[dict(seconds=g["seconds"], cpu_seconds=g["cpu_seconds"],
+                              process_seconds=g["process_seconds"],
                               peak_rss_mb=g["process_peak_rss_mb"], triangles=g["triangles"],
                               gamma_k=dict(min=g["gamma_k"]["min"], mean=g["gamma_k"]["mean"]),
                               tets=g.get("tets"), median_tet_edge=g.get("median_tet_edge"),
@@ -181,6 +255,13 @@ class GmshBench:
         if self.a.volume:
             res.update(tets=last.get("tets"), gamma_t=dict(min=last["gamma_t"]["min"], mean=last["gamma_t"]["mean"]))
         return res
+
+
+def parse_threads(text):
+    """--threads "1,2" -> [1, 2]; 0 stands for all cores."""
+    if not text:
+        return None
+    return [int(t) or os.cpu_count() for t in text.split(",")]
 
 
 def main():
@@ -196,111 +277,166 @@ def main():
     ap.add_argument("--layers", type=int, default=0,
                     help="viscous layers in --volume mode (default 0: like Gmsh, none)")
     ap.add_argument("--core-size", type=float, default=0, help="--core-size of the volume")
+    ap.add_argument("--threads", help="thread counts of native and Gmsh, e.g. 1,2 (0: all cores); default: "
+                    "native with the CLI's default (all cores), Gmsh with 1")
     ap.add_argument("--no-wasm", action="store_true")
     ap.add_argument("--chromium", action="store_true", help="also time the wasm build in Chromium")
+    ap.add_argument("--chromium-runs", type=int, help="runs in Chromium (implies --chromium; default --wasm-runs)")
     ap.add_argument("--no-gmsh", action="store_true")
     ap.add_argument("--gmsh-python", default="/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable)
     ap.add_argument("--json", help="write all measurements here")
     a = ap.parse_args()
+    threads = parse_threads(a.threads)
+    chromium_runs = a.chromium_runs if a.chromium_runs is not None else (a.wasm_runs if a.chromium else 0)
     path = a.file if os.path.exists(a.file) else os.path.join(a.data, a.file)
     if not os.path.exists(path):
         print(f"missing input {path}", file=sys.stderr)
         return 1
     what = "full pipeline (volume)" if a.volume else "surface remeshing"
-    res = dict(file=os.path.basename(path), size=a.size, volume=a.volume, machine_start=benchutil.machine())
+    res = dict(file=os.path.basename(path), size=a.size, volume=a.volume, threads=threads,
+               machine_start=benchutil.machine())
     print(f"{res['file']} h = {a.size:g}, {what}; {res['machine_start']}", flush=True)
     with tempfile.TemporaryDirectory() as tmp:
-        # Native and Gmsh runs alternate, so that a drift of the (shared)
-        # machine's speed during the benchmark weighs on both alike.
-        native = NativeBench(a, path, tmp)
-        gmsh = None if a.no_gmsh else GmshBench(a, path, tmp)
-        print("native" + ("" if gmsh is None else " and gmsh, alternating") + ":", flush=True)
-        for i in range(max(a.runs, 0 if gmsh is None else a.gmsh_runs)):
-            if i < a.runs:
-                native.run()
-            if gmsh is not None and i < a.gmsh_runs:
-                gmsh.run()
-        res["native"] = native.summary()
-        if gmsh is not None:
-            res["gmsh"] = gmsh.summary()
-        if not a.no_wasm:
-            print("wasm (node):", flush=True)
-            res["wasm"] = bench_wasm(a, path)
-            if a.chromium:
-                print("wasm (chromium):", flush=True)
-                res["chromium"] = bench_wasm(a, path, chromium=True)
+        # One run of each variant per round while it has runs left, so that a
+        # drift of the (shared) machine's speed weighs on all alike.
+        natives = [NativeBench(a, path, tmp, t) for t in (threads or [None])]
+        gmshs = [] if a.no_gmsh else [GmshBench(a, path, tmp, t) for t in (threads or [1])]
+        node = None if a.no_wasm else WasmBench(a, path)
+        chrome = None if a.no_wasm or not chromium_runs else WasmBench(a, path, chromium=True)
+        plan = [(b, a.runs) for b in natives] + [(g, a.gmsh_runs) for g in gmshs] + \
+            [(w, n) for w, n in ((node, a.wasm_runs), (chrome, chromium_runs)) if w is not None]
+        print(", ".join(b.name for b, _ in plan) + ", alternating:", flush=True)
+        for i in range(max(n for _, n in plan)):
+            for b, n in plan:
+                if i < n:
+                    b.run()
+        ns = [b.summary() for b in natives]
+        gs = [g.summary() for g in gmshs]
+        res["native"] = ns[0]
+        if gs:
+            res["gmsh"] = gs[0]
+        if threads:
+            res["native_by_threads"] = {str(x["threads"]): x for x in ns}
+            res["gmsh_by_threads"] = {str(x["threads"]): x for x in gs}
+        if node is not None:
+            res["wasm"] = node.summary()
+        if chrome is not None:
+            res["chromium"] = chrome.summary()
     res["machine_end"] = benchutil.machine()
 
-    n, w, g, c = res["native"], res.get("wasm"), res.get("gmsh"), res.get("chromium")
+    n, w, c = res["native"], res.get("wasm"), res.get("chromium")
+    g = next((x for x in gs if x["threads"] == 1), None)  # Gmsh with one thread
+    gmsh_by = {x["threads"]: x for x in gs if x["ok"]}
     print()
-    print(f"{res['file']} h = {a.size:g}, {what}, one thread each; start: {res['machine_start']}; "
+    native_threads = ", ".join(f"{x['threads']}" for x in ns) if threads else f"{os.cpu_count()} (CLI default)"
+    print(f"{res['file']} h = {a.size:g}, {what}; threads: native {native_threads}, "
+          f"Gmsh {', '.join(str(x['threads']) for x in gs) or '-'}, wasm 1; start: {res['machine_start']}; "
           f"end: load {res['machine_end'].rsplit('load average', 1)[-1].strip()}")
-    print(f"{'':30} {'median s':>9} {'min s':>7} {'max s':>7} {'runs':>4} {'CPU med s':>9} {'peak RSS MB':>11} "
-          f"{'triangles':>9} {'gamma_k min/mean':>17}")
+    print(f"{'variant':30} {'median s':>9} {'min s':>7} {'max s':>7} {'runs':>4} {'CPU med s':>9} {'peak MB':>7} "
+          f"{'triangles':>9} {'tets':>8} {'gamma_k min/mean':>16} {'xGmsh 1T':>8} {'xGmsh =T':>8}")
+    table = []
 
-    def row(name, ok, times, cpu, rss, tri, q, extra=""):
-        if not ok:
-            print(f"{name:30} FAILED: {extra}")
+    def row(name, s, t, times, cpu, rss, notes=()):
+        """One variant's row: s its summary, t its threads (for the Gmsh with
+        the same threads), times its runs' wall seconds; notes go below."""
+        if not s or not s.get("ok"):
+            print(f"{name:30} FAILED: {(s or {}).get('error')}")
+            table.append(dict(variant=name, ok=False, error=(s or {}).get("error")))
             return
-        print(f"{name:30} {benchutil.median(times):9.3f} {min(times):7.3f} {max(times):7.3f} {len(times):4d} "
-              f"{cpu:9.3f} {rss:11.0f} {tri:9d} {q['min']:8.3f}/{q['mean']:.4f} {extra}")
+        med = benchutil.median(times)
+        g1, gt = g if g and g["ok"] else None, gmsh_by.get(t)
+        x1 = g1["median_seconds"] / med if g1 else None
+        xt = gt["median_seconds"] / med if gt else None
+        table.append(dict(variant=name, ok=True, threads=t, median_seconds=med, median_cpu_seconds=cpu,
+                          peak_mb=rss, tets=s.get("tets"), speedup_vs_gmsh_1t=x1, speedup_vs_gmsh_same_t=xt))
+        q = s["quality"]
+        print(f"{name:30} {med:9.3f} {min(times):7.3f} {max(times):7.3f} {len(times):4d} "
+              + (f"{cpu:9.3f}" if cpu is not None else f"{'-':>9}")
+              + (f" {rss:7.0f}" if rss is not None else f" {'-':>7}")
+              + f" {s['triangles']:9d} " + (f"{s['tets']:8d}" if a.volume and s.get("tets") is not None else f"{'-':>8}")
+              + f" {q['min']:9.3f}/{q['mean']:.4f}"
+              + "".join(f" {x:8.2f}" if x else f" {'-':>8}" for x in (x1, xt)))
+        for note in notes:
+            print(f"{'':30}   {note}")
 
-    if n["ok"]:
-        row("vesselmesh native", True, [x["seconds"] for x in n["runs"]], n["median_cpu_seconds"], n["peak_rss_mb"], n["triangles"],
-            n["quality"], f"(in-core median {n['median_core_seconds']:.3f} s)")
-    else:
-        row("vesselmesh native", False, [], 0, 0, 0, None, n["error"])
+    for x in ns:
+        t = x["threads"] or os.cpu_count()
+        label = f"vesselmesh native {t}T" if threads else f"vesselmesh native {t}T (default)"
+        row(label, x, t, [r["seconds"] for r in x.get("runs", [])], x.get("median_cpu_seconds"), x.get("peak_rss_mb"),
+            [f"in-core median {x['median_core_seconds']:.3f} s; stage medians: " +
+             ", ".join(f"{k} {v:.2f}" for k, v in x["stage_medians"].items())] if x["ok"] else ())
     if w is not None:
-        if w.get("ok"):
-            row("vesselmesh wasm (node)", True, w["seconds"], w["median_cpu_seconds"], w["process_peak_rss_mb"], w["triangles"], w["quality"],
-                f"(first run {w['seconds'][0]:.3f} s; Node baseline RSS {w['baseline_rss_mb']:.0f} MB, "
-                f"instantiate {w['instantiate_seconds']:.2f} s)")
-        else:
-            row("vesselmesh wasm (node)", False, [], 0, 0, 0, None, w.get("error"))
+        row("vesselmesh wasm node 1T", w, 1, w.get("seconds", []), w.get("median_cpu_seconds"),
+            w.get("process_peak_rss_mb"),
+            [f"first run {w['seconds'][0]:.3f} s; Node baseline RSS {w['baseline_rss_mb']:.0f} MB, "
+             f"instantiate {w['instantiate_seconds']:.2f} s; {w['node']}"] if w.get("ok") else ())
     if c is not None:
-        if c.get("ok"):
-            row("vesselmesh wasm (chromium)", True, c["seconds"], c["median_seconds"],
-                c.get("peak_js_heap_mb", 0), c["triangles"], c["quality"],
-                f"(first run {c['seconds'][0]:.3f} s; {c.get('browser', '')}; CPU column = wall)")
-        else:
-            row("vesselmesh wasm (chromium)", False, [], 0, 0, 0, None, c.get("error"))
-    if g is not None:
-        if g.get("ok"):
-            row("Gmsh 4.8 (stage sum)", True, [x["seconds"]["total"] for x in g["runs"]], g["median_cpu_seconds"],
-                g["peak_rss_mb"],
-                g["triangles"], g["quality"], f"(process median {g['median_process_seconds']:.2f} s)")
-            print(f"{'':30} stage medians: " + ", ".join(f"{k} {v:.2f}" for k, v in g["stage_medians"].items()))
-            if a.volume:
-                print(f"{'':30} tets / gamma_t min / mean per run: " + "; ".join(
-                    f"{x['tets']} / {x['gamma_t']['min']:.3f} / {x['gamma_t']['mean']:.3f}" for x in g["runs"]))
-        else:
-            row("Gmsh 4.8", False, [], 0, 0, 0, None, g.get("error"))
-    if n["ok"] and n["stage_medians"]:
-        print(f"{'':30} vesselmesh stage medians: " +
-              ", ".join(f"{k} {v:.2f}" for k, v in n["stage_medians"].items()))
+        row("vesselmesh wasm chrome 1T", c, 1, c.get("seconds", []), None, c.get("peak_js_heap_mb"),
+            [f"first run {c['seconds'][0]:.3f} s; {c.get('browser', '')}; no CPU time; "
+             f"peak MB = the page's JS heap"] if c.get("ok") else ())
+    for x in gs:
+        row(f"Gmsh 4.8 {x['threads']}T (stage sum)", x, x["threads"], [r["seconds"]["total"] for r in x.get("runs", [])],
+            x.get("median_cpu_seconds"), x.get("peak_rss_mb"),
+            [f"process median {x['median_process_seconds']:.2f} s; stage medians: " +
+             ", ".join(f"{k} {v:.2f}" for k, v in x["stage_medians"].items())] +
+            (["tets / gamma_t min / mean per run: " + "; ".join(
+                f"{r['tets']} / {r['gamma_t']['min']:.3f} / {r['gamma_t']['mean']:.3f}" for r in x["runs"])]
+             if a.volume else []) if x["ok"] else ())
+    res["table"] = table
     print()
     ratios = {}
-    if n["ok"] and g and g.get("ok"):
-        ratios["gmsh_over_native"] = g["median_seconds"] / n["median_seconds"]
-        ok = ratios["gmsh_over_native"] >= TARGET_GMSH_RATIO
-        valid = not a.volume or n["tets"] > 0
-        verdict = ("met" if ok else "NOT met") if valid else \
-            "not comparable: vesselmesh wrote no tetrahedra"
-        ratios["gmsh_over_native_cpu"] = g["median_cpu_seconds"] / n["median_cpu_seconds"]
-        print(f"Gmsh / native = {ratios['gmsh_over_native']:.2f}x wall, "
-              f"{ratios['gmsh_over_native_cpu']:.2f}x CPU (target >= {TARGET_GMSH_RATIO}x): {verdict}")
-    if n["ok"] and w and w.get("ok"):
-        ratios["wasm_over_native"] = w["median_seconds"] / n["median_seconds"]
-        ok = ratios["wasm_over_native"] <= TARGET_WASM_RATIO
-        ratios["wasm_over_native_cpu"] = w["median_cpu_seconds"] / n["median_cpu_seconds"]
-        print(f"wasm / native = {ratios['wasm_over_native']:.2f}x wall, "
-              f"{ratios['wasm_over_native_cpu']:.2f}x CPU (target <= {TARGET_WASM_RATIO}x): "
-              f"{'met' if ok else 'NOT met'} (judged on wall time)")
-    if n["ok"] and c and c.get("ok"):
-        ratios["chromium_over_native"] = c["median_seconds"] / n["median_seconds"]
-        ok = ratios["chromium_over_native"] <= TARGET_WASM_RATIO
-        print(f"wasm in Chromium / native = {ratios['chromium_over_native']:.2f}x wall "
-              f"(target <= {TARGET_WASM_RATIO}x): {'met' if ok else 'NOT met'}")
+
+    def native_ok(x):
+        return x["ok"] and (not a.volume or x["tets"] > 0)
+
+    if not threads:
+        # Issue 3 and the volume issue: native (all cores) against Gmsh on one thread.
+        if n["ok"] and g and g.get("ok"):
+            ratios["gmsh_over_native"] = g["median_seconds"] / n["median_seconds"]
+            ok = ratios["gmsh_over_native"] >= TARGET_GMSH_RATIO
+            verdict = ("met" if ok else "NOT met") if native_ok(n) else \
+                "not comparable: vesselmesh wrote no tetrahedra"
+            ratios["gmsh_over_native_cpu"] = g["median_cpu_seconds"] / n["median_cpu_seconds"]
+            print(f"Gmsh / native = {ratios['gmsh_over_native']:.2f}x wall, "
+                  f"{ratios['gmsh_over_native_cpu']:.2f}x CPU (target >= {TARGET_GMSH_RATIO}x): {verdict}")
+        if n["ok"] and w and w.get("ok"):
+            ratios["wasm_over_native"] = w["median_seconds"] / n["median_seconds"]
+            ok = ratios["wasm_over_native"] <= TARGET_WASM_RATIO
+            ratios["wasm_over_native_cpu"] = w["median_cpu_seconds"] / n["median_cpu_seconds"]
+            print(f"wasm / native = {ratios['wasm_over_native']:.2f}x wall, "
+                  f"{ratios['wasm_over_native_cpu']:.2f}x CPU (target <= {TARGET_WASM_RATIO}x): "
+                  f"{'met' if ok else 'NOT met'} (judged on wall time)")
+        if n["ok"] and c and c.get("ok"):
+            ratios["chromium_over_native"] = c["median_seconds"] / n["median_seconds"]
+            ok = ratios["chromium_over_native"] <= TARGET_WASM_RATIO
+            print(f"wasm in Chromium / native = {ratios['chromium_over_native']:.2f}x wall "
+                  f"(target <= {TARGET_WASM_RATIO}x): {'met' if ok else 'NOT met'}")
+    else:
+        # Issue 22: native on T threads against Gmsh on T threads (and on one).
+        for x in ns:
+            t, gt = x["threads"], gmsh_by.get(x["threads"])
+            if not x["ok"] or not gt:
+                continue
+            r = ratios[f"gmsh{t}t_over_native{t}t"] = gt["median_seconds"] / x["median_seconds"]
+            rc = ratios[f"gmsh{t}t_over_native{t}t_cpu"] = gt["median_cpu_seconds"] / x["median_cpu_seconds"]
+            target = TARGET_GMSH_RATIO_BY_THREADS.get(t)
+            verdict = "" if target is None else f" (target >= {target}x): " + (
+                ("met" if r >= target else "NOT met") if native_ok(x) else
+                "not comparable: vesselmesh wrote no tetrahedra")
+            also = f"; Gmsh 1T / native {t}T = {g['median_seconds'] / x['median_seconds']:.2f}x" \
+                if t != 1 and g and g["ok"] else ""
+            print(f"Gmsh {t}T / native {t}T = {r:.2f}x wall, {rc:.2f}x CPU{verdict}{also}")
+        n1 = next((x for x in ns if x["threads"] == 1 and x["ok"]), None)
+        for key, label, v in (("wasm", "Node", w), ("chromium", "Chromium", c)):
+            if not n1 or not v or not v.get("ok"):
+                continue
+            r = ratios[f"{key}_over_native1t"] = v["median_seconds"] / n1["median_seconds"]
+            target = f" (target <= {TARGET_CHROMIUM_RATIO}x): {'met' if r <= TARGET_CHROMIUM_RATIO else 'NOT met'}" \
+                if key == "chromium" else ""
+            print(f"{label} 1T / native 1T = {r:.2f}x wall{target}" +
+                  "".join(f"; / native {x['threads']}T = {v['median_seconds'] / x['median_seconds']:.2f}x"
+                          for x in ns if x["ok"] and x["threads"] != 1))
+        print("The wasm build has one thread: Node and Chromium run on one thread at every --threads.")
     if n["ok"] and a.volume:
         def edge(e):
             return f" (median tetrahedron edge {e / a.size:.2f} h)" if e else ""
@@ -314,7 +450,7 @@ def main():
         os.makedirs(os.path.dirname(os.path.abspath(a.json)), exist_ok=True)
         with open(a.json, "w") as f:
             json.dump(res, f, indent=1)
-    return 0 if n["ok"] else 1
+    return 0 if all(x["ok"] for x in ns) else 1
 
 
 if __name__ == "__main__":
