@@ -15,7 +15,10 @@
 // constrained faces and shrinks the cavity until every boundary face is
 // strictly visible; (3) star: one new tetrahedron per
 // cavity boundary face, linked to the outside through the old face and to
-// each other through a small open-addressing hash on the boundary edges.
+// each other through a table indexed by local ids of the boundary's
+// vertices (a hash of the boundary edges for very large cavities).
+// Predicates: a static filter bound from the vertices' box, then the
+// semi-static one, then the exact predicate (core/geom/predicates.h).
 #include "core/volume/delaunay3d.h"
 
 #include <algorithm>

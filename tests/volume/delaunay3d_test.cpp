@@ -152,6 +152,44 @@ TEST(Delaunay3D, PointsOnASphere) {
   expect_counting_identities(q.value());
 }
 
+TEST(Delaunay3D, LargeCavitiesAndPointsFarOutsideTheBox) {
+  // The star links small cavities through a table of local vertex ids and
+  // large ones (more than kMaxTableFaces boundary faces) through a hash;
+  // the static filter bounds grow with the box of the vertices. The centre
+  // of points on a sphere conflicts with every tetrahedron; a point far
+  // outside sees half the hull.
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g;
+  std::vector<double> s;
+  for (int i = 0; i < 600; ++i) {
+    double v[3] = {g(rng), g(rng), g(rng)};
+    double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    s.insert(s.end(), {v[0] / l, v[1] / l, v[2] / l});
+  }
+  auto r = D::build(s);
+  ASSERT_TRUE(r.ok());
+  D d = std::move(r.value());
+  const double centre[3] = {1e-3, -2e-3, 3e-3};
+  ASSERT_EQ(d.insert(centre).status, D::InsertStatus::kInserted);
+  EXPECT_EQ(d.last_inserted_tets().size(), size_t(2 * 600 - 4));  // every hull face
+  ASSERT_TRUE(d.check(true).ok()) << d.check(true).message();
+  const double far[3] = {100, 1, -2};
+  ASSERT_EQ(d.insert(far).status, D::InsertStatus::kInserted);
+  EXPECT_GT(d.last_inserted_tets().size(), size_t(124));
+  ASSERT_TRUE(d.check(true).ok()) << d.check(true).message();
+  expect_empty_spheres(d);
+  expect_counting_identities(d);
+  // Small cavities after the large ones, inside and outside the old box.
+  for (const auto& q : {std::array<double, 3>{0.5, 0.1, 0.2}, std::array<double, 3>{-3, 0, 0},
+                        std::array<double, 3>{0, 0, 1e4}})
+    ASSERT_EQ(d.insert(q.data()).status, D::InsertStatus::kInserted);
+  ASSERT_TRUE(d.check(true).ok()) << d.check(true).message();
+  expect_empty_spheres(d);
+  const double beyond[3] = {1e6, 0, 0}, inside[3] = {0.2, 0.2, 0.2};
+  EXPECT_EQ(d.locate(beyond).type, D::LocationType::kOutside);
+  EXPECT_EQ(d.locate(inside).type, D::LocationType::kInside);
+}
+
 TEST(Delaunay3D, DuplicatePointsAreReported) {
   auto p = testing::random_cube_points(200, 9);
   auto g = grid(3);
