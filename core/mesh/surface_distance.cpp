@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "core/geom/closest_point.h"
+#include "core/util/parallel.h"
 
 namespace vm {
 namespace {
@@ -81,13 +82,20 @@ DistanceReport distances_to_surface(const SurfaceMesh& surface, const std::vecto
   if (keep_per_point) r.per_point.resize(r.count);
   if (r.count == 0) return r;
   const TriangleBvh bvh = build_triangle_bvh(surface);
+  // The queries on the threads, each distance into its slot; the summary in
+  // point order, so it does not depend on the thread count.
+  std::vector<double> local;
+  std::vector<double>& d = keep_per_point ? r.per_point : local;
+  d.resize(r.count);
+  parallel_for(r.count, 1024, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      d[i] = closest_surface_point(surface, bvh, &points[3 * i]).distance;
+  });
   double sum = 0;
   for (size_t i = 0; i < r.count; ++i) {
-    const double d = closest_surface_point(surface, bvh, &points[3 * i]).distance;
-    if (keep_per_point) r.per_point[i] = d;
-    sum += d;
-    if (d > r.max || i == 0) {
-      r.max = d;
+    sum += d[i];
+    if (d[i] > r.max || i == 0) {
+      r.max = d[i];
       r.argmax = i;
     }
   }

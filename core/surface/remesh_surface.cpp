@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <unordered_map>
 
 #include "core/geom/vec3.h"
@@ -32,6 +33,7 @@
 #include "core/surface/fidelity.h"
 #include "core/surface/resample_curve.h"
 #include "core/surface/sharp_features.h"
+#include "core/util/parallel.h"
 #include "core/util/stage_timer.h"
 
 namespace vm {
@@ -259,34 +261,49 @@ PatchFailure mesh_patches(const Partition& part, const Seams& seams, const std::
   mesh.triangles.clear();
   wall.home = seams.home;
   wall.fixed = seams.kind;
-  std::vector<int32_t> ids;
-  for (size_t i = 0; i < part.patches.size(); ++i) {
-    const MappedPatch& p = part.patches[i];
-    if (!report_progress(progress, 0.2 + 0.6 * double(i) / double(part.patches.size()),
-                         "meshing patches"))
-      return {Status::Cancelled(), i};
-    auto boundary = patch_boundary(p, seams, ids);
-    std::vector<double> local_h(p.vertex_of.size());
-    for (size_t v = 0; v < local_h.size(); ++v) local_h[v] = h[size_t(p.vertex_of[v])];
-    auto pm = boundary.ok()
-                  ? mesh_mapped_patch(p.mesh, p.map.uv, local_h, boundary.value(), options.patch)
-                  : Result<PatchMesh>(boundary.status());
-    if (!pm.ok()) return {pm.status(), i};
-    const PatchMesh& patch_mesh = pm.value();
-    const size_t nb = ids.size();
-    std::vector<int32_t> global(patch_mesh.mesh.num_vertices());
-    for (size_t v = 0; v < global.size(); ++v) {
-      if (v < nb) {
-        global[v] = ids[v];
-        continue;
+  // Batches of patches: within a batch the patches are meshed on the
+  // threads (each depends only on its own input and the seams), then
+  // assembled in patch order, so the wall does not depend on the thread
+  // count; progress and cancellation between batches.
+  constexpr size_t kBatch = 16;
+  const size_t np = part.patches.size();
+  std::vector<std::vector<int32_t>> ids(kBatch);
+  std::vector<std::optional<Result<PatchMesh>>> meshed(kBatch);
+  for (size_t b0 = 0; b0 < np; b0 += kBatch) {
+    if (!report_progress(progress, 0.2 + 0.6 * double(b0) / double(np), "meshing patches"))
+      return {Status::Cancelled(), b0};
+    const size_t nb = std::min(np - b0, kBatch);
+    parallel_for(nb, 1, [&](size_t begin, size_t end) {
+      for (size_t j = begin; j < end; ++j) {
+        const MappedPatch& p = part.patches[b0 + j];
+        auto boundary = patch_boundary(p, seams, ids[j]);
+        std::vector<double> local_h(p.vertex_of.size());
+        for (size_t v = 0; v < local_h.size(); ++v) local_h[v] = h[size_t(p.vertex_of[v])];
+        meshed[j] = boundary.ok() ? mesh_mapped_patch(p.mesh, p.map.uv, local_h, boundary.value(),
+                                                      options.patch)
+                                  : Result<PatchMesh>(boundary.status());
       }
-      global[v] = int32_t(wall.home.size());
-      mesh.points.insert(mesh.points.end(), &patch_mesh.mesh.points[3 * v],
-                         &patch_mesh.mesh.points[3 * v] + 3);
-      wall.home.push_back(p.triangle_of[size_t(patch_mesh.home[v])]);
-      wall.fixed.push_back(kFree);
+    });
+    for (size_t j = 0; j < nb; ++j) {
+      const Result<PatchMesh>& pm = *meshed[j];
+      if (!pm.ok()) return {pm.status(), b0 + j};
+      const MappedPatch& p = part.patches[b0 + j];
+      const PatchMesh& patch_mesh = pm.value();
+      const size_t n_seam = ids[j].size();
+      std::vector<int32_t> global(patch_mesh.mesh.num_vertices());
+      for (size_t v = 0; v < global.size(); ++v) {
+        if (v < n_seam) {
+          global[v] = ids[j][v];
+          continue;
+        }
+        global[v] = int32_t(wall.home.size());
+        mesh.points.insert(mesh.points.end(), &patch_mesh.mesh.points[3 * v],
+                           &patch_mesh.mesh.points[3 * v] + 3);
+        wall.home.push_back(p.triangle_of[size_t(patch_mesh.home[v])]);
+        wall.fixed.push_back(kFree);
+      }
+      for (int32_t v : patch_mesh.mesh.triangles) mesh.triangles.push_back(global[size_t(v)]);
     }
-    for (int32_t v : patch_mesh.mesh.triangles) mesh.triangles.push_back(global[size_t(v)]);
   }
   return {};
 }
