@@ -26,6 +26,19 @@ std::vector<double> grid(int n, double spacing = 1) {
   return p;
 }
 
+// n random points rounded onto the unit sphere (3 doubles each).
+std::vector<double> random_sphere_points(int n, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g;
+  std::vector<double> s;
+  for (int i = 0; i < n; ++i) {
+    double v[3] = {g(rng), g(rng), g(rng)};
+    double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    s.insert(s.end(), {v[0] / l, v[1] / l, v[2] / l});
+  }
+  return s;
+}
+
 // Counting identities of a triangulated convex ball: V - E + F - T = 1
 // over the finite complex, and the hull (ghosts) a triangulated sphere with
 // H = 2 Vh - 4 faces; 4 T = 2 F_inner + H.
@@ -138,15 +151,7 @@ TEST(Delaunay3D, PointsOnASphere) {
   expect_empty_spheres(r.value());
   expect_counting_identities(r.value());
 
-  std::mt19937 rng(4);
-  std::normal_distribution<double> g;
-  std::vector<double> s;
-  for (int i = 0; i < 2000; ++i) {
-    double v[3] = {g(rng), g(rng), g(rng)};
-    double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    s.insert(s.end(), {v[0] / l, v[1] / l, v[2] / l});
-  }
-  auto q = D::build(s);
+  auto q = D::build(random_sphere_points(2000, 4));
   ASSERT_TRUE(q.ok());
   EXPECT_TRUE(q.value().check(true).ok()) << q.value().check(true).message();
   expect_counting_identities(q.value());
@@ -158,15 +163,7 @@ TEST(Delaunay3D, LargeCavitiesAndPointsFarOutsideTheBox) {
   // the static filter bounds grow with the box of the vertices. The centre
   // of points on a sphere conflicts with every tetrahedron; a point far
   // outside sees half the hull.
-  std::mt19937 rng(11);
-  std::normal_distribution<double> g;
-  std::vector<double> s;
-  for (int i = 0; i < 600; ++i) {
-    double v[3] = {g(rng), g(rng), g(rng)};
-    double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    s.insert(s.end(), {v[0] / l, v[1] / l, v[2] / l});
-  }
-  auto r = D::build(s);
+  auto r = D::build(random_sphere_points(600, 11));
   ASSERT_TRUE(r.ok());
   D d = std::move(r.value());
   const double centre[3] = {1e-3, -2e-3, 3e-3};
