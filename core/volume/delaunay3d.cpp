@@ -550,7 +550,8 @@ void Delaunay3D::star(int32_t pv) {
     }
     gen = local_gen_ << 8;
   }
-  uint32_t* lid = local_id_.data() + 1;  // indexed by vertex + 1: kInfinite is one like the others
+  // Indexed by vertex + 1: kInfinite is one like the others.
+  uint32_t* lid = by_table ? local_id_.data() + 1 : nullptr;
   uint32_t next = 0;
   int32_t* table = edge_table_.data();
   sides_.resize(nb);
