@@ -105,7 +105,7 @@ Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
   // previous insertion ended.
   for (int32_t v = 1; v < n; ++v) {
     if (v == ib || v == ic || v == id) continue;
-    InsertResult r = d.insert_vertex(v, -1, false);
+    InsertResult r = d.insert_vertex(d.seq_, v, -1, false);
     if (r.status == InsertStatus::kDuplicate) d.dup_[size_t(v)] = r.vertex;
   }
 
@@ -158,7 +158,7 @@ void Delaunay3D::init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d) {
         }
     }
   for (int32_t v : base) topo_.vertex_tet[size_t(v)] = ids[0];
-  last_ = ids[0];
+  seq_.last = ids[0];
 }
 
 bool Delaunay3D::in_box(const double* p) const {
@@ -177,10 +177,27 @@ void Delaunay3D::grow_box(const double* p) {
   is_bound_ = insphere_static_bound(extent);
 }
 
+inline bool Delaunay3D::owns(const Worker& w, int32_t t) const {
+  if (w.part < 0) return true;
+  const int32_t* v = tet(t);
+  if ((v[0] | v[1] | v[2] | v[3]) < 0) return false;  // a ghost
+  const uint8_t* part = part_.data();
+  const uint8_t me = uint8_t(w.part);
+  return part[v[0]] == me && part[v[1]] == me && part[v[2]] == me && part[v[3]] == me;
+}
+
+inline uint32_t Delaunay3D::visit_stamp(Worker& w) const {
+  if (w.part < 0) return topo_.visit_stamp();
+  w.gen += w.gen_step;
+  return w.gen;
+}
+
 // ---------------------------------------------------------------- location
 
-int32_t Delaunay3D::walk(const double* p, int32_t hint, double o3_bound) const {
-  int32_t t = hint >= 0 && size_t(hint) < tet_capacity() && is_live(hint) ? hint : last_;
+int32_t Delaunay3D::walk(Worker& w, const double* p, int32_t hint, double o3_bound) const {
+  const bool parted = w.part >= 0;
+  if (parted && (hint < 0 || !owns(w, hint))) return -1;
+  int32_t t = hint >= 0 && size_t(hint) < tet_capacity() && is_live(hint) ? hint : w.last;
   if (!is_live(t)) {
     t = 0;
     while (!is_live(t)) ++t;
@@ -191,10 +208,10 @@ int32_t Delaunay3D::walk(const double* p, int32_t hint, double o3_bound) const {
   for (int64_t step = 0; step < max_steps; ++step) {
     if (is_ghost(t)) return t;  // entered across a hull face p is beyond
     const int32_t* v = tet(t);
-    rng_ ^= rng_ << 13;
-    rng_ ^= rng_ >> 7;
-    rng_ ^= rng_ << 17;
-    const int start = int(rng_ & 3);
+    w.rng ^= w.rng << 13;
+    w.rng ^= w.rng >> 7;
+    w.rng ^= w.rng << 17;
+    const int start = int(w.rng & 3);
     int32_t next = -1;
     for (int j = 0; j < 4; ++j) {
       const int k = (start + j) & 3;
@@ -207,11 +224,13 @@ int32_t Delaunay3D::walk(const double* p, int32_t hint, double o3_bound) const {
       }
     }
     if (next < 0) return t;
+    if (parted && !owns(w, next)) return -1;
     prev = t;
     t = next;
-    ++stats_.walk_steps;
+    ++w.stats.walk_steps;
   }
   // Not expected (the stochastic walk terminates with probability 1): scan.
+  if (parted) return -1;
   for (int32_t s = 0; s < int32_t(tet_capacity()); ++s) {
     if (!is_live(s) || is_ghost(s)) continue;
     const int32_t* v = tet(s);
@@ -234,9 +253,18 @@ int32_t Delaunay3D::walk(const double* p, int32_t hint, double o3_bound) const {
 }
 
 Delaunay3D::Location Delaunay3D::locate(const double* p, int32_t hint) const {
+  return locate_in(-1, p, hint);
+}
+
+Delaunay3D::Location Delaunay3D::locate_in(int part, const double* p, int32_t hint) const {
   Location loc;
   if (topo_.tets.empty()) return loc;
-  loc.tet = walk(p, hint, in_box(p) ? o3_bound_ : HUGE_VAL);
+  Worker& w = part < 0 ? seq_ : parts_[size_t(part)];
+  loc.tet = walk(w, p, hint, in_box(p) ? o3_bound_ : HUGE_VAL);
+  if (loc.tet < 0) {
+    loc.type = LocationType::kForeign;
+    return loc;
+  }
   if (is_ghost(loc.tet)) return loc;
   const int32_t* v = tet(loc.tet);
   int zeros = 0;
@@ -300,7 +328,8 @@ bool Delaunay3D::ghost_conflict(int32_t t, const double* p, int32_t pv, bool str
 }
 
 template <bool kVerify>
-bool Delaunay3D::bowyer_watson(int32_t t0, const double* p, int32_t pv, bool respect_constraints) {
+bool Delaunay3D::bowyer_watson(Worker& w, int32_t t0, const double* p, int32_t pv,
+                               bool respect_constraints) {
   // Bowyer-Watson's search from t0 (which holds p). Unverified (the
   // triangulation is Delaunay, nothing constrained): the conflict region,
   // always star-shaped. Verified: not crossing constrained faces, and any
@@ -315,18 +344,19 @@ bool Delaunay3D::bowyer_watson(int32_t t0, const double* p, int32_t pv, bool res
   // star-shaped region is reached from p across faces seen from inside)
   // without the shrinking passes.
   if (kVerify && is_ghost(t0)) return false;
-  const uint32_t in = uint32_t(topo_.visit_stamp()), out = in + 1;
+  const uint32_t in = visit_stamp(w), out = in + 1;
+  const bool parted = w.part >= 0;
   // Local copies of the arrays' bases: the searches below write through
   // int32 pointers, so the compiler would reload them from the vectors.
   const TetTopology::Rec* const tets = topo_.tets.data();
   uint32_t* const stamp = topo_.stamp.data();
   const uint8_t* const constrained = topo_.constrained.data();
-  cavity_.clear();
-  boundary_.clear();
-  cavity_.push_back(t0);
+  w.cavity.clear();
+  w.boundary.clear();
+  w.cavity.push_back(t0);
   stamp[size_t(t0)] = in;
-  for (size_t i = 0; i < cavity_.size(); ++i) {
-    const int32_t t = cavity_[i];
+  for (size_t i = 0; i < w.cavity.size(); ++i) {
+    const int32_t t = w.cavity[i];
     const int32_t* links = tets[size_t(t)].n;
     const unsigned cons = kVerify && respect_constraints ? constrained[size_t(t)] : 0u;
     // Refinement (verified, in a large mesh, in an order that jumps) waits
@@ -345,28 +375,29 @@ bool Delaunay3D::bowyer_watson(int32_t t0, const double* p, int32_t pv, bool res
       const uint32_t s = stamp[size_t(n)];
       if (kVerify && ((cons >> k) & 1u)) {
         if (s == in) return false;  // a constrained face inside the cavity
-        boundary_.push_back(e);     // n may still be reached another way
+        w.boundary.push_back(e);    // n may still be reached another way
         continue;
       }
       if (s == in) continue;
       if (s != out && conflict(n, p, pv, false)) {
         if (kVerify) {
           const int32_t* v = tets[size_t(n)].v;
-          if ((v[0] | v[1] | v[2] | v[3]) < 0 || cavity_.size() >= kMaxCavity) return false;
+          if ((v[0] | v[1] | v[2] | v[3]) < 0 || w.cavity.size() >= kMaxCavity) return false;
+          if (parted && !owns(w, n)) return !(w.foreign = true);
         }
         stamp[size_t(n)] = in;
-        cavity_.push_back(n);
+        w.cavity.push_back(n);
       } else {
         stamp[size_t(n)] = out;
-        boundary_.push_back(e);
+        w.boundary.push_back(e);
       }
     }
   }
   if (!kVerify) return true;
   // Star-shaped: p strictly inside every boundary face (its new
   // tetrahedron positive); else shrunk until it is.
-  for (int32_t e : boundary_)
-    if (!sees_face(e, p)) return shrink_to_star(t0, p, in);
+  for (int32_t e : w.boundary)
+    if (!sees_face(e, p)) return shrink_to_star(w, t0, p, in);
   return true;
 }
 
@@ -376,7 +407,7 @@ bool Delaunay3D::sees_face(int32_t e, const double* p) const {
   return orient3d_fast(point(v[f[0]]), point(v[f[1]]), point(v[f[2]]), p, o3_bound_) > 0;
 }
 
-bool Delaunay3D::shrink_to_star(int32_t t0, const double* p, uint32_t in) {
+bool Delaunay3D::shrink_to_star(Worker& w, int32_t t0, const double* p, uint32_t in) {
   // The tetrahedron holding p stays; when p lies on one of its faces the
   // checked search decides (it keeps every tetrahedron whose closure holds p).
   for (int k = 0; k < 4; ++k)
@@ -387,8 +418,8 @@ bool Delaunay3D::shrink_to_star(int32_t t0, const double* p, uint32_t in) {
   // cross any), and a region whose boundary faces all see p holds p's
   // tetrahedron and is star-shaped from p.
   const uint32_t out = in + 1;
-  std::vector<int32_t>& todo = queue_;
-  todo.assign(boundary_.begin(), boundary_.end());
+  std::vector<int32_t>& todo = w.queue;
+  todo.assign(w.boundary.begin(), w.boundary.end());
   while (!todo.empty()) {
     const int32_t e = todo.back();
     todo.pop_back();
@@ -401,30 +432,30 @@ bool Delaunay3D::shrink_to_star(int32_t t0, const double* p, uint32_t in) {
       if (topo_.stamp[size_t(across >> 2)] == in) todo.push_back(across);
     }
   }
-  keep_cavity(in);
-  ++stats_.shrunk_cavities;
+  keep_cavity(w, in);
+  ++w.stats.shrunk_cavities;
   return true;
 }
 
-void Delaunay3D::keep_cavity(uint32_t in) {
+void Delaunay3D::keep_cavity(Worker& w, uint32_t in) {
   size_t m = 0;
-  for (int32_t t : cavity_)
-    if (topo_.stamp[size_t(t)] == in) cavity_[m++] = t;
-  cavity_.resize(m);
-  boundary_.clear();
-  for (int32_t t : cavity_)
+  for (int32_t t : w.cavity)
+    if (topo_.stamp[size_t(t)] == in) w.cavity[m++] = t;
+  w.cavity.resize(m);
+  w.boundary.clear();
+  for (int32_t t : w.cavity)
     for (int k = 0; k < 4; ++k)
-      if (topo_.stamp[size_t(link(4 * t + k) >> 2)] != in) boundary_.push_back(4 * t + k);
+      if (topo_.stamp[size_t(link(4 * t + k) >> 2)] != in) w.boundary.push_back(4 * t + k);
 }
 
-bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
+bool Delaunay3D::find_cavity_checked(Worker& w, int32_t t0, const double* p, int32_t pv,
                                      bool respect_constraints) {
   // Phase 2a: the tetrahedra whose closure holds p (one; two if p is on a
   // face; the ring if on an edge) are pinned: they are in conflict, and the
   // faces through p are inside their union, so they never need to leave
   // the cavity, unless a constrained face through p separates them.
-  pinned_.clear();
-  pinned_.push_back(t0);
+  w.pinned.clear();
+  w.pinned.push_back(t0);
   if (!is_ghost(t0)) {
     const int32_t* v = tet(t0);
     int zero[4], nz = 0;
@@ -434,22 +465,24 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
         zero[nz++] = k;
     }
     if (nz == 1) {
-      pinned_.push_back(neighbor(t0, zero[0]) >> 2);
+      w.pinned.push_back(neighbor(t0, zero[0]) >> 2);
     } else if (nz == 2) {
       int32_t e[2], m = 0;
       for (int s = 0; s < 4; ++s)
         if (s != zero[0] && s != zero[1]) e[m++] = v[s];
-      edge_ring(t0, e[0], e[1], pinned_, ring_scratch_);
+      edge_ring(t0, e[0], e[1], w.pinned, w.ring);
     }
   }
-  const uint32_t in = uint32_t(topo_.visit_stamp()), out = in + 1;
-  cavity_.clear();
-  for (int32_t t : pinned_) {
-    cavity_.push_back(t);
+  for (int32_t t : w.pinned)
+    if (!owns(w, t)) return !(w.foreign = true);
+  const uint32_t in = visit_stamp(w), out = in + 1;
+  w.cavity.clear();
+  for (int32_t t : w.pinned) {
+    w.cavity.push_back(t);
     topo_.stamp[size_t(t)] = in;
   }
   if (respect_constraints)
-    for (int32_t t : pinned_)
+    for (int32_t t : w.pinned)
       for (int k = 0; k < 4; ++k)
         if (is_constrained(t, k) && topo_.stamp[size_t(neighbor(t, k) >> 2)] == in)
           return false;  // p on a constrained face
@@ -472,8 +505,8 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
     for (int s = 0; s < 4; ++s) c[s] = q[s] == -2 ? p : point(q[s]);
     return orient3d(c[0], c[1], c[2], c[3]) < 0;
   };
-  for (size_t i = 0; i < cavity_.size() && cavity_.size() < kMaxCavity; ++i) {
-    const int32_t t = cavity_[i];
+  for (size_t i = 0; i < w.cavity.size() && w.cavity.size() < kMaxCavity; ++i) {
+    const int32_t t = w.cavity[i];
     for (int k = 0; k < 4; ++k) {
       const int32_t n = neighbor(t, k) >> 2;
       const uint32_t s = topo_.stamp[size_t(n)];
@@ -481,8 +514,9 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
       if (respect_constraints && is_constrained(t, k)) continue;
       if (!positive_with_p(t, k)) continue;
       if (conflict(n, p, pv, false)) {
+        if (!owns(w, n)) return !(w.foreign = true);
         topo_.stamp[size_t(n)] = in;
-        cavity_.push_back(n);
+        w.cavity.push_back(n);
       } else {
         topo_.stamp[size_t(n)] = out;
       }
@@ -494,8 +528,8 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
   bool changed = true;
   while (changed) {
     changed = false;
-    for (size_t i = 0; i < cavity_.size(); ++i) {
-      const int32_t t = cavity_[i];
+    for (size_t i = 0; i < w.cavity.size(); ++i) {
+      const int32_t t = w.cavity[i];
       if (topo_.stamp[size_t(t)] != in) continue;
       for (int k = 0; k < 4; ++k) {
         const int32_t n = neighbor(t, k) >> 2;
@@ -508,24 +542,35 @@ bool Delaunay3D::find_cavity_checked(int32_t t0, const double* p, int32_t pv,
           drop = t;
         }
         if (drop < 0) continue;
-        if (std::find(pinned_.begin(), pinned_.end(), drop) != pinned_.end()) return false;
+        if (std::find(w.pinned.begin(), w.pinned.end(), drop) != w.pinned.end()) return false;
         topo_.stamp[size_t(drop)] = out;
         changed = true;
         if (drop == t) break;
       }
     }
   }
-  keep_cavity(in);
+  keep_cavity(w, in);
   return true;
 }
 
-void Delaunay3D::star(int32_t pv) {
+void Delaunay3D::star(Worker& w, int32_t pv) {
   // Phase 3a: slots for the new tetrahedra, free or appended ones; the
   // cavity's are freed last (the free list gives them to the next
   // insertion, last-freed first), so the cavity is read while writing.
-  const size_t nb = boundary_.size(), nc = cavity_.size();
-  new_.resize(nb);
-  for (size_t i = 0; i < nb; ++i) new_[i] = topo_.new_slot();
+  const size_t nb = w.boundary.size(), nc = w.cavity.size();
+  w.new_tets.resize(nb);
+  if (w.part < 0) {
+    for (size_t i = 0; i < nb; ++i) w.new_tets[i] = topo_.new_slot();
+  } else {  // room checked by insert_in()
+    for (size_t i = 0; i < nb; ++i) {
+      if (!w.free_slots.empty()) {
+        w.new_tets[i] = w.free_slots.back();
+        w.free_slots.pop_back();
+      } else {
+        w.new_tets[i] = w.slot_next++;
+      }
+    }
+  }
   // Phase 3b: the new tetrahedron on face f of cavity tetrahedron t is t
   // with slot f replaced by p (so it is positive and its face f is the old
   // face); it is linked to the outside through that face. Face j != f holds
@@ -543,28 +588,28 @@ void Delaunay3D::star(int32_t pv) {
   const bool by_table = nb <= kMaxTableFaces;
   uint32_t gen = 0;
   if (by_table) {
-    if (local_id_.size() < num_vertices() + 1) local_id_.resize(num_vertices() + 1, 0);
-    if (++local_gen_ >= (1u << 24)) {
-      std::fill(local_id_.begin(), local_id_.end(), 0u);
-      local_gen_ = 1;
+    if (w.local_id.size() < num_vertices() + 1) w.local_id.resize(num_vertices() + 1, 0);
+    if (++w.local_gen >= (1u << 24)) {
+      std::fill(w.local_id.begin(), w.local_id.end(), 0u);
+      w.local_gen = 1;
     }
-    gen = local_gen_ << 8;
+    gen = w.local_gen << 8;
   }
   // Indexed by vertex + 1: kInfinite is one like the others.
-  uint32_t* lid = by_table ? local_id_.data() + 1 : nullptr;
+  uint32_t* lid = by_table ? w.local_id.data() + 1 : nullptr;
   uint32_t next = 0;
-  int32_t* table = edge_table_.data();
-  sides_.resize(nb);
+  int32_t* table = w.edge_table.data();
+  w.sides.resize(nb);
   // Local copies of the arrays' bases (the slots are all allocated above).
   TetTopology::Rec* const tets = topo_.tets.data();
   uint8_t* const constrained = topo_.constrained.data();
   int32_t* const tags = topo_.tags.data();
   int32_t* const vertex_tet = topo_.vertex_tet.data();
   for (size_t i = 0; i < nb; ++i) {
-    const int32_t e = boundary_[i];
+    const int32_t e = w.boundary[i];
     const int32_t t = e >> 2;
     const int f = e & 3;
-    const int32_t n = new_[i];
+    const int32_t n = w.new_tets[i];
     const TetTopology::Rec& o = tets[size_t(t)];
     TetTopology::Rec& r = tets[size_t(n)];
     r.v[0] = o.v[0], r.v[1] = o.v[1], r.v[2] = o.v[2], r.v[3] = o.v[3];
@@ -588,46 +633,54 @@ void Delaunay3D::star(int32_t pv) {
       next += fresh;
       lid[w] = gen | id[jj];
     }
-    sides_[i] = {{uint8_t(id[0]), uint8_t(id[1]), uint8_t(id[2])}};
+    w.sides[i] = {{uint8_t(id[0]), uint8_t(id[1]), uint8_t(id[2])}};
     table[id[0] * kLocal + id[1]] = 4 * n + fo[2];
     table[id[1] * kLocal + id[2]] = 4 * n + fo[0];
     table[id[2] * kLocal + id[0]] = 4 * n + fo[1];
   }
   if (by_table) {
     for (size_t i = 0; i < nb; ++i) {
-      const uint8_t* side = sides_[i].local;
-      TetTopology::Rec& r = tets[size_t(new_[i])];
-      const int* fo = kFaceOut[boundary_[i] & 3];
+      const uint8_t* side = w.sides[i].local;
+      TetTopology::Rec& r = tets[size_t(w.new_tets[i])];
+      const int* fo = kFaceOut[w.boundary[i] & 3];
       r.n[fo[2]] = table[side[1] * kLocal + side[0]];
       r.n[fo[0]] = table[side[2] * kLocal + side[1]];
       r.n[fo[1]] = table[side[0] * kLocal + side[2]];
     }
   } else {
-    link_star_by_hash();
+    link_star_by_hash(w);
   }
-  for (int32_t t : cavity_) topo_.free_slot(t);
-  topo_.vertex_tet[size_t(pv)] = new_[0];
-  stats_.cavity_tets += int64_t(nc);
-  stats_.boundary_faces += int64_t(nb);
-  last_ = new_[0];
+  if (w.part < 0) {
+    for (int32_t t : w.cavity) topo_.free_slot(t);
+  } else {
+    for (int32_t t : w.cavity) {
+      tets[size_t(t)].v[0] = kFree;
+      constrained[size_t(t)] = 0;
+      w.free_slots.push_back(t);
+    }
+  }
+  topo_.vertex_tet[size_t(pv)] = w.new_tets[0];
+  w.stats.cavity_tets += int64_t(nc);
+  w.stats.boundary_faces += int64_t(nb);
+  w.last = w.new_tets[0];
 }
 
-void Delaunay3D::link_star_by_hash() {
-  const size_t nb = new_.size();
+void Delaunay3D::link_star_by_hash(Worker& w) {
+  const size_t nb = w.new_tets.size();
   int bits = 4;
   while ((size_t(1) << bits) < 3 * nb) ++bits;
   const size_t hsize = size_t(1) << bits;
-  if (edge_hash_.size() < hsize) edge_hash_.resize(hsize);
-  if (++hash_gen_ == 0) {
-    for (EdgeSlot& s : edge_hash_) s.gen = 0;
-    hash_gen_ = 1;
+  if (w.edge_hash.size() < hsize) w.edge_hash.resize(hsize);
+  if (++w.hash_gen == 0) {
+    for (EdgeSlot& s : w.edge_hash) s.gen = 0;
+    w.hash_gen = 1;
   }
-  const uint32_t hgen = hash_gen_;
+  const uint32_t hgen = w.hash_gen;
   const uint32_t mask = uint32_t(hsize - 1);
-  EdgeSlot* table = edge_hash_.data();
+  EdgeSlot* table = w.edge_hash.data();
   for (size_t i = 0; i < nb; ++i) {
-    const int32_t n = new_[i];
-    const int f = boundary_[i] & 3;
+    const int32_t n = w.new_tets[i];
+    const int f = w.boundary[i] & 3;
     TetTopology::Rec& r = topo_.tets[size_t(n)];
     for (int jj = 0; jj < 3; ++jj) {
       const int j = kApexFaces[f][jj];
@@ -650,8 +703,8 @@ void Delaunay3D::link_star_by_hash() {
   }
 }
 
-bool Delaunay3D::cavity_vertex_within(const double* p, double d2) const {
-  for (int32_t e : boundary_) {
+bool Delaunay3D::cavity_vertex_within(const Worker& w, const double* p, double d2) const {
+  for (int32_t e : w.boundary) {
     const int32_t* v = tet(e >> 2);
     const int* f = kFaceOut[e & 3];
     for (int j = 0; j < 3; ++j) {
@@ -665,10 +718,11 @@ bool Delaunay3D::cavity_vertex_within(const double* p, double d2) const {
   return false;
 }
 
-Delaunay3D::InsertResult Delaunay3D::insert_vertex(int32_t v, int32_t hint,
+Delaunay3D::InsertResult Delaunay3D::insert_vertex(Worker& w, int32_t v, int32_t hint,
                                                    bool respect_constraints, double min_distance) {
   const double* p = point(v);
-  const int32_t t = walk(p, hint, o3_bound_);
+  const int32_t t = walk(w, p, hint, o3_bound_);
+  if (t < 0) return {InsertStatus::kForeign, -1};
   if (!is_ghost(t)) {
     const int32_t* w = tet(t);
     for (int k = 0; k < 4; ++k)
@@ -676,15 +730,20 @@ Delaunay3D::InsertResult Delaunay3D::insert_vertex(int32_t v, int32_t hint,
   } else if (respect_constraints) {
     return {InsertStatus::kOutsideHull, -1};
   }
-  if (delaunay_ && !respect_constraints) {
-    bowyer_watson<false>(t, p, v, false);
-  } else if (!bowyer_watson<true>(t, p, v, respect_constraints)) {
-    ++stats_.checked_cavities;
-    if (!find_cavity_checked(t, p, v, respect_constraints)) return {InsertStatus::kBlocked, -1};
+  w.foreign = false;
+  if (delaunay_ && !respect_constraints && w.part < 0) {
+    bowyer_watson<false>(w, t, p, v, false);
+  } else if (!bowyer_watson<true>(w, t, p, v, respect_constraints)) {
+    if (w.foreign) return {InsertStatus::kForeign, -1};
+    ++w.stats.checked_cavities;
+    if (!find_cavity_checked(w, t, p, v, respect_constraints))
+      return {w.foreign ? InsertStatus::kForeign : InsertStatus::kBlocked, -1};
   }
-  if (min_distance > 0 && cavity_vertex_within(p, min_distance * min_distance))
+  if (min_distance > 0 && cavity_vertex_within(w, p, min_distance * min_distance))
     return {InsertStatus::kTooClose, -1};
-  star(v);
+  if (w.part >= 0 && w.boundary.size() > w.free_slots.size() + size_t(w.slot_end - w.slot_next))
+    return {InsertStatus::kForeign, -1};  // no room left
+  star(w, v);
   return {InsertStatus::kInserted, v};
 }
 
@@ -697,13 +756,130 @@ Delaunay3D::InsertResult Delaunay3D::insert(const double* p, int32_t hint, bool 
   pts_.insert(pts_.end(), {p[0], p[1], p[2]});
   dup_.push_back(-1);
   topo_.vertex_tet.push_back(-1);
-  InsertResult r = insert_vertex(v, hint, respect_constraints, min_distance);
+  InsertResult r = insert_vertex(seq_, v, hint, respect_constraints, min_distance);
   if (r.status != InsertStatus::kInserted) {
     pts_.resize(pts_.size() - 3);
     dup_.pop_back();
     topo_.vertex_tet.pop_back();
   }
   return r;
+}
+
+// ---------------------------------------------------------------- partitions
+
+void Delaunay3D::begin_partitions(std::vector<uint8_t> vertex_part,
+                                  const std::vector<PartBudget>& budgets) {
+  const size_t n0 = num_vertices();
+  size_t nv = 0, nt = 0;
+  for (const PartBudget& b : budgets) nv += size_t(b.vertices), nt += size_t(b.tets);
+  round_vertices_ = int64_t(n0);
+  part_ = std::move(vertex_part);
+  part_.resize(n0 + nv, kNoPart);
+  pts_.resize(3 * (n0 + nv));
+  dup_.resize(n0 + nv, -1);
+  topo_.vertex_tet.resize(n0 + nv, -1);
+  // Fresh slots for the parts, free (kFree) until taken.
+  const size_t cap0 = topo_.capacity();
+  topo_.tets.resize(cap0 + nt, {{kFree, kFree, kFree, kFree}, {-1, -1, -1, -1}});
+  topo_.constrained.resize(cap0 + nt, 0);
+  if (topo_.tagged) topo_.tags.resize(cap0 + nt, 0);
+  topo_.stamp.resize(cap0 + nt, 0);
+  // Visit marks: part i uses gen + 2 i + k * 2 parts (k >= 1), above every
+  // mark used so far and distinct between the parts.
+  if (topo_.gen > 0x7fffffffu) {
+    std::fill(topo_.stamp.begin(), topo_.stamp.end(), 0u);
+    topo_.gen = 0;
+  }
+  parts_.resize(budgets.size());
+  int32_t vnext = int32_t(n0), tnext = int32_t(cap0);
+  for (size_t i = 0; i < budgets.size(); ++i) {
+    Worker& w = parts_[i];
+    w.part = int(i);
+    w.last = -1;
+    w.rng = 0x2545f4914f6cdd1dull ^ (0x9e3779b97f4a7c15ull * (i + 1));
+    w.stats = Stats{};
+    w.gen = topo_.gen + 2 * uint32_t(i);
+    w.gen_step = 2 * uint32_t(budgets.size());
+    w.free_slots.clear();
+    w.slot_next = tnext;
+    w.slot_end = tnext += budgets[i].tets;
+    w.vertex_begin = w.vertex_next = vnext;
+    w.vertex_end = vnext += budgets[i].vertices;
+    std::fill(part_.begin() + w.vertex_begin, part_.begin() + w.vertex_end, uint8_t(i));
+  }
+}
+
+Delaunay3D::InsertResult Delaunay3D::insert_in(int part, const double* p, int32_t hint,
+                                               double min_distance) {
+  if (part < 0) return insert(p, hint, true, min_distance);
+  if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    return {InsertStatus::kInvalid, -1};
+  if (!in_box(p)) return {InsertStatus::kOutsideHull, -1};  // the hull is inside the box
+  Worker& w = parts_[size_t(part)];
+  if (w.vertex_next >= w.vertex_end || w.gen > 0xf0000000u) return {InsertStatus::kForeign, -1};
+  const int32_t v = w.vertex_next;
+  std::copy(p, p + 3, &pts_[3 * size_t(v)]);
+  const InsertResult r = insert_vertex(w, v, hint, true, min_distance);
+  if (r.status == InsertStatus::kInserted) ++w.vertex_next;
+  return r;
+}
+
+void Delaunay3D::tets_around_vertex_in(int part, int32_t v, std::vector<int32_t>& out) const {
+  if (part < 0) return tets_around_vertex(v, out);
+  // The breadth-first search of tets_around_vertex(), deduplicated by a
+  // scan of the (short) list: another part may mark these tetrahedra.
+  out.clear();
+  const int32_t t0 = topo_.vertex_tet[size_t(v)];
+  if (t0 < 0) return;
+  out.push_back(t0);
+  for (size_t i = 0; i < out.size(); ++i) {
+    const TetTopology::Rec& r = topo_.tets[size_t(out[i])];
+    const int sv = slot_of(r.v, v);
+    for (int j = 0; j < 4; ++j) {
+      if (j == sv || r.n[j] < 0) continue;
+      const int32_t n = r.n[j] >> 2;
+      if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+    }
+  }
+}
+
+std::vector<int32_t> Delaunay3D::end_partitions() {
+  const int32_t n0 = int32_t(round_vertices_);
+  std::vector<int32_t> remap(num_vertices() - size_t(n0), -1);
+  int32_t next = n0;
+  for (const Worker& w : parts_)
+    for (int32_t v = w.vertex_begin; v < w.vertex_next; ++v) remap[size_t(v - n0)] = next++;
+  // Vertices move down (remap[k] <= n0 + k), in ascending order.
+  for (size_t k = 0; k < remap.size(); ++k) {
+    const int32_t d = remap[k];
+    if (d < 0) continue;
+    const size_t src = size_t(n0) + k;
+    std::copy(&pts_[3 * src], &pts_[3 * src] + 3, &pts_[3 * size_t(d)]);
+    topo_.vertex_tet[size_t(d)] = topo_.vertex_tet[src];
+  }
+  pts_.resize(3 * size_t(next));
+  dup_.resize(size_t(next));
+  topo_.vertex_tet.resize(size_t(next));
+  for (TetTopology::Rec& r : topo_.tets) {
+    if (r.v[0] == kFree) continue;
+    for (int32_t& v : r.v)
+      if (v >= n0) v = remap[size_t(v - n0)];
+  }
+  for (Worker& w : parts_) {
+    topo_.free_slots.insert(topo_.free_slots.end(), w.free_slots.begin(), w.free_slots.end());
+    for (int32_t t = w.slot_end - 1; t >= w.slot_next; --t) topo_.free_slots.push_back(t);
+    topo_.gen = std::max(topo_.gen, w.gen);
+    Stats& s = seq_.stats;
+    s.walk_steps += w.stats.walk_steps;
+    s.cavity_tets += w.stats.cavity_tets;
+    s.boundary_faces += w.stats.boundary_faces;
+    s.checked_cavities += w.stats.checked_cavities;
+    s.shrunk_cavities += w.stats.shrunk_cavities;
+    w.free_slots.clear();
+  }
+  part_.clear();
+  round_vertices_ = 0;
+  return remap;
 }
 
 // ---------------------------------------------------------------- queries
@@ -735,16 +911,16 @@ void Delaunay3D::set_constrained(int32_t t, int k, bool on) {
 
 int32_t Delaunay3D::find_edge(int32_t a, int32_t b) const {
   if (a < 0 || size_t(a) >= num_vertices()) return -1;
-  tets_around_vertex(a, queue_);
-  for (int32_t t : queue_)
+  tets_around_vertex(a, seq_.queue);
+  for (int32_t t : seq_.queue)
     if (slot_of(tet(t), b) >= 0) return t;
   return -1;
 }
 
 int32_t Delaunay3D::find_face(int32_t a, int32_t b, int32_t c, int* k) const {
   if (a < 0 || size_t(a) >= num_vertices()) return -1;
-  tets_around_vertex(a, queue_);
-  for (int32_t t : queue_) {
+  tets_around_vertex(a, seq_.queue);
+  for (int32_t t : seq_.queue) {
     const int32_t* v = tet(t);
     if (slot_of(v, b) < 0 || slot_of(v, c) < 0) continue;
     for (int s = 0; s < 4; ++s)
@@ -824,9 +1000,9 @@ Result<std::vector<int32_t>> Delaunay3D::replace_tets(
     case ReplaceError::kUncoveredFace:
       return R::Error("replace_tets: the new set leaves a boundary face uncovered");
   }
-  last_ = ids[0];
+  seq_.last = ids[0];
   delaunay_ = false;
-  ++stats_.flips;
+  ++seq_.stats.flips;
   return ids;
 }
 

@@ -47,13 +47,14 @@ class Delaunay3D {
                    ///< around the point (e.g. it lies on a constrained face)
     kInvalid,      ///< a coordinate is not finite
     kTooClose,     ///< a vertex of the cavity lies within the given distance
+    kForeign,      ///< partitioned round: another part's tetrahedra needed
   };
   struct InsertResult {
     InsertStatus status = InsertStatus::kInvalid;
     int32_t vertex = -1;
   };
 
-  enum class LocationType { kInside, kOnFace, kOnEdge, kOnVertex, kOutside };
+  enum class LocationType { kInside, kOnFace, kOnEdge, kOnVertex, kOutside, kForeign };
   /// `tet` contains the point in its closure (a ghost tetrahedron when
   /// kOutside); `vertex` is set for kOnVertex.
   struct Location {
@@ -147,7 +148,7 @@ class Delaunay3D {
   /// build()), ghosts included: exactly the tetrahedra incident to the new
   /// vertex, as tets_around_vertex would list them (in another order). Valid
   /// until the next insertion or flip.
-  const std::vector<int32_t>& last_inserted_tets() const { return new_; }
+  const std::vector<int32_t>& last_inserted_tets() const { return seq_.new_tets; }
   /// A tetrahedron with edge (a, b), or -1.
   int32_t find_edge(int32_t a, int32_t b) const;
   /// A tetrahedron t with face (a, b, c) as face k (any orientation), or -1.
@@ -219,7 +220,48 @@ class Delaunay3D {
     /// was shrunk until star-shaped (no checked search needed).
     int64_t shrunk_cavities = 0;
   };
-  const Stats& stats() const { return stats_; }
+  const Stats& stats() const { return seq_.stats; }
+
+  // ---- Partitioned insertion, after Marot, Pellerin and Remacle ("One
+  // machine, one minute, three billion tetrahedra", IJNME 117, 2019,
+  // section 4: parallel insertion in partitions with ownership). Between
+  // begin_partitions() and end_partitions() the parts insert at the same
+  // time, one thread per part. A part walks, searches and replaces only
+  // tetrahedra whose four vertices are in it, and reads their neighbors;
+  // no other part writes those (another part's cavity and the neighbors
+  // it relinks have three or four vertices in that part), so the parts
+  // share no written data and what a part does depends on its own calls
+  // alone, never on the others' timing. Meanwhile the calls below, the
+  // const accessors of such tetrahedra, of vertices, and tag(), are all
+  // that may be used.
+  static constexpr uint8_t kNoPart = 255;
+  struct PartBudget {
+    int32_t vertices = 0;  ///< new vertices the part may insert
+    int32_t tets = 0;      ///< fresh tetrahedron slots it may take
+  };
+  /// Starts a round: vertex v is in part vertex_part[v] (one byte per
+  /// vertex: < budgets.size() <= 254, or kNoPart); part i may insert
+  /// budgets[i].vertices vertices, numbered part_vertex_begin(i), + 1, ...
+  /// in insertion order (they are in part i). Precondition: no round open.
+  void begin_partitions(std::vector<uint8_t> vertex_part, const std::vector<PartBudget>& budgets);
+  /// The id of part i's first new vertex in the round.
+  int32_t part_vertex_begin(int part) const { return parts_[size_t(part)].vertex_begin; }
+  /// locate() in part `part` (-1: the whole triangulation, locate()):
+  /// LocationType::kForeign (tet -1) when the walk from `hint`, a
+  /// tetrahedron of the part, would leave the part's tetrahedra.
+  Location locate_in(int part, const double* p, int32_t hint) const;
+  /// insert(p, hint, true, min_distance) in part `part` (-1: insert()):
+  /// kForeign, nothing changed, when the walk from `hint` or the cavity
+  /// needs a tetrahedron of another part, or the part's budget is spent.
+  InsertResult insert_in(int part, const double* p, int32_t hint, double min_distance);
+  /// tets_around_vertex() for a vertex of part `part` (-1: the same), in
+  /// the same order, without the shared visit marks.
+  void tets_around_vertex_in(int part, int32_t v, std::vector<int32_t>& out) const;
+  /// Ends the round: the parts' new vertices are renumbered after the
+  /// vertices before the round, part by part in insertion order, and their
+  /// unused slots freed. Returns, per round id minus the vertex count
+  /// before the round, the final id (-1 for unused ids).
+  std::vector<int32_t> end_partitions();
 
  private:
   static constexpr int32_t kFree = TetTopology::kFree;
@@ -230,40 +272,54 @@ class Delaunay3D {
   Status flip_ring(const char* name, int32_t t, int32_t a, int32_t b, size_t n,
                    std::vector<int32_t>& ring_tets, std::vector<int32_t>& ring) const;
 
-  InsertResult insert_vertex(int32_t v, int32_t hint, bool respect_constraints,
+  /// The state of one inserting thread: the searches' and the star's
+  /// scratch, the walk's memory and random state, counters; in a
+  /// partitioned round also its part, its free slots and its vertex ids
+  /// (begin_partitions()).
+  struct Worker;
+  InsertResult insert_vertex(Worker& w, int32_t v, int32_t hint, bool respect_constraints,
                              double min_distance = 0);
   /// A finite vertex of the cavity's boundary faces closer than
   /// sqrt(d2) to p.
-  bool cavity_vertex_within(const double* p, double d2) const;
+  bool cavity_vertex_within(const Worker& w, const double* p, double d2) const;
   /// The walk to a tetrahedron holding p; o3_bound: orient3d's static
   /// filter bound for a box holding p and every vertex (HUGE_VAL: none).
-  int32_t walk(const double* p, int32_t hint, double o3_bound) const;
+  /// In a partitioned round -1 when it would leave w's tetrahedra.
+  int32_t walk(Worker& w, const double* p, int32_t hint, double o3_bound) const;
   /// Whether p is in the box of the vertices, which grow_box() extends.
   bool in_box(const double* p) const;
   void grow_box(const double* p);
+  /// Whether every vertex of t is in w's part (always, out of a
+  /// partitioned round).
+  bool owns(const Worker& w, int32_t t) const;
   bool conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const;
   bool finite_conflict(int32_t t, const double* p, int32_t pv) const;
   bool sos_conflict(int32_t t, const double* p, int32_t pv) const;
   bool ghost_conflict(int32_t t, const double* p, int32_t pv, bool strict_hull) const;
-  /// The Bowyer-Watson cavity of p from t0 into cavity_ / boundary_;
+  /// The Bowyer-Watson cavity of p from t0 into w.cavity / w.boundary;
   /// kVerify: constrained faces respected and the result checked
-  /// star-shaped (false: fall back to find_cavity_checked).
+  /// star-shaped (false: fall back to find_cavity_checked; also false with
+  /// w.foreign set when it would take a tetrahedron w does not own).
   template <bool kVerify>
-  bool bowyer_watson(int32_t t0, const double* p, int32_t pv, bool respect_constraints);
-  bool find_cavity_checked(int32_t t0, const double* p, int32_t pv, bool respect_constraints);
+  bool bowyer_watson(Worker& w, int32_t t0, const double* p, int32_t pv, bool respect_constraints);
+  bool find_cavity_checked(Worker& w, int32_t t0, const double* p, int32_t pv,
+                           bool respect_constraints);
   /// Whether p is strictly inside encoded face e (its tetrahedron's side).
   bool sees_face(int32_t e, const double* p) const;
   /// Shrinks the verified Bowyer-Watson cavity (stamp `in`) until every
-  /// boundary face sees p; false (cavity_ left invalid) when p's
+  /// boundary face sees p; false (w.cavity left invalid) when p's
   /// tetrahedron t0 would leave it or p is on a face of t0.
-  bool shrink_to_star(int32_t t0, const double* p, uint32_t in);
-  /// Keeps the tetrahedra of cavity_ stamped `in` and collects their
-  /// boundary faces (neighbor not stamped `in`) into boundary_.
-  void keep_cavity(uint32_t in);
-  void star(int32_t pv);
-  /// star(): the links between the new tetrahedra (new_, on boundary_)
-  /// of a cavity too large for the table, by a hash of the boundary edges.
-  void link_star_by_hash();
+  bool shrink_to_star(Worker& w, int32_t t0, const double* p, uint32_t in);
+  /// Keeps the tetrahedra of w.cavity stamped `in` and collects their
+  /// boundary faces (neighbor not stamped `in`) into w.boundary.
+  void keep_cavity(Worker& w, uint32_t in);
+  /// A fresh even visit mark for w (m + 1 is free for a second set).
+  uint32_t visit_stamp(Worker& w) const;
+  void star(Worker& w, int32_t pv);
+  /// star(): the links between the new tetrahedra (w.new_tets, on
+  /// w.boundary) of a cavity too large for the table, by a hash of the
+  /// boundary edges.
+  void link_star_by_hash(Worker& w);
   bool new_tet_valid(const std::array<int32_t, 4>& q, const std::vector<int32_t>& around) const;
   void init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d);
   /// The link (4 * neighbor + face) stored at encoded face e = 4 * t + k.
@@ -282,13 +338,7 @@ class Delaunay3D {
   TetTopology topo_;
   ReplaceScratch replace_scratch_;
   bool delaunay_ = true;
-  mutable Stats stats_;
 
-  // Scratch (mutable: queries reuse them too; the class is not thread-safe).
-  mutable int32_t last_ = 0;
-  mutable uint64_t rng_ = 0x2545f4914f6cdd1dull;
-  std::vector<int32_t> cavity_, boundary_;  // tets; encoded faces
-  std::vector<int32_t> new_, pinned_, ring_scratch_;
   // star(): per boundary face, the local ids of its vertices in kFaceOut
   // order; per vertex + 1, the generation (high 24 bits) and local id (low
   // 8 bits) of the last star that numbered it; the table of directed
@@ -298,20 +348,43 @@ class Delaunay3D {
   struct FaceSide {
     uint8_t local[3];
   };
-  std::vector<FaceSide> sides_;
   static constexpr int kLocal = 64;
   static constexpr size_t kMaxTableFaces = 2 * kLocal - 4;
-  std::vector<uint32_t> local_id_;
-  uint32_t local_gen_ = 0;
-  std::vector<int32_t> edge_table_ = std::vector<int32_t>(kLocal * kLocal);
   struct EdgeSlot {  // star(): open-addressing hash of boundary edges
     int32_t u, w;    // the edge, u < w
     int32_t face;    // encoded face (p, u, w) of the first new tet seen
-    uint32_t gen;    // live iff == hash_gen_
+    uint32_t gen;    // live iff == hash_gen
   };
-  std::vector<EdgeSlot> edge_hash_;
-  uint32_t hash_gen_ = 0;
-  mutable std::vector<int32_t> queue_;
+  struct Worker {
+    int part = -1;  // -1: the whole triangulation, out of a partitioned round
+    int32_t last = 0;
+    uint64_t rng = 0x2545f4914f6cdd1dull;
+    Stats stats;
+    std::vector<int32_t> cavity, boundary;  // tets; encoded faces
+    std::vector<int32_t> new_tets, pinned, ring, queue;
+    std::vector<FaceSide> sides;
+    std::vector<uint32_t> local_id;
+    uint32_t local_gen = 0;
+    std::vector<int32_t> edge_table = std::vector<int32_t>(kLocal * kLocal);
+    std::vector<EdgeSlot> edge_hash;
+    uint32_t hash_gen = 0;
+    // In a partitioned round: visit marks gen + k * gen_step (distinct
+    // between the parts), the slots freed by its insertions and its range
+    // of fresh slots, its range of vertex ids; foreign: the last search
+    // reached a tetrahedron of another part or ran out of room.
+    uint32_t gen = 0, gen_step = 2;
+    std::vector<int32_t> free_slots;
+    int32_t slot_next = 0, slot_end = 0;
+    int32_t vertex_begin = 0, vertex_next = 0, vertex_end = 0;
+    bool foreign = false;
+  };
+  // The sequential worker (queries and flips use its scratch too; the class
+  // is not thread-safe out of a partitioned round) and the parts' workers.
+  mutable Worker seq_;
+  mutable std::vector<Worker> parts_;
+  // In a partitioned round: the part of each vertex (kNoPart: none).
+  std::vector<uint8_t> part_;
+  int64_t round_vertices_ = 0;  // num_vertices() when the round began
 };
 
 }  // namespace vm
