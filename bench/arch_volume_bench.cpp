@@ -7,7 +7,7 @@
 // the tetrahedra's gamma_t and the peak resident memory of the run.
 //
 // usage: arch_volume_bench [--stl FILE] [--size H] [--core H] [--runs N]
-//                          [--cache FILE] [--inline]
+//                          [--cache FILE] [--inline] [--threads T]
 // --inline runs once in this process (for perf / callgrind).
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -24,11 +24,12 @@
 #include <vector>
 
 #include "bench/bench_util.h"
-#include "core/pipeline/option_table.h"
 #include "core/pipeline/mesh_job.h"
+#include "core/pipeline/option_table.h"
 #include "core/quality/tet_quality.h"
 #include "core/surface/caps.h"
 #include "core/util/allocator_tuning.h"
+#include "core/util/parallel.h"
 #include "core/volume/boundary_recovery.h"
 #include "core/volume/tetrahedralize.h"
 
@@ -156,13 +157,15 @@ bool run_once(const Capped& in, double core, RunResult* out) {
       std::count_if(fill.quality.begin(), fill.quality.end(), [](float x) { return x < 0.2f; }));
   std::fprintf(stderr,
                "  refine: %lld inserted, %lld candidates (rejected: %lld spacing, %lld boundary, "
-               "%lld outside, %lld kernel), %lld size evals, first layer %.2f s; "
+               "%lld outside, %lld kernel), %lld size evals, %d rounds, %lld deferred, first layer "
+               "%.2f s; "
                "optimize: flips %.2f s, smooth %.2f s, slivers %.2f s (%lld flips23, %lld edge "
                "removals, %lld smoothing moves, %lld sliver moves, %lld insertions)\n",
                (long long)fs.refine.inserted, (long long)fs.refine.candidates,
                (long long)fs.refine.rejected_spacing, (long long)fs.refine.rejected_boundary,
                (long long)fs.refine.rejected_outside, (long long)fs.refine.rejected_kernel,
-               (long long)fs.refine.size_evaluations, fs.refine.first_layer_seconds,
+               (long long)fs.refine.size_evaluations, fs.refine.rounds,
+               (long long)fs.refine.deferred, fs.refine.first_layer_seconds,
                fs.optimize.flip_seconds, fs.optimize.smooth_seconds, fs.optimize.sliver_seconds,
                (long long)fs.optimize.flips23, (long long)fs.optimize.edge_removals,
                (long long)fs.optimize.smoothing_moves, (long long)fs.optimize.sliver_moves,
@@ -194,10 +197,12 @@ int main(int argc, char** argv) {
       cache = next();
     else if (a == "--inline")
       inline_run = true;
+    else if (a == "--threads")
+      vm::set_thread_count(std::max(0, std::atoi(next().c_str())));
     else {
       std::fprintf(stderr,
                    "usage: arch_volume_bench [--stl FILE] [--size H] [--core H] [--runs N] "
-                   "[--cache FILE] [--inline]\n");
+                   "[--cache FILE] [--inline] [--threads T]\n");
       return 2;
     }
   }

@@ -573,8 +573,8 @@ const OptionSpec kOptions[] = {
      .default_text = "0",
      .needs = "an integer from 0 (all cores) to 256",
      .doc = "threads for the preparation's loops, the vessel radius, the meshing of the wall's "
-            "patches and the distance checks (0: all cores); the mesh is the same with any "
-            "number; the browser build uses one"},
+            "patches, the distance checks and the volume refinement (two slabs at once) (0: all "
+            "cores); the mesh is the same with any number; the browser build uses one"},
     {.id = "param",
      .cli = "param",
      .js = "param",

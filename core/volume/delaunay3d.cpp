@@ -824,13 +824,36 @@ Delaunay3D::InsertResult Delaunay3D::insert_in(int part, const double* p, int32_
   return r;
 }
 
+bool Delaunay3D::in_part(int part, int32_t t) const {
+  return part < 0 || owns(parts_[size_t(part)], t);
+}
+
 void Delaunay3D::tets_around_vertex_in(int part, int32_t v, std::vector<int32_t>& out) const {
   if (part < 0) return tets_around_vertex(v, out);
-  // The breadth-first search of tets_around_vertex(), deduplicated by a
-  // scan of the (short) list: another part may mark these tetrahedra.
+  // The breadth-first search of tets_around_vertex(), deduplicated by the
+  // part's own set (another part may mark these tetrahedra); a list longer
+  // than half the set is scanned instead.
+  Worker& w = parts_[size_t(part)];
+  if (++w.around_gen == 0) {
+    std::fill(w.around_stamp.begin(), w.around_stamp.end(), 0u);
+    w.around_gen = 1;
+  }
+  const uint32_t gen = w.around_gen;
+  auto first_visit = [&](int32_t t) {
+    if (out.size() >= kAroundSlots / 2) return std::find(out.begin(), out.end(), t) == out.end();
+    for (uint32_t h = (uint32_t(t) * 0x9e3779b1u) >> 22;; h = (h + 1) & (kAroundSlots - 1)) {
+      if (w.around_stamp[h] != gen) {
+        w.around_stamp[h] = gen;
+        w.around_key[h] = t;
+        return true;
+      }
+      if (w.around_key[h] == t) return false;
+    }
+  };
   out.clear();
   const int32_t t0 = topo_.vertex_tet[size_t(v)];
   if (t0 < 0) return;
+  first_visit(t0);
   out.push_back(t0);
   for (size_t i = 0; i < out.size(); ++i) {
     const TetTopology::Rec& r = topo_.tets[size_t(out[i])];
@@ -838,7 +861,7 @@ void Delaunay3D::tets_around_vertex_in(int part, int32_t v, std::vector<int32_t>
     for (int j = 0; j < 4; ++j) {
       if (j == sv || r.n[j] < 0) continue;
       const int32_t n = r.n[j] >> 2;
-      if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+      if (first_visit(n)) out.push_back(n);
     }
   }
 }

@@ -254,6 +254,9 @@ class Delaunay3D {
   /// kForeign, nothing changed, when the walk from `hint` or the cavity
   /// needs a tetrahedron of another part, or the part's budget is spent.
   InsertResult insert_in(int part, const double* p, int32_t hint, double min_distance);
+  /// Whether tetrahedron t is part `part`'s: its four vertices are in the
+  /// part (always true for part -1).
+  bool in_part(int part, int32_t t) const;
   /// tets_around_vertex() for a vertex of part `part` (-1: the same), in
   /// the same order, without the shared visit marks.
   void tets_around_vertex_in(int part, int32_t v, std::vector<int32_t>& out) const;
@@ -377,7 +380,13 @@ class Delaunay3D {
     int32_t slot_next = 0, slot_end = 0;
     int32_t vertex_begin = 0, vertex_next = 0, vertex_end = 0;
     bool foreign = false;
+    // tets_around_vertex_in(): an open-addressing set of the tetrahedra
+    // listed, valid where around_gen matches.
+    uint32_t around_gen = 0;
+    std::vector<uint32_t> around_stamp = std::vector<uint32_t>(kAroundSlots);
+    std::vector<int32_t> around_key = std::vector<int32_t>(kAroundSlots);
   };
+  static constexpr uint32_t kAroundSlots = 1024;
   // The sequential worker (queries and flips use its scratch too; the class
   // is not thread-safe out of a partitioned round) and the parts' workers.
   mutable Worker seq_;

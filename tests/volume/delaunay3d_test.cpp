@@ -11,6 +11,7 @@
 
 #include "core/geom/predicates.h"
 #include "core/mesh/volume_mesh.h"
+#include "core/util/parallel.h"
 #include "tests/support/volume_inputs.h"
 
 namespace vm {
@@ -185,6 +186,92 @@ TEST(Delaunay3D, LargeCavitiesAndPointsFarOutsideTheBox) {
   const double beyond[3] = {1e6, 0, 0}, inside[3] = {0.2, 0.2, 0.2};
   EXPECT_EQ(d.locate(beyond).type, D::LocationType::kOutside);
   EXPECT_EQ(d.locate(inside).type, D::LocationType::kInside);
+}
+
+TEST(Delaunay3D, PartitionedRoundInsertsOnlyInOwnTetrahedraWithAnyThreadCount) {
+  // Two parts split at x = 0: each inserts its points at the same time as
+  // the other, walking from a tetrahedron of its own; a point whose walk or
+  // cavity needs the other part's tetrahedra is refused (kForeign) and
+  // inserted after the round. The result is the Delaunay triangulation
+  // (unconstrained, so the cavities are the conflict regions; points
+  // outside the hull wait too: a part's insertion respects the hull), the new
+  // vertices renumbered part by part, and the same on 1 or 2 threads.
+  const std::vector<double> base = testing::random_cube_points(3000, 21);
+  const std::vector<double> extra = testing::random_cube_points(4000, 22);
+  struct Outcome {
+    std::vector<double> points;
+    std::vector<int32_t> tets;
+    size_t foreign = 0;
+  };
+  auto run = [&](int threads) {
+    set_thread_count(threads);
+    auto r = D::build(base);
+    EXPECT_TRUE(r.ok());
+    D d = std::move(r.value());
+    const size_t n0 = d.num_vertices();
+    auto part_of = [](const double* x) { return x[0] < 0 ? 0 : 1; };
+    std::vector<uint8_t> part(n0);
+    for (size_t v = 0; v < n0; ++v) part[v] = uint8_t(part_of(d.point(int32_t(v))));
+    d.begin_partitions(part, {{2500, 20000}, {2500, 20000}});
+    EXPECT_EQ(d.part_vertex_begin(0), int32_t(n0));
+    EXPECT_EQ(d.part_vertex_begin(1), int32_t(n0) + 2500);
+    std::vector<std::vector<size_t>> refused(2), outside(2);
+    std::vector<std::vector<std::pair<int32_t, size_t>>> made(2);  // round id, point
+    parallel_for(2, 1, [&](size_t b, size_t e) {
+      for (size_t k = b; k < e; ++k) {
+        const int part_k = int(k);
+        int32_t hint = -1;
+        for (int32_t t = 0; t < int32_t(d.tet_capacity()) && hint < 0; ++t)
+          if (d.is_live(t) && d.in_part(part_k, t)) hint = t;
+        for (size_t i = 0; i < extra.size() / 3; ++i) {
+          const double* p = &extra[3 * i];
+          if (part_of(p) != part_k) continue;
+          const D::InsertResult ins = d.insert_in(part_k, p, hint, 0);
+          if (ins.status == D::InsertStatus::kForeign) {
+            refused[k].push_back(i);
+          } else if (ins.status == D::InsertStatus::kOutsideHull) {
+            outside[k].push_back(i);  // inserted after the round
+          } else {
+            EXPECT_EQ(ins.status, D::InsertStatus::kInserted);
+            EXPECT_GE(ins.vertex, d.part_vertex_begin(part_k));
+            made[k].push_back({ins.vertex, i});
+            hint = d.vertex_tet(ins.vertex);  // a tetrahedron of the part
+          }
+        }
+      }
+    });
+    const std::vector<int32_t> remap = d.end_partitions();
+    Outcome out;
+    size_t next = n0;
+    for (int k = 0; k < 2; ++k)
+      for (const auto& [id, i] : made[size_t(k)]) {
+        // Renumbered part by part, in insertion order, the point unchanged.
+        const int32_t v = remap[size_t(id) - n0];
+        EXPECT_EQ(v, int32_t(next++));
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(d.point(v)[c], extra[3 * i + size_t(c)]);
+      }
+    EXPECT_EQ(d.num_vertices(), next);
+    for (int k = 0; k < 2; ++k) {
+      out.foreign += refused[size_t(k)].size();
+      for (size_t i : refused[size_t(k)])
+        EXPECT_EQ(d.insert(&extra[3 * i]).status, D::InsertStatus::kInserted);
+      for (size_t i : outside[size_t(k)])
+        EXPECT_EQ(d.insert(&extra[3 * i]).status, D::InsertStatus::kInserted);
+    }
+    EXPECT_TRUE(d.check(true).ok()) << d.check(true).message();
+    expect_counting_identities(d);
+    out.points = d.points();
+    out.tets = d.finite_tets();
+    set_thread_count(0);
+    return out;
+  };
+  const Outcome one = run(1), two = run(2);
+  // Most points go in during the round; those near the cut do not.
+  EXPECT_GT(one.foreign, 0u);
+  EXPECT_LT(one.foreign, extra.size() / 3 / 4);
+  EXPECT_EQ(one.foreign, two.foreign);
+  EXPECT_EQ(one.points, two.points);
+  EXPECT_EQ(one.tets, two.tets);
 }
 
 TEST(Delaunay3D, DuplicatePointsAreReported) {

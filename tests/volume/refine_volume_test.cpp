@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/mesh/volume_mesh.h"
+#include "core/util/parallel.h"
 #include "tests/support/volume_inputs.h"
 
 namespace vm {
@@ -132,6 +133,60 @@ TEST(RefineVolume, DeterministicAndCancellable) {
                            [](double, std::string_view) { return false; });
   EXPECT_FALSE(s.ok());
   EXPECT_TRUE(s.cancelled());
+}
+
+TEST(RefineVolume, SlabRoundsGiveTheSameMeshOnAnyThreadCount) {
+  // Four slabs refine the front at the same time, then what they deferred
+  // goes on in later rounds and a last sequential one: a valid refinement,
+  // as dense as the sequential one, and the same on 1 and 2 threads.
+  struct Outcome {
+    std::vector<double> points;
+    std::vector<int32_t> tets;
+    RefineStats st;
+  };
+  auto run = [](int threads, int rounds) {
+    set_thread_count(threads);
+    Outcome out;
+    Prepared p;
+    EXPECT_NO_FATAL_FAILURE(prepare(p, testing::capped_cylinder_points(1, 4, 0.12), 0.25));
+    const size_t n0 = p.in.kernel.num_vertices();
+    RefineOptions o;
+    o.parts = 4;
+    o.rounds = rounds;
+    o.min_slab_items = 16;
+    EXPECT_TRUE(refine_volume(p.in.kernel, p.field, p.vertex_h, o, &out.st).ok());
+    const Delaunay3D& d = p.in.kernel;
+    EXPECT_TRUE(d.check(false).ok()) << d.check(false).message();
+    EXPECT_EQ(size_t(out.st.inserted), d.num_vertices() - n0);
+    EXPECT_EQ(p.vertex_h.size(), d.num_vertices());
+    for (size_t v = n0; v < d.num_vertices(); ++v)
+      EXPECT_EQ(p.vertex_h[v], p.field(d.point(int32_t(v))));
+    out.points = d.points();
+    out.tets = d.finite_tets();
+    set_thread_count(0);
+    return out;
+  };
+  const Outcome seq = run(2, 0), one = run(1, 3), two = run(2, 3);
+  EXPECT_EQ(seq.st.rounds, 0);
+  EXPECT_GE(one.st.rounds, 1);
+  EXPECT_GT(one.st.deferred, 0);
+  EXPECT_NEAR(double(one.st.inserted), double(seq.st.inserted), 0.05 * double(seq.st.inserted));
+  EXPECT_EQ(one.points, two.points);
+  EXPECT_EQ(one.tets, two.tets);
+  EXPECT_EQ(one.st.deferred, two.st.deferred);
+
+  // Cancelled during the slab round: the kernel stays valid.
+  Prepared p;
+  ASSERT_NO_FATAL_FAILURE(prepare(p, testing::capped_cylinder_points(1, 4, 0.12), 0.25));
+  RefineOptions o;
+  o.parts = 4;
+  o.first_layer = false;  // straight to the slab rounds
+  o.min_slab_items = 16;
+  int calls = 0;
+  Status s = refine_volume(p.in.kernel, p.field, p.vertex_h, o, nullptr,
+                           [&](double, std::string_view) { return ++calls < 2; });
+  EXPECT_TRUE(s.cancelled());
+  EXPECT_TRUE(p.in.kernel.check(false).ok()) << p.in.kernel.check(false).message();
 }
 
 TEST(RefineVolume, Errors) {

@@ -43,7 +43,7 @@ export interface AnalyzeOptions {
   gradation?: number;
   /** at least P edges per radian of curvature (0: off) Needs a number of points per radian >= 0. Default 0. */
   curvature?: number;
-  /** threads for the preparation's loops, the vessel radius, the meshing of the wall's patches and the distance checks (0: all cores); the mesh is the same with any number; the browser build uses one. Needs an integer from 0 (all cores) to 256. Default 0. */
+  /** threads for the preparation's loops, the vessel radius, the meshing of the wall's patches, the distance checks and the volume refinement (two slabs at once) (0: all cores); the mesh is the same with any number; the browser build uses one. Needs an integer from 0 (all cores) to 256. Default 0. */
   threads?: number;
 }
 
