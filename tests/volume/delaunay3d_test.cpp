@@ -217,12 +217,16 @@ TEST(Delaunay3D, PartitionedRoundInsertsOnlyInOwnTetrahedraWithAnyThreadCount) {
     EXPECT_EQ(d.part_vertex_begin(1), int32_t(n0) + 2500);
     std::vector<std::vector<size_t>> refused(2), outside(2);
     std::vector<std::vector<std::pair<int32_t, size_t>>> made(2);  // round id, point
+    // A first tetrahedron of each part (found before the parts start: a
+    // part may only read its own tetrahedra and their neighbors).
+    int32_t first[2] = {-1, -1};
+    for (int32_t t = 0; t < int32_t(d.tet_capacity()); ++t)
+      for (int k = 0; k < 2; ++k)
+        if (first[k] < 0 && d.is_live(t) && d.in_part(k, t)) first[k] = t;
     parallel_for(2, 1, [&](size_t b, size_t e) {
       for (size_t k = b; k < e; ++k) {
         const int part_k = int(k);
-        int32_t hint = -1;
-        for (int32_t t = 0; t < int32_t(d.tet_capacity()) && hint < 0; ++t)
-          if (d.is_live(t) && d.in_part(part_k, t)) hint = t;
+        int32_t hint = first[k];
         for (size_t i = 0; i < extra.size() / 3; ++i) {
           const double* p = &extra[3 * i];
           if (part_of(p) != part_k) continue;
