@@ -620,18 +620,18 @@ void Delaunay3D::star(Worker& w, int32_t pv) {
     tags[size_t(n)] = tags[size_t(t)];
     const int* fo = kFaceOut[f];
     for (int jj = 0; jj < 3; ++jj) {
-      const int32_t w = r.v[fo[jj]];
-      if (w >= 0) vertex_tet[size_t(w)] = n;
+      const int32_t u = r.v[fo[jj]];
+      if (u >= 0) vertex_tet[size_t(u)] = n;
     }
     if (!by_table) continue;
     uint32_t id[3];
     for (int jj = 0; jj < 3; ++jj) {
-      const int32_t w = r.v[fo[jj]];
-      const uint32_t x = lid[w];
+      const int32_t u = r.v[fo[jj]];
+      const uint32_t x = lid[u];
       const bool fresh = (x & ~0xffu) != gen;
       id[jj] = fresh ? next : (x & 0xffu);
       next += fresh;
-      lid[w] = gen | id[jj];
+      lid[u] = gen | id[jj];
     }
     w.sides[i] = {{uint8_t(id[0]), uint8_t(id[1]), uint8_t(id[2])}};
     table[id[0] * kLocal + id[1]] = 4 * n + fo[2];
@@ -684,16 +684,16 @@ void Delaunay3D::link_star_by_hash(Worker& w) {
     TetTopology::Rec& r = topo_.tets[size_t(n)];
     for (int jj = 0; jj < 3; ++jj) {
       const int j = kApexFaces[f][jj];
-      int32_t u = r.v[kOther[f][j][0]], w = r.v[kOther[f][j][1]];
-      if (u > w) std::swap(u, w);
-      uint32_t h = ((uint32_t(u) * 0x9e3779b1u) ^ (uint32_t(w) * 0x85ebca6bu)) >> (32 - bits);
+      int32_t u = r.v[kOther[f][j][0]], x = r.v[kOther[f][j][1]];
+      if (u > x) std::swap(u, x);
+      uint32_t h = ((uint32_t(u) * 0x9e3779b1u) ^ (uint32_t(x) * 0x85ebca6bu)) >> (32 - bits);
       for (;; h = (h + 1) & mask) {
         EdgeSlot& s = table[h];
         if (s.gen != hgen) {
-          s = {u, w, 4 * n + j, hgen};
+          s = {u, x, 4 * n + j, hgen};
           break;
         }
-        if (s.u == u && s.w == w) {
+        if (s.u == u && s.w == x) {
           r.n[j] = s.face;
           link(s.face) = 4 * n + j;
           break;
