@@ -108,18 +108,19 @@ class Refiner {
 
  private:
   enum class Phase { kFirstLayer, kFront };
-  Status rounds(Phase phase, std::vector<int32_t> items, RefineStats& st,
-                const ProgressFn& progress, std::vector<int32_t>* fresh);
+  /// Works through `items` on the whole triangulation (no slabs), the
+  /// inserted vertices into `fresh` (phase 2).
+  Status sequential(Phase phase, std::vector<int32_t> items, RefineStats& st,
+                    const ProgressFn& progress, std::vector<int32_t>* fresh);
+  /// Phase 4: the slab rounds, then sequential() for what is left.
+  Status front_rounds(std::vector<int32_t> items, RefineStats& st, const ProgressFn& progress);
   void work(Phase phase, int part, SlabWork& S, const ProgressFn& progress, bool caller);
-  bool first_layer_item(int part, SlabWork& S, int32_t i);
+  void first_layer_item(SlabWork& S, int32_t i);
   bool front_item(int part, SlabWork& S, int32_t v);
   int32_t try_insert(int part, SlabWork& S, const double* p, double hp, double hspacing,
                      int32_t hint, int32_t generation);
   /// A tetrahedron of part `part` among t and `around`, or -1.
   int32_t own_hint(int part, int32_t t, const std::vector<int32_t>& around) const;
-  const double* item_point(Phase phase, int32_t item) const {
-    return phase == Phase::kFirstLayer ? &apex_[3 * size_t(item)] : kernel_.point(item);
-  }
 
   Delaunay3D& kernel_;
   const VolumeSizeField& field_;
@@ -219,25 +220,15 @@ int32_t Refiner::try_insert(int part, SlabWork& S, const double* p, double hp, d
   return ins.vertex;
 }
 
-bool Refiner::first_layer_item(int part, SlabWork& S, int32_t i) {
-  // The hint: a tetrahedron of the part around a vertex of the face.
-  const int32_t a = apex_vertex_[size_t(i)];
-  if (part >= 0 && vpart_[size_t(a)] != part) return false;
-  int32_t hint = kernel_.vertex_tet(a);
-  if (!kernel_.in_part(part, hint)) {
-    kernel_.tets_around_vertex_in(part, a, S.star);
-    hint = own_hint(part, -1, S.star);
-    if (hint < 0) return false;
-  }
+void Refiner::first_layer_item(SlabWork& S, int32_t i) {
   const double* p = &apex_[3 * size_t(i)];
   const double hf = apex_h_[size_t(i)];
   ++S.st.candidates;
   ++S.st.size_evaluations;
   const double hp = field_.eval(p, hf + g_ * hf, o_.size_tolerance);
-  const int32_t v = try_insert(part, S, p, hp, std::min(hp, hf), hint, 1);
-  if (v == kDeferred) return false;
+  const int32_t v =
+      try_insert(-1, S, p, hp, std::min(hp, hf), kernel_.vertex_tet(apex_vertex_[size_t(i)]), 1);
   if (v >= 0) S.fresh.push_back(v);
-  return true;
 }
 
 bool Refiner::front_item(int part, SlabWork& S, int32_t v) {
@@ -344,43 +335,47 @@ void Refiner::work(Phase phase, int part, SlabWork& S, const ProgressFn& progres
       S.deferred.insert(S.deferred.end(), S.items.begin() + ptrdiff_t(k), S.items.end());
       break;
     }
-    const bool ok =
-        phase == Phase::kFirstLayer ? first_layer_item(part, S, item) : front_item(part, S, item);
-    if (!ok) S.deferred.push_back(item);
+    if (phase == Phase::kFirstLayer)
+      first_layer_item(S, item);
+    else if (!front_item(part, S, item))
+      S.deferred.push_back(item);
   }
   S.st.deferred += int64_t(S.deferred.size());
 }
 
-Status Refiner::rounds(Phase phase, std::vector<int32_t> items, RefineStats& st,
-                       const ProgressFn& progress, std::vector<int32_t>* fresh) {
-  const int parts = std::clamp(o_.parts, 1, 64);
-  queued_.fetch_add(int64_t(items.size()), std::memory_order_relaxed);
-  for (int round = 0; !items.empty(); ++round) {
-    if (st.inserted >= o_.max_points) {
-      st.hit_max_points = true;
-      break;
-    }
+Status Refiner::sequential(Phase phase, std::vector<int32_t> items, RefineStats& st,
+                           const ProgressFn& progress, std::vector<int32_t>* fresh) {
+  if (st.inserted >= o_.max_points) {
+    st.hit_max_points = !items.empty();
+    return Status::Ok();
+  }
+  SlabWork& S = slabs_.emplace_back();
+  S.items = std::move(items);
+  S.budget = int32_t(std::min<int64_t>(o_.max_points - st.inserted, INT32_MAX));
+  S.st = RefineStats{};
+  work(phase, -1, S, progress, true);
+  if (cancelled_) return Status::Cancelled();
+  if (S.inserted >= S.budget && !S.deferred.empty()) st.hit_max_points = true;
+  add_stats(st, S.st);
+  if (fresh) fresh->insert(fresh->end(), S.fresh.begin(), S.fresh.end());
+  slabs_.pop_back();
+  return Status::Ok();
+}
+
+Status Refiner::front_rounds(std::vector<int32_t> items, RefineStats& st,
+                             const ProgressFn& progress) {
+  const int parts = o_.parts;
+  done_ = 0;  // the progress fraction counts the front's work only
+  queued_ = int64_t(items.size());
+  for (int round = 0; round < o_.rounds && parts > 1 &&
+                      items.size() >= size_t(std::max(o_.min_slab_items, 1)) * size_t(parts);
+       ++round) {
+    if (st.inserted >= o_.max_points) break;
     const int64_t room = o_.max_points - st.inserted;
-    // The last round: sequential, the whole triangulation, no budget but
-    // max_points.
-    if (phase == Phase::kFirstLayer || round >= o_.rounds || parts == 1 ||
-        items.size() < size_t(std::max(o_.min_slab_items, 1)) * size_t(parts)) {
-      SlabWork& S = slabs_.emplace_back();
-      S.items = std::move(items);
-      S.budget = int32_t(std::min<int64_t>(room, INT32_MAX));
-      S.st = RefineStats{};
-      work(phase, -1, S, progress, true);
-      if (cancelled_) return Status::Cancelled();
-      if (S.inserted >= S.budget && !S.deferred.empty()) st.hit_max_points = true;
-      add_stats(st, S.st);
-      if (fresh) fresh->insert(fresh->end(), S.fresh.begin(), S.fresh.end());
-      slabs_.pop_back();
-      break;
-    }
     // Slabs of equal item count along axis round % 3.
     const int axis = round % 3;
     std::vector<double> xs(items.size());
-    for (size_t i = 0; i < items.size(); ++i) xs[i] = item_point(phase, items[i])[axis];
+    for (size_t i = 0; i < items.size(); ++i) xs[i] = kernel_.point(items[i])[axis];
     std::sort(xs.begin(), xs.end());
     std::vector<double> cuts(static_cast<size_t>(parts - 1));
     for (int j = 1; j < parts; ++j) cuts[size_t(j - 1)] = xs[xs.size() * size_t(j) / size_t(parts)];
@@ -394,16 +389,14 @@ Status Refiner::rounds(Phase phase, std::vector<int32_t> items, RefineStats& st,
         vpart_[v] = uint8_t(slab_of(kernel_.point(int32_t(v))));
     slabs_.resize(size_t(parts));
     for (SlabWork& S : slabs_) S.items.clear(), S.st = RefineStats{};
-    for (int32_t item : items)
-      slabs_[size_t(slab_of(item_point(phase, item)))].items.push_back(item);
-    // Budgets: a candidate gives at most one vertex; a front vertex a few
-    // (the front grows into the volume); within max_points.
+    for (int32_t v : items) slabs_[size_t(slab_of(kernel_.point(v)))].items.push_back(v);
+    // Budgets: a front vertex gives a few new ones (the front grows into
+    // the volume); within max_points.
     std::vector<Delaunay3D::PartBudget> budgets(static_cast<size_t>(parts));
     int64_t total = 0;
     for (int j = 0; j < parts; ++j) {
       const int64_t n = int64_t(slabs_[size_t(j)].items.size());
-      budgets[size_t(j)].vertices =
-          int32_t(std::min<int64_t>(phase == Phase::kFirstLayer ? n : 3 * n + 256, room));
+      budgets[size_t(j)].vertices = int32_t(std::min<int64_t>(3 * n + 256, room));
       total += budgets[size_t(j)].vertices;
     }
     for (int j = 0; j < parts; ++j) {
@@ -418,11 +411,11 @@ Status Refiner::rounds(Phase phase, std::vector<int32_t> items, RefineStats& st,
     const std::thread::id caller = std::this_thread::get_id();
     parallel_for(size_t(parts), 1, [&](size_t begin, size_t end) {
       const bool on_caller = std::this_thread::get_id() == caller;
-      for (size_t j = begin; j < end; ++j) work(phase, int(j), slabs_[j], progress, on_caller);
+      for (size_t j = begin; j < end; ++j)
+        work(Phase::kFront, int(j), slabs_[j], progress, on_caller);
     });
     // Back to consecutive vertex ids.
     const std::vector<int32_t> remap = kernel_.end_partitions();
-    auto renumber = [&](int32_t v) { return size_t(v) >= n0 ? remap[size_t(v) - n0] : v; };
     for (size_t k = 0; k < remap.size(); ++k) {
       if (remap[k] < 0) continue;
       vertex_h_[size_t(remap[k])] = vertex_h_[n0 + k];
@@ -435,14 +428,12 @@ Status Refiner::rounds(Phase phase, std::vector<int32_t> items, RefineStats& st,
     if (cancelled_) return Status::Cancelled();
     items.clear();
     for (SlabWork& S : slabs_) {
-      for (int32_t item : S.deferred)
-        items.push_back(phase == Phase::kFront ? renumber(item) : item);
-      if (fresh)
-        for (int32_t v : S.fresh) fresh->push_back(renumber(v));
+      for (int32_t v : S.deferred) items.push_back(size_t(v) >= n0 ? remap[size_t(v) - n0] : v);
       add_stats(st, S.st);
     }
   }
-  return Status::Ok();
+  // The last round: sequential, the whole triangulation.
+  return sequential(Phase::kFront, std::move(items), st, progress, nullptr);
 }
 
 Status Refiner::run(RefineStats& st, const ProgressFn& progress) {
@@ -504,7 +495,7 @@ Status Refiner::run(RefineStats& st, const ProgressFn& progress) {
         apex_vertex_.push_back(a);
       }
     }
-    Status s = rounds(Phase::kFirstLayer, brio_hilbert_order(apex_), st, progress, &queue);
+    Status s = sequential(Phase::kFirstLayer, brio_hilbert_order(apex_), st, progress, &queue);
     if (!s.ok()) return s;
     hilbert_sort(kernel_.points(), queue.data(), int64_t(queue.size()));
   }
@@ -521,7 +512,7 @@ Status Refiner::run(RefineStats& st, const ProgressFn& progress) {
     hilbert_sort(kernel_.points(), queue.data() + first, int64_t(queue.size() - first));
   }
   // Phase 4: edges of each queued vertex, new vertices queued after.
-  Status s = rounds(Phase::kFront, std::move(queue), st, progress, nullptr);
+  Status s = front_rounds(std::move(queue), st, progress);
   if (!s.ok()) return s;
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return Status::Ok();
