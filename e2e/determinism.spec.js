@@ -6,7 +6,7 @@ import { fileURLToPath } from 'node:url';
 
 import { expect, test } from '@playwright/test';
 
-import { exportDownload, meshAgain, openApp, upload } from './helpers.js';
+import { exportDownload, meshAgain, openApp, setSizeAndLayers, upload } from './helpers.js';
 
 // A clinician gets the same mesh from the page as from the CLI: the MSH the
 // page downloads equals, byte for byte but for the options it records, what
@@ -34,8 +34,9 @@ function cliArguments(provenance) {
   return args;
 }
 
-test('the page and the CLI write the same MSH bytes', async ({ page }) => {
-  test.setTimeout(120_000);
+/** Meshes a bifurcation phantom in the page (after `setUp(page)`) and with
+ * the CLI at the options the page's file records; expects the same bytes. */
+async function expectSameBytes(page, setUp) {
   const dir = mkdtempSync(join(tmpdir(), 'vm-e2e-same-'));
   try {
     const stl = join(dir, 'bifurcation.stl');
@@ -44,6 +45,7 @@ test('the page and the CLI write the same MSH bytes', async ({ page }) => {
     await upload(page, 'bifurcation.stl', readFileSync(stl));
     await expect(page.getByTestId('stat-openings')).toHaveText('3');
     await page.getByTestId('export-format').selectOption('msh-4.1');
+    await setUp(page);
     await meshAgain(page);
     const { bytes } = await exportDownload(page);
     const text = bytes.toString('latin1');
@@ -64,4 +66,16 @@ test('the page and the CLI write the same MSH bytes', async ({ page }) => {
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }
+}
+
+test('the page and the CLI write the same MSH bytes', async ({ page }) => {
+  test.setTimeout(120_000);
+  await expectSameBytes(page, async () => {});
+});
+
+test('the same bytes with a fine core, which the CLI refines in slabs on its threads', async ({ page }) => {
+  test.setTimeout(120_000);
+  // Uniform h = 0.13 without layers: over 8192 queued vertices, so the
+  // native refinement runs its slab rounds (on 2 threads here).
+  await expectSameBytes(page, (p) => setSizeAndLayers(p, '0.13', '0'));
 });

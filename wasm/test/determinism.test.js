@@ -41,6 +41,11 @@ const cases = [
     cliPhantom: ['--kind', 'aneurysm', '--voxel', '0.12', '--dirty'] },
   { name: '17-branch tree', phantom: { kind: 'tree' }, cliPhantom: ['--kind', 'tree'],
     options: { size: 0.3, layers: 2 }, cliOptions: ['--size', '0.3', '--layers', '2'] },
+  // A core large enough (over 8192 queued vertices) for the refinement's
+  // slab rounds, which the CLI runs on its threads.
+  { name: 'bifurcation with a fine core (slab rounds)', phantom: { kind: 'bifurcation', voxel: 0.12, noise: 0.3 },
+    cliPhantom: ['--kind', 'bifurcation', '--voxel', '0.12', '--noise', '0.3'],
+    options: { size: 0.13, layers: 0 }, cliOptions: ['--size', '0.13', '--layers', '0', '--threads', '2'] },
 ];
 
 describe('WebAssembly and native CLI write the same bytes', () => {
