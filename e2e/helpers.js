@@ -10,14 +10,14 @@ import { cappedTubeVtp as cappedTubeText } from '../wasm/test/capped-tube-vtp.js
 import { createVesselmesh } from '../wasm/src/vesselmesh.js';
 
 /** Opens the app; returns the list of requests made to any other origin. */
-export async function openApp(page) {
+export async function openApp(page, url = '/') {
   const foreign = [];
   page.on('request', (request) => {
     const url = new URL(request.url());
     if (!['http:', 'https:', 'ws:', 'wss:'].includes(url.protocol)) return; // data:, blob:
     if (url.host !== HOST) foreign.push(request.url());
   });
-  await page.goto('/');
+  await page.goto(url);
   await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
   return foreign;
 }

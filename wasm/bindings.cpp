@@ -30,6 +30,7 @@
 #include "core/pipeline/write_outputs.h"
 #include "core/prepare/cut_across_vessel.h"
 #include "core/quality/tet_quality.h"
+#include "core/util/parallel.h"
 #include "core/util/version.h"
 
 namespace {
@@ -502,6 +503,16 @@ std::string solver_presets() { return vm::solver_presets_json(); }
 
 std::string version() { return vm::kVersion; }
 
+/// Caps the threads of every later job at `limit` (the threaded module's
+/// pool of Web Workers plus the calling thread) and returns the most a job
+/// may use: min(limit, the cores the browser reports), or 1 in the
+/// single-threaded module.
+int set_thread_limit(int limit) {
+  vm::set_thread_limit(limit);
+  vm::set_thread_count(0);
+  return vm::thread_count();
+}
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(vesselmesh) {
@@ -509,6 +520,7 @@ EMSCRIPTEN_BINDINGS(vesselmesh) {
   emscripten::function("mesh", &mesh);
   emscripten::function("makePhantom", &make_phantom);
   emscripten::function("version", &version);
+  emscripten::function("setThreadLimit", &set_thread_limit);
   emscripten::function("optionTable", &option_table);
   emscripten::function("solverPresets", &solver_presets);
   emscripten::function("exportMesh", &export_mesh);

@@ -35,6 +35,11 @@ const dropCoreWasmUrl = () => ({
   },
 });
 
+/** The threaded core's pool Workers start from vesselmesh_core_mt.worker.js
+ * by URL: it must stay a file of its own (a data: URL Worker would have
+ * another origin); other small assets are inlined as usual. */
+const keepWorkerFiles = (file) => (file.endsWith('.worker.js') ? false : undefined);
+
 /** The client's default worker (a separate file) is never started in the
  * one-file app (worker-inline.js is): drop the file Vite emits for it. */
 const dropWorkerFiles = () => ({
@@ -89,7 +94,10 @@ function singleFileConfig() {
     base: './',
     publicDir: false, // the icon is for the installable app
     resolve: {
-      alias: [{ find: /^\.\/worker-source\.js$/, replacement: resolve(here, 'src/worker-inline.js') }],
+      alias: [
+        { find: /^\.\/worker-source\.js$/, replacement: resolve(here, 'src/worker-inline.js') },
+        { find: /^\.\/threaded-core\.js$/, replacement: resolve(here, 'src/threaded-core-none.js') },
+      ],
     },
     build: {
       outDir: resolve(here, '../dist'),
@@ -123,6 +131,7 @@ function elementConfig() {
       emptyOutDir: true,
       target: 'es2022',
       chunkSizeWarningLimit: 1024,
+      assetsInlineLimit: keepWorkerFiles,
       modulePreload: false,
       rollupOptions: {
         input: resolve(here, 'src/element/vessel-mesher.js'),
@@ -151,6 +160,7 @@ export default defineConfig(({ mode }) =>
           emptyOutDir: true,
           target: 'es2022',
           chunkSizeWarningLimit: 1024,
+          assetsInlineLimit: keepWorkerFiles,
         },
         worker: { format: 'es' },
         plugins: [installable()],

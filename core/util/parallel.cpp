@@ -21,6 +21,7 @@ namespace vm {
 namespace {
 
 std::atomic<int> requested_threads{0};  // 0: all cores
+std::atomic<int> thread_limit{0};       // 0: no cap
 
 /// Runs chunks [first, ...) of a loop taken from `next` until none is left;
 /// the first exception is kept in `error`.
@@ -131,12 +132,15 @@ Pool& pool() {
 
 void set_thread_count(int n) { requested_threads = std::max(0, n); }
 
+void set_thread_limit(int n) { thread_limit = std::max(0, n); }
+
 bool threads_supported() { return VM_THREADS != 0; }
 
 int thread_count() {
 #if VM_THREADS
-  const int n = requested_threads.load();
-  return n > 0 ? n : hardware_threads();
+  const int n = requested_threads.load(), limit = thread_limit.load();
+  const int wanted = n > 0 ? n : hardware_threads();
+  return limit > 0 ? std::min(wanted, limit) : wanted;
 #else
   return 1;
 #endif

@@ -18,6 +18,12 @@ namespace vm {
 /// thread support it stays 1.
 void set_thread_count(int n);
 
+/// Caps the number of threads loops may use, whatever set_thread_count
+/// asks: n >= 1, or 0 for no cap (the default). The threaded WebAssembly
+/// module sets it to the size of its pool of Web Workers plus one, since a
+/// thread it has no Worker for cannot start while the caller blocks.
+void set_thread_limit(int n);
+
 /// The number of threads loops use now (>= 1).
 int thread_count();
 

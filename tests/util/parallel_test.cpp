@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <numeric>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "core/util/concurrent_union_find.h"
@@ -92,6 +94,29 @@ TEST(ParallelFor, ThreadCountFollowsTheSetting) {
   EXPECT_EQ(thread_count(), threads_supported() ? 3 : 1);
   set_thread_count(0);
   EXPECT_GE(thread_count(), 1);
+}
+
+TEST(ParallelFor, ThreadLimitCapsTheSettingAndTheLoops) {
+  if (!threads_supported()) GTEST_SKIP() << "a build without threads";
+  set_thread_limit(2);
+  set_thread_count(5);
+  EXPECT_EQ(thread_count(), 2);
+  set_thread_count(0);  // all cores, but at most the limit
+  EXPECT_LE(thread_count(), 2);
+  set_thread_count(5);
+  // A loop of many slow chunks never has more than 2 threads in it at once.
+  std::atomic<int> inside{0}, most{0};
+  parallel_for(64, 1, [&](size_t, size_t) {
+    const int now = ++inside;
+    for (int seen = most.load(); now > seen && !most.compare_exchange_weak(seen, now);) {
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    --inside;
+  });
+  EXPECT_LE(most.load(), 2);
+  set_thread_limit(0);
+  EXPECT_EQ(thread_count(), 5);
+  set_thread_count(0);
 }
 
 TEST(ConcurrentUnionFind, SetsRootedAtTheirSmallestElementWithAnyThreadCount) {

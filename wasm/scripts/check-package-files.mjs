@@ -3,9 +3,9 @@
 import { existsSync } from 'node:fs';
 
 const root = new URL('../../', import.meta.url);
+const WASM = 'build the WebAssembly modules (cmake --build build-wasm, see scripts/setup.sh)';
 const needed = [
-  ['wasm/dist/vesselmesh_core.mjs', 'build the WebAssembly module (cmake --build build-wasm, see scripts/setup.sh)'],
-  ['wasm/dist/vesselmesh_core.wasm', 'build the WebAssembly module (cmake --build build-wasm, see scripts/setup.sh)'],
+  ...['vesselmesh_core.mjs', 'vesselmesh_core.wasm', 'vesselmesh_core_mt.mjs', 'vesselmesh_core_mt.wasm', 'vesselmesh_core_mt.worker.js'].map((f) => [`wasm/dist/${f}`, WASM]),
   ['dist/element/vessel-mesher.js', 'run npm run build:web'],
 ];
 const missing = needed.filter(([path]) => !existsSync(new URL(path, root)));

@@ -33,6 +33,10 @@ export class VesselmeshClient {
   _onMessage(msg) {
     if (msg.type === 'ready') {
       this.version = msg.version;
+      /** The most threads a job runs on, and on one thread why (see the
+       * API's threads and threadsNote), once ready. */
+      this.threads = msg.threads;
+      this.threadsNote = msg.threadsNote;
       /** The option table (see the API's optionTable), once ready. */
       this.optionTable = msg.optionTable;
       /** The solver presets (see the API's solverPresets), once ready. */

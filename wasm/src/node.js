@@ -7,8 +7,12 @@ import { createVesselmesh as createWithBinary } from './vesselmesh.js';
 
 export { VesselmeshClient } from './client.js';
 
-/** @param {{ wasmBinary?: ArrayBuffer|Uint8Array }} [options] */
+/** In Node the core runs on one thread: Emscripten 3.1.6's threaded
+ * module cannot start its Workers in an ES module there (the vesselmesh CLI
+ * has threads and writes the same mesh).
+ * @param {{ wasmBinary?: ArrayBuffer|Uint8Array }} [options] */
 export async function createVesselmesh(options = {}) {
   const wasmBinary = options.wasmBinary ?? (await readFile(new URL('../dist/vesselmesh_core.wasm', import.meta.url)));
-  return createWithBinary({ ...options, wasmBinary });
+  const api = await createWithBinary({ ...options, wasmBinary, threads: undefined });
+  return { ...api, threadsNote: 'Node: the WebAssembly core runs on one thread here (the CLI has threads)' };
 }

@@ -3,6 +3,7 @@
 // { ok: false, error, kind } (nothing throws for a user error). Options are
 // checked by the core against its option table, in the JS vocabulary.
 import createVesselmeshCore from '../dist/vesselmesh_core.mjs';
+import { createThreadedCore, defaultThreads, MAX_THREADS, singleThreadReason } from './threaded-core.js';
 
 const fail = (error) => ({ ok: false, error });
 
@@ -57,15 +58,47 @@ function answer(raw) {
   return raw.ok ? raw : failure(raw);
 }
 
+/** The single-threaded core, from `wasmBinary` or fetched. */
+async function createSingleThreadedCore(wasmBinary) {
+  const core = await createVesselmeshCore({ wasmBinary: wasmBinary ?? (await loadWasmBinary()) });
+  core.setThreadLimit(1);
+  return core;
+}
+
+/** The core for createVesselmesh's options, with the number of threads its
+ * jobs may use and, on one thread, why. */
+async function loadCore({ wasmBinary, threads }) {
+  if (threads !== undefined && !(Number.isInteger(threads) && threads >= 1)) {
+    throw new TypeError(`createVesselmesh: threads must be a whole number >= 1, not ${threads}`);
+  }
+  const reason = wasmBinary ? 'a wasmBinary was given (the single-threaded core)' : singleThreadReason();
+  const wanted = Math.min(threads ?? (reason ? 1 : defaultThreads()), MAX_THREADS);
+  if (reason || wanted === 1) {
+    const why = reason || (threads === 1 ? 'threads: 1 was asked' : 'the browser reports one core');
+    return { core: await createSingleThreadedCore(wasmBinary), threads: 1, why };
+  }
+  try {
+    return { core: await createThreadedCore(wanted), threads: wanted, why: '' };
+  } catch (error) {
+    const why = `the threaded core did not start (${error?.message ?? error})`;
+    return { core: await createSingleThreadedCore(), threads: 1, why };
+  }
+}
+
 /**
  * Loads the WebAssembly module and returns the API.
- * @param {{ wasmBinary?: ArrayBuffer|Uint8Array }} [options] In Node pass
- *   wasmBinary (fs.readFileSync of wasm/dist/vesselmesh_core.wasm); in the
- *   browser it is fetched next to this module.
+ * @param {{ wasmBinary?: ArrayBuffer|Uint8Array, threads?: number }} [options]
+ *   In Node pass wasmBinary (fs.readFileSync of
+ *   wasm/dist/vesselmesh_core.wasm); in the browser it is fetched next to
+ *   this module. threads: the most threads jobs may use (default: the
+ *   browser's cores, at most 8); more than 1 loads the threaded core, which
+ *   needs a cross-origin isolated page; elsewhere, or when it fails to
+ *   start, the single-threaded core is used (see `threads` and
+ *   `threadsNote` on the API).
  */
-export async function createVesselmesh({ wasmBinary } = {}) {
-  const binary = wasmBinary ?? (await loadWasmBinary());
-  const core = await createVesselmeshCore({ wasmBinary: binary });
+export async function createVesselmesh({ wasmBinary, threads } = {}) {
+  const loaded = await loadCore({ wasmBinary, threads });
+  const { core } = loaded;
 
   const withSurface = (raw, extra) => ({ ok: true, ...extra, surface: raw.surface });
   /** The option table (core/pipeline/option_table.h) as parsed JSON. */
@@ -75,6 +108,14 @@ export async function createVesselmesh({ wasmBinary } = {}) {
 
   return {
     version: core.version(),
+
+    /** The most threads a job runs on (the `threads` job option is capped
+     * at it); 1 with the single-threaded core. The mesh does not depend on
+     * it. */
+    threads: loaded.threads,
+
+    /** On one thread, why ('' with the threaded core). */
+    threadsNote: loaded.why,
 
     /** Every option of analyze, mesh and makePhantom: id, js (the key
      * here), type, range, default, unit, doc (see vesselmesh.d.ts). */

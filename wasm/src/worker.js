@@ -3,7 +3,8 @@
 //          'cutAt' | 'layerFractions' | 'sizeField',
 //          args: [bytes?, options] }
 //        (export: args [format, options]: the last mesh in another format)
-//   out: { type: 'ready', version, optionTable, solverPresets } | { type: 'error', error } once
+//   out: { type: 'ready', version, threads, threadsNote, optionTable, solverPresets }
+//        | { type: 'error', error } once
 //        at start;
 //        { id, type: 'progress', fraction, stage } during a job (at most one
 //        every 50 ms); { id, type: 'result', result } at the end, with the
@@ -18,6 +19,8 @@ const apiPromise = createVesselmesh().then(
     self.postMessage({
       type: 'ready',
       version: api.version,
+      threads: api.threads,
+      threadsNote: api.threadsNote,
       optionTable: api.optionTable,
       solverPresets: api.solverPresets,
     });

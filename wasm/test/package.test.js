@@ -79,7 +79,7 @@ describe('npm package', () => {
 
   test('the tarball holds the API, its types, the wasm and the element, and no sources beyond them', () => {
     const files = execFileSync('tar', ['-tzf', consumer.tarball], { encoding: 'utf8' }).split('\n').filter(Boolean);
-    for (const f of ['wasm/src/index.js', 'wasm/src/node.js', 'wasm/src/vesselmesh.d.ts', 'wasm/src/element.d.ts', 'wasm/dist/vesselmesh_core.wasm', 'dist/element/vessel-mesher.js']) {
+    for (const f of ['wasm/src/index.js', 'wasm/src/node.js', 'wasm/src/threaded-core.js', 'wasm/src/vesselmesh.d.ts', 'wasm/src/element.d.ts', 'wasm/dist/vesselmesh_core.wasm', 'wasm/dist/vesselmesh_core_mt.mjs', 'wasm/dist/vesselmesh_core_mt.wasm', 'wasm/dist/vesselmesh_core_mt.worker.js', 'dist/element/vessel-mesher.js']) {
       assert.ok(files.includes(`package/${f}`), `${f} is in the tarball`);
     }
     assert.ok(files.some((f) => /^package\/dist\/element\/assets\/worker-.*\.js$/.test(f)));

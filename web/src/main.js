@@ -748,6 +748,16 @@ function showLayerStats(v) {
 }
 
 /** Fills the result part of the panel with a mesh result. */
+/** How long the job took and on how many threads (the browser's cores with
+ * the threaded core; one, and why, without it). */
+function showTime(seconds) {
+  const threads = client.threads ?? 1;
+  const el = $('out-time');
+  el.textContent = `Meshed in ${seconds.toFixed(1)} s on ${threads === 1 ? 'one thread' : `${threads} threads`}`;
+  el.dataset.threads = String(threads);
+  el.title = threads === 1 && client.threadsNote ? `One thread: ${client.threadsNote}` : '';
+}
+
 function showMeshResult(result) {
   const out = result.report.output;
   $('out-triangles').textContent = out.triangles.toLocaleString('en');
@@ -767,6 +777,7 @@ function showMeshResult(result) {
     $('out-pinned').textContent = fidelity.pinned_vertices.toLocaleString('en');
   }
   drawHistogram($('out-histogram'), wall.histogram);
+  showTime(result.report.seconds);
   showPresetAndYplus(result.report);
   const elements = out.groups.reduce((n, g) => n + g.elements, 0);
   $('remesh-result').dataset.elements = String(elements);
