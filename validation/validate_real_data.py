@@ -7,6 +7,7 @@ usage: validate_real_data.py --data DIR --vesselmesh PATH
 Exit status 0 when every check passes.
 """
 import argparse
+import hashlib
 import json
 import os
 import subprocess
@@ -433,13 +434,33 @@ def check_vtk_outputs(fname, path, tmp, args):
 
 
 WASM_MESH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "wasm_mesh.mjs")
-WASM_BINARY = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "wasm", "dist",
-                           "vesselmesh_core.wasm")
+CHROMIUM = os.environ.get("CHROMIUM_PATH", "/usr/bin/chromium")
+CHROMIUM_MESH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "chromium_mesh.mjs")
+WASM_DIST = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "wasm", "dist")
+WASM_BINARY = os.path.join(WASM_DIST, "vesselmesh_core.wasm")
+
+
+def check_same_in_chromium(fname, path, reference, threads):
+    """The threaded WebAssembly core in Chromium (a cross-origin isolated
+    page, validation/chromium_mesh.mjs) on `threads` threads must write the
+    bytes of `reference` (compared by SHA-256: the file stays in the page)."""
+    r = subprocess.run(["node", CHROMIUM_MESH, path, str(threads)], capture_output=True, text=True)
+    try:
+        res = json.loads(r.stdout.strip().splitlines()[-1])
+    except (ValueError, IndexError):
+        res = dict(ok=False, error=(r.stderr.strip() or f"exit {r.returncode}")[-300:])
+    check(fname, res.get("ok") and res.get("threads") == threads,
+          f"Chromium meshes on {threads} threads {res.get('error') or res.get('threadsNote') or ''}".rstrip())
+    data = open(reference, "rb").read() if os.path.exists(reference) else b""
+    same = res.get("ok") and data and res.get("sha256") == hashlib.sha256(data).hexdigest()
+    check(fname, same, f"the same MSH bytes from WebAssembly in Chromium ({threads} threads) as from native "
+                       f"({res.get('bytes')} against {len(data)} bytes)")
 
 
 def check_same_everywhere(fname, path, tmp, args):
-    """Default options: the CLI on 1 and 2 threads and the WebAssembly build
-    (Node, through the JS API) must write the same bytes."""
+    """Default options: the CLI on 1 and 2 threads, the WebAssembly build in
+    Node (the single-threaded core, through the JS API) and in Chromium (the
+    threaded core on 2 threads) must write the same bytes."""
     outs = {}
     for threads in ("1", "2"):
         out = os.path.join(tmp, f"{fname}.t{threads}.msh")
@@ -454,6 +475,10 @@ def check_same_everywhere(fname, path, tmp, args):
         outs["WebAssembly (Node)"] = out
     else:
         print("  note: wasm/dist missing (build it first); native-versus-wasm comparison skipped")
+    if os.path.exists(os.path.join(WASM_DIST, "vesselmesh_core_mt.wasm")) and os.path.exists(CHROMIUM):
+        check_same_in_chromium(fname, path, outs["native, 1 thread(s)"], 2)
+    else:
+        print("  note: the threaded wasm or Chromium is missing; the Chromium comparison skipped")
     datas = {k: open(v, "rb").read() if os.path.exists(v) else b"" for k, v in outs.items()}
     ref_name = next(iter(datas))
     for k, data in datas.items():

@@ -13,6 +13,6 @@ export { VesselmeshClient } from './client.js';
  * @param {{ wasmBinary?: ArrayBuffer|Uint8Array }} [options] */
 export async function createVesselmesh(options = {}) {
   const wasmBinary = options.wasmBinary ?? (await readFile(new URL('../dist/vesselmesh_core.wasm', import.meta.url)));
-  const api = await createWithBinary({ ...options, wasmBinary, threads: undefined });
+  const api = await createWithBinary({ ...options, wasmBinary });
   return { ...api, threadsNote: 'Node: the WebAssembly core runs on one thread here (the CLI has threads)' };
 }

@@ -43,7 +43,7 @@ export interface AnalyzeOptions {
   gradation?: number;
   /** at least P edges per radian of curvature (0: off) Needs a number of points per radian >= 0. Default 0. */
   curvature?: number;
-  /** threads for the preparation's loops, the vessel radius, the meshing of the wall's patches, the distance checks and the volume refinement (two slabs at once) (0: all cores); the mesh is the same with any number; the browser build uses one. Needs an integer from 0 (all cores) to 256. Default 0. */
+  /** threads for the preparation's loops, the vessel radius, the meshing of the wall's patches, the distance checks and the volume refinement (two slabs at once) (0: all cores); the mesh is the same with any number; in the browser at most the threads the page's core has (api.threads: its cores on a cross-origin isolated page, else 1) Needs an integer from 0 (all cores) to 256. Default 0. */
   threads?: number;
 }
 
@@ -250,6 +250,10 @@ export interface SolverPreset {
 
 export interface VesselmeshApi {
   version: string;
+  /** The most threads a job runs on (its `threads` option is capped at it): with the threaded core the browser's cores, at most 8; 1 with the single-threaded core. The mesh does not depend on it. */
+  threads: number;
+  /** On one thread, why (e.g. the page is not cross-origin isolated); '' with the threaded core. */
+  threadsNote: string;
   optionTable: OptionSpec[];
   /** The solver presets, in the order of the `solver` option's choices. */
   solverPresets: SolverPreset[];
@@ -274,10 +278,14 @@ export interface VesselmeshApi {
 /**
  * Loads the WebAssembly module. The package finds the wasm itself (Node:
  * read from the package; browser: fetched next to the module); wasmBinary
- * gives the bytes instead.
+ * gives the single-threaded core's bytes instead. In a cross-origin
+ * isolated page (COOP/COEP headers) the threaded core runs jobs on up to
+ * `threads` threads (default: the browser's cores, at most 8); elsewhere,
+ * in Node, or with threads: 1, the single-threaded core.
  */
 export function createVesselmesh(options?: {
   wasmBinary?: ArrayBuffer | Uint8Array;
+  threads?: number;
 }): Promise<VesselmeshApi>;
 
 /** A client's job options: the API's, with onProgress called from the worker's messages. */
@@ -294,6 +302,9 @@ export class VesselmeshClient {
   /** Resolves with the version once the worker has loaded the wasm. */
   ready: Promise<string>;
   version?: string;
+  /** The API's threads and threadsNote, once ready. */
+  threads?: number;
+  threadsNote?: string;
   /** The option table, once ready. */
   optionTable?: OptionSpec[];
   analyze(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: ClientAnalyzeOptions): Promise<AnalyzeResult>;

@@ -153,6 +153,27 @@ endfacet
 endsolid tet
 `;
 
+describe('threads', () => {
+  test('with a wasmBinary the single-threaded core loads, on one thread, and says why', () => {
+    assert.equal(api.threads, 1);
+    assert.match(api.threadsNote, /wasmBinary/);
+  });
+
+  test('the Node entry runs on one thread and says so', async () => {
+    const { createVesselmesh: createInNode } = await import('../src/node.js');
+    const nodeApi = await createInNode();
+    assert.equal(nodeApi.threads, 1);
+    assert.match(nodeApi.threadsNote, /Node/);
+    assert.equal(nodeApi.makePhantom({}).ok, true);
+  });
+
+  test('a threads count that is not a whole number >= 1 is refused, naming the option', async () => {
+    for (const threads of [0, -2, 1.5, 'two']) {
+      await assert.rejects(createVesselmesh({ threads }), /createVesselmesh: threads must be a whole number >= 1/);
+    }
+  });
+});
+
 describe('analyze', () => {
   test('a stray triangle far away is removed as a speck, not welded into the vessel', () => {
     const stl = api.makePhantom({ kind: 'bifurcation', voxel: 0.12 }).stl;
