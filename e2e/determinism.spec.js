@@ -6,7 +6,7 @@ import { fileURLToPath } from 'node:url';
 
 import { expect, test } from '@playwright/test';
 
-import { exportDownload, meshAgain, openApp, setSizeAndLayers, upload } from './helpers.js';
+import { exportDownload, meshAgain, openApp, screenshots, setSizeAndLayers, upload } from './helpers.js';
 import { serveStatic } from './static-server.js';
 
 // A clinician gets the same mesh from the page as from the CLI: the MSH the
@@ -83,6 +83,7 @@ test('the page and the CLI write the same MSH bytes', async ({ page }) => {
   const threads = await expectSameBytes(page, async () => {});
   expect(await page.evaluate(() => crossOriginIsolated)).toBe(true);
   expect(threads).toBe(await browserThreads(page));
+  await screenshots(page, 'meshed-threads', page.getByTestId('out-time'));
 });
 
 test('served without COOP/COEP, the page meshes on one thread and writes the same bytes', async ({ page }) => {
