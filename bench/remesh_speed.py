@@ -379,8 +379,9 @@ def main():
              f"instantiate {w['instantiate_seconds']:.2f} s; {w['node']}"] if w.get("ok") else ())
     for ch, x in zip(chromes, cs):
         row(f"vesselmesh wasm chrome {ch.threads}T", x, ch.threads, x.get("seconds", []), None, x.get("peak_js_heap_mb"),
-            [f"first run {x['seconds'][0]:.3f} s; {x.get('browser', '')}; ran on {x.get('threads')} thread(s) "
-             f"{x.get('threads_note') or ''}; no CPU time; peak MB = the page's JS heap"] if x.get("ok") else ())
+            [f"first run {x['seconds'][0]:.3f} s; {x.get('browser', '')}; ran on {x.get('threads')} thread(s)"
+             + (f" ({x['threads_note']})" if x.get("threads_note") else "")
+             + "; no CPU time; peak MB = the page's JS heap"] if x.get("ok") else ())
     for x in gs:
         row(f"Gmsh 4.8 {x['threads']}T (stage sum)", x, x["threads"], [r["seconds"]["total"] for r in x.get("runs", [])],
             x.get("median_cpu_seconds"), x.get("peak_rss_mb"),
