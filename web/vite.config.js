@@ -35,11 +35,6 @@ const dropCoreWasmUrl = () => ({
   },
 });
 
-/** The threaded core's pool Workers start from vesselmesh_core_mt.worker.js
- * by URL: it must stay a file of its own (a data: URL Worker would have
- * another origin); other small assets are inlined as usual. */
-const keepWorkerFiles = (file) => (file.endsWith('.worker.js') ? false : undefined);
-
 /** The client's default worker (a separate file) is never started in the
  * one-file app (worker-inline.js is): drop the file Vite emits for it. */
 const dropWorkerFiles = () => ({
@@ -131,7 +126,6 @@ function elementConfig() {
       emptyOutDir: true,
       target: 'es2022',
       chunkSizeWarningLimit: 1024,
-      assetsInlineLimit: keepWorkerFiles,
       modulePreload: false,
       rollupOptions: {
         input: resolve(here, 'src/element/vessel-mesher.js'),
@@ -160,8 +154,7 @@ export default defineConfig(({ mode }) =>
           emptyOutDir: true,
           target: 'es2022',
           chunkSizeWarningLimit: 1024,
-          assetsInlineLimit: keepWorkerFiles,
-        },
+            },
         worker: { format: 'es' },
         plugins: [installable()],
         server: { fs: { allow: [resolve(here, '..')] }, headers: ISOLATION_HEADERS },

@@ -280,8 +280,9 @@ export interface VesselmeshApi {
  * read from the package; browser: fetched next to the module); wasmBinary
  * gives the single-threaded core's bytes instead. In a cross-origin
  * isolated page (COOP/COEP headers) the threaded core runs jobs on up to
- * `threads` threads (default: the browser's cores, at most 8); elsewhere,
- * in Node, or with threads: 1, the single-threaded core.
+ * `threads` threads (0, the default: the browser's cores; at most 8), as
+ * the job option of that name; elsewhere, in Node, or with threads: 1,
+ * the single-threaded core.
  */
 export function createVesselmesh(options?: {
   wasmBinary?: ArrayBuffer | Uint8Array;

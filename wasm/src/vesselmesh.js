@@ -60,23 +60,21 @@ function answer(raw) {
 
 /** The single-threaded core, from `wasmBinary` or fetched. */
 async function createSingleThreadedCore(wasmBinary) {
-  const core = await createVesselmeshCore({ wasmBinary: wasmBinary ?? (await loadWasmBinary()) });
-  core.setThreadLimit(1);
-  return core;
+  return createVesselmeshCore({ wasmBinary: wasmBinary ?? (await loadWasmBinary()) });
 }
 
 /** The core for createVesselmesh's options, with the number of threads its
- * jobs may use and, on one thread, why. */
-async function loadCore({ wasmBinary, threads }) {
-  if (threads !== undefined && !(Number.isInteger(threads) && threads >= 1)) {
-    throw new TypeError(`createVesselmesh: threads must be a whole number >= 1, not ${threads}`);
+ * jobs may use and, on one thread, why. `threads` as the job option: 0 (or
+ * none) for all the browser's cores. */
+async function loadCore({ wasmBinary, threads = 0 }) {
+  if (!(Number.isInteger(threads) && threads >= 0 && threads <= 256)) {
+    throw new TypeError(`createVesselmesh: threads must be an integer from 0 (all cores) to 256, not ${threads}`);
   }
-  const reason = wasmBinary ? 'a wasmBinary was given (the single-threaded core)' : singleThreadReason();
-  const wanted = Math.min(threads ?? (reason ? 1 : defaultThreads()), MAX_THREADS);
-  if (reason || wanted === 1) {
-    const why = reason || (threads === 1 ? 'threads: 1 was asked' : 'the browser reports one core');
-    return { core: await createSingleThreadedCore(wasmBinary), threads: 1, why };
-  }
+  const reason = wasmBinary
+    ? 'a wasmBinary was given (the single-threaded core)'
+    : singleThreadReason() || (threads === 1 ? 'threads: 1 was asked' : '');
+  if (reason) return { core: await createSingleThreadedCore(wasmBinary), threads: 1, why: reason };
+  const wanted = Math.min(threads || defaultThreads(), MAX_THREADS);
   try {
     return { core: await createThreadedCore(wanted), threads: wanted, why: '' };
   } catch (error) {
@@ -90,8 +88,8 @@ async function loadCore({ wasmBinary, threads }) {
  * @param {{ wasmBinary?: ArrayBuffer|Uint8Array, threads?: number }} [options]
  *   In Node pass wasmBinary (fs.readFileSync of
  *   wasm/dist/vesselmesh_core.wasm); in the browser it is fetched next to
- *   this module. threads: the most threads jobs may use (default: the
- *   browser's cores, at most 8); more than 1 loads the threaded core, which
+ *   this module. threads: the most threads jobs may use (0, the default:
+ *   the browser's cores; at most 8); more than 1 loads the threaded core, which
  *   needs a cross-origin isolated page; elsewhere, or when it fails to
  *   start, the single-threaded core is used (see `threads` and
  *   `threadsNote` on the API).

@@ -167,10 +167,12 @@ describe('threads', () => {
     assert.equal(nodeApi.makePhantom({}).ok, true);
   });
 
-  test('a threads count that is not a whole number >= 1 is refused, naming the option', async () => {
-    for (const threads of [0, -2, 1.5, 'two']) {
-      await assert.rejects(createVesselmesh({ threads }), /createVesselmesh: threads must be a whole number >= 1/);
+  test('threads takes the job option\'s range: 0 (all cores) to 256; anything else is refused', async () => {
+    for (const threads of [-2, 1.5, 257, 'two']) {
+      await assert.rejects(createVesselmesh({ threads }), /createVesselmesh: threads must be an integer from 0 \(all cores\) to 256, not /);
     }
+    const wasmBinary = readFileSync(new URL('../dist/vesselmesh_core.wasm', import.meta.url));
+    for (const threads of [0, 1, 256]) assert.equal((await createVesselmesh({ wasmBinary, threads })).threads, 1);
   });
 });
 

@@ -747,7 +747,6 @@ function showLayerStats(v) {
   $('layer-stats').hidden = rows.length === 0;
 }
 
-/** Fills the result part of the panel with a mesh result. */
 /** How long the job took and on how many threads (the browser's cores with
  * the threaded core; one, and why, without it). */
 function showTime(seconds) {
@@ -758,6 +757,7 @@ function showTime(seconds) {
   el.title = threads === 1 && client.threadsNote ? `One thread: ${client.threadsNote}` : '';
 }
 
+/** Fills the result part of the panel with a mesh result. */
 function showMeshResult(result) {
   const out = result.report.output;
   $('out-triangles').textContent = out.triangles.toLocaleString('en');
