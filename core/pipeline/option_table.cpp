@@ -573,10 +573,10 @@ const OptionSpec kOptions[] = {
      .default_text = "0",
      .needs = "an integer from 0 (all cores) to 256",
      .doc = "threads for the preparation's loops, the vessel radius, the meshing of the wall's "
-            "patches, the distance checks and the volume refinement (two slabs at once) (0: all "
-            "cores); the mesh is the same with any number; in the browser at most the threads "
-            "the page's core has (api.threads: its cores on a cross-origin isolated page, else "
-            "1)"},
+            "patches, the distance checks, the volume refinement (two slabs at once) and the "
+            "volume optimizer's flips and smoothing (eight slabs) (0: all cores); the mesh is "
+            "the same with any number; in the browser at most the threads the page's core has "
+            "(api.threads: its cores on a cross-origin isolated page, else 1)"},
     {.id = "param",
      .cli = "param",
      .js = "param",

@@ -1022,6 +1022,8 @@ Result<std::vector<int32_t>> Delaunay3D::replace_tets(
       return R::Error("replace_tets: the new set does not fill the old one");
     case ReplaceError::kUncoveredFace:
       return R::Error("replace_tets: the new set leaves a boundary face uncovered");
+    case ReplaceError::kNoRoom:  // only with a slot pool
+      return R::Error("replace_tets: no free slot");
   }
   seq_.last = ids[0];
   delaunay_ = false;

@@ -9,7 +9,10 @@
 // rounds of flips on the tetrahedra below flip_threshold (in id order, for
 // memory locality) then smoothing of every free vertex, and one more round
 // of flips; (3) the sliver phase (worst first); (4) statistics from the
-// cached qualities.
+// cached qualities. The flip and smoothing rounds of (2) run on eight slabs
+// of vertices at the same time (on the threads), then sequentially on what
+// crosses slabs: parallel_flips() and smooth_pass() say why no slab reads
+// what another writes.
 #include "core/volume/optimize_volume.h"
 
 #include <algorithm>
@@ -18,10 +21,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 #include "core/geom/predicates.h"
 #include "core/geom/vec3.h"
 #include "core/quality/tet_quality.h"
+#include "core/util/parallel.h"
 #include "core/util/stage_timer.h"
 #include "core/volume/tet_topology.h"
 
@@ -35,6 +40,11 @@ constexpr int kLongEdges = 3;
 // Smallest quality a smoothing move may create (below it the exact
 // orientation test decides anyway; this keeps the search off flat shapes).
 constexpr double kGuard = 1e-3;
+// Slabs of a parallel smoothing or flip pass: fixed, so that the mesh does
+// not depend on the thread count.
+constexpr size_t kParts = 8;
+// Flip passes on fewer tetrahedra run sequentially.
+constexpr size_t kMinParallelFlips = 4096;
 
 using v3::cross;
 using v3::dot;
@@ -83,8 +93,10 @@ class Optimizer {
     dirty_.assign(m_.capacity(), 1);
     all_dirty_ = true;
     touched_.clear();
-    for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
-      if (m_.is_live(t)) q_[size_t(t)] = quality(t);
+    parallel_for(m_.capacity(), 1 << 14, [&](size_t begin, size_t end) {
+      for (size_t t = begin; t < end; ++t)
+        if (m_.is_live(int32_t(t))) q_[t] = quality(int32_t(t));
+    });
   }
 
   double quality(int32_t t) const {
@@ -105,11 +117,30 @@ class Optimizer {
 
   // ---------------------------------------------------------------- flips
 
+  // What a topological change did.
+  enum class Flip { kNone, kDone, kDeferred };
+
+  // A flip worker: the sequential one (part -1: the mesh's own free list,
+  // the optimizer's statistics and dirty list) or a slab's of a parallel
+  // flip pass (its own slot pool, statistics and dirty list).
+  struct FlipWork {
+    int part = -1;
+    SlotPool pool;
+    ReplaceScratch replace;
+    std::vector<int32_t> ring_tets, ring, ids, created, work, later, touched;
+    std::vector<std::array<int, 3>> tris;
+    int32_t old[64];
+    OptimizeStats counts;
+  };
+
   // Best topological change around tetrahedron t (2-3 on one of its faces
   // or removal of one of its edges) that raises the smallest quality of the
-  // tetrahedra it replaces; applied if found. New ids into `created`.
-  bool improve_topology(int32_t t, std::vector<int32_t>& created) {
-    ++st_.topology_attempts;
+  // tetrahedra it replaces; applied if found (kDone). New ids into
+  // w.created. A slab's worker reads only t, its neighbors and the
+  // tetrahedra around its edges, and defers (kDeferred, nothing changed) a
+  // change that would replace a tetrahedron with a vertex outside its slab.
+  Flip improve_topology(int32_t t, FlipWork& w) {
+    ++stats_of(w).topology_attempts;
     double best_gain = 0;
     int best_kind = 0;  // 1: face removal, 2: edge removal
     int best_arg = -1;
@@ -149,43 +180,45 @@ class Optimizer {
       if (rank == kLongEdges && best_kind != 0) break;
       const int e = edges[rank];
       const int32_t a = v[kTetEdges[e][0]], b = v[kTetEdges[e][1]];
-      if (!m_.edge_ring(t, a, b, ring_tets_, ring_, kMaxRing)) continue;
-      const int n = int(ring_.size());
+      if (!m_.edge_ring(t, a, b, w.ring_tets, w.ring, kMaxRing)) continue;
+      const int n = int(w.ring.size());
       if (n < 3) continue;
       double old_min = 1e300;
-      for (int32_t u : ring_tets_) old_min = std::min(old_min, cached(u));
-      const double new_min = best_ring_triangulation(a, b, old_min + best_gain, nullptr);
+      for (int32_t u : w.ring_tets) old_min = std::min(old_min, cached(u));
+      const double new_min = best_ring_triangulation(a, b, w.ring, old_min + best_gain, nullptr);
       if (new_min - old_min > best_gain) {
         best_gain = new_min - old_min;
         best_kind = 2;
         best_arg = e;
       }
     }
-    if (best_kind == 0 || best_gain < 1e-9) return false;
+    if (best_kind == 0 || best_gain < 1e-9) return Flip::kNone;
     std::array<int32_t, 4> nt[2 * kMaxRing];
     int n_new = 0;
     if (best_kind == 1) {
       flip23_tets(m_.topology(), t, best_arg, nt);
-      old_[0] = t, old_[1] = m_.neighbor(t, best_arg) >> 2;
-      if (!commit(old_, 2, nt, 3, created)) return false;
-      ++st_.flips23;
-      return true;
+      w.old[0] = t, w.old[1] = m_.neighbor(t, best_arg) >> 2;
+      const Flip r = commit(w, w.old, 2, nt, 3);
+      if (r == Flip::kDone) ++stats_of(w).flips23;
+      return r;
     }
     const int32_t a = v[kTetEdges[best_arg][0]], b = v[kTetEdges[best_arg][1]];
-    m_.edge_ring(t, a, b, ring_tets_, ring_, kMaxRing);
-    if (!(best_ring_triangulation(a, b, 0, &tris_) > 0)) return false;
-    for (const auto& tri : tris_) {
-      ring_triangle_tets(a, b, ring_[size_t(tri[0])], ring_[size_t(tri[1])], ring_[size_t(tri[2])],
-                         nt + n_new);
+    m_.edge_ring(t, a, b, w.ring_tets, w.ring, kMaxRing);
+    if (!(best_ring_triangulation(a, b, w.ring, 0, &w.tris) > 0)) return Flip::kNone;
+    for (const auto& tri : w.tris) {
+      ring_triangle_tets(a, b, w.ring[size_t(tri[0])], w.ring[size_t(tri[1])],
+                         w.ring[size_t(tri[2])], nt + n_new);
       n_new += 2;
     }
-    for (size_t i = 0; i < ring_tets_.size(); ++i) old_[i] = ring_tets_[i];
-    if (!commit(old_, int(ring_tets_.size()), nt, n_new, created)) return false;
-    ++st_.edge_removals;
-    return true;
+    for (size_t i = 0; i < w.ring_tets.size(); ++i) w.old[i] = w.ring_tets[i];
+    const Flip r = commit(w, w.old, int(w.ring_tets.size()), nt, n_new);
+    if (r == Flip::kDone) ++stats_of(w).edge_removals;
+    return r;
   }
 
-  // Klincsek's dynamic program over the ring polygon (ring_): the
+  OptimizeStats& stats_of(FlipWork& w) { return w.part < 0 ? st_ : w.counts; }
+
+  // Klincsek's dynamic program over the ring polygon `ring`: the
   // triangulation maximizing the smallest quality of its tetrahedra pairs
   // (x, y, z, b), (y, x, z, a). Returns that quality (stops early, returning
   // something <= floor, when it cannot beat floor); triangles into tris.
@@ -193,16 +226,16 @@ class Optimizer {
   // part of an answer above floor, so it is dropped at once; the squared
   // lengths and the areas of the faces through a or b are computed once
   // per pair of ring vertices (lazily) instead of once per tetrahedron.
-  double best_ring_triangulation(int32_t a, int32_t b, double floor,
-                                 std::vector<std::array<int, 3>>* tris) {
+  double best_ring_triangulation(int32_t a, int32_t b, const std::vector<int32_t>& ring,
+                                 double floor, std::vector<std::array<int, 3>>* tris) {
     constexpr double kNone = -1e300;
-    const int n = int(ring_.size());
+    const int n = int(ring.size());
     const double* pa = m_.point(a);
     const double* pb = m_.point(b);
     const double* P[kMaxRing];
     double da[kMaxRing], db[kMaxRing];  // squared distances to a and b
     for (int i = 0; i < n; ++i) {
-      P[i] = m_.point(ring_[size_t(i)]);
+      P[i] = m_.point(ring[size_t(i)]);
       double d[3];
       sub(P[i], pa, d);
       da[i] = dot(d, d);
@@ -281,22 +314,41 @@ class Optimizer {
     return result;
   }
 
-  // Exact orientation of the new set, then the replacement and the cache.
-  bool commit(const int32_t* old, int n_old, const std::array<int32_t, 4>* nt, int n_new,
-              std::vector<int32_t>& created) {
+  // Exact orientation of the new set, then (a slab's worker: if the old
+  // tetrahedra are all in its slab, else kDeferred) the replacement and the
+  // cache; new ids into w.created.
+  Flip commit(FlipWork& w, const int32_t* old, int n_old, const std::array<int32_t, 4>* nt,
+              int n_new) {
     for (int i = 0; i < n_new; ++i)
       if (orient3d(m_.point(nt[i][0]), m_.point(nt[i][1]), m_.point(nt[i][2]),
                    m_.point(nt[i][3])) >= 0)
-        return false;
-    if (!m_.replace(old, n_old, nt, n_new, &ids_)) return false;
-    if (q_.size() < m_.capacity()) q_.resize(m_.capacity(), 2.0), dirty_.resize(m_.capacity(), 0);
-    for (int i = n_new; i < n_old; ++i) q_[size_t(old[i])] = 2.0;
-    for (int32_t id : ids_) {
-      q_[size_t(id)] = quality(id);
-      mark(id);
-      created.push_back(id);
+        return Flip::kNone;
+    if (w.part >= 0) {
+      for (int i = 0; i < n_old; ++i)
+        for (int k = 0; k < 4; ++k)
+          if (vpart_[size_t(m_.tet(old[i])[k])] != w.part) return Flip::kDeferred;
+      switch (m_.replace_in(old, n_old, nt, n_new, w.ids, w.replace, w.pool)) {
+        case ReplaceError::kNone:
+          break;
+        case ReplaceError::kNoRoom:
+          return Flip::kDeferred;
+        default:
+          return Flip::kNone;
+      }
+    } else {
+      if (!m_.replace(old, n_old, nt, n_new, &w.ids)) return Flip::kNone;
+      if (q_.size() < m_.capacity()) q_.resize(m_.capacity(), 2.0), dirty_.resize(m_.capacity(), 0);
     }
-    return true;
+    for (int i = n_new; i < n_old; ++i) q_[size_t(old[i])] = 2.0;
+    for (int32_t id : w.ids) {
+      q_[size_t(id)] = quality(id);
+      if (w.part < 0)
+        mark(id);
+      else if (!dirty_[size_t(id)])
+        dirty_[size_t(id)] = 1, w.touched.push_back(id);
+      w.created.push_back(id);
+    }
+    return Flip::kDone;
   }
 
   // Tetrahedron t was created or moved: dirty (listed once in touched_),
@@ -331,15 +383,74 @@ class Optimizer {
       std::sort(work_.begin(), work_.end(), [&](int32_t a, int32_t b) {
         return cached(a) < cached(b) || (cached(a) == cached(b) && a < b);
       });
+    if (!worst_first && work_.size() >= kMinParallelFlips) parallel_flips(threshold);
     const size_t limit = 20 * work_.size() + 1000;
     for (size_t i = 0; i < work_.size() && i < limit; ++i) {
       const int32_t t = work_[i];
       if (!m_.is_live(t) || cached(t) >= threshold) continue;
-      created_.clear();
-      if (!improve_topology(t, created_)) continue;
-      for (int32_t u : created_)
+      fseq_.created.clear();
+      if (improve_topology(t, fseq_) != Flip::kDone) continue;
+      for (int32_t u : fseq_.created)
         if (cached(u) < threshold) work_.push_back(u);
     }
+  }
+
+  // The slabs' part of a flip pass on work_ (ascending ids): each slab of
+  // vertex_slabs() works through the tetrahedra of work_ with all their
+  // vertices in it (and those its changes create below threshold), at the
+  // same time as the others, changing only tetrahedra of its own; what
+  // needs another slab's is left in work_, for the sequential rest. A slab
+  // never writes what another reads (a tetrahedron next to one of its
+  // slab's, or around one of its edges, has three or two vertices in it),
+  // so the mesh does not depend on the thread count.
+  void parallel_flips(double threshold) {
+    vpart_ = vertex_slabs(kParts);
+    std::vector<FlipWork> fw(kParts);
+    std::vector<int32_t> later;
+    for (int32_t t : work_) {
+      const int32_t* v = m_.tet(t);
+      const uint8_t j = vpart_[size_t(v[0])];
+      if (vpart_[size_t(v[1])] == j && vpart_[size_t(v[2])] == j && vpart_[size_t(v[3])] == j)
+        fw[j].work.push_back(t);
+      else
+        later.push_back(t);
+    }
+    // Slots: a change adds at most kMaxRing - 4 tetrahedra (a ring of n
+    // gives 2 n - 4), but most remove one (3-2) and each slab reuses the
+    // slots it frees (aortic arch: 9,000 freed per slab, 15 more needed at
+    // most); a slab without a free slot defers the change.
+    std::vector<SlotPool> pools;
+    m_.take_slot_pools(std::vector<size_t>(kParts, 64), pools);
+    for (size_t j = 0; j < kParts; ++j) fw[j].part = int(j), fw[j].pool = std::move(pools[j]);
+    parallel_for(kParts, 1, [&](size_t begin, size_t end) {
+      for (size_t j = begin; j < end; ++j) {
+        FlipWork& w = fw[j];
+        const size_t limit = 20 * w.work.size() + 1000;
+        for (size_t i = 0; i < w.work.size() && i < limit; ++i) {
+          const int32_t t = w.work[i];
+          if (!m_.is_live(t) || cached(t) >= threshold) continue;
+          w.created.clear();
+          const Flip r = improve_topology(t, w);
+          if (r == Flip::kDeferred) w.later.push_back(t);
+          if (r != Flip::kDone) continue;
+          for (int32_t u : w.created)
+            if (cached(u) < threshold) w.work.push_back(u);
+        }
+      }
+    });
+    for (size_t j = 0; j < kParts; ++j) {
+      FlipWork& w = fw[j];
+      pools[j] = std::move(w.pool);
+      st_.topology_attempts += w.counts.topology_attempts;
+      st_.flips23 += w.counts.flips23;
+      st_.edge_removals += w.counts.edge_removals;
+      touched_.insert(touched_.end(), w.touched.begin(), w.touched.end());
+      later.insert(later.end(), w.later.begin(), w.later.end());
+    }
+    m_.return_slot_pools(pools);
+    std::sort(later.begin(), later.end());
+    later.erase(std::unique(later.begin(), later.end()), later.end());
+    work_ = std::move(later);
   }
 
   // ---------------------------------------------------------------- smoothing
@@ -352,8 +463,16 @@ class Optimizer {
     double x[3], y[3], z[3], n[3], area2, len2, hsum;
   };
 
+  // A smoothing's scratch: one per part of a parallel smoothing pass.
+  struct StarScratch {
+    std::vector<Opposite> opp;  // prepare_star()
+    std::vector<double> q;      // qualities of the star at the point eval_star() tried
+    int64_t moves = 0;          // smoothing moves
+  };
+
   // The Opposite of each tetrahedron of the star S of v, for eval_star().
-  void prepare_star(int32_t v, Span S) {
+  void prepare_star(int32_t v, Span S, StarScratch& w) {
+    std::vector<Opposite>& opp_ = w.opp;
     opp_.resize(S.size());
     size_t i = 0;
     for (int32_t t : S) {
@@ -377,10 +496,13 @@ class Optimizer {
 
   // Min and sum of 1/q over the star S of v with v at p; false if a
   // tetrahedron falls below kGuard (or min_required). Precondition:
-  // prepare_star(v, S) (v may have moved since). The qualities go to
-  // star_q_ (for move()).
-  bool eval_star(Span S, const double* p, double min_required, double* qmin, double* inv_sum) {
+  // prepare_star(v, S, w) (v may have moved since). The qualities go to
+  // w.q (for move()).
+  bool eval_star(Span S, const double* p, double min_required, double* qmin, double* inv_sum,
+                 StarScratch& w) {
     double mn = 1e300, sum = 0;
+    const std::vector<Opposite>& opp_ = w.opp;
+    std::vector<double>& star_q_ = w.q;
     star_q_.resize(S.size());
     for (size_t i = 0; i < S.size(); ++i) {
       const Opposite& o = opp_[i];
@@ -414,11 +536,15 @@ class Optimizer {
     return true;
   }
 
-  // Moves v to p, the star's qualities from the eval_star() that accepted p.
-  void move(int32_t v, Span S, const double* p) {
+  // Moves v to p, the star's qualities from the eval_star() that accepted
+  // p; marks the star unless `mark_later` (the caller does).
+  void move(int32_t v, Span S, const double* p, const StarScratch& w, bool mark_later = false) {
     m_.set_point(v, p);
     size_t i = 0;
-    for (int32_t t : S) q_[size_t(t)] = star_q_[i++], mark(t);
+    for (int32_t t : S) {
+      q_[size_t(t)] = w.q[i++];
+      if (!mark_later) mark(t);
+    }
   }
 
   // Smart smoothing of v toward its ODT-like position (circumcenters of the
@@ -427,10 +553,14 @@ class Optimizer {
   bool smooth_vertex(int32_t v) {
     if (m_.is_fixed(v)) return false;
     m_.star(v, star_);
-    return smooth_vertex(v, Span(star_));
+    const bool moved = smooth_vertex(v, Span(star_), seq_, false);
+    st_.smoothing_moves += std::exchange(seq_.moves, 0);
+    return moved;
   }
 
-  bool smooth_vertex(int32_t v, Span star) {
+  // Reads and writes only v, its star's tetrahedra and their vertices'
+  // positions (and w); marks nothing when `mark_later`.
+  bool smooth_vertex(int32_t v, Span star, StarScratch& w, bool mark_later) {
     if (m_.is_fixed(v) || star.size() == 0) return false;
     double old_min = 1e300, old_sum = 0;
     for (int32_t t : star) {
@@ -438,7 +568,8 @@ class Optimizer {
       old_sum += 1 / std::max(cached(t), 1e-12);
     }
     if (old_min >= opt_.smooth_below) return false;
-    prepare_star(v, star);
+    prepare_star(v, star, w);
+    const std::vector<Opposite>& opp_ = w.opp;
     const double* x = m_.point(v);
     double odt[3] = {0, 0, 0}, wsum = 0, lap[3] = {0, 0, 0};
     int nlap = 0;
@@ -473,10 +604,10 @@ class Optimizer {
                              x[1] + step * (targets[i][1] - x[1]),
                              x[2] + step * (targets[i][2] - x[2])};
         double mn, sum;
-        if (!eval_star(star, p, floor, &mn, &sum)) continue;
+        if (!eval_star(star, p, floor, &mn, &sum, w)) continue;
         if (sum < old_sum * (1 - 1e-6) && exact_star_ok(v, star, p)) {
-          move(v, star, p);
-          ++st_.smoothing_moves;
+          move(v, star, p, w, mark_later);
+          ++w.moves;
           return true;
         }
       }
@@ -484,9 +615,15 @@ class Optimizer {
     return false;
   }
 
-  // One smoothing sweep over the vertices in index order. The topology
-  // does not change during the sweep, so the stars come from one
-  // vertex-to-tetrahedra incidence table (CSR) instead of a search each.
+  // One smoothing sweep. The topology does not change during the sweep, so
+  // the stars come from one vertex-to-tetrahedra incidence table (CSR)
+  // instead of a search each. The vertices are cut into kParts slabs
+  // of equal count along the longest axis of their box; a vertex whose
+  // star's vertices are all in its own slab is interior: smoothing it reads
+  // and writes nothing another slab's interior vertices do, so the slabs
+  // smooth their interior vertices (each in index order) at the same time;
+  // then the others, in index order. The slabs do not depend on the thread
+  // count, so neither does the mesh.
   void smooth_pass() {
     const size_t nv = m_.num_vertices();
     inc_off_.assign(nv + 1, 0);
@@ -499,9 +636,65 @@ class Optimizer {
     for (int32_t t = 0; t < int32_t(m_.capacity()); ++t)
       if (m_.is_live(t))
         for (int k = 0; k < 4; ++k) inc_[size_t(fill_[size_t(m_.tet(t)[k])]++)] = t;
-    for (int32_t v = 0; v < int32_t(nv); ++v)
-      smooth_vertex(v, Span(inc_.data() + inc_off_[size_t(v)],
-                            size_t(inc_off_[size_t(v) + 1] - inc_off_[size_t(v)])));
+    auto star_of = [&](int32_t v) {
+      return Span(inc_.data() + inc_off_[size_t(v)],
+                  size_t(inc_off_[size_t(v) + 1] - inc_off_[size_t(v)]));
+    };
+    const std::vector<uint8_t> part = vertex_slabs(kParts);
+    std::vector<std::vector<int32_t>> mine(kParts), later(kParts), moved(kParts);
+    for (int32_t v = 0; v < int32_t(nv); ++v) mine[part[size_t(v)]].push_back(v);
+    std::vector<StarScratch> scratch(kParts);
+    parallel_for(kParts, 1, [&](size_t begin, size_t end) {
+      for (size_t j = begin; j < end; ++j)
+        for (int32_t v : mine[j]) {
+          const Span star = star_of(v);
+          bool interior = true;
+          for (int32_t t : star)
+            for (int k = 0; k < 4; ++k) interior = interior && part[size_t(m_.tet(t)[k])] == j;
+          if (!interior)
+            later[j].push_back(v);
+          else if (smooth_vertex(v, star, scratch[j], true))
+            moved[j].push_back(v);
+        }
+    });
+    for (size_t j = 0; j < kParts; ++j) {
+      st_.smoothing_moves += scratch[j].moves;
+      for (int32_t v : moved[j])
+        for (int32_t t : star_of(v)) mark(t);
+    }
+    std::vector<int32_t> rest;
+    for (const std::vector<int32_t>& l : later) rest.insert(rest.end(), l.begin(), l.end());
+    std::sort(rest.begin(), rest.end());
+    for (int32_t v : rest) smooth_vertex(v, star_of(v), seq_, false);
+    st_.smoothing_moves += std::exchange(seq_.moves, 0);
+  }
+
+  // The slab (0 .. parts - 1) of each vertex: equal counts along the
+  // longest axis of the vertices' box, ties to the same slab.
+  std::vector<uint8_t> vertex_slabs(size_t parts) const {
+    const size_t nv = m_.num_vertices();
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t v = 0; v < nv; ++v)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], m_.point(int32_t(v))[k]);
+        hi[k] = std::max(hi[k], m_.point(int32_t(v))[k]);
+      }
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
+    std::vector<double> xs(nv);
+    for (size_t v = 0; v < nv; ++v) xs[v] = m_.point(int32_t(v))[axis];
+    std::vector<double> cuts;
+    for (size_t j = 1; j < parts && nv > 0; ++j) {
+      auto at = xs.begin() + ptrdiff_t(nv * j / parts);
+      std::nth_element(xs.begin(), at, xs.end());
+      cuts.push_back(*at);
+    }
+    std::vector<uint8_t> part(nv);
+    for (size_t v = 0; v < nv; ++v)
+      part[v] = uint8_t(std::upper_bound(cuts.begin(), cuts.end(), m_.point(int32_t(v))[axis]) -
+                        cuts.begin());
+    return part;
   }
 
   // ---------------------------------------------------------------- slivers
@@ -512,7 +705,7 @@ class Optimizer {
     if (m_.is_fixed(v)) return false;
     m_.star(v, star_);
     if (star_.empty()) return false;
-    prepare_star(v, Span(star_));
+    prepare_star(v, Span(star_), seq_);
     double old_min = 1e300;
     int32_t worst = -1;
     for (int32_t t : star_)
@@ -533,10 +726,10 @@ class Optimizer {
     // tetrahedron stays positive (exact).
     auto try_move = [&](const double* p) {
       double mn, sum;
-      if (!eval_star(Span(star_), p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum) ||
+      if (!eval_star(Span(star_), p, old_min * (1 + 1e-6) + 1e-9, &mn, &sum, seq_) ||
           !exact_star_ok(v, Span(star_), p))
         return false;
-      move(v, Span(star_), p);
+      move(v, Span(star_), p, seq_);
       old_min = mn;
       moved = true;
       ++st_.sliver_moves;
@@ -708,8 +901,9 @@ class Optimizer {
     const int32_t v = m_.add_vertex(cand_best);
     h_.push_back(hnew);
     star_tets(best_cav, cand_best, v, nt_);
-    created_.clear();
-    if (!commit(best_cav.data(), int(best_cav.size()), nt_.data(), int(nt_.size()), created_)) {
+    fseq_.created.clear();
+    if (commit(fseq_, best_cav.data(), int(best_cav.size()), nt_.data(), int(nt_.size())) !=
+        Flip::kDone) {
       // Not expected (the cavity is star-shaped): the vertex stays unused.
       return false;
     }
@@ -752,8 +946,8 @@ class Optimizer {
           spent = true;
           break;
         }
-        created_.clear();
-        if (improve_topology(t, created_)) {
+        fseq_.created.clear();
+        if (improve_topology(t, fseq_) == Flip::kDone) {
           changed = true;
           continue;
         }
@@ -787,14 +981,13 @@ class Optimizer {
   std::vector<int32_t> touched_;  // the dirty slots (unless all_dirty_)
   bool all_dirty_ = true;
   std::vector<int32_t>* log_ = nullptr;  // sliver phase: created or moved tetrahedra
-  std::vector<int32_t> ring_tets_, ring_, ids_, work_, created_, star_;
-  std::vector<Opposite> opp_;   // prepare_star()
-  std::vector<double> star_q_;  // qualities of the star at the point eval_star() tried
+  FlipWork fseq_;                        // the sequential flips' worker
+  std::vector<uint8_t> vpart_;           // parallel_flips(): the slab of each vertex
+  std::vector<int32_t> work_, star_;
+  StarScratch seq_;                            // the sequential smoothings' and climbs' scratch
   std::vector<int32_t> inc_off_, inc_, fill_;  // smoothing: vertex -> tetrahedra
-  std::vector<std::array<int, 3>> tris_;
   std::vector<int32_t> cav_;
   std::vector<std::array<int32_t, 4>> nt_;
-  int32_t old_[64];
 };
 
 }  // namespace

@@ -105,6 +105,18 @@ class TetMesh {
     return replace_tets(topo_, old_tets, n_old, new_tets, n_new, ids, scratch_) ==
            ReplaceError::kNone;
   }
+  /// replace() by one worker of a parallel pass: its own scratch and slot
+  /// pool (see replace_tets()).
+  ReplaceError replace_in(const int32_t* old_tets, int n_old,
+                          const std::array<int32_t, 4>* new_tets, int n_new,
+                          std::vector<int32_t>& new_ids, ReplaceScratch& scratch, SlotPool& pool) {
+    return replace_tets(topo_, old_tets, n_old, new_tets, n_new, new_ids, scratch, &pool);
+  }
+  /// Slot pools for the workers of a parallel pass (see take_slot_pools()).
+  void take_slot_pools(const std::vector<size_t>& sizes, std::vector<SlotPool>& pools) {
+    vm::take_slot_pools(topo_, sizes, pools);
+  }
+  void return_slot_pools(std::vector<SlotPool>& pools) { vm::return_slot_pools(topo_, pools); }
 
   /// Positive tetrahedra (4 indices each) of the live slots in id order.
   std::vector<int32_t> tets() const;

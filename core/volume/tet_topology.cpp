@@ -99,9 +99,25 @@ inline bool same_key(const std::array<int32_t, 3>& a, const std::array<int32_t, 
 
 }  // namespace
 
+void take_slot_pools(TetTopology& m, const std::vector<size_t>& sizes,
+                     std::vector<SlotPool>& pools) {
+  pools.assign(sizes.size(), SlotPool{});
+  for (size_t i = 0; i < sizes.size(); ++i)
+    for (size_t k = 0; k < sizes[i] && !m.free_slots.empty(); ++k) {
+      pools[i].free.push_back(m.free_slots.back());
+      m.free_slots.pop_back();
+    }
+}
+
+void return_slot_pools(TetTopology& m, std::vector<SlotPool>& pools) {
+  for (SlotPool& p : pools) m.free_slots.insert(m.free_slots.end(), p.free.begin(), p.free.end());
+  pools.clear();
+}
+
 ReplaceError replace_tets(TetTopology& m, const int32_t* old_tets, int n_old,
                           const std::array<int32_t, 4>* new_tets, int n_new,
-                          std::vector<int32_t>& ids, ReplaceScratch& scratch) {
+                          std::vector<int32_t>& ids, ReplaceScratch& scratch, SlotPool* pool) {
+  if (pool && n_new > n_old && pool->room() < size_t(n_new - n_old)) return ReplaceError::kNoRoom;
   auto in_old = [&](int32_t u) {
     for (int i = 0; i < n_old; ++i)
       if (old_tets[i] == u) return true;
@@ -157,8 +173,22 @@ ReplaceError replace_tets(TetTopology& m, const int32_t* old_tets, int n_old,
     for (int32_t x : m.tets[size_t(old_tets[i])].v)
       if (x >= 0) m.vertex_tet[size_t(x)] = -1;
   ids.resize(size_t(n_new));
-  for (int i = 0; i < n_new; ++i) ids[size_t(i)] = i < n_old ? old_tets[i] : m.new_slot();
-  for (int i = n_new; i < n_old; ++i) m.free_slot(old_tets[i]);
+  auto new_slot = [&]() {
+    if (!pool) return m.new_slot();
+    const int32_t t = pool->free.back();
+    pool->free.pop_back();
+    return t;
+  };
+  for (int i = 0; i < n_new; ++i) ids[size_t(i)] = i < n_old ? old_tets[i] : new_slot();
+  for (int i = n_new; i < n_old; ++i) {
+    if (!pool) {
+      m.free_slot(old_tets[i]);
+      continue;
+    }
+    m.tets[size_t(old_tets[i])].v[0] = TetTopology::kFree;
+    m.constrained[size_t(old_tets[i])] = 0;
+    pool->free.push_back(old_tets[i]);
+  }
   for (int i = 0; i < n_new; ++i) {
     const int32_t t = ids[size_t(i)];
     std::copy(new_tets[i].begin(), new_tets[i].end(), m.tets[size_t(t)].v);

@@ -164,8 +164,25 @@ bool edge_ring(const TetTopology& m, int32_t t, int32_t a, int32_t b,
 /// into out (cleared first).
 void tets_around_vertex(const TetTopology& m, int32_t v, std::vector<int32_t>& out);
 
-/// Why replace_tets() refused.
-enum class ReplaceError { kNone, kConstrainedInside, kUnmatchedFace, kUncoveredFace };
+/// Why replace_tets() refused (kNoRoom: its slot pool has too few slots).
+enum class ReplaceError { kNone, kConstrainedInside, kUnmatchedFace, kUncoveredFace, kNoRoom };
+
+/// The free slots of one worker of a parallel pass, so that workers never
+/// share the free list: some taken from it, then the ones the worker frees
+/// (reused last freed first).
+struct SlotPool {
+  std::vector<int32_t> free;
+  size_t room() const { return free.size(); }
+};
+
+/// Gives pools[i] (pools resized to sizes) up to sizes[i] slots from the
+/// free list, never new ones: the arrays do not grow (a copy of them would
+/// double the memory), so a worker may have to wait until it frees some.
+void take_slot_pools(TetTopology& m, const std::vector<size_t>& sizes,
+                     std::vector<SlotPool>& pools);
+/// Puts the pools' slots back on the free list, pool by pool, and clears
+/// the pools.
+void return_slot_pools(TetTopology& m, std::vector<SlotPool>& pools);
 
 /// Scratch of replace_tets() (kept by the caller to avoid allocations).
 struct ReplaceScratch {
@@ -187,10 +204,14 @@ struct ReplaceScratch {
 /// face of the old set once, inner faces twice) and that no constrained
 /// face is inside the old set; the caller checks the orientation. New
 /// tetrahedra take the tag of old_tets[0] (if tagged) and the constraint bits of the
-/// boundary faces they inherit. On an error nothing changes.
+/// boundary faces they inherit. On an error nothing changes. With a pool,
+/// new slots come from it and freed ones go to it; then the call writes
+/// only the old and new slots, the links of their outer neighbors through
+/// the shared faces, and vertex_tet of their vertices.
 ReplaceError replace_tets(TetTopology& m, const int32_t* old_tets, int n_old,
                           const std::array<int32_t, 4>* new_tets, int n_new,
-                          std::vector<int32_t>& ids, ReplaceScratch& scratch);
+                          std::vector<int32_t>& ids, ReplaceScratch& scratch,
+                          SlotPool* pool = nullptr);
 
 /// Invariants of the links, vertices and flags: per live tetrahedron,
 /// vertices in [0, num_vertices) or (ghost_vertex_allowed) the ghost vertex
