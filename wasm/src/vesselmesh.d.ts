@@ -43,7 +43,7 @@ export interface AnalyzeOptions {
   gradation?: number;
   /** at least P edges per radian of curvature (0: off) Needs a number of points per radian >= 0. Default 0. */
   curvature?: number;
-  /** threads for the preparation's loops, the vessel radius, the meshing of the wall's patches, the distance checks and the volume refinement (two slabs at once) (0: all cores); the mesh is the same with any number; in the browser at most the threads the page's core has (api.threads: its cores on a cross-origin isolated page, else 1) Needs an integer from 0 (all cores) to 256. Default 0. */
+  /** threads for the preparation's loops, the vessel radius, the meshing of the wall's patches, the distance checks, the volume refinement (two slabs at once) and the volume optimizer's flips and smoothing (eight slabs) (0: all cores); the mesh is the same with any number; in the browser at most the threads the page's core has (api.threads: its cores on a cross-origin isolated page, else 1) Needs an integer from 0 (all cores) to 256. Default 0. */
   threads?: number;
 }
 
