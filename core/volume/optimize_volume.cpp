@@ -472,15 +472,14 @@ class Optimizer {
 
   // The Opposite of each tetrahedron of the star S of v, for eval_star().
   void prepare_star(int32_t v, Span S, StarScratch& w) {
-    std::vector<Opposite>& opp_ = w.opp;
-    opp_.resize(S.size());
+    w.opp.resize(S.size());
     size_t i = 0;
     for (int32_t t : S) {
       const int32_t* tv = m_.tet(t);
       int s = 0;
       while (tv[s] != v) ++s;
       const int* f = kFaceOut[s];  // (v, f) is an even permutation of (0, 1, 2, 3)
-      Opposite& o = opp_[i++];
+      Opposite& o = w.opp[i++];
       const double* px = m_.point(tv[f[0]]);
       const double* py = m_.point(tv[f[1]]);
       const double* pz = m_.point(tv[f[2]]);
@@ -501,11 +500,9 @@ class Optimizer {
   bool eval_star(Span S, const double* p, double min_required, double* qmin, double* inv_sum,
                  StarScratch& w) {
     double mn = 1e300, sum = 0;
-    const std::vector<Opposite>& opp_ = w.opp;
-    std::vector<double>& star_q_ = w.q;
-    star_q_.resize(S.size());
+    w.q.resize(S.size());
     for (size_t i = 0; i < S.size(); ++i) {
-      const Opposite& o = opp_[i];
+      const Opposite& o = w.opp[i];
       double dx[3], dy[3], dz[3], c1[3], c2[3], c3[3];
       sub(o.x, p, dx), sub(o.y, p, dy), sub(o.z, p, dz);
       cross(dx, dy, c1), cross(dy, dz, c2), cross(dz, dx, c3);
@@ -517,7 +514,7 @@ class Optimizer {
       const double den = faces * std::sqrt(l2);
       const double q = den > 0 ? 2.449489742783178 * vol6 / den : 0;
       if (q < kGuard || q < min_required) return false;
-      star_q_[i] = q;
+      w.q[i] = q;
       mn = std::min(mn, q);
       sum += 1 / q;
     }
@@ -569,13 +566,12 @@ class Optimizer {
     }
     if (old_min >= opt_.smooth_below) return false;
     prepare_star(v, star, w);
-    const std::vector<Opposite>& opp_ = w.opp;
     const double* x = m_.point(v);
     double odt[3] = {0, 0, 0}, wsum = 0, lap[3] = {0, 0, 0};
     int nlap = 0;
     // (v, x, y, z) is positive: the circumcenter from v's corner.
     for (size_t i = 0; i < star.size(); ++i) {
-      const Opposite& o = opp_[i];
+      const Opposite& o = w.opp[i];
       double cc[3], vol;
       if (circumcenter(x, o.x, o.y, o.z, cc, &vol) && vol > 0) {
         const double ht = 0.25 * (h_[size_t(v)] + o.hsum);
