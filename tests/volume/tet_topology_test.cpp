@@ -57,6 +57,52 @@ TEST(TetTopology, EdgeRingStoppingRules) {
   EXPECT_EQ(star.size(), 2u);
 }
 
+TEST(TetTopology, ReplaceWithASlotPoolTakesAndFreesOnlyItsSlots) {
+  // A 2-3 flip and back, as a worker of a parallel pass does them: new
+  // slots only from its pool, freed ones into it, the free list untouched.
+  TetTopology m = octahedron();
+  std::vector<int32_t> ring_tets, ring, ids;
+  ASSERT_TRUE(edge_ring(m, 0, 0, 1, ring_tets, ring));
+  const int k = slot_of(m.tet(ring_tets[0]), ring[0]);  // the face shared with the next one
+  const int32_t old[2] = {ring_tets[0], m.neighbor(ring_tets[0], k) >> 2};
+  std::array<int32_t, 4> two[2], three[3];
+  for (int i = 0; i < 2; ++i) std::copy(m.tet(old[i]), m.tet(old[i]) + 4, two[i].begin());
+  flip23_tets(m, ring_tets[0], k, three);
+  ReplaceScratch scratch;
+  std::vector<SlotPool> pools;
+  take_slot_pools(m, {4}, pools);  // the free list is empty: no slot
+  ASSERT_EQ(pools.size(), 1u);
+  EXPECT_EQ(pools[0].room(), 0u);
+  const size_t capacity = m.capacity();
+  EXPECT_EQ(replace_tets(m, old, 2, three, 3, ids, scratch, &pools[0]), ReplaceError::kNoRoom);
+  for (int i = 0; i < 2; ++i) EXPECT_TRUE(std::equal(two[i].begin(), two[i].end(), m.tet(old[i])));
+  return_slot_pools(m, pools);
+  // One free slot on the list: the pool takes it, the flip uses it.
+  const int32_t spare = m.new_slot();
+  m.free_slot(spare);
+  take_slot_pools(m, {4}, pools);
+  EXPECT_EQ(pools[0].room(), 1u);
+  EXPECT_TRUE(m.free_slots.empty());
+  ASSERT_EQ(replace_tets(m, old, 2, three, 3, ids, scratch, &pools[0]), ReplaceError::kNone);
+  EXPECT_EQ(ids, (std::vector<int32_t>{old[0], old[1], spare}));
+  EXPECT_EQ(pools[0].room(), 0u);
+  EXPECT_TRUE(check_topology(m, 6, false, true).ok())
+      << check_topology(m, 6, false, true).message();
+  // Back: the slot freed goes to the pool, then to the list on return.
+  const std::vector<int32_t> three_ids = ids;
+  ASSERT_EQ(replace_tets(m, three_ids.data(), 3, two, 2, ids, scratch, &pools[0]),
+            ReplaceError::kNone);
+  EXPECT_EQ(pools[0].free, std::vector<int32_t>{spare});
+  EXPECT_TRUE(m.free_slots.empty());
+  EXPECT_FALSE(m.is_live(spare));
+  EXPECT_TRUE(check_topology(m, 6, false, true).ok())
+      << check_topology(m, 6, false, true).message();
+  return_slot_pools(m, pools);
+  EXPECT_TRUE(pools.empty());
+  EXPECT_EQ(m.free_slots, std::vector<int32_t>{spare});
+  EXPECT_EQ(m.capacity(), capacity + 1);
+}
+
 TEST(TetTopology, ReplaceKeepsLinksOrChangesNothing) {
   TetTopology m = octahedron();
   std::vector<int32_t> ring_tets, ring, ids;
