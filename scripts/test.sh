@@ -12,7 +12,7 @@ jobs=$(nproc)
 echo "== ctest (native, Release)"
 ctest --test-dir build --output-on-failure -j "$jobs"
 
-echo "== ctest (Debug, -fsanitize=address,undefined)"
+echo "== ctest (Debug at -O1, -fsanitize=address,undefined)"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DVM_SANITIZE=ON >/dev/null
 cmake --build build-asan -j "$jobs"
 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ctest --test-dir build-asan --output-on-failure -j "$jobs"
