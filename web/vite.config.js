@@ -154,7 +154,7 @@ export default defineConfig(({ mode }) =>
           emptyOutDir: true,
           target: 'es2022',
           chunkSizeWarningLimit: 1024,
-            },
+        },
         worker: { format: 'es' },
         plugins: [installable()],
         server: { fs: { allow: [resolve(here, '..')] }, headers: ISOLATION_HEADERS },
