@@ -384,14 +384,23 @@ class Optimizer {
         return cached(a) < cached(b) || (cached(a) == cached(b) && a < b);
       });
     if (!worst_first && work_.size() >= kMinParallelFlips) parallel_flips(threshold);
-    const size_t limit = 20 * work_.size() + 1000;
-    for (size_t i = 0; i < work_.size() && i < limit; ++i) {
-      const int32_t t = work_[i];
+    flip_list(fseq_, work_, threshold);
+  }
+
+  // Flips on the tetrahedra of `work` in order, and on those the changes
+  // create below threshold (appended), at most 20 times the list's
+  // length; those w defers into w.later.
+  void flip_list(FlipWork& w, std::vector<int32_t>& work, double threshold) {
+    const size_t limit = 20 * work.size() + 1000;
+    for (size_t i = 0; i < work.size() && i < limit; ++i) {
+      const int32_t t = work[i];
       if (!m_.is_live(t) || cached(t) >= threshold) continue;
-      fseq_.created.clear();
-      if (improve_topology(t, fseq_) != Flip::kDone) continue;
-      for (int32_t u : fseq_.created)
-        if (cached(u) < threshold) work_.push_back(u);
+      w.created.clear();
+      const Flip r = improve_topology(t, w);
+      if (r == Flip::kDeferred) w.later.push_back(t);
+      if (r != Flip::kDone) continue;
+      for (int32_t u : w.created)
+        if (cached(u) < threshold) work.push_back(u);
     }
   }
 
@@ -423,20 +432,7 @@ class Optimizer {
     m_.take_slot_pools(std::vector<size_t>(kParts, 64), pools);
     for (size_t j = 0; j < kParts; ++j) fw[j].part = int(j), fw[j].pool = std::move(pools[j]);
     parallel_for(kParts, 1, [&](size_t begin, size_t end) {
-      for (size_t j = begin; j < end; ++j) {
-        FlipWork& w = fw[j];
-        const size_t limit = 20 * w.work.size() + 1000;
-        for (size_t i = 0; i < w.work.size() && i < limit; ++i) {
-          const int32_t t = w.work[i];
-          if (!m_.is_live(t) || cached(t) >= threshold) continue;
-          w.created.clear();
-          const Flip r = improve_topology(t, w);
-          if (r == Flip::kDeferred) w.later.push_back(t);
-          if (r != Flip::kDone) continue;
-          for (int32_t u : w.created)
-            if (cached(u) < threshold) w.work.push_back(u);
-        }
-      }
+      for (size_t j = begin; j < end; ++j) flip_list(fw[j], fw[j].work, threshold);
     });
     for (size_t j = 0; j < kParts; ++j) {
       FlipWork& w = fw[j];
