@@ -77,6 +77,29 @@ inline double max_abs(double a, double b, double c, double d, double e, double f
   return std::max(max_abs(a, b, c, d, e, f), max_abs(g, h, i));
 }
 
+// Two doubles in one vector (GCC/Clang vector extension).
+typedef double V2 __attribute__((vector_size(16)));
+inline V2 load2(const double* p) {
+  V2 v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+
+/// insphere_fast() after its static stage: the semi-static bound on the
+/// fast-stage determinant det, else the exact predicate.
+inline double insphere_semi_static(const double* a, const double* b, const double* c,
+                                   const double* d, const double* e, double det) {
+  const double m = std::max(
+      max_abs(a[0] - e[0], a[1] - e[1], a[2] - e[2], b[0] - e[0], b[1] - e[1], b[2] - e[2]),
+      max_abs(c[0] - e[0], c[1] - e[1], c[2] - e[2], d[0] - e[0], d[1] - e[1], d[2] - e[2]));
+  if (m > 1e-55 && m < 1e55) {
+    const double m2 = m * m;
+    const double bound = kIsStatic * m2 * m2 * m;
+    if (det > bound || -det > bound) return det;
+  }
+  return insphere(a, b, c, d, e);
+}
+
 }  // namespace predicates_detail
 
 /// Static filter bounds for the *_fast predicates below, from an upper
@@ -117,35 +140,50 @@ inline double insphere_static_bound(double extent) {
 
 /// insphere() with a static filter (static_bound from
 /// insphere_static_bound()), then a semi-static one, first (same sign).
+/// The static stage computes the fast-stage determinant two lanes at a
+/// time (points a, c and b, d side by side, GCC/Clang vector extensions,
+/// SSE2 or wasm SIMD, else scalar code): every lane performs the scalar
+/// formula's operations in its order, so the value, hence the sign and the
+/// filter's decision, is the scalar one to the bit on every target.
 [[gnu::always_inline]] inline double insphere_fast(const double* a, const double* b,
                                                    const double* c, const double* d,
                                                    const double* e,
                                                    double static_bound = HUGE_VAL) {
-  const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
-  const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
-  const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
-  const double dex = d[0] - e[0], dey = d[1] - e[1], dez = d[2] - e[2];
-  const double ab = aex * bey - bex * aey, bc = bex * cey - cex * bey;
-  const double cd = cex * dey - dex * cey, da = dex * aey - aex * dey;
-  const double ac = aex * cey - cex * aey, bd = bex * dey - dex * bey;
-  const double abc = aez * bc - bez * ac + cez * ab;
-  const double bcd = bez * cd - cez * bd + dez * bc;
-  const double cda = cez * da + dez * ac + aez * cd;
-  const double dab = dez * ab + aez * bd + bez * da;
-  const double alift = aex * aex + aey * aey + aez * aez;
-  const double blift = bex * bex + bey * bey + bez * bez;
-  const double clift = cex * cex + cey * cey + cez * cez;
-  const double dlift = dex * dex + dey * dey + dez * dez;
-  const double det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+  using V = predicates_detail::V2;
+  using predicates_detail::load2;
+  const V e01 = load2(e), e2 = {e[2], e[2]}, flip = {1.0, -1.0};
+  const V ea = load2(a) - e01, eb = load2(b) - e01, ec = load2(c) - e01, ed = load2(d) - e01;
+  // x, y and z of (a, c) and of (b, d), minus e.
+  const V x_ac = __builtin_shufflevector(ea, ec, 0, 2),
+          y_ac = __builtin_shufflevector(ea, ec, 1, 3);
+  const V x_bd = __builtin_shufflevector(eb, ed, 0, 2),
+          y_bd = __builtin_shufflevector(eb, ed, 1, 3);
+  const V z_ac = V{a[2], c[2]} - e2, z_bd = V{b[2], d[2]} - e2;
+  const V y_ca = __builtin_shufflevector(y_ac, y_ac, 1, 0);
+  const V y_db = __builtin_shufflevector(y_bd, y_bd, 1, 0);
+  const V x_ca = __builtin_shufflevector(x_ac, x_ac, 1, 0);
+  // 2x2 minors: (ab, cd), (bc, da), (ac, bd).
+  const V ab_cd = x_ac * y_bd - x_bd * y_ac;
+  const V bc_da = x_bd * y_ca - x_ca * y_bd;
+  const V p = x_ac * y_ca, q = x_bd * y_db;
+  const V ac_bd = __builtin_shufflevector(p, q, 0, 2) - __builtin_shufflevector(p, q, 1, 3);
+  const V ac_ac = __builtin_shufflevector(ac_bd, ac_bd, 0, 0);
+  const V bd_bd = __builtin_shufflevector(ac_bd, ac_bd, 1, 1);
+  // 3x3 minors (abc, cda) and (bcd, dab); x + y as x - (-y), which is exact.
+  const V abc_cda =
+      z_ac * bc_da - z_bd * flip * ac_ac + __builtin_shufflevector(z_ac, z_ac, 1, 0) * ab_cd;
+  const V bcd_dab = z_bd * __builtin_shufflevector(ab_cd, ab_cd, 1, 0) -
+                    __builtin_shufflevector(z_ac, z_ac, 1, 0) * flip * bd_bd +
+                    __builtin_shufflevector(z_bd, z_bd, 1, 0) * bc_da;
+  const V lift_ac = x_ac * x_ac + y_ac * y_ac + z_ac * z_ac;
+  const V lift_bd = x_bd * x_bd + y_bd * y_bd + z_bd * z_bd;
+  // (dlift abc - clift dab, blift cda - alift bcd).
+  const V u = __builtin_shufflevector(lift_bd, lift_bd, 1, 0) * abc_cda -
+              __builtin_shufflevector(lift_ac, lift_ac, 1, 0) *
+                  __builtin_shufflevector(bcd_dab, bcd_dab, 1, 0);
+  const double det = u[0] + u[1];
   if (det > static_bound || -det > static_bound) return det;
-  const double m = std::max(predicates_detail::max_abs(aex, aey, aez, bex, bey, bez),
-                            predicates_detail::max_abs(cex, cey, cez, dex, dey, dez));
-  if (m > 1e-55 && m < 1e55) {
-    const double m2 = m * m;
-    const double bound = predicates_detail::kIsStatic * m2 * m2 * m;
-    if (det > bound || -det > bound) return det;
-  }
-  return insphere(a, b, c, d, e);
+  return predicates_detail::insphere_semi_static(a, b, c, d, e, det);
 }
 
 }  // namespace vm

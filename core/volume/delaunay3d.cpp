@@ -46,9 +46,6 @@ constexpr int kOther[4][4][2] = {{{-1, -1}, {2, 3}, {1, 3}, {1, 2}},
                                  {{1, 3}, {0, 3}, {-1, -1}, {0, 1}},
                                  {{1, 2}, {0, 2}, {0, 1}, {-1, -1}}};
 
-// kApexFaces[f]: the three slots other than f.
-constexpr int kApexFaces[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-
 bool collinear(const double* a, const double* b, const double* c) {
   double a2[2] = {a[2], a[0]}, b2[2] = {b[2], b[0]}, c2[2] = {c[2], c[0]};
   return orient2d(a, b, c) == 0 && orient2d(a + 1, b + 1, c + 1) == 0 && orient2d(a2, b2, c2) == 0;
@@ -103,19 +100,24 @@ Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
 
   // Phase 2: the other points in order, each walk starting where the
   // previous insertion ended.
+  d.building_ = true;
   for (int32_t v = 1; v < n; ++v) {
     if (v == ib || v == ic || v == id) continue;
     InsertResult r = d.insert_vertex(d.seq_, v, -1, false);
     if (r.status == InsertStatus::kDuplicate) d.dup_[size_t(v)] = r.vertex;
   }
+  d.building_ = false;
 
-  // Phase 3: back to input numbering.
-  for (TetTopology::Rec& r : d.topo_.tets)
-    for (int32_t& v : r.v)
-      if (v >= 0) v = order[size_t(v)];
-  std::vector<int32_t> vtet(static_cast<size_t>(n)), dup(static_cast<size_t>(n));
+  // Phase 3: back to input numbering, and vertex_tet, which the stars
+  // above left to this pass.
+  std::vector<int32_t> vtet(static_cast<size_t>(n), -1), dup(static_cast<size_t>(n));
+  for (int32_t t = 0; t < int32_t(d.topo_.capacity()); ++t) {
+    int32_t* v = d.topo_.tets[size_t(t)].v;
+    if (v[0] == kFree) continue;
+    for (int k = 0; k < 4; ++k)
+      if (v[k] >= 0) vtet[size_t(v[k] = order[size_t(v[k])])] = t;
+  }
   for (int64_t i = 0; i < n; ++i) {
-    vtet[size_t(order[size_t(i)])] = d.topo_.vertex_tet[size_t(i)];
     const int32_t o = d.dup_[size_t(i)];
     dup[size_t(order[size_t(i)])] = o >= 0 ? order[size_t(o)] : -1;
   }
@@ -327,9 +329,11 @@ bool Delaunay3D::ghost_conflict(int32_t t, const double* p, int32_t pv, bool str
   return finite_conflict(neighbor(t, g) >> 2, p, pv);
 }
 
+// Out of line: inlined into insert_vertex, its vectors' push_back calls
+// were not.
 template <bool kVerify>
-bool Delaunay3D::bowyer_watson(Worker& w, int32_t t0, const double* p, int32_t pv,
-                               bool respect_constraints) {
+[[gnu::noinline]] bool Delaunay3D::bowyer_watson(Worker& w, int32_t t0, const double* p, int32_t pv,
+                                                 bool respect_constraints) {
   // Bowyer-Watson's search from t0 (which holds p). Unverified (the
   // triangulation is Delaunay, nothing constrained): the conflict region,
   // always star-shaped. Verified: not crossing constrained faces, and any
@@ -359,15 +363,13 @@ bool Delaunay3D::bowyer_watson(Worker& w, int32_t t0, const double* p, int32_t p
     const int32_t t = w.cavity[i];
     const int32_t* links = tets[size_t(t)].n;
     const unsigned cons = kVerify && respect_constraints ? constrained[size_t(t)] : 0u;
-    // Refinement (verified, in a large mesh, in an order that jumps) waits
-    // for memory: the four neighbors' records and marks are fetched
-    // together. A build in BRIO order finds them in cache.
-    if constexpr (kVerify) {
-      for (int k = 0; k < 4; ++k) {
-        const int32_t n = links[k] >> 2;
-        __builtin_prefetch(&tets[size_t(n)]);
-        __builtin_prefetch(&stamp[size_t(n)]);
-      }
+    // The four neighbors' records and marks are fetched together
+    // (refinement, in a large mesh and an order that jumps, waits for
+    // memory; a build in BRIO order less).
+    for (int k = 0; k < 4; ++k) {
+      const int32_t n = links[k] >> 2;
+      __builtin_prefetch(&tets[size_t(n)]);
+      __builtin_prefetch(&stamp[size_t(n)]);
     }
     for (int k = 0; k < 4; ++k) {
       const int32_t e = 4 * t + k;
@@ -553,38 +555,67 @@ bool Delaunay3D::find_cavity_checked(Worker& w, int32_t t0, const double* p, int
   return true;
 }
 
+template <bool kBuild>
 void Delaunay3D::star(Worker& w, int32_t pv) {
-  // Phase 3a: slots for the new tetrahedra, free or appended ones; the
-  // cavity's are freed last (the free list gives them to the next
-  // insertion, last-freed first), so the cavity is read while writing.
+  // Phase 3a: the new tetrahedron on face f of cavity tetrahedron t, whose
+  // vertices in kFaceOut order are (a, b, c), is (p, a, b, c): positive (p
+  // is on the side of t's vertex f, and (f, kFaceOut[f]) is an even
+  // permutation), with face 0 the old face, linked to the outside. Faces
+  // 1, 2, 3 hold p and the boundary edges b->c, c->a and a->b. The faces
+  // are read first, so that the new tetrahedra can take the cavity's
+  // slots, still in cache (as in Marot, Pellerin, Remacle, "One machine,
+  // one minute, three billion tetrahedra", IJNME 117, 2019, section 3).
   const size_t nb = w.boundary.size(), nc = w.cavity.size();
-  w.new_tets.resize(nb);
-  if (w.part < 0) {
-    for (size_t i = 0; i < nb; ++i) w.new_tets[i] = topo_.new_slot();
-  } else {  // room checked by insert_in()
-    for (size_t i = 0; i < nb; ++i) {
-      if (!w.free_slots.empty()) {
-        w.new_tets[i] = w.free_slots.back();
-        w.free_slots.pop_back();
-      } else {
-        w.new_tets[i] = w.slot_next++;
-      }
+  const TetTopology::Rec* const tets_in = topo_.tets.data();
+  const uint8_t* const constrained_in = topo_.constrained.data();
+  const int32_t* const tags_in = topo_.tags.data();
+  w.faces.resize(nb);
+  for (size_t i = 0; i < nb; ++i) {
+    const int32_t t = w.boundary[i] >> 2;
+    const int f = w.boundary[i] & 3;
+    const TetTopology::Rec& o = tets_in[size_t(t)];
+    const int* fo = kFaceOut[f];
+    BoundaryFace& b = w.faces[i];
+    b.v[0] = o.v[fo[0]], b.v[1] = o.v[fo[1]], b.v[2] = o.v[fo[2]];
+    b.outside = o.n[f];
+    if constexpr (!kBuild) {
+      b.constrained = uint8_t((constrained_in[size_t(t)] >> f) & 1u);
+      b.tag = tags_in[size_t(t)];
     }
   }
-  // Phase 3b: the new tetrahedron on face f of cavity tetrahedron t is t
-  // with slot f replaced by p (so it is positive and its face f is the old
-  // face); it is linked to the outside through that face. Face j != f holds
-  // p and the boundary edge on the two other slots; the cavity boundary is
-  // a closed surface, oriented by kFaceOut, so every boundary edge is in
-  // exactly two boundary faces, with opposite directions, whose new
-  // tetrahedra share that face. In kFaceOut order (a, b, c) the edges are
-  // a->b (the face opposite slot c), b->c (opposite a) and c->a (opposite
-  // b). Small cavities link through a table indexed by local ids of the
-  // boundary vertices (Marot, Pellerin, Remacle, "One machine, one minute,
-  // three billion tetrahedra", IJNME 117, 2019, section 3.3): every new
-  // tetrahedron writes its three faces under their directed edges, then
-  // reads its neighbors under the reversed edges, with no search and no
-  // branch on the data. Larger ones use a hash of the boundary edges.
+  // Phase 3b: slots: the cavity's, then free or appended ones (the part's
+  // own in a partitioned round, room checked by insert_in()); cavity slots
+  // left over are freed.
+  w.new_tets.resize(nb);
+  std::copy(w.cavity.begin(), w.cavity.begin() + std::min(nb, nc), w.new_tets.begin());
+  if (w.part < 0 && nb > nc) topo_.new_slots(w.new_tets.data() + nc, nb - nc);
+  for (size_t i = nc; i < nb && w.part >= 0; ++i) {
+    if (!w.free_slots.empty()) {
+      w.new_tets[i] = w.free_slots.back();
+      w.free_slots.pop_back();
+    } else {
+      w.new_tets[i] = w.slot_next++;
+    }
+  }
+  for (size_t i = nb; i < nc; ++i) {
+    const int32_t t = w.cavity[i];
+    if (w.part < 0) {
+      topo_.free_slot(t);
+    } else {
+      topo_.tets[size_t(t)].v[0] = kFree;
+      topo_.constrained[size_t(t)] = 0;
+      w.free_slots.push_back(t);
+    }
+  }
+  // Phase 3c: the records, and the links between the new tetrahedra. The
+  // cavity boundary is a closed surface, oriented by kFaceOut, so every
+  // boundary edge is in exactly two boundary faces, with opposite
+  // directions, whose new tetrahedra share that face. Small cavities link
+  // through a table indexed by local ids of the boundary vertices (ibid.,
+  // section 3.3): every new tetrahedron writes its three faces under their
+  // directed edges, then reads its neighbors under the reversed edges, with
+  // no search and no branch on the data. Larger ones use a hash of the
+  // boundary edges.
   const bool by_table = nb <= kMaxTableFaces;
   uint32_t gen = 0;
   if (by_table) {
@@ -606,60 +637,44 @@ void Delaunay3D::star(Worker& w, int32_t pv) {
   int32_t* const tags = topo_.tags.data();
   int32_t* const vertex_tet = topo_.vertex_tet.data();
   for (size_t i = 0; i < nb; ++i) {
-    const int32_t e = w.boundary[i];
-    const int32_t t = e >> 2;
-    const int f = e & 3;
+    const BoundaryFace& b = w.faces[i];
     const int32_t n = w.new_tets[i];
-    const TetTopology::Rec& o = tets[size_t(t)];
     TetTopology::Rec& r = tets[size_t(n)];
-    r.v[0] = o.v[0], r.v[1] = o.v[1], r.v[2] = o.v[2], r.v[3] = o.v[3];
-    r.v[f] = pv;
-    r.n[f] = o.n[f];
-    tets[size_t(o.n[f] >> 2)].n[o.n[f] & 3] = 4 * n + f;
-    constrained[size_t(n)] = uint8_t(constrained[size_t(t)] & (1u << f));
-    tags[size_t(n)] = tags[size_t(t)];
-    const int* fo = kFaceOut[f];
-    for (int jj = 0; jj < 3; ++jj) {
-      const int32_t u = r.v[fo[jj]];
-      if (u >= 0) vertex_tet[size_t(u)] = n;
+    r.v[0] = pv, r.v[1] = b.v[0], r.v[2] = b.v[1], r.v[3] = b.v[2];
+    r.n[0] = b.outside;
+    tets[size_t(b.outside >> 2)].n[b.outside & 3] = 4 * n;
+    if constexpr (!kBuild) {
+      constrained[size_t(n)] = b.constrained;
+      tags[size_t(n)] = b.tag;
+      for (int32_t u : b.v)
+        if (u >= 0) vertex_tet[size_t(u)] = n;
     }
     if (!by_table) continue;
     uint32_t id[3];
     for (int jj = 0; jj < 3; ++jj) {
-      const int32_t u = r.v[fo[jj]];
-      const uint32_t x = lid[u];
+      const uint32_t x = lid[b.v[jj]];
       const bool fresh = (x & ~0xffu) != gen;
       id[jj] = fresh ? next : (x & 0xffu);
       next += fresh;
-      lid[u] = gen | id[jj];
+      lid[b.v[jj]] = gen | id[jj];
     }
     w.sides[i] = {{uint8_t(id[0]), uint8_t(id[1]), uint8_t(id[2])}};
-    table[id[0] * kLocal + id[1]] = 4 * n + fo[2];
-    table[id[1] * kLocal + id[2]] = 4 * n + fo[0];
-    table[id[2] * kLocal + id[0]] = 4 * n + fo[1];
+    table[id[0] * kLocal + id[1]] = 4 * n + 3;
+    table[id[1] * kLocal + id[2]] = 4 * n + 1;
+    table[id[2] * kLocal + id[0]] = 4 * n + 2;
   }
   if (by_table) {
     for (size_t i = 0; i < nb; ++i) {
       const uint8_t* side = w.sides[i].local;
       TetTopology::Rec& r = tets[size_t(w.new_tets[i])];
-      const int* fo = kFaceOut[w.boundary[i] & 3];
-      r.n[fo[2]] = table[side[1] * kLocal + side[0]];
-      r.n[fo[0]] = table[side[2] * kLocal + side[1]];
-      r.n[fo[1]] = table[side[0] * kLocal + side[2]];
+      r.n[1] = table[side[2] * kLocal + side[1]];
+      r.n[2] = table[side[0] * kLocal + side[2]];
+      r.n[3] = table[side[1] * kLocal + side[0]];
     }
   } else {
     link_star_by_hash(w);
   }
-  if (w.part < 0) {
-    for (int32_t t : w.cavity) topo_.free_slot(t);
-  } else {
-    for (int32_t t : w.cavity) {
-      tets[size_t(t)].v[0] = kFree;
-      constrained[size_t(t)] = 0;
-      w.free_slots.push_back(t);
-    }
-  }
-  topo_.vertex_tet[size_t(pv)] = w.new_tets[0];
+  if (!kBuild) topo_.vertex_tet[size_t(pv)] = w.new_tets[0];
   w.stats.cavity_tets += int64_t(nc);
   w.stats.boundary_faces += int64_t(nb);
   w.last = w.new_tets[0];
@@ -680,11 +695,9 @@ void Delaunay3D::link_star_by_hash(Worker& w) {
   EdgeSlot* table = w.edge_hash.data();
   for (size_t i = 0; i < nb; ++i) {
     const int32_t n = w.new_tets[i];
-    const int f = w.boundary[i] & 3;
     TetTopology::Rec& r = topo_.tets[size_t(n)];
-    for (int jj = 0; jj < 3; ++jj) {
-      const int j = kApexFaces[f][jj];
-      int32_t u = r.v[kOther[f][j][0]], x = r.v[kOther[f][j][1]];
+    for (int j = 1; j < 4; ++j) {  // p is vertex 0
+      int32_t u = r.v[kOther[0][j][0]], x = r.v[kOther[0][j][1]];
       if (u > x) std::swap(u, x);
       uint32_t h = ((uint32_t(u) * 0x9e3779b1u) ^ (uint32_t(x) * 0x85ebca6bu)) >> (32 - bits);
       for (;; h = (h + 1) & mask) {
@@ -741,9 +754,13 @@ Delaunay3D::InsertResult Delaunay3D::insert_vertex(Worker& w, int32_t v, int32_t
   }
   if (min_distance > 0 && cavity_vertex_within(w, p, min_distance * min_distance))
     return {InsertStatus::kTooClose, -1};
-  if (w.part >= 0 && w.boundary.size() > w.free_slots.size() + size_t(w.slot_end - w.slot_next))
+  if (w.part >= 0 &&
+      w.boundary.size() > w.cavity.size() + w.free_slots.size() + size_t(w.slot_end - w.slot_next))
     return {InsertStatus::kForeign, -1};  // no room left
-  star(w, v);
+  if (building_)
+    star<true>(w, v);
+  else
+    star<false>(w, v);
   return {InsertStatus::kInserted, v};
 }
 

@@ -318,6 +318,9 @@ class Delaunay3D {
   void keep_cavity(Worker& w, uint32_t in);
   /// A fresh even visit mark for w (m + 1 is free for a second set).
   uint32_t visit_stamp(Worker& w) const;
+  /// kBuild (build(), no constraints, tags or partitions): leaves
+  /// vertex_tet, constraint bits and tags to build()'s final pass.
+  template <bool kBuild>
   void star(Worker& w, int32_t pv);
   /// star(): the links between the new tetrahedra (w.new_tets, on
   /// w.boundary) of a cavity too large for the table, by a hash of the
@@ -341,6 +344,7 @@ class Delaunay3D {
   TetTopology topo_;
   ReplaceScratch replace_scratch_;
   bool delaunay_ = true;
+  bool building_ = false;  // inside build()'s insertions
 
   // star(): per boundary face, the local ids of its vertices in kFaceOut
   // order; per vertex + 1, the generation (high 24 bits) and local id (low
@@ -350,6 +354,14 @@ class Delaunay3D {
   // vertices.
   struct FaceSide {
     uint8_t local[3];
+  };
+  // star(): a cavity boundary face (vertices in kFaceOut order, the link
+  // to the outside) and, out of build(), its constraint bit and tag.
+  struct BoundaryFace {
+    int32_t v[3];
+    int32_t outside;
+    int32_t tag;
+    uint8_t constrained;
   };
   static constexpr int kLocal = 64;
   static constexpr size_t kMaxTableFaces = 2 * kLocal - 4;
@@ -366,6 +378,7 @@ class Delaunay3D {
     std::vector<int32_t> cavity, boundary;  // tets; encoded faces
     std::vector<int32_t> new_tets, pinned, ring, queue;
     std::vector<FaceSide> sides;
+    std::vector<BoundaryFace> faces;
     std::vector<uint32_t> local_id;
     uint32_t local_gen = 0;
     std::vector<int32_t> edge_table = std::vector<int32_t>(kLocal * kLocal);

@@ -23,6 +23,15 @@ int32_t TetTopology::append_slot() {
   return t;
 }
 
+void TetTopology::append_slots(int32_t* out, size_t k) {
+  const size_t n = tets.size();
+  tets.resize(n + k, {{kFree, kFree, kFree, kFree}, {-1, -1, -1, -1}});
+  constrained.resize(n + k, 0);
+  if (tagged) tags.resize(n + k, 0);
+  stamp.resize(n + k, 0);
+  for (size_t i = 0; i < k; ++i) out[i] = int32_t(n + i);
+}
+
 void TetTopology::clear_stamps() const {
   std::fill(stamp.begin(), stamp.end(), 0);
   gen = 0;

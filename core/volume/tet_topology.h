@@ -102,6 +102,16 @@ struct TetTopology {
     }
     return append_slot();
   }
+  /// new_slot() for k slots, into out[0..k): the free ones, then fresh
+  /// ones appended together.
+  void new_slots(int32_t* out, size_t k) {
+    size_t i = 0;
+    for (; i < k && !free_slots.empty(); ++i) {
+      out[i] = free_slots.back();
+      free_slots.pop_back();
+    }
+    if (i < k) append_slots(out + i, k - i);
+  }
   /// Frees live slot t (not its links: the caller relinks its neighbors).
   void free_slot(int32_t t) {
     tets[size_t(t)].v[0] = kFree;
@@ -117,6 +127,7 @@ struct TetTopology {
 
  private:
   int32_t append_slot();
+  void append_slots(int32_t* out, size_t k);
   void clear_stamps() const;
 };
 

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -66,6 +67,57 @@ TEST(Predicates, RandomIntegerPointsMatchExactArithmetic) {
     ASSERT_EQ(sign(orient3d(p[0], p[1], p[2], p[3])), sign(orient3d_ref(q[0], q[1], q[2], q[3])));
     ASSERT_EQ(sign(insphere(p[0], p[1], p[2], p[3], p[4])),
               sign(insphere_ref(q[0], q[1], q[2], q[3], q[4])));
+  }
+}
+
+TEST(Predicates, FastInsphereSignsMatchExactArithmetic) {
+  // insphere_fast with and without the static filter (a bound for the
+  // box [-2^20, 2^20]^3), on general and on degenerate (small) points.
+  std::mt19937_64 rng(11);
+  std::uniform_int_distribution<int64_t> small(-6, 6), big(-(1 << 20), 1 << 20);
+  const double bound = insphere_static_bound(double(1 << 21));
+  for (int it = 0; it < 20000; ++it) {
+    auto& dist = it % 2 ? small : big;
+    double p[5][3];
+    i128 q[5][3];
+    for (int i = 0; i < 5; ++i)
+      for (int k = 0; k < 3; ++k) q[i][k] = dist(rng), p[i][k] = double(q[i][k]);
+    const int want = sign(insphere_ref(q[0], q[1], q[2], q[3], q[4]));
+    ASSERT_EQ(sign(insphere_fast(p[0], p[1], p[2], p[3], p[4])), want) << it;
+    ASSERT_EQ(sign(insphere_fast(p[0], p[1], p[2], p[3], p[4], bound)), want) << it;
+  }
+}
+
+TEST(Predicates, FastInsphereStaticStageIsTheScalarFormulaToTheBit) {
+  // The static stage runs two lanes at a time; each lane must perform the
+  // scalar formula's operations in its order, so that every target (SSE2,
+  // wasm, scalar) filters alike. A zero bound returns the stage's value.
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(-3, 3);
+  for (int it = 0; it < 20000; ++it) {
+    double p[5][3];
+    for (auto& x : p)
+      for (double& c : x) c = u(rng) * std::pow(10.0, double(it % 7) - 3);
+    const double *a = p[0], *b = p[1], *c = p[2], *d = p[3], *e = p[4];
+    const double aex = a[0] - e[0], aey = a[1] - e[1], aez = a[2] - e[2];
+    const double bex = b[0] - e[0], bey = b[1] - e[1], bez = b[2] - e[2];
+    const double cex = c[0] - e[0], cey = c[1] - e[1], cez = c[2] - e[2];
+    const double dex = d[0] - e[0], dey = d[1] - e[1], dez = d[2] - e[2];
+    const double ab = aex * bey - bex * aey, bc = bex * cey - cex * bey;
+    const double cd = cex * dey - dex * cey, da = dex * aey - aex * dey;
+    const double ac = aex * cey - cex * aey, bd = bex * dey - dex * bey;
+    const double abc = aez * bc - bez * ac + cez * ab;
+    const double bcd = bez * cd - cez * bd + dez * bc;
+    const double cda = cez * da + dez * ac + aez * cd;
+    const double dab = dez * ab + aez * bd + bez * da;
+    const double alift = aex * aex + aey * aey + aez * aez;
+    const double blift = bex * bex + bey * bey + bez * bez;
+    const double clift = cex * cex + cey * cey + cez * cez;
+    const double dlift = dex * dex + dey * dey + dez * dez;
+    const double want = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+    ASSERT_NE(want, 0);
+    const double got = insphere_fast(a, b, c, d, e, 0.0);
+    ASSERT_EQ(std::memcmp(&got, &want, sizeof got), 0) << it << ": " << got << " " << want;
   }
 }
 

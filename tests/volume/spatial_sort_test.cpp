@@ -14,7 +14,7 @@ namespace vm {
 namespace {
 
 TEST(SpatialSort, HilbertIndexIsABijectionWithFaceAdjacentSteps) {
-  for (int bits : {1, 2, 3, 4}) {
+  for (int bits : {1, 2, 3, 4, 5, 6}) {
     const uint32_t side = 1u << bits;
     std::vector<int> cell_of(size_t(side) * side * side, -1);
     for (uint32_t x = 0; x < side; ++x)
@@ -32,6 +32,27 @@ TEST(SpatialSort, HilbertIndexIsABijectionWithFaceAdjacentSteps) {
       int dz = std::abs(a % int(side) - b % int(side));
       ASSERT_EQ(dx + dy + dz, 1) << "bits " << bits << " step " << h;
     }
+  }
+}
+
+TEST(SpatialSort, HilbertIndexIsInjectiveOnFineGrids) {
+  // Up to 21 bits per axis (63-bit indices): distinct cells get distinct
+  // indices below 2^(3 bits).
+  std::mt19937_64 rng(4);
+  for (int bits : {7, 10, 16, 21}) {
+    const uint32_t mask = (1u << bits) - 1;
+    std::vector<uint64_t> cells, idx;
+    for (int i = 0; i < 20000; ++i) {
+      const uint32_t x = uint32_t(rng()) & mask, y = uint32_t(rng()) & mask,
+                     z = uint32_t(rng()) & mask;
+      cells.push_back((uint64_t(x) << 42) | (uint64_t(y) << 21) | z);
+      idx.push_back(hilbert_index_3d(x, y, z, bits));
+      ASSERT_LT(idx.back(), uint64_t(1) << (3 * bits));
+    }
+    std::sort(cells.begin(), cells.end());
+    std::sort(idx.begin(), idx.end());
+    const size_t distinct = size_t(std::unique(cells.begin(), cells.end()) - cells.begin());
+    EXPECT_EQ(size_t(std::unique(idx.begin(), idx.end()) - idx.begin()), distinct) << bits;
   }
 }
 
