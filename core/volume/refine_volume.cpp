@@ -7,12 +7,13 @@
 // regular tetrahedron of its size, in BRIO order, each candidate tested
 // as below; (3) the queue: the first layer, then the region's vertices,
 // each part along a Hilbert curve; (4) for each queued vertex v, its edges
-// (v, w) in the current mesh: an edge of metric length >= split_length gets
-// one candidate (the metric midpoint when shorter than kFarLength, else one
-// unit of h from v). A candidate is rejected when it lies outside the
-// region, closer than min_spacing * h to a vertex of v's star, of the
-// tetrahedron containing it or of that tetrahedron's neighbors, closer
-// than boundary_spacing * h to a constrained face of those tetrahedra, or
+// (v, w) in the current mesh, longest first (metric length, ties by
+// vertex id): an edge of metric length >= split_length gets one candidate
+// (the metric midpoint when shorter than kFarLength, else one unit of h
+// from v). A candidate is rejected when it lies outside the region,
+// closer than min_spacing * h to a vertex of v's star, of the tetrahedron
+// containing it or of that tetrahedron's neighbors, closer than
+// boundary_spacing * h to a constrained face of those tetrahedra, or
 // closer than min_spacing * h to a vertex of its cavity (checked by the
 // kernel before it changes anything); else it is inserted at once
 // (constrained cavity) and queued. Metric lengths use h linear along the
@@ -63,6 +64,13 @@ inline double metric_length(double L, double ha, double hb) {
   return L * pm::log(hb / ha) / d;
 }
 
+// An edge (v, w) of the vertex being processed: its metric length and a
+// tetrahedron holding it.
+struct Edge {
+  double ell;
+  int32_t w, tet;
+};
+
 // One slab's state in a round.
 struct SlabWork {
   RefineStats st;
@@ -72,6 +80,7 @@ struct SlabWork {
   int32_t budget = INT32_MAX;     // vertices it may insert
   int32_t inserted = 0;
   std::vector<int32_t> star, nbs, nb_tet;
+  std::vector<Edge> edges;  // front_item(): v's edges, longest first
   std::vector<uint32_t> seen;
   uint32_t stamp = 0;
 };
@@ -255,6 +264,18 @@ bool Refiner::front_item(int part, SlabWork& S, int32_t v) {
   // Copies: sequential insertions reallocate the kernel's point array.
   const double xv[3] = {kernel_.point(v)[0], kernel_.point(v)[1], kernel_.point(v)[2]};
   const double hv = vertex_h_[size_t(v)];
+  // Longest edge first (ties by vertex id): the kernel's order of the
+  // star (the vertices' slots in its tetrahedra) is no good order, and the
+  // mesh's quality depended on it.
+  S.edges.clear();
+  for (size_t i = 0; i < n_nbs; ++i) {
+    const double L = std::sqrt(dist2(xv, kernel_.point(nbs[i])));
+    S.edges.push_back({metric_length(L, hv, vertex_h_[size_t(nbs[i])]), nbs[i], S.nb_tet[i]});
+  }
+  std::sort(S.edges.begin(), S.edges.end(), [](const Edge& a, const Edge& b) {
+    return a.ell != b.ell ? a.ell > b.ell : a.w < b.w;
+  });
+  for (size_t i = 0; i < n_nbs; ++i) nbs[i] = S.edges[i].w, S.nb_tet[i] = S.edges[i].tet;
   const double split = o_.split_length;
   bool deferred = false;
   for (size_t i = 0; i < n_nbs; ++i) {
