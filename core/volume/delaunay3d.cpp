@@ -630,7 +630,6 @@ void Delaunay3D::star(Worker& w, int32_t pv) {
   uint32_t* lid = by_table ? w.local_id.data() + 1 : nullptr;
   uint32_t next = 0;
   int32_t* table = w.edge_table.data();
-  w.sides.resize(nb);
   // Local copies of the arrays' bases (the slots are all allocated above).
   TetTopology::Rec* const tets = topo_.tets.data();
   uint8_t* const constrained = topo_.constrained.data();
@@ -658,14 +657,15 @@ void Delaunay3D::star(Worker& w, int32_t pv) {
       next += fresh;
       lid[b.v[jj]] = gen | id[jj];
     }
-    w.sides[i] = {{uint8_t(id[0]), uint8_t(id[1]), uint8_t(id[2])}};
+    w.faces[i].local[0] = uint8_t(id[0]), w.faces[i].local[1] = uint8_t(id[1]);
+    w.faces[i].local[2] = uint8_t(id[2]);
     table[id[0] * kLocal + id[1]] = 4 * n + 3;
     table[id[1] * kLocal + id[2]] = 4 * n + 1;
     table[id[2] * kLocal + id[0]] = 4 * n + 2;
   }
   if (by_table) {
     for (size_t i = 0; i < nb; ++i) {
-      const uint8_t* side = w.sides[i].local;
+      const uint8_t* side = w.faces[i].local;
       TetTopology::Rec& r = tets[size_t(w.new_tets[i])];
       r.n[1] = table[side[2] * kLocal + side[1]];
       r.n[2] = table[side[0] * kLocal + side[2]];

@@ -346,22 +346,19 @@ class Delaunay3D {
   bool delaunay_ = true;
   bool building_ = false;  // inside build()'s insertions
 
-  // star(): per boundary face, the local ids of its vertices in kFaceOut
-  // order; per vertex + 1, the generation (high 24 bits) and local id (low
-  // 8 bits) of the last star that numbered it; the table of directed
-  // boundary edges between local ids. A closed triangulated sphere with V
-  // vertices has 2 V - 4 faces, so kMaxTableFaces faces have at most kLocal
-  // vertices.
-  struct FaceSide {
-    uint8_t local[3];
-  };
-  // star(): a cavity boundary face (vertices in kFaceOut order, the link
-  // to the outside) and, out of build(), its constraint bit and tag.
+  // star(): per cavity boundary face, its vertices in kFaceOut order, the
+  // link to the outside, their local ids and, out of build(), its
+  // constraint bit and tag; per vertex + 1, the generation (high 24 bits)
+  // and local id (low 8 bits) of the last star that numbered it; the table
+  // of directed boundary edges between local ids. A closed triangulated
+  // sphere with V vertices has 2 V - 4 faces, so kMaxTableFaces faces have
+  // at most kLocal vertices.
   struct BoundaryFace {
     int32_t v[3];
     int32_t outside;
     int32_t tag;
     uint8_t constrained;
+    uint8_t local[3];
   };
   static constexpr int kLocal = 64;
   static constexpr size_t kMaxTableFaces = 2 * kLocal - 4;
@@ -377,7 +374,6 @@ class Delaunay3D {
     Stats stats;
     std::vector<int32_t> cavity, boundary;  // tets; encoded faces
     std::vector<int32_t> new_tets, pinned, ring, queue;
-    std::vector<FaceSide> sides;
     std::vector<BoundaryFace> faces;
     std::vector<uint32_t> local_id;
     uint32_t local_gen = 0;

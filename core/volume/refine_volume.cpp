@@ -64,10 +64,10 @@ inline double metric_length(double L, double ha, double hb) {
   return L * pm::log(hb / ha) / d;
 }
 
-// An edge (v, w) of the vertex being processed: its metric length and a
-// tetrahedron holding it.
+// An edge (v, w) of the vertex being processed: its length, its metric
+// length and a tetrahedron holding it.
 struct Edge {
-  double ell;
+  double L, ell;
   int32_t w, tet;
 };
 
@@ -270,7 +270,7 @@ bool Refiner::front_item(int part, SlabWork& S, int32_t v) {
   S.edges.clear();
   for (size_t i = 0; i < n_nbs; ++i) {
     const double L = std::sqrt(dist2(xv, kernel_.point(nbs[i])));
-    S.edges.push_back({metric_length(L, hv, vertex_h_[size_t(nbs[i])]), nbs[i], S.nb_tet[i]});
+    S.edges.push_back({L, metric_length(L, hv, vertex_h_[size_t(nbs[i])]), nbs[i], S.nb_tet[i]});
   }
   std::sort(S.edges.begin(), S.edges.end(), [](const Edge& a, const Edge& b) {
     return a.ell != b.ell ? a.ell > b.ell : a.w < b.w;
@@ -282,8 +282,7 @@ bool Refiner::front_item(int part, SlabWork& S, int32_t v) {
     const int32_t w = nbs[i];
     const double* xw = kernel_.point(w);
     const double hw = vertex_h_[size_t(w)];
-    const double L = std::sqrt(dist2(xv, xw));
-    const double ell = metric_length(L, hv, hw);
+    const double L = S.edges[i].L, ell = S.edges[i].ell;
     if (ell < split) continue;
     // Distance d of the candidate from v along the edge.
     double d;

@@ -15,11 +15,8 @@ void TetTopology::reserve(size_t n) {
 }
 
 int32_t TetTopology::append_slot() {
-  const int32_t t = int32_t(tets.size());
-  tets.push_back({{kFree, kFree, kFree, kFree}, {-1, -1, -1, -1}});
-  constrained.push_back(0);
-  if (tagged) tags.push_back(0);
-  stamp.push_back(0);
+  int32_t t;
+  append_slots(&t, 1);
   return t;
 }
 
