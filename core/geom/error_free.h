@@ -2,7 +2,7 @@
 // Floating-Point Arithmetic and Fast Robust Geometric Predicates"): a sum or
 // product of two doubles as a rounded value plus its exact rounding error.
 // Products use Dekker's split rather than FMA so results are identical in
-// WebAssembly. The building blocks of expansion.h and the predicates.
+// WebAssembly. The building blocks of the exact predicates.
 #pragma once
 
 namespace vm::exact {

@@ -1,8 +1,11 @@
 // Filtered exact predicates (Shewchuk 1997). Fast path: the determinant in
 // doubles, accepted when its magnitude exceeds the published forward error
 // bound (ccwerrboundA, iccerrboundA, o3derrboundA, isperrboundA) times the
-// permanent. Otherwise the same determinant (expanded about the last point)
-// is evaluated exactly in expansion arithmetic; its estimate has the exact
+// permanent. Otherwise stage B: the same determinant of the rounded
+// differences in expansion arithmetic on fixed arrays, decisive when the
+// differences are exact or its value clears stage B's bound. Otherwise the
+// determinant of the coordinates themselves, exactly, in expansion
+// arithmetic on fixed arrays (no allocation); its estimate has the exact
 // sign.
 #include "core/geom/predicates.h"
 
@@ -10,12 +13,9 @@
 #include <cmath>
 
 #include "core/geom/error_free.h"
-#include "core/geom/expansion.h"
 
 namespace vm {
 namespace {
-
-using exact::Expansion;
 
 constexpr double kEps = 0x1p-53;  // half an ulp of 1
 constexpr double kOrient2dBound = (3.0 + 16.0 * kEps) * kEps;
@@ -23,71 +23,13 @@ constexpr double kIncircleBound = (10.0 + 96.0 * kEps) * kEps;
 constexpr double kOrient3dBound = (7.0 + 56.0 * kEps) * kEps;
 constexpr double kInsphereBound = (16.0 + 224.0 * kEps) * kEps;
 
-Expansion diff(double a, double b) { return Expansion::difference(a, b); }
-
-// 2x2 determinant |a b; c d| of expansions.
-Expansion det2(const Expansion& a, const Expansion& b, const Expansion& c, const Expansion& d) {
-  return a * d - b * c;
-}
-
-double orient2d_exact(const double* a, const double* b, const double* c) {
-  Expansion acx = diff(a[0], c[0]), acy = diff(a[1], c[1]);
-  Expansion bcx = diff(b[0], c[0]), bcy = diff(b[1], c[1]);
-  return det2(acx, acy, bcx, bcy).estimate();
-}
-
-double incircle_exact(const double* a, const double* b, const double* c, const double* d) {
-  Expansion adx = diff(a[0], d[0]), ady = diff(a[1], d[1]);
-  Expansion bdx = diff(b[0], d[0]), bdy = diff(b[1], d[1]);
-  Expansion cdx = diff(c[0], d[0]), cdy = diff(c[1], d[1]);
-  Expansion alift = adx * adx + ady * ady;
-  Expansion blift = bdx * bdx + bdy * bdy;
-  Expansion clift = cdx * cdx + cdy * cdy;
-  Expansion det = alift * det2(bdx, bdy, cdx, cdy) + blift * det2(cdx, cdy, adx, ady) +
-                  clift * det2(adx, ady, bdx, bdy);
-  return det.estimate();
-}
-
-// det[a-d; b-d; c-d] with the differences given as expansions.
-Expansion det3(const Expansion* a, const Expansion* b, const Expansion* c) {
-  return a[2] * det2(b[0], b[1], c[0], c[1]) + b[2] * det2(c[0], c[1], a[0], a[1]) +
-         c[2] * det2(a[0], a[1], b[0], b[1]);
-}
-
-double orient3d_exact(const double* a, const double* b, const double* c, const double* d) {
-  Expansion ad[3], bd[3], cd[3];
-  for (int k = 0; k < 3; ++k) {
-    ad[k] = diff(a[k], d[k]);
-    bd[k] = diff(b[k], d[k]);
-    cd[k] = diff(c[k], d[k]);
-  }
-  return det3(ad, bd, cd).estimate();
-}
-
-double insphere_exact(const double* a, const double* b, const double* c, const double* d,
-                      const double* e) {
-  Expansion ae[3], be[3], ce[3], de[3];
-  for (int k = 0; k < 3; ++k) {
-    ae[k] = diff(a[k], e[k]);
-    be[k] = diff(b[k], e[k]);
-    ce[k] = diff(c[k], e[k]);
-    de[k] = diff(d[k], e[k]);
-  }
-  auto lift = [](const Expansion* p) { return p[0] * p[0] + p[1] * p[1] + p[2] * p[2]; };
-  // Cofactor expansion along the lift column of the 4x4 determinant
-  // [p - e, |p - e|^2] for p = a, b, c, d.
-  Expansion det = lift(de) * det3(ae, be, ce) - lift(ce) * det3(de, ae, be) +
-                  lift(be) * det3(ce, de, ae) - lift(ae) * det3(be, ce, de);
-  return det.estimate();
-}
-
 // Shewchuk's adaptive stage B on fixed-size arrays (no allocation): the
 // determinant of the rounded coordinate differences, evaluated exactly in
 // expansion arithmetic of bounded length. When every difference is exact
 // (common for nearby points: Sterbenz's lemma) it is the exact determinant;
 // otherwise it differs from it by at most errboundB * permanent (Shewchuk
 // 1997, o3derrboundB, isperrboundB), which decides most of the remaining
-// cases. What stage B cannot decide goes to the general exact path above.
+// cases. What stage B cannot decide goes to the exact path below.
 namespace fixed {
 
 using exact::two_product;
@@ -100,25 +42,56 @@ inline bool exact_diff(double a, double b, double& d) {
 }
 
 // h = e + f (Shewchuk's Theorem 13 with Two-Sum throughout, zero
-// elimination). e, f increasing magnitude, nonoverlapping; h may not alias.
+// elimination): the terms merged by magnitude into h, then one Two-Sum
+// sweep in place (it writes term m <= k - 1 while reading term k). e, f
+// increasing magnitude, nonoverlapping; h holds elen + flen terms and
+// aliases neither.
 int sum(int elen, const double* e, int flen, const double* f, double* h) {
-  constexpr int kMax = 1200;
-  double g[kMax];
   int i = 0, j = 0, n = 0;
-  while (i < elen && j < flen) g[n++] = std::fabs(e[i]) <= std::fabs(f[j]) ? e[i++] : f[j++];
-  while (i < elen) g[n++] = e[i++];
-  while (j < flen) g[n++] = f[j++];
+  while (i < elen && j < flen) h[n++] = std::fabs(e[i]) <= std::fabs(f[j]) ? e[i++] : f[j++];
+  while (i < elen) h[n++] = e[i++];
+  while (j < flen) h[n++] = f[j++];
   if (n == 0) return 0;
   int m = 0;
-  double q = g[0];
+  double q = h[0];
   for (int k = 1; k < n; ++k) {
     double qn, hh;
-    two_sum(q, g[k], qn, hh);
+    two_sum(q, h[k], qn, hh);
     if (hh != 0) h[m++] = hh;
     q = qn;
   }
   if (q != 0 || m == 0) h[m++] = q;
   return m;
+}
+
+// Compresses expansion e (n terms, increasing) in place to as few terms as
+// its value needs (Shewchuk's Compress: a Two-Sum sweep down from the
+// largest term, then one up); returns the new length. Long expansions
+// shrink to a few terms, which keeps the products below short.
+int compress(int n, double* e) {
+  if (n < 2) return n;
+  int bottom = n - 1;
+  double q = e[bottom];
+  for (int i = n - 2; i >= 0; --i) {
+    double x, y;
+    two_sum(q, e[i], x, y);
+    if (y != 0) {
+      e[bottom--] = x;
+      q = y;
+    } else {
+      q = x;
+    }
+  }
+  e[bottom] = q;
+  int top = 0;
+  for (int i = bottom + 1; i < n; ++i) {
+    double x, y;
+    two_sum(e[i], q, x, y);
+    if (y != 0) e[top++] = y;
+    q = x;
+  }
+  e[top++] = q;
+  return top;
 }
 
 // h = b * e (scale-expansion with zero elimination).
@@ -140,17 +113,18 @@ int scale(int elen, const double* e, double b, double* h) {
   return m;
 }
 
-// h = e * f.
-int product(int elen, const double* e, int flen, const double* f, double* h) {
-  double part[64], acc[1200], tmp[1200];
+// h = e * f: f's terms scale e one at a time, summed. h and scratch hold
+// 2 * elen * flen terms each, part 2 * elen; none aliases e or f.
+int product(int elen, const double* e, int flen, const double* f, double* h, double* scratch,
+            double* part) {
   int alen = 0;
+  double *acc = h, *next = scratch;
   for (int i = 0; i < flen; ++i) {
-    int plen = scale(elen, e, f[i], part);
-    int n = sum(alen, acc, plen, part, tmp);
-    std::copy(tmp, tmp + n, acc);
-    alen = n;
+    const int plen = scale(elen, e, f[i], part);
+    alen = sum(alen, acc, plen, part, next);
+    std::swap(acc, next);
   }
-  std::copy(acc, acc + alen, h);
+  if (acc != h) std::copy(acc, acc + alen, h);
   return alen;
 }
 
@@ -207,6 +181,23 @@ bool orient3d(const double* a, const double* b, const double* c, const double* d
   return exact || out > bound || -out > bound;
 }
 
+// |p|^2 over the first `dim` coordinates (<= 2 * dim terms).
+int lift(int dim, const double* p, double* h) {
+  double acc[6], sq[2], tmp[6];
+  int n = 0;
+  for (int k = 0; k < dim; ++k) {
+    double hi, lo;
+    two_product(p[k], p[k], hi, lo);
+    int sl = 0;
+    if (lo != 0) sq[sl++] = lo;
+    if (hi != 0) sq[sl++] = hi;
+    n = sum(n, acc, sl, sq, tmp);
+    std::copy(tmp, tmp + n, acc);
+  }
+  std::copy(acc, acc + n, h);
+  return n;
+}
+
 // insphere by stage B; false if undecided.
 bool insphere(const double* a, const double* b, const double* c, const double* d, const double* e,
               double permanent, double& out) {
@@ -225,43 +216,167 @@ bool insphere(const double* a, const double* b, const double* c, const double* d
   int nbd = det2(be[0], de[1], de[0], be[1], bd);
   // abc = aez bc - bez ac + cez ab, and so on (as in the fast stage).
   double abc[24], bcd[24], cda[24], dab[24];
-  int nabc = combo3(ae[2], nbc, bc, -be[2], nac, ac, ce[2], nab, ab, abc);
-  int nbcd = combo3(be[2], ncd, cd, -ce[2], nbd, bd, de[2], nbc, bc, bcd);
-  int ncda = combo3(ce[2], nda, da, de[2], nac, ac, ae[2], ncd, cd, cda);
-  int ndab = combo3(de[2], nab, ab, ae[2], nbd, bd, be[2], nda, da, dab);
-  auto lift = [](const double* v, double* h) {
-    double s[2][2], t[4];
-    two_product(v[0], v[0], s[0][1], s[0][0]);
-    two_product(v[1], v[1], s[1][1], s[1][0]);
-    double x[2], y[2], z[2];
-    int xl = 0, yl = 0, zl = 0;
-    for (double w : {s[0][0], s[0][1]})
-      if (w != 0) x[xl++] = w;
-    for (double w : {s[1][0], s[1][1]})
-      if (w != 0) y[yl++] = w;
-    double z1, z0;
-    two_product(v[2], v[2], z1, z0);
-    for (double w : {z0, z1})
-      if (w != 0) z[zl++] = w;
-    int tl = sum(xl, x, yl, y, t);
-    return sum(tl, t, zl, z, h);
-  };
+  int nabc = compress(combo3(ae[2], nbc, bc, -be[2], nac, ac, ce[2], nab, ab, abc), abc);
+  int nbcd = compress(combo3(be[2], ncd, cd, -ce[2], nbd, bd, de[2], nbc, bc, bcd), bcd);
+  int ncda = compress(combo3(ce[2], nda, da, de[2], nac, ac, ae[2], ncd, cd, cda), cda);
+  int ndab = compress(combo3(de[2], nab, ab, ae[2], nbd, bd, be[2], nda, da, dab), dab);
   double la[6], lb[6], lc[6], ld[6];
-  int nla = lift(ae, la), nlb = lift(be, lb), nlc = lift(ce, lc), nld = lift(de, ld);
+  int nla = lift(3, ae, la), nlb = lift(3, be, lb), nlc = lift(3, ce, lc), nld = lift(3, de, ld);
   // det = (dlift abc - clift dab) + (blift cda - alift bcd)
   for (int i = 0; i < nlc; ++i) lc[i] = -lc[i];
   for (int i = 0; i < nla; ++i) la[i] = -la[i];
-  double t1[288], t2[288], t3[288], t4[288], s1[576], s2[576], det[1152];
-  int n1 = product(nld, ld, nabc, abc, t1);
-  int n2 = product(nlc, lc, ndab, dab, t2);
-  int n3 = product(nlb, lb, ncda, cda, t3);
-  int n4 = product(nla, la, nbcd, bcd, t4);
+  double t1[288], t2[288], t3[288], t4[288], s1[576], s2[576], det[1152], scratch[288], part[48];
+  int n1 = product(nabc, abc, nld, ld, t1, scratch, part);
+  int n2 = product(ndab, dab, nlc, lc, t2, scratch, part);
+  int n3 = product(ncda, cda, nlb, lb, t3, scratch, part);
+  int n4 = product(nbcd, bcd, nla, la, t4, scratch, part);
   int m1 = sum(n1, t1, n2, t2, s1);
   int m2 = sum(n3, t3, n4, t4, s2);
   int n = sum(m1, s1, m2, s2, det);
   out = estimate(n, det);
   const double bound = kInsphereBoundB * permanent;
   return exact || out > bound || -out > bound;
+}
+
+// ---- Exact determinants from the coordinates themselves (Shewchuk 1997,
+// the "exact" predicates): no difference is rounded, so every minor below
+// is an exact expansion of bounded length and the arrays need no
+// allocation. The last resort, when stage B cannot decide.
+
+// The xy minor x_i y_j - x_j y_i (<= 4 terms).
+int minor2(const double* i, const double* j, double* h) { return det2(i[0], j[1], j[0], i[1], h); }
+
+// -e.
+void negate(int n, double* e) {
+  for (int k = 0; k < n; ++k) e[k] = -e[k];
+}
+
+// s1 e1 - s2 e2 + s3 e3 - s4 e4 for expansions e (the alternating
+// cofactor sum of a determinant), into h; term counts add up.
+int alternate(int n1, double* e1, int n2, double* e2, int n3, double* e3, int n4, double* e4,
+              double* h, double* scratch) {
+  negate(n2, e2);
+  negate(n4, e4);
+  const int a = sum(n1, e1, n2, e2, h);
+  const int b = sum(n3, e3, n4, e4, h + a);
+  const int n = sum(a, h, b, h + a, scratch);
+  std::copy(scratch, scratch + n, h);
+  negate(n2, e2);
+  negate(n4, e4);
+  return n;
+}
+
+double orient2d_exact(const double* a, const double* b, const double* c) {
+  // det[(a, 1); (b, 1); (c, 1)] = m_bc - m_ac + m_ab.
+  double bc[4], ac[4], ab[4], t[8], det[12];
+  const int nbc = minor2(b, c, bc), nac = minor2(a, c, ac), nab = minor2(a, b, ab);
+  negate(nac, ac);
+  const int nt = sum(nbc, bc, nac, ac, t);
+  return estimate(sum(nt, t, nab, ab, det), det);
+}
+
+// det[(p, 1)] of three 2D points, <= 12 terms.
+int orient2d_terms(const double* a, const double* b, const double* c, double* h) {
+  double bc[4], ac[4], ab[4], t[8];
+  const int nbc = minor2(b, c, bc), nac = minor2(a, c, ac), nab = minor2(a, b, ab);
+  negate(nac, ac);
+  const int nt = sum(nbc, bc, nac, ac, t);
+  return sum(nt, t, nab, ab, h);
+}
+
+// Sum over rows r of (-1)^r lift_r * minor_r, the cofactor expansion of a
+// determinant along its lift column (rows 0-based, the first one positive):
+// lift[r] (nl[r] terms) times minor[r] (nm[r] terms), r < rows.
+template <int kRows, int kLift, int kMinor>
+double lift_expansion(const double (*lifts)[kLift], const int* nl, const double (*minors)[kMinor],
+                      const int* nm) {
+  constexpr int kTerm = 2 * kLift * kMinor;
+  double term[kTerm], scratch[kTerm], part[2 * kMinor];
+  double acc[kRows * kTerm], next[kRows * kTerm];
+  int alen = 0;
+  for (int r = 0; r < kRows; ++r) {
+    int n = compress(product(nm[r], minors[r], nl[r], lifts[r], term, scratch, part), term);
+    if (r % 2) negate(n, term);
+    alen = compress(sum(alen, acc, n, term, next), next);
+    std::copy(next, next + alen, acc);
+  }
+  return estimate(alen, acc);
+}
+
+double incircle_exact(const double* a, const double* b, const double* c, const double* d) {
+  // det[(p, |p|^2, 1)]: along the lift column, row r's minor is
+  // orient2d of the other rows, with sign (-1)^(r + 3) (1-based r).
+  const double* p[4] = {a, b, c, d};
+  double lifts[4][4], minors[4][12];
+  int nl[4], nm[4];
+  for (int r = 0; r < 4; ++r) {
+    const double* q[3];
+    for (int i = 0, n = 0; i < 4; ++i)
+      if (i != r) q[n++] = p[i];
+    nl[r] = lift(2, p[r], lifts[r]);
+    nm[r] = orient2d_terms(q[0], q[1], q[2], minors[r]);
+  }
+  return lift_expansion<4, 4, 12>(lifts, nl, minors, nm);
+}
+
+// The xyz minors z_i m_jk - z_j m_ik + z_k m_ij (<= 24 terms) of every
+// triple i < j < k of n <= 5 points, indexed by the triple's bit mask.
+struct TripleMinors {
+  double m[32][24];
+  int n[32];
+};
+
+void triple_minors(int n, const double* const* p, TripleMinors& out) {
+  double m2[5][5][4];
+  int n2[5][5];
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) n2[i][j] = minor2(p[i], p[j], m2[i][j]);
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      for (int k = j + 1; k < n; ++k) {
+        const int t = 1 << i | 1 << j | 1 << k;
+        out.n[t] = compress(combo3(p[i][2], n2[j][k], m2[j][k], -p[j][2], n2[i][k], m2[i][k],
+                                   p[k][2], n2[i][j], m2[i][j], out.m[t]),
+                            out.m[t]);
+      }
+}
+
+// det[(q, 1)] (<= 96 terms) of the four points in mask `four`, in
+// increasing order q0..q3: along the ones column,
+// -M(q1 q2 q3) + M(q0 q2 q3) - M(q0 q1 q3) + M(q0 q1 q2).
+int orient3d_terms(TripleMinors& m, int four, double* h) {
+  int omit[4], c = 0;
+  for (int i = 0; i < 5; ++i)
+    if (four >> i & 1) omit[c++] = four & ~(1 << i);
+  double scratch[96];
+  return compress(alternate(m.n[omit[1]], m.m[omit[1]], m.n[omit[2]], m.m[omit[2]], m.n[omit[3]],
+                            m.m[omit[3]], m.n[omit[0]], m.m[omit[0]], h, scratch),
+                  h);
+}
+
+double orient3d_exact(const double* a, const double* b, const double* c, const double* d) {
+  const double* p[4] = {a, b, c, d};
+  TripleMinors m;
+  triple_minors(4, p, m);
+  double det[96];
+  return estimate(orient3d_terms(m, 0b1111, det), det);
+}
+
+double insphere_exact(const double* a, const double* b, const double* c, const double* d,
+                      const double* e) {
+  // det[(p, |p|^2, 1)]: along the lift column, row r's minor is
+  // orient3d of the other rows, with sign (-1)^(r + 4) (1-based r): the
+  // first row's is negative.
+  const double* p[5] = {a, b, c, d, e};
+  TripleMinors m;
+  triple_minors(5, p, m);
+  double lifts[5][6], minors[5][96];
+  int nl[5], nm[5];
+  for (int r = 0; r < 5; ++r) {
+    nl[r] = lift(3, p[r], lifts[r]);
+    nm[r] = orient3d_terms(m, 0b11111 & ~(1 << r), minors[r]);
+  }
+  return -lift_expansion<5, 6, 96>(lifts, nl, minors, nm);
 }
 
 }  // namespace fixed
@@ -274,7 +389,7 @@ double orient2d(const double* a, const double* b, const double* c) {
   double det = detleft - detright;
   double bound = kOrient2dBound * (std::fabs(detleft) + std::fabs(detright));
   if (det > bound || -det > bound) return det;
-  return orient2d_exact(a, b, c);
+  return fixed::orient2d_exact(a, b, c);
 }
 
 double incircle(const double* a, const double* b, const double* c, const double* d) {
@@ -293,7 +408,7 @@ double incircle(const double* a, const double* b, const double* c, const double*
                      (std::fabs(adxbdy) + std::fabs(bdxady)) * clift;
   double bound = kIncircleBound * permanent;
   if (det > bound || -det > bound) return det;
-  return incircle_exact(a, b, c, d);
+  return fixed::incircle_exact(a, b, c, d);
 }
 
 double orient3d(const double* a, const double* b, const double* c, const double* d) {
@@ -311,7 +426,7 @@ double orient3d(const double* a, const double* b, const double* c, const double*
   if (det > bound || -det > bound) return det;
   double exact;
   if (fixed::orient3d(a, b, c, d, permanent, exact)) return exact;
-  return orient3d_exact(a, b, c, d);
+  return fixed::orient3d_exact(a, b, c, d);
 }
 
 double insphere(const double* a, const double* b, const double* c, const double* d,
@@ -349,7 +464,7 @@ double insphere(const double* a, const double* b, const double* c, const double*
   if (det > bound || -det > bound) return det;
   double exact;
   if (fixed::insphere(a, b, c, d, e, permanent, exact)) return exact;
-  return insphere_exact(a, b, c, d, e);
+  return fixed::insphere_exact(a, b, c, d, e);
 }
 
 int insphere_sos(const double* a, const double* b, const double* c, const double* d,

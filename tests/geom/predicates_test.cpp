@@ -10,6 +10,8 @@
 #include <random>
 #include <vector>
 
+#include "tests/support/expansion_reference.h"
+
 namespace vm {
 namespace {
 
@@ -68,6 +70,54 @@ TEST(Predicates, RandomIntegerPointsMatchExactArithmetic) {
     ASSERT_EQ(sign(insphere(p[0], p[1], p[2], p[3], p[4])),
               sign(insphere_ref(q[0], q[1], q[2], q[3], q[4])));
   }
+}
+
+TEST(Predicates, NearlyDegenerateRealPointsMatchAnIndependentExactEvaluation) {
+  // Points nearly on one circle / sphere / line / plane, with coordinates
+  // across binades (so coordinate differences round and the filters and
+  // stage B often cannot decide): the signs must be those of a separate
+  // exact evaluation (tests/support/expansion_reference.h).
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(-1, 1), angle(0, 6.283185307179586);
+  int nonzero = 0;
+  for (int it = 0; it < 4000; ++it) {
+    const double scale = std::pow(10.0, double(it % 7) - 3);
+    const double c[3] = {u(rng) * scale, u(rng) * scale, u(rng) * scale};
+    const double r = scale * (0.5 + 0.5 * std::fabs(u(rng)));
+    double s[5][3], f[5][3];  // on a sphere (z = c[2] gives a circle); on a plane
+    for (int i = 0; i < 5; ++i) {
+      const double t = angle(rng), z = u(rng);
+      const double h = std::sqrt(1 - z * z);
+      s[i][0] = c[0] + r * h * std::cos(t), s[i][1] = c[1] + r * h * std::sin(t);
+      s[i][2] = c[2] + r * z;
+      const double a = u(rng), b = u(rng);
+      for (int k = 0; k < 3; ++k)
+        f[i][k] = i < 3 ? s[i][k] : a * s[0][k] + b * s[1][k] + (1 - a - b) * s[2][k];
+    }
+    double ring[4][2];  // on the circle of the sphere's equator
+    for (auto& q : ring) {
+      const double t = angle(rng);
+      q[0] = c[0] + r * std::cos(t), q[1] = c[1] + r * std::sin(t);
+    }
+    ASSERT_EQ(sign(insphere(s[0], s[1], s[2], s[3], s[4])),
+              test::insphere_sign(s[0], s[1], s[2], s[3], s[4]))
+        << it;
+    ASSERT_EQ(sign(orient3d(f[0], f[1], f[2], f[3])), test::orient3d_sign(f[0], f[1], f[2], f[3]))
+        << it;
+    ASSERT_EQ(sign(orient3d(f[4], f[1], f[3], f[2])), test::orient3d_sign(f[4], f[1], f[3], f[2]))
+        << it;
+    ASSERT_EQ(sign(incircle(ring[0], ring[1], ring[2], ring[3])),
+              test::incircle_sign(ring[0], ring[1], ring[2], ring[3]))
+        << it;
+    double line[3][2] = {{f[0][0], f[0][1]}, {f[1][0], f[1][1]}, {0, 0}};
+    const double a = u(rng);
+    for (int k = 0; k < 2; ++k) line[2][k] = a * line[0][k] + (1 - a) * line[1][k];
+    ASSERT_EQ(sign(orient2d(line[0], line[1], line[2])),
+              test::orient2d_sign(line[0], line[1], line[2]))
+        << it;
+    nonzero += test::insphere_sign(s[0], s[1], s[2], s[3], s[4]) != 0;
+  }
+  EXPECT_GT(nonzero, 3000);  // rounding moves the points off the sphere
 }
 
 TEST(Predicates, FastInsphereSignsMatchExactArithmetic) {
