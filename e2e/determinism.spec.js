@@ -14,8 +14,9 @@ import { serveStatic } from './static-server.js';
 // the native CLI writes for the same file with the options the MSH's
 // provenance line lists. The app served by vite preview is cross-origin
 // isolated and meshes with the threaded core on all the browser's cores;
-// served without the COOP/COEP headers it falls back to the
-// single-threaded core; both must write the CLI's bytes.
+// served without the COOP/COEP headers, and without the service worker
+// that would add them, it falls back to the single-threaded core; both
+// must write the CLI's bytes.
 
 const native = process.env.VM_NATIVE ?? fileURLToPath(new URL('../build/vesselmesh', import.meta.url));
 const cli = (...args) => execFileSync(native, args, { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
@@ -86,18 +87,23 @@ test('the page and the CLI write the same MSH bytes', async ({ page }) => {
   await screenshots(page, 'meshed-threads', page.getByTestId('out-time'));
 });
 
-test('served without COOP/COEP, the page meshes on one thread and writes the same bytes', async ({ page }) => {
-  test.setTimeout(120_000);
-  const dist = fileURLToPath(new URL('../web/dist/', import.meta.url));
-  const server = await serveStatic({ dirs: { '/': dist } });
-  try {
-    const threads = await expectSameBytes(page, async () => {}, `${server.url}index.html`);
-    expect(await page.evaluate(() => crossOriginIsolated)).toBe(false);
-    expect(threads).toBe(1);
-    await expect(page.getByTestId('out-time')).toHaveAttribute('title', /not cross-origin isolated/);
-  } finally {
-    await server.close();
-  }
+test.describe('without a service worker', () => {
+  // The app's service worker would add the headers (e2e/isolation.spec.js).
+  test.use({ serviceWorkers: 'block' });
+
+  test('served without COOP/COEP, the page meshes on one thread and writes the same bytes', async ({ page }) => {
+    test.setTimeout(120_000);
+    const dist = fileURLToPath(new URL('../web/dist/', import.meta.url));
+    const server = await serveStatic({ dirs: { '/': dist } });
+    try {
+      const threads = await expectSameBytes(page, async () => {}, `${server.url}index.html`);
+      expect(await page.evaluate(() => crossOriginIsolated)).toBe(false);
+      expect(threads).toBe(1);
+      await expect(page.getByTestId('out-time')).toHaveAttribute('title', /not cross-origin isolated/);
+    } finally {
+      await server.close();
+    }
+  });
 });
 
 test('the same bytes with a fine core, which the CLI refines in slabs on its threads', async ({ page }) => {

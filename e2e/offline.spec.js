@@ -68,6 +68,10 @@ test('installed: after one visit the app reloads and meshes with its server stop
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('volume-view')).toHaveAttribute('data-triangles', /^[1-9]\d*$/, { timeout: 60_000 });
   await expect(page.getByTestId('error')).toBeHidden();
+  // The threaded core is precached too: offline, the app keeps its threads.
+  expect(Number(await page.getByTestId('out-time').getAttribute('data-threads'))).toBe(
+    Math.min(await page.evaluate(() => navigator.hardwareConcurrency), 8),
+  );
   await screenshots(page, 'installed-offline');
   expect(foreign).toEqual([]);
   expect(errors).toEqual([]);

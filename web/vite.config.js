@@ -12,6 +12,11 @@ import { defineConfig } from 'vite';
 import { VitePWA } from 'vite-plugin-pwa';
 import { viteSingleFile } from 'vite-plugin-singlefile';
 
+// Cross-origin isolation, for the threaded core (the app works without it,
+// on one thread): the dev and preview servers send these headers; on a
+// static host, which does not, the service worker adds them (src/sw.js).
+import { ISOLATION_HEADERS } from './src/isolation-headers.js';
+
 const here = dirname(fileURLToPath(import.meta.url));
 
 /** Renames the one-file build's index.html to vesselmesh.html. */
@@ -45,14 +50,18 @@ const dropWorkerFiles = () => ({
   },
 });
 
-/** The installable app: a web app manifest and a service worker precaching
- * every file of the build (page, bundle, CSS, the worker script, the wasm),
- * so that after one visit the app reloads and restarts its worker (Cancel)
- * with no server. */
-const installable = () =>
+/** The installable app: a web app manifest and a service worker
+ * (src/sw.js) precaching every file of the build (page, bundle, CSS, the
+ * worker script, the wasm), so that after one visit the app reloads and
+ * restarts its worker (Cancel) with no server, and adding the COOP/COEP
+ * headers to what it serves. The page registers it (src/isolation.js, told
+ * its URL here) and, served without the headers, reloads once through it. */
+const installable = () => [
   VitePWA({
-    registerType: 'autoUpdate',
-    injectRegister: 'script',
+    strategies: 'injectManifest',
+    srcDir: 'src',
+    filename: 'sw.js',
+    injectRegister: false,
     includeAssets: ['icon.svg'],
     manifest: {
       name: 'vesselmesh',
@@ -65,23 +74,18 @@ const installable = () =>
       theme_color: '#17212b',
       icons: [{ src: 'icon.svg', sizes: 'any', type: 'image/svg+xml', purpose: 'any' }],
     },
-    workbox: {
-      globPatterns: ['**/*.{html,js,css,wasm,svg,webmanifest}'],
+    injectManifest: {
+      globPatterns: ['**/*.{html,js,mjs,css,wasm,svg,webmanifest}'],
       maximumFileSizeToCacheInBytes: 16 * 2 ** 20,
-      inlineWorkboxRuntime: true,
-      cleanupOutdatedCaches: true,
-      clientsClaim: true,
-      skipWaiting: true,
+      rollupFormat: 'iife',
     },
-  });
-
-/** Cross-origin isolation (so a threaded build could use SharedArrayBuffer
- * where allowed); the app works without it. The service worker's precache
- * keeps these headers on the responses it serves. */
-const ISOLATION_HEADERS = {
-  'Cross-Origin-Opener-Policy': 'same-origin',
-  'Cross-Origin-Embedder-Policy': 'require-corp',
-};
+  }),
+  {
+    name: 'vm-service-worker-url',
+    apply: 'build', // the dev server has no service worker
+    config: () => ({ define: { __VM_SERVICE_WORKER__: JSON.stringify('./sw.js') } }),
+  },
+];
 
 function singleFileConfig() {
   return {

@@ -11,6 +11,7 @@ import { qualityGradientCss } from './colormap.js';
 import { EXPORT_FORMATS, exportFileName, exportFormat } from './files.js';
 import { drawGroupLegend, drawPartLegend, PARTS } from './groups.js';
 import { drawHistogram } from './histogram.js';
+import { startIsolated } from './isolation.js';
 import { OpeningsTable } from './openings.js';
 import { hideAnalysis, showAnalysis } from './panel.js';
 import { PrepHistory } from './prep-history.js';
@@ -31,6 +32,10 @@ import { createWorker } from './worker-source.js';
 const $ = (id) => document.getElementById(id);
 // Above this the browser tab would run out of memory (the wasm heap is 4 GB).
 const MAX_FILE_BYTES = 1.5 * 2 ** 30;
+
+// Served without COOP/COEP headers, the page reloads once through its
+// service worker, which adds them, before the mesher starts (isolation.js).
+await startIsolated().catch(() => {});
 
 const client = new VesselmeshClient({ createWorker });
 const bar = new ActionBar();
