@@ -13,8 +13,10 @@ size, medians of repeated runs, one at a time, alternating run by run.
           (bench/wasm_chromium_bench.mjs; wall time only, peak = JS heap),
           on a cross-origin isolated page: with --threads, once per T (the
           threaded core on T threads; T = 1 the single-threaded core).
-          Node runs the single-threaded core. Both run with --serve,
-          one run per line sent, so that their runs alternate with the others.
+          Node likewise, once per T (the threaded core's pool on
+          worker_threads); without --threads the single-threaded core.
+          Both run with --serve, one run per line sent, so that their runs
+          alternate with the others.
   Gmsh    bench/gmsh_reference.py (>= 3 runs), one thread (--threads: each
           T): per-stage medians; its time is the sum of its stages (merge,
           classify, createGeometry, surface[, caps + volume]) without
@@ -135,24 +137,26 @@ def volume_flags(a):
 
 
 class WasmBench:
-    """The wasm build under Node (bench/wasm_mesh_bench.mjs, one thread) or
-    in Chromium (wasm_chromium_bench.mjs, the threaded core on `threads`
-    threads, the single-threaded one on 1): one process for all runs (the
-    module loaded once), started with --serve, which runs once per line it
-    reads, so that its runs alternate with the other variants'."""
+    """The wasm build under Node (bench/wasm_mesh_bench.mjs) or in Chromium
+    (wasm_chromium_bench.mjs): the threaded core on `threads` threads, the
+    single-threaded one on 1 (Node without --threads: the single-threaded
+    core, no --threads passed); one process for all runs (the module loaded
+    once), started with --serve, which runs once per line it reads, so that
+    its runs alternate with the other variants'."""
 
     def __init__(self, a, path, chromium=False, threads=1):
         self.threads = threads
-        self.name = f"chromium {threads}T" if chromium else "node"
+        self.name = f"{'chromium' if chromium else 'node'} {threads}T"
         self.proc, self.err, self.seconds, self.error = None, None, [], None
         node = shutil.which("node")
         script = "wasm_chromium_bench.mjs" if chromium else "wasm_mesh_bench.mjs"
         self.cmd = [node or "node", os.path.join(benchutil.BENCH, script), path, "--size", repr(a.size),
-                    "--serve"] + volume_flags(a) + (["--threads", str(threads)] if chromium else [])
+                    "--serve"] + volume_flags(a) + (["--threads", str(threads)] if chromium or a.threads else [])
+        wasm = "vesselmesh_core.wasm" if threads == 1 else "vesselmesh_core_mt.wasm"
         if not node:
             self.error = "node not found"
-        elif not os.path.exists(os.path.join(benchutil.ROOT, "wasm", "dist", "vesselmesh_core.wasm")):
-            self.error = "wasm/dist/vesselmesh_core.wasm missing (build the wasm target)"
+        elif not os.path.exists(os.path.join(benchutil.ROOT, "wasm", "dist", wasm)):
+            self.error = f"wasm/dist/{wasm} missing (build the wasm target)"
 
     def _fail(self, res=None):
         self.err.seek(0)
@@ -304,11 +308,11 @@ def main():
         # drift of the (shared) machine's speed weighs on all alike.
         natives = [NativeBench(a, path, tmp, t) for t in (threads or [None])]
         gmshs = [] if a.no_gmsh else [GmshBench(a, path, tmp, t) for t in (threads or [1])]
-        node = None if a.no_wasm else WasmBench(a, path)
+        nodes = [] if a.no_wasm else [WasmBench(a, path, threads=t) for t in (threads or [1])]
         chromes = [] if a.no_wasm or not chromium_runs else \
             [WasmBench(a, path, chromium=True, threads=t or os.cpu_count()) for t in (threads or [1])]
         plan = [(b, a.runs) for b in natives] + [(g, a.gmsh_runs) for g in gmshs] + \
-            ([(node, a.wasm_runs)] if node is not None else []) + [(c, chromium_runs) for c in chromes]
+            [(x, a.wasm_runs) for x in nodes] + [(c, chromium_runs) for c in chromes]
         print(", ".join(b.name for b, _ in plan) + ", alternating:", flush=True)
         for i in range(max(n for _, n in plan)):
             for b, n in plan:
@@ -322,8 +326,11 @@ def main():
         if threads:
             res["native_by_threads"] = {str(x["threads"]): x for x in ns}
             res["gmsh_by_threads"] = {str(x["threads"]): x for x in gs}
-        if node is not None:
-            res["wasm"] = node.summary()
+        ws = [x.summary() for x in nodes]
+        if ws:
+            res["wasm"] = ws[0]
+            if threads:
+                res["wasm_by_threads"] = {str(x.threads): w for x, w in zip(nodes, ws)}
         cs = [c.summary() for c in chromes]
         if cs:
             res["chromium"] = cs[0]
@@ -337,7 +344,8 @@ def main():
     native_threads = ", ".join(f"{x['threads']}" for x in ns) if threads else f"{os.cpu_count()} (CLI default)"
     print(f"{res['file']} h = {a.size:g}, {what}; threads: native {native_threads}, "
           f"Gmsh {', '.join(str(x['threads']) for x in gs) or '-'}, "
-          f"Chromium {', '.join(str(c.threads) for c in chromes) or '-'}, Node 1; start: {res['machine_start']}; "
+          f"Chromium {', '.join(str(c.threads) for c in chromes) or '-'}, "
+          f"Node {', '.join(str(x.threads) for x in nodes) or '-'}; start: {res['machine_start']}; "
           f"end: load {res['machine_end'].rsplit('load average', 1)[-1].strip()}")
     print(f"{'variant':30} {'median s':>9} {'min s':>7} {'max s':>7} {'runs':>4} {'CPU med s':>9} {'peak MB':>7} "
           f"{'triangles':>9} {'tets':>8} {'gamma_k min/mean':>16} {'xGmsh 1T':>8} {'xGmsh =T':>8}")
@@ -372,11 +380,12 @@ def main():
         row(label, x, t, [r["seconds"] for r in x.get("runs", [])], x.get("median_cpu_seconds"), x.get("peak_rss_mb"),
             [f"in-core median {x['median_core_seconds']:.3f} s; stage medians: " +
              ", ".join(f"{k} {v:.2f}" for k, v in x["stage_medians"].items())] if x["ok"] else ())
-    if w is not None:
-        row("vesselmesh wasm node 1T", w, 1, w.get("seconds", []), w.get("median_cpu_seconds"),
-            w.get("process_peak_rss_mb"),
-            [f"first run {w['seconds'][0]:.3f} s; Node baseline RSS {w['baseline_rss_mb']:.0f} MB, "
-             f"instantiate {w['instantiate_seconds']:.2f} s; {w['node']}"] if w.get("ok") else ())
+    for nd, x in zip(nodes, ws):
+        row(f"vesselmesh wasm node {nd.threads}T", x, nd.threads, x.get("seconds", []), x.get("median_cpu_seconds"),
+            x.get("process_peak_rss_mb"),
+            [f"first run {x['seconds'][0]:.3f} s; Node baseline RSS {x['baseline_rss_mb']:.0f} MB, "
+             f"instantiate {x['instantiate_seconds']:.2f} s; {x['node']}; ran on {x.get('threads', 1)} thread(s)"
+             + (f" ({x['threads_note']})" if x.get("threads_note") else "")] if x.get("ok") else ())
     for ch, x in zip(chromes, cs):
         row(f"vesselmesh wasm chrome {ch.threads}T", x, ch.threads, x.get("seconds", []), None, x.get("peak_js_heap_mb"),
             [f"first run {x['seconds'][0]:.3f} s; {x.get('browser', '')}; ran on {x.get('threads')} thread(s)"
@@ -434,18 +443,21 @@ def main():
             also = f"; Gmsh 1T / native {t}T = {g['median_seconds'] / x['median_seconds']:.2f}x" \
                 if t != 1 and g and g["ok"] else ""
             print(f"Gmsh {t}T / native {t}T = {r:.2f}x wall, {rc:.2f}x CPU{verdict}{also}")
-        n1 = next((x for x in ns if x["threads"] == 1 and x["ok"]), None)
-        if n1 and w and w.get("ok"):
-            r = ratios["wasm_over_native1t"] = w["median_seconds"] / n1["median_seconds"]
-            print(f"Node 1T / native 1T = {r:.2f}x wall (Node runs the single-threaded core)")
-        # Chromium on T threads (the threaded core; T = 1: the single-threaded
-        # one) against native on T threads.
-        for ch, x in zip(chromes, cs):
-            nt = next((y for y in ns if y["threads"] == ch.threads and y["ok"]), None)
-            if not nt or not x.get("ok"):
-                continue
-            t = ch.threads
-            r = ratios[f"chromium{t}t_over_native{t}t"] = x["median_seconds"] / nt["median_seconds"]
+        def against_native(label, runners, results):
+            """(T, wasm / native on T threads, result) of each wasm variant
+            that ran (the threaded core; T = 1: the single-threaded one)."""
+            for runner, x in zip(runners, results):
+                nt = next((y for y in ns if y["threads"] == runner.threads and y["ok"]), None)
+                if nt and x.get("ok"):
+                    t = runner.threads
+                    r = ratios[f"{label}{t}t_over_native{t}t"] = x["median_seconds"] / nt["median_seconds"]
+                    yield t, r, x
+
+        for t, r, x in against_native("node", nodes, ws):
+            if t == 1:
+                ratios["wasm_over_native1t"] = r
+            print(f"Node {t}T / native {t}T = {r:.2f}x wall; Node ran on {x.get('threads', 1)} thread(s)")
+        for t, r, x in against_native("chromium", chromes, cs):
             ok = r <= TARGET_CHROMIUM_RATIO
             print(f"Chromium {t}T / native {t}T = {r:.2f}x wall (target <= {TARGET_CHROMIUM_RATIO}x): "
                   f"{'met' if ok else 'NOT met'}; the page ran on {x.get('threads')} thread(s)")

@@ -1,18 +1,28 @@
 // The package's entry in Node ('vesselmesh'): createVesselmesh() reads the
-// wasm shipped in the package (wasm/dist/vesselmesh_core.wasm) unless given
-// wasmBinary. VesselmeshClient needs a Web Worker: browsers only.
+// wasm shipped in the package (wasm/dist/) unless given wasmBinary, and runs
+// the threaded core with its pool on worker_threads (node-threads.js).
+// VesselmeshClient needs a Web Worker: browsers only.
 import { readFile } from 'node:fs/promises';
 
-import { createVesselmesh as createWithBinary } from './vesselmesh.js';
+import { createThreadedCore, defaultThreads, singleThreadReason } from './node-threads.js';
+import { createVesselmeshIn } from './vesselmesh.js';
 
 export { VesselmeshClient } from './client.js';
 
-/** In Node the core runs on one thread: Emscripten 3.1.6's threaded
- * module cannot start its Workers in an ES module there (the vesselmesh CLI
- * has threads and writes the same mesh).
- * @param {{ wasmBinary?: ArrayBuffer|Uint8Array }} [options] */
+const NODE = {
+  loadWasmBinary: () => readFile(new URL('../dist/vesselmesh_core.wasm', import.meta.url)),
+  singleThreadReason,
+  defaultThreads,
+  createThreadedCore,
+};
+
+/** Loads the WebAssembly module and returns the API, as in the browser:
+ * jobs run on up to `threads` threads (0, the default: the machine's cores,
+ * os.availableParallelism(); at most 8) on the threaded core, whose pool
+ * threads do not keep the process alive; threads: 1, a given wasmBinary or
+ * a threaded core that does not start: the single-threaded core, and
+ * threadsNote says why.
+ * @param {{ wasmBinary?: ArrayBuffer|Uint8Array, threads?: number }} [options] */
 export async function createVesselmesh(options = {}) {
-  const wasmBinary = options.wasmBinary ?? (await readFile(new URL('../dist/vesselmesh_core.wasm', import.meta.url)));
-  const api = await createWithBinary({ ...options, wasmBinary });
-  return { ...api, threadsNote: 'Node: the WebAssembly core runs on one thread here (the CLI has threads)' };
+  return createVesselmeshIn(NODE, options);
 }

@@ -3,7 +3,9 @@
 // of Web Workers sharing the module's memory. It needs SharedArrayBuffer,
 // which browsers give only to cross-origin isolated pages (served with
 // Cross-Origin-Opener-Policy: same-origin and Cross-Origin-Embedder-Policy:
-// require-corp); elsewhere createVesselmesh() uses the single-threaded core.
+// require-corp, by the server or, for the app on a static host, by its
+// service worker: web/src/sw.js); elsewhere createVesselmesh() uses the
+// single-threaded core.
 // The mesh is the same on any number of threads (docs/ARCHITECTURE.md,
 // "Determinism").
 //
@@ -36,7 +38,7 @@ async function fetchOk(url) {
 
 /** Rejects after `ms` unless `promise` settles first: a pool Worker that
  * fails to load leaves Emscripten's module waiting for ever. */
-function within(promise, ms, what) {
+export function within(promise, ms, what) {
   let timer;
   const late = new Promise((_, reject) => {
     timer = setTimeout(() => reject(new Error(`${what} did not start within ${ms / 1000} s`)), ms);

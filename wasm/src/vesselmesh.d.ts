@@ -250,7 +250,7 @@ export interface SolverPreset {
 
 export interface VesselmeshApi {
   version: string;
-  /** The most threads a job runs on (its `threads` option is capped at it): with the threaded core the browser's cores, at most 8; 1 with the single-threaded core. The mesh does not depend on it. */
+  /** The most threads a job runs on (its `threads` option is capped at it): with the threaded core the browser's cores (in Node the machine's), at most 8; 1 with the single-threaded core. The mesh does not depend on it. */
   threads: number;
   /** On one thread, why (e.g. the page is not cross-origin isolated); '' with the threaded core. */
   threadsNote: string;
@@ -278,11 +278,12 @@ export interface VesselmeshApi {
 /**
  * Loads the WebAssembly module. The package finds the wasm itself (Node:
  * read from the package; browser: fetched next to the module); wasmBinary
- * gives the single-threaded core's bytes instead. In a cross-origin
- * isolated page (COOP/COEP headers) the threaded core runs jobs on up to
- * `threads` threads (0, the default: the browser's cores; at most 8), as
- * the job option of that name; elsewhere, in Node, or with threads: 1,
- * the single-threaded core.
+ * gives the single-threaded core's bytes instead. In Node, and in a
+ * cross-origin isolated page (COOP/COEP headers), the threaded core runs
+ * jobs on up to `threads` threads (0, the default: the machine's cores; at
+ * most 8), as the job option of that name (in Node its pool is
+ * worker_threads, which do not keep the process alive); elsewhere, or with
+ * threads: 1, the single-threaded core.
  */
 export function createVesselmesh(options?: {
   wasmBinary?: ArrayBuffer | Uint8Array;

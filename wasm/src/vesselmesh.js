@@ -58,44 +58,59 @@ function answer(raw) {
   return raw.ok ? raw : failure(raw);
 }
 
-/** The single-threaded core, from `wasmBinary` or fetched. */
-async function createSingleThreadedCore(wasmBinary) {
-  return createVesselmeshCore({ wasmBinary: wasmBinary ?? (await loadWasmBinary()) });
+/** Where the cores come from in the browser: the single-threaded core's
+ * wasm fetched, the threaded core on Web Workers (threaded-core.js). The
+ * Node entry (node.js) passes its own, of the same shape. */
+const BROWSER = { loadWasmBinary, singleThreadReason, defaultThreads, createThreadedCore };
+
+/** The single-threaded core, from `wasmBinary` or the host's. */
+async function createSingleThreadedCore(host, wasmBinary) {
+  return createVesselmeshCore({ wasmBinary: wasmBinary ?? (await host.loadWasmBinary()) });
 }
 
 /** The core for createVesselmesh's options, with the number of threads its
  * jobs may use and, on one thread, why. `threads` as the job option: 0 (or
- * none) for all the browser's cores. */
-async function loadCore({ wasmBinary, threads = 0 }) {
+ * none) for all the machine's cores. */
+async function loadCore(host, { wasmBinary, threads = 0 }) {
   if (!(Number.isInteger(threads) && threads >= 0 && threads <= 256)) {
     throw new TypeError(`createVesselmesh: threads must be an integer from 0 (all cores) to 256, not ${threads}`);
   }
   const reason = wasmBinary
     ? 'a wasmBinary was given (the single-threaded core)'
-    : singleThreadReason() || (threads === 1 ? 'threads: 1 was asked' : '');
-  if (reason) return { core: await createSingleThreadedCore(wasmBinary), threads: 1, why: reason };
-  const wanted = Math.min(threads || defaultThreads(), MAX_THREADS);
+    : host.singleThreadReason() || (threads === 1 ? 'threads: 1 was asked' : '');
+  if (reason) return { core: await createSingleThreadedCore(host, wasmBinary), threads: 1, why: reason };
+  const wanted = Math.min(threads || host.defaultThreads(), MAX_THREADS);
   try {
-    return { core: await createThreadedCore(wanted), threads: wanted, why: '' };
+    return { core: await host.createThreadedCore(wanted), threads: wanted, why: '' };
   } catch (error) {
     const why = `the threaded core did not start (${error?.message ?? error})`;
-    return { core: await createSingleThreadedCore(), threads: 1, why };
+    return { core: await createSingleThreadedCore(host), threads: 1, why };
   }
 }
 
 /**
  * Loads the WebAssembly module and returns the API.
  * @param {{ wasmBinary?: ArrayBuffer|Uint8Array, threads?: number }} [options]
- *   In Node pass wasmBinary (fs.readFileSync of
- *   wasm/dist/vesselmesh_core.wasm); in the browser it is fetched next to
- *   this module. threads: the most threads jobs may use (0, the default:
- *   the browser's cores; at most 8); more than 1 loads the threaded core, which
- *   needs a cross-origin isolated page; elsewhere, or when it fails to
- *   start, the single-threaded core is used (see `threads` and
- *   `threadsNote` on the API).
+ *   In the browser the wasm is fetched next to this module (in Node, use
+ *   node.js, the package's Node entry, or pass wasmBinary: fs.readFileSync
+ *   of wasm/dist/vesselmesh_core.wasm, the single-threaded core).
+ *   threads: the most threads jobs may use (0, the default: the browser's
+ *   cores; at most 8); more than 1 loads the threaded core, which needs a
+ *   cross-origin isolated page; elsewhere, or when it fails to start, the
+ *   single-threaded core is used (see `threads` and `threadsNote` on the
+ *   API).
  */
-export async function createVesselmesh({ wasmBinary, threads } = {}) {
-  const loaded = await loadCore({ wasmBinary, threads });
+export async function createVesselmesh(options = {}) {
+  return createVesselmeshIn(BROWSER, options);
+}
+
+/**
+ * createVesselmesh with the cores of `host` ({ loadWasmBinary,
+ * singleThreadReason, defaultThreads, createThreadedCore }, as BROWSER):
+ * node.js passes Node's.
+ */
+export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
+  const loaded = await loadCore(host, { wasmBinary, threads });
   const { core } = loaded;
 
   const withSurface = (raw, extra) => ({ ok: true, ...extra, surface: raw.surface });

@@ -6,6 +6,7 @@
 import assert from 'node:assert/strict';
 import { execFileSync, spawnSync } from 'node:child_process';
 import { existsSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { availableParallelism } from 'node:os';
 import { join } from 'node:path';
 import { after, before, describe, test } from 'node:test';
 
@@ -19,7 +20,7 @@ const sample = api.makePhantom({ kind: 'bifurcation', voxel: 0.08, noise: 0.3 })
 const result = api.mesh(sample.stl, { perCircumference: 10 });
 if (!result.ok) throw new Error(result.error);
 const head = new TextDecoder().decode(result.msh.subarray(0, 20));
-console.log(JSON.stringify({ version: api.version, tets: result.volume.tets.length / 4, head }));
+console.log(JSON.stringify({ version: api.version, threads: api.threads, threadsNote: api.threadsNote, tets: result.volume.tets.length / 4, head }));
 `;
 
 const TYPED_CONSUMER = `import { createVesselmesh, VesselmeshClient, type MeshOptions, type MeshResult } from 'vesselmesh';
@@ -79,7 +80,7 @@ describe('npm package', () => {
 
   test('the tarball holds the API, its types, the wasm and the element, and no sources beyond them', () => {
     const files = execFileSync('tar', ['-tzf', consumer.tarball], { encoding: 'utf8' }).split('\n').filter(Boolean);
-    for (const f of ['wasm/src/index.js', 'wasm/src/node.js', 'wasm/src/threaded-core.js', 'wasm/src/vesselmesh.d.ts', 'wasm/src/element.d.ts', 'wasm/dist/vesselmesh_core.wasm', 'wasm/dist/vesselmesh_core_mt.mjs', 'wasm/dist/vesselmesh_core_mt.wasm', 'wasm/dist/vesselmesh_core_mt.worker.js', 'dist/element/vessel-mesher.js']) {
+    for (const f of ['wasm/src/index.js', 'wasm/src/node.js', 'wasm/src/threaded-core.js', 'wasm/src/node-threads.js', 'wasm/src/node-pthread.js', 'wasm/src/vesselmesh.d.ts', 'wasm/src/element.d.ts', 'wasm/dist/vesselmesh_core.wasm', 'wasm/dist/vesselmesh_core_mt.mjs', 'wasm/dist/vesselmesh_core_mt.wasm', 'wasm/dist/vesselmesh_core_mt.worker.js', 'dist/element/vessel-mesher.js']) {
       assert.ok(files.includes(`package/${f}`), `${f} is in the tarball`);
     }
     assert.ok(files.some((f) => /^package\/dist\/element\/assets\/worker-.*\.js$/.test(f)));
@@ -89,10 +90,12 @@ describe('npm package', () => {
     assert.deepEqual(pkg.dependencies ?? {}, {});
   });
 
-  test('Node: import { createVesselmesh } from "vesselmesh" meshes the sample with no configuration', () => {
+  test('Node: import { createVesselmesh } from "vesselmesh" meshes the sample with no configuration, on all cores', () => {
     writeFileSync(join(consumer.dir, 'mesh.mjs'), NODE_CONSUMER);
-    const out = JSON.parse(execFileSync(process.execPath, ['mesh.mjs'], { cwd: consumer.dir, encoding: 'utf8' }));
+    const out = JSON.parse(execFileSync(process.execPath, ['mesh.mjs'], { cwd: consumer.dir, encoding: 'utf8', timeout: 120_000 }));
     assert.match(out.version, /\d+\.\d+/);
+    const cores = availableParallelism();
+    assert.equal(out.threads, cores < 2 ? 1 : Math.min(cores, 8), out.threadsNote);
     assert.ok(out.tets > 1000, `${out.tets} tetrahedra`);
     assert.equal(out.head, '$MeshFormat\n4.1 0 8\n');
   });
