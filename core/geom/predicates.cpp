@@ -266,22 +266,18 @@ int alternate(int n1, double* e1, int n2, double* e2, int n3, double* e3, int n4
   return n;
 }
 
-double orient2d_exact(const double* a, const double* b, const double* c) {
-  // det[(a, 1); (b, 1); (c, 1)] = m_bc - m_ac + m_ab.
-  double bc[4], ac[4], ab[4], t[8], det[12];
-  const int nbc = minor2(b, c, bc), nac = minor2(a, c, ac), nab = minor2(a, b, ab);
-  negate(nac, ac);
-  const int nt = sum(nbc, bc, nac, ac, t);
-  return estimate(sum(nt, t, nab, ab, det), det);
-}
-
-// det[(p, 1)] of three 2D points, <= 12 terms.
+// det[(p, 1)] of three 2D points, <= 12 terms: m_bc - m_ac + m_ab.
 int orient2d_terms(const double* a, const double* b, const double* c, double* h) {
   double bc[4], ac[4], ab[4], t[8];
   const int nbc = minor2(b, c, bc), nac = minor2(a, c, ac), nab = minor2(a, b, ab);
   negate(nac, ac);
   const int nt = sum(nbc, bc, nac, ac, t);
   return sum(nt, t, nab, ab, h);
+}
+
+double orient2d_exact(const double* a, const double* b, const double* c) {
+  double det[12];
+  return estimate(orient2d_terms(a, b, c, det), det);
 }
 
 // Sum over rows r of (-1)^r lift_r * minor_r, the cofactor expansion of a
