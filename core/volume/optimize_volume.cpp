@@ -811,9 +811,9 @@ class Optimizer {
     return mn;
   }
 
-  // Inserts a vertex near tetrahedron t (its centroid, or off its
-  // constrained faces) when the star of the new vertex over a star-shaped
-  // cavity raises the smallest quality there.
+  // Inserts a vertex near tetrahedron t (its centroid, off its constrained
+  // faces, or off its largest face on either side) when the star of the
+  // new vertex over a star-shaped cavity raises the smallest quality there.
   bool insert_near(int32_t t) {
     const int32_t* tv = m_.tet(t);
     const double* x[4] = {m_.point(tv[0]), m_.point(tv[1]), m_.point(tv[2]), m_.point(tv[3])};
@@ -877,6 +877,26 @@ class Optimizer {
       }
     };
     for (const auto& p : cand) try_point(p);
+    // Points off t on both sides, along the normal of its largest face: a
+    // flat tetrahedron (four nearly coplanar corners, as among the first
+    // layer's points over a planar cap) has no good point in its plane,
+    // and flips among coplanar points leave flat ones.
+    {
+      double n_best[3] = {0, 0, 0}, area2 = 0;
+      for (int k = 0; k < 4; ++k) {
+        const int* f = kFaceOut[k];
+        double u[3], w[3], n[3];
+        sub(x[f[1]], x[f[0]], u), sub(x[f[2]], x[f[0]], w), cross(u, w, n);
+        if (dot(n, n) > area2) area2 = dot(n, n), std::copy(n, n + 3, n_best);
+      }
+      const double len = std::sqrt(area2);
+      if (len > 0)
+        for (double side : {1.0, -1.0})
+          for (double dep : depths)
+            try_point({cen[0] + side * dep * ht * n_best[0] / len,
+                       cen[1] + side * dep * ht * n_best[1] / len,
+                       cen[2] + side * dep * ht * n_best[2] / len});
+    }
     if (best_q <= -1e300) return false;
     for (int it = 0; it < 24; ++it) {
       const double r = 0.25 * ht * (1 - it / 24.0);
