@@ -111,7 +111,8 @@ class Refiner {
         o_(o),
         tag_(o.region_tag),
         g_(field.gradation()),
-        min_h_(field.min_size()) {}
+        min_h_(field.min_size()),
+        n_initial_(kernel.num_vertices()) {}
 
   Status run(RefineStats& st, const ProgressFn& progress);
 
@@ -137,6 +138,7 @@ class Refiner {
   const RefineOptions& o_;
   const int32_t tag_;
   const double g_, min_h_;
+  const size_t n_initial_;           // the kernel's vertices before refinement
   std::vector<int32_t> generation_;  // per vertex: depth in the front
   // Phase 2: per boundary face the apex, its size and a vertex of the face.
   std::vector<double> apex_, apex_h_;
@@ -250,8 +252,11 @@ bool Refiner::front_item(int part, SlabWork& S, int32_t v) {
   std::vector<int32_t>& nbs = S.nbs;
   nbs.clear();
   S.nb_tet.clear();
+  // An inserted vertex's star lies in the region (cavities never cross a
+  // constrained face): only the initial vertices' stars need the test.
+  const bool initial = size_t(v) < n_initial_;
   for (int32_t t : S.star) {
-    if (kernel_.is_ghost(t) || kernel_.tag(t) != tag_) continue;
+    if (initial && (kernel_.is_ghost(t) || kernel_.tag(t) != tag_)) continue;
     for (int k = 0; k < 4; ++k) {
       const int32_t w = kernel_.tet(t)[k];
       if (w == v || S.seen[size_t(w)] == S.stamp) continue;
