@@ -5,6 +5,7 @@
 #include "core/surface/optimize_surface.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <initializer_list>
 #include <numbers>
@@ -88,6 +89,8 @@ class Optimizer {
     vt_.assign(m.num_vertices(), {});
     for (size_t t = 0; t < m.num_triangles(); ++t)
       for (int c = 0; c < 3; ++c) vt_[size_t(m.triangles[3 * t + c])].push_back(int32_t(t));
+    opp_.resize(m.triangles.size());
+    for (int32_t t = 0; t < int32_t(m.num_triangles()); ++t) refresh_triangle(t);
   }
 
   /// Starts the next pass: work is limited to what changed since the
@@ -195,6 +198,46 @@ class Optimizer {
   int32_t* tri(int32_t t) { return &m_.triangles[3 * size_t(t)]; }
   double gamma(int32_t a, int32_t b, int32_t c) const { return triangle_gamma(p(a), p(b), p(c)); }
 
+  /// The other triangle with edge (b, a) of t's edge k = (a, b), or -1:
+  /// across() kept per edge in opp_ (swap_pass tries every edge).
+  int32_t across_edge(int32_t t, int k) const { return opp_[3 * size_t(t) + size_t(k)]; }
+
+  void refresh_triangle(int32_t t) {
+    const int32_t* T = tri(t);
+    for (int k = 0; k < 3; ++k)
+      opp_[3 * size_t(t) + size_t(k)] = T[0] < 0 ? -1 : across(t, T[k], T[(k + 1) % 3]);
+  }
+
+  /// After a change of triangles: `changed` (their new corners, or
+  /// collapsed) had the directed edges `edges` before or after it. An
+  /// edge's cached neighbor can change only when a triangle gains or
+  /// loses its reverse: those of the changed triangles and of the
+  /// triangles holding the reverse of one of `edges` are recomputed.
+  void refresh_after(const std::vector<int32_t>& changed,
+                     const std::vector<std::array<int32_t, 2>>& edges) {
+    if (opp_.size() < m_.triangles.size()) opp_.resize(m_.triangles.size());
+    for (int32_t t : changed) refresh_triangle(t);
+    for (const auto& e : edges) {
+      // Triangles with the directed edge (e[1], e[0]).
+      for (int32_t u : vt_[size_t(e[1])]) {
+        const int32_t* U = tri(u);
+        for (int c = 0; c < 3; ++c)
+          if (U[c] == e[1] && U[(c + 1) % 3] == e[0])
+            opp_[3 * size_t(u) + size_t(c)] = across(u, e[1], e[0]);
+      }
+    }
+  }
+
+  /// Appends the directed edges of each of `tris` (live ones) to edges_.
+  void note_edges(std::initializer_list<int32_t> tris) {
+    for (int32_t t : tris) note_edges_of(t);
+  }
+  void note_edges_of(int32_t t) {
+    const int32_t* T = tri(t);
+    if (T[0] < 0) return;
+    for (int k = 0; k < 3; ++k) edges_.push_back({T[k], T[(k + 1) % 3]});
+  }
+
   /// The other triangle with edge (b, a), or -1.
   int32_t across(int32_t t, int32_t a, int32_t b) const {
     int32_t found = -1;
@@ -243,7 +286,7 @@ class Optimizer {
     int32_t* T = tri(t);
     if (T[0] < 0) return false;  // collapsed
     const int32_t a = T[k], b = T[(k + 1) % 3], c = T[(k + 2) % 3];
-    const int32_t u = across(t, a, b);
+    const int32_t u = across_edge(t, k);
     if (u < 0) return false;
     int32_t* U = tri(u);
     int32_t d = -1;
@@ -274,12 +317,16 @@ class Optimizer {
     if (dot(nt, nu) < cos_turn_ || dot(n1, n2) < cos_turn_) return false;
     for (const Vec3& n : {n1, n2})
       if (dot(n, nt) < cos_turn_ || dot(n, nu) < cos_turn_) return false;
+    edges_.clear();
+    note_edges({t, u});
     T[0] = a, T[1] = d, T[2] = c;
     U[0] = d, U[1] = b, U[2] = c;
     erase(vt_[size_t(a)], u);
     erase(vt_[size_t(b)], t);
     vt_[size_t(c)].push_back(u);
     vt_[size_t(d)].push_back(t);
+    note_edges({t, u});
+    refresh_after({t, u}, edges_);
     q_[size_t(t)] = g1;
     q_[size_t(u)] = g2;
     for (int32_t v : {a, b, c, d}) recent_[size_t(v)] = pass_;
@@ -311,7 +358,7 @@ class Optimizer {
   bool try_split(int32_t t, int k) {
     int32_t* T = tri(t);
     const int32_t a = T[k], b = T[(k + 1) % 3], c = T[(k + 2) % 3];
-    const int32_t u = across(t, a, b);
+    const int32_t u = across_edge(t, k);
     if (u < 0 || on_crease(a, b)) return false;
     int32_t d = -1;
     for (int j = 0; j < 3; ++j)
@@ -338,6 +385,8 @@ class Optimizer {
     recent_.push_back(pass_);
     if (!dead_.empty()) dead_.push_back(0);
     const int32_t t2 = int32_t(m_.num_triangles()), u2 = t2 + 1;
+    edges_.clear();
+    note_edges({t, u});
     T[0] = a, T[1] = n, T[2] = c;
     int32_t* U = tri(u);
     U[0] = b, U[1] = n, U[2] = d;
@@ -349,6 +398,8 @@ class Optimizer {
     vt_[size_t(a)].push_back(u2);
     vt_[size_t(d)].push_back(u2);
     vt_[size_t(n)] = {t, u, t2, u2};
+    note_edges({t, u, t2, u2});
+    refresh_after({t, u, t2, u2}, edges_);
     for (int32_t w : {t, u, t2, u2}) {
       const int32_t* W = tri(w);
       if (size_t(w) >= q_.size()) q_.resize(size_t(w) + 1);
@@ -430,6 +481,8 @@ class Optimizer {
     if (after < std::min(before, kCollapseFloor)) return false;
     // Apply: drop the two triangles on the edge, hand a's others to b.
     std::vector<int32_t> star_a = vt_[size_t(a)];
+    edges_.clear();
+    for (int32_t t : star_a) note_edges_of(t);
     for (int32_t t : star_a) {
       int32_t* T = tri(t);
       const bool on_edge = T[0] == b || T[1] == b || T[2] == b;
@@ -452,6 +505,8 @@ class Optimizer {
       const int32_t* T = tri(t);
       q_[size_t(t)] = gamma(T[0], T[1], T[2]);
     }
+    for (int32_t t : star_a) note_edges_of(t);
+    refresh_after(star_a, edges_);
     mark_star(b);
     return true;
   }
@@ -542,6 +597,8 @@ class Optimizer {
   const TriangleAdjacency& in_adj_;
   double cos_turn_ = 0;
   std::vector<std::vector<int32_t>> vt_;
+  std::vector<int32_t> opp_;                   ///< per triangle edge k: across(t, T[k], T[k + 1])
+  std::vector<std::array<int32_t, 2>> edges_;  ///< refresh_after()'s scratch
   std::vector<Vec3> old_normals_;
   double collapse_ratio_ = 0, split_ratio_ = 0;
   std::vector<uint8_t> dead_;  ///< collapsed vertices (empty until the first)
