@@ -77,11 +77,16 @@ SurfacePoint closest_surface_point(const SurfaceMesh& surface, const TriangleBvh
 
 DistanceReport distances_to_surface(const SurfaceMesh& surface, const std::vector<double>& points,
                                     bool keep_per_point) {
+  if (points.empty()) return distances_to_surface(surface, TriangleBvh{}, points, keep_per_point);
+  return distances_to_surface(surface, build_triangle_bvh(surface), points, keep_per_point);
+}
+
+DistanceReport distances_to_surface(const SurfaceMesh& surface, const TriangleBvh& bvh,
+                                    const std::vector<double>& points, bool keep_per_point) {
   DistanceReport r;
   r.count = points.size() / 3;
   if (keep_per_point) r.per_point.resize(r.count);
   if (r.count == 0) return r;
-  const TriangleBvh bvh = build_triangle_bvh(surface);
   // The queries on the threads, each distance into its slot; the summary in
   // point order, so it does not depend on the thread count.
   std::vector<double> local;

@@ -46,5 +46,8 @@ struct DistanceReport {
 /// +inf.
 DistanceReport distances_to_surface(const SurfaceMesh& surface, const std::vector<double>& points,
                                     bool keep_per_point = false);
+/// The same with `bvh` built on `surface` as it is (build_triangle_bvh).
+DistanceReport distances_to_surface(const SurfaceMesh& surface, const TriangleBvh& bvh,
+                                    const std::vector<double>& points, bool keep_per_point = false);
 
 }  // namespace vm

@@ -90,6 +90,7 @@ struct Pinning {
   WallVertices& wall;
   std::vector<double>& input_gaps;  ///< per input vertex
   RemeshStats& stats;
+  TriangleBvh bvh{};                     ///< of `mesh` when its gaps were last measured
   SurfaceOptimizeOptions relax_options;  ///< the passes after a round
   PinSlack slack{};                      ///< lets pinned vertices slide
   std::vector<uint8_t> given_up{};       ///< per input vertex: not pinned again
@@ -154,7 +155,8 @@ void restore(Pinning& p) {
 /// gap statistics); returns how many are beyond options.fidelity times the
 /// asked h.
 size_t measure_gaps(Pinning& p) {
-  p.input_gaps = distances_to_surface(p.mesh, p.input.points, true).per_point;
+  p.bvh = build_triangle_bvh(p.mesh);
+  p.input_gaps = distances_to_surface(p.mesh, p.bvh, p.input.points, true).per_point;
   return count_gaps(p.input_gaps, p.asked, p.options.fidelity, p.stats);
 }
 
@@ -274,7 +276,7 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
     if (round == 0) set_floors(p);
     const std::vector<uint8_t> before = wall.fixed;
     const PinStats pinned =
-        pin_to_input(mesh, wall, input, asked, input_gaps, options.fidelity, p.given_up);
+        pin_to_input(mesh, wall, input, asked, input_gaps, options.fidelity, p.given_up, &p.bvh);
     if (pinned.pinned == 0) {
       // Nothing left to try at this quality: on to the last rounds.
       if (round < options.fidelity_rounds) {

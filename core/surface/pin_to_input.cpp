@@ -191,7 +191,7 @@ std::array<double, 3> barycentric(const double* x, const double* a, const double
 
 PinStats pin_to_input(SurfaceMesh& output, WallVertices& wall, const SurfaceMesh& input,
                       const std::vector<double>& h, const std::vector<double>& gaps, double limit,
-                      const std::vector<uint8_t>& skip) {
+                      const std::vector<uint8_t>& skip, const TriangleBvh* bvh) {
   PinStats st;
   // Phase 1: the far input vertices.
   std::vector<std::pair<double, int32_t>> far;
@@ -208,11 +208,12 @@ PinStats pin_to_input(SurfaceMesh& output, WallVertices& wall, const SurfaceMesh
   for (size_t t = 0; t < input.num_triangles(); ++t)
     for (int c = 0; c < 3; ++c) input_tri[size_t(input.triangles[3 * t + size_t(c)])] = int32_t(t);
   // Built before any change: triangles split later are touched and skipped.
-  const TriangleBvh bvh = build_triangle_bvh(output);
+  const TriangleBvh built = bvh ? TriangleBvh{} : build_triangle_bvh(output);
+  const TriangleBvh& tree = bvh ? *bvh : built;
   Pinner pin(output, wall.home, wall.fixed, wall.pin_of);
   for (const auto& [neg_rel, v] : far) {
     const double* x = &input.points[3 * size_t(v)];
-    const int32_t t = closest_surface_point(output, bvh, x).triangle;
+    const int32_t t = closest_surface_point(output, tree, x).triangle;
     if (t < 0 || pin.touched(t)) continue;
     const std::array<int32_t, 3> T{pin.tri(t)[0], pin.tri(t)[1], pin.tri(t)[2]};
     // The nearest corner moves if it is close.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/mesh/surface_mesh.h"
+#include "core/mesh/triangle_bvh.h"
 #include "core/surface/optimize_surface.h"
 
 namespace vm {
@@ -34,10 +35,11 @@ struct PinStats {
 /// Triangles changed once are not changed again in the same call.
 /// `output` is manifold and oriented like `input`; wall.home, fixed and
 /// pin_of: one per output vertex; h, gaps: one per input vertex, h > 0
-/// (gaps: distances_to_surface(output, input.points)).
+/// (gaps: distances_to_surface(output, input.points)). bvh: a tree of
+/// `output` as it is (build_triangle_bvh), or null to build one.
 PinStats pin_to_input(SurfaceMesh& output, WallVertices& wall, const SurfaceMesh& input,
                       const std::vector<double>& h, const std::vector<double>& gaps, double limit,
-                      const std::vector<uint8_t>& skip);
+                      const std::vector<uint8_t>& skip, const TriangleBvh* bvh = nullptr);
 
 /// Frees (wall.fixed = kFree, wall.pin_of = -1) every pinned vertex of a
 /// triangle of `output` with gamma_k < min_gamma or with a folded corner
