@@ -5,6 +5,10 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
+#include <vector>
+
+#include "core/util/parallel.h"
 
 namespace vm {
 
@@ -37,31 +41,53 @@ TriangleBvh build_triangle_bvh(const SurfaceMesh& mesh, int leaf_size) {
     items[t].id = int32_t(t);
   }
   // Phase 2: the tree, top-down: a node's triangles are split at the median
-  // centre along the longest side of their centres' box.
-  bvh.nodes.reserve(2 * (nt / size_t(leaf_size) + 1));
-  bvh.nodes.emplace_back();
+  // centre along the longest side of their centres' box. The halves are the
+  // same sets whatever selection algorithm runs (a total order), and the
+  // numbering is the one of a depth-first build taking the right child
+  // first and numbering a node's two children when it is split: a subtree
+  // of c triangles splits internal(c) nodes, so the children of the
+  // nodes below a right child start right after its parent's children,
+  // and those below the left one 2 internal(right count) later. The top
+  // splits run here, then the subtrees below them on the threads.
   struct Task {
-    int32_t node, first, count;
+    int32_t node, first, count, base;  // base: where the node's children go
   };
-  std::vector<Task> stack = {{0, 0, int32_t(nt)}};
-  while (!stack.empty()) {
-    const Task task = stack.back();
-    stack.pop_back();
-    if (task.count <= leaf_size) {
+  auto internal = [leaf_size](int32_t c) {
+    // Internal nodes of a subtree of c triangles, depth by depth: the sizes
+    // at one depth differ by at most one, so each depth has at most two
+    // (size, multiplicity) pairs.
+    int32_t n = 0;
+    std::vector<std::pair<int32_t, int32_t>> level = {{c, 1}}, next;
+    while (!level.empty()) {
+      next.clear();
+      auto add = [&next](int32_t x, int32_t m) {
+        for (auto& [y, k] : next)
+          if (y == x) return void(k += m);
+        next.push_back({x, m});
+      };
+      for (const auto& [x, m] : level)
+        if (x > leaf_size) n += m, add(x / 2, m), add(x - x / 2, m);
+      level.swap(next);
+    }
+    return n;
+  };
+  // Splits t (or makes it a leaf); returns its children's tasks (0 or 2).
+  auto split = [&](const Task& t, Task* children) {
+    if (t.count <= leaf_size) {
       // Within a leaf, by id (nth_element leaves each side in no set order).
-      std::sort(items.begin() + task.first, items.begin() + task.first + task.count,
+      std::sort(items.begin() + t.first, items.begin() + t.first + t.count,
                 [](const Item& a, const Item& b) { return a.id < b.id; });
-      bvh.nodes[size_t(task.node)].first = task.first;
-      bvh.nodes[size_t(task.node)].count = task.count;
-      continue;
+      bvh.nodes[size_t(t.node)].first = t.first;
+      bvh.nodes[size_t(t.node)].count = t.count;
+      return 0;
     }
     double clo[3], chi[3];
     for (int d = 0; d < 3; ++d) {
       clo[d] = std::numeric_limits<double>::infinity();
       chi[d] = -std::numeric_limits<double>::infinity();
     }
-    const auto begin = items.begin() + task.first;
-    for (auto it = begin; it != begin + task.count; ++it)
+    const auto begin = items.begin() + t.first;
+    for (auto it = begin; it != begin + t.count; ++it)
       for (int d = 0; d < 3; ++d) {
         clo[d] = std::min(clo[d], it->c[d]);
         chi[d] = std::max(chi[d], it->c[d]);
@@ -69,21 +95,44 @@ TriangleBvh build_triangle_bvh(const SurfaceMesh& mesh, int leaf_size) {
     int axis = 0;
     for (int d = 1; d < 3; ++d)
       if (chi[d] - clo[d] > chi[axis] - clo[axis]) axis = d;
-    const int32_t half = task.count / 2;
+    const int32_t half = t.count / 2;
     // A total order (ties by id): the same halves from every standard
     // library, so queries that meet equal distances pick the same triangle
     // natively and in WebAssembly.
-    std::nth_element(begin, begin + half, begin + task.count, [axis](const Item& a, const Item& b) {
+    std::nth_element(begin, begin + half, begin + t.count, [axis](const Item& a, const Item& b) {
       return a.c[axis] != b.c[axis] ? a.c[axis] < b.c[axis] : a.id < b.id;
     });
-    const int32_t left = int32_t(bvh.nodes.size());
-    bvh.nodes[size_t(task.node)].first = left;
-    bvh.nodes[size_t(task.node)].count = 0;
-    bvh.nodes.emplace_back();
-    bvh.nodes.emplace_back();
-    stack.push_back({left, task.first, half});
-    stack.push_back({left + 1, task.first + half, task.count - half});
+    bvh.nodes[size_t(t.node)].first = t.base;
+    bvh.nodes[size_t(t.node)].count = 0;
+    children[0] = {t.base + 1, t.first + half, t.count - half, t.base + 2};
+    children[1] = {t.base, t.first, half, t.base + 2 + 2 * internal(t.count - half)};
+    return 2;
+  };
+  auto build_below = [&](const Task& root) {
+    std::vector<Task> stack = {root};
+    Task children[2];
+    while (!stack.empty()) {
+      const Task t = stack.back();
+      stack.pop_back();
+      const int n = split(t, children);
+      for (int i = n; i-- > 0;) stack.push_back(children[i]);  // the right child first
+    }
+  };
+  bvh.nodes.resize(size_t(1 + 2 * internal(int32_t(nt))));
+  std::vector<Task> tasks = {{0, 0, int32_t(nt), 1}};
+  const size_t wanted = 4 * size_t(thread_count());
+  for (std::vector<Task> next; !tasks.empty() && tasks.size() < wanted && nt > 4096;) {
+    next.clear();
+    Task children[2];
+    for (const Task& t : tasks) {
+      const int n = split(t, children);
+      next.insert(next.end(), children, children + n);
+    }
+    tasks.swap(next);
   }
+  parallel_for(tasks.size(), 1, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) build_below(tasks[i]);
+  });
   bvh.order.resize(nt);
   for (size_t i = 0; i < nt; ++i) bvh.order[i] = items[i].id;
   // Phase 3: boxes, bottom-up (children come after their parent): a leaf's
