@@ -26,6 +26,7 @@
 
 #include "core/geom/predicates.h"
 #include "core/util/portable_math.h"
+#include "core/util/radix_sort.h"
 #include "core/volume/tet_topology.h"
 
 namespace vm {
@@ -100,8 +101,6 @@ Status validate(const std::vector<double>& points, const std::vector<int32_t>& t
   if (nt < 4) return Status::Error("surface: fewer than 4 triangles cannot be closed");
   for (double x : points)
     if (!std::isfinite(x)) return Status::Error("points: non-finite coordinate");
-  std::unordered_map<uint64_t, int> directed;
-  directed.reserve(3 * nt);
   // Six times the enclosed volume, summed about the first point rather than
   // the origin: about the origin the terms of a model far from it (1e5 away)
   // are ~1e15 times its own and their rounding drowns the volume.
@@ -125,19 +124,34 @@ Status validate(const std::vector<double>& points, const std::vector<int32_t>& t
     const double r[3] = {c[0] - o[0], c[1] - o[1], c[2] - o[2]};
     volume6 += p[0] * (q[1] * r[2] - q[2] * r[1]) - p[1] * (q[0] * r[2] - q[2] * r[0]) +
                p[2] * (q[0] * r[1] - q[1] * r[0]);
-    for (int k = 0; k < 3; ++k) {
-      const uint64_t d = (uint64_t(uint32_t(v[k])) << 32) | uint32_t(v[(k + 1) % 3]);
-      if (++directed[d] > 1)
-        return Status::Error("surface: edge (" + std::to_string(v[k]) + ", " +
-                             std::to_string(v[(k + 1) % 3]) +
+  }
+  // Closed and manifold: each directed edge (a, b) once, and (b, a) too,
+  // i.e. the sorted keys a << 32 | b have no repeat and equal the sorted
+  // keys b << 32 | a. Else the first such edge in triangle order is named.
+  auto key = [](int32_t a, int32_t b) { return (uint64_t(uint32_t(a)) << 32) | uint32_t(b); };
+  std::vector<uint64_t> directed(3 * nt), reversed(3 * nt);
+  for (size_t i = 0; i < 3 * nt; ++i) {
+    const int32_t a = triangles[i], b = triangles[i - i % 3 + (i + 1) % 3];
+    directed[i] = key(a, b);
+    reversed[i] = key(b, a);
+  }
+  radix_sort(directed);
+  radix_sort(reversed);
+  if (directed != reversed ||
+      std::adjacent_find(directed.begin(), directed.end()) != directed.end()) {
+    std::unordered_map<uint64_t, int> seen;
+    for (size_t i = 0; i < 3 * nt; ++i) {
+      const int32_t a = triangles[i], b = triangles[i - i % 3 + (i + 1) % 3];
+      if (++seen[key(a, b)] > 1)
+        return Status::Error("surface: edge (" + std::to_string(a) + ", " + std::to_string(b) +
                              ") is non-manifold or inconsistently oriented");
     }
-  }
-  for (const auto& [d, count] : directed) {
-    const uint64_t rev = (d << 32) | (d >> 32);
-    if (!directed.count(rev))
-      return Status::Error("surface: not closed (edge " + std::to_string(d >> 32) + ", " +
-                           std::to_string(uint32_t(d)) + " has one triangle)");
+    for (size_t i = 0; i < 3 * nt; ++i) {
+      const int32_t a = triangles[i], b = triangles[i - i % 3 + (i + 1) % 3];
+      if (!seen.count(key(b, a)))
+        return Status::Error("surface: not closed (edge " + std::to_string(a) + ", " +
+                             std::to_string(b) + " has one triangle)");
+    }
   }
   if (!(volume6 > 0))
     return Status::Error(
