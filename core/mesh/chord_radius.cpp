@@ -10,6 +10,7 @@
 
 #include "core/geom/vec3.h"
 #include "core/mesh/triangle_bvh.h"
+#include "core/util/parallel.h"
 #include "core/util/portable_math.h"
 
 namespace vm {
@@ -53,45 +54,49 @@ std::vector<double> half_chords(const SurfaceMesh& wall, const std::vector<int32
   const double s_min = 1e-9 * diag;
   const TriangleBvh bvh = build_triangle_bvh(wall, 4);
   std::vector<double> radius(vertices.size(), -1.0);
-  std::vector<int32_t> stack;
-  for (size_t i = 0; i < vertices.size() && !bvh.empty(); ++i) {
-    const int32_t v = vertices[i];
-    const Vec3 o = at(wall.points, v);
-    const Vec3 d = normalized(at(normal, v));
-    if (!(norm(d) > 0.5)) continue;
-    const double inv[3] = {1 / d[0], 1 / d[1], 1 / d[2]};
-    double best = std::numeric_limits<double>::infinity();
-    stack.assign(1, 0);
-    while (!stack.empty()) {
-      const TriangleBvh::Node& n = bvh.nodes[size_t(stack.back())];
-      stack.pop_back();
-      // Slab test of the box against the ray segment [0, best].
-      double lo = 0, hi = best;
-      for (int k = 0; k < 3 && lo <= hi; ++k) {
-        double s0 = (n.lo[k] - o[k]) * inv[k], s1 = (n.hi[k] - o[k]) * inv[k];
-        if (std::isnan(s0) || std::isnan(s1)) {  // d[k] == 0 and o on a slab plane
-          if (o[k] < n.lo[k] || o[k] > n.hi[k]) hi = -1;
+  if (bvh.empty()) return radius;
+  // Each vertex's ray on the threads, into its slot.
+  parallel_for(vertices.size(), 1024, [&](size_t first, size_t last) {
+    std::vector<int32_t> stack;
+    for (size_t i = first; i < last; ++i) {
+      const int32_t v = vertices[i];
+      const Vec3 o = at(wall.points, v);
+      const Vec3 d = normalized(at(normal, v));
+      if (!(norm(d) > 0.5)) continue;
+      const double inv[3] = {1 / d[0], 1 / d[1], 1 / d[2]};
+      double best = std::numeric_limits<double>::infinity();
+      stack.assign(1, 0);
+      while (!stack.empty()) {
+        const TriangleBvh::Node& n = bvh.nodes[size_t(stack.back())];
+        stack.pop_back();
+        // Slab test of the box against the ray segment [0, best].
+        double lo = 0, hi = best;
+        for (int k = 0; k < 3 && lo <= hi; ++k) {
+          double s0 = (n.lo[k] - o[k]) * inv[k], s1 = (n.hi[k] - o[k]) * inv[k];
+          if (std::isnan(s0) || std::isnan(s1)) {  // d[k] == 0 and o on a slab plane
+            if (o[k] < n.lo[k] || o[k] > n.hi[k]) hi = -1;
+            continue;
+          }
+          if (s0 > s1) std::swap(s0, s1);
+          lo = std::max(lo, s0);
+          hi = std::min(hi, s1);
+        }
+        if (lo > hi) continue;
+        if (!TriangleBvh::is_leaf(n)) {
+          stack.push_back(n.first);
+          stack.push_back(n.first + 1);
           continue;
         }
-        if (s0 > s1) std::swap(s0, s1);
-        lo = std::max(lo, s0);
-        hi = std::min(hi, s1);
+        for (int32_t j = n.first; j < n.first + n.count; ++j) {
+          const int32_t t = bvh.order[size_t(j)];
+          const int32_t* f = &wall.triangles[3 * size_t(t)];
+          if (f[0] == v || f[1] == v || f[2] == v) continue;
+          best = std::min(best, ray_triangle(wall, t, o, d, s_min));
+        }
       }
-      if (lo > hi) continue;
-      if (!TriangleBvh::is_leaf(n)) {
-        stack.push_back(n.first);
-        stack.push_back(n.first + 1);
-        continue;
-      }
-      for (int32_t j = n.first; j < n.first + n.count; ++j) {
-        const int32_t t = bvh.order[size_t(j)];
-        const int32_t* f = &wall.triangles[3 * size_t(t)];
-        if (f[0] == v || f[1] == v || f[2] == v) continue;
-        best = std::min(best, ray_triangle(wall, t, o, d, s_min));
-      }
+      if (std::isfinite(best)) radius[i] = 0.5 * best;
     }
-    if (std::isfinite(best)) radius[i] = 0.5 * best;
-  }
+  });
   return radius;
 }
 
