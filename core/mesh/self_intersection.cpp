@@ -16,11 +16,11 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <unordered_set>
 
 #include "core/geom/predicates.h"
 #include "core/geom/vec3.h"
 #include "core/mesh/triangle_bvh.h"
+#include "core/util/parallel.h"
 
 namespace vm {
 namespace {
@@ -282,18 +282,18 @@ bool triangles_intersect(const SurfaceMesh& mesh, int32_t t1, int32_t t2) {
 namespace {
 
 // The triangles of a mesh prepared for pair tests (plane, box), and the
-// test of one pair, counted into a report.
+// test of one pair, counted into a report (one per chunk of work on the
+// threads; merged in order by add()).
 class PairCounter {
  public:
-  PairCounter(const SurfaceMesh& mesh, SelfIntersectionReport& report, size_t max_examples)
-      : report_(report), max_examples_(max_examples) {
+  PairCounter(const SurfaceMesh& mesh, size_t max_examples) : max_examples_(max_examples) {
     const PairTester tester(mesh);
     const size_t nt = mesh.num_triangles();
     tris_.resize(nt);
     box_.resize(6 * nt);
     for (size_t t = 0; t < nt; ++t) {
       tris_[t] = tester.tri(int32_t(t));
-      if (tris_[t].drop < 0) ++report.degenerate_triangles;
+      if (tris_[t].drop < 0) ++degenerate_;
       for (int d = 0; d < 3; ++d) {
         box_[6 * t + size_t(d)] = std::min({tris_[t].p[0][d], tris_[t].p[1][d], tris_[t].p[2][d]});
         box_[6 * t + 3 + size_t(d)] =
@@ -303,34 +303,56 @@ class PairCounter {
   }
   const double* lo(int32_t t) const { return &box_[6 * size_t(t)]; }
   const double* hi(int32_t t) const { return &box_[6 * size_t(t) + 3]; }
-  void test(int32_t s, int32_t t) {
+  void test(int32_t s, int32_t t, SelfIntersectionReport& report) const {
     const Tri &A = tris_[size_t(s)], &B = tris_[size_t(t)];
     if (A.drop < 0 || B.drop < 0) return;
     if (!boxes_overlap(lo(s), hi(s), lo(t), hi(t))) return;
-    ++report_.tested_pairs;
+    ++report.tested_pairs;
     if (!PairTester::intersect(A, B)) return;
-    ++report_.pairs;
-    if (report_.examples.size() < max_examples_)
-      report_.examples.push_back({std::min(s, t), std::max(s, t)});
+    ++report.pairs;
+    if (report.examples.size() < max_examples_)
+      report.examples.push_back({std::min(s, t), std::max(s, t)});
+  }
+  /// The whole report from the parts' (in the order the work had
+  /// sequentially: the first examples are the sequential search's).
+  SelfIntersectionReport merge(const std::vector<SelfIntersectionReport>& parts) const {
+    SelfIntersectionReport report;
+    report.degenerate_triangles = degenerate_;
+    for (const SelfIntersectionReport& p : parts) {
+      report.pairs += p.pairs;
+      report.tested_pairs += p.tested_pairs;
+      for (const auto& e : p.examples)
+        if (report.examples.size() < max_examples_) report.examples.push_back(e);
+    }
+    return report;
   }
 
  private:
-  SelfIntersectionReport& report_;
   size_t max_examples_;
+  size_t degenerate_ = 0;
   std::vector<Tri> tris_;
   std::vector<double> box_;  // 6 per triangle: lo, hi
 };
 
+// Jobs of the self-traversal per thread at least (chunks of work that do
+// not depend on the thread count).
+constexpr size_t kPairJobs = 256;
+
 }  // namespace
 
 SelfIntersectionReport find_self_intersections(const SurfaceMesh& mesh, size_t max_examples) {
-  SelfIntersectionReport report;
-  if (mesh.num_triangles() < 2) return report;
-  PairCounter pairs(mesh, report, max_examples);
+  if (mesh.num_triangles() < 2) return {};
+  const PairCounter pairs(mesh, max_examples);
   const TriangleBvh bvh = build_triangle_bvh(mesh, 8);
-  for_each_leaf_pair(
-      bvh, [&](int32_t i, int32_t j) { pairs.test(bvh.order[size_t(i)], bvh.order[size_t(j)]); });
-  return report;
+  const std::vector<LeafPairJob> jobs = leaf_pair_jobs(bvh, kPairJobs);
+  std::vector<SelfIntersectionReport> parts(jobs.size());
+  parallel_for(jobs.size(), 1, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k)
+      for_each_leaf_pair(bvh, jobs[k], [&](int32_t i, int32_t j) {
+        pairs.test(bvh.order[size_t(i)], bvh.order[size_t(j)], parts[k]);
+      });
+  });
+  return pairs.merge(parts);
 }
 
 std::vector<uint8_t> changed_triangles(const SurfaceMesh& before, const SurfaceMesh& now) {
@@ -346,29 +368,46 @@ std::vector<uint8_t> changed_triangles(const SurfaceMesh& before, const SurfaceM
     for (int k = 0; k < 3; ++k) std::copy(c[size_t(k)], c[size_t(k)] + 3, &out[3 * size_t(k)]);
     return out;
   };
-  struct Hash {
-    size_t operator()(const Key& k) const {
-      uint64_t h = 1469598103934665603ull;
-      for (double x : k) {
-        uint64_t bits;
-        std::memcpy(&bits, &x, sizeof bits);  // (no std::bit_cast in Emscripten's libc++)
-        h = (h ^ bits) * 1099511628211ull;
-      }
-      return size_t(h);
+  auto hash = [](const Key& k) {
+    uint64_t h = 1469598103934665603ull;
+    for (double x : k) {
+      uint64_t bits;
+      std::memcpy(&bits, &x, sizeof bits);  // (no std::bit_cast in Emscripten's libc++)
+      h = (h ^ bits) * 1099511628211ull;
     }
+    return h ^ (h >> 29);
   };
-  std::unordered_set<Key, Hash> old;
-  old.reserve(before.num_triangles());
-  for (size_t t = 0; t < before.num_triangles(); ++t) old.insert(key(before, t));
+  // An open-addressing set of the old triangles' keys (slot: triangle + 1).
+  const size_t nb = before.num_triangles();
+  size_t size = 16;
+  while (size < 2 * nb) size *= 2;
+  const uint64_t mask = size - 1;
+  std::vector<Key> old_key(nb);
+  std::vector<int32_t> slot(size, 0);
+  parallel_for(nb, 4096, [&](size_t b, size_t e) {
+    for (size_t t = b; t < e; ++t) old_key[t] = key(before, t);
+  });
+  for (size_t t = 0; t < nb; ++t) {
+    uint64_t h = hash(old_key[t]) & mask;
+    while (slot[h] != 0) h = (h + 1) & mask;
+    slot[h] = int32_t(t + 1);
+  }
   std::vector<uint8_t> changed(now.num_triangles());
-  for (size_t t = 0; t < now.num_triangles(); ++t) changed[t] = !old.contains(key(now, t));
+  parallel_for(changed.size(), 4096, [&](size_t b, size_t e) {
+    for (size_t t = b; t < e; ++t) {
+      const Key k = key(now, t);
+      bool found = false;
+      for (uint64_t h = hash(k) & mask; slot[h] != 0 && !found; h = (h + 1) & mask)
+        found = old_key[size_t(slot[h] - 1)] == k;
+      changed[t] = !found;
+    }
+  });
   return changed;
 }
 
 SelfIntersectionReport find_self_intersections_of(const SurfaceMesh& mesh,
                                                   const std::vector<uint8_t>& flagged,
                                                   size_t max_examples) {
-  SelfIntersectionReport report;
   const size_t nt = mesh.num_triangles();
   SurfaceMesh part;  // the flagged triangles (ids: position among them)
   part.points = mesh.points;
@@ -379,29 +418,34 @@ SelfIntersectionReport find_self_intersections_of(const SurfaceMesh& mesh,
       part.triangles.insert(part.triangles.end(), &mesh.triangles[3 * t],
                             &mesh.triangles[3 * t] + 3);
     }
-  if (id.empty() || nt < 2) return report;
-  PairCounter pairs(mesh, report, max_examples);
+  if (id.empty() || nt < 2) return {};
+  const PairCounter pairs(mesh, max_examples);
   const TriangleBvh bvh = build_triangle_bvh(part, 8);
   // One query per triangle; a pair of two flagged ones from the smaller.
-  std::vector<int32_t> nodes;
-  for (int32_t t = 0; t < int32_t(nt); ++t) {
-    nodes.assign(1, 0);
-    while (!nodes.empty()) {
-      const TriangleBvh::Node& n = bvh.nodes[size_t(nodes.back())];
-      nodes.pop_back();
-      if (!boxes_overlap(n.lo, n.hi, pairs.lo(t), pairs.hi(t))) continue;
-      if (!TriangleBvh::is_leaf(n)) {
-        nodes.push_back(n.first);
-        nodes.push_back(n.first + 1);
-        continue;
-      }
-      for (int32_t i = n.first; i < n.first + n.count; ++i) {
-        const int32_t u = id[size_t(bvh.order[size_t(i)])];
-        if (u != t && (!flagged[size_t(t)] || t < u)) pairs.test(t, u);
+  constexpr size_t kGrain = 2048;
+  std::vector<SelfIntersectionReport> parts((nt + kGrain - 1) / kGrain);
+  parallel_for(nt, kGrain, [&](size_t begin, size_t end) {
+    SelfIntersectionReport& report = parts[begin / kGrain];
+    std::vector<int32_t> nodes;
+    for (int32_t t = int32_t(begin); t < int32_t(end); ++t) {
+      nodes.assign(1, 0);
+      while (!nodes.empty()) {
+        const TriangleBvh::Node& n = bvh.nodes[size_t(nodes.back())];
+        nodes.pop_back();
+        if (!boxes_overlap(n.lo, n.hi, pairs.lo(t), pairs.hi(t))) continue;
+        if (!TriangleBvh::is_leaf(n)) {
+          nodes.push_back(n.first);
+          nodes.push_back(n.first + 1);
+          continue;
+        }
+        for (int32_t i = n.first; i < n.first + n.count; ++i) {
+          const int32_t u = id[size_t(bvh.order[size_t(i)])];
+          if (u != t && (!flagged[size_t(t)] || t < u)) pairs.test(t, u, report);
+        }
       }
     }
-  }
-  return report;
+  });
+  return pairs.merge(parts);
 }
 
 }  // namespace vm

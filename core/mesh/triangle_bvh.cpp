@@ -163,4 +163,50 @@ TriangleBvh build_triangle_bvh(const SurfaceMesh& mesh, int leaf_size) {
   return bvh;
 }
 
+bool split_leaf_pair_job(const TriangleBvh& bvh, LeafPairJob job, std::vector<LeafPairJob>& out) {
+  const TriangleBvh::Node& A = bvh.nodes[size_t(job.a)];
+  const TriangleBvh::Node& B = bvh.nodes[size_t(job.b)];
+  const bool la = TriangleBvh::is_leaf(A), lb = TriangleBvh::is_leaf(B);
+  if (job.a == job.b) {
+    if (la) return false;
+    out.push_back({A.first, A.first + 1});
+    out.push_back({A.first + 1, A.first + 1});
+    out.push_back({A.first, A.first});
+    return true;
+  }
+  if (!boxes_overlap(A.lo, A.hi, B.lo, B.hi)) return true;
+  if (la && lb) return false;
+  auto extent = [](const TriangleBvh::Node& n) {
+    return std::max({n.hi[0] - n.lo[0], n.hi[1] - n.lo[1], n.hi[2] - n.lo[2]});
+  };
+  if (lb || (!la && extent(A) >= extent(B))) {
+    out.push_back({A.first + 1, job.b});
+    out.push_back({A.first, job.b});
+  } else {
+    out.push_back({job.a, B.first + 1});
+    out.push_back({job.a, B.first});
+  }
+  return true;
+}
+
+std::vector<LeafPairJob> leaf_pair_jobs(const TriangleBvh& bvh, size_t min_jobs) {
+  std::vector<LeafPairJob> jobs, next;
+  if (bvh.empty()) return jobs;
+  jobs.push_back({});
+  // A job's calls are one block of the traversal's, in the order of its
+  // split: replacing every job by its split keeps the order.
+  for (bool split = true; split && jobs.size() < min_jobs;) {
+    split = false;
+    next.clear();
+    for (const LeafPairJob& job : jobs) {
+      if (split_leaf_pair_job(bvh, job, next))
+        split = true;
+      else
+        next.push_back(job);
+    }
+    jobs.swap(next);
+  }
+  return jobs;
+}
+
 }  // namespace vm

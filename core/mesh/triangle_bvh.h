@@ -45,53 +45,60 @@ inline bool boxes_overlap(const double* alo, const double* ahi, const double* bl
          alo[2] <= bhi[2] && blo[2] <= ahi[2];
 }
 
+/// A pair of nodes of a self-traversal (below): a == b pairs a node with
+/// itself, else two disjoint subtrees.
+struct LeafPairJob {
+  int32_t a = 0, b = 0;
+};
+
+/// Expands `job` one level: the jobs it splits into, appended to `out` in
+/// the order the traversal visits them. Returns false (nothing appended)
+/// for a job that pairs leaves (f's calls themselves); a job whose boxes do
+/// not overlap splits into nothing.
+bool split_leaf_pair_job(const TriangleBvh& bvh, LeafPairJob job, std::vector<LeafPairJob>& out);
+
+/// Jobs whose traversals, run one after the other in the order given,
+/// make exactly the calls of for_each_leaf_pair(bvh, f) in its order: the
+/// root's job split level by level until there are at least `min_jobs` (or
+/// nothing left to split). For running the traversal on the threads, job
+/// by job, and merging the results in job order. Empty for an empty tree.
+std::vector<LeafPairJob> leaf_pair_jobs(const TriangleBvh& bvh, size_t min_jobs);
+
 /// Calls f(i, j) once for every unordered pair of positions i != j of
-/// bvh.order whose triangles lie in leaves with overlapping boxes (the
-/// candidates of a self-intersection test; the caller maps positions to
-/// triangles through bvh.order and tests the triangles' own boxes). A
-/// self-traversal: (n, n) pairs a node with itself, (a, b) two disjoint
-/// subtrees, descending the larger box (by its longest side).
+/// bvh.order whose triangles lie in leaves with overlapping boxes, below
+/// `job` (the candidates of a self-intersection test; the caller maps
+/// positions to triangles through bvh.order and tests the triangles' own
+/// boxes). A self-traversal: (n, n) pairs a node with itself, (a, b) two
+/// disjoint subtrees, descending the larger box (by its longest side).
 template <class F>
-void for_each_leaf_pair(const TriangleBvh& bvh, F&& f) {
+void for_each_leaf_pair(const TriangleBvh& bvh, LeafPairJob job, F&& f) {
   if (bvh.empty()) return;
-  struct Job {
-    int32_t a, b;
-  };
-  std::vector<Job> stack = {{0, 0}};
-  auto extent = [](const TriangleBvh::Node& n) {
-    return std::max({n.hi[0] - n.lo[0], n.hi[1] - n.lo[1], n.hi[2] - n.lo[2]});
-  };
+  std::vector<LeafPairJob> stack = {job}, children;
   while (!stack.empty()) {
-    const Job job = stack.back();
+    job = stack.back();
     stack.pop_back();
+    children.clear();
+    if (split_leaf_pair_job(bvh, job, children)) {
+      // Visited in order: pushed last to first.
+      stack.insert(stack.end(), children.rbegin(), children.rend());
+      continue;
+    }
     const TriangleBvh::Node& A = bvh.nodes[size_t(job.a)];
     const TriangleBvh::Node& B = bvh.nodes[size_t(job.b)];
     if (job.a == job.b) {
-      if (TriangleBvh::is_leaf(A)) {
-        for (int32_t i = A.first; i < A.first + A.count; ++i)
-          for (int32_t j = i + 1; j < A.first + A.count; ++j) f(i, j);
-      } else {
-        stack.push_back({A.first, A.first});
-        stack.push_back({A.first + 1, A.first + 1});
-        stack.push_back({A.first, A.first + 1});
-      }
-      continue;
-    }
-    if (!boxes_overlap(A.lo, A.hi, B.lo, B.hi)) continue;
-    const bool la = TriangleBvh::is_leaf(A), lb = TriangleBvh::is_leaf(B);
-    if (la && lb) {
+      for (int32_t i = A.first; i < A.first + A.count; ++i)
+        for (int32_t j = i + 1; j < A.first + A.count; ++j) f(i, j);
+    } else {
       for (int32_t i = A.first; i < A.first + A.count; ++i)
         for (int32_t j = B.first; j < B.first + B.count; ++j) f(i, j);
-      continue;
-    }
-    if (lb || (!la && extent(A) >= extent(B))) {
-      stack.push_back({A.first, job.b});
-      stack.push_back({A.first + 1, job.b});
-    } else {
-      stack.push_back({job.a, B.first});
-      stack.push_back({job.a, B.first + 1});
     }
   }
+}
+
+/// for_each_leaf_pair() over the whole tree.
+template <class F>
+void for_each_leaf_pair(const TriangleBvh& bvh, F&& f) {
+  for_each_leaf_pair(bvh, LeafPairJob{}, f);
 }
 
 }  // namespace vm

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "core/phantom/vessel_phantom.h"
+#include "core/util/parallel.h"
 #include "tests/support/icosphere.h"
 #include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
@@ -233,6 +234,35 @@ TEST(SelfIntersection, ChangedTrianglesAreThoseThatMoved) {
     const int32_t* T = &moved.triangles[3 * t];
     EXPECT_EQ(star[t], T[0] == 5 || T[1] == 5 || T[2] == 5) << t;
   }
+}
+
+TEST(SelfIntersection, SameReportOnAnyThreadCount) {
+  // Two overlapping spheres: the count, the tested pairs and the first
+  // examples (the order of a sequential search) on 1, 2 and 3 threads.
+  const SurfaceMesh a = testing::icosphere(4);
+  const SurfaceMesh two = merged(a, translated(a, 1.0, 0.2, 0.1));
+  std::vector<uint8_t> flagged(two.num_triangles(), 0);
+  for (size_t t = 0; t < flagged.size(); t += 3) flagged[t] = 1;
+  auto same = [](const SelfIntersectionReport& x, const SelfIntersectionReport& y) {
+    return x.pairs == y.pairs && x.tested_pairs == y.tested_pairs && x.examples == y.examples &&
+           x.degenerate_triangles == y.degenerate_triangles;
+  };
+  set_thread_count(1);
+  const SelfIntersectionReport all1 = find_self_intersections(two, 1000),
+                               few1 = find_self_intersections(two, 7),
+                               of1 = find_self_intersections_of(two, flagged, 1000);
+  EXPECT_GT(all1.pairs, 50u);
+  EXPECT_EQ(all1.examples.size(), std::min<size_t>(all1.pairs, 1000));
+  EXPECT_TRUE(std::equal(few1.examples.begin(), few1.examples.end(), all1.examples.begin()));
+  EXPECT_GT(of1.pairs, 0u);
+  EXPECT_LT(of1.pairs, all1.pairs);
+  for (int threads : {2, 3}) {
+    set_thread_count(threads);
+    EXPECT_TRUE(same(find_self_intersections(two, 1000), all1)) << threads << " threads";
+    EXPECT_TRUE(same(find_self_intersections(two, 7), few1)) << threads << " threads";
+    EXPECT_TRUE(same(find_self_intersections_of(two, flagged, 1000), of1)) << threads << " threads";
+  }
+  set_thread_count(0);
 }
 
 TEST(SelfIntersection, LargeCleanSurfaceTestsFewPairs) {

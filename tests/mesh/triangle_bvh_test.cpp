@@ -119,6 +119,74 @@ TEST(TriangleBvh, TheTreeOfItsDefinitionOnAnyThreadCount) {
   }
 }
 
+// The self-traversal's calls (i, j) in order, as one stack-based loop
+// makes them: (n, n) splits into its children's pair, then each child with
+// itself (the second child first); (a, b) with overlapping boxes splits the
+// node with the larger box (longest side; a on ties), its second child
+// first.
+std::vector<std::pair<int32_t, int32_t>> reference_leaf_pairs(const TriangleBvh& bvh) {
+  std::vector<std::pair<int32_t, int32_t>> calls;
+  std::vector<std::pair<int32_t, int32_t>> stack = {{0, 0}};
+  auto extent = [](const TriangleBvh::Node& n) {
+    return std::max({n.hi[0] - n.lo[0], n.hi[1] - n.lo[1], n.hi[2] - n.lo[2]});
+  };
+  while (!stack.empty()) {
+    const auto [a, b] = stack.back();
+    stack.pop_back();
+    const TriangleBvh::Node &A = bvh.nodes[size_t(a)], &B = bvh.nodes[size_t(b)];
+    const bool la = TriangleBvh::is_leaf(A), lb = TriangleBvh::is_leaf(B);
+    if (a == b) {
+      if (la) {
+        for (int32_t i = A.first; i < A.first + A.count; ++i)
+          for (int32_t j = i + 1; j < A.first + A.count; ++j) calls.emplace_back(i, j);
+      } else {
+        stack.insert(stack.end(),
+                     {{A.first, A.first}, {A.first + 1, A.first + 1}, {A.first, A.first + 1}});
+      }
+      continue;
+    }
+    if (!boxes_overlap(A.lo, A.hi, B.lo, B.hi)) continue;
+    if (la && lb) {
+      for (int32_t i = A.first; i < A.first + A.count; ++i)
+        for (int32_t j = B.first; j < B.first + B.count; ++j) calls.emplace_back(i, j);
+    } else if (lb || (!la && extent(A) >= extent(B))) {
+      stack.insert(stack.end(), {{A.first, b}, {A.first + 1, b}});
+    } else {
+      stack.insert(stack.end(), {{a, B.first}, {a, B.first + 1}});
+    }
+  }
+  return calls;
+}
+
+TEST(TriangleBvh, LeafPairJobsMakeTheTraversalsCallsInOrder) {
+  // Jobs run one after the other make the calls of one traversal in its
+  // order, for any number of jobs asked (the threads merge per-job results
+  // in job order: the first self-intersections found stay the same).
+  SurfaceMesh m = testing::icosphere(4);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.02, 0.02);
+  for (size_t i = 0; i < m.points.size(); ++i) m.points[i] += u(rng);
+  for (int leaf : {1, 8}) {
+    const TriangleBvh bvh = build_triangle_bvh(m, leaf);
+    const auto want = reference_leaf_pairs(bvh);
+    ASSERT_GT(want.size(), m.num_triangles());
+    std::vector<std::pair<int32_t, int32_t>> whole;
+    for_each_leaf_pair(bvh, [&](int32_t i, int32_t j) { whole.emplace_back(i, j); });
+    EXPECT_EQ(whole, want) << "leaf " << leaf;
+    for (size_t asked : {size_t(1), size_t(7), size_t(256), size_t(1) << 20}) {
+      const std::vector<LeafPairJob> jobs = leaf_pair_jobs(bvh, asked);
+      if (asked <= 256) {
+        EXPECT_GE(jobs.size(), asked);
+      }
+      std::vector<std::pair<int32_t, int32_t>> got;
+      for (const LeafPairJob& job : jobs)
+        for_each_leaf_pair(bvh, job, [&](int32_t i, int32_t j) { got.emplace_back(i, j); });
+      EXPECT_EQ(got, want) << "leaf " << leaf << ", " << asked << " jobs asked";
+    }
+  }
+  EXPECT_TRUE(leaf_pair_jobs(TriangleBvh{}, 8).empty());
+}
+
 TEST(TriangleBvh, SmallAndEmptyMeshes) {
   SurfaceMesh one;
   one.points = {0, 0, 0, 1, 0, 0, 0, 1, 0};
