@@ -19,17 +19,18 @@
 // (constrained cavity) and queued. Metric lengths use h linear along the
 // edge between its ends.
 //
-// Phase 4 runs in rounds (HXT's parallel insertion, section 4 of the same
-// paper): the round's queued vertices are cut into slabs of equal count
-// along one axis, and each slab works through its vertices (and the ones
-// it inserts) at the same time as the others, in the kernel's partitioned
-// mode (Delaunay3D::begin_partitions): it only walks and replaces
-// tetrahedra whose vertices are all in its slab. A vertex that needs more
-// is deferred to the next round, whose slabs cut along the next axis; the
+// Phases 2 and 4 run in rounds (HXT's parallel insertion, section 4 of the
+// same paper): the round's items (first-layer points, queued vertices) are
+// cut into slabs of equal count along one axis, and each slab works
+// through its items (and the vertices it inserts, in phase 4) at the same
+// time as the others, in the kernel's partitioned mode
+// (Delaunay3D::begin_partitions): it only walks and replaces tetrahedra
+// whose vertices are all in its slab. An item that needs more is deferred to the next round, whose slabs cut along the next axis; the
 // last round is sequential. Slabs, budgets and order depend only on the
-// data, so the mesh is the same with any number of threads. Phase 2 is
-// one sequential round: the mesh is still the boundary triangulation, whose
-// long tetrahedra cross every cut, so slabs would defer nearly all of it.
+// data, so the mesh is the same with any number of threads. In phase 2
+// the mesh is still the boundary triangulation, whose long tetrahedra
+// cross the cuts: a point whose cavity reaches one waits (about 6% on the
+// aortic arch with two slabs).
 #include "core/volume/refine_volume.h"
 
 #include <algorithm>
@@ -122,10 +123,16 @@ class Refiner {
   /// inserted vertices into `fresh` (phase 2).
   Status sequential(Phase phase, std::vector<int32_t> items, RefineStats& st,
                     const ProgressFn& progress, std::vector<int32_t>* fresh);
-  /// Phase 4: the slab rounds, then sequential() for what is left.
-  Status front_rounds(std::vector<int32_t> items, RefineStats& st, const ProgressFn& progress);
+  /// Phases 2 and 4: the slab rounds, then sequential() for what is left.
+  Status slab_rounds(Phase phase, std::vector<int32_t> items, RefineStats& st,
+                     const ProgressFn& progress, std::vector<int32_t>* fresh);
+  /// Where item `i` of the phase lies.
+  const double* item_point(Phase phase, int32_t i) const {
+    return phase == Phase::kFirstLayer ? &apex_[3 * size_t(i)] : kernel_.point(i);
+  }
   void work(Phase phase, int part, SlabWork& S, const ProgressFn& progress, bool caller);
-  void first_layer_item(SlabWork& S, int32_t i);
+  bool first_layer_item(int part, SlabWork& S, int32_t i);
+  bool first_layer_insert(int part, SlabWork& S, int32_t i, int32_t hint);
   bool front_item(int part, SlabWork& S, int32_t v);
   int32_t try_insert(int part, SlabWork& S, const double* p, double hp, double hspacing,
                      int32_t hint, int32_t generation);
@@ -231,15 +238,28 @@ int32_t Refiner::try_insert(int part, SlabWork& S, const double* p, double hp, d
   return ins.vertex;
 }
 
-void Refiner::first_layer_item(SlabWork& S, int32_t i) {
+bool Refiner::first_layer_item(int part, SlabWork& S, int32_t i) {
+  const int32_t t = kernel_.vertex_tet(apex_vertex_[size_t(i)]);
+  const int32_t hint = part < 0 || kernel_.in_part(part, t) ? t : -1;
+  if (hint < 0) {
+    kernel_.tets_around_vertex_in(part, apex_vertex_[size_t(i)], S.star);
+    const int32_t h = own_hint(part, -1, S.star);
+    if (h < 0) return false;
+    return first_layer_insert(part, S, i, h);
+  }
+  return first_layer_insert(part, S, i, hint);
+}
+
+bool Refiner::first_layer_insert(int part, SlabWork& S, int32_t i, int32_t hint) {
   const double* p = &apex_[3 * size_t(i)];
   const double hf = apex_h_[size_t(i)];
   ++S.st.candidates;
   ++S.st.size_evaluations;
   const double hp = field_.eval(p, hf + g_ * hf, o_.size_tolerance);
-  const int32_t v =
-      try_insert(-1, S, p, hp, std::min(hp, hf), kernel_.vertex_tet(apex_vertex_[size_t(i)]), 1);
+  const int32_t v = try_insert(part, S, p, hp, std::min(hp, hf), hint, 1);
+  if (v == kDeferred) return false;
   if (v >= 0) S.fresh.push_back(v);
+  return true;
 }
 
 bool Refiner::front_item(int part, SlabWork& S, int32_t v) {
@@ -360,9 +380,8 @@ void Refiner::work(Phase phase, int part, SlabWork& S, const ProgressFn& progres
       S.deferred.insert(S.deferred.end(), S.items.begin() + ptrdiff_t(k), S.items.end());
       break;
     }
-    if (phase == Phase::kFirstLayer)
-      first_layer_item(S, item);
-    else if (!front_item(part, S, item))
+    if (!(phase == Phase::kFirstLayer ? first_layer_item(part, S, item)
+                                      : front_item(part, S, item)))
       S.deferred.push_back(item);
   }
   S.st.deferred += int64_t(S.deferred.size());
@@ -387,11 +406,13 @@ Status Refiner::sequential(Phase phase, std::vector<int32_t> items, RefineStats&
   return Status::Ok();
 }
 
-Status Refiner::front_rounds(std::vector<int32_t> items, RefineStats& st,
-                             const ProgressFn& progress) {
+Status Refiner::slab_rounds(Phase phase, std::vector<int32_t> items, RefineStats& st,
+                            const ProgressFn& progress, std::vector<int32_t>* fresh) {
   const int parts = o_.parts;
-  done_ = 0;  // the progress fraction counts the front's work only
-  queued_ = int64_t(items.size());
+  if (phase == Phase::kFront) {
+    done_ = 0;  // the progress fraction counts the front's work only
+    queued_ = int64_t(items.size());
+  }
   for (int round = 0; round < o_.rounds && parts > 1 &&
                       items.size() >= size_t(std::max(o_.min_slab_items, 1)) * size_t(parts);
        ++round) {
@@ -400,7 +421,7 @@ Status Refiner::front_rounds(std::vector<int32_t> items, RefineStats& st,
     // Slabs of equal item count along axis round % 3.
     const int axis = round % 3;
     std::vector<double> xs(items.size());
-    for (size_t i = 0; i < items.size(); ++i) xs[i] = kernel_.point(items[i])[axis];
+    for (size_t i = 0; i < items.size(); ++i) xs[i] = item_point(phase, items[i])[axis];
     std::sort(xs.begin(), xs.end());
     std::vector<double> cuts(static_cast<size_t>(parts - 1));
     for (int j = 1; j < parts; ++j) cuts[size_t(j - 1)] = xs[xs.size() * size_t(j) / size_t(parts)];
@@ -414,21 +435,24 @@ Status Refiner::front_rounds(std::vector<int32_t> items, RefineStats& st,
         vpart_[v] = uint8_t(slab_of(kernel_.point(int32_t(v))));
     slabs_.resize(size_t(parts));
     for (SlabWork& S : slabs_) S.items.clear(), S.st = RefineStats{};
-    for (int32_t v : items) slabs_[size_t(slab_of(kernel_.point(v)))].items.push_back(v);
+    for (int32_t v : items) slabs_[size_t(slab_of(item_point(phase, v)))].items.push_back(v);
     // Budgets: a front vertex gives a few new ones (the front grows into
-    // the volume); within max_points.
+    // the volume), a first-layer item at most one, about half of them kept
+    // (a new vertex makes about 6.7 tetrahedra); within max_points.
+    const int64_t per_item = phase == Phase::kFirstLayer ? 1 : 3;
+    const int64_t tets_per_vertex = phase == Phase::kFirstLayer ? 5 : 7;
     std::vector<Delaunay3D::PartBudget> budgets(static_cast<size_t>(parts));
     int64_t total = 0;
     for (int j = 0; j < parts; ++j) {
       const int64_t n = int64_t(slabs_[size_t(j)].items.size());
-      budgets[size_t(j)].vertices = int32_t(std::min<int64_t>(3 * n + 256, room));
+      budgets[size_t(j)].vertices = int32_t(std::min<int64_t>(per_item * n + 256, room));
       total += budgets[size_t(j)].vertices;
     }
     for (int j = 0; j < parts; ++j) {
       Delaunay3D::PartBudget& b = budgets[size_t(j)];
       if (total > room) b.vertices = int32_t(int64_t(b.vertices) * room / total);
       slabs_[size_t(j)].budget = b.vertices;
-      b.tets = 7 * b.vertices + 4096;
+      b.tets = int32_t(tets_per_vertex * b.vertices + 4096);
     }
     kernel_.begin_partitions(vpart_, budgets);
     vertex_h_.resize(kernel_.num_vertices());
@@ -436,8 +460,7 @@ Status Refiner::front_rounds(std::vector<int32_t> items, RefineStats& st,
     const std::thread::id caller = std::this_thread::get_id();
     parallel_for(size_t(parts), 1, [&](size_t begin, size_t end) {
       const bool on_caller = std::this_thread::get_id() == caller;
-      for (size_t j = begin; j < end; ++j)
-        work(Phase::kFront, int(j), slabs_[j], progress, on_caller);
+      for (size_t j = begin; j < end; ++j) work(phase, int(j), slabs_[j], progress, on_caller);
     });
     // Back to consecutive vertex ids.
     const std::vector<int32_t> remap = kernel_.end_partitions();
@@ -452,13 +475,16 @@ Status Refiner::front_rounds(std::vector<int32_t> items, RefineStats& st,
     ++st.rounds;
     if (cancelled_) return Status::Cancelled();
     items.clear();
+    auto current = [&](int32_t v) { return size_t(v) >= n0 ? remap[size_t(v) - n0] : v; };
     for (SlabWork& S : slabs_) {
-      for (int32_t v : S.deferred) items.push_back(size_t(v) >= n0 ? remap[size_t(v) - n0] : v);
+      for (int32_t v : S.deferred) items.push_back(phase == Phase::kFront ? current(v) : v);
+      if (fresh)
+        for (int32_t v : S.fresh) fresh->push_back(current(v));
       add_stats(st, S.st);
     }
   }
   // The last round: sequential, the whole triangulation.
-  return sequential(Phase::kFront, std::move(items), st, progress, nullptr);
+  return sequential(phase, std::move(items), st, progress, fresh);
 }
 
 Status Refiner::run(RefineStats& st, const ProgressFn& progress) {
@@ -520,11 +546,12 @@ Status Refiner::run(RefineStats& st, const ProgressFn& progress) {
         apex_vertex_.push_back(a);
       }
     }
-    Status s = sequential(Phase::kFirstLayer, brio_hilbert_order(apex_), st, progress, &queue);
+    Status s = slab_rounds(Phase::kFirstLayer, brio_hilbert_order(apex_), st, progress, &queue);
     if (!s.ok()) return s;
     hilbert_sort(kernel_.points(), queue.data(), int64_t(queue.size()));
   }
   st.first_layer = st.inserted;
+  st.first_layer_rounds = st.rounds;
   st.first_layer_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -537,7 +564,7 @@ Status Refiner::run(RefineStats& st, const ProgressFn& progress) {
     hilbert_sort(kernel_.points(), queue.data() + first, int64_t(queue.size() - first));
   }
   // Phase 4: edges of each queued vertex, new vertices queued after.
-  Status s = front_rounds(std::move(queue), st, progress);
+  Status s = slab_rounds(Phase::kFront, std::move(queue), st, progress, nullptr);
   if (!s.ok()) return s;
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return Status::Ok();

@@ -48,16 +48,17 @@ struct RefineOptions {
   bool first_layer = true;
   /// Upper bound on inserted points (the refinement stops there; reported).
   int64_t max_points = int64_t(1) << 28;
-  /// Parallel rounds of the front (phase 4): the queued vertices are cut
-  /// into `parts` slabs of equal count (along x, y, z in turn), refined at
-  /// the same time, each only where it owns the tetrahedra; what a slab
-  /// cannot do waits for the next round; after `rounds` rounds, or when
-  /// fewer than min_slab_items vertices per slab are left, one sequential round ends
-  /// the refinement. The mesh depends on these two numbers, never on the
-  /// thread count. rounds = 0: all sequential. 1 <= parts <= 64. More
-  /// slabs than 2 leave most of the work to the sequential round: until the
-  /// front reaches it, the lumen's inside is the boundary triangulation,
-  /// whose tetrahedra span the vessel and so cross the slab cuts.
+  /// Parallel rounds of the first layer and of the front (phases 2 and
+  /// 4): the items (first-layer points, queued vertices) are cut into
+  /// `parts` slabs of equal count (along x, y, z in turn), worked at the
+  /// same time, each only where it owns the tetrahedra; what a slab cannot
+  /// do waits for the next round; after `rounds` rounds, or when fewer than
+  /// min_slab_items items per slab are left, one sequential round ends the
+  /// phase. The mesh depends on these two numbers, never on the thread
+  /// count. rounds = 0: all sequential. 1 <= parts <= 64. More slabs than 2
+  /// leave most of the work to the sequential round: until the front
+  /// reaches it, the lumen's inside is the boundary triangulation, whose
+  /// tetrahedra span the vessel and so cross the slab cuts.
   int parts = 2;
   int rounds = 3;
   int min_slab_items = 4096;
@@ -75,6 +76,7 @@ struct RefineStats {
   int64_t rejected_kernel = 0;    ///< the kernel refused (blocked, duplicate, hull)
   int generations = 0;            ///< depth of the front (layers of new vertices)
   int rounds = 0;                 ///< parallel rounds run
+  int first_layer_rounds = 0;     ///< of which the first layer's
   int64_t deferred = 0;           ///< items a slab left to a later round
   bool hit_max_points = false;
   double first_layer_seconds = 0;  ///< checks and first layer (part of seconds)

@@ -136,9 +136,10 @@ TEST(RefineVolume, DeterministicAndCancellable) {
 }
 
 TEST(RefineVolume, SlabRoundsGiveTheSameMeshOnAnyThreadCount) {
-  // Four slabs refine the front at the same time, then what they deferred
-  // goes on in later rounds and a last sequential one: a valid refinement,
-  // as dense as the sequential one, and the same on 1 and 2 threads.
+  // Four slabs insert the first layer at the same time, then refine the
+  // front, then what they deferred goes on in later rounds and a last
+  // sequential one: a valid refinement, as dense as the sequential one, and
+  // the same on 1 and 2 threads.
   struct Outcome {
     std::vector<double> points;
     std::vector<int32_t> tets;
@@ -168,25 +169,31 @@ TEST(RefineVolume, SlabRoundsGiveTheSameMeshOnAnyThreadCount) {
   };
   const Outcome seq = run(2, 0), one = run(1, 3), two = run(2, 3);
   EXPECT_EQ(seq.st.rounds, 0);
-  EXPECT_GE(one.st.rounds, 1);
+  EXPECT_GE(one.st.first_layer_rounds, 1);
+  EXPECT_GT(one.st.rounds, one.st.first_layer_rounds);  // and the front's
   EXPECT_GT(one.st.deferred, 0);
+  EXPECT_NEAR(double(one.st.first_layer), double(seq.st.first_layer),
+              0.05 * double(seq.st.first_layer));
   EXPECT_NEAR(double(one.st.inserted), double(seq.st.inserted), 0.05 * double(seq.st.inserted));
   EXPECT_EQ(one.points, two.points);
   EXPECT_EQ(one.tets, two.tets);
   EXPECT_EQ(one.st.deferred, two.st.deferred);
 
-  // Cancelled during the slab round: the kernel stays valid.
-  Prepared p;
-  ASSERT_NO_FATAL_FAILURE(prepare(p, testing::capped_cylinder_points(1, 4, 0.12), 0.25));
-  RefineOptions o;
-  o.parts = 4;
-  o.first_layer = false;  // straight to the slab rounds
-  o.min_slab_items = 16;
-  int calls = 0;
-  Status s = refine_volume(p.in.kernel, p.field, p.vertex_h, o, nullptr,
-                           [&](double, std::string_view) { return ++calls < 2; });
-  EXPECT_TRUE(s.cancelled());
-  EXPECT_TRUE(p.in.kernel.check(false).ok()) << p.in.kernel.check(false).message();
+  // Cancelled during a slab round (the first layer's, the front's): the
+  // kernel stays valid.
+  for (bool first_layer : {true, false}) {
+    Prepared p;
+    ASSERT_NO_FATAL_FAILURE(prepare(p, testing::capped_cylinder_points(1, 4, 0.12), 0.25));
+    RefineOptions o;
+    o.parts = 4;
+    o.first_layer = first_layer;
+    o.min_slab_items = 16;
+    int calls = 0;
+    Status s = refine_volume(p.in.kernel, p.field, p.vertex_h, o, nullptr,
+                             [&](double, std::string_view) { return ++calls < 2; });
+    EXPECT_TRUE(s.cancelled());
+    EXPECT_TRUE(p.in.kernel.check(false).ok()) << p.in.kernel.check(false).message();
+  }
 }
 
 TEST(RefineVolume, Errors) {
