@@ -13,6 +13,7 @@
 #include "core/geom/closest_point.h"
 #include "core/geom/vec3.h"
 #include "core/quality/triangle_quality.h"
+#include "core/util/parallel.h"
 #include "core/util/portable_math.h"
 
 namespace vm {
@@ -81,16 +82,25 @@ class Optimizer {
     split_ratio_ = o.split_ratio;
     recent_.assign(m.num_vertices(), 1);
     q_.resize(m.num_triangles());
-    for (size_t t = 0; t < q_.size(); ++t) {
-      const int32_t* T = &m.triangles[3 * t];
-      q_[t] = gamma(T[0], T[1], T[2]);
-    }
+    parallel_for(q_.size(), 4096, [&](size_t begin, size_t end) {
+      for (size_t t = begin; t < end; ++t) {
+        const int32_t* T = &m.triangles[3 * t];
+        q_[t] = gamma(T[0], T[1], T[2]);
+      }
+    });
     cos_turn_ = pm::cos(o.max_normal_turn_degrees * std::numbers::pi / 180);
     vt_.assign(m.num_vertices(), {});
+    {
+      std::vector<int32_t> count(m.num_vertices(), 0);
+      for (int32_t v : m.triangles) ++count[size_t(v)];
+      for (size_t v = 0; v < vt_.size(); ++v) vt_[v].reserve(size_t(count[v]));
+    }
     for (size_t t = 0; t < m.num_triangles(); ++t)
       for (int c = 0; c < 3; ++c) vt_[size_t(m.triangles[3 * t + c])].push_back(int32_t(t));
     opp_.resize(m.triangles.size());
-    for (int32_t t = 0; t < int32_t(m.num_triangles()); ++t) refresh_triangle(t);
+    parallel_for(m.num_triangles(), 4096, [&](size_t begin, size_t end) {
+      for (size_t t = begin; t < end; ++t) refresh_triangle(int32_t(t));
+    });
   }
 
   /// Starts the next pass: work is limited to what changed since the
