@@ -334,8 +334,8 @@ class PairCounter {
   std::vector<double> box_;  // 6 per triangle: lo, hi
 };
 
-// Jobs of the self-traversal per thread at least (chunks of work that do
-// not depend on the thread count).
+// The self-traversal is cut into at least this many jobs (chunks of work
+// that do not depend on the thread count).
 constexpr size_t kPairJobs = 256;
 
 }  // namespace

@@ -25,12 +25,13 @@
 // through its items (and the vertices it inserts, in phase 4) at the same
 // time as the others, in the kernel's partitioned mode
 // (Delaunay3D::begin_partitions): it only walks and replaces tetrahedra
-// whose vertices are all in its slab. An item that needs more is deferred to the next round, whose slabs cut along the next axis; the
-// last round is sequential. Slabs, budgets and order depend only on the
-// data, so the mesh is the same with any number of threads. In phase 2
-// the mesh is still the boundary triangulation, whose long tetrahedra
-// cross the cuts: a point whose cavity reaches one waits (about 6% on the
-// aortic arch with two slabs).
+// whose vertices are all in its slab. An item that needs more is deferred
+// to the next round, whose slabs cut along the next axis; the last round
+// is sequential. Slabs, budgets and order depend only on the data, so the
+// mesh is the same with any number of threads. In phase 2 the mesh is
+// still the boundary triangulation, whose long tetrahedra cross the cuts:
+// a point whose cavity reaches one waits (about 6% on the aortic arch with
+// two slabs).
 #include "core/volume/refine_volume.h"
 
 #include <algorithm>
@@ -131,8 +132,9 @@ class Refiner {
     return phase == Phase::kFirstLayer ? &apex_[3 * size_t(i)] : kernel_.point(i);
   }
   void work(Phase phase, int part, SlabWork& S, const ProgressFn& progress, bool caller);
+  /// One item of phase 2 or 4 (part -1: out of a slab round); false when
+  /// it must wait for the next round.
   bool first_layer_item(int part, SlabWork& S, int32_t i);
-  bool first_layer_insert(int part, SlabWork& S, int32_t i, int32_t hint);
   bool front_item(int part, SlabWork& S, int32_t v);
   int32_t try_insert(int part, SlabWork& S, const double* p, double hp, double hspacing,
                      int32_t hint, int32_t generation);
@@ -239,18 +241,15 @@ int32_t Refiner::try_insert(int part, SlabWork& S, const double* p, double hp, d
 }
 
 bool Refiner::first_layer_item(int part, SlabWork& S, int32_t i) {
-  const int32_t t = kernel_.vertex_tet(apex_vertex_[size_t(i)]);
-  const int32_t hint = part < 0 || kernel_.in_part(part, t) ? t : -1;
-  if (hint < 0) {
-    kernel_.tets_around_vertex_in(part, apex_vertex_[size_t(i)], S.star);
-    const int32_t h = own_hint(part, -1, S.star);
-    if (h < 0) return false;
-    return first_layer_insert(part, S, i, h);
+  // The walk starts from a tetrahedron of the face's vertex (one of the
+  // part's, in a slab round).
+  const int32_t a = apex_vertex_[size_t(i)];
+  int32_t hint = kernel_.vertex_tet(a);
+  if (part >= 0 && !kernel_.in_part(part, hint)) {
+    kernel_.tets_around_vertex_in(part, a, S.star);
+    hint = own_hint(part, -1, S.star);
+    if (hint < 0) return false;
   }
-  return first_layer_insert(part, S, i, hint);
-}
-
-bool Refiner::first_layer_insert(int part, SlabWork& S, int32_t i, int32_t hint) {
   const double* p = &apex_[3 * size_t(i)];
   const double hf = apex_h_[size_t(i)];
   ++S.st.candidates;

@@ -91,13 +91,19 @@ TriangleBvh reference_bvh(const SurfaceMesh& m, int leaf_size) {
   return bvh;
 }
 
+// An icosphere of `level` with every coordinate moved by up to `amount`.
+SurfaceMesh perturbed_sphere(int level, unsigned seed, double amount) {
+  SurfaceMesh m = testing::icosphere(level);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amount, amount);
+  for (double& x : m.points) x += u(rng);
+  return m;
+}
+
 TEST(TriangleBvh, TheTreeOfItsDefinitionOnAnyThreadCount) {
   // A perturbed sphere of 20,480 triangles (the top splits run before the
   // subtrees go to the threads), with repeated centres along x (ties).
-  SurfaceMesh m = testing::icosphere(5);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> u(-0.01, 0.01);
-  for (size_t i = 0; i < m.points.size(); ++i) m.points[i] += u(rng);
+  SurfaceMesh m = perturbed_sphere(5, 3, 0.01);
   for (size_t v = 0; v < m.num_vertices(); v += 7) m.points[3 * v] = 0.25;
   for (int leaf : {1, 4, 8}) {
     const TriangleBvh want = reference_bvh(m, leaf);
@@ -162,10 +168,7 @@ TEST(TriangleBvh, LeafPairJobsMakeTheTraversalsCallsInOrder) {
   // Jobs run one after the other make the calls of one traversal in its
   // order, for any number of jobs asked (the threads merge per-job results
   // in job order: the first self-intersections found stay the same).
-  SurfaceMesh m = testing::icosphere(4);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-0.02, 0.02);
-  for (size_t i = 0; i < m.points.size(); ++i) m.points[i] += u(rng);
+  const SurfaceMesh m = perturbed_sphere(4, 5, 0.02);
   for (int leaf : {1, 8}) {
     const TriangleBvh bvh = build_triangle_bvh(m, leaf);
     const auto want = reference_leaf_pairs(bvh);
