@@ -149,9 +149,9 @@ class Refiner {
   const double g_, min_h_;
   const size_t n_initial_;           // the kernel's vertices before refinement
   std::vector<int32_t> generation_;  // per vertex: depth in the front
-  // Phase 2: per boundary face the apex, its size and a vertex of the face.
+  // Phase 2: per boundary face the apex, its size and the face's vertices.
   std::vector<double> apex_, apex_h_;
-  std::vector<int32_t> apex_vertex_;
+  std::vector<int32_t> apex_face_;  // 3 per apex
   // This round's slab of each vertex (kNoPart out of a round).
   std::vector<uint8_t> vpart_;
   std::vector<SlabWork> slabs_;
@@ -241,9 +241,13 @@ int32_t Refiner::try_insert(int part, SlabWork& S, const double* p, double hp, d
 }
 
 bool Refiner::first_layer_item(int part, SlabWork& S, int32_t i) {
-  // The walk starts from a tetrahedron of the face's vertex (one of the
-  // part's, in a slab round).
-  const int32_t a = apex_vertex_[size_t(i)];
+  // The walk starts from a tetrahedron of a vertex of the face; in a slab
+  // round, of one of the slab's (another slab rewrites its own vertices'
+  // tetrahedra, never these), else the item waits.
+  int32_t a = apex_face_[3 * size_t(i)];
+  for (int k = 1; k < 3 && part >= 0 && vpart_[size_t(a)] != part; ++k)
+    a = apex_face_[3 * size_t(i) + size_t(k)];
+  if (part >= 0 && vpart_[size_t(a)] != part) return false;
   int32_t hint = kernel_.vertex_tet(a);
   if (part >= 0 && !kernel_.in_part(part, hint)) {
     kernel_.tets_around_vertex_in(part, a, S.star);
@@ -542,7 +546,7 @@ Status Refiner::run(RefineStats& st, const ProgressFn& progress) {
         for (int j = 0; j < 3; ++j)
           apex_.push_back((pa[j] + pb[j] + pc[j]) / 3 - height * hf * n[j] / len);
         apex_h_.push_back(hf);
-        apex_vertex_.push_back(a);
+        apex_face_.insert(apex_face_.end(), {a, b, c});
       }
     }
     Status s = slab_rounds(Phase::kFirstLayer, brio_hilbert_order(apex_), st, progress, &queue);
