@@ -180,10 +180,12 @@ TEST(RefineVolume, SlabRoundsGiveTheSameMeshOnAnyThreadCount) {
   EXPECT_EQ(one.st.deferred, two.st.deferred);
 
   // Cancelled during a slab round (the first layer's, the front's): the
-  // kernel stays valid.
+  // kernel stays valid, and cancelled in the first layer's, it holds fewer
+  // vertices than the first layer inserts.
   for (bool first_layer : {true, false}) {
     Prepared p;
     ASSERT_NO_FATAL_FAILURE(prepare(p, testing::capped_cylinder_points(1, 4, 0.12), 0.25));
+    const size_t n0 = p.in.kernel.num_vertices();
     RefineOptions o;
     o.parts = 4;
     o.first_layer = first_layer;
@@ -193,6 +195,9 @@ TEST(RefineVolume, SlabRoundsGiveTheSameMeshOnAnyThreadCount) {
                              [&](double, std::string_view) { return ++calls < 2; });
     EXPECT_TRUE(s.cancelled());
     EXPECT_TRUE(p.in.kernel.check(false).ok()) << p.in.kernel.check(false).message();
+    if (first_layer) {
+      EXPECT_LT(p.in.kernel.num_vertices() - n0, size_t(one.st.first_layer));
+    }
   }
 }
 
