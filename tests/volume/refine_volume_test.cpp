@@ -135,6 +135,14 @@ TEST(RefineVolume, DeterministicAndCancellable) {
   EXPECT_TRUE(s.cancelled());
 }
 
+// Four slabs, down to 16 items each (the small test inputs reach them).
+RefineOptions four_slabs() {
+  RefineOptions o;
+  o.parts = 4;
+  o.min_slab_items = 16;
+  return o;
+}
+
 TEST(RefineVolume, SlabRoundsGiveTheSameMeshOnAnyThreadCount) {
   // Four slabs insert the first layer at the same time, then refine the
   // front, then what they deferred goes on in later rounds and a last
@@ -151,10 +159,8 @@ TEST(RefineVolume, SlabRoundsGiveTheSameMeshOnAnyThreadCount) {
     Prepared p;
     EXPECT_NO_FATAL_FAILURE(prepare(p, testing::capped_cylinder_points(1, 4, 0.12), 0.25));
     const size_t n0 = p.in.kernel.num_vertices();
-    RefineOptions o;
-    o.parts = 4;
+    RefineOptions o = four_slabs();
     o.rounds = rounds;
-    o.min_slab_items = 16;
     EXPECT_TRUE(refine_volume(p.in.kernel, p.field, p.vertex_h, o, &out.st).ok());
     const Delaunay3D& d = p.in.kernel;
     EXPECT_TRUE(d.check(false).ok()) << d.check(false).message();
@@ -186,10 +192,8 @@ TEST(RefineVolume, SlabRoundsGiveTheSameMeshOnAnyThreadCount) {
     Prepared p;
     ASSERT_NO_FATAL_FAILURE(prepare(p, testing::capped_cylinder_points(1, 4, 0.12), 0.25));
     const size_t n0 = p.in.kernel.num_vertices();
-    RefineOptions o;
-    o.parts = 4;
+    RefineOptions o = four_slabs();
     o.first_layer = first_layer;
-    o.min_slab_items = 16;
     int calls = 0;
     Status s = refine_volume(p.in.kernel, p.field, p.vertex_h, o, nullptr,
                              [&](double, std::string_view) { return ++calls < 2; });
