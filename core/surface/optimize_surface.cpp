@@ -64,6 +64,10 @@ constexpr double kMaxEdgeAfterCollapse = 1.4;
 constexpr double kCollapseFloor = 0.4;
 /// A split point may lie off its edge by at most this times the edge length.
 constexpr double kMaxSplitOffset = 0.2;
+/// The smoothing's blocks of consecutive vertex ids (also the fewest
+/// vertices to smooth that it cuts into blocks), and vertices of one color
+/// per chunk of its parallel loop.
+constexpr size_t kSmoothBlock = 2048, kSmoothGrain = 512;
 
 class Optimizer {
  public:
@@ -195,10 +199,43 @@ class Optimizer {
     return swaps;
   }
 
+  /// One pass of smoothing (try_move) over the movable vertices changed in
+  /// this pass or the previous one. With few of them at the start, in id
+  /// order; else the vertices are cut into blocks of consecutive ids
+  /// (plan_smoothing()): first each block's inner vertices, in order, the
+  /// blocks on the threads; then the others color by color. Moves that run
+  /// at the same time have stars with no triangle in common and neither
+  /// holds the other, so the mesh is the same on any thread count.
   size_t smooth_pass() {
-    size_t moves = 0;
-    for (size_t v = 0; v < m_.num_vertices(); ++v)
-      if (movable(v) && recent_[v] + 1 >= pass_ && try_move(int32_t(v))) ++moves;
+    size_t waiting = 0;
+    for (size_t v = 0; v < m_.num_vertices(); ++v) waiting += movable(v) && recent_[v] + 1 >= pass_;
+    if (waiting < kSmoothBlock) {
+      size_t moves = 0;
+      for (size_t v = 0; v < m_.num_vertices(); ++v)
+        if (movable(v) && recent_[v] + 1 >= pass_ && try_move(int32_t(v))) ++moves;
+      return moves;
+    }
+    plan_smoothing();
+    auto move_all = [&](const int32_t* vs, size_t n) {
+      size_t m = 0;
+      for (size_t i = 0; i < n; ++i)
+        if (recent_[size_t(vs[i])] + 1 >= pass_ && try_move(vs[i])) ++m;
+      return m;
+    };
+    const size_t blocks = block_start_.size() - 1;
+    size_t moves = parallel_sum<size_t>(blocks, 1, [&](size_t begin, size_t end) {
+      size_t m = 0;
+      for (size_t b = begin; b < end; ++b)
+        m += move_all(inner_.data() + block_start_[b],
+                      size_t(block_start_[b + 1] - block_start_[b]));
+      return m;
+    });
+    for (size_t c = 0; c + 1 < color_start_.size(); ++c) {
+      const int32_t* group = by_color_.data() + color_start_[c];
+      moves += parallel_sum<size_t>(
+          size_t(color_start_[c + 1] - color_start_[c]), kSmoothGrain,
+          [&](size_t begin, size_t end) { return move_all(group + begin, end - begin); });
+    }
     return moves;
   }
 
@@ -350,10 +387,75 @@ class Optimizer {
                          recent_[size_t(T[2])] + 1 >= pass_);
   }
 
-  /// Records that v and the vertices of its star changed.
+  /// Records that v and the vertices of its star changed. Two moves of a
+  /// color may mark a common neighbor (with the same value): an atomic
+  /// store (the compiler's builtin: Emscripten 3.1.6's library has no
+  /// std::atomic_ref).
   void mark_star(int32_t v) {
     for (int32_t t : vt_[size_t(v)])
-      for (int c = 0; c < 3; ++c) recent_[size_t(m_.triangles[3 * size_t(t) + size_t(c)])] = pass_;
+      for (int c = 0; c < 3; ++c)
+        __atomic_store_n(&recent_[size_t(m_.triangles[3 * size_t(t) + size_t(c)])], pass_,
+                         __ATOMIC_RELAXED);
+  }
+
+  /// The smoothing's order: the movable vertices whose star lies in their
+  /// block of kSmoothBlock consecutive ids (inner_, by block, offsets in
+  /// block_start_), and the others colored greedily in id order, each with
+  /// the smallest color none of its such neighbors of lower id has
+  /// (by_color_, by color, offsets in color_start_).
+  void plan_smoothing() {
+    const size_t n = m_.num_vertices();
+    const size_t blocks = (n + kSmoothBlock - 1) / kSmoothBlock;
+    color_.assign(n, -1);
+    inner_.clear();
+    block_start_.assign(1, 0);
+    int colors = 0;
+    for (size_t b = 0; b < blocks; ++b) {
+      const size_t first = b * kSmoothBlock, last = std::min(n, first + kSmoothBlock);
+      for (size_t v = first; v < last; ++v) {
+        if (!movable(v) || vt_[v].empty()) continue;
+        bool inner = true;
+        uint64_t used = 0;
+        for (int32_t t : vt_[v])
+          for (int k = 0; k < 3; ++k) {
+            const int32_t w = m_.triangles[3 * size_t(t) + size_t(k)];
+            inner = inner && size_t(w) >= first && size_t(w) < last;
+            const int32_t c = color_[size_t(w)];
+            if (c >= 0 && c < 64) used |= uint64_t(1) << c;
+          }
+        if (inner) {
+          inner_.push_back(int32_t(v));
+          continue;
+        }
+        int c = 0;
+        while (c < 64 && ((used >> c) & 1u)) ++c;
+        if (c == 64) c = 64 + next_free_color(v);
+        color_[v] = c;
+        colors = std::max(colors, c + 1);
+      }
+      block_start_.push_back(int32_t(inner_.size()));
+    }
+    color_start_.assign(size_t(colors) + 1, 0);
+    for (int32_t c : color_)
+      if (c >= 0) ++color_start_[size_t(c) + 1];
+    for (size_t c = 0; c < size_t(colors); ++c) color_start_[c + 1] += color_start_[c];
+    by_color_.resize(size_t(color_start_.back()));
+    std::vector<int32_t> next(color_start_.begin(), color_start_.end() - 1);
+    for (size_t v = 0; v < n; ++v)
+      if (color_[v] >= 0) by_color_[size_t(next[size_t(color_[v])]++)] = int32_t(v);
+  }
+
+  /// The smallest color >= 64 none of v's neighbors has, minus 64 (for a
+  /// vertex with 64 colors around it).
+  int next_free_color(size_t v) const {
+    std::vector<int32_t> around;
+    for (int32_t t : vt_[v])
+      for (int k = 0; k < 3; ++k)
+        around.push_back(color_[size_t(m_.triangles[3 * size_t(t) + size_t(k)])]);
+    std::sort(around.begin(), around.end());
+    int c = 64;
+    while (std::binary_search(around.begin(), around.end(), c)) ++c;
+    return c - 64;
   }
 
   static double dist2(const double* x, const double* y) {
@@ -563,28 +665,31 @@ class Optimizer {
     const double old[3] = {pv[0], pv[1], pv[2]};
     // The guard's reference normals: each triangle's own, or the star's
     // area-weighted normal for a nearly flat one.
-    old_normals_.clear();
+    // Scratch per thread (a color's moves run at the same time).
+    thread_local std::vector<Vec3> old_normals;
+    thread_local std::vector<double> new_q;
+    old_normals.clear();
     Vec3 star_normal{{0, 0, 0}};
     for (int32_t t : star) {
       const int32_t* T = tri(t);
-      old_normals_.push_back(normal(p(T[0]), p(T[1]), p(T[2])));
+      old_normals.push_back(normal(p(T[0]), p(T[1]), p(T[2])));
       const Vec3 an = area_normal(p(T[0]), p(T[1]), p(T[2]));
       for (int k = 0; k < 3; ++k) star_normal[k] += an[k];
     }
     star_normal = normal_sum({star_normal});
     for (size_t i = 0; i < star.size(); ++i)
-      if (q_[size_t(star[i])] < kFlatGamma) old_normals_[i] = star_normal;
+      if (q_[size_t(star[i])] < kFlatGamma) old_normals[i] = star_normal;
     std::copy(projected, projected + 3, pv);
     double after = 1, after_sum = 0;
     bool ok = true;
-    new_q_.clear();
+    new_q.clear();
     for (size_t i = 0; i < star.size() && ok; ++i) {
       const int32_t* T = tri(star[i]);
       const double g = gamma(T[0], T[1], T[2]);
-      new_q_.push_back(g);
+      new_q.push_back(g);
       after = std::min(after, g);
       after_sum += g;
-      ok = dot(normal(p(T[0]), p(T[1]), p(T[2])), old_normals_[i]) >= cos_turn_;
+      ok = dot(normal(p(T[0]), p(T[1]), p(T[2])), old_normals[i]) >= cos_turn_;
     }
     // Better worst triangle, or the same worst and a better mean.
     const bool better = after > before + 1e-9 || (after >= std::min(before, kSmoothingFloor) &&
@@ -594,7 +699,7 @@ class Optimizer {
       return false;
     }
     home_[size_t(v)] = new_home;
-    for (size_t i = 0; i < star.size(); ++i) q_[size_t(star[i])] = new_q_[i];
+    for (size_t i = 0; i < star.size(); ++i) q_[size_t(star[i])] = new_q[i];
     mark_star(v);
     return true;
   }
@@ -609,13 +714,13 @@ class Optimizer {
   std::vector<std::vector<int32_t>> vt_;
   std::vector<int32_t> opp_;                   ///< per triangle edge k: across(t, T[k], T[k + 1])
   std::vector<std::array<int32_t, 2>> edges_;  ///< refresh_after()'s scratch
-  std::vector<Vec3> old_normals_;
   double collapse_ratio_ = 0, split_ratio_ = 0;
   std::vector<uint8_t> dead_;  ///< collapsed vertices (empty until the first)
   std::vector<int32_t> na_, nb_, changed_;
   int pass_ = 1;
-  std::vector<double> q_, new_q_;  ///< gamma_k per triangle; of a tried star
-  std::vector<int> recent_;        ///< per vertex: the last pass it changed in
+  std::vector<double> q_;  ///< gamma_k per triangle
+  std::vector<int32_t> color_, by_color_, color_start_, inner_, block_start_;  ///< plan_smoothing()
+  std::vector<int> recent_;  ///< per vertex: the last pass it changed in
   // See PinSlack: pin_of_ is renumbered whenever given.
   std::vector<int32_t>* pin_of_ = nullptr;
   const std::vector<double>* input_h_ = nullptr;
@@ -637,7 +742,8 @@ int32_t project_near(const double* q, int32_t start, const SurfaceMesh& input,
   double best = radius2;
   int32_t best_t = start;
   // Breadth-first over triangles within the start triangle's distance.
-  std::vector<int32_t> queue = {start};
+  thread_local std::vector<int32_t> queue;
+  queue.assign(1, start);
   for (size_t i = 0; i < queue.size() && queue.size() < 512; ++i) {
     const int32_t t = queue[i];
     for (int k = 0; k < 3; ++k) {

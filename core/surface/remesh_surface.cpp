@@ -35,6 +35,7 @@
 #include "core/surface/sharp_features.h"
 #include "core/util/parallel.h"
 #include "core/util/stage_timer.h"
+#include "core/volume/spatial_sort.h"
 
 namespace vm {
 namespace {
@@ -337,6 +338,43 @@ Status split_failed_patch(const SurfaceMesh& input, const PatchFailure& failure,
   return Status::Ok();
 }
 
+/// The end of phase 4: vertices renumbered along a Hilbert curve and
+/// triangles sorted by their smallest new vertex id (stable), so that
+/// consecutive ids are near each other on the wall, as the optimizer's
+/// sweeps and blocks want (patches are assembled seams first).
+void renumber_along_curve(SurfaceMesh& mesh, WallVertices& wall) {
+  const size_t n = mesh.num_vertices();
+  std::vector<int32_t> order(n);
+  for (size_t v = 0; v < n; ++v) order[v] = int32_t(v);
+  hilbert_sort(mesh.points, order.data(), int64_t(n));
+  std::vector<int32_t> renumber(n);
+  std::vector<double> points(mesh.points.size());
+  std::vector<int32_t> home(n);
+  std::vector<uint8_t> fixed(n);
+  for (size_t i = 0; i < n; ++i) {
+    const size_t v = size_t(order[i]);
+    renumber[v] = int32_t(i);
+    std::copy_n(&mesh.points[3 * v], 3, &points[3 * i]);
+    home[i] = wall.home[v];
+    fixed[i] = wall.fixed[v];
+  }
+  const size_t nt = mesh.num_triangles();
+  std::vector<std::pair<int32_t, int32_t>> by_first(nt);
+  for (size_t t = 0; t < nt; ++t) {
+    int32_t* T = &mesh.triangles[3 * t];
+    for (int k = 0; k < 3; ++k) T[k] = renumber[size_t(T[k])];
+    by_first[t] = {std::min({T[0], T[1], T[2]}), int32_t(t)};
+  }
+  std::sort(by_first.begin(), by_first.end());
+  std::vector<int32_t> triangles(mesh.triangles.size());
+  for (size_t i = 0; i < nt; ++i)
+    std::copy_n(&mesh.triangles[3 * size_t(by_first[i].second)], 3, &triangles[3 * i]);
+  mesh.points.swap(points);
+  mesh.triangles.swap(triangles);
+  wall.home.swap(home);
+  wall.fixed.swap(fixed);
+}
+
 /// Phases 2-6 at the sizes `sizes` (one per input vertex) on the features
 /// of `part`, fidelity measured against `asked` (one per input vertex);
 /// adds to `stats`.
@@ -378,6 +416,7 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
     if (!split.ok()) return split;
     t0 = std::chrono::steady_clock::now();
   }
+  renumber_along_curve(out.mesh, wall);
   stats.seconds_mesh += seconds_since(t0);
   if (!report_progress(progress, 0.85, "optimizing")) return Status::Cancelled();
 

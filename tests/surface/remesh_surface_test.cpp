@@ -19,6 +19,7 @@
 #include "core/quality/triangle_quality.h"
 #include "core/surface/optimize_surface.h"
 #include "core/surface/resample_curve.h"
+#include "core/util/parallel.h"
 #include "tests/support/phantoms.h"
 #include "tests/support/remesh_options.h"
 #include "tests/support/test_meshes.h"
@@ -501,6 +502,59 @@ TEST(OptimizeSurface, CollapsesShortEdgesAndRegularizesValences) {
   EXPECT_EQ(fixed_after, fixed_points);
   std::cout << "[ info ] collapse: gamma min " << qb.min << " -> " << qa.min << ", mean " << qb.mean
             << " -> " << qa.mean << " (" << s.collapses << " collapses, " << s.swaps << " swaps)\n";
+}
+
+TEST(OptimizeSurface, SameMeshOnAnyThreadCount) {
+  // The input tube's grid, every interior vertex moved along the input by
+  // up to 0.3 of a step: 8,320 vertices, more than the smoothing's blocks,
+  // in row order (most in their block's inside, the rows at the blocks'
+  // ends colored).
+  const int n = 128, rows = 64;
+  const SurfaceMesh in = testing::open_tube(n, rows, 1.0, 4.0);
+  const TriangleAdjacency in_adj = build_adjacency(in);
+  SurfaceMesh m0 = in;
+  WallVertices wall0;
+  wall0.fixed.assign(m0.num_vertices(), 0);
+  wall0.home.assign(m0.num_vertices(), 0);
+  uint32_t state = 777;
+  auto rnd = [&] {
+    state = state * 1664525u + 1013904223u;
+    return double(state >> 8) / double(1u << 24) - 0.5;
+  };
+  for (int j = 0; j <= rows; ++j)
+    for (int i = 0; i < n; ++i) {
+      const size_t v = size_t(j * n + i);
+      // A triangle of the vertex's row of quads (the last row: the one below).
+      const int32_t start = int32_t(2 * (std::min(j, rows - 1) * n + i));
+      if (j == 0 || j == rows) {
+        wall0.fixed[v] = kOnOpening;
+        wall0.home[v] = start;
+        continue;
+      }
+      const double a = 2 * kPi * (i + 0.6 * rnd()) / n, z = 4.0 * (j + 0.6 * rnd()) / rows;
+      const double q[3] = {std::cos(a), std::sin(a), z};
+      wall0.home[v] = project_near(q, start, in, in_adj, &m0.points[3 * v]);
+    }
+  const double q0 = quality_stats(triangle_qualities(m0)).mean;
+  SurfaceMesh reference;
+  WallVertices reference_wall;
+  for (int threads : {1, 2, 3}) {
+    set_thread_count(threads);
+    SurfaceMesh m = m0;
+    WallVertices wall = wall0;
+    const SurfaceOptimizeStats s = optimize_on_surface(m, wall, in, in_adj);
+    EXPECT_GT(s.moves, m.num_vertices());
+    EXPECT_GT(quality_stats(triangle_qualities(m)).mean, q0 + 0.05);
+    if (threads == 1) {
+      reference = m;
+      reference_wall = wall;
+      continue;
+    }
+    EXPECT_EQ(m.points, reference.points) << threads << " threads";
+    EXPECT_EQ(m.triangles, reference.triangles) << threads << " threads";
+    EXPECT_EQ(wall.home, reference_wall.home) << threads << " threads";
+  }
+  set_thread_count(0);
 }
 
 TEST(OptimizeSurface, ProjectNearFindsTheClosestPoint) {
