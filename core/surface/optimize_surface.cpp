@@ -187,15 +187,36 @@ class Optimizer {
   /// swaps that improve the worse triangle; kValence swaps that bring the
   /// valences of their four vertices closer to the regular ones (6 inside, 4
   /// on an opening), when neither new triangle is poor (the smoothing that
-  /// follows restores the shapes).
+  /// follows restores the shapes). With few triangles to try, in order;
+  /// else first, on the threads, each block's triangles whose vertices all
+  /// have their star in the block (plan_swaps()), in order, then the others
+  /// in order. A swap changes only triangles of its vertices' stars, so
+  /// swaps of different blocks at the same time touch different triangles,
+  /// and the mesh is the same on any thread count.
   size_t swap_pass(SwapGoal goal) {
-    size_t swaps = 0;
-    for (int32_t t = 0; t < int32_t(m_.num_triangles()); ++t)
+    auto try_triangle = [&](int32_t t) {
       for (int k = 0; k < 3 && active(t); ++k)
-        if (try_swap(t, k, goal)) {
-          ++swaps;
-          break;
-        }
+        if (try_swap(t, k, goal)) return size_t(1);
+      return size_t(0);
+    };
+    const size_t nt = m_.num_triangles();
+    size_t waiting = 0;
+    for (size_t t = 0; t < nt && waiting < kSmoothBlock; ++t) waiting += active(int32_t(t));
+    if (waiting < kSmoothBlock) {
+      size_t swaps = 0;
+      for (size_t t = 0; t < nt; ++t) swaps += try_triangle(int32_t(t));
+      return swaps;
+    }
+    plan_swaps();
+    const size_t blocks = tri_block_start_.size() - 1;
+    size_t swaps = parallel_sum<size_t>(blocks, 1, [&](size_t begin, size_t end) {
+      size_t n = 0;
+      for (size_t b = begin; b < end; ++b)
+        for (int32_t i = tri_block_start_[b]; i < tri_block_start_[b + 1]; ++i)
+          n += try_triangle(inner_tris_[size_t(i)]);
+      return n;
+    });
+    for (int32_t t : border_tris_) swaps += try_triangle(t);
     return swaps;
   }
 
@@ -275,14 +296,21 @@ class Optimizer {
     }
   }
 
-  /// Appends the directed edges of each of `tris` (live ones) to edges_.
+  /// refresh_after()'s scratch, per thread (swaps run on the threads).
+  static std::vector<std::array<int32_t, 2>>& edges_scratch() {
+    thread_local std::vector<std::array<int32_t, 2>> edges;
+    return edges;
+  }
+
+  /// Appends the directed edges of each of `tris` (live ones) to
+  /// edges_scratch().
   void note_edges(std::initializer_list<int32_t> tris) {
     for (int32_t t : tris) note_edges_of(t);
   }
   void note_edges_of(int32_t t) {
     const int32_t* T = tri(t);
     if (T[0] < 0) return;
-    for (int k = 0; k < 3; ++k) edges_.push_back({T[k], T[(k + 1) % 3]});
+    for (int k = 0; k < 3; ++k) edges_scratch().push_back({T[k], T[(k + 1) % 3]});
   }
 
   /// The other triangle with edge (b, a), or -1.
@@ -364,7 +392,7 @@ class Optimizer {
     if (dot(nt, nu) < cos_turn_ || dot(n1, n2) < cos_turn_) return false;
     for (const Vec3& n : {n1, n2})
       if (dot(n, nt) < cos_turn_ || dot(n, nu) < cos_turn_) return false;
-    edges_.clear();
+    edges_scratch().clear();
     note_edges({t, u});
     T[0] = a, T[1] = d, T[2] = c;
     U[0] = d, U[1] = b, U[2] = c;
@@ -373,7 +401,7 @@ class Optimizer {
     vt_[size_t(c)].push_back(u);
     vt_[size_t(d)].push_back(t);
     note_edges({t, u});
-    refresh_after({t, u}, edges_);
+    refresh_after({t, u}, edges_scratch());
     q_[size_t(t)] = g1;
     q_[size_t(u)] = g2;
     for (int32_t v : {a, b, c, d}) recent_[size_t(v)] = pass_;
@@ -398,12 +426,63 @@ class Optimizer {
                          __ATOMIC_RELAXED);
   }
 
+  /// Per vertex: whether its star lies in its block of kSmoothBlock
+  /// consecutive ids (into block_inner_).
+  void find_block_inner() {
+    const size_t n = m_.num_vertices();
+    block_inner_.assign(n, 0);
+    parallel_for(n, kSmoothBlock, [&](size_t first, size_t last) {
+      for (size_t v = first; v < last; ++v) {
+        bool inner = !vt_[v].empty();
+        for (int32_t t : vt_[v])
+          for (int k = 0; k < 3; ++k) {
+            const size_t w = size_t(m_.triangles[3 * size_t(t) + size_t(k)]);
+            inner = inner && w >= first && w < last;
+          }
+        block_inner_[v] = inner;
+      }
+    });
+  }
+
+  /// The swap pass's order: per block (of its first vertex), the live
+  /// triangles whose three vertices are inner in it (inner_tris_, offsets
+  /// in tri_block_start_); the others (border_tris_). Both ascending.
+  void plan_swaps() {
+    find_block_inner();
+    const size_t blocks = (m_.num_vertices() + kSmoothBlock - 1) / kSmoothBlock;
+    std::vector<int32_t> count(blocks + 1, 0);
+    border_tris_.clear();
+    auto inner_block = [&](size_t t) -> int64_t {
+      const int32_t* T = &m_.triangles[3 * t];
+      if (T[0] < 0 || !block_inner_[size_t(T[0])] || !block_inner_[size_t(T[1])] ||
+          !block_inner_[size_t(T[2])])
+        return -1;
+      return int64_t(size_t(T[0]) / kSmoothBlock);
+    };
+    for (size_t t = 0; t < m_.num_triangles(); ++t) {
+      const int64_t b = inner_block(t);
+      if (b >= 0) ++count[size_t(b) + 1];
+    }
+    for (size_t b = 0; b < blocks; ++b) count[b + 1] += count[b];
+    tri_block_start_ = count;
+    inner_tris_.resize(size_t(count.back()));
+    for (size_t t = 0; t < m_.num_triangles(); ++t) {
+      const int64_t b = inner_block(t);
+      if (b >= 0) {
+        inner_tris_[size_t(count[size_t(b)]++)] = int32_t(t);
+      } else if (m_.triangles[3 * t] >= 0) {
+        border_tris_.push_back(int32_t(t));
+      }
+    }
+  }
+
   /// The smoothing's order: the movable vertices whose star lies in their
   /// block of kSmoothBlock consecutive ids (inner_, by block, offsets in
   /// block_start_), and the others colored greedily in id order, each with
   /// the smallest color none of its such neighbors of lower id has
   /// (by_color_, by color, offsets in color_start_).
   void plan_smoothing() {
+    find_block_inner();
     const size_t n = m_.num_vertices();
     const size_t blocks = (n + kSmoothBlock - 1) / kSmoothBlock;
     color_.assign(n, -1);
@@ -414,19 +493,16 @@ class Optimizer {
       const size_t first = b * kSmoothBlock, last = std::min(n, first + kSmoothBlock);
       for (size_t v = first; v < last; ++v) {
         if (!movable(v) || vt_[v].empty()) continue;
-        bool inner = true;
-        uint64_t used = 0;
-        for (int32_t t : vt_[v])
-          for (int k = 0; k < 3; ++k) {
-            const int32_t w = m_.triangles[3 * size_t(t) + size_t(k)];
-            inner = inner && size_t(w) >= first && size_t(w) < last;
-            const int32_t c = color_[size_t(w)];
-            if (c >= 0 && c < 64) used |= uint64_t(1) << c;
-          }
-        if (inner) {
+        if (block_inner_[v]) {
           inner_.push_back(int32_t(v));
           continue;
         }
+        uint64_t used = 0;
+        for (int32_t t : vt_[v])
+          for (int k = 0; k < 3; ++k) {
+            const int32_t c = color_[size_t(m_.triangles[3 * size_t(t) + size_t(k)])];
+            if (c >= 0 && c < 64) used |= uint64_t(1) << c;
+          }
         int c = 0;
         while (c < 64 && ((used >> c) & 1u)) ++c;
         if (c == 64) c = 64 + next_free_color(v);
@@ -497,7 +573,7 @@ class Optimizer {
     recent_.push_back(pass_);
     if (!dead_.empty()) dead_.push_back(0);
     const int32_t t2 = int32_t(m_.num_triangles()), u2 = t2 + 1;
-    edges_.clear();
+    edges_scratch().clear();
     note_edges({t, u});
     T[0] = a, T[1] = n, T[2] = c;
     int32_t* U = tri(u);
@@ -511,7 +587,7 @@ class Optimizer {
     vt_[size_t(d)].push_back(u2);
     vt_[size_t(n)] = {t, u, t2, u2};
     note_edges({t, u, t2, u2});
-    refresh_after({t, u, t2, u2}, edges_);
+    refresh_after({t, u, t2, u2}, edges_scratch());
     for (int32_t w : {t, u, t2, u2}) {
       const int32_t* W = tri(w);
       if (size_t(w) >= q_.size()) q_.resize(size_t(w) + 1);
@@ -593,7 +669,7 @@ class Optimizer {
     if (after < std::min(before, kCollapseFloor)) return false;
     // Apply: drop the two triangles on the edge, hand a's others to b.
     std::vector<int32_t> star_a = vt_[size_t(a)];
-    edges_.clear();
+    edges_scratch().clear();
     for (int32_t t : star_a) note_edges_of(t);
     for (int32_t t : star_a) {
       int32_t* T = tri(t);
@@ -618,7 +694,7 @@ class Optimizer {
       q_[size_t(t)] = gamma(T[0], T[1], T[2]);
     }
     for (int32_t t : star_a) note_edges_of(t);
-    refresh_after(star_a, edges_);
+    refresh_after(star_a, edges_scratch());
     mark_star(b);
     return true;
   }
@@ -712,14 +788,15 @@ class Optimizer {
   const TriangleAdjacency& in_adj_;
   double cos_turn_ = 0;
   std::vector<std::vector<int32_t>> vt_;
-  std::vector<int32_t> opp_;                   ///< per triangle edge k: across(t, T[k], T[k + 1])
-  std::vector<std::array<int32_t, 2>> edges_;  ///< refresh_after()'s scratch
+  std::vector<int32_t> opp_;  ///< per triangle edge k: across(t, T[k], T[k + 1])
   double collapse_ratio_ = 0, split_ratio_ = 0;
   std::vector<uint8_t> dead_;  ///< collapsed vertices (empty until the first)
   std::vector<int32_t> na_, nb_, changed_;
   int pass_ = 1;
-  std::vector<double> q_;  ///< gamma_k per triangle
+  std::vector<double> q_;             ///< gamma_k per triangle
+  std::vector<uint8_t> block_inner_;  ///< find_block_inner()
   std::vector<int32_t> color_, by_color_, color_start_, inner_, block_start_;  ///< plan_smoothing()
+  std::vector<int32_t> inner_tris_, tri_block_start_, border_tris_;            ///< plan_swaps()
   std::vector<int> recent_;  ///< per vertex: the last pass it changed in
   // See PinSlack: pin_of_ is renumbered whenever given.
   std::vector<int32_t>* pin_of_ = nullptr;
