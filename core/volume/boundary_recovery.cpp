@@ -25,6 +25,7 @@
 #include <utility>
 
 #include "core/geom/predicates.h"
+#include "core/util/parallel.h"
 #include "core/util/portable_math.h"
 #include "core/util/radix_sort.h"
 #include "core/volume/tet_topology.h"
@@ -33,6 +34,9 @@ namespace vm {
 namespace {
 
 using Tri = std::array<int32_t, 3>;
+
+// Edges or faces looked up per chunk of the parallel queries.
+constexpr size_t kQueryGrain = 4096;
 
 uint64_t edge_key(int32_t a, int32_t b) {
   if (a > b) std::swap(a, b);
@@ -198,13 +202,26 @@ class Recovery {
       collect_missing_edges(pending, missing_edges);
       if (flips_)
         for (auto [a, b] : missing_edges) recover_edge_by_flips(a, b);
-      // 2b: faces by flips; present faces constrained.
+      // 2b: faces by flips; present faces constrained (found on the
+      // threads, then marked in order).
       std::vector<int32_t> missing_faces;
-      for (int32_t t : pending)
-        if (constrain_face(t))
-          done_[size_t(t)] = 1;
-        else
-          missing_faces.push_back(t);
+      std::vector<std::pair<int32_t, int>> faces(pending.size());
+      parallel_for(pending.size(), kQueryGrain, [&](size_t begin, size_t end) {
+        Delaunay3D::AroundScratch scratch;
+        for (size_t i = begin; i < end; ++i) {
+          const Tri& v = s_.tri[size_t(pending[i])];
+          faces[i].first = d_.find_face(v[0], v[1], v[2], &faces[i].second, scratch);
+        }
+      });
+      for (size_t i = 0; i < pending.size(); ++i) {
+        const auto [tet, k] = faces[i];
+        if (tet < 0) {
+          missing_faces.push_back(pending[i]);
+          continue;
+        }
+        if (!d_.is_constrained(tet, k)) d_.set_constrained(tet, k, true);
+        done_[size_t(pending[i])] = 1;
+      }
       if (flips_) {
         std::vector<int32_t> still;
         for (int32_t t : missing_faces)
@@ -259,9 +276,16 @@ class Recovery {
       }
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
-    out.erase(std::remove_if(out.begin(), out.end(),
-                             [&](const auto& e) { return d_.find_edge(e.first, e.second) >= 0; }),
-              out.end());
+    std::vector<uint8_t> present(out.size());
+    parallel_for(out.size(), kQueryGrain, [&](size_t begin, size_t end) {
+      Delaunay3D::AroundScratch scratch;
+      for (size_t i = begin; i < end; ++i)
+        present[i] = d_.find_edge(out[i].first, out[i].second, scratch) >= 0;
+    });
+    size_t kept = 0;
+    for (size_t i = 0; i < out.size(); ++i)
+      if (!present[i]) out[kept++] = out[i];
+    out.resize(kept);
   }
 
   bool edges_present(int32_t t) const {

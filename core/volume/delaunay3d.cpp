@@ -851,34 +851,34 @@ bool Delaunay3D::in_part(int part, int32_t t) const {
   return part < 0 || owns(parts_[size_t(part)], t);
 }
 
-void Delaunay3D::tets_around_vertex_in(int part, int32_t v, std::vector<int32_t>& out) const {
-  if (part < 0) return tets_around_vertex(v, out);
+template <class Stop>
+int32_t Delaunay3D::around_until(int32_t v, AroundScratch& s, Stop&& stop) const {
   // The breadth-first search of tets_around_vertex(), deduplicated by the
-  // part's own set (another part may mark these tetrahedra); a list longer
-  // than half the set is scanned instead.
-  Worker& w = parts_[size_t(part)];
-  if (++w.around_gen == 0) {
-    std::fill(w.around_stamp.begin(), w.around_stamp.end(), 0u);
-    w.around_gen = 1;
+  // scratch's own set; a list longer than half the set is scanned instead.
+  if (++s.gen == 0) {
+    std::fill(s.stamp.begin(), s.stamp.end(), 0u);
+    s.gen = 1;
   }
-  const uint32_t gen = w.around_gen;
+  const uint32_t gen = s.gen;
+  std::vector<int32_t>& out = s.tets;
   auto first_visit = [&](int32_t t) {
     if (out.size() >= kAroundSlots / 2) return std::find(out.begin(), out.end(), t) == out.end();
     for (uint32_t h = (uint32_t(t) * 0x9e3779b1u) >> 22;; h = (h + 1) & (kAroundSlots - 1)) {
-      if (w.around_stamp[h] != gen) {
-        w.around_stamp[h] = gen;
-        w.around_key[h] = t;
+      if (s.stamp[h] != gen) {
+        s.stamp[h] = gen;
+        s.key[h] = t;
         return true;
       }
-      if (w.around_key[h] == t) return false;
+      if (s.key[h] == t) return false;
     }
   };
   out.clear();
   const int32_t t0 = topo_.vertex_tet[size_t(v)];
-  if (t0 < 0) return;
+  if (t0 < 0) return -1;
   first_visit(t0);
   out.push_back(t0);
   for (size_t i = 0; i < out.size(); ++i) {
+    if (stop(out[i])) return out[i];
     const TetTopology::Rec& r = topo_.tets[size_t(out[i])];
     const int sv = slot_of(r.v, v);
     for (int j = 0; j < 4; ++j) {
@@ -887,6 +887,33 @@ void Delaunay3D::tets_around_vertex_in(int part, int32_t v, std::vector<int32_t>
       if (first_visit(n)) out.push_back(n);
     }
   }
+  return -1;
+}
+
+void Delaunay3D::tets_around_vertex_in(int part, int32_t v, std::vector<int32_t>& out) const {
+  if (part < 0) return tets_around_vertex(v, out);
+  AroundScratch& s = parts_[size_t(part)].around;
+  around_until(v, s, [](int32_t) { return false; });
+  out.swap(s.tets);
+}
+
+int32_t Delaunay3D::find_edge(int32_t a, int32_t b, AroundScratch& s) const {
+  if (a < 0 || size_t(a) >= num_vertices()) return -1;
+  return around_until(a, s, [&](int32_t t) { return slot_of(tet(t), b) >= 0; });
+}
+
+int32_t Delaunay3D::find_face(int32_t a, int32_t b, int32_t c, int* k, AroundScratch& s) const {
+  if (a < 0 || size_t(a) >= num_vertices()) return -1;
+  const int32_t t = around_until(a, s, [&](int32_t u) {
+    const int32_t* v = tet(u);
+    return slot_of(v, b) >= 0 && slot_of(v, c) >= 0;
+  });
+  if (t >= 0 && k) {
+    const int32_t* v = tet(t);
+    for (int j = 0; j < 4; ++j)
+      if (v[j] != a && v[j] != b && v[j] != c) *k = j;
+  }
+  return t;
 }
 
 std::vector<int32_t> Delaunay3D::end_partitions() {

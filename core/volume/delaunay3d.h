@@ -153,6 +153,20 @@ class Delaunay3D {
   int32_t find_edge(int32_t a, int32_t b) const;
   /// A tetrahedron t with face (a, b, c) as face k (any orientation), or -1.
   int32_t find_face(int32_t a, int32_t b, int32_t c, int* k) const;
+  /// Scratch of the queries below: one per thread (an open-addressing set
+  /// of the tetrahedra listed, valid where gen matches).
+  static constexpr uint32_t kAroundSlots = 1024;
+  struct AroundScratch {
+    uint32_t gen = 0;
+    std::vector<uint32_t> stamp = std::vector<uint32_t>(kAroundSlots);
+    std::vector<int32_t> key = std::vector<int32_t>(kAroundSlots);
+    std::vector<int32_t> tets;
+  };
+  /// find_edge() and find_face() without the shared visit marks: any number
+  /// may run at the same time while nothing changes the triangulation, each
+  /// with its own scratch. The same results.
+  int32_t find_edge(int32_t a, int32_t b, AroundScratch& s) const;
+  int32_t find_face(int32_t a, int32_t b, int32_t c, int* k, AroundScratch& s) const;
   /// The n tetrahedra around edge (a, b) of tetrahedron t, in cyclic order,
   /// and the n ring vertices: ring_tets[i] is (a, b, ring_verts[i],
   /// ring_verts[(i + 1) % n]) up to an even permutation (so that tetrahedron
@@ -268,6 +282,11 @@ class Delaunay3D {
 
  private:
   static constexpr int32_t kFree = TetTopology::kFree;
+  /// The tetrahedra around v in tets_around_vertex()'s order, without the
+  /// shared visit marks, into s.tets, until stop(t) is true for one (which
+  /// is returned; else -1).
+  template <class Stop>
+  int32_t around_until(int32_t v, AroundScratch& s, Stop&& stop) const;
 
   /// The ring of edge (a, b) of t (edge_ring) for flip `name`, which needs
   /// exactly n tetrahedra around it; an error naming the flip when (a, b) is
@@ -389,13 +408,9 @@ class Delaunay3D {
     int32_t slot_next = 0, slot_end = 0;
     int32_t vertex_begin = 0, vertex_next = 0, vertex_end = 0;
     bool foreign = false;
-    // tets_around_vertex_in(): an open-addressing set of the tetrahedra
-    // listed, valid where around_gen matches.
-    uint32_t around_gen = 0;
-    std::vector<uint32_t> around_stamp = std::vector<uint32_t>(kAroundSlots);
-    std::vector<int32_t> around_key = std::vector<int32_t>(kAroundSlots);
+    // tets_around_vertex_in()'s scratch.
+    AroundScratch around;
   };
-  static constexpr uint32_t kAroundSlots = 1024;
   // The sequential worker (queries and flips use its scratch too; the class
   // is not thread-safe out of a partitioned round) and the parts' workers.
   mutable Worker seq_;
