@@ -7,12 +7,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "core/geom/predicates.h"
 #include "core/mesh/prism_split.h"
+#include "core/util/parallel.h"
 
 namespace vm {
 namespace {
@@ -61,28 +63,52 @@ Result<VolumeCheck> check_volume_orientation(const VolumeMesh& m) {
   auto in_range = [&](const int32_t* v, int n) { return indices_in_range(v, n, m); };
   // Phase 1: positivity (prisms by their split).
   c.min_volume6 = 1e300;
-  auto positive = [&](const int32_t* t) {
+  // Its volume into min_volume6 and volume; whether it is positive.
+  auto positive = [&](const int32_t* t, double& min_volume6, double& volume) {
     const double* a = &m.points[3 * size_t(t[0])];
     const double* b = &m.points[3 * size_t(t[1])];
     const double* cc = &m.points[3 * size_t(t[2])];
     const double* d = &m.points[3 * size_t(t[3])];
     const double v6 = tet_volume6(a, b, cc, d);
-    c.min_volume6 = std::min(c.min_volume6, v6);
-    c.volume += v6 / 6;
+    min_volume6 = std::min(min_volume6, v6);
+    volume += v6 / 6;
     return orient3d(a, b, cc, d) < 0;  // exact: positive orientation
   };
-  for (size_t e = 0; e < m.num_tets(); ++e) {
-    const int32_t* t = &m.tets[4 * e];
-    if (!in_range(t, 4)) return R::Error("tetrahedron " + std::to_string(e) + " has a bad vertex");
-    if (!positive(t))
-      return R::Error("tetrahedron " + std::to_string(e) + " at " + where(m, t[0]) +
-                      " is inverted or flat");
+  // The tetrahedra on the threads, by chunks: each chunk's smallest
+  // volume, its volume (added in chunk order) and its first bad one.
+  struct Chunk {
+    double min_volume6 = 1e300, volume = 0;
+    size_t bad = SIZE_MAX;
+    bool bad_index = false;
+  };
+  constexpr size_t kGrain = 16384;
+  std::vector<Chunk> chunks((m.num_tets() + kGrain - 1) / kGrain);
+  parallel_for(m.num_tets(), kGrain, [&](size_t begin, size_t end) {
+    Chunk& k = chunks[begin / kGrain];
+    for (size_t e = begin; e < end; ++e) {
+      const int32_t* t = &m.tets[4 * e];
+      k.bad_index = !in_range(t, 4);
+      if (k.bad_index || !positive(t, k.min_volume6, k.volume)) {
+        k.bad = e;
+        break;
+      }
+    }
+  });
+  for (const Chunk& k : chunks) {
+    if (k.bad != SIZE_MAX) {
+      if (k.bad_index)
+        return R::Error("tetrahedron " + std::to_string(k.bad) + " has a bad vertex");
+      return R::Error("tetrahedron " + std::to_string(k.bad) + " at " +
+                      where(m, m.tets[4 * k.bad]) + " is inverted or flat");
+    }
+    c.min_volume6 = std::min(c.min_volume6, k.min_volume6);
+    c.volume += k.volume;
   }
   for (size_t e = 0; e < m.num_prisms(); ++e) {
     const int32_t* p = &m.prisms[6 * e];
     if (!in_range(p, 6)) return R::Error("prism " + std::to_string(e) + " has a bad vertex");
     for (const auto& t : split_prism(p))
-      if (!positive(t.data()))
+      if (!positive(t.data(), c.min_volume6, c.volume))
         return R::Error("prism " + std::to_string(e) + " at " + where(m, p[0]) +
                         " is inverted or flat");
   }

@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "core/geom/vec3.h"
+#include "core/util/parallel.h"
 #include "core/util/portable_math.h"
 
 namespace vm {
@@ -32,11 +33,13 @@ const double* corner(const std::vector<double>& points, int32_t v) {
 std::vector<float> tet_qualities(const std::vector<double>& points,
                                  const std::vector<int32_t>& tets) {
   std::vector<float> q(tets.size() / 4);
-  for (size_t t = 0; t < q.size(); ++t) {
-    const int32_t* v = &tets[4 * t];
-    q[t] = float(tet_gamma(corner(points, v[0]), corner(points, v[1]), corner(points, v[2]),
-                           corner(points, v[3])));
-  }
+  parallel_for(q.size(), 16384, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      const int32_t* v = &tets[4 * t];
+      q[t] = float(tet_gamma(corner(points, v[0]), corner(points, v[1]), corner(points, v[2]),
+                             corner(points, v[3])));
+    }
+  });
   return q;
 }
 
