@@ -54,7 +54,7 @@ struct RemeshOptions {
   /// the one with the fewest far vertices. A round remeshes the whole
   /// surface: on outputs of more than fidelity_small_surface vertices,
   /// only when more than fidelity_size_share of them are far.
-  int fidelity_size_rounds = 6;
+  int fidelity_size_rounds = 10;
   size_t fidelity_small_surface = 30000;
   double fidelity_size_share = 0.0005, fidelity_noise_share = 0.2, fidelity_size_drift = 0.095;
   /// Optimization passes after each fidelity round, in which a pinned
