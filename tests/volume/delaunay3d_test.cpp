@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 #include <set>
+#include <thread>
 #include <vector>
 
 #include "core/geom/predicates.h"
@@ -582,6 +583,50 @@ TEST(Delaunay3D, LastInsertedTetsAreTheStarOfTheNewVertex) {
     EXPECT_EQ(last, sorted_star(d, ins.vertex));
   }
   EXPECT_TRUE(d.check(true).ok()) << d.check(true).message();
+}
+
+TEST(Delaunay3D, QueriesWithTheirOwnScratchGiveTheSameAnswers) {
+  // Every edge and face of some tetrahedra, and pairs and triples that are
+  // mostly not edges or faces, looked up both ways, the scratch queries on
+  // three threads at the same time.
+  auto r = D::build(testing::random_cube_points(2000, 31));
+  ASSERT_TRUE(r.ok());
+  const D& d = r.value();
+  std::vector<std::array<int32_t, 3>> asked;
+  std::mt19937 rng(32);
+  std::uniform_int_distribution<int32_t> any(0, 1999);
+  for (int32_t t : d.finite_tets()) {
+    const int32_t* v = d.tet(t);
+    if (t % 7 == 0) asked.push_back({v[0], v[1], v[2]});
+    if (t % 11 == 0) asked.push_back({v[3], v[1], v[0]});
+  }
+  for (int i = 0; i < 2000; ++i) asked.push_back({any(rng), any(rng), any(rng)});
+  std::vector<std::array<int32_t, 3>> shared(asked.size()), own(asked.size());
+  int edges = 0, faces = 0;
+  for (size_t i = 0; i < asked.size(); ++i) {
+    const auto [a, b, c] = asked[i];
+    int k = -1;
+    const int32_t e = d.find_edge(a, b), f = d.find_face(a, b, c, &k);
+    shared[i] = {e, f, f >= 0 ? k : -1};
+    edges += shared[i][0] >= 0;
+    faces += shared[i][1] >= 0;
+  }
+  ASSERT_GT(faces, 100);
+  ASSERT_LT(faces, int(asked.size()) - 1000);
+  ASSERT_GT(edges, faces);
+  std::vector<std::thread> threads;
+  for (size_t j = 0; j < 3; ++j)
+    threads.emplace_back([&, j] {
+      D::AroundScratch s;
+      for (size_t i = j; i < asked.size(); i += 3) {
+        const auto [a, b, c] = asked[i];
+        int k = -1;
+        const int32_t e = d.find_edge(a, b, s), f = d.find_face(a, b, c, &k, s);
+        own[i] = {e, f, f >= 0 ? k : -1};
+      }
+    });
+  for (std::thread& t : threads) t.join();
+  EXPECT_EQ(own, shared);
 }
 
 // Constrained insertions into a triangulation made non-Delaunay by flips:
