@@ -488,6 +488,7 @@ class Optimizer {
     color_.assign(n, -1);
     inner_.clear();
     block_start_.assign(1, 0);
+    std::vector<uint8_t> used;
     int colors = 0;
     for (size_t b = 0; b < blocks; ++b) {
       const size_t first = b * kSmoothBlock, last = std::min(n, first + kSmoothBlock);
@@ -497,15 +498,15 @@ class Optimizer {
           inner_.push_back(int32_t(v));
           continue;
         }
-        uint64_t used = 0;
+        // The colors around v (at most 3 per star triangle, so one of the
+        // first 3 |star| + 1 is free).
+        used.assign(3 * vt_[v].size() + 1, 0);
         for (int32_t t : vt_[v])
           for (int k = 0; k < 3; ++k) {
             const int32_t c = color_[size_t(m_.triangles[3 * size_t(t) + size_t(k)])];
-            if (c >= 0 && c < 64) used |= uint64_t(1) << c;
+            if (c >= 0 && size_t(c) < used.size()) used[size_t(c)] = 1;
           }
-        int c = 0;
-        while (c < 64 && ((used >> c) & 1u)) ++c;
-        if (c == 64) c = 64 + next_free_color(v);
+        const int c = int(std::find(used.begin(), used.end(), 0) - used.begin());
         color_[v] = c;
         colors = std::max(colors, c + 1);
       }
@@ -519,19 +520,6 @@ class Optimizer {
     std::vector<int32_t> next(color_start_.begin(), color_start_.end() - 1);
     for (size_t v = 0; v < n; ++v)
       if (color_[v] >= 0) by_color_[size_t(next[size_t(color_[v])]++)] = int32_t(v);
-  }
-
-  /// The smallest color >= 64 none of v's neighbors has, minus 64 (for a
-  /// vertex with 64 colors around it).
-  int next_free_color(size_t v) const {
-    std::vector<int32_t> around;
-    for (int32_t t : vt_[v])
-      for (int k = 0; k < 3; ++k)
-        around.push_back(color_[size_t(m_.triangles[3 * size_t(t) + size_t(k)])]);
-    std::sort(around.begin(), around.end());
-    int c = 64;
-    while (std::binary_search(around.begin(), around.end(), c)) ++c;
-    return c - 64;
   }
 
   static double dist2(const double* x, const double* y) {

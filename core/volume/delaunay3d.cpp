@@ -982,27 +982,10 @@ void Delaunay3D::set_constrained(int32_t t, int k, bool on) {
   }
 }
 
-int32_t Delaunay3D::find_edge(int32_t a, int32_t b) const {
-  if (a < 0 || size_t(a) >= num_vertices()) return -1;
-  tets_around_vertex(a, seq_.queue);
-  for (int32_t t : seq_.queue)
-    if (slot_of(tet(t), b) >= 0) return t;
-  return -1;
-}
+int32_t Delaunay3D::find_edge(int32_t a, int32_t b) const { return find_edge(a, b, seq_.around); }
 
 int32_t Delaunay3D::find_face(int32_t a, int32_t b, int32_t c, int* k) const {
-  if (a < 0 || size_t(a) >= num_vertices()) return -1;
-  tets_around_vertex(a, seq_.queue);
-  for (int32_t t : seq_.queue) {
-    const int32_t* v = tet(t);
-    if (slot_of(v, b) < 0 || slot_of(v, c) < 0) continue;
-    for (int s = 0; s < 4; ++s)
-      if (v[s] != a && v[s] != b && v[s] != c) {
-        if (k) *k = s;
-        return t;
-      }
-  }
-  return -1;
+  return find_face(a, b, c, k, seq_.around);
 }
 
 void Delaunay3D::edge_ring(int32_t t, int32_t a, int32_t b, std::vector<int32_t>& ring_tets,
