@@ -1,7 +1,9 @@
 // Filtered exact predicates (Shewchuk 1997). Fast path: the determinant in
 // doubles, accepted when its magnitude exceeds the published forward error
 // bound (ccwerrboundA, iccerrboundA, o3derrboundA, isperrboundA) times the
-// permanent. Otherwise stage B: the same determinant of the rounded
+// permanent. Otherwise, for orient3d and insphere, stage D: the same
+// formula in double-word arithmetic on the exact differences (below).
+// Otherwise stage B: the same determinant of the rounded
 // differences in expansion arithmetic on fixed arrays, decisive when the
 // differences are exact or its value clears stage B's bound. Otherwise the
 // determinant of the coordinates themselves, exactly, in expansion
@@ -22,6 +24,138 @@ constexpr double kOrient2dBound = (3.0 + 16.0 * kEps) * kEps;
 constexpr double kIncircleBound = (10.0 + 96.0 * kEps) * kEps;
 constexpr double kOrient3dBound = (7.0 + 56.0 * kEps) * kEps;
 constexpr double kInsphereBound = (16.0 + 224.0 * kEps) * kEps;
+
+// Stage D (double-word): between the fast stage and stage B. The
+// coordinate differences are exact double-words (Two-Sum), and the fast
+// stage's formula is evaluated in double-word arithmetic: addition by
+// Joldes, Muller and Popescu's AccurateDWPlusDW ("Tight and rigorous error
+// bounds for basic building blocks of double-word arithmetic", ACM TOMS
+// 44, 2017, Algorithm 6: relative error <= 3u^2 + 13u^3) and
+// multiplication by Dekker's product with the cross terms (CRlibm's Mul22,
+// relative error < 2^-102 = 16u^2), u = 2^-53. Every operation is thus
+// exact up to a factor (1 + d), |d| <= 16u^2, and a formula of depth k
+// (operations on the longest path from a difference to the result) is off
+// by at most gamma_k = k 16u^2 / (1 - k 16u^2) times its permanent (the
+// same formula on absolute values), as in Shewchuk's analysis of the fast
+// stage (Higham, "Accuracy and Stability of Numerical Algorithms", 3.1).
+// insphere has depth 8 (2x2 minor 2, 3x3 minor 5, times the lift 6, two
+// sums 8): gamma_8 < 2^-98.9; orient3d depth 5. The fast stage's
+// permanent, from rounded differences and rounded operations on
+// nonnegative terms, is at least (1 - 16u) times the exact one. So
+// |value| > 2^-96 * permanent decides, with a margin of 7x. Underflow
+// adds at most a few 2^-1074 per operation, times cofactors below
+// 2^10 m^4 where m is the largest difference; with m <= 2^100 and the
+// permanent >= 2^-500 that stays under 2^-600, far below the margin. Out
+// of that range, or when the value is within 2^-96 of the permanent
+// (exact ties, such as cospherical integer points), stage B and the exact
+// path decide. Points on a sphere or a plane up to their coordinates'
+// rounding, which the fast stage cannot decide, are decided here instead
+// of in the expansion arithmetic, which is tens of times slower.
+namespace dw {
+
+using exact::two_product;
+using exact::two_sum;
+
+struct DW {
+  double hi, lo;
+};
+
+// x + y = s + e exactly, given |a| >= |b| or a = 0 (Fast-Two-Sum).
+inline void fast_two_sum(double a, double b, double& s, double& e) {
+  s = a + b;
+  e = b - (s - a);
+}
+
+inline DW diff(double a, double b) {
+  DW r;
+  two_sum(a, -b, r.hi, r.lo);
+  return r;
+}
+
+inline DW add(DW x, DW y) {
+  double sh, sl, th, tl, vh, vl;
+  two_sum(x.hi, y.hi, sh, sl);
+  two_sum(x.lo, y.lo, th, tl);
+  fast_two_sum(sh, sl + th, vh, vl);
+  DW r;
+  fast_two_sum(vh, tl + vl, r.hi, r.lo);
+  return r;
+}
+
+inline DW sub(DW x, DW y) { return add(x, DW{-y.hi, -y.lo}); }
+
+inline DW mul(DW x, DW y) {
+  double ph, pl;
+  two_product(x.hi, y.hi, ph, pl);
+  pl += x.hi * y.lo + x.lo * y.hi;
+  DW r;
+  fast_two_sum(ph, pl, r.hi, r.lo);
+  return r;
+}
+
+constexpr double kBound = 0x1p-96;
+constexpr double kMaxDiff = 0x1p100;
+constexpr double kMinPermanent = 0x1p-500;
+
+// The largest |d.hi|.
+template <size_t N>
+double largest(const DW (&d)[N][3]) {
+  double m = 0;
+  for (const auto& p : d)
+    for (const DW& x : p) m = std::max(m, std::fabs(x.hi));
+  return m;
+}
+
+// orient3d in double-words; false if undecided.
+bool orient3d(const double* a, const double* b, const double* c, const double* d, double permanent,
+              double& out) {
+  if (!(permanent >= kMinPermanent)) return false;
+  DW p[3][3];
+  const double* q[3] = {a, b, c};
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) p[i][k] = diff(q[i][k], d[k]);
+  if (!(largest(p) <= kMaxDiff)) return false;
+  const DW *ad = p[0], *bd = p[1], *cd = p[2];
+  const DW bc = sub(mul(bd[0], cd[1]), mul(cd[0], bd[1]));
+  const DW ca = sub(mul(cd[0], ad[1]), mul(ad[0], cd[1]));
+  const DW ab = sub(mul(ad[0], bd[1]), mul(bd[0], ad[1]));
+  const DW det = add(add(mul(ad[2], bc), mul(bd[2], ca)), mul(cd[2], ab));
+  out = det.hi;
+  const double bound = kBound * permanent;
+  return out > bound || -out > bound;
+}
+
+// insphere in double-words; false if undecided.
+bool insphere(const double* a, const double* b, const double* c, const double* d, const double* e,
+              double permanent, double& out) {
+  if (!(permanent >= kMinPermanent)) return false;
+  DW p[4][3];
+  const double* q[4] = {a, b, c, d};
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) p[i][k] = diff(q[i][k], e[k]);
+  if (!(largest(p) <= kMaxDiff)) return false;
+  const DW *ae = p[0], *be = p[1], *ce = p[2], *de = p[3];
+  const DW ab = sub(mul(ae[0], be[1]), mul(be[0], ae[1]));
+  const DW bc = sub(mul(be[0], ce[1]), mul(ce[0], be[1]));
+  const DW cd = sub(mul(ce[0], de[1]), mul(de[0], ce[1]));
+  const DW da = sub(mul(de[0], ae[1]), mul(ae[0], de[1]));
+  const DW ac = sub(mul(ae[0], ce[1]), mul(ce[0], ae[1]));
+  const DW bd = sub(mul(be[0], de[1]), mul(de[0], be[1]));
+  const DW abc = add(sub(mul(ae[2], bc), mul(be[2], ac)), mul(ce[2], ab));
+  const DW bcd = add(sub(mul(be[2], cd), mul(ce[2], bd)), mul(de[2], bc));
+  const DW cda = add(add(mul(ce[2], da), mul(de[2], ac)), mul(ae[2], cd));
+  const DW dab = add(add(mul(de[2], ab), mul(ae[2], bd)), mul(be[2], da));
+  auto lift = [](const DW* v) {
+    return add(add(mul(v[0], v[0]), mul(v[1], v[1])), mul(v[2], v[2]));
+  };
+  const DW det =
+      add(sub(mul(lift(de), abc), mul(lift(ce), dab)), sub(mul(lift(be), cda), mul(lift(ae), bcd)));
+  out = det.hi;
+  const double bound = kBound * permanent;
+  return out > bound || -out > bound;
+}
+
+}  // namespace dw
 
 // Shewchuk's adaptive stage B on fixed-size arrays (no allocation): the
 // determinant of the rounded coordinate differences, evaluated exactly in
@@ -421,6 +555,7 @@ double orient3d(const double* a, const double* b, const double* c, const double*
   double bound = kOrient3dBound * permanent;
   if (det > bound || -det > bound) return det;
   double exact;
+  if (dw::orient3d(a, b, c, d, permanent, exact)) return exact;
   if (fixed::orient3d(a, b, c, d, permanent, exact)) return exact;
   return fixed::orient3d_exact(a, b, c, d);
 }
@@ -459,6 +594,7 @@ double insphere(const double* a, const double* b, const double* c, const double*
   double bound = kInsphereBound * permanent;
   if (det > bound || -det > bound) return det;
   double exact;
+  if (dw::insphere(a, b, c, d, e, permanent, exact)) return exact;
   if (fixed::insphere(a, b, c, d, e, permanent, exact)) return exact;
   return fixed::insphere_exact(a, b, c, d, e);
 }

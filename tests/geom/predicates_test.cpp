@@ -120,6 +120,84 @@ TEST(Predicates, NearlyDegenerateRealPointsMatchAnIndependentExactEvaluation) {
   EXPECT_GT(nonzero, 3000);  // rounding moves the points off the sphere
 }
 
+TEST(Predicates, NearlyCosphericalAndCoplanarSetsAcrossScalesMatchExactSigns) {
+  // The double-word stage's territory: points on a sphere or a plane up to
+  // their coordinates' rounding, moved off it by 0-8 ulps, at scales
+  // 1e-6..1e6 and centers far from the origin (differences round). Every
+  // sign, through insphere, insphere_fast and orient3d, is the exact one.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> ulps(-8, 8);
+  int signs[3] = {0, 0, 0};
+  for (int it = 0; it < 20000; ++it) {
+    const double scale = std::pow(10.0, double(it % 13) - 6);
+    const double offset = it % 3 == 0 ? 0 : std::pow(10.0, double(it % 5)) * scale;
+    const double c[3] = {offset + u(rng) * scale, u(rng) * scale, -offset};
+    double s[5][3], f[4][3];
+    for (int i = 0; i < 5; ++i) {
+      double n[3] = {u(rng), u(rng), u(rng)};
+      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      for (int k = 0; k < 3; ++k) {
+        s[i][k] = c[k] + scale * n[k] / len;
+        for (int m = ulps(rng) * (i == 4); m != 0; m += m > 0 ? -1 : 1)
+          s[i][k] = std::nextafter(s[i][k], m > 0 ? HUGE_VAL : -HUGE_VAL);
+      }
+    }
+    for (int i = 0; i < 4; ++i) {
+      const double a = u(rng), b = u(rng);
+      for (int k = 0; k < 3; ++k)
+        f[i][k] = i < 3 ? s[i][k] : a * s[0][k] + b * s[1][k] + (1 - a - b) * s[2][k];
+    }
+    const int want = test::insphere_sign(s[0], s[1], s[2], s[3], s[4]);
+    ASSERT_EQ(sign(insphere(s[0], s[1], s[2], s[3], s[4])), want) << it;
+    ASSERT_EQ(sign(insphere_fast(s[0], s[1], s[2], s[3], s[4])), want) << it;
+    ASSERT_EQ(sign(orient3d(f[0], f[1], f[2], f[3])), test::orient3d_sign(f[0], f[1], f[2], f[3]))
+        << it;
+    ++signs[want + 1];
+  }
+  EXPECT_GT(signs[0], 5000);  // both sides of the sphere are exercised
+  EXPECT_GT(signs[2], 5000);
+}
+
+TEST(Predicates, ExactTiesWithLargeIntegerCoordinatesAreZero) {
+  // Points exactly on a sphere (Euler's parametrization: x = 2(mq + np),
+  // y = 2(nq - mp), z = m^2 + n^2 - p^2 - q^2, r = m^2 + n^2 + p^2 + q^2)
+  // or a plane, with integer coordinates up to 2^50: the differences are
+  // exact but the products need more than two doubles, so the double-word
+  // stage's value is not zero and it must leave the decision to the exact
+  // stages, which give 0.
+  std::mt19937_64 rng(8);
+  std::uniform_int_distribution<int64_t> par(-(1 << 20), 1 << 20), off(-(1ll << 49), 1ll << 49);
+  for (int it = 0; it < 2000; ++it) {
+    const double c[3] = {double(off(rng)), double(off(rng)), double(off(rng))};
+    const int64_t m = par(rng), n = par(rng), p = par(rng), r = par(rng);
+    const double d[3] = {double(2 * (m * r + n * p)), double(2 * (n * r - m * p)),
+                         double(m * m + n * n - p * p - r * r)};
+    // Five points of that sphere: d with its coordinates permuted and
+    // negated, which keeps |d|.
+    const double on[5][3] = {{d[0], d[1], d[2]},
+                             {-d[1], d[0], d[2]},
+                             {d[2], -d[0], d[1]},
+                             {-d[0], -d[2], -d[1]},
+                             {d[1], d[2], -d[0]}};
+    double s[5][3];
+    for (int i = 0; i < 5; ++i)
+      for (int k = 0; k < 3; ++k) s[i][k] = c[k] + on[i][k];
+    ASSERT_EQ(test::insphere_sign(s[0], s[1], s[2], s[3], s[4]), 0) << it;
+    ASSERT_EQ(insphere(s[0], s[1], s[2], s[3], s[4]), 0.0) << it;
+    ASSERT_EQ(insphere_fast(s[0], s[1], s[2], s[3], s[4]), 0.0) << it;
+    double f[4][3];
+    const int64_t a = par(rng), b = par(rng);
+    for (int k = 0; k < 3; ++k) {
+      const double e1 = double(par(rng)) * 4096, e2 = double(par(rng)) * 4096;
+      f[0][k] = c[k], f[1][k] = c[k] + e1, f[2][k] = c[k] + e2;
+      f[3][k] = c[k] + double(a) * e1 / 4096 + double(b) * e2 / 4096;
+    }
+    ASSERT_EQ(test::orient3d_sign(f[0], f[1], f[2], f[3]), 0) << it;
+    ASSERT_EQ(orient3d(f[0], f[1], f[2], f[3]), 0.0) << it;
+  }
+}
+
 TEST(Predicates, FastInsphereSignsMatchExactArithmetic) {
   // insphere_fast with and without the static filter (a bound for the
   // box [-2^20, 2^20]^3), on general and on degenerate (small) points.
