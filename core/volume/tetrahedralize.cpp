@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/util/stage_timer.h"
+#include "core/util/parallel.h"
 #include "core/volume/size_field3d.h"
 #include "core/volume/spatial_sort.h"
 #include "core/volume/tet_mesh.h"
@@ -61,7 +62,9 @@ Result<VolumeMesh> fill_volume(Delaunay3D& kernel, const std::vector<double>& ve
   auto field = VolumeSizeField::build(bpts, bsize, fo);
   if (!field.ok()) return R::Error("fill volume: " + field.message());
   std::vector<double> vertex_h(n0);
-  for (size_t v = 0; v < n0; ++v) vertex_h[v] = field.value()(kernel.point(int32_t(v)));
+  parallel_for(n0, 1024, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) vertex_h[v] = field.value()(kernel.point(int32_t(v)));
+  });
   st.size_field_seconds = seconds_since(t);
 
   // Phase 3: refinement.
