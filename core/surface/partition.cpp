@@ -2,7 +2,9 @@
 // itself (Marchandise et al., section 2.1). Phases per candidate piece:
 // connected components, disk test (Euler characteristic, boundary loops,
 // pinched vertices), map and crowding test, and if anything fails a
-// bisection with a straightened cut.
+// bisection with a straightened cut. The pieces of one bisection depth are
+// processed on the threads (partition_for_maps says how the result stays
+// the sequential one).
 #include "core/surface/partition.h"
 
 #include <Eigen/Dense>
@@ -10,6 +12,7 @@
 #include <cmath>
 
 #include "core/mesh/boundary_loops.h"
+#include "core/util/parallel.h"
 
 namespace vm {
 namespace {
@@ -18,6 +21,19 @@ struct Piece {
   std::vector<int32_t> tris;  // input triangle ids
   int depth = 0;
 };
+
+// The owner array is shared by the pieces of a level, which run at the same
+// time: a piece writes only its own triangles' entries (with ids from its
+// own range) and reads its neighbors', which another piece may be writing;
+// what it reads there is never one of its ids either way, so the result
+// does not depend on the timing. Relaxed atomic accesses keep those reads
+// defined.
+inline int64_t owner_of(const std::vector<int64_t>& owner, int32_t t) {
+  return __atomic_load_n(&owner[size_t(t)], __ATOMIC_RELAXED);
+}
+inline void set_owner(std::vector<int64_t>& owner, int32_t t, int64_t id) {
+  __atomic_store_n(&owner[size_t(t)], id, __ATOMIC_RELAXED);
+}
 
 /// Copies the triangles `tris` of `m` with compact local vertex numbers.
 MappedPatch extract(const SurfaceMesh& m, const std::vector<int32_t>& tris,
@@ -58,7 +74,7 @@ bool is_disk(const SurfaceMesh& p) {
 /// median plane, then moves teeth across the cut; marks side 1 in owner as
 /// id + 1.
 void bisect(const SurfaceMesh& m, const TriangleAdjacency& adj, const std::vector<int32_t>& tris,
-            std::vector<int32_t>& owner, int32_t id, std::vector<int32_t> out[2]) {
+            std::vector<int64_t>& owner, int64_t id, std::vector<int32_t> out[2]) {
   const size_t n = tris.size();
   std::vector<double> c(3 * n), w(n);
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -93,7 +109,7 @@ void bisect(const SurfaceMesh& m, const TriangleAdjacency& adj, const std::vecto
   }
   // Straighten: a triangle with at least two neighbors (in the piece) on
   // the other side changes side; a few passes.
-  for (size_t i = 0; i < n; ++i) owner[size_t(tris[i])] = id + side[i];
+  for (size_t i = 0; i < n; ++i) set_owner(owner, tris[i], id + side[i]);
   for (int pass = 0; pass < 4; ++pass) {
     bool changed = false;
     for (size_t i = 0; i < n; ++i) {
@@ -102,11 +118,11 @@ void bisect(const SurfaceMesh& m, const TriangleAdjacency& adj, const std::vecto
       for (int k = 0; k < 3; ++k) {
         int32_t o = adj.opposite[3 * size_t(t) + k];
         if (o < 0) continue;
-        int32_t s = owner[size_t(o / 3)];
-        if ((s == id || s == id + 1) && s != owner[size_t(t)]) ++other;
+        const int64_t s = owner_of(owner, o / 3);
+        if ((s == id || s == id + 1) && s != owner_of(owner, t)) ++other;
       }
       if (other >= 2) {
-        owner[size_t(t)] = owner[size_t(t)] == id ? id + 1 : id;
+        set_owner(owner, t, owner_of(owner, t) == id ? id + 1 : id);
         changed = true;
       }
     }
@@ -115,11 +131,11 @@ void bisect(const SurfaceMesh& m, const TriangleAdjacency& adj, const std::vecto
   // Fragments: a piece of one side cut off from that side's largest piece
   // joins the other side (so no patch is a sliver left by the cut).
   for (int side = 0; side < 2; ++side) {
-    const int32_t mine = id + side, other = id + 1 - side;
+    const int64_t mine = id + side, other = id + 1 - side;
     std::vector<uint8_t> seen(n, 0);
     std::vector<std::vector<size_t>> pieces;
     for (size_t i = 0; i < n; ++i) {
-      if (seen[i] || owner[size_t(tris[i])] != mine) continue;
+      if (seen[i] || owner_of(owner, tris[i]) != mine) continue;
       pieces.push_back({i});
       seen[i] = 1;
       auto& piece = pieces.back();
@@ -127,7 +143,7 @@ void bisect(const SurfaceMesh& m, const TriangleAdjacency& adj, const std::vecto
         const int32_t t = tris[piece[j]];
         for (int k = 0; k < 3; ++k) {
           int32_t o = adj.opposite[3 * size_t(t) + k];
-          if (o < 0 || owner[size_t(o / 3)] != mine) continue;
+          if (o < 0 || owner_of(owner, o / 3) != mine) continue;
           auto it = std::lower_bound(tris.begin(), tris.end(), o / 3);
           const size_t idx = size_t(it - tris.begin());
           if (!seen[idx]) {
@@ -143,44 +159,44 @@ void bisect(const SurfaceMesh& m, const TriangleAdjacency& adj, const std::vecto
       if (pieces[i].size() > pieces[largest].size()) largest = i;
     for (size_t i = 0; i < pieces.size(); ++i)
       if (i != largest)
-        for (size_t idx : pieces[i]) owner[size_t(tris[idx])] = other;
+        for (size_t idx : pieces[i]) set_owner(owner, tris[idx], other);
   }
-  for (int32_t t : tris) out[owner[size_t(t)] - id].push_back(t);
+  for (int32_t t : tris) out[owner_of(owner, t) - id].push_back(t);
   if (!out[0].empty() && !out[1].empty()) return;
   // Too few triangles for a plane to cut (a coarse input): the first half
   // of a breadth-first order from the triangle lowest along the axis.
   out[0].clear();
   out[1].clear();
-  for (int32_t t : tris) owner[size_t(t)] = id + 1;
+  for (int32_t t : tris) set_owner(owner, t, id + 1);
   std::vector<int32_t> order = {tris[proj.front().second]};
-  owner[size_t(order[0])] = id;
+  set_owner(owner, order[0], id);
   for (size_t i = 0; i < order.size() && order.size() < n / 2; ++i)
     for (int k = 0; k < 3 && order.size() < n / 2; ++k) {
       const int32_t o = adj.opposite[3 * size_t(order[i]) + k];
-      if (o >= 0 && owner[size_t(o / 3)] == id + 1) {
-        owner[size_t(o / 3)] = id;
+      if (o >= 0 && owner_of(owner, o / 3) == id + 1) {
+        set_owner(owner, o / 3, id);
         order.push_back(o / 3);
       }
     }
-  for (int32_t t : tris) out[owner[size_t(t)] - id].push_back(t);
+  for (int32_t t : tris) out[owner_of(owner, t) - id].push_back(t);
 }
 
 /// Edge-connected components of `tris` (all with owner[t] == id).
 std::vector<std::vector<int32_t>> components(const TriangleAdjacency& adj,
                                              const std::vector<int32_t>& tris,
-                                             std::vector<int32_t>& owner, int32_t id,
-                                             int32_t& next_id) {
+                                             std::vector<int64_t>& owner, int64_t id,
+                                             int64_t& next_id) {
   std::vector<std::vector<int32_t>> out;
   for (int32_t seed : tris) {
-    if (owner[size_t(seed)] != id) continue;
+    if (owner_of(owner, seed) != id) continue;
     std::vector<int32_t> comp = {seed};
-    int32_t cid = next_id++;
-    owner[size_t(seed)] = cid;
+    const int64_t cid = next_id++;
+    set_owner(owner, seed, cid);
     for (size_t i = 0; i < comp.size(); ++i)
       for (int k = 0; k < 3; ++k) {
         int32_t o = adj.opposite[3 * size_t(comp[i]) + k];
-        if (o >= 0 && owner[size_t(o / 3)] == id) {
-          owner[size_t(o / 3)] = cid;
+        if (o >= 0 && owner_of(owner, o / 3) == id) {
+          set_owner(owner, o / 3, cid);
           comp.push_back(o / 3);
         }
       }
@@ -222,25 +238,36 @@ Result<std::vector<MappedPatch>> partition_for_maps(const SurfaceMesh& mesh,
                                                     const PatchMapFn& map,
                                                     const PartitionOptions& options,
                                                     PartitionStats* stats) {
-  using R = Result<std::vector<MappedPatch>>;
+  // The pieces form a tree: each is split into its components, which are
+  // accepted as patches or bisected into two child pieces. The pieces of
+  // one depth are independent and run on the threads (the owner array is
+  // shared as owner_of() says; each piece takes ids from its own range,
+  // above every id used before). The patches come in the depth-first order
+  // a stack of pieces gives (a piece's patches, then its children, the
+  // last pushed first), and so does the first error: the same result on
+  // any number of threads.
+  struct Node {
+    Piece piece;
+    int64_t first_id = 0;
+    std::vector<MappedPatch> accepted;
+    std::vector<Piece> pushed;     // the child pieces, in push order
+    std::vector<size_t> children;  // their nodes
+    Status error = Status::Ok();
+    PartitionStats stats;
+  };
   const size_t nt = mesh.num_triangles();
-  std::vector<int32_t> owner(nt, 0), local(mesh.num_vertices(), -1);
-  int32_t next_id = 1;
-  std::vector<MappedPatch> done;
-  std::vector<Piece> todo;
-  {
-    Piece all;
-    all.tris.resize(nt);
-    for (size_t t = 0; t < nt; ++t) all.tris[t] = int32_t(t);
-    todo.push_back(std::move(all));
-  }
-  PartitionStats local_stats;
-  while (!todo.empty()) {
-    Piece piece = std::move(todo.back());
-    todo.pop_back();
-    const int32_t id = next_id++;
-    for (int32_t t : piece.tris) owner[size_t(t)] = id;
-    for (auto& comp : components(adj, piece.tris, owner, id, next_id)) {
+  std::vector<Node> nodes(1);
+  nodes[0].piece.tris.resize(nt);
+  for (size_t t = 0; t < nt; ++t) nodes[0].piece.tris[t] = int32_t(t);
+  std::vector<int64_t> owner(nt, 0);
+  auto process = [&](Node& node) {
+    thread_local std::vector<int32_t> local;
+    if (local.size() < mesh.num_vertices()) local.assign(mesh.num_vertices(), -1);
+    const Piece& piece = node.piece;
+    int64_t ids = node.first_id;
+    const int64_t id = ids++;
+    for (int32_t t : piece.tris) set_owner(owner, t, id);
+    for (auto& comp : components(adj, piece.tris, owner, id, ids)) {
       bool accept = false;
       MappedPatch p = extract(mesh, comp, local);
       bool small_enough = comp.size() <= options.max_patch_triangles;
@@ -251,30 +278,71 @@ Result<std::vector<MappedPatch>> partition_for_maps(const SurfaceMesh& mesh,
             small_enough = false;
       if (small_enough && is_disk(p.mesh)) {
         auto uv = map(p.mesh);
-        if (!uv.ok()) return uv.status();
+        if (!uv.ok()) {
+          node.error = uv.status();
+          return;
+        }
         p.map = std::move(uv).value();
         p.factor_ratio = p.map.flipped_triangles ? 1e300 : conformal_factor_ratio(p.mesh, p.map.uv);
         accept = p.factor_ratio <= options.max_factor_ratio || comp.size() < 8;
-        if (!accept) ++local_stats.rejected_maps;
-        if (!accept && p.map.flipped_triangles && comp.size() < 8)
-          return R::Error("the map folds a patch of " + std::to_string(comp.size()) +
-                          " triangles: the input surface is folded there");
+        if (!accept) ++node.stats.rejected_maps;
+        if (!accept && p.map.flipped_triangles && comp.size() < 8) {
+          node.error = Status::Error("the map folds a patch of " + std::to_string(comp.size()) +
+                                     " triangles: the input surface is folded there");
+          return;
+        }
       }
       if (accept) {
-        done.push_back(std::move(p));
+        node.accepted.push_back(std::move(p));
         continue;
       }
-      if (piece.depth + 1 > options.max_depth)
-        return R::Error("could not split the surface into parametrizable patches (depth " +
-                        std::to_string(options.max_depth) + " reached)");
+      if (piece.depth + 1 > options.max_depth) {
+        node.error =
+            Status::Error("could not split the surface into parametrizable patches (depth " +
+                          std::to_string(options.max_depth) + " reached)");
+        return;
+      }
       std::vector<int32_t> halves[2];
       std::sort(comp.begin(), comp.end());
-      bisect(mesh, adj, comp, owner, next_id, halves);
-      next_id += 2;
-      ++local_stats.bisections;
+      bisect(mesh, adj, comp, owner, ids, halves);
+      ids += 2;
+      ++node.stats.bisections;
       for (auto& h : halves)
-        if (!h.empty()) todo.push_back({std::move(h), piece.depth + 1});
+        if (!h.empty()) node.pushed.push_back({std::move(h), piece.depth + 1});
     }
+  };
+  // Depth by depth. A piece uses at most 1 + 3 * (its triangles) ids: its
+  // own, one per component and two per bisection.
+  int64_t next_id = 1;
+  for (size_t begin = 0, end = 1; begin < end; begin = end, end = nodes.size()) {
+    for (size_t i = begin; i < end; ++i) {
+      nodes[i].first_id = next_id;
+      next_id += 1 + 3 * int64_t(nodes[i].piece.tris.size());
+    }
+    parallel_for(end - begin, 1, [&](size_t b, size_t e) {
+      for (size_t i = b; i < e; ++i) process(nodes[begin + i]);
+    });
+    for (size_t i = begin; i < end; ++i) {
+      if (!nodes[i].error.ok()) continue;
+      std::vector<Piece> pushed = std::move(nodes[i].pushed);
+      for (Piece& child : pushed) {
+        nodes[i].children.push_back(nodes.size());
+        nodes.emplace_back().piece = std::move(child);
+      }
+    }
+  }
+  // The stack's order.
+  std::vector<MappedPatch> done;
+  PartitionStats local_stats;
+  std::vector<size_t> stack = {0};
+  while (!stack.empty()) {
+    Node& node = nodes[stack.back()];
+    stack.pop_back();
+    if (!node.error.ok()) return node.error;
+    for (MappedPatch& p : node.accepted) done.push_back(std::move(p));
+    local_stats.bisections += node.stats.bisections;
+    local_stats.rejected_maps += node.stats.rejected_maps;
+    stack.insert(stack.end(), node.children.begin(), node.children.end());
   }
   if (stats) *stats = local_stats;
   return done;

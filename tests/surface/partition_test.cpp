@@ -12,6 +12,7 @@
 #include "core/mesh/topology.h"
 #include "core/param/lscm.h"
 #include "core/phantom/vessel_phantom.h"
+#include "core/util/parallel.h"
 #include "tests/param/param_test_meshes.h"
 #include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
@@ -205,6 +206,50 @@ TEST(Partition, ErrorsAreReported) {
   auto r = partition_for_maps(tube, adj, failing);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("no map today"), std::string::npos) << r.message();
+}
+
+TEST(Partition, SamePatchesAndFirstErrorOnAnyThreadCount) {
+  // Pieces of one depth run on the threads; the patches (and their order)
+  // and the error reported must not depend on how many.
+  const SurfaceMesh m = phantom(PhantomKind::kBifurcation, true, 0.15, 0.3);
+  const TriangleAdjacency adj = build_adjacency(m);
+  PartitionOptions o;
+  o.max_patch_triangles = m.num_triangles() / 40;
+  // Fails on the patches whose centroid has x > 0.3, naming the centroid.
+  PatchMapFn failing = [](const SurfaceMesh& patch) -> Result<Parametrization> {
+    double c[3] = {0, 0, 0};
+    for (size_t i = 0; i < patch.points.size(); ++i) c[i % 3] += patch.points[i];
+    for (double& x : c) x /= double(patch.num_vertices());
+    if (c[0] > 0.3)
+      return Result<Parametrization>::Error("no map at " + std::to_string(c[0]) + " " +
+                                            std::to_string(c[1]) + " " + std::to_string(c[2]));
+    return lscm(patch);
+  };
+  std::vector<std::vector<int32_t>> first;
+  PartitionStats first_stats;
+  std::string first_error;
+  for (int threads : {1, 2, 3}) {
+    SCOPED_TRACE(threads);
+    set_thread_count(threads);
+    PartitionStats stats;
+    auto r = partition_for_maps(m, adj, kLscm, o, &stats);
+    ASSERT_TRUE(r.ok()) << r.message();
+    std::vector<std::vector<int32_t>> tris;
+    for (const MappedPatch& p : r.value()) tris.push_back(p.triangle_of);
+    auto e = partition_for_maps(m, adj, failing, o);
+    ASSERT_FALSE(e.ok());
+    if (threads == 1) {
+      check_partition(m, r.value(), o, "1 thread");
+      EXPECT_GE(tris.size(), 40u);
+      first = tris, first_stats = stats, first_error = e.message();
+      continue;
+    }
+    EXPECT_EQ(tris, first);
+    EXPECT_EQ(stats.bisections, first_stats.bisections);
+    EXPECT_EQ(stats.rejected_maps, first_stats.rejected_maps);
+    EXPECT_EQ(e.message(), first_error);
+  }
+  set_thread_count(0);
 }
 
 TEST(ConformalFactor, SimilarityHasRatioOne) {
