@@ -614,8 +614,9 @@ class Optimizer {
   // star's vertices are all in its own slab is interior: smoothing it reads
   // and writes nothing another slab's interior vertices do, so the slabs
   // smooth their interior vertices (each in index order) at the same time;
-  // then the others, in index order. The slabs do not depend on the thread
-  // count, so neither does the mesh.
+  // then the others the same way in kParts + 1 slabs cut halfway between
+  // the first cuts; then what is left, in index order. The slabs do not
+  // depend on the thread count, so neither does the mesh.
   void smooth_pass() {
     const size_t nv = m_.num_vertices();
     inc_off_.assign(nv + 1, 0);
@@ -654,16 +655,46 @@ class Optimizer {
       for (int32_t v : moved[j])
         for (int32_t t : star_of(v)) mark(t);
     }
+    // The others lie near a cut: again by slabs, whose cuts now fall
+    // halfway between the first ones (so each first cut is inside one),
+    // then what is left in index order.
+    const std::vector<uint8_t> part2 = vertex_slabs(kParts, true);
+    std::vector<std::vector<int32_t>> mine2(kParts + 1), later2(kParts + 1), moved2(kParts + 1);
+    for (size_t j = 0; j < kParts; ++j)
+      for (int32_t v : later[j]) mine2[part2[size_t(v)]].push_back(v);
+    std::vector<StarScratch> scratch2(kParts + 1);
+    parallel_for(kParts + 1, 1, [&](size_t begin, size_t end) {
+      for (size_t j = begin; j < end; ++j) {
+        std::sort(mine2[j].begin(), mine2[j].end());
+        for (int32_t v : mine2[j]) {
+          const Span star = star_of(v);
+          bool interior = true;
+          for (int32_t t : star)
+            for (int k = 0; k < 4; ++k) interior = interior && part2[size_t(m_.tet(t)[k])] == j;
+          if (!interior)
+            later2[j].push_back(v);
+          else if (smooth_vertex(v, star, scratch2[j], true))
+            moved2[j].push_back(v);
+        }
+      }
+    });
+    for (size_t j = 0; j <= kParts; ++j) {
+      st_.smoothing_moves += scratch2[j].moves;
+      for (int32_t v : moved2[j])
+        for (int32_t t : star_of(v)) mark(t);
+    }
     std::vector<int32_t> rest;
-    for (const std::vector<int32_t>& l : later) rest.insert(rest.end(), l.begin(), l.end());
+    for (const std::vector<int32_t>& l : later2) rest.insert(rest.end(), l.begin(), l.end());
     std::sort(rest.begin(), rest.end());
     for (int32_t v : rest) smooth_vertex(v, star_of(v), seq_, false);
     st_.smoothing_moves += std::exchange(seq_.moves, 0);
   }
 
   // The slab (0 .. parts - 1) of each vertex: equal counts along the
-  // longest axis of the vertices' box, ties to the same slab.
-  std::vector<uint8_t> vertex_slabs(size_t parts) const {
+  // longest axis of the vertices' box, ties to the same slab. halfway:
+  // parts + 1 slabs, cut halfway between those cuts (at the count
+  // fractions (2 j - 1) / (2 parts), j = 1 .. parts).
+  std::vector<uint8_t> vertex_slabs(size_t parts, bool halfway = false) const {
     const size_t nv = m_.num_vertices();
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t v = 0; v < nv; ++v)
@@ -677,8 +708,8 @@ class Optimizer {
     std::vector<double> xs(nv);
     for (size_t v = 0; v < nv; ++v) xs[v] = m_.point(int32_t(v))[axis];
     std::vector<double> cuts;
-    for (size_t j = 1; j < parts && nv > 0; ++j) {
-      auto at = xs.begin() + ptrdiff_t(nv * j / parts);
+    for (size_t j = 1; j < parts + halfway && nv > 0; ++j) {
+      auto at = xs.begin() + ptrdiff_t(halfway ? nv * (2 * j - 1) / (2 * parts) : nv * j / parts);
       std::nth_element(xs.begin(), at, xs.end());
       cuts.push_back(*at);
     }
