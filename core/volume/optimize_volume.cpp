@@ -633,59 +633,47 @@ class Optimizer {
       return Span(inc_.data() + inc_off_[size_t(v)],
                   size_t(inc_off_[size_t(v) + 1] - inc_off_[size_t(v)]));
     };
-    const std::vector<uint8_t> part = vertex_slabs(kParts);
-    std::vector<std::vector<int32_t>> mine(kParts), later(kParts), moved(kParts);
-    for (int32_t v = 0; v < int32_t(nv); ++v) mine[part[size_t(v)]].push_back(v);
-    std::vector<StarScratch> scratch(kParts);
-    parallel_for(kParts, 1, [&](size_t begin, size_t end) {
-      for (size_t j = begin; j < end; ++j)
-        for (int32_t v : mine[j]) {
-          const Span star = star_of(v);
-          bool interior = true;
-          for (int32_t t : star)
-            for (int k = 0; k < 4; ++k) interior = interior && part[size_t(m_.tet(t)[k])] == j;
-          if (!interior)
-            later[j].push_back(v);
-          else if (smooth_vertex(v, star, scratch[j], true))
-            moved[j].push_back(v);
-        }
-    });
-    for (size_t j = 0; j < kParts; ++j) {
-      st_.smoothing_moves += scratch[j].moves;
-      for (int32_t v : moved[j])
-        for (int32_t t : star_of(v)) mark(t);
-    }
-    // The others lie near a cut: again by slabs, whose cuts now fall
-    // halfway between the first ones (so each first cut is inside one),
-    // then what is left in index order.
-    const std::vector<uint8_t> part2 = vertex_slabs(kParts, true);
-    std::vector<std::vector<int32_t>> mine2(kParts + 1), later2(kParts + 1), moved2(kParts + 1);
-    for (size_t j = 0; j < kParts; ++j)
-      for (int32_t v : later[j]) mine2[part2[size_t(v)]].push_back(v);
-    std::vector<StarScratch> scratch2(kParts + 1);
-    parallel_for(kParts + 1, 1, [&](size_t begin, size_t end) {
-      for (size_t j = begin; j < end; ++j) {
-        std::sort(mine2[j].begin(), mine2[j].end());
-        for (int32_t v : mine2[j]) {
-          const Span star = star_of(v);
-          bool interior = true;
-          for (int32_t t : star)
-            for (int k = 0; k < 4; ++k) interior = interior && part2[size_t(m_.tet(t)[k])] == j;
-          if (!interior)
-            later2[j].push_back(v);
-          else if (smooth_vertex(v, star, scratch2[j], true))
-            moved2[j].push_back(v);
-        }
+    // Slab j of `part` smooths the vertices of lists[j] whose star lies in
+    // it, in index order, at the same time as the other slabs; the others
+    // are returned, in index order.
+    auto by_slabs = [&](const std::vector<uint8_t>& part,
+                        const std::vector<std::vector<int32_t>>& lists) {
+      const size_t n = lists.size();
+      std::vector<std::vector<int32_t>> later(n), moved(n);
+      std::vector<StarScratch> scratch(n);
+      parallel_for(n, 1, [&](size_t begin, size_t end) {
+        for (size_t j = begin; j < end; ++j)
+          for (int32_t v : lists[j]) {
+            const Span star = star_of(v);
+            bool interior = true;
+            for (int32_t t : star)
+              for (int k = 0; k < 4; ++k) interior = interior && part[size_t(m_.tet(t)[k])] == j;
+            if (!interior)
+              later[j].push_back(v);
+            else if (smooth_vertex(v, star, scratch[j], true))
+              moved[j].push_back(v);
+          }
+      });
+      std::vector<int32_t> rest;
+      for (size_t j = 0; j < n; ++j) {
+        st_.smoothing_moves += scratch[j].moves;
+        for (int32_t v : moved[j])
+          for (int32_t t : star_of(v)) mark(t);
+        rest.insert(rest.end(), later[j].begin(), later[j].end());
       }
-    });
-    for (size_t j = 0; j <= kParts; ++j) {
-      st_.smoothing_moves += scratch2[j].moves;
-      for (int32_t v : moved2[j])
-        for (int32_t t : star_of(v)) mark(t);
-    }
-    std::vector<int32_t> rest;
-    for (const std::vector<int32_t>& l : later2) rest.insert(rest.end(), l.begin(), l.end());
-    std::sort(rest.begin(), rest.end());
+      std::sort(rest.begin(), rest.end());
+      return rest;
+    };
+    const std::vector<uint8_t> part = vertex_slabs(kParts);
+    std::vector<std::vector<int32_t>> mine(kParts);
+    for (int32_t v = 0; v < int32_t(nv); ++v) mine[part[size_t(v)]].push_back(v);
+    const std::vector<int32_t> near_cuts = by_slabs(part, mine);
+    // The vertices near a cut, again by slabs, whose cuts now fall halfway
+    // between the first ones (so each first cut is inside one).
+    const std::vector<uint8_t> part2 = vertex_slabs(kParts, true);
+    std::vector<std::vector<int32_t>> mine2(kParts + 1);
+    for (int32_t v : near_cuts) mine2[part2[size_t(v)]].push_back(v);
+    const std::vector<int32_t> rest = by_slabs(part2, mine2);
     for (int32_t v : rest) smooth_vertex(v, star_of(v), seq_, false);
     st_.smoothing_moves += std::exchange(seq_.moves, 0);
   }

@@ -11,8 +11,8 @@
 #include <cmath>
 #include <string>
 
-#include "core/util/stage_timer.h"
 #include "core/util/parallel.h"
+#include "core/util/stage_timer.h"
 #include "core/volume/size_field3d.h"
 #include "core/volume/spatial_sort.h"
 #include "core/volume/tet_mesh.h"
