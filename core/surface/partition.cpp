@@ -323,6 +323,7 @@ Result<std::vector<MappedPatch>> partition_for_maps(const SurfaceMesh& mesh,
       for (size_t i = b; i < e; ++i) process(nodes[begin + i]);
     });
     for (size_t i = begin; i < end; ++i) {
+      std::vector<int32_t>().swap(nodes[i].piece.tris);  // done with: free it
       if (!nodes[i].error.ok()) continue;
       std::vector<Piece> pushed = std::move(nodes[i].pushed);
       for (Piece& child : pushed) {
