@@ -27,7 +27,11 @@
 // (Delaunay3D::begin_partitions): it only walks and replaces tetrahedra
 // whose vertices are all in its slab. An item that needs more is deferred
 // to the next round, whose slabs cut along the next axis; the last round
-// is sequential. Slabs, budgets and order depend only on the data, so the
+// is sequential. A slab's vertices are budgeted (3 per front item); when
+// one spends its budget with work left, another round follows with the
+// budget doubled (a core much finer than the wall, where each front vertex
+// fills a larger volume, would otherwise leave most of it to the
+// sequential round). Slabs, budgets and order depend only on the data, so the
 // mesh is the same with any number of threads. In phase 2 the mesh is
 // still the boundary triangulation, whose long tetrahedra cross the cuts:
 // a point whose cavity reaches one waits (about 6% on the aortic arch with
@@ -81,6 +85,7 @@ struct SlabWork {
   std::vector<int32_t> fresh;     // phase 2: the vertices inserted
   int32_t budget = INT32_MAX;     // vertices it may insert
   int32_t inserted = 0;
+  bool out_of_budget = false;  // it stopped at its budget with work left
   std::vector<int32_t> star, nbs, nb_tet;
   std::vector<Edge> edges;  // front_item(): v's edges, longest first
   std::vector<uint32_t> seen;
@@ -366,6 +371,7 @@ void Refiner::work(Phase phase, int part, SlabWork& S, const ProgressFn& progres
   S.deferred.clear();
   S.fresh.clear();
   S.inserted = 0;
+  S.out_of_budget = false;
   for (size_t k = 0; k < S.items.size(); ++k) {
     if ((k & 1023) == 0) {
       if (caller && progress) {
@@ -381,6 +387,7 @@ void Refiner::work(Phase phase, int part, SlabWork& S, const ProgressFn& progres
     const int32_t item = S.items[k];
     if (S.inserted >= S.budget) {  // the rest waits for the next round
       S.deferred.insert(S.deferred.end(), S.items.begin() + ptrdiff_t(k), S.items.end());
+      S.out_of_budget = true;
       break;
     }
     if (!(phase == Phase::kFirstLayer ? first_layer_item(part, S, item)
@@ -404,6 +411,7 @@ Status Refiner::sequential(Phase phase, std::vector<int32_t> items, RefineStats&
   if (cancelled_) return Status::Cancelled();
   if (S.inserted >= S.budget && !S.deferred.empty()) st.hit_max_points = true;
   add_stats(st, S.st);
+  st.sequential_inserted += S.st.inserted;
   if (fresh) fresh->insert(fresh->end(), S.fresh.begin(), S.fresh.end());
   slabs_.pop_back();
   return Status::Ok();
@@ -416,7 +424,14 @@ Status Refiner::slab_rounds(Phase phase, std::vector<int32_t> items, RefineStats
     done_ = 0;  // the progress fraction counts the front's work only
     queued_ = int64_t(items.size());
   }
-  for (int round = 0; round < o_.rounds && parts > 1 &&
+  // Vertex budget per item: a front vertex gives a few new ones (the
+  // front grows into the volume), a first-layer item at most one. A round
+  // in which a slab spent its budget with work left (a core much finer
+  // than the wall: each front vertex fills a larger volume) adds a round,
+  // with the budget doubled, up to o_.budget_rounds of them.
+  int64_t per_item = phase == Phase::kFirstLayer ? 1 : 3;
+  int budget_rounds = 0;
+  for (int round = 0; round < o_.rounds + budget_rounds && parts > 1 &&
                       items.size() >= size_t(std::max(o_.min_slab_items, 1)) * size_t(parts);
        ++round) {
     if (st.inserted >= o_.max_points) break;
@@ -439,16 +454,18 @@ Status Refiner::slab_rounds(Phase phase, std::vector<int32_t> items, RefineStats
     slabs_.resize(size_t(parts));
     for (SlabWork& S : slabs_) S.items.clear(), S.st = RefineStats{};
     for (int32_t v : items) slabs_[size_t(slab_of(item_point(phase, v)))].items.push_back(v);
-    // Budgets: a front vertex gives a few new ones (the front grows into
-    // the volume), a first-layer item at most one, about half of them kept
-    // (a new vertex makes about 6.7 tetrahedra); within max_points.
-    const int64_t per_item = phase == Phase::kFirstLayer ? 1 : 3;
+    // Budgets: per_item vertices an item, and fresh tetrahedra for them (a
+    // new vertex makes about 6.7), within max_points. A doubled budget
+    // stays within the slab's share of the vertices so far (the mesh at
+    // most doubles in a round, so do its arrays).
     const int64_t tets_per_vertex = phase == Phase::kFirstLayer ? 5 : 7;
     std::vector<Delaunay3D::PartBudget> budgets(static_cast<size_t>(parts));
     int64_t total = 0;
     for (int j = 0; j < parts; ++j) {
       const int64_t n = int64_t(slabs_[size_t(j)].items.size());
-      budgets[size_t(j)].vertices = int32_t(std::min<int64_t>(per_item * n + 256, room));
+      const int64_t share = int64_t(n0) * n / int64_t(items.size());
+      const int64_t wanted = std::min(per_item * n, std::max(3 * n, share)) + 256;
+      budgets[size_t(j)].vertices = int32_t(std::min<int64_t>(wanted, room));
       total += budgets[size_t(j)].vertices;
     }
     for (int j = 0; j < parts; ++j) {
@@ -479,6 +496,12 @@ Status Refiner::slab_rounds(Phase phase, std::vector<int32_t> items, RefineStats
     if (cancelled_) return Status::Cancelled();
     items.clear();
     auto current = [&](int32_t v) { return size_t(v) >= n0 ? remap[size_t(v) - n0] : v; };
+    if (budget_rounds < o_.budget_rounds &&
+        std::any_of(slabs_.begin(), slabs_.end(),
+                    [](const SlabWork& S) { return S.out_of_budget; })) {
+      ++budget_rounds;
+      per_item *= 2;
+    }
     for (SlabWork& S : slabs_) {
       for (int32_t v : S.deferred) items.push_back(phase == Phase::kFront ? current(v) : v);
       if (fresh)
@@ -498,10 +521,11 @@ Status Refiner::run(RefineStats& st, const ProgressFn& progress) {
   for (double h : vertex_h_)
     if (!(h > 0) || !std::isfinite(h)) return Status::Error("refine: sizes must be finite and > 0");
   if (!(o_.split_length > 1) || !(o_.min_spacing > 0) || !(o_.min_spacing < o_.split_length) ||
-      !(o_.boundary_spacing >= 0) || !(o_.parts >= 1 && o_.parts <= 64) || !(o_.rounds >= 0))
+      !(o_.boundary_spacing >= 0) || !(o_.parts >= 1 && o_.parts <= 64) || !(o_.rounds >= 0) ||
+      !(o_.budget_rounds >= 0))
     return Status::Error(
         "refine: options need split_length > 1, 0 < min_spacing < split_length, "
-        "boundary_spacing >= 0, 1 <= parts <= 64, rounds >= 0");
+        "boundary_spacing >= 0, 1 <= parts <= 64, rounds >= 0, budget_rounds >= 0");
   const int32_t cap = int32_t(kernel_.tet_capacity());
   std::vector<uint8_t> in_region(kernel_.num_vertices(), 0);
   for (int32_t t = 0; t < cap; ++t) {

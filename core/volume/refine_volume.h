@@ -54,14 +54,17 @@ struct RefineOptions {
   /// same time, each only where it owns the tetrahedra; what a slab cannot
   /// do waits for the next round; after `rounds` rounds, or when fewer than
   /// min_slab_items items per slab are left, one sequential round ends the
-  /// phase. The mesh depends on these two numbers, never on the thread
-  /// count. rounds = 0: all sequential. 1 <= parts <= 64. More slabs than 2
-  /// leave most of the work to the sequential round: until the front
-  /// reaches it, the lumen's inside is the boundary triangulation, whose
+  /// phase. A slab may insert 3 vertices per front item in a round; a round
+  /// in which one spent that budget with work left (a core much finer than
+  /// the wall) adds a round with the budget doubled (at most budget_rounds
+  /// such). The mesh depends on these numbers, never on the thread count. rounds = 0: all
+  /// sequential. 1 <= parts <= 64. More slabs than 2 leave most of the work to the sequential
+  /// round: until the front reaches it, the lumen's inside is the boundary triangulation, whose
   /// tetrahedra span the vessel and so cross the slab cuts.
   int parts = 2;
   int rounds = 3;
   int min_slab_items = 4096;
+  int budget_rounds = 6;
 };
 
 struct RefineStats {
@@ -69,15 +72,16 @@ struct RefineStats {
   int64_t candidates = 0;          ///< points proposed (first layer and long edges)
   int64_t size_evaluations = 0;    ///< size field queries
   int64_t inserted = 0;
-  int64_t first_layer = 0;        ///< of which first-layer points
-  int64_t rejected_spacing = 0;   ///< too close to a vertex
-  int64_t rejected_boundary = 0;  ///< too close to a constrained face
-  int64_t rejected_outside = 0;   ///< located outside the region
-  int64_t rejected_kernel = 0;    ///< the kernel refused (blocked, duplicate, hull)
-  int generations = 0;            ///< depth of the front (layers of new vertices)
-  int rounds = 0;                 ///< parallel rounds run
-  int first_layer_rounds = 0;     ///< of which the first layer's
-  int64_t deferred = 0;           ///< items a slab left to a later round
+  int64_t first_layer = 0;          ///< of which first-layer points
+  int64_t rejected_spacing = 0;     ///< too close to a vertex
+  int64_t rejected_boundary = 0;    ///< too close to a constrained face
+  int64_t rejected_outside = 0;     ///< located outside the region
+  int64_t rejected_kernel = 0;      ///< the kernel refused (blocked, duplicate, hull)
+  int generations = 0;              ///< depth of the front (layers of new vertices)
+  int rounds = 0;                   ///< parallel rounds run
+  int first_layer_rounds = 0;       ///< of which the first layer's
+  int64_t deferred = 0;             ///< items a slab left to a later round
+  int64_t sequential_inserted = 0;  ///< of `inserted`, by the sequential rounds
   bool hit_max_points = false;
   double first_layer_seconds = 0;  ///< checks and first layer (part of seconds)
   double seconds = 0;

@@ -205,6 +205,60 @@ TEST(RefineVolume, SlabRoundsGiveTheSameMeshOnAnyThreadCount) {
   }
 }
 
+TEST(RefineVolume, FineCoreStaysInTheSlabRounds) {
+  // A core almost four times finer than the wall: each front vertex fills far
+  // more than the 3 vertices a slab may insert per item in its first round,
+  // so the slabs run out of budget. The rounds that follow, with doubled
+  // budgets, leave at most half as much to the sequential round as when
+  // the budget rounds are off, for the same refinement; the same on 1 and
+  // 2 threads.
+  struct Outcome {
+    std::vector<double> points;
+    std::vector<int32_t> tets;
+    RefineStats st;
+  };
+  auto run = [](int threads, int budget_rounds) {
+    set_thread_count(threads);
+    Outcome out;
+    testing::VolumeInput in;
+    // Along x, so that the first round cuts across the vessel.
+    std::vector<double> wall = testing::capped_cylinder_points(0.25, 4, 0.15);
+    for (size_t i = 0; i < wall.size(); i += 3) std::rotate(&wall[i], &wall[i + 2], &wall[i + 3]);
+    EXPECT_TRUE(testing::convex_input(std::move(wall), &in));
+    std::vector<double> pts, sizes;
+    for (size_t v = 0; v < in.kernel.num_vertices(); ++v) {
+      pts.insert(pts.end(), in.kernel.point(int32_t(v)), in.kernel.point(int32_t(v)) + 3);
+      sizes.push_back(in.sizes[v]);
+    }
+    VolumeSizeOptions fo;
+    fo.core_size = 0.04;
+    auto field = VolumeSizeField::build(pts, sizes, fo);
+    EXPECT_TRUE(field.ok()) << field.message();
+    std::vector<double> vertex_h;
+    for (size_t v = 0; v < in.kernel.num_vertices(); ++v)
+      vertex_h.push_back(field.value()(in.kernel.point(int32_t(v))));
+    RefineOptions o;
+    o.min_slab_items = 64;
+    o.budget_rounds = budget_rounds;
+    EXPECT_TRUE(refine_volume(in.kernel, field.value(), vertex_h, o, &out.st).ok());
+    EXPECT_TRUE(in.kernel.check(false).ok()) << in.kernel.check(false).message();
+    out.points = in.kernel.points();
+    out.tets = in.kernel.finite_tets();
+    set_thread_count(0);
+    return out;
+  };
+  const Outcome off = run(2, 0), one = run(1, RefineOptions{}.budget_rounds),
+                two = run(2, RefineOptions{}.budget_rounds);
+  EXPECT_GT(off.st.inserted, 10000);
+  EXPECT_EQ(off.st.rounds - off.st.first_layer_rounds, RefineOptions{}.rounds);
+  EXPECT_GT(one.st.rounds - one.st.first_layer_rounds, RefineOptions{}.rounds);
+  EXPECT_NEAR(double(one.st.inserted), double(off.st.inserted), 0.05 * double(off.st.inserted));
+  EXPECT_LT(2 * one.st.sequential_inserted, off.st.sequential_inserted);
+  EXPECT_EQ(one.points, two.points);
+  EXPECT_EQ(one.tets, two.tets);
+  EXPECT_EQ(one.st.sequential_inserted, two.st.sequential_inserted);
+}
+
 TEST(RefineVolume, Errors) {
   Prepared p;
   ASSERT_NO_FATAL_FAILURE(prepare(p, testing::cube_surface_points(3), 0.25));
@@ -213,6 +267,11 @@ TEST(RefineVolume, Errors) {
   RefineOptions bad;
   bad.min_spacing = 2;
   EXPECT_FALSE(refine_volume(p.in.kernel, p.field, p.vertex_h, bad, nullptr).ok());
+  RefineOptions no_budget_rounds;
+  no_budget_rounds.budget_rounds = -1;
+  const Status sb = refine_volume(p.in.kernel, p.field, p.vertex_h, no_budget_rounds, nullptr);
+  EXPECT_FALSE(sb.ok());
+  EXPECT_NE(sb.message().find("budget_rounds >= 0"), std::string::npos);
   // A hull face not constrained: the region is open.
   Delaunay3D& d = p.in.kernel;
   bool opened = false;
