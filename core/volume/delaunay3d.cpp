@@ -355,8 +355,45 @@ template <bool kVerify>
   const TetTopology::Rec* const tets = topo_.tets.data();
   uint32_t* const stamp = topo_.stamp.data();
   const uint8_t* const constrained = topo_.constrained.data();
-  w.cavity.clear();
-  w.boundary.clear();
+  // The lists: the worker's vectors; verified, fixed buffers (the cavity
+  // is bounded by kMaxCavity tetrahedra, its faces by 4 kMaxCavity), with
+  // no capacity test per push, copied into the vectors at the end.
+  int32_t* cav = nullptr;
+  int32_t* bnd = nullptr;
+  size_t n_cav = 0, n_bnd = 0;
+  if constexpr (kVerify) {
+    if (w.cavity_buffer.size() < kMaxCavity) w.cavity_buffer.resize(kMaxCavity);
+    if (w.boundary_buffer.size() < 4 * kMaxCavity) w.boundary_buffer.resize(4 * kMaxCavity);
+    cav = w.cavity_buffer.data();
+    bnd = w.boundary_buffer.data();
+  } else {
+    w.cavity.clear();
+    w.boundary.clear();
+  }
+  auto push_cavity = [&](int32_t t) {
+    if constexpr (kVerify)
+      cav[n_cav++] = t;
+    else
+      w.cavity.push_back(t);
+  };
+  auto push_boundary = [&](int32_t e) {
+    if constexpr (kVerify)
+      bnd[n_bnd++] = e;
+    else
+      w.boundary.push_back(e);
+  };
+  auto cavity_size = [&] {
+    if constexpr (kVerify)
+      return n_cav;
+    else
+      return w.cavity.size();
+  };
+  auto cavity_at = [&](size_t i) {
+    if constexpr (kVerify)
+      return cav[i];
+    else
+      return w.cavity[i];
+  };
   // A tetrahedron's four neighbors' records and marks are fetched when it
   // joins the cavity, some iterations before they are read (refinement, in
   // a large mesh and an order that jumps, waits for memory; a build in
@@ -369,11 +406,11 @@ template <bool kVerify>
       __builtin_prefetch(&stamp[size_t(n)]);
     }
   };
-  w.cavity.push_back(t0);
+  push_cavity(t0);
   stamp[size_t(t0)] = in;
   fetch_around(t0);
-  for (size_t i = 0; i < w.cavity.size(); ++i) {
-    const int32_t t = w.cavity[i];
+  for (size_t i = 0; i < cavity_size(); ++i) {
+    const int32_t t = cavity_at(i);
     const int32_t* links = tets[size_t(t)].n;
     const unsigned cons = kVerify && respect_constraints ? constrained[size_t(t)] : 0u;
     for (int k = 0; k < 4; ++k) {
@@ -382,31 +419,36 @@ template <bool kVerify>
       const uint32_t s = stamp[size_t(n)];
       if (kVerify && ((cons >> k) & 1u)) {
         if (s == in) return false;  // a constrained face inside the cavity
-        w.boundary.push_back(e);    // n may still be reached another way
+        push_boundary(e);           // n may still be reached another way
         continue;
       }
       if (s == in) continue;
       if (s != out && conflict(n, p, pv, false)) {
         if (kVerify) {
           const int32_t* v = tets[size_t(n)].v;
-          if ((v[0] | v[1] | v[2] | v[3]) < 0 || w.cavity.size() >= kMaxCavity) return false;
+          if ((v[0] | v[1] | v[2] | v[3]) < 0 || cavity_size() >= kMaxCavity) return false;
           if (parted && !owns(w, n)) return !(w.foreign = true);
         }
         stamp[size_t(n)] = in;
-        w.cavity.push_back(n);
+        push_cavity(n);
         fetch_around(n);
       } else {
         stamp[size_t(n)] = out;
-        w.boundary.push_back(e);
+        push_boundary(e);
       }
     }
   }
-  if (!kVerify) return true;
-  // Star-shaped: p strictly inside every boundary face (its new
-  // tetrahedron positive); else shrunk until it is.
-  for (int32_t e : w.boundary)
-    if (!sees_face(e, p)) return shrink_to_star(w, t0, p, in);
-  return true;
+  if constexpr (!kVerify) {
+    return true;
+  } else {
+    w.cavity.assign(cav, cav + n_cav);
+    w.boundary.assign(bnd, bnd + n_bnd);
+    // Star-shaped: p strictly inside every boundary face (its new
+    // tetrahedron positive); else shrunk until it is.
+    for (size_t i = 0; i < n_bnd; ++i)
+      if (!sees_face(bnd[i], p)) return shrink_to_star(w, t0, p, in);
+    return true;
+  }
 }
 
 bool Delaunay3D::sees_face(int32_t e, const double* p) const {

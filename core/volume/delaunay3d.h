@@ -392,6 +392,8 @@ class Delaunay3D {
     uint64_t rng = 0x2545f4914f6cdd1dull;
     Stats stats;
     std::vector<int32_t> cavity, boundary;  // tets; encoded faces
+    // The verified search's fixed lists (kMaxCavity and 4 kMaxCavity).
+    std::vector<int32_t> cavity_buffer, boundary_buffer;
     std::vector<int32_t> new_tets, pinned, ring, queue;
     std::vector<BoundaryFace> faces;
     std::vector<uint32_t> local_id;
