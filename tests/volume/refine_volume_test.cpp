@@ -22,8 +22,9 @@ struct Prepared {
 };
 
 /// The convex region of the surface `points` (testing::convex_input), its
-/// size field (the points' sizes graded by `gradation`) and h at each vertex.
-void prepare(Prepared& p, std::vector<double> points, double gradation) {
+/// size field (the points' sizes graded by `gradation`, capped by
+/// core_size when > 0) and h at each vertex.
+void prepare(Prepared& p, std::vector<double> points, double gradation, double core_size = 0) {
   ASSERT_TRUE(testing::convex_input(std::move(points), &p.in));
   std::vector<double> pts, sizes;
   for (size_t v = 0; v < p.in.kernel.num_vertices(); ++v) {
@@ -32,12 +33,21 @@ void prepare(Prepared& p, std::vector<double> points, double gradation) {
   }
   VolumeSizeOptions o;
   o.gradation = gradation;
+  o.core_size = core_size;
   auto f = VolumeSizeField::build(pts, sizes, o);
   ASSERT_TRUE(f.ok()) << f.message();
   p.field = f.value();
   for (size_t v = 0; v < p.in.kernel.num_vertices(); ++v)
     p.vertex_h.push_back(p.field(p.in.kernel.point(int32_t(v))));
 }
+
+/// A refinement's result: the kernel's points and finite tetrahedra, and
+/// its stats.
+struct Outcome {
+  std::vector<double> points;
+  std::vector<int32_t> tets;
+  RefineStats st;
+};
 
 double region_volume(const Delaunay3D& d) {
   double v = 0;
@@ -148,11 +158,6 @@ TEST(RefineVolume, SlabRoundsGiveTheSameMeshOnAnyThreadCount) {
   // front, then what they deferred goes on in later rounds and a last
   // sequential one: a valid refinement, as dense as the sequential one, and
   // the same on 1 and 2 threads.
-  struct Outcome {
-    std::vector<double> points;
-    std::vector<int32_t> tets;
-    RefineStats st;
-  };
   auto run = [](int threads, int rounds) {
     set_thread_count(threads);
     Outcome out;
@@ -212,38 +217,21 @@ TEST(RefineVolume, FineCoreStaysInTheSlabRounds) {
   // budgets, leave at most half as much to the sequential round as when
   // the budget rounds are off, for the same refinement; the same on 1 and
   // 2 threads.
-  struct Outcome {
-    std::vector<double> points;
-    std::vector<int32_t> tets;
-    RefineStats st;
-  };
   auto run = [](int threads, int budget_rounds) {
     set_thread_count(threads);
     Outcome out;
-    testing::VolumeInput in;
+    Prepared p;
     // Along x, so that the first round cuts across the vessel.
     std::vector<double> wall = testing::capped_cylinder_points(0.25, 4, 0.15);
     for (size_t i = 0; i < wall.size(); i += 3) std::rotate(&wall[i], &wall[i + 2], &wall[i + 3]);
-    EXPECT_TRUE(testing::convex_input(std::move(wall), &in));
-    std::vector<double> pts, sizes;
-    for (size_t v = 0; v < in.kernel.num_vertices(); ++v) {
-      pts.insert(pts.end(), in.kernel.point(int32_t(v)), in.kernel.point(int32_t(v)) + 3);
-      sizes.push_back(in.sizes[v]);
-    }
-    VolumeSizeOptions fo;
-    fo.core_size = 0.04;
-    auto field = VolumeSizeField::build(pts, sizes, fo);
-    EXPECT_TRUE(field.ok()) << field.message();
-    std::vector<double> vertex_h;
-    for (size_t v = 0; v < in.kernel.num_vertices(); ++v)
-      vertex_h.push_back(field.value()(in.kernel.point(int32_t(v))));
+    EXPECT_NO_FATAL_FAILURE(prepare(p, std::move(wall), VolumeSizeOptions{}.gradation, 0.04));
     RefineOptions o;
     o.min_slab_items = 64;
     o.budget_rounds = budget_rounds;
-    EXPECT_TRUE(refine_volume(in.kernel, field.value(), vertex_h, o, &out.st).ok());
-    EXPECT_TRUE(in.kernel.check(false).ok()) << in.kernel.check(false).message();
-    out.points = in.kernel.points();
-    out.tets = in.kernel.finite_tets();
+    EXPECT_TRUE(refine_volume(p.in.kernel, p.field, p.vertex_h, o, &out.st).ok());
+    EXPECT_TRUE(p.in.kernel.check(false).ok()) << p.in.kernel.check(false).message();
+    out.points = p.in.kernel.points();
+    out.tets = p.in.kernel.finite_tets();
     set_thread_count(0);
     return out;
   };
