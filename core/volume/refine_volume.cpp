@@ -31,8 +31,8 @@
 // one spends its budget with work left, another round follows with the
 // budget doubled (a core much finer than the wall, where each front vertex
 // fills a larger volume, would otherwise leave most of it to the
-// sequential round). Slabs, budgets and order depend only on the data, so the
-// mesh is the same with any number of threads. In phase 2 the mesh is
+// sequential round). Slabs, budgets and order depend only on the data, so
+// the mesh is the same with any number of threads. In phase 2 the mesh is
 // still the boundary triangulation, whose long tetrahedra cross the cuts:
 // a point whose cavity reaches one waits (about 6% on the aortic arch with
 // two slabs).

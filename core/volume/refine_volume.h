@@ -54,13 +54,15 @@ struct RefineOptions {
   /// same time, each only where it owns the tetrahedra; what a slab cannot
   /// do waits for the next round; after `rounds` rounds, or when fewer than
   /// min_slab_items items per slab are left, one sequential round ends the
-  /// phase. A slab may insert 3 vertices per front item in a round; a round
-  /// in which one spent that budget with work left (a core much finer than
-  /// the wall) adds a round with the budget doubled (at most budget_rounds
-  /// such). The mesh depends on these numbers, never on the thread count. rounds = 0: all
-  /// sequential. 1 <= parts <= 64. More slabs than 2 leave most of the work to the sequential
-  /// round: until the front reaches it, the lumen's inside is the boundary triangulation, whose
-  /// tetrahedra span the vessel and so cross the slab cuts.
+  /// phase. A slab may insert 3 vertices per front item in a round; a
+  /// round in which one spent that budget with work left (a core much
+  /// finer than the wall) adds a round with the budget doubled (at most
+  /// budget_rounds such). The mesh depends on these numbers, never on the
+  /// thread count. rounds = 0: all sequential. 1 <= parts <= 64. More
+  /// slabs than 2 leave most of the work to the sequential round: until
+  /// the front reaches it, the lumen's inside is the boundary
+  /// triangulation, whose tetrahedra span the vessel and so cross the slab
+  /// cuts.
   int parts = 2;
   int rounds = 3;
   int min_slab_items = 4096;
