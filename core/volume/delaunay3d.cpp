@@ -921,12 +921,14 @@ int32_t Delaunay3D::around_until(int32_t v, AroundScratch& s, Stop&& stop) const
   out.push_back(t0);
   for (size_t i = 0; i < out.size(); ++i) {
     const TetTopology::Rec& r = topo_.tets[size_t(out[i])];
-    // The neighbors' records fetched while this one is tested (memory
-    // bound, as tets_around_vertex()).
-    for (int j = 0; j < 4; ++j)
-      if (r.n[j] >= 0) __builtin_prefetch(&topo_.tets[size_t(r.n[j] >> 2)]);
-    if (stop(out[i])) return out[i];
+    // The neighbors across the faces through v (the others' links may be
+    // relinked by another part's star meanwhile, so they are never read)
+    // are fetched while this one is tested (memory bound, as
+    // tets_around_vertex()).
     const int sv = slot_of(r.v, v);
+    for (int j = 0; j < 4; ++j)
+      if (j != sv && r.n[j] >= 0) __builtin_prefetch(&topo_.tets[size_t(r.n[j] >> 2)]);
+    if (stop(out[i])) return out[i];
     for (int j = 0; j < 4; ++j) {
       if (j == sv || r.n[j] < 0) continue;
       const int32_t n = r.n[j] >> 2;
