@@ -58,6 +58,10 @@ namespace {
 // end instead of their midpoint.
 constexpr double kFarLength = 2.5;
 
+// A slab's first budget of new vertices per front item in a round (a
+// first-layer item gives at most one).
+constexpr int64_t kFrontPerItem = 3;
+
 inline double dist2(const double* a, const double* b) {
   const double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
   return x * x + y * y + z * z;
@@ -429,7 +433,7 @@ Status Refiner::slab_rounds(Phase phase, std::vector<int32_t> items, RefineStats
   // in which a slab spent its budget with work left (a core much finer
   // than the wall: each front vertex fills a larger volume) adds a round,
   // with the budget doubled, up to o_.budget_rounds of them.
-  int64_t per_item = phase == Phase::kFirstLayer ? 1 : 3;
+  int64_t per_item = phase == Phase::kFirstLayer ? 1 : kFrontPerItem;
   int budget_rounds = 0;
   for (int round = 0; round < o_.rounds + budget_rounds && parts > 1 &&
                       items.size() >= size_t(std::max(o_.min_slab_items, 1)) * size_t(parts);
@@ -464,7 +468,7 @@ Status Refiner::slab_rounds(Phase phase, std::vector<int32_t> items, RefineStats
     for (int j = 0; j < parts; ++j) {
       const int64_t n = int64_t(slabs_[size_t(j)].items.size());
       const int64_t share = int64_t(n0) * n / int64_t(items.size());
-      const int64_t wanted = std::min(per_item * n, std::max(3 * n, share)) + 256;
+      const int64_t wanted = std::min(per_item * n, std::max(kFrontPerItem * n, share)) + 256;
       budgets[size_t(j)].vertices = int32_t(std::min<int64_t>(wanted, room));
       total += budgets[size_t(j)].vertices;
     }
