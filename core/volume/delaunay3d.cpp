@@ -26,6 +26,7 @@
 #include <string>
 
 #include "core/geom/predicates.h"
+#include "core/util/parallel.h"
 
 namespace vm {
 namespace {
@@ -59,8 +60,11 @@ bool same_point(const double* a, const double* b) {
 
 // ---------------------------------------------------------------- building
 
-Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
-                                     const SpatialSortOptions& sort_options) {
+Result<Delaunay3D> Delaunay3D::build(std::vector<double> points, const BuildOptions& options) {
+  if (!(options.parts >= 1 && options.parts <= 64) || !(options.min_part_points >= 1) ||
+      !(options.retry_rounds >= 0))
+    return Result<Delaunay3D>::Error(
+        "Delaunay build: options need 1 <= parts <= 64, min_part_points >= 1, retry_rounds >= 0");
   if (points.size() % 3 != 0) return Result<Delaunay3D>::Error("points: size not a multiple of 3");
   for (double x : points)
     if (!std::isfinite(x)) return Result<Delaunay3D>::Error("points: non-finite coordinate");
@@ -72,7 +76,7 @@ Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
   // consecutive insertions touch nearby memory (the input order is
   // arbitrary); Phase 3 restores the input numbering. Ties are broken by
   // input index throughout (sos_id_), so the result does not depend on it.
-  std::vector<int32_t> order = brio_hilbert_order(points, sort_options);
+  std::vector<int32_t> order = brio_hilbert_order(points, options.sort);
   d.pts_.resize(points.size());
   for (int64_t i = 0; i < n; ++i)
     for (int k = 0; k < 3; ++k)
@@ -94,18 +98,15 @@ Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
   if (id < 0)
     return Result<Delaunay3D>::Error(
         "points: fewer than 4 affinely independent points (all coplanar, collinear or equal)");
-  size_t expect = size_t(n) * 7 + 16;
-  d.topo_.reserve(expect);
+  // About 6.7 tetrahedra a vertex (build_insertions() adds the room its
+  // rounds leave unused).
+  d.topo_.reserve(size_t(n) * 7 + 16);
   d.init_first_tet(0, ib, ic, id);
 
-  // Phase 2: the other points in order, each walk starting where the
-  // previous insertion ended.
+  // Phase 2: the other points in order.
   d.building_ = true;
-  for (int32_t v = 1; v < n; ++v) {
-    if (v == ib || v == ic || v == id) continue;
-    InsertResult r = d.insert_vertex(d.seq_, v, -1, false);
-    if (r.status == InsertStatus::kDuplicate) d.dup_[size_t(v)] = r.vertex;
-  }
+  const int32_t first[4] = {0, ib, ic, id};
+  d.build_insertions(options, first);
   d.building_ = false;
 
   // Phase 3: back to input numbering, and vertex_tet, which the stars
@@ -126,6 +127,133 @@ Result<Delaunay3D> Delaunay3D::build(std::vector<double> points,
   d.pts_.swap(points);
   d.sos_id_.clear();
   return d;
+}
+
+void Delaunay3D::build_insertions(const BuildOptions& o, const int32_t first[4]) {
+  const int32_t n = int32_t(num_vertices());
+  auto is_first = [&](int32_t v) { return v == first[1] || v == first[2] || v == first[3]; };
+  // Phase 2a: sequential, each walk starting where the previous insertion
+  // ended, up to parts * min_part_points vertices (all of them with one
+  // part or few points).
+  const int64_t start = int64_t(o.parts) * o.min_part_points;
+  const int32_t seq_end = o.parts < 2 || int64_t(n) < 2 * start ? n : int32_t(start);
+  int32_t v = 1;
+  for (; v < seq_end; ++v)
+    if (!is_first(v)) build_insert(v);
+  // Points mostly on a surface (the hull has more than one face per 16
+  // vertices so far) stay sequential: a slab cuts their long tetrahedra,
+  // and points on the hull need ghosts, which no part owns.
+  if (v < n) {
+    int64_t hull_faces = 0;
+    for (int32_t t = 0; t < int32_t(tet_capacity()); ++t) hull_faces += is_live(t) && is_ghost(t);
+    if (16 * hull_faces > int64_t(v)) {
+      for (; v < n; ++v)
+        if (!is_first(v)) build_insert(v);
+      return;
+    }
+    // Room for the fresh slots each round leaves unused (a quarter of a
+    // slot per point, 4096 per part).
+    int rounds = o.retry_rounds + 1;
+    for (int64_t m = v; m < n; m *= 2) ++rounds;
+    topo_.reserve(size_t(n) * 7 + size_t(n) / 4 + size_t(rounds) * size_t(o.parts) * 4096 + 16);
+  }
+  // Phase 2b: rounds of slabs, each adding at most as many points as there
+  // are vertices, with the ones left over from the round before; slabs
+  // across x, y, z in turn. Rounds with no new points retry those left.
+  std::vector<int32_t> items, left;
+  int retries = 0;
+  for (int round = 0; v < n || (!left.empty() && retries < o.retry_rounds); ++round) {
+    if (v == n) ++retries;
+    // The new points first (in order, each walk short), then those left.
+    const int32_t end = int32_t(std::min<int64_t>(n, 2 * int64_t(v)));
+    items.clear();
+    for (; v < end; ++v)
+      if (!is_first(v)) items.push_back(v);
+    items.insert(items.end(), left.begin(), left.end());
+    build_round(o.parts, round % 3, v, items);
+    left.swap(items);
+    ++seq_.stats.build_rounds;
+    if (left.size() < size_t(o.min_part_points) && v == n) break;
+  }
+  // Phase 2c: what is left, sequentially.
+  for (int32_t u : left) build_insert(u);
+}
+
+void Delaunay3D::build_insert(int32_t v) {
+  const InsertResult r = insert_vertex(seq_, v, -1, false);
+  if (r.status == InsertStatus::kDuplicate) dup_[size_t(v)] = r.vertex;
+}
+
+void Delaunay3D::build_round(int parts, int axis, int32_t nv, std::vector<int32_t>& items) {
+  if (items.empty()) return;
+  // Slabs of equal point count across `axis`; a vertex is in the slab its
+  // coordinate falls in.
+  std::vector<double> xs(items.size());
+  for (size_t i = 0; i < items.size(); ++i) xs[i] = point(items[i])[axis];
+  std::vector<double> cuts(static_cast<size_t>(parts - 1));
+  for (int j = 1; j < parts; ++j) {
+    auto at = xs.begin() + ptrdiff_t(xs.size() * size_t(j) / size_t(parts));
+    std::nth_element(xs.begin(), at, xs.end());
+    cuts[size_t(j - 1)] = *at;
+  }
+  auto slab_of = [&](int32_t u) {
+    return uint8_t(std::upper_bound(cuts.begin(), cuts.end(), point(u)[axis]) - cuts.begin());
+  };
+  std::vector<uint8_t> vertex_part(static_cast<size_t>(nv));
+  parallel_for(size_t(nv), size_t(1) << 16, [&](size_t begin, size_t end) {
+    for (size_t u = begin; u < end; ++u) vertex_part[u] = slab_of(int32_t(u));
+  });
+  std::vector<std::vector<int32_t>> lists(static_cast<size_t>(parts)), left(lists.size()),
+      outside(lists.size());
+  for (int32_t u : items) lists[vertex_part[size_t(u)]].push_back(u);
+  // Fresh slots: a new vertex takes about 6.7 more tetrahedra than it frees.
+  std::vector<PartBudget> budgets(lists.size());
+  for (int j = 0; j < parts; ++j)
+    budgets[size_t(j)].tets = int32_t(7 * lists[size_t(j)].size() + 4096);
+  begin_partitions(std::move(vertex_part), budgets);
+  // Each slab's first tetrahedron: the sequential walk to its first points,
+  // until one lands in a tetrahedron of the slab (none: the slab waits;
+  // points outside the hull, or near another slab, do not).
+  std::vector<int32_t> start(lists.size(), -1);
+  for (int j = 0; j < parts; ++j)
+    for (size_t i = 0; i < std::min<size_t>(lists[size_t(j)].size(), 64) && start[size_t(j)] < 0;
+         ++i) {
+      const int32_t t = walk(seq_, point(lists[size_t(j)][i]), -1, o3_bound_);
+      if (owns(parts_[size_t(j)], t)) start[size_t(j)] = t;
+      seq_.last = t;
+    }
+  parallel_for(size_t(parts), 1, [&](size_t begin, size_t end) {
+    for (size_t j = begin; j < end; ++j) {
+      Worker& w = parts_[j];
+      int32_t hint = start[j];
+      for (int32_t u : lists[j]) {
+        if (hint < 0 || w.gen > 0xf0000000u) {
+          left[j].push_back(u);
+          continue;
+        }
+        w.beyond_hull = false;
+        const InsertResult r = insert_vertex(w, u, hint, false);
+        if (r.status == InsertStatus::kInserted)
+          hint = w.last;
+        else if (r.status == InsertStatus::kDuplicate)
+          dup_[size_t(u)] = r.vertex;
+        else
+          (w.beyond_hull ? outside : left)[j].push_back(u);
+      }
+    }
+  });
+  for (int j = parts - 1; j >= 0; --j)
+    if (parts_[size_t(j)].last >= 0) seq_.last = parts_[size_t(j)].last;
+  end_partitions();
+  // Points outside the hull now (no part owns a ghost), so that the next
+  // rounds see the whole hull.
+  items.clear();
+  for (const std::vector<int32_t>& l : outside) items.insert(items.end(), l.begin(), l.end());
+  std::sort(items.begin(), items.end());
+  for (int32_t u : items) build_insert(u);
+  items.clear();
+  for (const std::vector<int32_t>& l : left) items.insert(items.end(), l.begin(), l.end());
+  std::sort(items.begin(), items.end());
 }
 
 void Delaunay3D::init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d) {
@@ -226,7 +354,10 @@ int32_t Delaunay3D::walk(Worker& w, const double* p, int32_t hint, double o3_bou
       }
     }
     if (next < 0) return t;
-    if (parted && !owns(w, next)) return -1;
+    if (parted && !owns(w, next)) {
+      w.beyond_hull = is_ghost(next);  // p beyond a hull face: outside the hull
+      return -1;
+    }
     prev = t;
     t = next;
     ++w.stats.walk_steps;
@@ -336,7 +467,8 @@ template <bool kVerify>
                                                  bool respect_constraints) {
   // Bowyer-Watson's search from t0 (which holds p). Unverified (the
   // triangulation is Delaunay, nothing constrained): the conflict region,
-  // always star-shaped. Verified: not crossing constrained faces, and any
+  // always star-shaped (in a partitioned round, false with w.foreign set
+  // when it takes a tetrahedron w does not own). Verified: not crossing constrained faces, and any
   // doubt (a ghost, a constrained face inside, too many tetrahedra)
   // returns false, and the caller falls back to find_cavity_checked; a
   // boundary face not strictly visible from p has the cavity shrunk in
@@ -424,6 +556,7 @@ template <bool kVerify>
       }
       if (s == in) continue;
       if (s != out && conflict(n, p, pv, false)) {
+        if (!kVerify && parted && !owns(w, n)) return !(w.foreign = true);
         if (kVerify) {
           const int32_t* v = tets[size_t(n)].v;
           if ((v[0] | v[1] | v[2] | v[3]) < 0 || cavity_size() >= kMaxCavity) return false;
@@ -792,8 +925,8 @@ Delaunay3D::InsertResult Delaunay3D::insert_vertex(Worker& w, int32_t v, int32_t
     return {InsertStatus::kOutsideHull, -1};
   }
   w.foreign = false;
-  if (delaunay_ && !respect_constraints && w.part < 0) {
-    bowyer_watson<false>(w, t, p, v, false);
+  if (delaunay_ && !respect_constraints) {
+    if (!bowyer_watson<false>(w, t, p, v, false)) return {InsertStatus::kForeign, -1};
   } else if (!bowyer_watson<true>(w, t, p, v, respect_constraints)) {
     if (w.foreign) return {InsertStatus::kForeign, -1};
     ++w.stats.checked_cavities;
@@ -982,6 +1115,7 @@ std::vector<int32_t> Delaunay3D::end_partitions() {
   dup_.resize(size_t(next));
   topo_.vertex_tet.resize(size_t(next));
   for (TetTopology::Rec& r : topo_.tets) {
+    if (remap.empty()) break;  // no new vertices (a build's round)
     if (r.v[0] == kFree) continue;
     for (int32_t& v : r.v)
       if (v >= n0) v = remap[size_t(v - n0)];

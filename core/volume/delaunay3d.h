@@ -34,6 +34,26 @@
 
 namespace vm {
 
+/// Delaunay3D::build()'s options.
+struct DelaunayBuildOptions {
+  SpatialSortOptions sort;
+  /// Past the first parts * min_part_points points, the points are
+  /// inserted in rounds of `parts` slabs at once (the partitioned
+  /// insertion below, on the threads of core/util/parallel.h), each round
+  /// at most doubling the vertices; a point whose walk or cavity leaves
+  /// its slab waits for the next round, with slabs across another axis,
+  /// and after `retry_rounds` rounds with no new points for the
+  /// sequential end. Points mostly on a surface (the first points' hull
+  /// has more than a face per 16 vertices) stay sequential: slabs would cut
+  /// most of their long tetrahedra, and no part owns the hull's ghosts. The
+  /// slabs, and so the result (tetrahedron ids included), depend on
+  /// `parts`, never on the thread count. parts = 1: all sequential.
+  /// 1 <= parts <= 64, min_part_points >= 1, retry_rounds >= 0.
+  int parts = 2;
+  int64_t min_part_points = 8192;
+  int retry_rounds = 2;
+};
+
 class Delaunay3D {
  public:
   /// The vertex at infinity of the ghost tetrahedra.
@@ -65,13 +85,13 @@ class Delaunay3D {
 
   Delaunay3D() = default;
 
+  using BuildOptions = DelaunayBuildOptions;
   /// Delaunay tetrahedralization of `points` (3 doubles per point, finite),
   /// inserted in BRIO/Hilbert order. Vertex i is point i. Points that
   /// coincide with an earlier-inserted one are not vertices
   /// (duplicate_of(i) names the vertex). Errors: non-finite coordinates,
-  /// fewer than 4 non-coplanar points.
-  static Result<Delaunay3D> build(std::vector<double> points,
-                                  const SpatialSortOptions& sort_options = {});
+  /// fewer than 4 non-coplanar points, options out of range.
+  static Result<Delaunay3D> build(std::vector<double> points, const BuildOptions& options = {});
 
   /// Inserts point p (3 doubles) as a new vertex (id num_vertices() before
   /// the call), starting the walk at tetrahedron `hint` (any live id, or -1
@@ -233,6 +253,8 @@ class Delaunay3D {
     /// Constrained / non-Delaunay insertions whose Bowyer-Watson cavity
     /// was shrunk until star-shaped (no checked search needed).
     int64_t shrunk_cavities = 0;
+    /// build()'s partitioned rounds (DelaunayBuildOptions).
+    int64_t build_rounds = 0;
   };
   const Stats& stats() const { return seq_.stats; }
 
@@ -347,6 +369,17 @@ class Delaunay3D {
   void link_star_by_hash(Worker& w);
   bool new_tet_valid(const std::array<int32_t, 4>& q, const std::vector<int32_t>& around) const;
   void init_first_tet(int32_t a, int32_t b, int32_t c, int32_t d);
+  /// build()'s insertions of every vertex but the first tetrahedron's
+  /// (first[0..3]), sequential or in partitioned rounds (BuildOptions).
+  void build_insertions(const BuildOptions& o, const int32_t first[4]);
+  /// One partitioned round of build_insertions(): items (vertex ids, in
+  /// insertion order) in `parts` slabs across `axis`; vertices [0, nv) are
+  /// the inserted ones and items. Leaves in items those not inserted
+  /// (ascending).
+  void build_round(int parts, int axis, int32_t nv, std::vector<int32_t>& items);
+  /// build()'s sequential insertion of vertex v (its walk from the last
+  /// insertion), noting a duplicate.
+  void build_insert(int32_t v);
   /// The link (4 * neighbor + face) stored at encoded face e = 4 * t + k.
   int32_t& link(int32_t e) { return topo_.link(e); }
   int32_t link(int32_t e) const { return topo_.link(e); }
@@ -410,6 +443,8 @@ class Delaunay3D {
     int32_t slot_next = 0, slot_end = 0;
     int32_t vertex_begin = 0, vertex_next = 0, vertex_end = 0;
     bool foreign = false;
+    // The last walk stopped at a ghost of another part's (build()).
+    bool beyond_hull = false;
     // tets_around_vertex_in()'s scratch.
     AroundScratch around;
   };

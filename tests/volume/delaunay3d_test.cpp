@@ -279,6 +279,95 @@ TEST(Delaunay3D, PartitionedRoundInsertsOnlyInOwnTetrahedraWithAnyThreadCount) {
   EXPECT_EQ(one.tets, two.tets);
 }
 
+// The finite tetrahedra as sorted vertex quadruples, sorted: the
+// triangulation whatever the slots.
+std::vector<std::array<int32_t, 4>> tet_set(const D& d) {
+  std::vector<std::array<int32_t, 4>> out;
+  d.for_each_finite_tet([&](int32_t t) {
+    std::array<int32_t, 4> q;
+    std::copy(d.tet(t), d.tet(t) + 4, q.begin());
+    std::sort(q.begin(), q.end());
+    out.push_back(q);
+  });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(Delaunay3D, BuildInSlabRoundsIsTheDelaunayTriangulationOnAnyThreadCount) {
+  // 30,000 points in a cube and copies of three of them: past the first
+  // 2 (3) x 4096 points, rounds of two (three) slabs insert at the same time.
+  std::vector<double> p = testing::random_cube_points(30000, 31);
+  for (int src : {100, 15000, 29999})
+    for (int k = 0; k < 3; ++k) p.push_back(p[3 * size_t(src) + k]);
+  struct Outcome {
+    std::vector<int32_t> tets, dup;
+    int64_t rounds = 0;
+  };
+  auto run = [&](int parts, int threads) {
+    set_thread_count(threads);
+    D::BuildOptions o;
+    o.parts = parts;
+    o.min_part_points = 4096;
+    auto r = D::build(p, o);
+    set_thread_count(0);
+    EXPECT_TRUE(r.ok()) << r.message();
+    const D& d = r.value();
+    EXPECT_TRUE(d.check(true).ok()) << d.check(true).message();
+    Outcome out;
+    out.tets = d.finite_tets();
+    for (int32_t v = 0; v < int32_t(d.num_vertices()); ++v) {
+      out.dup.push_back(d.duplicate_of(v));
+      if (d.duplicate_of(v) < 0) {
+        EXPECT_GE(d.vertex_tet(v), 0);
+      }
+    }
+    out.rounds = d.stats().build_rounds;
+    return std::make_pair(out, tet_set(d));
+  };
+  const auto [sequential, sequential_set] = run(1, 2);
+  EXPECT_EQ(sequential.rounds, 0);
+  for (int parts : {2, 3}) {
+    const auto [one, one_set] = run(parts, 1);
+    const auto [two, two_set] = run(parts, 2);
+    EXPECT_GT(one.rounds, 0);
+    // The same slots on any thread count.
+    EXPECT_EQ(one.tets, two.tets);
+    EXPECT_EQ(one.dup, two.dup);
+    EXPECT_EQ(one.rounds, two.rounds);
+    // The Delaunay triangulation (unique, ties perturbed by input index),
+    // and the same duplicates.
+    EXPECT_EQ(one_set, sequential_set);
+    EXPECT_EQ(one.dup, sequential.dup);
+  }
+  int dups = 0;
+  for (int32_t o : sequential.dup) dups += o >= 0;
+  EXPECT_EQ(dups, 3);
+}
+
+TEST(Delaunay3D, BuildOfPointsOnASurfaceStaysSequential) {
+  // Every point on the hull: no part could insert one, so no round runs.
+  D::BuildOptions o;
+  o.min_part_points = 1024;
+  auto r = D::build(random_sphere_points(8000, 3), o);
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r.value().stats().build_rounds, 0);
+  EXPECT_TRUE(r.value().check(true).ok());
+}
+
+TEST(Delaunay3D, BuildOptionsOutOfRangeAreRefused) {
+  const std::vector<double> p = testing::random_cube_points(100, 4);
+  for (auto set : std::vector<void (*)(D::BuildOptions&)>{
+           [](D::BuildOptions& o) { o.parts = 0; }, [](D::BuildOptions& o) { o.parts = 65; },
+           [](D::BuildOptions& o) { o.min_part_points = 0; },
+           [](D::BuildOptions& o) { o.retry_rounds = -1; }}) {
+    D::BuildOptions o;
+    set(o);
+    auto r = D::build(p, o);
+    ASSERT_FALSE(r.ok());
+    EXPECT_NE(r.message().find("1 <= parts <= 64"), std::string::npos) << r.message();
+  }
+}
+
 TEST(Delaunay3D, DuplicatePointsAreReported) {
   auto p = testing::random_cube_points(200, 9);
   auto g = grid(3);
