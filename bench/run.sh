@@ -16,6 +16,8 @@ node bench/wasm_bench.mjs "${files[@]}"
 echo
 echo "== native: 3D Delaunay kernel, random points (points/s)"
 ./build/delaunay_bench --runs 3 --sizes 100000,1000000 --kinds cube,cylinder
+echo "-- on 2 threads (the build's slab rounds)"
+./build/delaunay_bench --runs 3 --sizes 1000000 --kinds cube --threads 2
 
 if [[ -f $data/aortic-arch.stl ]]; then
   echo

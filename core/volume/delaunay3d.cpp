@@ -151,11 +151,12 @@ void Delaunay3D::build_insertions(const BuildOptions& o, const int32_t first[4])
         if (!is_first(v)) build_insert(v);
       return;
     }
-    // Room for the fresh slots each round leaves unused (a quarter of a
-    // slot per point, 4096 per part).
+    // Room for the fresh slots the rounds leave unused (7 per point tried,
+    // the points left over from a round tried again, 4096 per part), so
+    // that no round moves the arrays.
     int rounds = o.retry_rounds + 1;
     for (int64_t m = v; m < n; m *= 2) ++rounds;
-    topo_.reserve(size_t(n) * 7 + size_t(n) / 4 + size_t(rounds) * size_t(o.parts) * 4096 + 16);
+    topo_.reserve(size_t(n) * 8 + size_t(rounds) * size_t(o.parts) * 4096 + 16);
   }
   // Phase 2b: rounds of slabs, each adding at most as many points as there
   // are vertices, with the ones left over from the round before; slabs
