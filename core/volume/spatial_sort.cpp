@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/util/parallel.h"
+
 namespace vm {
 namespace {
 
@@ -136,10 +138,13 @@ std::vector<int32_t> brio_hilbert_order(const std::vector<double>& points,
   for (int64_t i = 0; i < n; ++i) order[size_t(i)] = int32_t(i);
   if (n < 2) return order;
   // Phase 1: every point's Hilbert index in the box of the whole set, read
-  // in input order (the rounds below then gather 4-byte keys, not points).
+  // in input order (the rounds below then gather 4-byte keys, not points),
+  // on the threads.
   const Box box = box_of(points, order.data(), n);
   std::vector<uint32_t> key(static_cast<size_t>(n));
-  for (int64_t i = 0; i < n; ++i) key[size_t(i)] = cell_key(&points[3 * size_t(i)], box);
+  parallel_for(size_t(n), size_t(1) << 15, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) key[i] = cell_key(&points[3 * i], box);
+  });
   // Phase 2: shuffle.
   uint64_t s = options.seed;
   for (int64_t i = n - 1; i > 0; --i) {
