@@ -38,8 +38,8 @@ namespace vm {
 struct DelaunayBuildOptions {
   SpatialSortOptions sort;
   /// Past the first parts * min_part_points points, the points are
-  /// inserted in rounds of `parts` slabs at once (the partitioned
-  /// insertion below, on the threads of core/util/parallel.h), each round
+  /// inserted in rounds of `parts` slabs at once (Delaunay3D's partitioned
+  /// insertion, on the threads of core/util/parallel.h), each round
   /// at most doubling the vertices; a point whose walk or cavity leaves
   /// its slab waits for the next round, with slabs across another axis,
   /// and after `retry_rounds` rounds with no new points for the
