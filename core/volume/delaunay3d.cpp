@@ -780,8 +780,11 @@ void Delaunay3D::star(Worker& w, int32_t pv) {
     if (!w.free_slots.empty()) {
       w.new_tets[i] = w.free_slots.back();
       w.free_slots.pop_back();
-    } else {
-      w.new_tets[i] = w.slot_next++;
+    } else {  // a fresh slot (begin_partitions()): its record is written below
+      const int32_t t = w.new_tets[i] = w.slot_next++;
+      topo_.stamp[size_t(t)] = 0;
+      topo_.constrained[size_t(t)] = 0;
+      if (topo_.tagged) topo_.tags[size_t(t)] = 0;
     }
   }
   for (size_t i = nb; i < nc; ++i) {
@@ -982,12 +985,14 @@ void Delaunay3D::begin_partitions(std::vector<uint8_t> vertex_part,
   pts_.resize(3 * (n0 + nv));
   dup_.resize(n0 + nv, -1);
   topo_.vertex_tet.resize(n0 + nv, -1);
-  // Fresh slots for the parts, free (kFree) until taken.
+  // Fresh slots for the parts, left uninitialized: a part fills those it
+  // takes (its star), on its own thread, and end_partitions() frees the
+  // others, so no slot is read unwritten.
   const size_t cap0 = topo_.capacity();
-  topo_.tets.resize(cap0 + nt, {{kFree, kFree, kFree, kFree}, {-1, -1, -1, -1}});
-  topo_.constrained.resize(cap0 + nt, 0);
-  if (topo_.tagged) topo_.tags.resize(cap0 + nt, 0);
-  topo_.stamp.resize(cap0 + nt, 0);
+  topo_.tets.resize(cap0 + nt);
+  topo_.constrained.resize(cap0 + nt);
+  if (topo_.tagged) topo_.tags.resize(cap0 + nt);
+  topo_.stamp.resize(cap0 + nt);
   // Visit marks: part i uses gen + 2 i + k * 2 parts (k >= 1), above every
   // mark used so far and distinct between the parts.
   if (topo_.gen > 0x7fffffffu) {
@@ -1104,6 +1109,14 @@ int32_t Delaunay3D::find_face(int32_t a, int32_t b, int32_t c, int* k, AroundScr
 }
 
 std::vector<int32_t> Delaunay3D::end_partitions() {
+  // The fresh slots no part took, never written: free slots.
+  for (const Worker& w : parts_)
+    for (int32_t t = w.slot_next; t < w.slot_end; ++t) {
+      topo_.tets[size_t(t)] = {{kFree, kFree, kFree, kFree}, {-1, -1, -1, -1}};
+      topo_.constrained[size_t(t)] = 0;
+      if (topo_.tagged) topo_.tags[size_t(t)] = 0;
+      topo_.stamp[size_t(t)] = 0;
+    }
   const int32_t n0 = int32_t(round_vertices_);
   std::vector<int32_t> remap(num_vertices() - size_t(n0), -1);
   int32_t next = n0;

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "core/mesh/volume_mesh.h"
+#include "core/util/default_init_vector.h"
 #include "core/util/result.h"
 
 namespace vm {
@@ -69,14 +70,17 @@ struct TetTopology {
     int32_t n[4];
   };
 
-  std::vector<Rec> tets;             // per slot
-  std::vector<uint8_t> constrained;  // per slot: bit k = face k constrained
-  std::vector<int32_t> tags;         // per slot: region tag (if tagged)
-  bool tagged = true;                // false: tags stay empty
-  std::vector<int32_t> free_slots;   // free slot ids, reused from the back
-  std::vector<int32_t> vertex_tet;   // per vertex: a live incident slot or -1
+  // The per-slot arrays: resize(n) leaves new slots uninitialized (a
+  // partitioned round's parts fill their fresh slots themselves; every
+  // other growth passes the free slot's values).
+  DefaultInitVector<Rec> tets;             // per slot
+  DefaultInitVector<uint8_t> constrained;  // per slot: bit k = face k constrained
+  DefaultInitVector<int32_t> tags;         // per slot: region tag (if tagged)
+  bool tagged = true;                      // false: tags stay empty
+  std::vector<int32_t> free_slots;         // free slot ids, reused from the back
+  std::vector<int32_t> vertex_tet;         // per vertex: a live incident slot or -1
   // Visit marks (per slot) of the searches; see visit_stamp().
-  mutable std::vector<uint32_t> stamp;
+  mutable DefaultInitVector<uint32_t> stamp;
   mutable uint32_t gen = 0;
 
   size_t capacity() const { return tets.size(); }
