@@ -32,6 +32,7 @@
 
 #include "core/geom/predicates.h"
 #include "core/util/parallel.h"
+#include "core/volume/slabs.h"
 
 namespace vm {
 namespace {
@@ -69,7 +70,10 @@ Result<Delaunay3D> Delaunay3D::build(std::vector<double> points, const BuildOpti
   if (!(options.parts >= 1 && options.parts <= 64) || !(options.min_part_points >= 1) ||
       !(options.retry_rounds >= 0))
     return Result<Delaunay3D>::Error(
-        "Delaunay build: options need 1 <= parts <= 64, min_part_points >= 1, retry_rounds >= 0");
+        "Delaunay build: parts = " + std::to_string(options.parts) +
+        ", min_part_points = " + std::to_string(options.min_part_points) +
+        ", retry_rounds = " + std::to_string(options.retry_rounds) +
+        "; options need 1 <= parts <= 64, min_part_points >= 1, retry_rounds >= 0");
   if (points.size() % 3 != 0) return Result<Delaunay3D>::Error("points: size not a multiple of 3");
   for (double x : points)
     if (!std::isfinite(x)) return Result<Delaunay3D>::Error("points: non-finite coordinate");
@@ -141,21 +145,19 @@ void Delaunay3D::build_insertions(const BuildOptions& o, const int32_t first[4])
   // ended, up to parts * min_part_points vertices (all of them with one
   // part or few points).
   const int64_t start = int64_t(o.parts) * o.min_part_points;
-  const int32_t seq_end = o.parts < 2 || int64_t(n) < 2 * start ? n : int32_t(start);
   int32_t v = 1;
-  for (; v < seq_end; ++v)
-    if (!is_first(v)) build_insert(v);
+  auto insert_up_to = [&](int32_t end) {
+    for (; v < end; ++v)
+      if (!is_first(v)) build_insert(v);
+  };
+  insert_up_to(o.parts < 2 || int64_t(n) < 2 * start ? n : int32_t(start));
   // Points mostly on a surface (the hull has more than one face per 16
   // vertices so far) stay sequential: a slab cuts their long tetrahedra,
   // and points on the hull need ghosts, which no part owns.
   if (v < n) {
     int64_t hull_faces = 0;
     for (int32_t t = 0; t < int32_t(tet_capacity()); ++t) hull_faces += is_live(t) && is_ghost(t);
-    if (16 * hull_faces > int64_t(v)) {
-      for (; v < n; ++v)
-        if (!is_first(v)) build_insert(v);
-      return;
-    }
+    if (16 * hull_faces > int64_t(v)) return insert_up_to(n);
     // Room for the fresh slots the rounds leave unused (7 per point tried,
     // the points left over from a round tried again, 4096 per part), so
     // that no round moves the arrays.
@@ -196,18 +198,10 @@ void Delaunay3D::build_round(int parts, int axis, int32_t nv, std::vector<int32_
   // coordinate falls in.
   std::vector<double> xs(items.size());
   for (size_t i = 0; i < items.size(); ++i) xs[i] = point(items[i])[axis];
-  std::vector<double> cuts(static_cast<size_t>(parts - 1));
-  for (int j = 1; j < parts; ++j) {
-    auto at = xs.begin() + ptrdiff_t(xs.size() * size_t(j) / size_t(parts));
-    std::nth_element(xs.begin(), at, xs.end());
-    cuts[size_t(j - 1)] = *at;
-  }
-  auto slab_of = [&](int32_t u) {
-    return uint8_t(std::upper_bound(cuts.begin(), cuts.end(), point(u)[axis]) - cuts.begin());
-  };
+  const Slabs slabs = equal_count_slabs(xs, axis, size_t(parts));
   std::vector<uint8_t> vertex_part(static_cast<size_t>(nv));
   parallel_for(size_t(nv), size_t(1) << 16, [&](size_t begin, size_t end) {
-    for (size_t u = begin; u < end; ++u) vertex_part[u] = slab_of(int32_t(u));
+    for (size_t u = begin; u < end; ++u) vertex_part[u] = uint8_t(slabs.of(point(int32_t(u))));
   });
   std::vector<std::vector<int32_t>> lists(static_cast<size_t>(parts)), left(lists.size()),
       outside(lists.size());

@@ -28,6 +28,7 @@
 #include "core/quality/tet_quality.h"
 #include "core/util/parallel.h"
 #include "core/util/stage_timer.h"
+#include "core/volume/slabs.h"
 #include "core/volume/tet_topology.h"
 
 namespace vm {
@@ -695,16 +696,9 @@ class Optimizer {
       if (hi[k] - lo[k] > hi[axis] - lo[axis]) axis = k;
     std::vector<double> xs(nv);
     for (size_t v = 0; v < nv; ++v) xs[v] = m_.point(int32_t(v))[axis];
-    std::vector<double> cuts;
-    for (size_t j = 1; j < parts + halfway && nv > 0; ++j) {
-      auto at = xs.begin() + ptrdiff_t(halfway ? nv * (2 * j - 1) / (2 * parts) : nv * j / parts);
-      std::nth_element(xs.begin(), at, xs.end());
-      cuts.push_back(*at);
-    }
+    const Slabs slabs = equal_count_slabs(xs, axis, parts, halfway);
     std::vector<uint8_t> part(nv);
-    for (size_t v = 0; v < nv; ++v)
-      part[v] = uint8_t(std::upper_bound(cuts.begin(), cuts.end(), m_.point(int32_t(v))[axis]) -
-                        cuts.begin());
+    for (size_t v = 0; v < nv; ++v) part[v] = uint8_t(slabs.of(m_.point(int32_t(v))));
     return part;
   }
 

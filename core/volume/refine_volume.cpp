@@ -48,6 +48,7 @@
 #include "core/geom/closest_point.h"
 #include "core/util/parallel.h"
 #include "core/util/portable_math.h"
+#include "core/volume/slabs.h"
 #include "core/volume/spatial_sort.h"
 #include "core/volume/tet_topology.h"
 
@@ -444,12 +445,8 @@ Status Refiner::slab_rounds(Phase phase, std::vector<int32_t> items, RefineStats
     const int axis = round % 3;
     std::vector<double> xs(items.size());
     for (size_t i = 0; i < items.size(); ++i) xs[i] = item_point(phase, items[i])[axis];
-    std::sort(xs.begin(), xs.end());
-    std::vector<double> cuts(static_cast<size_t>(parts - 1));
-    for (int j = 1; j < parts; ++j) cuts[size_t(j - 1)] = xs[xs.size() * size_t(j) / size_t(parts)];
-    auto slab_of = [&](const double* x) {
-      return int(std::upper_bound(cuts.begin(), cuts.end(), x[axis]) - cuts.begin());
-    };
+    const Slabs slabs = equal_count_slabs(xs, axis, size_t(parts));
+    auto slab_of = [&](const double* x) { return slabs.of(x); };
     const size_t n0 = kernel_.num_vertices();
     vpart_.assign(n0, Delaunay3D::kNoPart);
     for (size_t v = 0; v < n0; ++v)
