@@ -26,6 +26,9 @@ Every round runs each variant once (native per T, Gmsh per T, Node,
 Chromium) while it has runs left, so that a drift of the (shared) machine's
 speed weighs on all alike. The table has one row per variant and its
 speed-up against Gmsh with one thread and with the same threads.
+With --volume and --threads, the stages follow per T (stage_split): our
+surface and volume stages against Gmsh's, and what the whole run may take
+for the issue's targets.
 
 Wall-clock medians decide the targets; CPU-time medians (user + system of
 the process over all its threads, Gmsh: of its stages) are printed beside
@@ -100,7 +103,8 @@ class NativeBench:
         self.report = json.load(open(self.rep))
         self.runs.append(dict(seconds=r["seconds"], cpu_seconds=r["cpu_seconds"], peak_rss_mb=r["peak_rss_mb"],
                               core_seconds=self.report["seconds"],
-                              stages=self.report["output"].get("remesh", {}).get("seconds")))
+                              stages=self.report["output"].get("remesh", {}).get("seconds"),
+                              volume_stages=self.report["output"].get("volume", {}).get("seconds")))
         print(f"  {self.name} run {len(self.runs)}: {r['seconds']:.3f} s (CPU {r['cpu_seconds']:.2f} s), "
               f"{r['peak_rss_mb']:.0f} MB", flush=True)
 
@@ -114,15 +118,36 @@ class NativeBench:
         # tetrahedra (Gmsh's is measured the same way in gmsh_reference.py).
         tet_edge = meshquality.msh_quality(self.out).get("median_tet_edge") if a.volume and tets else None
         stages = {k: benchutil.median([x["stages"][k] for x in runs]) for k in (runs[0]["stages"] or {})}
+        volume_stages = {k: benchutil.median([x["volume_stages"][k] for x in runs])
+                         for k in (runs[0]["volume_stages"] or {})}
         return dict(ok=True, cmd=" ".join(self.cmd), threads=self.threads, runs=runs,
                     median_seconds=benchutil.median([x["seconds"] for x in runs]),
                     median_core_seconds=benchutil.median([x["core_seconds"] for x in runs]),
                     median_cpu_seconds=benchutil.median([x["cpu_seconds"] for x in runs]),
-                    stage_medians=stages,
+                    stage_medians=stages, volume_stage_medians=volume_stages,
                     peak_rss_mb=max(x["peak_rss_mb"] for x in runs), triangles=o["triangles"],
                     quality=dict(min=o["quality"]["min"], mean=o["quality"]["mean"]), tets=tets,
                     median_tet_edge=tet_edge,
                     rss_source="GNU time" if os.access(benchutil.GNU_TIME, os.X_OK) else "wait4")
+
+
+def stage_split(native, gmsh):
+    """Seconds of the surface and volume stages, ours and Gmsh's (medians):
+    ours, the report's remesh stages and its volume stages (layers, caps,
+    boundary recovery, refinement and optimization); Gmsh's, classify,
+    createGeometry and the surface mesh, then the caps' entities and the
+    volume mesh (HXT); and the rest of our run (reading, preparation,
+    assembly, checks, writing, process start). None without a volume."""
+    ours_v = native.get("volume_stage_medians") or {}
+    if not native.get("ok") or not gmsh or not gmsh.get("ok") or not ours_v:
+        return None
+    gs = gmsh["stage_medians"]
+    surface = (sum(native["stage_medians"].values()),
+               sum(gs.get(k, 0) for k in ("classify", "create_geometry", "surface_mesh")))
+    volume = (sum(ours_v.get(k, 0) for k in ("layers", "caps", "recovery", "refinement")),
+              sum(gs.get(k, 0) for k in ("caps_volume_entities", "volume_mesh")))
+    return dict(surface=surface, volume=volume,
+                rest=native["median_seconds"] - surface[0] - volume[0])
 
 
 def volume_flags(a):
@@ -379,7 +404,10 @@ def main():
         label = f"vesselmesh native {t}T" if threads else f"vesselmesh native {t}T (default)"
         row(label, x, t, [r["seconds"] for r in x.get("runs", [])], x.get("median_cpu_seconds"), x.get("peak_rss_mb"),
             [f"in-core median {x['median_core_seconds']:.3f} s; stage medians: " +
-             ", ".join(f"{k} {v:.2f}" for k, v in x["stage_medians"].items())] if x["ok"] else ())
+             ", ".join(f"{k} {v:.2f}" for k, v in x["stage_medians"].items())] +
+            (["volume stage medians: " +
+              ", ".join(f"{k} {v:.2f}" for k, v in x["volume_stage_medians"].items())]
+             if x["volume_stage_medians"] else []) if x["ok"] else ())
     for nd, x in zip(nodes, ws):
         row(f"vesselmesh wasm node {nd.threads}T", x, nd.threads, x.get("seconds", []), x.get("median_cpu_seconds"),
             x.get("process_peak_rss_mb"),
@@ -443,6 +471,17 @@ def main():
             also = f"; Gmsh 1T / native {t}T = {g['median_seconds'] / x['median_seconds']:.2f}x" \
                 if t != 1 and g and g["ok"] else ""
             print(f"Gmsh {t}T / native {t}T = {r:.2f}x wall, {rc:.2f}x CPU{verdict}{also}")
+            if target is not None and g and g["ok"]:
+                print(f"  (against Gmsh 1T, {TARGET_GMSH_RATIO_BY_THREADS[t]}x is the whole run in "
+                      f"{g['median_seconds'] / TARGET_GMSH_RATIO_BY_THREADS[t]:.2f} s)")
+            split = stage_split(x, gt)
+            if split:
+                ratios[f"stages{t}t"] = split
+                print(f"  stages on {t}T, ours / Gmsh's: surface {split['surface'][0]:.2f} / "
+                      f"{split['surface'][1]:.2f} s ({split['surface'][1] / split['surface'][0]:.2f}x), "
+                      f"volume {split['volume'][0]:.2f} / {split['volume'][1]:.2f} s "
+                      f"({split['volume'][1] / split['volume'][0]:.2f}x; Gmsh's is HXT), "
+                      f"the rest of our run {split['rest']:.2f} s")
         def against_native(label, runners, results):
             """(T, wasm / native on T threads, result) of each wasm variant
             that ran (the threaded core; T = 1: the single-threaded one)."""
