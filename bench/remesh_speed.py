@@ -71,8 +71,9 @@ import meshquality  # noqa: E402
 
 TARGET_GMSH_RATIO = 3.0
 TARGET_WASM_RATIO = 1.6
-# Issue 22 (--threads): Gmsh with T threads / native with T threads, by T;
-# Chromium / native at the same thread count.
+# Issue 22 (--threads): Gmsh with one thread / native with T threads, by T
+# (the issue's "against Gmsh 4.8 with one thread"); Chromium / native at the
+# same thread count.
 TARGET_GMSH_RATIO_BY_THREADS = {1: 4.5, 2: 6.5}
 TARGET_CHROMIUM_RATIO = 1.4
 
@@ -464,16 +465,16 @@ def main():
                 continue
             r = ratios[f"gmsh{t}t_over_native{t}t"] = gt["median_seconds"] / x["median_seconds"]
             rc = ratios[f"gmsh{t}t_over_native{t}t_cpu"] = gt["median_cpu_seconds"] / x["median_cpu_seconds"]
+            # The issue's targets are against Gmsh on one thread.
+            r1 = ratios[f"gmsh1t_over_native{t}t"] = g["median_seconds"] / x["median_seconds"] \
+                if g and g["ok"] else None
             target = TARGET_GMSH_RATIO_BY_THREADS.get(t)
-            verdict = "" if target is None else f" (target >= {target}x): " + (
-                ("met" if r >= target else "NOT met") if native_ok(x) else
-                "not comparable: vesselmesh wrote no tetrahedra")
-            also = f"; Gmsh 1T / native {t}T = {g['median_seconds'] / x['median_seconds']:.2f}x" \
-                if t != 1 and g and g["ok"] else ""
-            print(f"Gmsh {t}T / native {t}T = {r:.2f}x wall, {rc:.2f}x CPU{verdict}{also}")
-            if target is not None and g and g["ok"]:
-                print(f"  (against Gmsh 1T, {TARGET_GMSH_RATIO_BY_THREADS[t]}x is the whole run in "
-                      f"{g['median_seconds'] / TARGET_GMSH_RATIO_BY_THREADS[t]:.2f} s)")
+            verdict = "" if target is None or r1 is None else \
+                f" (target >= {target}x, the whole run in {g['median_seconds'] / target:.2f} s): " + (
+                    ("met" if r1 >= target else "NOT met") if native_ok(x) else
+                    "not comparable: vesselmesh wrote no tetrahedra")
+            also = f"; Gmsh 1T / native {t}T = {r1:.2f}x" if t != 1 and r1 is not None else ""
+            print(f"Gmsh {t}T / native {t}T = {r:.2f}x wall, {rc:.2f}x CPU{also}{verdict}")
             split = stage_split(x, gt)
             if split:
                 ratios[f"stages{t}t"] = split
