@@ -58,8 +58,9 @@ vm::ProgressFn progress_from(val fn) {
   };
 }
 
-/// {ok: false, error, kind, option?, cancelled?}: the error phrased with the
-/// JS API's option names.
+/// {ok: false, error, kind, option?, cancelled?, remedy?}: the error phrased
+/// with the JS API's option names; remedy {action, places, value} when core
+/// knows what the user can do (vm::Remedy).
 val error(const vm::Status& st) {
   val r = val::object();
   r.set("ok", false);
@@ -72,6 +73,20 @@ val error(const vm::Status& st) {
       r.set("option", std::string(spec->js));
   }
   if (st.cancelled()) r.set("cancelled", true);
+  const vm::Remedy& remedy = st.remedy();
+  if (!remedy.action.empty()) {
+    val m = val::object();
+    m.set("action", remedy.action);
+    val places = val::array();
+    for (const auto& p : remedy.places) {
+      val q = val::array();
+      for (double x : p) q.call<void>("push", x);
+      places.call<void>("push", q);
+    }
+    m.set("places", places);
+    m.set("value", remedy.value);
+    r.set("remedy", m);
+  }
   return r;
 }
 

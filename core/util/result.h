@@ -3,9 +3,11 @@
 // core throws across a module boundary (docs/ARCHITECTURE.md, "Errors").
 #pragma once
 
+#include <array>
 #include <string>
 #include <utility>
 #include <variant>
+#include <vector>
 
 namespace vm {
 
@@ -17,6 +19,24 @@ enum class ErrorKind {
   kBadOption,  ///< an option's value is unusable; option() names it
   kCancelled,  ///< the progress callback asked to stop
   kInternal,   ///< a broken invariant: a bug, never the user's fault
+};
+
+/// What the user can do about a refusal, in a form each interface can offer
+/// as a control (the page: a button that applies it; the CLI: the message
+/// already says it in words). `action` is one word of a fixed vocabulary:
+///   "trim_end"   cut the vessel back across it at `where` (a damaged end);
+///   "cut_here"   cut across the vessel at `where` (clip_at);
+///   "coarser"    a larger size: `value` is the size (model unit) that fits;
+///   "no_layers"  mesh without a boundary layer;
+///   "smooth"     smooth the surface (`value` passes);
+///   "repair"     turn the repairs on;
+///   "largest_component"  keep the largest piece;
+///   "units"      confirm or give the unit.
+/// `places` are points (model unit) the message names, for the view to mark.
+struct Remedy {
+  std::string action;
+  std::vector<std::array<double, 3>> places;
+  double value = 0;
 };
 
 /// Outcome of an operation without a value: `ok()` or an error with a kind
@@ -48,12 +68,21 @@ class Status {
   const std::string& message() const { return message_; }
   /// The option id of a kBadOption error, else empty.
   const std::string& option() const { return option_; }
-  /// The same error with `prefix` before its message (kind and option kept).
+  /// The same error with `prefix` before its message (kind, option and
+  /// remedy kept).
   Status Prefixed(const std::string& prefix) const {
     Status s = *this;
     if (!ok()) s.message_ = prefix + s.message_;
     return s;
   }
+  /// The same error with a remedy the interfaces can offer (remedy()).
+  Status WithRemedy(Remedy remedy) const {
+    Status s = *this;
+    if (!ok()) s.remedy_ = std::move(remedy);
+    return s;
+  }
+  /// The remedy; empty action when none is known.
+  const Remedy& remedy() const { return remedy_; }
 
  private:
   static Status Make(ErrorKind kind, std::string message) {
@@ -65,6 +94,7 @@ class Status {
   ErrorKind kind_ = ErrorKind::kNone;
   std::string message_;
   std::string option_;
+  Remedy remedy_;
 };
 
 /// A value of type T or an error Status.

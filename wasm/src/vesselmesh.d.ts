@@ -140,6 +140,10 @@ export interface Failure {
   /** The JS key of the option a bad_option error is about. */
   option?: string;
   cancelled?: true;
+  /** What the user can do about it, when core knows: `action` one of trim_end, cut_here,
+   * coarser, no_layers, smooth, repair, largest_component, units; `places` points the
+   * message names (model unit), to mark in a view; `value` e.g. the size that fits. */
+  remedy?: { action: string; places: number[][]; value: number };
 }
 
 /** A triangle surface: 3 floats a vertex, 3 indices a triangle, gamma_k a triangle. */

@@ -41,7 +41,8 @@ async function loadWasmBinary() {
 }
 
 /** A core result as the API returns it: failures keep their kind, the
- * option they concern (its JS name) and `cancelled`. */
+ * option they concern (its JS name), `cancelled` and the remedy core
+ * offers. */
 function failure(raw) {
   return {
     ok: false,
@@ -49,6 +50,7 @@ function failure(raw) {
     kind: raw.kind,
     ...(raw.option && { option: raw.option }),
     ...(raw.cancelled && { cancelled: true }),
+    ...(raw.remedy && { remedy: raw.remedy }),
   };
 }
 
