@@ -16,7 +16,7 @@
 #include "core/mesh/boundary_loops.h"
 #include "core/mesh/topology.h"
 #include "core/phantom/dirty_phantom.h"
-#include "core/phantom/marching_cubes.h"
+#include "core/mesh/marching_cubes.h"
 #include "core/util/portable_math.h"
 
 namespace vm {
