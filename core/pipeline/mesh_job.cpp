@@ -499,10 +499,14 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const Me
   // Every later stage's error passes here: on a surface that crosses itself
   // (the likely cause), it first says where (an option's value or a
   // cancellation is not the surface's doing).
-  if (Status st = mesh_prepared(r, options, progress); !st.ok())
-    return st.cancelled() || st.kind() == ErrorKind::kBadOption
-               ? st
-               : st.Prefixed(self_crossing_prefix(r.surface));
+  if (Status st = mesh_prepared(r, options, progress); !st.ok()) {
+    if (st.cancelled() || st.kind() == ErrorKind::kBadOption) return st;
+    st = st.Prefixed(self_crossing_prefix(r.surface));
+    // Crossings left by {repair} off: the remedy is the repair, at its places.
+    if (r.surface.self_crossings.pairs > 0 && !r.surface.repaired)
+      st = st.WithRemedy({"repair", r.surface.self_crossings.places, 0});
+    return st;
+  }
   r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

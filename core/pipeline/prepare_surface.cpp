@@ -825,27 +825,34 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
 
 Status check_meshable(const PreparedSurface& s) {
   const TopologyReport& t = s.topology;
+  // Without the repairs, the remedy is to turn them on.
+  const Remedy repair_on{s.repaired ? "" : "repair", {}, 0};
   if (t.nonmanifold_edges > 0) {
     return Status::Error("cannot mesh: the surface has " + num(t.nonmanifold_edges) +
                          " non-manifold edges (shared by 3 or more triangles), e.g. near " +
                          point_text(t.nonmanifold_edge_example) +
                          (s.repaired ? "; fix the segmentation or export a manifold surface"
-                                     : "; split them into manifold sheets with {repair} auto"));
+                                     : "; split them into manifold sheets with {repair} auto"))
+        .WithRemedy({repair_on.action, {t.nonmanifold_edge_example}, 0});
   }
   if (t.nonmanifold_vertices > 0) {
     return Status::Error("cannot mesh: the surface has " + num(t.nonmanifold_vertices) +
                          " non-manifold vertices (sheets touching at a vertex)" +
-                         (s.repaired ? std::string() : "; split them with {repair} auto"));
+                         (s.repaired ? std::string() : "; split them with {repair} auto"))
+        .WithRemedy(repair_on);
   }
   if (!s.repair.orientable) {
-    return Status::Error("cannot mesh: the surface is not orientable");
+    return Status::Error("cannot mesh: the surface is not orientable" +
+                         std::string(s.repaired ? "" : "; repair it with {repair} auto"))
+        .WithRemedy(repair_on);
   }
   if (t.components > 1) {
     return Status::Error("cannot mesh: the surface has " + std::to_string(t.components) +
                          " connected components (the largest has " + num(t.component_triangles[0]) +
                          " of " + num(t.triangles) +
                          " triangles); keep only the largest ({largest_component}) or clean the "
-                         "segmentation");
+                         "segmentation")
+        .WithRemedy({"largest_component", {}, 0});
   }
   return Status::Ok();
 }

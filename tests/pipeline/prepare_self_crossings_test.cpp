@@ -83,6 +83,11 @@ TEST(PrepareSelfCrossings, AFailingStageNamesTheCrossingFirst) {
   auto r = run_mesh_job(bytes, off);
   ASSERT_FALSE(r.ok());
   EXPECT_TRUE(r.message().starts_with("the input crosses itself at (")) << r.message();
+  // What to do, for the page's button: the repair, at the place.
+  EXPECT_EQ(r.status().remedy().action, "repair");
+  ASSERT_EQ(r.status().remedy().places.size(), 1u);
+  const Vec3 place = r.status().remedy().places[0];
+  EXPECT_LT(std::abs(place[0] + 1) + std::abs(place[2] - 4), 0.7) << point_text(place);
   // With the model's unit and what to do, before the stage's own words.
   EXPECT_NE(
       r.message().find(
