@@ -343,6 +343,66 @@ def check_volume(fname, path, tmp, args, d, have_gmsh, label, flags, layers):
               for sq in v["surfaces"] if sq["name"] != "wall" and sq["quality"]["count"] > 0))
 
 
+# The hard files (../shared/data/vascular-hard, its README): what preparation
+# must find and do there with default options.
+HARD = {
+    # A patch stored twice over the aneurysm, glued to the wall and crossing
+    # it: re-surfaced; the two flat-capped ends open.
+    "ica-aneurysm-overlapping-shells.stl": dict(resurfaced=1, min_openings=2),
+    # Three fan caps (lifted apex), a detached fragment, slivers: opened.
+    "carotid-fancapped-closed.stl": dict(min_openings=3),
+    # Centimetres, 8 labelled caps facing inward.
+    "abdominal-aorta-seqseg-capped-cm.vtp": dict(min_openings=8),
+    # A closed raw segmentation: every vessel end blind.
+    "abdominal-visceral-segmentation-closed.vtp": dict(min_openings=3),
+}
+
+
+def check_default_mesh(fname, path, tmp, args, have_gmsh, expect=None):
+    """`vesselmesh mesh FILE -o OUT` with default options, as a new user
+    runs it: a valid mesh (Gmsh reads it: no inverted element, conforming,
+    every element in a group, planar caps) with a wall, an inlet and at
+    least one outlet."""
+    expect = expect or {}
+    out, rep = os.path.join(tmp, f"{fname}.default.msh"), os.path.join(tmp, f"{fname}.default.json")
+    r = subprocess.run([args.vesselmesh, "mesh", path, "-o", out, "--report", rep],
+                       capture_output=True, text=True)
+    check(fname, r.returncode == 0,
+          "defaults: exit 0" + ("" if r.returncode == 0 else f" {r.stderr.strip()[-400:]}"))
+    if r.returncode != 0:
+        return
+    rep = json.load(open(rep))
+    names = [g["name"] for g in rep["output"]["groups"] if g["dim"] == 2]
+    check(fname, "wall" in names and "inlet" in names and any(n.startswith("outlet") for n in names),
+          f"defaults: ready for a flow simulation: {', '.join(names)}")
+    a = rep["input"]
+    if "min_openings" in expect:
+        check(fname, len(a["openings"]) >= expect["min_openings"],
+              f"defaults: {len(a['openings'])} openings >= {expect['min_openings']} "
+              f"({', '.join(o['source'] for o in a['openings'])})")
+    if "resurfaced" in expect:
+        done = [p for p in a["repairs"]["crossings_resurfaced"] if p["resolved"]]
+        check(fname, len(done) >= expect["resurfaced"] and a["self_crossings"]["pairs"] == 0,
+              f"defaults: {len(done)} crossing places re-surfaced, {a['self_crossings']['pairs']} "
+              f"crossing pairs left")
+    for w in a["warnings"]:
+        print(f"  defaults: warning: {w[:220]}")
+    v = rep["output"].get("volume", {})
+    if v:
+        q = v["core_quality"]
+        print(f"  defaults: {v['tetrahedra']} tetrahedra, core gamma_t min {q['min']:.3f} "
+              f"mean {q['mean']:.3f}, {rep['seconds']:.2f} s")
+    if not have_gmsh:
+        return
+    g = gmsh_volume(out)
+    check(fname, g["orphans"] == 0 and g["min_v6"] > 0 and g["unmatched"] == 0,
+          f"defaults: Gmsh reads it: {g['tets']} tetrahedra, none inverted (min 6V {g['min_v6']:.3g}), "
+          f"conforming, every element in a group")
+    check(fname, abs(g["volume"] - g["enclosed"]) <= 1e-9 * abs(g["enclosed"]) and g["planar"] <= 1e-9,
+          f"defaults: tetrahedra fill the enclosed volume, caps planar ({g['planar']:.1e})")
+    os.remove(out)
+
+
 def check_fine_core(fname, path, tmp, args):
     """A large uniform core (FINE_CORE): its quality meets the targets."""
     out, rep = os.path.join(tmp, f"{fname}.fine.msh"), os.path.join(tmp, f"{fname}.fine.json")
@@ -519,6 +579,8 @@ def main():
     ap.add_argument("--data", required=True)
     ap.add_argument("--vesselmesh", required=True)
     ap.add_argument("--files", help="comma-separated file names (default: all)")
+    ap.add_argument("--hard", help="the folder of hard files (vascular-hard): each meshed with "
+                                   "default options and checked")
     args = ap.parse_args()
     try:
         import gmsh  # noqa: F401
@@ -577,6 +639,7 @@ def main():
             check_volume(fname, path, tmp, args, d, have_gmsh, "volume (layer + vessel wall)",
                          ["--wall-thickness", "0.1"], ["viscous", "vessel"])
             check_same_everywhere(fname, path, tmp, args)
+            check_default_mesh(fname, path, tmp, args, have_gmsh)
             if fname in FINE_CORE:
                 check_fine_core(fname, path, tmp, args)
             if fname in FLOW_EXTENSION_FILES:
@@ -597,6 +660,16 @@ def main():
                 check(fname, n == d["triangles"], f"Gmsh reads {n} triangles == {d['triangles']} (MSH {version})")
                 check(fname, "wall" in names, f"Gmsh finds physical group 'wall' (MSH {version}): {names}")
                 check(fname, orphans == 0, f"every triangle in a physical group (MSH {version})")
+        if args.hard:
+            for fname, exp in HARD.items():
+                if args.files and fname not in args.files.split(","):
+                    continue
+                path = os.path.join(args.hard, fname)
+                print(fname)
+                if not os.path.exists(path):
+                    check(fname, False, "file present")
+                    continue
+                check_default_mesh(fname, path, tmp, args, have_gmsh, exp)
     print()
     if failures:
         print(f"{len(failures)} check(s) failed:")

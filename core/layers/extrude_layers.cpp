@@ -259,8 +259,21 @@ Result<LayerMesh> extrude_layers(const SurfaceMesh& wall_in, const std::vector<d
                           " wall triangles still have "
                           "invalid prisms"
                     : std::to_string(crossing / 2) + " columns still make the front intersect";
-    return R::Error("no valid layer after " + std::to_string(spec.max_rounds) +
-                    " rounds of shrinking (" + what + ")");
+    // Where: the failing triangles' centroids (a few), else the columns'.
+    Remedy remedy{"no_layers", {}, 0};
+    for (size_t t = 0; t < nt && failing > 0 && remedy.places.size() < 32; ++t) {
+      const auto f = validity.corner_factors(t, factor);
+      if (validity.score(t, f.data()) >= 1) continue;
+      const int32_t* c = &wall.triangles[3 * t];
+      remedy.places.push_back(
+          (1.0 / 3) * (at(wall.points, c[0]) + at(wall.points, c[1]) + at(wall.points, c[2])));
+    }
+    if (failing == 0)
+      for (int32_t v : layer_intersections(wall, cols, factor, spec.layers, openings, spec.outward))
+        if (remedy.places.size() < 32) remedy.places.push_back(at(wall.points, v));
+    return Status::Error("no valid layer after " + std::to_string(spec.max_rounds) +
+                         " rounds of shrinking (" + what + ")")
+        .WithRemedy(std::move(remedy));
   }
   for (size_t v = 0; v < nv; ++v) {
     stats.limited_by_validity += by_validity[v];

@@ -183,12 +183,13 @@ Result<LayerDirections> layer_directions(const SurfaceMesh& wall, const Triangle
       if (w2 > w) d = d2, w = w2;
     }
     if (!(w >= kVisibilityFloor))
-      return R::Error(std::string("no ") + (outward ? "outward" : "inward") +
-                      " direction sees all the triangles around wall vertex " + std::to_string(v) +
-                      " " + where(wall, v) +
-                      (plane ? " from within its cap plane (the wall meets the plane at a grazing "
-                               "angle there)"
-                             : " (a needle-like spike or fold of the wall)"));
+      return Status::Error(std::string("no ") + (outward ? "outward" : "inward") +
+                           " direction sees all the triangles around wall vertex " +
+                           std::to_string(v) + " " + where(wall, v) +
+                           (plane ? " from within its cap plane (the wall meets the plane at a "
+                                    "grazing angle there)"
+                                  : " (a needle-like spike or fold of the wall)"))
+          .WithRemedy({"no_layers", {at(wall.points, int32_t(v))}, 0});
     put(dir, int32_t(v), d);
     out.min_visibility = std::min(out.min_visibility, w);
   }

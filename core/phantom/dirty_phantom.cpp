@@ -9,6 +9,7 @@
 
 #include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
+#include "core/mesh/boundary_loops.h"
 #include "core/mesh/repair.h"
 
 namespace vm {
@@ -171,6 +172,94 @@ DirtTruth add_segmentation_defects(SurfaceMesh& mesh, uint32_t seed, int holes) 
   remove.resize(mesh.num_triangles(), 0);
   remove_triangles(mesh, remove);
   return truth;
+}
+
+std::vector<DamagedEnd> add_damaged_ends(SurfaceMesh& mesh, uint32_t seed) {
+  std::vector<DamagedEnd> out;
+  const TriangleAdjacency adj = build_adjacency(mesh);
+  const std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, adj);
+  auto& tri = mesh.triangles;
+  // Per vertex, a triangle using it (for the rim triangles' third corners).
+  std::vector<int32_t> some_triangle(mesh.num_vertices(), -1);
+  for (size_t t = 0; t < mesh.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) some_triangle[size_t(tri[3 * t + size_t(k)])] = int32_t(t);
+  std::vector<uint8_t> on_rim(mesh.num_vertices(), 0);
+  for (const auto& loop : loops)
+    for (int32_t v : loop) on_rim[size_t(v)] = 1;
+  std::vector<uint8_t> remove(mesh.num_triangles(), 0);
+  for (const std::vector<int32_t>& loop : loops) {
+    const size_t n = loop.size();
+    if (n < 16) continue;
+    DamagedEnd d;
+    Vec3 c{0, 0, 0}, normal{0, 0, 0};
+    double h = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const Vec3 a = at(mesh.points, loop[i]), b = at(mesh.points, loop[(i + 1) % n]);
+      c = c + (1.0 / double(n)) * a;
+      normal = normal + cross(a, b);  // Newell: twice the loop's vector area
+      h += norm(b - a) / double(n);
+    }
+    d.radius = std::sqrt(0.5 * norm(normal) / 3.141592653589793);
+    Vec3 axis = normalized(normal);
+    // Out of the vessel: away from the rim triangles' third corners.
+    const int32_t t0 = some_triangle[size_t(loop[0])];
+    Vec3 inner{0, 0, 0};
+    for (int k = 0; k < 3; ++k)
+      inner = inner + (1.0 / 3) * at(mesh.points, tri[3 * size_t(t0) + size_t(k)]);
+    if (dot(inner - c, axis) > 0) axis = -1.0 * axis;
+    d.center = c;
+    d.axis = axis;
+    const size_t shift = size_t(mix(seed + n) % n);
+    auto L = [&](size_t i) { return loop[(i + shift) % n]; };
+    // The fold: four rim vertices pushed a third of the radius in along
+    // the vessel, so that their triangles turn over onto the next rings.
+    auto radial_at = [&](const Vec3& x) {
+      const Vec3 r = x - c;
+      return normalized(r - dot(r, axis) * axis);
+    };
+    for (size_t i = 1; i <= 4; ++i) {
+      const int32_t v = L(i);
+      const Vec3 x = at(mesh.points, v);
+      put(mesh.points, v, x - (0.3 * d.radius) * axis + (0.05 * d.radius) * radial_at(x));
+    }
+    // A flap on a rim edge: two triangles, out of the wall and back in
+    // through it a third of a radius in.
+    {
+      const int32_t a = L(n / 4), b = L(n / 4 + 1);
+      const Vec3 mid = 0.5 * (at(mesh.points, a) + at(mesh.points, b));
+      const Vec3 radial = radial_at(mid);
+      const Vec3 p = mid - (0.1 * d.radius) * axis + (0.1 * d.radius) * radial;
+      const Vec3 q = mid - (0.3 * d.radius) * axis - (0.1 * d.radius) * radial;
+      const int32_t ip = int32_t(mesh.num_vertices()), iq = ip + 1;
+      mesh.points.insert(mesh.points.end(), p.begin(), p.end());
+      mesh.points.insert(mesh.points.end(), q.begin(), q.end());
+      tri.insert(tri.end(), {b, a, ip, a, iq, ip});
+    }
+    // A tiny loop: a triangle one ring in, next to the rim, removed.
+    for (size_t t = 0; t < remove.size(); ++t) {
+      const int32_t* v = &tri[3 * t];
+      bool touches = false, rim = false;
+      for (int k = 0; k < 3; ++k) {
+        rim |= on_rim[size_t(v[k])] != 0;
+        touches |= norm(at(mesh.points, v[k]) - at(mesh.points, L(n / 2))) < 2.5 * h;
+      }
+      if (touches && !rim) {
+        remove[t] = 1;
+        break;
+      }
+    }
+    // A twisted band between rim edges (k, k+1) and (k+4, k+5): it runs
+    // along the first against its rim triangle, along the second with it.
+    {
+      const size_t k = 3 * n / 4;
+      tri.insert(tri.end(), {L(k + 1), L(k), L(k + 4), L(k + 1), L(k + 4), L(k + 5)});
+    }
+    d.depth = 0.3 * d.radius + 2 * h;
+    out.push_back(d);
+  }
+  remove.resize(mesh.num_triangles(), 0);
+  remove_triangles(mesh, remove);
+  return out;
 }
 
 }  // namespace vm

@@ -3,7 +3,9 @@
 // segmentation tools carry.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <vector>
 
 #include "core/mesh/surface_mesh.h"
 
@@ -34,5 +36,25 @@ struct DirtTruth {
 /// openings; on a small mesh fewer holes fit (the truth says how many). The
 /// result is not welded: the band's copies coincide with the rim.
 DirtTruth add_segmentation_defects(SurfaceMesh& mesh, uint32_t seed, int holes = 12);
+
+/// What add_damaged_ends did, per opening damaged.
+struct DamagedEnd {
+  std::array<double, 3> center{};  ///< of the opening's loop before the damage
+  std::array<double, 3> axis{};    ///< unit, out of the vessel
+  double radius = 0;               ///< sqrt(area / pi) of the loop
+  /// How far in from the opening's plane the damage reaches (model units).
+  double depth = 0;
+};
+
+/// Damages every opening of an oriented, manifold phantom with open ends as
+/// a vessel cut at an image border is damaged (deterministically from
+/// `seed`): a run of rim vertices pushed in along the vessel past the next
+/// ring, so that their triangles fold over their neighbours; a flap on a
+/// rim edge dipping through the wall; a triangle removed one ring in (a
+/// tiny loop beside the opening); and a twisted band joining two rim edges
+/// with a half turn, which makes the surface non-orientable. Openings with
+/// fewer than 16 rim vertices are left. The result is welded (no new
+/// coincident vertices).
+std::vector<DamagedEnd> add_damaged_ends(SurfaceMesh& mesh, uint32_t seed);
 
 }  // namespace vm

@@ -14,9 +14,9 @@
 #include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/boundary_loops.h"
+#include "core/mesh/marching_cubes.h"
 #include "core/mesh/topology.h"
 #include "core/phantom/dirty_phantom.h"
-#include "core/phantom/marching_cubes.h"
 #include "core/util/portable_math.h"
 
 namespace vm {
@@ -81,6 +81,8 @@ struct Model {
   /// so that end is not free. Branch 0's start is always free.
   std::vector<bool> joined_end;
   int genus = 0;
+  /// Each branch its own surface (not joined by the smooth minimum).
+  bool separate_shells = false;
 };
 
 /// The cut across the end of `b` at sample `i`, facing away from sample j.
@@ -163,6 +165,23 @@ Model build_model(PhantomKind kind) {
         m.joined_end.push_back(false);
       }
       break;
+    }
+    case PhantomKind::kCrossing: {
+      // A vessel along z and one crossing it at 50 degrees, their axes 1.3
+      // apart: with radii 1 and 0.8 they overlap by half a radius.
+      m.branches.push_back(
+          spline_branch({{0, 0, -5}, {0.1, 0, 0}, {0, 0, 5}}, n, [](double) { return 1.0; }));
+      m.branches.push_back(spline_branch({{-4.2, 1.3, -3.5}, {0, 1.3, 0}, {4.2, 1.3, 3.5}}, n,
+                                         [](double) { return 0.8; }));
+      m.separate_shells = true;
+      for (const Branch& b : m.branches) {
+        const size_t last = b.points.size() - 1, in = std::max<size_t>(1, b.points.size() / 12);
+        m.cuts.push_back(cut_at(b, in, in + 1));
+        m.cuts.push_back(cut_at(b, last - in, last - in - 1));
+        m.ends.push_back(cut_at(b, 0, 1));
+        m.ends.push_back(cut_at(b, last, last - 1));
+      }
+      return m;
     }
     case PhantomKind::kTorus: {
       std::vector<Vec3> ring;
@@ -373,7 +392,7 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
     const size_t np = size_t(g.nx) * size_t(g.ny);
     for (size_t i = 0; i < np; ++i) {
       double v = branch[0][i];
-      for (size_t b = 1; b < branch.size(); ++b) v = smooth_min(v, branch[b][i], k_blend);
+      for (size_t b = 1; b < m.branches.size(); ++b) v = smooth_min(v, branch[b][i], k_blend);
       out[i] = float(v);
     }
     if (m.has_bulb) {
@@ -397,13 +416,31 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
     if (o.binary)
       for (size_t i = 0; i < np; ++i) out[i] = out[i] < 0 ? -1.0f : 1.0f;
   };
-  SurfaceMesh mesh = marching_cubes(g, plane_fn);
   const bool open = o.open_ends && !m.cuts.empty();
-  if (open)
-    for (const EndCut& c : m.cuts) clip(mesh, c);
-  keep_largest_component(mesh);
+  SurfaceMesh mesh;
+  if (m.separate_shells) {
+    // Each branch alone, cut at its own ends, then all put together.
+    Model all = std::move(m);
+    for (size_t b = 0; b < all.branches.size(); ++b) {
+      m.branches = {all.branches[b]};
+      SurfaceMesh shell = marching_cubes(g, plane_fn);
+      if (open)
+        for (size_t c = 2 * b; c < 2 * b + 2; ++c) clip(shell, all.cuts[c]);
+      keep_largest_component(shell);
+      const int32_t base = int32_t(mesh.num_vertices());
+      mesh.points.insert(mesh.points.end(), shell.points.begin(), shell.points.end());
+      for (int32_t v : shell.triangles) mesh.triangles.push_back(base + v);
+    }
+    m = std::move(all);
+  } else {
+    mesh = marching_cubes(g, plane_fn);
+    if (open)
+      for (const EndCut& c : m.cuts) clip(mesh, c);
+    keep_largest_component(mesh);
+  }
   if (open && o.flat_caps) close_by_fans(mesh);
   const DirtTruth dirt = o.dirty ? add_segmentation_defects(mesh, o.seed) : DirtTruth{};
+  if (open && !o.flat_caps && o.damaged_ends) add_damaged_ends(mesh, o.seed);
   for (double& x : mesh.points) x *= o.scale;
   if (truth) {
     truth->genus = m.genus;

@@ -21,6 +21,10 @@ enum class PhantomKind {
   kAneurysm,     ///< the bifurcation with a saccular bulb, 3 openings
   kTorus,        ///< a closed torus-like handle (genus 1, 0 openings)
   kTree,         ///< a trunk split three times plus two side branches: 17 branches, 11 openings
+  /// Two vessels that touch and pass into each other, each its own closed
+  /// shell (as two separately modelled vessels never joined): the surface
+  /// crosses itself where they overlap; 4 openings once cut.
+  kCrossing,
 };
 
 struct PhantomOptions {
@@ -51,6 +55,11 @@ struct PhantomOptions {
   /// patch, a zero-area band. The surface is then neither manifold nor
   /// welded; the truth counts the holes.
   bool dirty = false;
+  /// Damaged vessel ends (add_damaged_ends in dirty_phantom.h), as a vessel
+  /// cut at an image border leaves them: at each opening, folded rim
+  /// triangles, a flap through the wall, tiny loops and a twisted band that
+  /// makes the surface non-orientable. Needs open_ends without flat_caps.
+  bool damaged_ends = false;
   /// Uniform scale applied to the output coordinates (e.g. 10 for "mm").
   double scale = 1.0;
 };

@@ -25,6 +25,7 @@
 #include "core/pipeline/write_outputs.h"
 #include "core/quality/tet_quality.h"
 #include "core/surface/element_estimate.h"
+#include "core/surface/relax_wall.h"
 #include "core/util/parallel.h"
 #include "core/util/stage_timer.h"
 #include "core/volume/boundary_recovery.h"
@@ -200,10 +201,40 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
       spec.measure = options.verify;  // the heights as distances to the wall too
       LayerStats ls;
       auto layer = extrude_layers(r.output_surface, radius, spec, &ls);
+      // Where a needle or fold of the wall stops the layer, the wall is
+      // relaxed there, a little wider each time, and the layer tried again.
+      for (int attempt = 1; !layer.ok() && attempt <= 3; ++attempt) {
+        const std::vector<Vec3> places = layer.status().remedy().places;
+        if (places.empty()) break;
+        // The wall's size where it failed: at the vertex nearest the place.
+        size_t nearest = 0;
+        for (size_t v = 1; v < r.output_surface.num_vertices(); ++v)
+          if (norm(at(r.output_surface.points, int32_t(v)) - places[0]) <
+              norm(at(r.output_surface.points, int32_t(nearest)) - places[0]))
+            nearest = v;
+        const double reach =
+            (1.0 + attempt) * (nearest < wall_sizes.size() ? wall_sizes[nearest] : 0.0);
+        const WallRelaxation relaxed =
+            relax_wall_near(r.output_surface, places, reach, 5 * attempt);
+        if (!relaxed.applied) break;
+        r.warnings.push_back(
+            std::string(out ? "the vessel wall" : "the boundary layer") + " could not grow at " +
+            point_text(places[0]) +
+            (places.size() > 1 ? " and " + std::to_string(places.size() - 1) + " more places"
+                               : "") +
+            " (a needle-like spike or fold the wall follows from the input): the wall was "
+            "smoothed there (" +
+            std::to_string(relaxed.vertices) + " vertices, moved at most " +
+            number_text(relaxed.max_displacement) + ")");
+        const std::vector<double> relaxed_radius = chord_radius(r.output_surface);
+        ls = {};
+        layer = extrude_layers(r.output_surface, relaxed_radius, spec, &ls);
+      }
       if (!layer.ok())
         return Status::Error(std::string(out ? "vessel wall" : "boundary layer") + ": " +
                              layer.message() + " (a wall too irregular for layers: remesh it, or " +
-                             (out ? "drop {wall_thickness})" : "use {layers} 0)"));
+                             (out ? "drop {wall_thickness})" : "use {layers} 0)"))
+            .WithRemedy(layer.status().remedy());
       (out ? outer : inner) = std::move(layer).value();
       (out ? st.vessel_wall : st.boundary_layer) = ls;
       (out ? st.wall_layers : st.viscous_layers) = spec.layers;
@@ -468,10 +499,14 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const Me
   // Every later stage's error passes here: on a surface that crosses itself
   // (the likely cause), it first says where (an option's value or a
   // cancellation is not the surface's doing).
-  if (Status st = mesh_prepared(r, options, progress); !st.ok())
-    return st.cancelled() || st.kind() == ErrorKind::kBadOption
-               ? st
-               : st.Prefixed(self_crossing_prefix(r.surface));
+  if (Status st = mesh_prepared(r, options, progress); !st.ok()) {
+    if (st.cancelled() || st.kind() == ErrorKind::kBadOption) return st;
+    st = st.Prefixed(self_crossing_prefix(r.surface));
+    // Crossings left by {repair} off: the remedy is the repair, at its places.
+    if (r.surface.self_crossings.pairs > 0 && !r.surface.repaired)
+      st = st.WithRemedy({"repair", r.surface.self_crossings.places, 0});
+    return st;
+  }
   r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

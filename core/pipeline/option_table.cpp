@@ -16,7 +16,8 @@ namespace {
 constexpr std::string_view kParams[] = {"lscm", "harmonic", "floater"};
 constexpr std::string_view kMeshers[] = {"frontal", "delaunay", "adapt"};
 constexpr std::string_view kMshVersions[] = {"4.1", "2.2"};
-constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm", "torus", "tree"};
+constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm",
+                                              "torus",       "tree", "crossing"};
 constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
 constexpr std::string_view kOffAuto[] = {"off", "auto"};
 constexpr std::string_view kFormats[] = {"msh", "vtu", "vtp", "stl", "mesh-complete", "foam"};
@@ -607,8 +608,9 @@ const OptionSpec kOptions[] = {
      .metavar = "KIND",
      .choices = kPhantomKinds,
      .default_text = "bifurcation",
-     .needs = "bifurcation, tube, aneurysm, torus or tree",
-     .doc = "the vessel model (tree: 17 branches, 11 openings)"},
+     .needs = "bifurcation, tube, aneurysm, torus, tree or crossing",
+     .doc = "the vessel model (tree: 17 branches, 11 openings; crossing: two vessels that touch "
+            "and pass into each other, each its own shell)"},
     {.id = "voxel",
      .cli = "voxel",
      .js = "voxel",
@@ -646,6 +648,14 @@ const OptionSpec kOptions[] = {
      .group = "phantom",
      .doc = "add segmentation defects: small holes, a fin (non-manifold edge), touching holes "
             "(non-manifold vertex), duplicated faces, a flipped patch, a zero-area band"},
+    {.id = "damaged_ends",
+     .cli = "damaged-ends",
+     .js = "damagedEnds",
+     .type = T::kFlag,
+     .commands = kCommandPhantom,
+     .group = "phantom",
+     .doc = "damage each opening as an image border does: folded rim triangles, a flap through "
+            "the wall, a tiny loop, a twisted band (non-orientable)"},
     {.id = "seed",
      .cli = "seed",
      .js = "seed",
@@ -987,6 +997,7 @@ Status apply_option(PhantomOptions& o, const OptionSpec& spec, const OptionValue
              : v.text == "aneurysm" ? PhantomKind::kAneurysm
              : v.text == "torus"    ? PhantomKind::kTorus
              : v.text == "tree"     ? PhantomKind::kTree
+             : v.text == "crossing" ? PhantomKind::kCrossing
                                     : PhantomKind::kBifurcation;
   } else if (id == "voxel") {
     o.voxel = v.number;
@@ -996,6 +1007,8 @@ Status apply_option(PhantomOptions& o, const OptionSpec& spec, const OptionValue
     o.binary = v.flag;
   } else if (id == "dirty") {
     o.dirty = v.flag;
+  } else if (id == "damaged_ends") {
+    o.damaged_ends = v.flag;
   } else if (id == "seed") {
     o.seed = uint32_t(v.number);
   } else if (id == "scale") {

@@ -301,6 +301,67 @@ void repair_vertices(PreparedSurface& s, Work& w) {
                          point_text(m.vertex_example));
 }
 
+/// Phase 2a ({repair} auto): where the surface crosses itself, the part
+/// around the crossing is re-surfaced as the boundary of the union of what
+/// it encloses (overlapping shells, a patch glued over the wall, vessels
+/// passing into each other).
+void resurface(PreparedSurface& s, Work& w) {
+  s.resurfaced = resurface_crossings(s.mesh, &w.labels);
+  const ResurfaceReport& r = s.resurfaced;
+  if (r.resolved() > 0) {
+    w.adjacency = build_adjacency(s.mesh);
+    w.topology.reset();
+  }
+  for (const ResurfacedPlace& p : r.places) {
+    if (p.resolved)
+      s.warnings.push_back(
+          "the surface crossed itself at " + point_text(p.where) + " (" + num(p.pairs) +
+          " pairs of triangles: overlapping or intersecting sheets): re-surfaced there as the "
+          "boundary of what the sheets enclose together, between " +
+          point_text(p.box_min) + " and " + point_text(p.box_max) + " (" +
+          num(p.triangles_removed) + " triangles replaced by " + num(p.triangles_added) +
+          "); turn this off with {repair} off");
+    else if (!p.near_opening)
+      s.warnings.push_back(
+          "the surface crosses itself at " + point_text(p.where) + " (" + num(p.pairs) +
+          " pairs of triangles) and could not be re-surfaced there (" + p.why + ")");
+  }
+}
+
+/// Phase 2b ({repair} auto): damaged vessel ends (crossing, folded or
+/// twisted triangles beside an opening) lose their damaged part; the clean
+/// cross-section is cut in phase 6 (trim_planes).
+void trim_ends(PreparedSurface& s, Work& w) {
+  s.trimmed_ends = trim_damaged_ends(s.mesh, &w.labels, s.resurfaced.left);
+  s.resurfaced.left.clear();
+  bool changed = false;
+  for (const TrimmedEnd& e : s.trimmed_ends) {
+    changed |= e.triangles_removed > 0;
+    std::string what;
+    auto add = [&](size_t n, const char* kind) {
+      if (n > 0) what += (what.empty() ? "" : ", ") + num(n) + " " + kind;
+    };
+    add(e.crossing, "crossing");
+    add(e.misoriented, "twisted or folded");
+    add(e.nonmanifold, "non-manifold");
+    add(e.tiny_loops, "around tiny loops");
+    s.warnings.push_back(
+        "the vessel end at " + point_text(e.where) + " (radius " + number_text(e.radius) +
+        ") is damaged (triangles " + what + ")" +
+        (e.trimmed ? ": trimmed back to its first clean cross-section, " +
+                         number_text(e.depth / e.radius, 2) +
+                         (e.depth == e.radius ? " radius" : " radii") +
+                         " in; turn this off with {repair} off"
+                   : ": it was not trimmed (the damage reaches more than 3 radii in, or the "
+                     "trim would take a fifth of the surface); cut the vessel across below it "
+                     "with {clip_at}"));
+  }
+  if (changed) {
+    w.adjacency = build_adjacency(s.mesh);
+    w.topology.reset();
+  }
+}
+
 /// Phase 2: safe repairs (degenerate and duplicate triangles), then with
 /// {repair} auto non-manifold edges split; outward orientation; holes
 /// found (and closed with {repair} auto); non-manifold vertices split.
@@ -324,6 +385,10 @@ Status repair(PreparedSurface& s, Work& w, const PrepareOptions& options) {
   s.repaired = options.repair;
   // One adjacency, kept current through the steps that change the mesh.
   w.adjacency = build_adjacency(s.mesh);
+  if (options.repair && s.mesh.num_triangles() <= kSelfCrossingCheckLimit) {
+    resurface(s, w);
+    trim_ends(s, w);
+  }
   if (options.repair) repair_edges(s, w);
   orient_consistently(s.mesh, s.repair, &w.adjacency, true);
   if (!s.repair.orientable) {
@@ -552,6 +617,15 @@ Status clip(PreparedSurface& s, Work& w, const PrepareOptions& options) {
     return std::none_of(w.adjacency.opposite.begin(), w.adjacency.opposite.end(),
                         [](int32_t o) { return o == TriangleAdjacency::kBoundary; });
   };
+  // The clean cross-sections of the damaged ends trimmed in phase 2b.
+  for (const TrimmedEnd& e : s.trimmed_ends) {
+    if (!e.trimmed) continue;
+    Status st = manifold ? clip_one(s, w, e.plane)
+                         : Status::Error("the surface is not manifold and orientable");
+    if (!st.ok())
+      s.warnings.push_back("the trimmed end at " + point_text(e.where) + " was not cut flat (" +
+                           st.message() + "): its opening is the rim the trim left");
+  }
   if (options.clip_auto) {
     if (!manifold) {
       s.warnings.push_back("{clip} auto cut nothing: the surface is not manifold and orientable");
@@ -751,27 +825,34 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
 
 Status check_meshable(const PreparedSurface& s) {
   const TopologyReport& t = s.topology;
+  // Without the repairs, the remedy is to turn them on.
+  const Remedy repair_on{s.repaired ? "" : "repair", {}, 0};
   if (t.nonmanifold_edges > 0) {
     return Status::Error("cannot mesh: the surface has " + num(t.nonmanifold_edges) +
                          " non-manifold edges (shared by 3 or more triangles), e.g. near " +
                          point_text(t.nonmanifold_edge_example) +
                          (s.repaired ? "; fix the segmentation or export a manifold surface"
-                                     : "; split them into manifold sheets with {repair} auto"));
+                                     : "; split them into manifold sheets with {repair} auto"))
+        .WithRemedy({repair_on.action, {t.nonmanifold_edge_example}, 0});
   }
   if (t.nonmanifold_vertices > 0) {
     return Status::Error("cannot mesh: the surface has " + num(t.nonmanifold_vertices) +
                          " non-manifold vertices (sheets touching at a vertex)" +
-                         (s.repaired ? std::string() : "; split them with {repair} auto"));
+                         (s.repaired ? std::string() : "; split them with {repair} auto"))
+        .WithRemedy(repair_on);
   }
   if (!s.repair.orientable) {
-    return Status::Error("cannot mesh: the surface is not orientable");
+    return Status::Error("cannot mesh: the surface is not orientable" +
+                         std::string(s.repaired ? "" : "; repair it with {repair} auto"))
+        .WithRemedy(repair_on);
   }
   if (t.components > 1) {
     return Status::Error("cannot mesh: the surface has " + std::to_string(t.components) +
                          " connected components (the largest has " + num(t.component_triangles[0]) +
                          " of " + num(t.triangles) +
                          " triangles); keep only the largest ({largest_component}) or clean the "
-                         "segmentation");
+                         "segmentation")
+        .WithRemedy({"largest_component", {}, 0});
   }
   return Status::Ok();
 }

@@ -16,7 +16,9 @@
 #include "core/mesh/weld.h"
 #include "core/prepare/clip_surface.h"
 #include "core/prepare/recognize_caps.h"
+#include "core/prepare/resurface_crossings.h"
 #include "core/prepare/smooth_surface.h"
+#include "core/prepare/trim_damaged_ends.h"
 #include "core/prepare/units.h"
 #include "core/prepare/vessel_ends.h"
 #include "core/quality/triangle_quality.h"
@@ -115,6 +117,13 @@ struct PreparedSurface {
   RepairStats repair;
   bool repaired = true;  ///< phase 2 ran with {repair} auto
   ManifoldRepairStats manifold;
+  /// Where the file's surface crossed itself and was re-surfaced (phase 2,
+  /// {repair} auto), place by place.
+  ResurfaceReport resurfaced;
+  /// Damaged vessel ends found (phase 2, {repair} auto): trimmed back to a
+  /// clean cross-section (its cut made in phase 6), or left when the damage
+  /// reaches too deep.
+  std::vector<TrimmedEnd> trimmed_ends;
   /// Boundary loops found smaller than {hole_fraction} of the local vessel
   /// radius, in the order found (by decreasing radius), closed or not.
   std::vector<Hole> holes;

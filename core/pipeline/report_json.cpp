@@ -171,6 +171,37 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
   j.key("nonmanifold_edges_split").value(s.manifold.edges_split);
   j.key("nonmanifold_vertices_split").value(s.manifold.vertices_split);
   j.key("twisted_removed").value(s.manifold.twisted_removed);
+  j.key("crossings_resurfaced").begin_array();
+  for (const ResurfacedPlace& p : s.resurfaced.places) {
+    j.begin_object();
+    j.key("where").array(p.where);
+    j.key("pairs").value(p.pairs);
+    j.key("resolved").value(p.resolved);
+    j.key("box_min").array(p.box_min);
+    j.key("box_max").array(p.box_max);
+    j.key("triangles_removed").value(p.triangles_removed);
+    j.key("triangles_added").value(p.triangles_added);
+    if (!p.resolved) j.key("why").value(p.near_opening ? "at an opening" : p.why);
+    j.end_object();
+  }
+  j.end_array();
+  j.key("damaged_ends").begin_array();
+  for (const TrimmedEnd& e : s.trimmed_ends) {
+    j.begin_object();
+    j.key("where").array(e.where);
+    j.key("radius").value(e.radius);
+    j.key("trimmed").value(e.trimmed);
+    j.key("depth").value(e.depth);
+    j.key("point").array(e.plane.point);
+    j.key("normal").array(e.plane.normal);
+    j.key("triangles_removed").value(e.triangles_removed);
+    j.key("crossing").value(e.crossing);
+    j.key("misoriented").value(e.misoriented);
+    j.key("nonmanifold").value(e.nonmanifold);
+    j.key("tiny_loops").value(e.tiny_loops);
+    j.end_object();
+  }
+  j.end_array();
   j.end_object();
   j.key("quality");
   write_quality(j, s.quality_stats);

@@ -38,7 +38,7 @@ check "garbage" expect_exit 1 "not a surface file this tool reads" "$VM" info "$
 
 check "phantom" expect_exit 0 "wrote" "$VM" phantom "$T/bif.stl" --kind bifurcation --voxel 0.1 --noise 0.3
 check "phantom scale past float" expect_exit 2 "--scale needs a positive scale factor up to 1e30" "$VM" phantom "$T/x.stl" --scale 1e39
-check "phantom bad kind" expect_exit 2 "--kind needs bifurcation, tube, aneurysm, torus or tree" "$VM" phantom "$T/x.stl" --kind blob
+check "phantom bad kind" expect_exit 2 "--kind needs bifurcation, tube, aneurysm, torus, tree or crossing" "$VM" phantom "$T/x.stl" --kind blob
 check "phantom tree" expect_exit 0 "wrote" "$VM" phantom "$T/tree.stl" --kind tree --voxel 0.12
 check "tree has 11 openings" expect_exit 0 "openings:    11" "$VM" info "$T/tree.stl"
 head -c 1000 "$T/bif.stl" > "$T/truncated.stl"
@@ -85,7 +85,8 @@ check "dirty phantom, repair off: the fin's 2-vertex loop is a slit with its pla
 check "dirty phantom, repair off: no opening of 2 vertices" bash -c "! grep -q ', 2 vertices' '$T/dirty-off.txt'"
 
 # A tube (radius 1 along z) whose wall near (1, 0, 4) is pushed through the
-# opposite wall: info says where it crosses itself, mesh fails saying so.
+# opposite wall: re-surfaced by default, saying where; with --repair off,
+# info says where it crosses itself and mesh fails saying so.
 python3 - "$T/dent.stl" <<'PY'
 import math, sys
 n, m, p = 48, 40, []
@@ -103,11 +104,29 @@ with open(sys.argv[1], 'w') as f:
                 f.write('facet normal 0 0 0\nouter loop\n' + ''.join('vertex %.9g %.9g %.9g\n' % p[v] for v in t) + 'endloop\nendfacet\n')
     f.write('endsolid dent\n')
 PY
-check "self-crossing: info names the place" expect_exit 0 "self-crossings: 1 place (" "$VM" info "$T/dent.stl"
-check "self-crossing: a warning says where" expect_exit 0 "warning: the surface crosses itself at 1 place" "$VM" info "$T/dent.stl"
-check "self-crossing: json place near (-1, 0, 4)" [ "$("$VM" info "$T/dent.stl" --json | python3 -c "import json,sys; c=json.load(sys.stdin)['self_crossings']; print(c['pairs'] > 0 and c['place_count'] == 1 and abs(c['places'][0][0] + 1) < 0.1 and abs(c['places'][0][2] - 4) < 0.6)")" = True ]
-check "self-crossing: mesh fails naming it" expect_exit 1 "error: $T/dent.stl: the input crosses itself at (-" "$VM" mesh "$T/dent.stl" -o "$T/dent.msh"
-check "self-crossing: the refusal says what to do, in CLI words" expect_exit 1 "mm (1 place; fix it in the segmentation, or cut that part off with --clip-plane): " "$VM" mesh "$T/dent.stl" -o "$T/dent.msh"
+check "self-crossing: re-surfaced by default, saying where" expect_exit 0 "warning: the surface crossed itself at (-" "$VM" info "$T/dent.stl"
+check "self-crossing: none left after the repair" expect_exit 0 "self-crossings: none" "$VM" info "$T/dent.stl"
+check "self-crossing: json lists the place re-surfaced near (-1, 0, 4)" [ "$("$VM" info "$T/dent.stl" --json | python3 -c "import json,sys; c=json.load(sys.stdin)['repairs']['crossings_resurfaced']; print(len(c) == 1 and c[0]['resolved'] and abs(c[0]['where'][0] + 1) < 0.2 and abs(c[0]['where'][2] - 4) < 0.7)")" = True ]
+check "self-crossing: meshes by default" expect_exit 0 "wall" "$VM" mesh "$T/dent.stl" -o "$T/dent.msh"
+check "self-crossing, repair off: info names the place" expect_exit 0 "self-crossings: 1 place (" "$VM" info "$T/dent.stl" --repair off
+check "self-crossing, repair off: a warning says where" expect_exit 0 "warning: the surface crosses itself at 1 place" "$VM" info "$T/dent.stl" --repair off
+check "self-crossing, repair off: json place near (-1, 0, 4)" [ "$("$VM" info "$T/dent.stl" --json --repair off | python3 -c "import json,sys; c=json.load(sys.stdin)['self_crossings']; print(c['pairs'] > 0 and c['place_count'] == 1 and abs(c['places'][0][0] + 1) < 0.1 and abs(c['places'][0][2] - 4) < 0.6)")" = True ]
+check "self-crossing, repair off: mesh fails naming it" expect_exit 1 "error: $T/dent.stl: the input crosses itself at (-" "$VM" mesh "$T/dent.stl" -o "$T/dent.msh" --repair off
+check "self-crossing, repair off: the refusal says what to do, in CLI words" expect_exit 1 "mm (1 place; fix it in the segmentation, or cut that part off with --clip-plane): " "$VM" mesh "$T/dent.stl" -o "$T/dent.msh" --repair off
+
+# Two vessels that pass into each other, each its own shell: re-surfaced
+# into one and meshed with an inlet and 3 outlets; with --repair off refused.
+"$VM" phantom "$T/crossing.stl" --kind crossing --voxel 0.15 > /dev/null
+check "crossing vessels: mesh with defaults" expect_exit 0 "wrote" "$VM" mesh "$T/crossing.stl" -o "$T/crossing.msh" --report "$T/crossing.json"
+check "crossing vessels: wall, inlet, 3 outlets" [ "$(json "$T/crossing.json" "sorted(g['name'] for g in d['output']['groups'] if g['dim'] == 2)")" = "['inlet', 'outlet_1', 'outlet_2', 'outlet_3', 'wall']" ]
+check "crossing vessels, repair off: refused, saying where" expect_exit 1 "crosses itself at (" "$VM" mesh "$T/crossing.stl" -o "$T/crossing-off.msh" --repair off
+# Damaged ends (folds, a flap through the wall, tiny loops, a twist): each
+# trimmed back to a clean cross-section, and meshed.
+"$VM" phantom "$T/damaged.stl" --damaged-ends --voxel 0.12 > /dev/null
+check "damaged ends: info says each end was trimmed, where" [ "$("$VM" info "$T/damaged.stl" 2>&1 | grep -c "^warning: the vessel end at (.*) is damaged (.*): trimmed back to its first clean cross-section")" = 3 ]
+check "damaged ends: 3 openings, all from the trim's cuts" [ "$("$VM" info "$T/damaged.stl" --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(len(d['openings']) == 3 and all(o['source'] == 'clip' for o in d['openings']) and len(d['repairs']['damaged_ends']) == 3)")" = True ]
+check "damaged ends: mesh with defaults" expect_exit 0 "outlet_2" "$VM" mesh "$T/damaged.stl" -o "$T/damaged.msh"
+check "damaged ends, repair off: refused as not orientable" expect_exit 1 "not orientable" "$VM" mesh "$T/damaged.stl" -o "$T/damaged-off.msh" --repair off
 check "self-crossing: none on a clean phantom" expect_exit 0 "self-crossings: none" "$VM" info "$T/bif.stl"
 
 # Full precision from ASCII STL: a small tube (radius 0.01) 1e5 from the

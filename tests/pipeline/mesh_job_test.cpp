@@ -103,6 +103,7 @@ TEST(MeshJob, SeveralComponentsAreRefusedUnlessLargestIsKept) {
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("2 connected components"), std::string::npos) << r.message();
   EXPECT_NE(r.message().find("{largest_component}"), std::string::npos) << r.message();
+  EXPECT_EQ(r.status().remedy().action, "largest_component");
 
   MeshJobOptions o;
   o.prepare.largest_component_only = true;

@@ -233,15 +233,20 @@ TEST(PrepareRepair, ALocalTwistIsCutOutAndItsHolesClosed) {
   ASSERT_TRUE(r.ok()) << r.message();
   const PreparedSurface& s = r.value();
   EXPECT_TRUE(s.repair.orientable);
-  EXPECT_GT(s.manifold.twisted_removed, 0u);
+  // The band's triangles cross each other, so the place is re-surfaced
+  // (core/prepare/resurface_crossings.h) before the twist could be cut out;
+  // either repair leaves a clean tube and says so.
+  const bool resurfaced = s.resurfaced.resolved() == 1;
+  EXPECT_TRUE(resurfaced || s.manifold.twisted_removed > 0);
   EXPECT_LE(s.manifold.twisted_removed, 10u);
-  EXPECT_FALSE(s.holes.empty());
   for (const Hole& h : s.holes) EXPECT_TRUE(h.closed);
   EXPECT_EQ(int(s.topology.openings.size()), truth.openings);
   EXPECT_EQ(s.topology.genus, 0);
   EXPECT_EQ(s.topology.nonmanifold_edges, 0u);
+  EXPECT_EQ(s.self_crossings.pairs, 0u);
   EXPECT_TRUE(check_meshable(s).ok());
-  EXPECT_TRUE(has_warning(s, "(a local twist that made the surface non-orientable) were removed"));
+  EXPECT_TRUE(resurfaced ? has_warning(s, "re-surfaced there")
+                         : has_warning(s, "(a local twist that made the surface non-orientable) were removed"));
   auto job = run_mesh_job(write_stl_binary(m));
   EXPECT_TRUE(job.ok()) << job.message();
 }

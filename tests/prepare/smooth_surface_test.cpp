@@ -11,7 +11,7 @@
 #include "core/mesh/boundary_loops.h"
 #include "core/mesh/enclosed_volume.h"
 #include "core/mesh/topology.h"
-#include "core/phantom/marching_cubes.h"
+#include "core/mesh/marching_cubes.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/prepare/recognize_caps.h"
 #include "tests/support/icosphere.h"

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/mesh/surface_mesh.h"
-#include "core/phantom/marching_cubes.h"
+#include "core/mesh/marching_cubes.h"
 
 namespace vm::testing {
 

@@ -275,9 +275,39 @@ describe('analyze', () => {
     assert.ok(off.analysis.openings.every((o) => o.vertices.length >= 3 && o.radius > 0));
   });
 
-  test('a tube with a dent pushed through the opposite wall: where it crosses itself, and mesh() says so', () => {
+  test('a tube with a dent pushed through the opposite wall: re-surfaced by default, saying where', () => {
     const stl = dentedTubeStl();
     const r = api.analyze(ascii(stl));
+    assert.equal(r.ok, true, r.error);
+    assert.equal(r.analysis.self_crossings.pairs, 0);
+    const [place] = r.analysis.repairs.crossings_resurfaced;
+    assert.equal(place.resolved, true);
+    assert.ok(distance(place.where, [-1, 0, 4]) < 0.7, `${place.where}`);
+    assert.match(r.analysis.warnings.join('\n'), /the surface crossed itself at \(-?[\d.]+, .*re-surfaced there/);
+    const meshed = api.mesh(ascii(stl), { layers: 0 });
+    assert.equal(meshed.ok, true, meshed.error);
+  });
+
+  test('two vessels passing into each other, and damaged ends: meshed with the defaults', () => {
+    for (const options of [{ kind: 'crossing', voxel: 0.15 }, { damagedEnds: true, voxel: 0.12 }]) {
+      const { stl } = api.makePhantom(options);
+      const r = api.mesh(stl);
+      assert.equal(r.ok, true, `${JSON.stringify(options)}: ${r.error}`);
+      const names = r.report.output.groups.filter((g) => g.dim === 2).map((g) => g.name);
+      assert.ok(names.includes('wall') && names.includes('inlet') && names.includes('outlet_1'), `${names}`);
+      const repairs = r.report.input.repairs;
+      if (options.kind) assert.ok(repairs.crossings_resurfaced.every((p) => p.resolved));
+      else assert.equal(repairs.damaged_ends.filter((e) => e.trimmed).length, 3);
+      // Without the repair: refused, saying where.
+      const off = api.mesh(stl, { repair: 'off' });
+      assert.equal(off.ok, false);
+      assert.match(off.error, /crosses itself at \(/);
+    }
+  });
+
+  test('a tube with a dent pushed through the opposite wall, repair off: where it crosses itself, and mesh() says so', () => {
+    const stl = dentedTubeStl();
+    const r = api.analyze(ascii(stl), { repair: 'off' });
     assert.equal(r.ok, true, r.error);
     const c = r.analysis.self_crossings;
     assert.equal(c.checked, true);
@@ -285,7 +315,7 @@ describe('analyze', () => {
     assert.equal(c.place_count, 1);
     assert.ok(distance(c.places[0], [-1, 0, 4]) < 0.7, `${c.places[0]}`);
     assert.match(r.analysis.warnings.join('\n'), /the surface crosses itself at 1 place \(\d+ pairs of triangles\), at \(-?[\d.]+, /);
-    const failed = api.mesh(ascii(stl));
+    const failed = api.mesh(ascii(stl), { repair: 'off' });
     assert.equal(failed.ok, false);
     assert.match(failed.error, /^the input crosses itself at \(-?[\d.]+, -?[\d.e-]+, [\d.]+\) mm \(1 place; fix it in the segmentation, or cut that part off with clipPlanes\): /);
     // A clean surface: checked, none.

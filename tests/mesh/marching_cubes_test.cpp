@@ -1,4 +1,4 @@
-#include "core/phantom/marching_cubes.h"
+#include "core/mesh/marching_cubes.h"
 
 #include <gtest/gtest.h>
 

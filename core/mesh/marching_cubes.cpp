@@ -4,7 +4,7 @@
 // crossing edge then has two links, so the links form cycles; each cycle is
 // fan-triangulated and oriented so that its normal points away from the
 // inside corners.
-#include "core/phantom/marching_cubes.h"
+#include "core/mesh/marching_cubes.h"
 
 #include <array>
 #include <cmath>
