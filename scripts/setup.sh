@@ -5,6 +5,7 @@
 #   --deps-only: install the packages and fetch zlib's source, build nothing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/stage.sh
 
 # openfoam and python3-dolfinx: the solvers validation/solver_check.py runs the
 # meshes in (CI's real-data step).
@@ -22,7 +23,7 @@ if command -v node >/dev/null && command -v npm >/dev/null; then
   missing=("${filtered[@]}")
 fi
 if ((${#missing[@]})); then
-  echo "== installing: ${missing[*]}"
+  stage "installing: ${missing[*]}"
   SUDO=""
   [[ $(id -u) -ne 0 ]] && SUDO="sudo"
   $SUDO apt-get update -qq
@@ -37,7 +38,7 @@ fi
 # components and key), never by editing them.
 fetch_zlib_source() {
   [[ -f build-deps/zlib/inflate.c ]] && return 0
-  echo "== zlib source (apt-get source zlib -> build-deps/zlib)"
+  stage "zlib source (apt-get source zlib -> build-deps/zlib)"
   local SUDO=""
   [[ $(id -u) -ne 0 ]] && SUDO="sudo"
   local list=/etc/apt/sources.list.d/vesselmesh-deb-src.sources
@@ -106,21 +107,22 @@ if [[ ${1:-} == --deps-only ]]; then
   exit 0
 fi
 
-echo "== npm ci"
+stage "npm ci"
 PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error
 
 jobs=$(nproc)
-echo "== native build (build/)"
+stage "native build (build/)"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$jobs"
 
-echo "== WebAssembly build (build-wasm/ -> wasm/dist/)"
+stage "WebAssembly build (build-wasm/ -> wasm/dist/)"
 export NODE_PATH=/usr/share/nodejs
 emcmake cmake -S . -B build-wasm -G Ninja -DCMAKE_BUILD_TYPE=Release -DVM_BUILD_TESTS=OFF >/dev/null
 cmake --build build-wasm -j "$jobs"
 
 if [[ ${1:-} != --no-web ]]; then
-  echo "== web app (web/dist/, dist/vesselmesh.html, dist/element/) and docs (docs/dist/)"
+  stage "web app (web/dist/, dist/vesselmesh.html, dist/element/) and docs (docs/dist/)"
   npm run --silent build:web
   npm run --silent build:docs
 fi
+stage_summary "scripts/setup.sh"

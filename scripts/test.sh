@@ -6,25 +6,28 @@
 # WebAssembly module, and the Playwright specs in Chromium.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/stage.sh
+stage "setup (scripts/setup.sh)"
 bash scripts/setup.sh
 jobs=$(nproc)
 
-echo "== ctest (native, Release)"
+stage "ctest (native, Release)"
 ctest --test-dir build --output-on-failure -j "$jobs"
 
-echo "== ctest (Debug at -O1, -fsanitize=address,undefined)"
+stage "ctest (Debug at -O1, -fsanitize=address,undefined)"
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DVM_SANITIZE=ON >/dev/null
 cmake --build build-asan -j "$jobs" --target vm_tests vesselmesh  # what ctest runs
 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ctest --test-dir build-asan --output-on-failure -j "$jobs"
 
-echo "== hostile-input corpus (CLI under a 4 GiB memory cap)"
+stage "hostile-input corpus (CLI under a 4 GiB memory cap)"
 /usr/bin/python3 -W ignore tests/hostile/run_corpus.py build/vesselmesh
 
-echo "== fuzzing (libFuzzer, 30 s a target)"
+stage "fuzzing (libFuzzer, 30 s a target)"
 bash scripts/fuzz.sh 30
 
-echo "== node --test (WebAssembly module)"
+stage "node --test (WebAssembly module)"
 npm run --silent test:wasm
 
-echo "== playwright (Chromium)"
+stage "playwright (Chromium)"
 npm run --silent test:e2e
+stage_summary "scripts/test.sh"
