@@ -95,9 +95,10 @@ export class ActionBar {
   }
 
   /** Shows `message` as the last error and `next` as what to do; both
-   * announced. `actions` ({label, run, testId?}) are buttons under it: the
-   * first gets the focus, so the way forward is one key away. */
-  error(message, next, actions = []) {
+   * announced. `actions` ({label, run, testId?}) are buttons under it; with
+   * `focus`, the first gets the focus, so the way forward is one key away
+   * (not for a mistake said while the user types). */
+  error(message, next, actions = [], { focus = false } = {}) {
     $('error').textContent = message;
     $('error').hidden = false;
     const buttons = actions.map(({ label, run, testId }) => {
@@ -112,7 +113,7 @@ export class ActionBar {
     $('error-actions').hidden = buttons.length === 0;
     this.hint(next);
     this.announce(`Error: ${message}${next ? ` ${next}` : ''}`);
-    buttons[0]?.focus({ preventScroll: true });
+    if (focus) buttons[0]?.focus({ preventScroll: true });
   }
 
   clearError() {

@@ -28,6 +28,10 @@ const distance = (p, q) => Math.hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]);
  */
 export function openingWarnings(analysis, { proposals = [] } = {}) {
   const openings = analysis.openings ?? [];
+  // A surface meshing refuses anyway (pieces, non-manifold): its refusal,
+  // with its remedy, comes first; the openings are said, not asked about.
+  const refused =
+    analysis.components > 1 || analysis.nonmanifold_edges > 0 || analysis.nonmanifold_vertices > 0;
   const unit = analysis.units?.unit ?? '';
   const scale = analysis.bounding_box?.diagonal ?? 0;
   const warnings = [];
@@ -35,11 +39,11 @@ export function openingWarnings(analysis, { proposals = [] } = {}) {
   if (crossings.length) {
     const remedy = crossingRemedy(crossings, openings);
     const n = crossings.length;
+    const where = n === 1 ? `at ${point(crossings[0], scale)} ${unit}` : `at ${n} places`;
+    const end = remedy.action === 'trim_end' ? ', at a damaged vessel end' : '';
     warnings.push({
       id: 'self-crossing',
-      text:
-        `The surface crosses itself ${n === 1 ? `at ${point(crossings[0], scale)} ${unit}` : `at ${n} places`} ` +
-        `(marked in the view)${remedy.action === 'trim_end' ? ', at a damaged vessel end' : ''}: meshing may fail there.`,
+      text: `The surface crosses itself ${where} (marked in the view)${end}: meshing may fail there.`,
       places: crossings,
       remedy,
       blocking: false,
@@ -60,24 +64,27 @@ export function openingWarnings(analysis, { proposals = [] } = {}) {
   if (closed.length) {
     const widest = closed.reduce((a, b) => (b.radius > a.radius ? b : a));
     const wider = widest.radius > largest;
+    const one = closed.length === 1;
+    const where = one ? ` at ${point(widest.point, scale)} ${unit} (radius ${withUnit(widest.radius, unit)})` : '';
     warnings.push({
       id: 'closed-end',
       text:
-        `${closed.length === 1 ? 'A vessel end is' : `${closed.length} vessel ends are`} still closed` +
-        `${closed.length === 1 ? ` at ${point(widest.point, scale)} ${unit} (radius ${withUnit(widest.radius, unit)})` : ''}` +
+        `${one ? 'A vessel end is' : `${closed.length} vessel ends are`} still closed${where}` +
         `${wider ? ': it is wider than every opening, so it is likely the inlet' : ''}.`,
       places: closed.map((end) => end.point),
       remedy: { action: 'cut_here', places: closed.map((end) => end.point), value: 0 },
-      blocking: true,
+      blocking: !refused,
     });
   }
 
   if (openings.length === 1) {
     warnings.push({
       id: 'no-outlet',
-      text: 'One opening only: the model has no outlet. Cut the other vessel ends open (Add a cut), or check the caps.',
+      text:
+        'One opening only: the model has no outlet. Cut the other vessel ends open (Add a cut), ' +
+        'or check the caps.',
       places: [],
-      blocking: true,
+      blocking: !refused,
     });
   }
 
@@ -92,7 +99,7 @@ export function openingWarnings(analysis, { proposals = [] } = {}) {
         `(radius down to ${withUnit(smallest, unit)}, under ${TINY * 100}% of the largest): ` +
         'defect loops of the surface rather than vessel ends; they would be capped as outlets.',
       places: tiny.map(({ o }) => o.centroid),
-      blocking: true,
+      blocking: !refused,
     });
   }
   return warnings;

@@ -54,7 +54,11 @@ export class OpeningWarnings {
     const [first] = blocking;
     const actions = [];
     if (first.remedy) {
-      actions.push({ label: remedyLabel(first.remedy, this.model()), testId: `remedy-${first.remedy.action}`, run: () => this.apply(first.remedy) });
+      actions.push({
+        label: remedyLabel(first.remedy, this.model()),
+        testId: `remedy-${first.remedy.action}`,
+        run: () => this.apply(first.remedy),
+      });
     }
     actions.push({
       label: 'Mesh anyway',
@@ -69,8 +73,9 @@ export class OpeningWarnings {
     this.problems.showPlaces(blocking.flatMap((w) => w.places), 'an opening to check');
     this.bar.error(
       `The openings look wrong: ${blocking.map((w) => w.text).join(' ')}`,
-      'Fix the openings (the button below, or Prepare above), or mesh as they are.',
+      'Fix the openings (the button above, or Prepare), or mesh as they are.',
       actions,
+      { focus: true },
     );
     return false;
   }

@@ -12,6 +12,7 @@
 import { groupColors } from './groups.js';
 import { point, withUnit } from './units.js';
 import { cssColor } from './view-marks.js';
+import { inPageWords } from './words.js';
 
 const CHECK_DELAY_MS = 250;
 
@@ -285,13 +286,13 @@ export class OpeningsTable {
     if (seq !== this.seq) return this.checking;
     this._mark(refusals, all.ok ? all.names : null);
     const [first] = refusals;
-    return { names: accepted, problem: first ? { k: first[0].k, message: first[1] } : null };
+    return { names: accepted, problem: first ? { k: first[0].k, message: inPageWords(first[1]) } : null };
   }
 
   /** Marks refused rows; gives the others their default name (not the one being typed in). */
   _mark(refusals, names) {
     for (const row of this.rows) {
-      const message = refusals.get(row) ?? '';
+      const message = inPageWords(refusals.get(row) ?? '');
       row.input.setAttribute('aria-invalid', String(Boolean(message)));
       row.error.textContent = message;
       if (!names || row.edited) continue;

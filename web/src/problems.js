@@ -41,7 +41,8 @@ export class Problems {
     const actions = [];
     if (remedy) {
       const label = remedyLabel(remedy, this.model());
-      if (label) actions.push({ label, testId: `remedy-${remedy.action}`, run: () => this.apply(remedy, stage) });
+      const run = () => this.apply(remedy, stage);
+      if (label) actions.push({ label, testId: `remedy-${remedy.action}`, run });
     }
     this.showPlaces(places, 'named in the message');
     this.text(message, { stage, next, panel, actions });
@@ -64,7 +65,8 @@ export class Problems {
       });
     }
     this.stage = stage;
-    this.bar.error(message, next, all);
+    // A remedy's button takes the focus: the way forward is one key away.
+    this.bar.error(message, next, all, { focus: actions.length > 0 });
   }
 
   /** Marks `places` (points, or {point, radius, what}) in the view; with

@@ -54,7 +54,8 @@ const END_RADII = 3;
  * @param {{centroid: number[], radius: number}[]} openings
  */
 export function crossingRemedy(places, openings = []) {
-  const end = (p) => openings.findIndex((o) => Math.hypot(...o.centroid.map((x, k) => x - p[k])) < END_RADII * o.radius);
+  const end = (p) =>
+    openings.findIndex((o) => Math.hypot(...o.centroid.map((x, k) => x - p[k])) < END_RADII * o.radius);
   const ends = places.map(end);
   if (!places.length || ends.includes(-1)) return { action: 'cut_here', places, value: 0 };
   // One trim an end, at its first crossing.
@@ -103,7 +104,8 @@ export function remedyOf(failure, context = {}) {
 
 /** Whether applying `remedy` changes the preparation (the surface is
  * analyzed again) rather than the mesh options (meshed again). */
-export const preparesAgain = (remedy) => ['trim_end', 'cut_here', 'repair', 'largest_component', 'smooth', 'units'].includes(remedy.action);
+export const preparesAgain = (remedy) =>
+  ['trim_end', 'cut_here', 'repair', 'largest_component', 'smooth', 'units'].includes(remedy.action);
 
 /**
  * The label of the button that applies `remedy`, in the page's words:

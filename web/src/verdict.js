@@ -40,7 +40,9 @@ export function placesBelow({ positions, elements, size, quality, limit, cell, c
   let worst = -1;
   const centroid = (e) => {
     const c = [0, 0, 0];
-    for (let k = 0; k < size; k++) for (let a = 0; a < 3; a++) c[a] += positions[3 * elements[size * e + k] + a] / size;
+    for (let k = 0; k < size; k++) {
+      for (let a = 0; a < 3; a++) c[a] += positions[3 * elements[size * e + k] + a] / size;
+    }
     return c;
   };
   for (let e = 0; e < quality.length; e++) {
@@ -59,7 +61,8 @@ export function placesBelow({ positions, elements, size, quality, limit, cell, c
     .slice(0, MAX_PLACES)
     .map(({ sum, count: n }) => ({ point: sum.map((s) => s / n), radius: cell, count: n }));
   const below = [...cells.values()].reduce((n, c) => n + c.count, 0);
-  return { below, places, worst: worst < 0 ? null : { point: centroid(worst), radius: cell, quality: quality[worst] } };
+  const worstPlace = worst < 0 ? null : { point: centroid(worst), radius: cell, quality: quality[worst] };
+  return { below, places, worst: worstPlace };
 }
 
 /**
@@ -82,7 +85,8 @@ export function meshVerdict(result, { unit = '', scale = 1 } = {}) {
     id: 'elements',
     level: 'ok',
     text: v
-      ? `${count(elements)} elements: ${count(tets)} tetrahedra${prisms ? ` (${count(prisms)} layer prisms kept)` : ''}, ${count(out.triangles)} wall triangles.`
+      ? `${count(elements)} elements: ${count(tets)} tetrahedra` +
+        `${prisms ? ` (${count(prisms)} layer prisms kept)` : ''}, ${count(out.triangles)} wall triangles.`
       : `${count(out.triangles)} wall triangles (surface only: no volume).`,
     places: [],
   });
@@ -109,8 +113,17 @@ export function meshVerdict(result, { unit = '', scale = 1 } = {}) {
   }
   if (result.surface?.quality?.length) {
     const s = result.surface;
-    const found = placesBelow({ positions: s.positions, elements: s.triangles, size: 3, quality: s.quality, limit: LIMITS.triangle, cell });
-    items.push(qualityItem('triangles', found, { what: 'wall triangles', one: 'wall triangle', symbol: 'γk', limit: LIMITS.triangle, scope: '' }));
+    const found = placesBelow({
+      positions: s.positions,
+      elements: s.triangles,
+      size: 3,
+      quality: s.quality,
+      limit: LIMITS.triangle,
+      cell,
+    });
+    items.push(
+      qualityItem('triangles', found, { what: 'wall triangles', one: 'wall triangle', symbol: 'γk', limit: LIMITS.triangle, scope: '' }),
+    );
   }
 
   const layer = v?.boundary_layer;
@@ -121,7 +134,8 @@ export function meshVerdict(result, { unit = '', scale = 1 } = {}) {
       level: full >= LIMITS.layer ? 'ok' : 'check',
       text:
         full >= LIMITS.layer
-          ? `Boundary layer: ${layer.layers} layer${layer.layers === 1 ? '' : 's'} at full thickness on ${percent(full)} of the wall.`
+          ? `Boundary layer: ${layer.layers} layer${layer.layers === 1 ? '' : 's'} at full thickness ` +
+            `on ${percent(full)} of the wall.`
           : `Boundary layer thinned: full thickness on only ${percent(full)} of the wall ` +
             `(reduced on ${percent(layer.reduced_area_fraction)}, where fronts meet or bends are tight).`,
       places: [],
@@ -144,7 +158,8 @@ export function meshVerdict(result, { unit = '', scale = 1 } = {}) {
       text:
         Math.abs(change) <= LIMITS.volume
           ? `Volume: ${signed} against the input (within ${percent(LIMITS.volume)}).`
-          : `Volume: ${signed} against the input (over ${percent(LIMITS.volume)}): a smaller size follows the vessels better.`,
+          : `Volume: ${signed} against the input (over ${percent(LIMITS.volume)}): ` +
+            'a smaller size follows the vessels better.',
       places: [],
     });
   }
@@ -173,7 +188,9 @@ function qualityItem(id, { below, places, worst }, { what, one, symbol, limit, s
       id,
       level: 'ok',
       text: `Worst ${one}${scope}: ${symbol} ${gamma(worst.quality)} (at least ${limit}).`,
-      places: [{ point: worst.point, radius: worst.radius, what: `the worst ${one}, ${symbol} ${gamma(worst.quality)}` }],
+      places: [
+        { point: worst.point, radius: worst.radius, what: `the worst ${one}, ${symbol} ${gamma(worst.quality)}` },
+      ],
     };
   }
   return {
@@ -181,7 +198,11 @@ function qualityItem(id, { below, places, worst }, { what, one, symbol, limit, s
     level: 'check',
     text: `${count(below)} ${what}${scope} below ${symbol} ${limit} (worst ${gamma(worst.quality)}), ` +
       `${places.length === 1 ? 'in one place' : `most in ${places.length} places`}.`,
-    places: places.map((p) => ({ point: p.point, radius: p.radius, what: `${count(p.count)} ${what} below ${symbol} ${limit}` })),
+    places: places.map((p) => ({
+      point: p.point,
+      radius: p.radius,
+      what: `${count(p.count)} ${what} below ${symbol} ${limit}`,
+    })),
   };
 }
 

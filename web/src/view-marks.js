@@ -14,7 +14,8 @@ function element(tag, className, testId) {
 }
 
 /** '#rrggbb' of an RGB triple (0..1). */
-export const cssColor = (rgb) => `#${rgb.map((v) => Math.round(Math.min(1, Math.max(0, v)) * 255).toString(16).padStart(2, '0')).join('')}`;
+export const cssColor = (rgb) =>
+  `#${rgb.map((v) => Math.round(Math.min(1, Math.max(0, v)) * 255).toString(16).padStart(2, '0')).join('')}`;
 
 /** Black or white, whichever reads better on the colour rgb (0..1). */
 export function inkOn(rgb) {
@@ -94,28 +95,32 @@ export class ViewMarks {
   }
 
   /** Puts every mark at its point's place in the view (hidden when behind
-   * the camera or out of the view); labels that would overlap move down. */
+   * the camera or out of the view); labels that would overlap move down.
+   * Sizes are read first, positions written after (one layout a frame). */
   update() {
+    const marks = [
+      ...this.places.map((m) => ({ ...m, on: this.visible.places })),
+      ...this.openings.map((m) => ({ ...m, on: this.visible.openings })),
+    ].map((m) => ({ ...m, at: m.on && this.viewer.sphere ? this.viewer.viewPoint(m.point) : null }));
+    const sizes = marks.map(({ node, at }) => (at ? [node.offsetWidth || 20, node.offsetHeight || 20] : null));
     const placed = [];
-    for (const [kind, marks] of [
-      ['places', this.places],
-      ['openings', this.openings],
-    ]) {
-      for (const { node, point } of marks) {
-        const at = this.visible[kind] && this.viewer.sphere ? this.viewer.viewPoint(point) : null;
-        node.hidden = !at;
-        if (!at) continue;
-        const w = node.offsetWidth || 20;
-        const h = node.offsetHeight || 20;
-        let [x, y] = [at[0] - w / 2, at[1] - h / 2];
-        for (let tries = 0; tries < 6; tries++) {
-          const hit = placed.find((b) => x < b.x + b.w + GAP_PX && b.x < x + w + GAP_PX && y < b.y + b.h + GAP_PX && b.y < y + h + GAP_PX);
-          if (!hit) break;
-          y = hit.y + hit.h + GAP_PX;
-        }
-        placed.push({ x, y, w, h });
-        node.style.transform = `translate(${Math.round(x)}px, ${Math.round(y)}px)`;
+    const moves = marks.map(({ at }, i) => {
+      if (!at) return null;
+      const [w, h] = sizes[i];
+      let [x, y] = [at[0] - w / 2, at[1] - h / 2];
+      for (let tries = 0; tries < 6; tries++) {
+        const hit = placed.find(
+          (b) => x < b.x + b.w + GAP_PX && b.x < x + w + GAP_PX && y < b.y + b.h + GAP_PX && b.y < y + h + GAP_PX,
+        );
+        if (!hit) break;
+        y = hit.y + hit.h + GAP_PX;
       }
-    }
+      placed.push({ x, y, w, h });
+      return `translate(${Math.round(x)}px, ${Math.round(y)}px)`;
+    });
+    marks.forEach(({ node }, i) => {
+      node.hidden = !moves[i];
+      if (moves[i]) node.style.transform = moves[i];
+    });
   }
 }

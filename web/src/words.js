@@ -7,8 +7,12 @@ import { point } from './units.js';
 
 /** Phrases naming an option with a value, replaced first (most specific). */
 const PHRASES = [
+  [/^names needs K=NAME with NAME\b/, 'A name needs'],
+  [/^names cannot be\b/, 'A name cannot be'],
+  [/^names gives\b/, 'The names give'],
   [/\(\s*featureAngle 180\s*\)/g, ''],
   [/,? or turn crease detection off\s*/g, ' '],
+  [/(\d+) passes \(smooth \1\)/g, '$1 passes'],
   [/\bsmooth (\d+)\b/g, 'Smoothing: $1 passes'],
   [/^size makes\b/, 'The edge length h makes'],
   [/^coreSize makes\b/, 'The core size makes'],
