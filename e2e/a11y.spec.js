@@ -16,7 +16,7 @@ const FOCUS = {
   load: 'intro',
   prepare: 'cut-edit',
   mesh: 'progress',
-  inspect: 'volume-result',
+  inspect: 'verdict',
   export: 'action-bar',
   error: 'error',
 };

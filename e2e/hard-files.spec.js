@@ -28,10 +28,13 @@ test('20 openings: each told apart by its label, before and after meshing; expor
   await page.setViewportSize({ width: 390, height: 844 });
   await expectOpeningsToldApart(page, 20);
   await page.setViewportSize({ width: 1440, height: 900 });
-  // A click on a label selects its row; hovering a row marks its label's rim.
+  // A click on a label selects its row; hovering a row marks its label and rim.
   await page.getByTestId('opening-label').nth(6).click();
   await expect(page.getByTestId('opening-item').nth(6)).toBeFocused();
   await expect(page.getByTestId('opening-item').nth(6)).toHaveClass(/active/);
+  await expect(page.getByTestId('opening-label').nth(6)).toHaveClass(/active/);
+  await page.getByTestId('opening-item').nth(2).hover();
+  await expect(page.getByTestId('opening-label').nth(2)).toHaveClass(/active/);
   await lookAt(page, 'hard-tree20-prepare', page.locator('#openings'));
 
   await setSizeAndLayers(page, '0.3', '1');

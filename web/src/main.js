@@ -77,7 +77,10 @@ let shown = null; // what the view shows: 'input', 'output' or 'volume'
 const held = { analysis: null, mesh: null };
 const openings = new OpeningsTable($('openings'), {
   openingNames,
-  onHover: (loop) => viewer.highlightLoop(loop, current.surface.positions),
+  onHover: (loop, k) => {
+    viewer.highlightLoop(loop, current.surface.positions);
+    marks.activeOpening(k);
+  },
   allExtensions: $('flow-all'),
   onColors: (labels) =>
     marks.setOpenings(labels, { onSelect: (k) => openings.select(k), onHover: (k) => openings.highlight(k) }),

@@ -35,7 +35,8 @@ export class OpeningsTable {
    * @param {object} hooks
    * @param {(options: {names: object, inlet?: number}) => Promise<object>} hooks.openingNames the
    *   core's names of the openings with these options: {ok, names} or its refusal {ok: false, error, option}
-   * @param {(loop: number[] | null) => void} hooks.onHover the rim to highlight, or null
+   * @param {(loop: number[] | null, k: number | null) => void} hooks.onHover the rim to
+   *   highlight (of opening k), or null
    * @param {HTMLInputElement} hooks.allExtensions the flow extension of every opening
    * @param {(openings: {k, name, point, color}[]) => void} [hooks.onColors] the
    *   openings' names and colours changed (the labels in the view follow)
@@ -108,7 +109,7 @@ export class OpeningsTable {
   highlight(k) {
     for (const row of this.rows) row.li.classList.toggle('active', row.k === k);
     const row = this.rows[k - 1];
-    this.onHover(row ? row.opening.vertices : null);
+    this.onHover(row ? row.opening.vertices : null, row ? k : null);
   }
 
   /** Selects opening k: its row scrolled into sight and focused (its rim
@@ -166,11 +167,11 @@ export class OpeningsTable {
     const { li, input } = row;
     const on = () => {
       li.classList.add('active');
-      this.onHover(row.opening.vertices);
+      this.onHover(row.opening.vertices, row.k);
     };
     const off = () => {
       li.classList.remove('active');
-      this.onHover(null);
+      this.onHover(null, null);
     };
     li.addEventListener('mouseenter', on);
     li.addEventListener('mouseleave', () => {

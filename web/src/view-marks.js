@@ -88,6 +88,11 @@ export class ViewMarks {
     this.update();
   }
 
+  /** Marks opening k's label as the one pointed at in the list (null: none). */
+  activeOpening(k) {
+    for (const { node } of this.openings) node.classList.toggle('active', node.dataset.k === String(k));
+  }
+
   /** Shows or hides a kind of marks ('openings' or 'places'). */
   show(kind, on) {
     this.visible[kind] = on;
