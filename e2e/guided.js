@@ -4,7 +4,7 @@
 // refusal (its remedy's button), the verdict, the export checked.
 import { expect } from '@playwright/test';
 
-import { exportText, screenshots, seriousViolations } from './helpers.js';
+import { exportText, screenshots, seriousViolations, setSizeAndLayers } from './helpers.js';
 import { readMsh } from './msh.js';
 
 /** No serious or critical axe violation at desktop nor at phone width. */
@@ -127,4 +127,14 @@ export async function exportValidMsh(page, { name, outlets }) {
   expect(names.filter((n) => /^outlet_\d+$/.test(n))).toHaveLength(outlets);
   expect(msh.elements[4]).toBeGreaterThan(1000); // tetrahedra
   return msh;
+}
+
+/** The end of a hard model's way: meshed at edge length `size` with
+ * `layers` layers (through any refusal's remedy), the verdict looked at
+ * (out/NAME-inspect-*), exported as FILE and checked. */
+export async function meshLookExport(page, name, { size, layers, file, outlets }) {
+  await setSizeAndLayers(page, size, layers);
+  await meshThroughRemedies(page);
+  await lookAt(page, `${name}-inspect`, page.getByTestId('verdict'));
+  return exportValidMsh(page, { name: file, outlets });
 }

@@ -1,6 +1,14 @@
 import { expect, test } from '@playwright/test';
 
-import { confirmUnit, expectOpeningsToldApart, exportValidMsh, lookAt, meshThroughRemedies, verdictOrError } from './guided.js';
+import {
+  confirmUnit,
+  expectOpeningsToldApart,
+  exportValidMsh,
+  lookAt,
+  meshLookExport,
+  meshThroughRemedies,
+  verdictOrError,
+} from './guided.js';
 import { centimetreBifurcation, damagedEndTube, domedCapsTube, shortTrunkClosed, twentyOpenings } from './hard-inputs.js';
 import { openApp, setSizeAndLayers, upload } from './helpers.js';
 
@@ -81,10 +89,7 @@ test('a closed model whose widest end is a short trunk: the trunk is cut open an
   expect(Math.hypot(...centre.map((x, k) => x - trunkTip[k]))).toBeLessThan(1.5);
   await lookAt(page, 'hard-trunk-prepare', page.locator('#openings'));
 
-  await setSizeAndLayers(page, '0.25', '2');
-  await meshThroughRemedies(page);
-  await lookAt(page, 'hard-trunk-inspect', page.getByTestId('verdict'));
-  await exportValidMsh(page, { name: 'short-trunk.msh', outlets: 2 });
+  await meshLookExport(page, 'hard-trunk', { size: '0.25', layers: '2', file: 'short-trunk.msh', outlets: 2 });
 });
 
 test('a model with domed caps (fans around a lifted apex): opened at its ends and meshed', async ({ page }) => {
@@ -101,10 +106,7 @@ test('a model with domed caps (fans around a lifted apex): opened at its ends an
   }
   await expect(openings).toHaveText('2');
   await lookAt(page, 'hard-domed-prepare', page.locator('#openings'));
-  await setSizeAndLayers(page, '0.25', '2');
-  await meshThroughRemedies(page);
-  await lookAt(page, 'hard-domed-inspect', page.getByTestId('verdict'));
-  await exportValidMsh(page, { name: 'domed.msh', outlets: 1 });
+  await meshLookExport(page, 'hard-domed', { size: '0.25', layers: '2', file: 'domed.msh', outlets: 1 });
 });
 
 test('a model with a damaged, self-crossing end: marked, trimmed from the page, meshed', async ({ page }) => {
@@ -171,8 +173,5 @@ test('a model in cm: one guess, asked until confirmed, never changed silently; c
   await expect(page.getByTestId('smoothing-note')).toBeEmpty();
   await expect(units).toHaveText('cm');
   await lookAt(page, 'hard-cm-prepare', page.getByTestId('stat-units'));
-  await setSizeAndLayers(page, '0.035', '1');
-  await meshThroughRemedies(page);
-  await lookAt(page, 'hard-cm-inspect', page.getByTestId('verdict'));
-  await exportValidMsh(page, { name: 'bifurcation-cm.msh', outlets: 2 });
+  await meshLookExport(page, 'hard-cm', { size: '0.035', layers: '1', file: 'bifurcation-cm.msh', outlets: 2 });
 });

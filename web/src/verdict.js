@@ -91,39 +91,29 @@ export function meshVerdict(result, { unit = '', scale = 1 } = {}) {
     places: [],
   });
 
-  if (v && result.volume) {
-    const vol = result.volume;
-    const part = vol.tetPart;
-    const found = placesBelow({
-      positions: vol.positions,
-      elements: vol.tets,
-      size: 4,
-      quality: vol.tetQuality,
-      limit: LIMITS.tet,
-      cell,
+  // The worst tetrahedra (of the core: the layers' are flat by design) and
+  // wall triangles, and where those below the limit are.
+  const vol = v ? result.volume : null;
+  const part = vol?.tetPart;
+  const layered = Boolean(part?.some((p) => p > 0));
+  const kinds = [
+    vol && {
+      id: 'tets',
+      mesh: { positions: vol.positions, elements: vol.tets, size: 4, quality: vol.tetQuality },
       counted: part ? (e) => part[e] === 0 : undefined,
-    });
-    items.push(qualityItem('tets', found, {
-      what: 'tetrahedra',
-      one: 'tetrahedron',
-      symbol: 'γt',
-      limit: LIMITS.tet,
-      scope: part && part.some((p) => p > 0) ? ' of the core (the flat layer elements are flat by design)' : '',
-    }));
-  }
-  if (result.surface?.quality?.length) {
-    const s = result.surface;
-    const found = placesBelow({
-      positions: s.positions,
-      elements: s.triangles,
-      size: 3,
-      quality: s.quality,
-      limit: LIMITS.triangle,
-      cell,
-    });
-    items.push(
-      qualityItem('triangles', found, { what: 'wall triangles', one: 'wall triangle', symbol: 'γk', limit: LIMITS.triangle, scope: '' }),
-    );
+      words: { what: 'tetrahedra', one: 'tetrahedron', symbol: 'γt', limit: LIMITS.tet },
+      scope: layered ? ' of the core (the flat layer elements are flat by design)' : '',
+    },
+    result.surface?.quality?.length && {
+      id: 'triangles',
+      mesh: { positions: result.surface.positions, elements: result.surface.triangles, size: 3, quality: result.surface.quality },
+      words: { what: 'wall triangles', one: 'wall triangle', symbol: 'γk', limit: LIMITS.triangle },
+      scope: '',
+    },
+  ].filter(Boolean);
+  for (const { id, mesh, counted, words, scope } of kinds) {
+    const found = placesBelow({ ...mesh, limit: words.limit, cell, counted });
+    items.push(qualityItem(id, found, { ...words, scope }));
   }
 
   const layer = v?.boundary_layer;
