@@ -458,7 +458,9 @@ export class Prepare {
   }
 
   _draw() {
-    this.discs.show(this.cuts, this.selected, this.visible);
+    const applied = new Set(this.applied.map((p) => JSON.stringify(p)));
+    const made = this.cuts.map((c) => applied.has(JSON.stringify(cutPlane(c))));
+    this.discs.show(this.cuts, this.selected, this.visible, made);
   }
 
   _render() {

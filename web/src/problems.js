@@ -37,7 +37,11 @@ export class Problems {
   show(failure, { stage, prefix = '', next, panel = null }) {
     const message = failure.cancelled ? 'Cancelled.' : `${prefix}${this.words(failure.error)}`;
     const remedy = failure.cancelled ? null : remedyOf(failure, this.context());
-    const places = remedy?.places?.length ? remedy.places : placesIn(failure.error ?? '');
+    // Every place the message names (a crossing, a failed patch) and the remedy's.
+    const key = (p) => p.map((x) => Number(x).toPrecision(5)).join(',');
+    const places = [...(remedy?.places ?? []), ...placesIn(failure.error ?? '')].filter(
+      (p, i, all) => all.findIndex((q) => key(q) === key(p)) === i,
+    );
     const actions = [];
     if (remedy) {
       const label = remedyLabel(remedy, this.model());
