@@ -49,7 +49,20 @@ export function openingWarnings(analysis, { proposals = [] } = {}) {
       blocking: false,
     });
   }
-  if (!openings.length) return warnings; // meshing refuses it, and says why
+  if (!openings.length) {
+    // Closed: no inlet nor outlet. Its vessel ends, when found, are the cuts.
+    const ends = [...(analysis.clip_proposals ?? []), ...proposals].map((end) => end.point);
+    warnings.push({
+      id: 'no-opening',
+      text:
+        'The surface is closed: it has no opening to be an inlet or an outlet. ' +
+        (ends.length ? 'Cut its vessel ends open (Cut these open).' : 'Add a cut on each vessel where it should end.'),
+      places: [], // the proposed cuts are drawn already
+      ...(ends.length && { remedy: { action: 'cut_here', places: ends, value: 0 } }),
+      blocking: !refused,
+    });
+    return warnings;
+  }
   const largest = Math.max(...openings.map((o) => o.radius));
 
   // Ends still proposed, and ends proposed at first that no opening is near.

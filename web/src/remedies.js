@@ -43,8 +43,10 @@ export function fittingSize(message, size) {
   return { mode: size.mode, value: Number((size.value * ratio ** power).toPrecision(2)) };
 }
 
-// A self-crossing within this many radii of an opening is a damaged end.
+// A self-crossing within this many radii of an opening is a damaged end;
+// openings under this fraction of the largest are defect loops, no ends.
 const END_RADII = 3;
+const TINY_END = 0.05;
 
 /**
  * What to do about the places where the surface crosses itself: near an
@@ -54,8 +56,12 @@ const END_RADII = 3;
  * @param {{centroid: number[], radius: number}[]} openings
  */
 export function crossingRemedy(places, openings = []) {
+  // Vessel ends only: not the tiny defect loops a crossing may leave.
+  const largest = Math.max(0, ...openings.map((o) => o.radius));
   const end = (p) =>
-    openings.findIndex((o) => Math.hypot(...o.centroid.map((x, k) => x - p[k])) < END_RADII * o.radius);
+    openings.findIndex(
+      (o) => o.radius >= TINY_END * largest && Math.hypot(...o.centroid.map((x, k) => x - p[k])) < END_RADII * o.radius,
+    );
   const ends = places.map(end);
   if (!places.length || ends.includes(-1)) return { action: 'cut_here', places, value: 0 };
   // One trim an end, at its first crossing.

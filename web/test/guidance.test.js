@@ -88,6 +88,8 @@ describe('remedies', () => {
     assert.equal(remedyLabel(crossingRemedy(near, openings)), 'Trim the damaged end');
     assert.deepEqual(crossingRemedy([[0.1, 0, 5.6], [0, 0, -5.8]], openings).places.length, 2);
     assert.equal(crossingRemedy([[0, 0, 0]], openings).action, 'cut_here', 'in the middle of a vessel: cut there');
+    const defect = [...openings, { centroid: [0, 0, 0.1], radius: 1e-9 }];
+    assert.equal(crossingRemedy([[0, 0, 0]], defect).action, 'cut_here', 'a tiny defect loop is no vessel end');
   });
 
   test('a coarser size that fits the budget: N as the square root, h by the element kind', () => {
@@ -259,7 +261,11 @@ describe('the openings before meshing', () => {
     assert.equal(w.id, 'tiny-openings');
     assert.match(w.text, /^Openings 3, 4 are tiny \(radius down to 0 mm/);
     assert.equal(w.places.length, 2);
-    assert.deepEqual(openingWarnings({ ...base, openings: [] }), []);
+    // Closed: said, with the proposed ends as the cuts.
+    const [closed] = openingWarnings({ ...base, openings: [], clip_proposals: [{ point: [0, 0, 5], radius: 1 }] });
+    assert.equal(closed.id, 'no-opening');
+    assert.deepEqual(closed.remedy, { action: 'cut_here', places: [[0, 0, 5]], value: 0 });
+    assert.equal(openingWarnings({ ...base, openings: [] })[0].remedy, undefined);
   });
 });
 
