@@ -724,7 +724,7 @@ function drawLegend(volume) {
 /** Shows a new mesh: the result part of the panel (its verdict in sight
  * and focused), the caps' names by the openings, the volume in the view. */
 function showResult(result) {
-  const showPlaces = (places, { zoom = true } = {}) => problems.showPlaces(places, '', { zoom });
+  const showPlaces = (places, { zoom = true, tone } = {}) => problems.showPlaces(places, '', { zoom, tone });
   showMeshResult(result, { model: model(), client, showPlaces });
   if (result.volume) $('show').prepend(volumeOption);
   else volumeOption.remove();

@@ -73,12 +73,13 @@ export class Problems {
     this.bar.error(message, next, all, { focus: actions.length > 0 });
   }
 
-  /** Marks `places` (points, or {point, radius, what}) in the view; with
-   * zoom, the view turns to the first. */
-  showPlaces(places, what = '', { zoom = false } = {}) {
+  /** Marks `places` (points, or {point, radius, what}) in the view, as
+   * warnings or (tone 'info') as facts; with zoom, the view turns to the
+   * first. */
+  showPlaces(places, what = '', { zoom = false, tone = 'warn' } = {}) {
     const radius = this.model().scale / 40;
     const items = places.map((p) => (Array.isArray(p) ? { point: p, radius, what } : p));
-    this.marks.setPlaces(items);
+    this.marks.setPlaces(items, { tone });
     if (zoom && items.length) this.marks.viewer.focusOn(items[0].point, items[0].radius);
   }
 

@@ -139,7 +139,8 @@ function showVerdict(verdict, showPlaces) {
       button.className = 'verdict-show';
       button.textContent = item.places.length > 1 ? `Show the ${item.places.length} places` : 'Show where';
       button.setAttribute('data-testid', 'verdict-show');
-      button.addEventListener('click', () => showPlaces(item.places));
+      // A fine item's places (the worst element) are shown as facts, not warnings.
+      button.addEventListener('click', () => showPlaces(item.places, { tone: item.level === 'ok' ? 'info' : 'warn' }));
       li.append(' ', button);
     }
     return li;
@@ -155,7 +156,7 @@ function showVerdict(verdict, showPlaces) {
  * @param {object} hooks
  * @param {{unit: string, scale: number}} hooks.model the model's unit and size
  * @param {{threads?: number, threadsNote?: string}} hooks.client
- * @param {(places: object[], options?: {zoom?: boolean}) => void} hooks.showPlaces
+ * @param {(places: object[], options?: {zoom?: boolean, tone?: string}) => void} hooks.showPlaces
  */
 export function showMeshResult(result, { model, client, showPlaces }) {
   const out = result.report.output;

@@ -67,12 +67,13 @@ export class ViewMarks {
 
   /**
    * The places a message names: numbered buttons {point, radius, what}
-   * that zoom the view there (`onZoom(i)` after); none with [].
+   * that zoom the view there (`onZoom(i)` after), marked as warnings or
+   * (tone 'info') as facts; none with [].
    */
-  setPlaces(items, { onZoom = () => {} } = {}) {
+  setPlaces(items, { onZoom = () => {}, tone = 'warn' } = {}) {
     for (const { node } of this.places) node.remove();
     this.places = items.map(({ point, radius = 0, what }, i) => {
-      const node = element('button', 'place-mark', 'place-mark');
+      const node = element('button', `place-mark ${tone}`, 'place-mark');
       node.type = 'button';
       node.textContent = String(i + 1);
       const label = `Place ${i + 1}: ${what}. Zoom the view there`;
