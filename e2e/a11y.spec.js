@@ -1,7 +1,6 @@
-import AxeBuilder from '@axe-core/playwright';
 import { expect, test } from '@playwright/test';
 
-import { openApp, PNG_BYTES, screenshots, STEP_NAMES, walkSteps } from './helpers.js';
+import { openApp, PNG_BYTES, screenshots, seriousViolations, STEP_NAMES, walkSteps } from './helpers.js';
 
 // Accessibility: an axe scan of each step (load, prepare, mesh in
 // progress, inspect, export, error; at desktop and phone width) fails on
@@ -12,20 +11,12 @@ import { openApp, PNG_BYTES, screenshots, STEP_NAMES, walkSteps } from './helper
 
 test.use({ viewport: { width: 1440, height: 900 } });
 
-/** Serious and critical axe violations of the page, as readable lines. */
-async function seriousViolations(page) {
-  const { violations } = await new AxeBuilder({ page }).analyze();
-  return violations
-    .filter((v) => v.impact === 'serious' || v.impact === 'critical')
-    .map((v) => `${v.impact} ${v.id}: ${v.help} (${v.nodes.map((n) => n.target.join(' ')).join('; ')})`);
-}
-
 // What each step's screenshots show in sight (scrolled into view).
 const FOCUS = {
   load: 'intro',
   prepare: 'cut-edit',
   mesh: 'progress',
-  inspect: 'volume-result',
+  inspect: 'verdict',
   export: 'action-bar',
   error: 'error',
 };

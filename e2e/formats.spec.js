@@ -54,7 +54,7 @@ test('a capped VTP: caps become openings, one named, the mesh exported as VTU th
   await expect(rows.getByTestId('opening-source')).toHaveText(['cap, ModelFaceID 2', 'cap, ModelFaceID 3']);
   await expect(rows.nth(0)).toContainText('radius 0.9943 mm');
   await expect(page.getByTestId('warnings')).toContainText('2 planar caps were recognised and removed');
-  await expect(page.getByTestId('warnings')).toContainText('keepCaps');
+  await expect(page.getByTestId('warnings')).toContainText('(keep them with “Keep flat caps as wall”)');
   const names = page.getByTestId('opening-name');
   await expect(names.nth(0)).toHaveValue('inlet');
   await expect(names.nth(1)).toHaveValue('outlet_1');
@@ -140,26 +140,26 @@ test('names the core refuses are marked at their input and nothing is meshed', a
   await names.nth(1).fill('wall');
   await expect(names.nth(1)).toHaveAttribute('aria-invalid', 'true');
   await expect(refusals.nth(1)).toHaveText(
-    "names cannot be 'wall': wall, lumen, outer_wall, boundary_layer, vessel_wall and wall_* name other groups",
+    "A name cannot be 'wall': wall, lumen, outer_wall, boundary_layer, vessel_wall and wall_* name other groups",
   );
   await expect(refusals.nth(0)).toBeHidden();
   await page.getByTestId('remesh').click();
-  await expect(page.getByTestId('error')).toContainText("Opening 2: names cannot be 'wall'");
+  await expect(page.getByTestId('error')).toContainText("Opening 2: A name cannot be 'wall'");
   await page.getByTestId('export').click();
-  await expect(page.getByTestId('error')).toContainText("Opening 2: names cannot be 'wall'");
+  await expect(page.getByTestId('error')).toContainText("Opening 2: A name cannot be 'wall'");
   await screenshots(page, 'formats-names', names.nth(1));
 
   await names.nth(1).fill('9x');
   await expect(refusals.nth(1)).toHaveText(
-    'names needs K=NAME with NAME 1-64 letters, digits, _ or -, starting with a letter',
+    'A name needs 1-64 letters, digits, _ or -, starting with a letter',
   );
   // Each name once: the second of two equal names is refused.
   await names.nth(1).fill('distal');
   await expect(names.nth(1)).toHaveAttribute('aria-invalid', 'false');
   await names.nth(0).fill('distal');
-  await expect(refusals.nth(1)).toHaveText("names gives 'distal' to openings 1 and 2: each name once");
+  await expect(refusals.nth(1)).toHaveText("The names give 'distal' to openings 1 and 2: each name once");
   await page.getByTestId('remesh').click();
-  await expect(page.getByTestId('error')).toContainText('Opening 2: names gives');
+  await expect(page.getByTestId('error')).toContainText('Opening 2: The names give');
   expect(await meshJobs(page)).toBe('0');
   await expect(page.getByTestId('remesh-result')).toBeHidden();
 
@@ -179,10 +179,11 @@ test('units: metres guessed plainly, an unsure guess asked and changed; caps kep
   const units = page.getByTestId('stat-units');
   const prompt = page.getByTestId('units-prompt');
 
-  // A model in metres: said plainly, no question; every length in m.
+  // A model in metres: guessed plainly, still asked once (a guess until
+  // confirmed); every length in m.
   await upload(page, 'metres.stl', phantom(0.003));
   await expect(units).toHaveText('m (guessed from the median vessel radius 0.00327)');
-  await expect(prompt).toBeHidden();
+  await expect(prompt).toContainText('Units: m, guessed from the median vessel radius 0.00327. Right?');
   await expect(page.getByTestId('stat-bbox')).toContainText(' m, diagonal 0.03497 m');
   await expect(page.getByTestId('opening-item').first()).toContainText('radius 0.003273 m');
   await expect(page.getByTestId('warnings')).toContainText('the model is in metres');

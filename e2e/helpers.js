@@ -1,6 +1,7 @@
 // Shared helpers of the e2e specs: open the app with every request outside
 // its origin recorded, generate surface inputs in the test itself, download
 // exports and take screenshots.
+import AxeBuilder from '@axe-core/playwright';
 import { expect } from '@playwright/test';
 
 import { readFileSync } from 'node:fs';
@@ -237,4 +238,12 @@ export async function surfacePoint(page, prefix, after = null) {
     }
   }
   throw new Error('no surface point found in the view');
+}
+
+/** Serious and critical axe violations of the page, as readable lines. */
+export async function seriousViolations(page) {
+  const { violations } = await new AxeBuilder({ page }).analyze();
+  return violations
+    .filter((v) => v.impact === 'serious' || v.impact === 'critical')
+    .map((v) => `${v.impact} ${v.id}: ${v.help} (${v.nodes.map((n) => n.target.join(' ')).join('; ')})`);
 }

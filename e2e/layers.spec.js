@@ -52,6 +52,9 @@ test('default boundary layer: part colors, the layer in the cut, core gamma_t, l
   expect(all).not.toBeNull();
   expect(coreMin).toBeGreaterThanOrEqual(Number(all[1]));
   expect(await num(page, 'out-tet-mean')).toBeGreaterThan(Number(all[2]));
+  // The tables and histograms are folded under the verdict.
+  await expect(page.getByTestId('tet-histogram')).toBeHidden();
+  await page.getByTestId('result-details').locator('summary').click();
   await page.getByTestId('tet-histogram-all').check();
   await expect(page.getByTestId('tet-histogram')).toHaveAttribute('data-scope', 'all');
   await expect(page.getByTestId('tet-histogram-scope')).toHaveText('of all tetrahedra');

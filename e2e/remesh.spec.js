@@ -14,7 +14,7 @@ test('remesh the sample: quality shown beside the input, the views, export', asy
   // Uniform size, Floater map and Delaunay refinement from the advanced options.
   await page.getByTestId('size-mode').selectOption('size');
   await page.getByTestId('size-value').fill('0.2');
-  await page.locator('details summary').click();
+  await page.locator('details summary', { hasText: 'Advanced' }).click();
   await page.getByTestId('param').selectOption('floater');
   await page.getByTestId('mesher2d').selectOption('delaunay');
   await page.getByTestId('remesh').click();
@@ -47,7 +47,8 @@ test('a bad size gives a readable error and the page keeps working', async ({ pa
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
   await page.getByTestId('size-value').fill('1');
   await page.getByTestId('remesh').click();
-  await expect(page.getByTestId('error')).toContainText('perCircumference needs');
+  await expect(page.getByTestId('error')).toContainText('N (edges per circumference) needs');
+  await expect(page.getByTestId('error')).not.toContainText('perCircumference');
   await page.getByTestId('size-value').fill('16');
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('remesh-result')).toBeVisible();
@@ -76,7 +77,7 @@ test('pinning to far input vertices: on by default, off from the advanced option
   const far = await num(page, 'out-far');
   expect(pinned).toBeGreaterThan(0);
 
-  await page.locator('details summary').click();
+  await page.locator('details summary', { hasText: 'Advanced' }).click();
   await page.getByTestId('fidelity-on').uncheck();
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('out-pinned')).toHaveText('0');
@@ -85,7 +86,7 @@ test('pinning to far input vertices: on by default, off from the advanced option
 
 test('an oversampled surface is decimated before remeshing: said in the result, off from the advanced options', async ({ page }) => {
   await openPhantomForWall(page, { kind: 'tube', voxel: 0.03 }, 2); // about 218,000 triangles
-  await page.locator('details summary').click();
+  await page.locator('details summary', { hasText: 'Advanced' }).click();
   await expect(page.getByTestId('decimate-on')).toBeChecked();
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('out-decimated')).toBeVisible();

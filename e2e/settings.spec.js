@@ -2,11 +2,12 @@ import { expect, test } from '@playwright/test';
 
 import { openApp, screenshots, setSizeAndLayers } from './helpers.js';
 
-// The mesh and export options are remembered in the browser: changed,
-// still there after a reload; Reset puts the defaults back, also after a
-// reload. They are in the page's address too: a link (Copy link) opens with
-// them, over what the browser remembered; a link's invalid options are
-// ignored and said.
+// The mesh and export options: each new file starts from the defaults
+// unless "Keep my settings for the next file" is checked; kept, they are
+// remembered in the browser (still there after a reload); Reset puts the
+// defaults back, also after a reload. They are in the page's address too:
+// a link (Copy link) opens with them, over what the browser remembered; a
+// link's invalid options are ignored and said.
 
 test.use({ viewport: { width: 1440, height: 900 } });
 
@@ -38,8 +39,42 @@ async function values(page) {
   return out;
 }
 
+test('a new file starts from the defaults, said; kept when asked, also after a reload', async ({ page }) => {
+  await loaded(page);
+  await expect(page.getByTestId('keep-settings')).not.toBeChecked();
+  await setSizeAndLayers(page, '0.5', '0');
+  // The next file: back to the defaults, and the page says so.
+  await page.getByTestId('load-sample').click();
+  await expect(page.getByTestId('change-notice')).toContainText('back to their defaults');
+  await expect(page.getByTestId('layers')).toHaveValue('4');
+  await expect(page.getByTestId('size-mode')).toHaveValue('perCircumference');
+  await screenshots(page, 'settings-new-file', page.getByTestId('change-notice'));
+  // Not remembered for the next visit either (the page opened anew, not
+  // from the address that carries them: a reload, or a link, keeps them).
+  await setSizeAndLayers(page, '0.5', '0');
+  await page.reload();
+  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  await expect(page.getByTestId('layers')).toHaveValue('0');
+  await page.goto('/');
+  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  await expect(page.getByTestId('layers')).toHaveValue('4');
+  // Kept: they stay for the next file and the next visit.
+  await page.getByTestId('load-sample').click();
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  await page.getByTestId('keep-settings').check();
+  await setSizeAndLayers(page, '0.5', '0');
+  await page.getByTestId('load-sample').click();
+  await expect(page.getByTestId('change-notice')).toBeHidden();
+  await expect(page.getByTestId('layers')).toHaveValue('0');
+  await page.goto('/');
+  await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
+  await expect(page.getByTestId('keep-settings')).toBeChecked();
+  await expect(page.getByTestId('layers')).toHaveValue('0');
+});
+
 test('options survive a reload; Reset brings the defaults back', async ({ page }) => {
   await loaded(page);
+  await page.getByTestId('keep-settings').check();
   const defaults = await values(page);
   await page.getByText('Advanced', { exact: true }).click(); // the 2D mesher is in there
   for (const [id, kind, value] of CHANGES) {
@@ -79,6 +114,7 @@ const hashOf = (page) => new URL(page.url()).hash;
 
 test('the options are in the address; a link sets them over the remembered ones', async ({ page, context }) => {
   await loaded(page);
+  await page.getByTestId('keep-settings').check();
   expect(hashOf(page)).toBe('');
   // Remembered in this browser: a 2D mesher and 3 layers.
   await page.getByText('Advanced', { exact: true }).click();

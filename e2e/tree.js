@@ -8,9 +8,19 @@
 const HALF = 6; // the box: x, y in [-6, 6], z in [0, 16]
 const HEIGHT = 16;
 
-/** The tubes: [start, unit direction, length, radius]. */
-function tubes() {
+/** The tubes: [start, unit direction, length, radius]; `spiral` side
+ * branches around the trunk (0: the 8 of the four sides). */
+function tubes(spiral = 0) {
   const out = [[[0, 0, -1], [0, 0, 1], HEIGHT + 2, 1]];
+  if (spiral > 0) {
+    // From z = 1.5 to 13.5, a golden angle apart: neighbours in z point far apart.
+    for (let k = 0; k < spiral; k++) {
+      const angle = k * 2.39996;
+      const n = Math.hypot(1, 0.12);
+      out.push([[0, 0, 1.5 + (12 * k) / Math.max(1, spiral - 1)], [Math.cos(angle) / n, Math.sin(angle) / n, 0.12 / n], 12, 0.5]);
+    }
+    return out;
+  }
   const sides = [
     [1, 0],
     [0, 1],
@@ -36,22 +46,37 @@ function inside(p, list) {
   return false;
 }
 
-/** The tree's binary STL (Buffer) and its number of vessel ends (10). */
-export function treeStl(voxel = 0.125) {
-  const list = tubes();
-  const nx = Math.round((2 * HALF) / voxel);
-  const nz = Math.round(HEIGHT / voxel);
-  const at = (i, j, k) => i * nx * nz + j * nz + k;
-  const mask = new Uint8Array(nx * nx * nz);
-  const center = (i, j, k) => [-HALF + (i + 0.5) * voxel, -HALF + (j + 0.5) * voxel, (k + 0.5) * voxel];
-  for (let i = 0; i < nx; i++) for (let j = 0; j < nx; j++) for (let k = 0; k < nz; k++) mask[at(i, j, k)] = inside(center(i, j, k), list) ? 1 : 0;
-  const dims = [nx, nx, nz];
+/** The tree's binary STL (Buffer) and its number of vessel ends (10, or
+ * 2 + spiral). */
+export function treeStl(voxel = 0.125, { spiral = 0 } = {}) {
+  const list = tubes(spiral);
+  const stl = voxelStl((p) => inside(p, list), { min: [-HALF, -HALF, 0], size: [2 * HALF, 2 * HALF, HEIGHT], voxel });
+  return { stl, ends: 1 + 1 + (spiral || 8) };
+}
+
+/**
+ * The boundary of the voxels of the box (`min`, `size`, cut in cubes of
+ * `voxel`) whose centres are `isInside`, face by face, as a binary STL
+ * (Buffer), outward. No face is written on the box's own walls: a shape
+ * that runs through them is open there; one inside the box is closed.
+ * @param {(p: number[]) => boolean} isInside
+ */
+export function voxelStl(isInside, { min, size, voxel }) {
+  const dims = size.map((s) => Math.round(s / voxel));
+  const [nx, ny, nz] = dims;
+  const at = (i, j, k) => (i * ny + j) * nz + k;
+  const mask = new Uint8Array(nx * ny * nz);
+  for (let i = 0; i < nx; i++) {
+    for (let j = 0; j < ny; j++) {
+      for (let k = 0; k < nz; k++) mask[at(i, j, k)] = isInside([i, j, k].map((c, a) => min[a] + (c + 0.5) * voxel)) ? 1 : 0;
+    }
+  }
   const solid = (c) => c.every((x, a) => x >= 0 && x < dims[a]) && mask[at(...c)] === 1;
   const outside = (c) => c.every((x, a) => x >= 0 && x < dims[a]) && mask[at(...c)] === 0; // the box's walls are neither
-  const corner = (c) => [-HALF + c[0] * voxel, -HALF + c[1] * voxel, c[2] * voxel];
+  const corner = (c) => c.map((x, a) => min[a] + x * voxel);
   const triangles = [];
   for (let i = 0; i < nx; i++) {
-    for (let j = 0; j < nx; j++) {
+    for (let j = 0; j < ny; j++) {
       for (let k = 0; k < nz; k++) {
         if (!mask[at(i, j, k)]) continue;
         for (let axis = 0; axis < 3; axis++) {
@@ -76,9 +101,22 @@ export function treeStl(voxel = 0.125) {
       }
     }
   }
+  return stlOf(triangles, 'vesselmesh e2e voxels');
+}
+
+/** A binary STL (Buffer) of triangles [[x, y, z] x 3]. */
+export function stlOf(triangles, header = 'vesselmesh e2e') {
   const buf = Buffer.alloc(84 + 50 * triangles.length);
-  buf.write('vesselmesh e2e tree', 0);
+  buf.write(header, 0);
   buf.writeUInt32LE(triangles.length, 80);
   triangles.forEach((t, f) => t.forEach((v, c) => v.forEach((x, a) => buf.writeFloatLE(x, 84 + 50 * f + 12 + 12 * c + 4 * a))));
-  return { stl: buf, ends: 1 + 1 + 8 };
+  return buf;
+}
+
+/** The triangles [[x, y, z] x 3] of a binary STL. */
+export function trianglesOf(stl) {
+  const n = stl.readUInt32LE(80);
+  return Array.from({ length: n }, (_, t) =>
+    [0, 1, 2].map((c) => [0, 1, 2].map((a) => stl.readFloatLE(84 + 50 * t + 12 + 12 * c + 4 * a))),
+  );
 }

@@ -130,6 +130,7 @@ test('mesh the sample with its volume: clipped view, gamma_t histogram, groups, 
   expect(await num(page, 'out-quality-min')).toBe(shown[0]);
   const inFile = Math.min(...mshTriangleQualities(text));
   expect(Math.abs(Math.min(...shown) - inFile)).toBeLessThanOrEqual(0.0015);
+  await page.getByTestId('result-details').locator('summary').click(); // folded under the verdict
   await screenshots(page, 'surface-quality', page.getByTestId('surface-quality'));
   expect(foreign).toEqual([]);
   expect(errors).toEqual([]);

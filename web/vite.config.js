@@ -5,6 +5,7 @@
 // dist/vesselmesh.html with the JS, the CSS, the worker and the wasm inlined,
 // which works opened from disk (file://) with no network. `--mode element`
 // builds the <vessel-mesher> custom element into dist/element/.
+import { readFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -87,6 +88,16 @@ const installable = () => [
   },
 ];
 
+/** The one-file app has no icon file beside it: the page's icon link
+ * carries the icon itself (a data: URL), so nothing is asked for. */
+const inlineIcon = () => ({
+  name: 'vm-inline-icon',
+  transformIndexHtml(html) {
+    const svg = readFileSync(resolve(here, 'public/icon.svg'), 'utf8');
+    return html.replace('href="./icon.svg"', `href="data:image/svg+xml,${encodeURIComponent(svg.trim())}"`);
+  },
+});
+
 function singleFileConfig() {
   return {
     root: here,
@@ -110,6 +121,7 @@ function singleFileConfig() {
     worker: { format: 'iife', plugins: () => [dropCoreWasmUrl()] },
     plugins: [
       dropCoreWasmUrl(),
+      inlineIcon(),
       viteSingleFile({ removeViteModuleLoader: true }),
       renameHtml('vesselmesh.html'),
       dropWorkerFiles(),

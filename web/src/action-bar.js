@@ -1,8 +1,10 @@
 // The action bar at the bottom of the panel (of the screen on phones): the
 // workflow's steps with the current one marked, what to do next, the
 // running job's progress (monotonic, stage, elapsed, time left) with
-// Cancel, the last error, and the primary actions (Mesh, Export). A polite
-// live region announces stage changes and errors.
+// Cancel, the last error with the buttons that act on it (a remedy, the
+// way to the message in the panel), a notice of what a change did with its
+// Undo, and the primary actions (Mesh, Export). A polite live region
+// announces stage changes and errors.
 import { JobProgress } from './progress.js';
 
 const $ = (id) => document.getElementById(id);
@@ -14,7 +16,7 @@ const NEXT = {
   load: 'Open a surface file (STL, VTP, VTK, OBJ or PLY, or gzipped) or load the sample.',
   prepare: 'Check the units, cuts and openings above, choose the size, then press Mesh.',
   mesh: 'Meshing: wait for it, or Cancel.',
-  inspect: 'Inspect the mesh in the view and its quality above; choose a format and press Export.',
+  inspect: 'Read the verdict in the panel, inspect the mesh in the view; choose a format and press Export.',
   export: 'Exported. Change the options and press Mesh again, or open another file.',
 };
 
@@ -93,17 +95,47 @@ export class ActionBar {
   }
 
   /** Shows `message` as the last error and `next` as what to do; both
-   * announced. */
-  error(message, next) {
+   * announced. `actions` ({label, run, testId?}) are buttons under it; with
+   * `focus`, the first gets the focus, so the way forward is one key away
+   * (not for a mistake said while the user types). */
+  error(message, next, actions = [], { focus = false } = {}) {
     $('error').textContent = message;
     $('error').hidden = false;
+    const buttons = actions.map(({ label, run, testId }) => {
+      const button = document.createElement('button');
+      button.type = 'button';
+      button.textContent = label;
+      if (testId) button.setAttribute('data-testid', testId);
+      button.addEventListener('click', run);
+      return button;
+    });
+    $('error-actions').replaceChildren(...buttons);
+    $('error-actions').hidden = buttons.length === 0;
     this.hint(next);
     this.announce(`Error: ${message}${next ? ` ${next}` : ''}`);
+    if (focus) buttons[0]?.focus({ preventScroll: true });
   }
 
   clearError() {
     $('error').hidden = true;
     $('error').textContent = '';
+    $('error-actions').replaceChildren();
+    $('error-actions').hidden = true;
     this.hint();
+  }
+
+  /** Says in one line what a change did beyond what was asked, with a
+   * button to take it back (`undo`); '' hides it. */
+  notice(text, undo = null) {
+    $('change-notice-text').textContent = text;
+    $('change-notice').hidden = !text;
+    $('change-undo').hidden = !undo;
+    $('change-undo').onclick = undo
+      ? () => {
+          this.notice('');
+          undo();
+        }
+      : null;
+    if (text) this.announce(text);
   }
 }

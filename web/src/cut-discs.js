@@ -1,7 +1,9 @@
 // The cuts of the Prepare step drawn on the surface: one translucent disc a
 // cut, in its plane, 1.3 times the vessel's radius there (so it shows
 // around the vessel), with its outline, a short stick along the normal (the
-// side the cut removes) and its number. The selected cut is drawn stronger.
+// side the cut removes) and its number while it is not made yet (once
+// made, its opening's label numbers it: one number a place). The selected
+// cut is drawn stronger, with its number.
 import * as THREE from 'three';
 
 import { disposeOverlay } from './overlay.js';
@@ -33,7 +35,7 @@ function label(text, size, color) {
 }
 
 /** One cut's disc, outline, normal stick and number, as a group. */
-function disc({ point, normal, radius }, number, selected) {
+function disc({ point, normal, radius }, number, selected, numbered) {
   const color = selected ? SELECTED : COLOR;
   const r = DISC_SCALE * radius;
   const group = new THREE.Group();
@@ -63,9 +65,12 @@ function disc({ point, normal, radius }, number, selected) {
     new THREE.LineBasicMaterial({ color, depthTest: false }),
   );
   stick.renderOrder = 3;
-  const tag = label(String(number), radius, color);
-  tag.position.set(r * 1.15, 0, 0);
-  group.add(face, rim, stick, tag);
+  group.add(face, rim, stick);
+  if (numbered) {
+    const tag = label(String(number), radius, color);
+    tag.position.set(r * 1.15, 0, 0);
+    group.add(tag);
+  }
   group.position.set(...point);
   group.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), new THREE.Vector3(...normal).normalize());
   return group;
@@ -80,14 +85,14 @@ export class CutDiscs {
 
   /**
    * Draws `cuts` ({point, normal, radius}; numbered from 1) with cut
-   * `selected` (an index, or -1) highlighted; an empty list or hidden
-   * removes them.
+   * `selected` (an index, or -1) highlighted; `made` (a flag a cut) leaves
+   * the made cuts' numbers out; an empty list or hidden removes them.
    */
-  show(cuts, selected = -1, visible = true) {
+  show(cuts, selected = -1, visible = true, made = []) {
     this.clear();
     if (!visible || !cuts.length) return;
     this.group = new THREE.Group();
-    cuts.forEach((c, i) => this.group.add(disc(c, i + 1, i === selected)));
+    cuts.forEach((c, i) => this.group.add(disc(c, i + 1, i === selected, !made[i] || i === selected)));
     this.viewer.addOverlay(this.group);
   }
 

@@ -95,3 +95,22 @@ export function drawPartLegend(list, counts) {
     }),
   );
 }
+
+/**
+ * The group legend's fold (a <details> around it): its summary counts the
+ * groups; for a new mesh (a new `key`) it opens when the legend is short
+ * and the view wide, so it never covers the model on a phone.
+ */
+export function foldLegend(details, count, key) {
+  details.querySelector('summary').textContent = `Groups (${count})`;
+  if (!details.dataset.watched) {
+    // Narrowed to a phone's width: folded.
+    details.dataset.watched = 'true';
+    globalThis.matchMedia?.('(min-width: 700px)').addEventListener('change', (e) => {
+      if (!e.matches) details.open = false;
+    });
+  }
+  if (details.dataset.key === key) return;
+  details.dataset.key = key;
+  details.open = count <= 8 && Boolean(globalThis.matchMedia?.('(min-width: 700px)').matches);
+}

@@ -2,30 +2,38 @@
 // sample), analyze it in the worker (units, caps), show it, prepare it
 // (smoothing, cuts: prepare.js), name its openings and set their flow
 // extensions, mesh it (surface, caps, boundary layer, vessel wall,
-// tetrahedra), inspect the volume with a clipping plane, export it (MSH,
-// VTU, VTP, STL, SimVascular mesh-complete). All meshing happens in the Web
+// tetrahedra), say whether it is ready for CFD (results.js), inspect the
+// volume with a clipping plane, export it (MSH, VTU, VTP, STL, SimVascular
+// mesh-complete). A refusal comes with its remedy as a button and its
+// places marked in the view (problems.js). All meshing happens in the Web
 // Worker behind VesselmeshClient, so the page stays responsive.
 import { VesselmeshClient } from '../../wasm/src/client.js';
 import { ActionBar } from './action-bar.js';
 import { qualityGradientCss } from './colormap.js';
 import { EXPORT_FORMATS, exportFileName, exportFormat } from './files.js';
-import { drawGroupLegend, drawPartLegend, PARTS } from './groups.js';
-import { drawHistogram } from './histogram.js';
+import { drawGroupLegend, drawPartLegend, foldLegend, PARTS } from './groups.js';
+import { prepChange } from './history.js';
 import { startIsolated } from './isolation.js';
+import { OpeningWarnings } from './opening-warnings.js';
 import { OpeningsTable } from './openings.js';
 import { hideAnalysis, showAnalysis } from './panel.js';
 import { PrepHistory } from './prep-history.js';
 import { Prepare } from './prepare.js';
+import { Problems } from './problems.js';
+import { applyRemedy } from './remedy-actions.js';
 import { resetAll } from './reset.js';
+import { drawTetHistogram, focusVerdict, showMeshResult, volumeSummary } from './results.js';
 import { listenShareLink, Settings } from './settings.js';
+import { sideEffects, sideEffectText } from './side-effects.js';
 import { describeNonSurface } from './sniff.js';
+import { withUnitGuess } from './units.js';
 import { Viewer } from './viewer.js';
+import { ViewMarks } from './view-marks.js';
 import { listenViewKeys } from './view-keys.js';
 import { withPrismsSplit } from './prisms.js';
 import { Refinements } from './refine.js';
 import { Measure } from './measure.js';
 import { SizeView } from './size-view.js';
-import { showSurfaceQuality } from './surface-quality.js';
 import { VolumeView } from './volume-view.js';
 import { createWorker } from './worker-source.js';
 
@@ -40,6 +48,7 @@ await startIsolated().catch(() => {});
 const client = new VesselmeshClient({ createWorker });
 const bar = new ActionBar();
 const viewer = new Viewer($('viewer'));
+const marks = new ViewMarks(viewer, $('viewer'));
 const count = (n) => n.toLocaleString('en');
 const volumeView = new VolumeView(viewer, ({ triangles, cut, cutByPart, ms }) => {
   const box = $('volume-view');
@@ -52,7 +61,11 @@ const volumeView = new VolumeView(viewer, ({ triangles, cut, cutByPart, ms }) =>
     `(${count(cut)} cut faces${parts.length ? `: ${parts.join(', ')}` : ''}) in ${ms.toFixed(1)} ms`;
 });
 const volumeOption = $('show').querySelector('option[value=volume]');
-let current = null; // { name, bytes, prep, analysis, surface }; prep: the analyze options
+// { name, bytes, prep, analysis, surface, unitGuess, proposals }; prep: the
+// analyze options chosen; unitGuess: the first analysis' guess of the unit,
+// kept (sent as the unit) until the user chooses one; proposals: the
+// vessel ends first proposed to cut.
+let current = null;
 let remeshed = null; // { key, result } of the last remeshing of `current`
 let busy = false; // a worker job runs (the progress bar is shown)
 let acting = false; // a Mesh or Export press is being handled
@@ -64,14 +77,46 @@ let shown = null; // what the view shows: 'input', 'output' or 'volume'
 const held = { analysis: null, mesh: null };
 const openings = new OpeningsTable($('openings'), {
   openingNames,
-  onHover: (loop) => viewer.highlightLoop(loop, current.surface.positions),
+  onHover: (loop, k) => {
+    viewer.highlightLoop(loop, current.surface.positions);
+    marks.activeOpening(k);
+  },
   allExtensions: $('flow-all'),
+  onColors: (labels) =>
+    marks.setOpenings(labels, { onSelect: (k) => openings.select(k), onHover: (k) => openings.highlight(k) }),
+});
+/** The loaded model's unit and size (the messages' lengths, the marks). */
+const model = () => ({ unit: unitName(), scale: current?.analysis.bounding_box.diagonal ?? 1 });
+const problems = new Problems({
+  bar,
+  marks,
+  model,
+  context: () => ({
+    size: { mode: $('size-mode').value, value: numberIn('size-value'), core: numberIn('core-size') },
+    proposals: (current?.proposals ?? []).map((p) => p.point),
+    openings: current?.analysis.openings ?? [],
+  }),
+  apply: (remedy, stage) => remedyPressed(remedy, stage),
+});
+const openingChecks = new OpeningWarnings({
+  bar,
+  problems,
+  model,
+  apply: (remedy) => remedyPressed(remedy, 'prepare'),
 });
 let prepHistory = null; // undo and redo of the preparation (below)
 const prepare = new Prepare({
   viewer,
   cutAt: (point) => whenAnalyzed('a job is running; try again when it ends', () => client.cutAt(point)),
   reanalyze: () => reanalyze({ onError: () => {} }),
+  words: (text) => problems.words(text),
+  onFail: (what) =>
+    problems.text(`“${what}” failed: the message is by the cuts.`, {
+      stage: 'prepare',
+      next: 'Read the message (Show the message), change the cuts, then try again.',
+      panel: $('prepare-error'),
+    }),
+  onCut: () => $('openings-title').focus(),
   showInput: () => {
     if (!current || shown === 'input') return;
     $('show').value = 'input';
@@ -137,7 +182,7 @@ $('legend').querySelector('.ramp').style.background = qualityGradientCss();
 // What to do after an error, by what failed.
 const NEXT_AFTER = {
   read: 'Open another file (STL, VTP, VTK, OBJ or PLY, or gzipped), or load the sample.',
-  mesh: 'Change the options above (the size, the cuts, the openings) and press Mesh again.',
+  mesh: 'Use the button above, or change the options (the size, the cuts, the openings) and press Mesh again.',
   cancelled: 'Cancelled: press the button of the step again when ready.',
   options: 'Correct the field marked in red above, then press Mesh or Export again.',
 };
@@ -156,11 +201,30 @@ prepHistory = new PrepHistory({
  * NEXT_AFTER or a text; by default the step's own hint). */
 function showError(message, next) {
   if (next === undefined && message === 'Cancelled.') next = 'cancelled';
-  bar.error(message, NEXT_AFTER[next] ?? next);
+  problems.text(message, { stage: next === 'read' ? 'read' : 'mesh', next: NEXT_AFTER[next] ?? next });
+}
+
+/** Shows a failure of the core (`failure`: {error, remedy?, cancelled?})
+ * of `stage` with its remedy; `prefix` says what failed. */
+function showFailure(failure, stage, prefix) {
+  if (failure.cancelled) showError('Cancelled.', 'cancelled');
+  else problems.show(failure, { stage, prefix, next: NEXT_AFTER[stage] });
 }
 
 function clearError() {
-  bar.clearError();
+  problems.clear();
+}
+
+/** A remedy's button pressed: applied (remedy-actions.js), one at a time. */
+async function remedyPressed(remedy, stage) {
+  if (!current || busy || acting) return;
+  problems.clear();
+  document.body.dataset.remedy = 'applying';
+  try {
+    await applyRemedy(remedy, stage, { prepare, reanalyze, mesh: () => act(remesh) });
+  } finally {
+    document.body.dataset.remedy = 'done';
+  }
 }
 
 // Controls that start a job, off while one runs.
@@ -207,12 +271,12 @@ async function run(stage, job) {
 /** Analyzes `bytes` in the worker with the analyze options `prep`; the
  * result, or its error message given to `onError` (default: shown at the
  * top) and returned as { ok: false, message }. */
-async function analyze(name, bytes, prep, onError = showError) {
+async function analyze(name, bytes, prep, onError = (message, next, failure) => showFailure(failure, 'read', `${name}: `)) {
   held.analysis = null;
   const result = await run('read', () => client.analyze(bytes, { ...prep, onProgress }));
   if (result.ok) return result;
-  const message = result.cancelled ? 'Cancelled.' : `${name}: ${result.error}`;
-  onError(message, result.cancelled ? 'cancelled' : 'read');
+  const message = result.cancelled ? 'Cancelled.' : `${name}: ${problems.words(result.error)}`;
+  onError(message, result.cancelled ? 'cancelled' : 'read', result);
   return { ok: false, message };
 }
 
@@ -220,7 +284,7 @@ async function analyze(name, bytes, prep, onError = showError) {
  * a failed or cancelled job lost it). */
 async function ensureAnalyzed() {
   if (held.analysis === current) return true;
-  if (busy || !(await analyze(current.name, current.bytes, current.prep)).ok) return false;
+  if (busy || !(await analyze(current.name, current.bytes, withUnitGuess(current.prep, current.unitGuess))).ok) return false;
   held.analysis = current;
   return true;
 }
@@ -266,15 +330,28 @@ function showPrep(prep) {
  * on success. The undo history starts again for a new file (unless
  * `keepHistory`), else records the new state.
  */
-async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, keepHistory = false, onError = showError } = {}) {
+async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, keepHistory = false, onError } = {}) {
   showPrep(prep);
-  const result = await analyze(name, bytes, prep, onError);
+  // One guess of the unit a file: the first analysis', sent as the unit
+  // again until the user chooses one (a change of smoothing or cuts never
+  // changes it silently).
+  const guess = fresh ? null : current?.unitGuess ?? null;
+  const result = await analyze(name, bytes, withUnitGuess(prep, guess), onError);
   if (!result.ok) {
     if (current) showPrep(current.prep);
     return result.message;
   }
-  current = { name, bytes, prep, analysis: result.analysis, surface: result.surface };
+  const before = fresh ? null : current;
+  const unitGuess = fresh ? (result.analysis.units.guessed ? result.analysis.units : null) : guess;
+  if (!prep.units && unitGuess) result.analysis.units = { ...unitGuess };
+  const proposals = before ? before.proposals : result.analysis.clip_proposals ?? [];
+  current = { name, bytes, prep, analysis: result.analysis, surface: result.surface, unitGuess, proposals };
   held.analysis = current;
+  if (fresh) bar.notice('');
+  if (fresh && !keepHistory && settings.newFile()) {
+    bar.notice('A new file: the mesh and export options are back to their defaults (“Keep my settings for the next file” keeps them).');
+  }
+  if (before && !prepHistory.restoring) announceSideEffects(before, current);
   remeshed = null;
   $('remesh-result').hidden = true;
   $('drop-hint').hidden = true;
@@ -288,6 +365,7 @@ async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, ke
   const scale = analysis.bounding_box.diagonal;
   openings.show(analysis.openings, { unit: analysis.units.unit, labelArray: analysis.label_array, scale }, edits);
   prepare.show(analysis, { fresh });
+  openingChecks.show(analysis, current);
   if (fresh) refinements.reset({ unit: analysis.units.unit, scale });
   measure.stop();
   $('flow-error').hidden = true;
@@ -296,18 +374,31 @@ async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, ke
   if (fresh && !keepHistory) prepHistory.start();
   else prepHistory.record();
   if (analysis.components > 1) {
-    showError(
-      `${name} has ${analysis.components} connected components. ` +
-        'Meshing refuses it unless "Keep the largest component only" is checked.',
-      'Check "Keep the largest component only" above (Load options), or open another file.',
+    problems.show(
+      {
+        error: `${name} has ${analysis.components} connected components. ` +
+          'Meshing refuses it unless "Keep the largest component only" is checked.',
+        remedy: { action: 'largest_component', places: [], value: 0 },
+      },
+      { stage: 'prepare', next: 'Keep the largest piece (the button below), or open another file.' },
     );
   }
   return null;
 }
 
+/** Says in the bar what a preparation change did beyond what was asked
+ * (side-effects.js), with Undo. */
+function announceSideEffects(before, after) {
+  const cause = prepChange({ prep: before.prep }, { prep: after.prep });
+  // What the change is for is not a side effect: cuts make openings.
+  const expected = { cuts: /^openings /, units: /^units / }[cause];
+  const effects = sideEffects(before.analysis, after.analysis).filter((e) => !expected?.test(e));
+  bar.notice(sideEffectText(cause, effects), effects.length ? () => prepHistory.undo() : null);
+}
+
 /** Analyzes the current file again with the analyze options of the panel;
  * the error message (given to `onError`), or null. */
-async function reanalyze({ onError = showError } = {}) {
+async function reanalyze({ onError } = {}) {
   if (!current) return null;
   if (busy || acting) {
     showPrep(current.prep); // a job runs: the controls show what it uses
@@ -502,7 +593,7 @@ function layerProblems() {
 function meshOptions(names) {
   const mode = $('size-mode').value;
   const options = {
-    ...current.prep,
+    ...withUnitGuess(current.prep, current.unitGuess),
     ...($('solver').value && { solver: $('solver').value }),
     [mode]: Number($('size-value').value),
     param: $('param').value,
@@ -604,30 +695,6 @@ function applySolverPreset() {
   showSolverHint();
 }
 
-/** What the report says of the preset and the y+ sizing, in the result. */
-function showPresetAndYplus(report) {
-  const preset = report.preset;
-  $('out-preset').hidden = !preset;
-  if (preset) {
-    const list = (from) =>
-      preset.settings
-        .filter((s) => s.from === from)
-        .map((s) => `${s.option} ${s.value || 'input\'s'}`)
-        .join(', ');
-    const yours = list('user');
-    $('out-preset').textContent = `Preset ${preset.solver}: ${list('preset') || 'nothing'}${yours ? `; yours: ${yours}` : ''}.`;
-  }
-  const y = report.first_layer_yplus;
-  $('out-yplus').hidden = !y;
-  if (y) {
-    const unit = report.output.unit;
-    $('out-yplus').textContent =
-      `First layer ${Number(y.height.toPrecision(3))} ${unit} for y+ ${y.yplus} at ${y.inlet} ` +
-      `(diameter ${Number(y.inlet_diameter.toPrecision(3))} ${unit}, ${y.inlet_velocity} m/s: ` +
-      `Re ${Math.round(y.reynolds)}, τw ${Number(y.wall_shear_stress.toPrecision(3))} Pa).`;
-  }
-}
-
 /** The clipping options chosen in the panel. */
 function volumeOptions() {
   return {
@@ -640,23 +707,6 @@ function volumeOptions() {
   };
 }
 
-const summaries = new WeakMap();
-/** Tetrahedra per part [core, boundary layer, vessel wall] and the volume
- * groups that have tetrahedra, of a result's volume. */
-function volumeSummary(volume) {
-  let s = summaries.get(volume);
-  if (!s) {
-    const parts = [0, 0, 0];
-    for (const p of volume.tetPart ?? []) parts[p]++;
-    if (!volume.tetPart) parts[0] = volume.tets.length / 4;
-    const used = new Set(volume.tetRegion);
-    const regions = volume.regionNames.filter((name, i) => name && used.has(i));
-    s = { parts, regions };
-    summaries.set(volume, s);
-  }
-  return s;
-}
-
 /** The legends of the volume view: the parts (part colors), the groups
  * (the boundary; with group colors also the volume groups of the cut), the
  * gamma ramp (quality colors). */
@@ -665,8 +715,23 @@ function drawLegend(volume) {
   const { parts, regions } = volumeSummary(volume);
   $('part-legend').hidden = color !== 'part';
   drawPartLegend($('part-legend'), parts);
-  drawGroupLegend($('group-legend'), [...volume.surfaceNames, ...(color === 'group' ? regions : [])]);
+  const names = [...volume.surfaceNames, ...(color === 'group' ? regions : [])];
+  drawGroupLegend($('group-legend'), names);
+  foldLegend($('group-legend-fold'), names.filter(Boolean).length, String(meshJobs));
   $('legend').hidden = color !== 'quality';
+}
+
+/** Shows a new mesh: the result part of the panel (its verdict in sight
+ * and focused), the caps' names by the openings, the volume in the view. */
+function showResult(result) {
+  const showPlaces = (places, { zoom = true, tone } = {}) => problems.showPlaces(places, '', { zoom, tone });
+  showMeshResult(result, { model: model(), client, showPlaces });
+  if (result.volume) $('show').prepend(volumeOption);
+  else volumeOption.remove();
+  openings.showCaps(result.report.output.caps, unitName());
+  $('show').value = result.volume ? 'volume' : 'output';
+  show($('show').value);
+  focusVerdict();
 }
 
 /** Shows 'input', 'output' (the remeshed wall) or 'volume' (clipped); a
@@ -674,7 +739,7 @@ function drawLegend(volume) {
 function show(which, { fit = true } = {}) {
   const volume = which === 'volume' ? remeshed?.result.volume : null;
   $('volume-view').hidden = !volume;
-  $('group-legend').hidden = !volume;
+  $('group-legend').hidden = $('group-legend-fold').hidden = !volume;
   $('part-legend').hidden = true;
   $('legend').hidden = false;
   if (volume) {
@@ -689,7 +754,7 @@ function show(which, { fit = true } = {}) {
       return;
     } catch (e) {
       showError(`Cannot show the volume: ${e.message}`);
-      $('volume-view').hidden = $('group-legend').hidden = $('part-legend').hidden = true;
+      $('volume-view').hidden = $('group-legend').hidden = $('group-legend-fold').hidden = $('part-legend').hidden = true;
       $('legend').hidden = false;
       which = 'output';
       $('show').value = which;
@@ -704,123 +769,11 @@ function show(which, { fit = true } = {}) {
   sizeView.shown();
 }
 
-/** The gamma_t histogram: of the core (the layers' elements are flat by
- * design), or of all tetrahedra when asked. */
-function drawTetHistogram(result) {
-  const v = result.report.output.volume;
-  const { parts } = volumeSummary(result.volume);
-  const layered = parts[1] + parts[2] > 0;
-  const all = layered && $('tet-histogram-all').checked;
-  const core = v.core_quality ?? v.quality;
-  let scope = '';
-  if (layered) scope = all ? 'of all tetrahedra' : 'of the core (the flat layer elements excluded)';
-  $('tet-histogram-scope').textContent = scope;
-  const svg = $('tet-histogram');
-  svg.dataset.scope = all || !layered ? 'all' : 'core';
-  drawHistogram(svg, (all ? v.quality : core).histogram, all ? 'tetrahedra' : 'core tetrahedra');
-}
-
-/** One row per grown layer (report.output.volume.boundary_layer and
- * vessel_wall): layers, area with the thickness within 10% of the request,
- * reduced area, front gamma_k min. */
-function showLayerStats(v) {
-  const pct = (x) => `${(100 * x).toFixed(1)}%`;
-  const rows = [
-    ['boundary_layer', 'Boundary layer'],
-    ['vessel_wall', 'Vessel wall'],
-  ].flatMap(([key, label]) => {
-    const s = v[key];
-    if (!s) return [];
-    const tr = document.createElement('tr');
-    tr.dataset.part = key;
-    const cells = [
-      ['name', label],
-      ['layers', String(s.layers)],
-      ['thickness-within-10pct', pct(s.thickness_within_10pct)],
-      ['reduced-area', pct(s.reduced_area_fraction)],
-      ['front-quality-min', s.front_quality_min.toFixed(3)],
-    ];
-    for (const [stat, text] of cells) {
-      const td = document.createElement('td');
-      td.dataset.stat = stat;
-      td.textContent = text;
-      tr.append(td);
-    }
-    return [tr];
-  });
-  $('layer-stats').querySelector('tbody').replaceChildren(...rows);
-  $('layer-stats').hidden = rows.length === 0;
-}
-
-/** How long the job took and on how many threads (the browser's cores with
- * the threaded core; one, and why, without it). */
-function showTime(seconds) {
-  const threads = client.threads ?? 1;
-  const el = $('out-time');
-  el.textContent = `Meshed in ${seconds.toFixed(1)} s on ${threads === 1 ? 'one thread' : `${threads} threads`}`;
-  el.dataset.threads = String(threads);
-  el.title = threads === 1 && client.threadsNote ? `One thread: ${client.threadsNote}` : '';
-}
-
-/** Fills the result part of the panel with a mesh result. */
-function showMeshResult(result) {
-  const out = result.report.output;
-  $('out-triangles').textContent = out.triangles.toLocaleString('en');
-  $('out-patches').textContent = out.remesh ? out.remesh.patches : '-';
-  const decimated = out.remesh?.decimated_triangles ?? 0;
-  $('out-decimated').hidden = decimated === 0;
-  $('out-decimated-triangles').textContent = decimated.toLocaleString('en');
-  // The wall's quality as written (after boundary recovery) when the volume
-  // was meshed, else the remeshed surface's (the same file).
-  const wall = out.volume?.surfaces?.find((s) => s.name === 'wall')?.quality ?? out.quality;
-  $('out-quality-min').textContent = wall.min.toFixed(3);
-  $('out-quality-mean').textContent = wall.mean.toFixed(3);
-  const fidelity = out.remesh?.fidelity;
-  $('out-fidelity').hidden = !fidelity;
-  if (fidelity) {
-    $('out-far').textContent = fidelity.input_gap_vertices.toLocaleString('en');
-    $('out-pinned').textContent = fidelity.pinned_vertices.toLocaleString('en');
-  }
-  drawHistogram($('out-histogram'), wall.histogram);
-  showTime(result.report.seconds);
-  showPresetAndYplus(result.report);
-  const elements = out.groups.reduce((n, g) => n + g.elements, 0);
-  $('remesh-result').dataset.elements = String(elements);
-  const volume = out.volume && result.volume;
-  $('volume-result').hidden = !volume;
-  if (volume) {
-    const v = out.volume;
-    const { parts } = volumeSummary(result.volume);
-    const layered = parts[1] + parts[2] > 0;
-    const core = v.core_quality ?? v.quality;
-    $('out-tets').textContent = count(v.tetrahedra);
-    $('out-parts').textContent = layered
-      ? ` (${PARTS.flatMap(({ name }, i) => (parts[i] ? [`${name} ${count(parts[i])}`] : [])).join(', ')})`
-      : '';
-    $('out-volume-vertices').textContent = count(v.vertices);
-    $('out-caps').textContent = out.caps.map((c) => c.name).join(', ') || 'none';
-    $('out-tet-min').textContent = core.min.toFixed(3);
-    $('out-tet-mean').textContent = core.mean.toFixed(3);
-    $('out-tet-all').textContent = layered
-      ? `; all tetrahedra min ${v.quality.min.toFixed(3)}, mean ${v.quality.mean.toFixed(3)}`
-      : '';
-    $('tet-histogram-all-field').hidden = !layered;
-    drawTetHistogram(result);
-    showLayerStats(v);
-    showSurfaceQuality($('surface-quality'), v.surfaces);
-    $('show').prepend(volumeOption);
-  } else {
-    volumeOption.remove();
-  }
-  openings.showCaps(out.caps, unitName());
-  $('remesh-result').hidden = false;
-  $('show').value = volume ? 'volume' : 'output';
-  show($('show').value);
-}
-
 /** The panel's mesh options once every field and opening name is valid
- * (the core checked the names), else null with the problem shown. */
-async function checkedMeshOptions() {
+ * (the core checked the names) and the openings look right or the user
+ * said to go on (`again`: the press, made again), else null with the
+ * problem shown. */
+async function checkedMeshOptions(again) {
   const problem = [coreSizeProblem(), volumeChangeProblem(), refinements.problem(), layerProblems(), openings.extensionProblem()].find(Boolean);
   if (problem) {
     showError(problem, 'options');
@@ -840,6 +793,7 @@ async function checkedMeshOptions() {
     openings.focusName(naming.problem.k);
     return null;
   }
+  if (!openingChecks.allowMesh(again)) return null;
   return meshOptions(naming.names);
 }
 
@@ -853,7 +807,7 @@ async function meshWith(options, write = {}) {
   const result = await run('mesh', () => client.mesh(current.bytes, { ...options, ...write, onProgress }));
   if (!result.ok) {
     bar.step(remeshed ? 'inspect' : 'prepare');
-    showError(result.cancelled ? 'Cancelled.' : `${current.name}: ${result.error}`, result.cancelled ? 'cancelled' : 'mesh');
+    showFailure(result, 'mesh', `Mesh failed: ${current.name}: `);
     // A refused flow extension is also said next to the extension fields.
     if (result.option === 'flowExtension' || /flow extension|flowExtension/i.test(result.error)) {
       $('flow-error').textContent = result.error;
@@ -865,7 +819,7 @@ async function meshWith(options, write = {}) {
   if (result.volume) result.volume = withPrismsSplit(result.volume);
   remeshed = { key: JSON.stringify(options), result };
   held.mesh = remeshed;
-  showMeshResult(result);
+  showResult(result);
   bar.step('inspect');
   bar.announce(`Meshed: ${count(result.report.output.triangles)} wall triangles`);
   return result;
@@ -884,7 +838,7 @@ async function act(job) {
 
 /** Meshes with the panel's options, unless the shown result has them. */
 async function remesh() {
-  const options = await checkedMeshOptions();
+  const options = await checkedMeshOptions(() => act(remesh));
   if (options && remeshed?.key !== JSON.stringify(options)) await meshWith(options);
 }
 
@@ -900,13 +854,13 @@ function writeOptions() {
  * last mesh when it has the panel's options (no meshing), else meshed first.
  */
 async function exportFile() {
-  const options = await checkedMeshOptions();
+  const options = await checkedMeshOptions(() => act(exportFile));
   if (!options) return;
   const { format, ...write } = writeOptions();
   let file;
   if (remeshed?.key === JSON.stringify(options) && held.mesh === remeshed) {
     const result = await run('export', () => client.export(format, write));
-    if (!result.ok) showError(result.cancelled ? 'Cancelled.' : `${current.name}: ${result.error}`, 'mesh');
+    if (!result.ok) showFailure(result, 'mesh', `Export failed: ${current.name}: `);
     file = result.ok && result.file;
   } else {
     file = (await meshWith(options, { format, ...write }))?.file;
@@ -1004,6 +958,17 @@ $('cancel').addEventListener('click', () => {
   held.analysis = held.mesh = null;
 });
 $('fit-view').addEventListener('click', () => viewer.fitView());
+// A problem goes once its cause changes: any preparation or mesh option
+// edited (not the view's controls, nor the export's), a cut edited.
+for (const type of ['input', 'change']) {
+  $('summary').addEventListener(type, (e) => {
+    if (e.isTrusted && !e.target.closest('#remesh-result, .export, .settings-line')) problems.clear('read');
+  });
+}
+$('prepare').addEventListener('click', (e) => {
+  if (e.target.closest('.cut-remove, #propose-cuts, #add-cut')) problems.clear('read');
+});
+$('change-dismiss').addEventListener('click', () => bar.notice(''));
 listenViewKeys(viewer);
 $('wireframe').addEventListener('change', (e) => viewer.setWireframe(e.target.checked));
 

@@ -5,9 +5,14 @@
 // the opening comes from (an open end of the file, or a cap the core
 // removed, or a cut), its size, its flow extension (in local radii; the
 // "all openings" field sets every row), and after meshing the name of the
-// cap that covers it. Hovering a row, or focusing it or its name,
-// highlights the rim in the view.
+// cap that covers it. Each row has its colour's swatch (the colour of its
+// group: its label in the view and its cap in the mesh). Hovering a row,
+// or focusing it or its name, highlights the rim in the view; a click on
+// the opening's label in the view selects the row (select()).
+import { groupColors } from './groups.js';
 import { point, withUnit } from './units.js';
+import { cssColor } from './view-marks.js';
+import { inPageWords } from './words.js';
 
 const CHECK_DELAY_MS = 250;
 
@@ -30,10 +35,14 @@ export class OpeningsTable {
    * @param {object} hooks
    * @param {(options: {names: object, inlet?: number}) => Promise<object>} hooks.openingNames the
    *   core's names of the openings with these options: {ok, names} or its refusal {ok: false, error, option}
-   * @param {(loop: number[] | null) => void} hooks.onHover the rim to highlight, or null
+   * @param {(loop: number[] | null, k: number | null) => void} hooks.onHover the rim to
+   *   highlight (of opening k), or null
    * @param {HTMLInputElement} hooks.allExtensions the flow extension of every opening
+   * @param {(openings: {k, name, point, color}[]) => void} [hooks.onColors] the
+   *   openings' names and colours changed (the labels in the view follow)
    */
-  constructor(list, { openingNames, onHover, allExtensions }) {
+  constructor(list, { openingNames, onHover, allExtensions, onColors = () => {} }) {
+    this.onColors = onColors;
     this.list = list;
     this.allExtensions = allExtensions;
     allExtensions.addEventListener('input', () => {
@@ -61,7 +70,55 @@ export class OpeningsTable {
     this.rows.forEach((row, i) => {
       if (edits[i]) [row.input.value, row.edited] = [edits[i], true];
     });
+    this._colour();
     if (this.rows.length) this.check();
+  }
+
+  /** The group name each row's cap gets: the typed one, else the default. */
+  _names() {
+    return this.rows.map((r) => r.input.value.trim() || r.input.placeholder || `opening_${r.k}`);
+  }
+
+  /** Gives each row's swatch its group's colour (as the mesh's groups get
+   * them: groups.js) and tells the view's labels. */
+  _colour() {
+    const names = this._names();
+    const colors = groupColors(['wall', ...names]).slice(1);
+    this.rows.forEach((row, i) => {
+      row.swatch.style.background = cssColor(colors[i]);
+      row.swatch.title = `Colour of ${names[i]}`;
+    });
+    this.onColors(this.labels());
+  }
+
+  /** The openings as the view labels them: {k, name, point, color}; the
+   * point is the cap's centroid after meshing (caps moved by a flow
+   * extension), else the opening's. */
+  labels() {
+    const names = this._names();
+    const colors = groupColors(['wall', ...names]).slice(1);
+    return this.rows.map((row, i) => ({
+      k: row.k,
+      name: names[i],
+      point: row.capCentroid ?? row.opening.centroid,
+      color: colors[i],
+    }));
+  }
+
+  /** Highlights opening k's row and rim (null: none), as hovering it does. */
+  highlight(k) {
+    for (const row of this.rows) row.li.classList.toggle('active', row.k === k);
+    const row = this.rows[k - 1];
+    this.onHover(row ? row.opening.vertices : null, row ? k : null);
+  }
+
+  /** Selects opening k: its row scrolled into sight and focused (its rim
+   * highlighted). */
+  select(k) {
+    const row = this.rows[k - 1];
+    if (!row) return;
+    row.li.scrollIntoView({ block: 'nearest', behavior: 'instant' });
+    row.li.focus({ preventScroll: true });
   }
 
   _row(o, i, { unit, labelArray, scale }) {
@@ -78,7 +135,9 @@ export class OpeningsTable {
     Object.assign(input, { autocomplete: 'off', value: o.name ?? '', placeholder: o.name ?? '' });
     input.setAttribute('aria-label', `Group name of opening ${k}`);
     input.setAttribute('aria-describedby', `opening-name-error-${k}`);
-    const cap = element('span', { className: 'cap-name' }, 'opening-cap');
+    const cap = element('span', { className: 'cap-name', title: 'Its cap in the mesh' }, 'opening-cap');
+    const swatch = element('span', { className: 'swatch' }, 'opening-swatch');
+    swatch.setAttribute('aria-hidden', 'true');
     const extension = element('input', { type: 'number', min: '0', max: '100', step: 'any' }, 'opening-extension');
     extension.value = this.allExtensions.value;
     extension.setAttribute('aria-label', `Flow extension of opening ${k}, in local radii (0: none)`);
@@ -95,9 +154,11 @@ export class OpeningsTable {
     info.append(source, `: ${size}, ${at}`);
     const error = element('div', { className: 'name-error', id: `opening-name-error-${k}` }, 'opening-name-error');
     const head = element('div', { className: 'opening-head' });
-    head.append(choice, input, cap);
+    const number = element('span', { className: 'opening-number', textContent: String(k) });
+    number.setAttribute('aria-hidden', 'true');
+    head.append(swatch, number, choice, input, cap);
     li.append(head, info, flow, error);
-    const row = { k, li, input, radio, error, cap, extension, shift, opening: o, edited: false };
+    const row = { k, li, input, radio, error, cap, swatch, extension, shift, opening: o, edited: false };
     this._listen(row, radio);
     return row;
   }
@@ -106,11 +167,11 @@ export class OpeningsTable {
     const { li, input } = row;
     const on = () => {
       li.classList.add('active');
-      this.onHover(row.opening.vertices);
+      this.onHover(row.opening.vertices, row.k);
     };
     const off = () => {
       li.classList.remove('active');
-      this.onHover(null);
+      this.onHover(null, null);
     };
     li.addEventListener('mouseenter', on);
     li.addEventListener('mouseleave', () => {
@@ -226,19 +287,20 @@ export class OpeningsTable {
     if (seq !== this.seq) return this.checking;
     this._mark(refusals, all.ok ? all.names : null);
     const [first] = refusals;
-    return { names: accepted, problem: first ? { k: first[0].k, message: first[1] } : null };
+    return { names: accepted, problem: first ? { k: first[0].k, message: inPageWords(first[1]) } : null };
   }
 
   /** Marks refused rows; gives the others their default name (not the one being typed in). */
   _mark(refusals, names) {
     for (const row of this.rows) {
-      const message = refusals.get(row) ?? '';
+      const message = inPageWords(refusals.get(row) ?? '');
       row.input.setAttribute('aria-invalid', String(Boolean(message)));
       row.error.textContent = message;
       if (!names || row.edited) continue;
       row.input.placeholder = names[row.k - 1];
       if (document.activeElement !== row.input) row.input.value = names[row.k - 1];
     }
+    this._colour();
   }
 
   /** Moves the focus to opening k's name (e.g. to correct it). */
@@ -256,7 +318,8 @@ export class OpeningsTable {
    * @param {string} unit
    */
   showCaps(caps = [], unit = '') {
-    for (const { li, cap: label, opening, input, shift: said } of this.rows) {
+    for (const row of this.rows) {
+      const { li, cap: label, opening, input, shift: said } = row;
       const c = opening.centroid;
       const distance = (cap) => Math.hypot(...cap.centroid.map((x, k) => x - c[k]));
       let best = caps.find((cap) => cap.name === input.value.trim()) ?? null;
@@ -267,8 +330,10 @@ export class OpeningsTable {
       const shift = best ? distance(best) : 0;
       li.dataset.cap = name;
       li.dataset.capShift = best ? String(shift) : '';
+      row.capCentroid = best?.centroid ?? null;
       label.textContent = name ? `→ ${name}` : '';
       said.textContent = shift > 0.1 * opening.radius ? `: its cap ${withUnit(shift, unit)} out` : '';
     }
+    this.onColors(this.labels());
   }
 }

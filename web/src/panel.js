@@ -4,6 +4,8 @@
 // analysis' warnings. The openings table is openings.js.
 import { drawHistogram } from './histogram.js';
 import { point, unitsQuestion, unitsText, withUnit } from './units.js';
+import { inputQualityNote } from './verdict.js';
+import { inPageWords } from './words.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -49,14 +51,17 @@ export function showAnalysis(name, analysis, prep) {
   $('stat-caps').textContent = capsText(a, prep.keepCaps);
   $('stat-openings').textContent = String(a.openings.length);
 
-  $('quality-min').textContent = a.quality.min.toFixed(4);
-  $('quality-mean').textContent = a.quality.mean.toFixed(4);
+  $('quality-min').textContent = a.quality.min.toPrecision(2);
+  $('quality-mean').textContent = a.quality.mean.toFixed(3);
+  const note = inputQualityNote(a.quality);
+  $('quality-note').textContent = note;
+  $('quality-note').hidden = !note;
   drawHistogram($('histogram'), a.quality.histogram);
 
   $('warnings').replaceChildren(
     ...a.warnings.map((w) => {
       const li = document.createElement('li');
-      li.textContent = w;
+      li.textContent = inPageWords(w, { unit, scale: bb.diagonal });
       return li;
     }),
   );

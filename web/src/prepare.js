@@ -18,6 +18,8 @@ const $ = (id) => document.getElementById(id);
 // A move along the vessel asks the core again at most this far (local
 // radii), so the cut follows a bending vessel.
 const MOVE_STEP = 0.5;
+// Trimming a damaged end, the cut is tried this many opening radii in.
+const TRIM_STEPS = [1.5, 2, 3, 4];
 
 const samePlanes = (a, b) => JSON.stringify(a) === JSON.stringify(b);
 
@@ -54,9 +56,14 @@ export class Prepare {
    * @param {() => void} hooks.showInput shows the analyzed surface in the view
    * @param {(pending: boolean) => void} [hooks.onChange] the cuts changed;
    *   pending: some are not made yet
+   * @param {(what: string) => void} [hooks.onFail] an action of the step
+   *   failed (`what`: 'Cut these open'); its message is in #prepare-error
+   * @param {() => void} [hooks.onCut] the cuts were made (the openings follow)
+   * @param {(text: string) => string} [hooks.words] a core message in the
+   *   page's words
    */
-  constructor({ viewer, cutAt, reanalyze, showInput, onChange = () => {} }) {
-    Object.assign(this, { viewer, cutAt, reanalyze, showInput, onChange });
+  constructor({ viewer, cutAt, reanalyze, showInput, onChange = () => {}, onFail = () => {}, onCut = () => {}, words = (t) => t }) {
+    Object.assign(this, { viewer, cutAt, reanalyze, showInput, onChange, onFail, onCut, words });
     this.discs = new CutDiscs(viewer);
     this.cuts = []; // {point, normal, radius, tilt: [a, b] degrees, offset: radii moved, source}
     this.selected = -1;
@@ -69,7 +76,7 @@ export class Prepare {
     this.moving = null; // the running move along the vessel
     this.unit = 'mm';
     this.scale = 0;
-    this.repairs = new Repairs({ viewer, reanalyze: () => this._reanalyze(), showError: (m) => this.showError(m) });
+    this.repairs = new Repairs({ viewer, reanalyze: () => this._reanalyze(), showError: (m) => this._fail(m, 'Repair') });
     this._listen();
   }
 
@@ -121,7 +128,7 @@ export class Prepare {
     const n = Number(input.value);
     const ok = input.value.trim() !== '' && Number.isInteger(n) && n >= 1 && n <= 1000;
     input.setAttribute('aria-invalid', String(!ok));
-    if (!ok) this.showError('Smoothing: the number of passes must be a whole number from 1 to 1000.');
+    if (!ok) this._fail('Smoothing: the number of passes must be a whole number from 1 to 1000.', 'Smoothing');
     return ok ? n : null;
   }
 
@@ -201,6 +208,13 @@ export class Prepare {
   showError(message) {
     $('prepare-error').textContent = message;
     $('prepare-error').hidden = false;
+  }
+
+  /** Shows the message of a failed action of the step (`what`) here, and
+   * tells the page (the bar says what failed and leads here). */
+  _fail(message, what) {
+    this.showError(this.words(message));
+    this.onFail(what);
   }
 
   clearError() {
@@ -296,15 +310,51 @@ export class Prepare {
     const error = await this.reanalyze();
     if (error) {
       this.applied = before;
-      this.showError(`The cuts could not be made: ${error}`);
+      this._fail(`The cuts could not be made: ${error}`, 'Cut these open');
     }
     this._render();
+    if (!error) this.onCut();
+    return error;
   }
 
   async _reanalyze() {
     this.clearError();
     const error = await this.reanalyze();
-    if (error) this.showError(error);
+    if (error) this._fail(error, 'The preparation');
+  }
+
+  /**
+   * Adds a cut across the vessel at each of `points` (the core's cutAt
+   * there) and makes the cuts: a remedy's "Cut here" or, with `trim`,
+   * "Trim the damaged end" (where the section at the point is no closed
+   * loop, the vessel is cut further in: TRIM_STEPS radii from the nearest
+   * opening towards the model's middle). The error (also shown here), or
+   * null.
+   */
+  async cutAtPlaces(points, { trim = false } = {}) {
+    this.clearError();
+    const missed = [];
+    for (const p of points) {
+      let found = await this.cutAt(p);
+      for (const q of trim ? this._inward(p) : []) {
+        if (found.ok) break;
+        found = await this.cutAt(q);
+      }
+      if (!found.ok) {
+        missed.push(`${point(p, this.scale)} ${this.unit}: ${found.error}`);
+        continue;
+      }
+      this.cuts.push({ point: found.point, normal: found.normal, radius: found.radius, tilt: [0, 0], offset: 0, source: 'remedy' });
+    }
+    this.fromProposals = false;
+    this.selected = -1;
+    this._render();
+    if (missed.length === points.length) {
+      const error = `No cut there: ${missed.join('; ')}`;
+      this._fail(error, 'Cut here');
+      return error;
+    }
+    return this.apply();
   }
 
   _useProposals() {
@@ -329,13 +379,13 @@ export class Prepare {
   async _addAt(x, y) {
     const at = this.viewer.pick(x, y);
     if (!at) {
-      this.showError('No surface there: click on a vessel of the surface.');
+      this._fail('No surface there: click on a vessel of the surface.', 'Add a cut');
       return;
     }
     this.clearError();
     const found = await this.cutAt(at);
     if (!found.ok) {
-      this.showError(`No cut at ${point(at, this.scale)} ${this.unit}: ${found.error}`);
+      this._fail(`No cut at ${point(at, this.scale)} ${this.unit}: ${found.error}`, 'Add a cut');
       return;
     }
     const { point: p, normal, radius } = found;
@@ -343,6 +393,19 @@ export class Prepare {
     this.fromProposals = false;
     this.setAdding(false);
     this.select(this.cuts.length - 1);
+  }
+
+  /** Points on the vessel of the opening nearest `p`, TRIM_STEPS of its
+   * radii in from it, towards the middle of the model's box. */
+  _inward(p) {
+    const openings = this.analysis?.openings ?? [];
+    if (!openings.length) return [];
+    const far = (o) => Math.hypot(...o.centroid.map((x, k) => x - p[k]));
+    const end = openings.reduce((a, b) => (far(b) < far(a) ? b : a));
+    const { min, max } = this.analysis.bounding_box;
+    const dir = min.map((x, k) => (x + max[k]) / 2 - end.centroid[k]);
+    const norm = Math.hypot(...dir) || 1;
+    return TRIM_STEPS.map((t) => end.centroid.map((x, k) => x + (dir[k] / norm) * t * end.radius));
   }
 
   /** Moves the selected cut to `target` radii from where it was placed,
@@ -363,7 +426,7 @@ export class Prepare {
       const step = Math.sign(left) * Math.min(MOVE_STEP, Math.abs(left));
       const found = await this.cutAt(alongVessel(cut, step));
       if (!found.ok) {
-        this.showError(`Cut ${i + 1} cannot move further: ${found.error}`);
+        this._fail(`Cut ${i + 1} cannot move further: ${found.error}`, 'Moving the cut');
         if (i === this.selected) $('cut-move').value = String(cut.offset);
         this.moveTarget = cut.offset;
         break;
@@ -395,7 +458,9 @@ export class Prepare {
   }
 
   _draw() {
-    this.discs.show(this.cuts, this.selected, this.visible);
+    const applied = new Set(this.applied.map((p) => JSON.stringify(p)));
+    const made = this.cuts.map((c) => applied.has(JSON.stringify(cutPlane(c))));
+    this.discs.show(this.cuts, this.selected, this.visible, made);
   }
 
   _render() {

@@ -54,12 +54,12 @@ export class JobProgress {
     return (t * (1 - this.fraction)) / this.fraction;
   }
 
-  /** '12 s elapsed · about 30 s left'. */
+  /** '12 s elapsed · about 30 s left'; under a second left by the rate,
+   * 'finishing' (the last stages' rate says little). */
   timeText(now = this.now ?? this.start) {
     const left = this.remaining(now);
-    return [`${duration(this.elapsed(now))} elapsed`, ...(left === null ? [] : [`about ${duration(left)} left`])].join(
-      ' · ',
-    );
+    const rest = left === null ? [] : [left < 1.5 ? 'finishing' : `about ${duration(left)} left`];
+    return [`${duration(this.elapsed(now))} elapsed`, ...rest].join(' · ');
   }
 
   /** 'mesh: tetrahedra · 12 s elapsed · about 30 s left'. */

@@ -1,6 +1,9 @@
 // The mesh and export options remembered in this browser (localStorage):
-// saved on every change, restored when the page opens, and put back to the
-// page's defaults by Reset. They are also in the page's address (the hash,
+// saved on every change, put back to the page's defaults by Reset. A new
+// file starts from the defaults (the last patient's options are not the
+// next one's), unless "Keep my settings for the next file" is checked (off
+// by default; remembered): then the options are restored when the page
+// opens and stay from file to file. They are also in the page's address (the hash,
 // kept up to date: share.js), so a link gives them to someone else; opening
 // a link with settings sets them (the link wins over this browser's, the
 // controls it does not name get their defaults). Per-file choices (the
@@ -8,6 +11,7 @@
 import { controlSpec, decodeSettings, encodeSettings, linkNotice } from './share.js';
 
 const KEY = 'vesselmesh.settings.v1';
+const KEEP_KEY = 'vesselmesh.keep-settings.v1';
 
 /** The remembered controls, by id. */
 export const SETTING_IDS = [
@@ -61,6 +65,47 @@ export class Settings {
     this.controls = SETTING_IDS.map((id) => document.getElementById(id)).filter(Boolean);
     this.defaults = new Map(this.controls.map((el) => [el.id, read(el)]));
     this.specs = this.controls.map((el) => controlSpec(el, this.defaults.get(el.id)));
+    this.keep = document.getElementById('keep-settings');
+    this.files = 0; // files opened since the page opened
+    if (this.keep) {
+      this.keep.checked = this._get(KEEP_KEY) === '1';
+      this.keep.addEventListener('change', () => this._set(KEEP_KEY, this.keep.checked ? '1' : '0'));
+    }
+  }
+
+  _get(key) {
+    try {
+      return this.storage?.getItem(key) ?? null;
+    } catch {
+      return null; // storage refused
+    }
+  }
+
+  _set(key, value) {
+    try {
+      this.storage?.setItem(key, value);
+    } catch {
+      // storage full or refused (private mode): not remembered
+    }
+  }
+
+  /** Whether the options stay from one file to the next (and from one
+   * visit to the next). */
+  get keeping() {
+    return Boolean(this.keep?.checked);
+  }
+
+  /**
+   * A new file is opened: from the second file on, the options go back to
+   * the defaults unless kept (the first file gets the options set before
+   * it, or by a link). Returns whether they were put back (and differed).
+   */
+  newFile() {
+    this.files++;
+    if (this.files === 1 || this.keeping) return false;
+    const changed = this.controls.some((el) => read(el) !== this.defaults.get(el.id));
+    if (changed) this.reset();
+    return changed;
   }
 
   /**
@@ -74,7 +119,7 @@ export class Settings {
   restore() {
     let saved = null;
     try {
-      saved = JSON.parse(this.storage?.getItem(KEY) ?? 'null');
+      saved = this.keeping ? JSON.parse(this._get(KEY) ?? 'null') : null;
     } catch {
       saved = null; // unreadable: the defaults
     }
@@ -116,11 +161,7 @@ export class Settings {
 
   /** Remembers the controls' values, and puts them in the address. */
   save() {
-    try {
-      this.storage?.setItem(KEY, JSON.stringify(Object.fromEntries(this.values())));
-    } catch {
-      // storage full or refused (private mode): not remembered
-    }
+    this._set(KEY, JSON.stringify(Object.fromEntries(this.values())));
     this._address();
   }
 

@@ -34,11 +34,18 @@ export function unitsText({ unit, guessed, certain, reason }) {
 }
 
 /**
- * The question to ask when the unit was guessed without certainty, or null:
- * 'Units: mm? The numbers could also be centimetres (median vessel radius 0.994).'
+ * The question to ask while the unit is a guess (until the user confirms
+ * it), or null when the unit was given:
+ * 'Units: mm? The numbers could also be centimetres (median vessel radius 0.994).',
+ * 'Units: m, guessed from the median vessel radius 0.00327. Right?'.
  */
 export function unitsQuestion({ unit, guessed, certain, reason }) {
-  if (!guessed || certain) return null;
+  if (!guessed) return null;
+  if (certain) return `Units: ${unit}, guessed from the ${reason}. Right?`;
   const other = WORDS[ALTERNATIVE[unit]] ?? 'another unit';
   return `Units: ${unit}? The numbers could also be ${other}${reason ? ` (${reason})` : ''}.`;
 }
+
+/** The analyze (or mesh) options `prep` with the unit `guess` ({unit}) when
+ * they give none: the first guess of a file, kept for it. */
+export const withUnitGuess = (prep, guess) => (prep.units || !guess ? prep : { ...prep, units: guess.unit });

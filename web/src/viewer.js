@@ -2,7 +2,9 @@
 // triangle by quality, or the clipped volume of volume-view.js), orbit
 // controls, fit-to-view, a wireframe overlay, highlighted loops, overlays
 // that outlive the content (the cut discs), per-vertex colours of the
-// surface (the size view) and picking a point on the surface.
+// surface (the size view), picking a point on the surface, projecting
+// model points to the view (the labels and marks drawn over it follow each
+// frame: onRender) and zooming to a place.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 
@@ -33,6 +35,7 @@ export class Viewer {
     this.loop = null;
     this.solid = null; // the surface's triangles (picking)
     this.raycaster = new THREE.Raycaster();
+    this.renderListeners = [];
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
   }
@@ -49,6 +52,12 @@ export class Viewer {
   render() {
     this.light.position.copy(this.camera.position);
     this.renderer.render(this.scene, this.camera);
+    for (const listener of this.renderListeners) listener();
+  }
+
+  /** Calls `listener` after each frame drawn (the camera may have moved). */
+  onRender(listener) {
+    this.renderListeners.push(listener);
   }
 
   /** Shows a surface: positions (3V floats), triangles (3T indices), quality
@@ -208,6 +217,33 @@ export class Viewer {
     if (v.z > 1) return null;
     const rect = this.renderer.domElement.getBoundingClientRect();
     return [rect.left + ((v.x + 1) / 2) * rect.width, rect.top + ((1 - v.y) / 2) * rect.height];
+  }
+
+  /** The position of the model point p ([x, y, z]) in the view, in CSS
+   * pixels from the canvas' top left corner, or null when it is behind the
+   * camera or outside the view. */
+  viewPoint(p) {
+    const v = new THREE.Vector3(...p).project(this.camera);
+    if (v.z > 1 || Math.abs(v.x) > 1 || Math.abs(v.y) > 1) return null;
+    const { clientWidth: w, clientHeight: h } = this.renderer.domElement;
+    return [((v.x + 1) / 2) * w, ((1 - v.y) / 2) * h];
+  }
+
+  /** Turns the camera to look at the model point p from `radius` times 8
+   * away (at least two thirds of the model's radius, so what is around it
+   * is seen too), the viewing direction kept. */
+  focusOn(p, radius = 0) {
+    const target = new THREE.Vector3(...p);
+    const offset = this.camera.position.clone().sub(this.controls.target);
+    const model = this.sphere?.radius ?? 1;
+    const distance = Math.max(8 * radius, (2 * model) / 3);
+    offset.setLength(distance);
+    this.controls.target.copy(target);
+    this.camera.position.copy(target).add(offset);
+    this.camera.near = Math.min(this.camera.near, distance / 100);
+    this.camera.updateProjectionMatrix();
+    this.controls.update();
+    this.render();
   }
 
   /** Orbits the camera around the target: `azimuth` about the up axis,

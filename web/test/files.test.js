@@ -62,12 +62,12 @@ describe('units', () => {
     assert.equal(unitsText(guessMm), 'mm? (a guess from the median vessel radius 0.994)');
   });
 
-  test('only an uncertain guess is asked about', () => {
+  test('a guess is asked about until confirmed (an unsure one with the other unit it could be)', () => {
     assert.equal(
       unitsQuestion(guessMm),
       'Units: mm? The numbers could also be centimetres (median vessel radius 0.994).',
     );
-    assert.equal(unitsQuestion(guessM), null);
+    assert.equal(unitsQuestion(guessM), 'Units: m, guessed from the median vessel radius 0.00327. Right?');
     assert.equal(unitsQuestion(given), null);
   });
 

@@ -5,7 +5,7 @@ import assert from 'node:assert/strict';
 import { describe, test } from 'node:test';
 
 import { groupColors } from '../src/groups.js';
-import { PALETTE, PALETTE_SIZE } from '../src/palette.js';
+import { deltaE, PALETTE, PALETTE_SIZE } from '../src/palette.js';
 import { JobProgress, duration } from '../src/progress.js';
 import { describeNonSurface, sniffKind, SUPPORTED } from '../src/sniff.js';
 
@@ -46,6 +46,19 @@ describe('group colors', () => {
     assert.deepEqual(groupColors(['wall', 'outlet_3'])[1], cap);
     const [namedRing, named] = groupColors(['wall_left', 'left']);
     assert.deepEqual(namedRing, named.map((c) => 0.5 * c + 0.5));
+  });
+
+  test('as the eye sees them: any two of 24 differ (ΔE > 25), neighbours in the list more (ΔE > 35)', () => {
+    // The old palette (24 hues 15° apart) had pairs at ΔE 16: near-identical to a user.
+    for (let i = 0; i < PALETTE_SIZE; i++) {
+      for (let j = i + 1; j < PALETTE_SIZE; j++) {
+        assert.ok(deltaE(PALETTE[i], PALETTE[j]) > 25, `colours ${i} and ${j}: ΔE ${deltaE(PALETTE[i], PALETTE[j])}`);
+      }
+      if (i) assert.ok(deltaE(PALETTE[i], PALETTE[i - 1]) > 35, `neighbours ${i - 1}, ${i}`);
+    }
+    // None looks like the wall's grey or the inlet's blue.
+    const [wall, inlet] = groupColors(['wall', 'inlet']);
+    for (const c of PALETTE) assert.ok(Math.min(deltaE(c, wall), deltaE(c, inlet)) > 20);
   });
 
   test('the first outlets have clearly different hues', () => {
@@ -122,6 +135,10 @@ describe('job progress', () => {
     early.report(0.01, 'read', 500);
     assert.equal(early.remaining(), null);
     assert.equal(early.timeText(), '1 s elapsed');
+    // Under a second and a half left by the rate: finishing, not "about 0 s".
+    const late = new JobProgress('mesh', 0);
+    late.report(0.9, 'tetrahedra', 10_000);
+    assert.equal(late.timeText(), '10 s elapsed · finishing');
   });
   test('durations', () => {
     assert.equal(duration(0.4), '0 s');

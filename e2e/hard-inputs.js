@@ -1,0 +1,81 @@
+// The hard inputs of e2e/hard-files.spec.js, generated in the test (no
+// real data): each stands for a defect users' files have (README of
+// ../shared/data/vascular-hard). Made from the JS API's phantoms or voxels
+// (tree.js); when the core's phantoms of these kinds land (issue 44:
+// `makePhantom({kind: ...})`), they can replace these.
+import { nodeApi } from './helpers.js';
+import { stlOf, treeStl, trianglesOf, voxelStl } from './tree.js';
+
+/** Whether p is within `r` of the segment a-b (a capsule: rounded ends). */
+function inCapsule(p, a, b, r) {
+  const d = b.map((x, k) => x - a[k]);
+  const v = p.map((x, k) => x - a[k]);
+  const t = Math.max(0, Math.min(1, (v[0] * d[0] + v[1] * d[1] + v[2] * d[2]) / (d[0] ** 2 + d[1] ** 2 + d[2] ** 2)));
+  return Math.hypot(...v.map((x, k) => x - t * d[k])) <= r;
+}
+
+/**
+ * A closed bifurcation whose widest vessel is a short trunk (radius 1,
+ * 1.6 long to its rounded end, at z = -1.6) under two long branches
+ * (radius 0.55, ends at z = 6.5): the trunk's end is too short for a
+ * vessel end to be found there, yet it is the inlet.
+ * @returns {{stl: Buffer, trunkTip: number[]}}
+ */
+export function shortTrunkClosed() {
+  const tubes = [
+    [[0, 0, -0.6], [0, 0, 1], 1],
+    [[0, 0, 1], [3.2, 0, 6.5], 0.55],
+    [[0, 0, 1], [-3.2, 0, 6.5], 0.55],
+  ];
+  const stl = voxelStl((p) => tubes.some(([a, b, r]) => inCapsule(p, a, b, r)), {
+    min: [-4.5, -1.5, -2.5],
+    size: [9, 3, 10],
+    voxel: 0.1,
+  });
+  return { stl, trunkTip: [0, 0, -1.6] };
+}
+
+/**
+ * A tube (radius 1 along z) closed by domed caps, as a capping tool makes
+ * them: each end a fan of triangles around one apex lifted `lift` (0.05) of
+ * the end's diameter off its plane, no other inner vertex, no labels.
+ */
+export async function domedCapsTube(lift = 0.05) {
+  const vm = await nodeApi();
+  const tube = vm.makePhantom({ kind: 'tube', voxel: 0.12 }).stl;
+  const { analysis, surface } = vm.analyze(tube, {});
+  const p = (v) => [0, 1, 2].map((a) => surface.positions[3 * v + a]);
+  const triangles = [];
+  for (let t = 0; t < surface.triangles.length; t += 3) triangles.push([0, 1, 2].map((c) => p(surface.triangles[t + c])));
+  for (const o of analysis.openings) {
+    const apex = o.centroid.map((x, a) => x + o.normal[a] * lift * 2 * o.radius);
+    const rim = o.vertices;
+    // The rim runs with the wall on its left: the fan turns the other way.
+    for (let i = 0; i < rim.length; i++) triangles.push([p(rim[(i + 1) % rim.length]), p(rim[i]), apex]);
+  }
+  return stlOf(triangles, 'vesselmesh e2e domed caps');
+}
+
+/**
+ * An open tube (radius 1 along z) whose top end is damaged: its last
+ * `depth` (0.6) is folded through itself (x mirrored and stretched), as a
+ * segmentation leaves a vessel where it met the image border. The surface
+ * crosses itself there.
+ */
+export async function damagedEndTube(depth = 0.6) {
+  const tube = Buffer.from((await nodeApi()).makePhantom({ kind: 'tube', voxel: 0.12 }).stl);
+  const triangles = trianglesOf(tube);
+  const zmax = Math.max(...triangles.flat().map((v) => v[2]));
+  const fold = ([x, y, z]) => (z > zmax - depth ? [-1.6 * x, y, z] : [x, y, z]);
+  return stlOf(triangles.map((t) => t.map(fold)), 'vesselmesh e2e damaged end');
+}
+
+/** A bifurcation in centimetres (the parent's radius 0.1: 1 mm). */
+export async function centimetreBifurcation() {
+  return Buffer.from((await nodeApi()).makePhantom({ kind: 'bifurcation', voxel: 0.15, scale: 0.1 }).stl);
+}
+
+/** A vessel tree with 20 open ends: a trunk and 18 side branches around it. */
+export function twentyOpenings() {
+  return treeStl(0.125, { spiral: 18 });
+}
