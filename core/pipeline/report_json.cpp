@@ -253,6 +253,23 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
     j.key("pinning_reverted").value(st.fidelity_reverted);
     j.key("size_rounds").value(st.fidelity_size_rounds);
     j.end_object();
+    j.key("splits").value(st.retries);
+    j.key("fallback_patches").begin_array();
+    for (const FallbackPatch& f : st.fallback_patches) {
+      j.begin_object();
+      j.key("place").array(std::vector<double>(f.place.begin(), f.place.end()));
+      j.key("input_triangles").value(f.input_triangles);
+      j.key("reason").value(f.reason);
+      j.key("splits").value(f.splits);
+      j.key("triangles").value(f.triangles);
+      j.key("quality").begin_object();
+      j.key("min").value(f.quality_min);
+      j.key("mean").value(f.quality_mean);
+      j.end_object();
+      j.key("seconds").value(f.seconds);
+      j.end_object();
+    }
+    j.end_array();
     j.key("decimated_triangles").value(st.decimated_triangles);
     j.key("swaps").value(st.swaps);
     j.key("moves").value(st.moves);
