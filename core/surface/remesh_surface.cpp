@@ -271,12 +271,86 @@ Status partition_into_patches(const SurfaceMesh& input, const RemeshOptions& opt
   return Status::Ok();
 }
 
-/// Why phase 4 stopped: the patch that failed to mesh (`patch`) and its
-/// error, or a cancellation (`status` cancelled), or nothing (ok).
+/// Why phase 4 stopped: the patches that failed to mesh and their errors
+/// (in patch order), or a cancellation (`status` cancelled), or nothing.
 struct PatchFailure {
   Status status = Status::Ok();
+  std::vector<std::pair<size_t, Status>> patches;
+  bool ok() const { return status.ok() && patches.empty(); }
+};
+
+/// An edge of a patch's mesh inside the patch between two of its seam
+/// samples (global vertex ids a < b), from one of its two triangles.
+struct Chord {
+  int32_t a = 0, b = 0, triangle = 0;
   size_t patch = 0;
 };
+
+/// Appends to `chords` the chords of the mesh `m` of patch `patch` (its
+/// first `n_seam` vertices its boundary samples in loop order; `global`:
+/// their wall ids; its triangles to become the wall's from
+/// `first_triangle` on).
+void note_chords(const SurfaceMesh& m, size_t patch, size_t n_seam,
+                 const std::vector<int32_t>& global, size_t first_triangle,
+                 std::vector<Chord>& chords) {
+  for (size_t t = 0; t < m.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const size_t u = size_t(m.triangles[3 * t + size_t(k)]),
+                   v = size_t(m.triangles[3 * t + size_t(k + 1) % 3]);
+      if (u >= n_seam || v >= n_seam || (u + 1) % n_seam == v || (v + 1) % n_seam == u) continue;
+      chords.push_back({std::min(global[u], global[v]), std::max(global[u], global[v]),
+                        int32_t(first_triangle + t), patch});
+    }
+}
+
+/// The end of phase 4: a chord that another patch's triangles use too
+/// (an edge of more than two triangles) is split at its midpoint on the
+/// input in the patch it crosses, so the wall stays manifold. Patches
+/// meshed in the plane or by the fallback may join two seam samples inside
+/// them; neighbours only share the seams.
+void split_shared_chords(const SurfaceMesh& input, const TriangleAdjacency& adj,
+                         const std::vector<Chord>& chords, SurfaceMesh& mesh, WallVertices& wall) {
+  if (chords.empty()) return;
+  std::unordered_map<uint64_t, int> uses;
+  for (const Chord& c : chords) uses[edge_key(c.a, c.b)] = 0;
+  for (size_t t = 0; t < mesh.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      auto it = uses.find(
+          edge_key(mesh.triangles[3 * t + size_t(k)], mesh.triangles[3 * t + size_t(k + 1) % 3]));
+      if (it != uses.end()) ++it->second;
+    }
+  for (const Chord& c : chords) {
+    // Each chord is noted from both its triangles: split from the one with
+    // the directed edge (a, b), t = (a, b, x), whose neighbour across it in
+    // the same patch is u = (b, a, y); into (a, m, x), (m, b, x), (b, m, y),
+    // (m, a, y).
+    if (uses[edge_key(c.a, c.b)] <= 2) continue;
+    int32_t* T = &mesh.triangles[3 * size_t(c.triangle)];
+    int k = 0;
+    while (k < 3 && !(T[k] == c.a && T[(k + 1) % 3] == c.b)) ++k;
+    if (k == 3) continue;
+    const int32_t x = T[(k + 2) % 3];
+    // Its partner: the triangle noted for the same chord with (b, a).
+    int32_t partner = -1, y = -1;
+    for (const Chord& d : chords) {
+      if (d.a != c.a || d.b != c.b || d.patch != c.patch || d.triangle == c.triangle) continue;
+      const int32_t* U = &mesh.triangles[3 * size_t(d.triangle)];
+      for (int j = 0; j < 3; ++j)
+        if (U[j] == c.b && U[(j + 1) % 3] == c.a) partner = d.triangle, y = U[(j + 2) % 3];
+    }
+    if (partner < 0) continue;
+    const Vec3 mid = 0.5 * (at(mesh.points, c.a) + at(mesh.points, c.b));
+    double p[3];
+    const int32_t m = int32_t(wall.home.size());
+    wall.home.push_back(project_near(mid.data(), wall.home[size_t(c.a)], input, adj, p));
+    wall.fixed.push_back(kFree);
+    mesh.points.insert(mesh.points.end(), p, p + 3);
+    int32_t* U = &mesh.triangles[3 * size_t(partner)];
+    T[0] = c.a, T[1] = m, T[2] = x;
+    U[0] = c.b, U[1] = m, U[2] = y;
+    mesh.triangles.insert(mesh.triangles.end(), {m, c.b, x, m, c.a, y});
+  }
+}
 
 /// Phase 4 for patch `i` of `part`: meshed in its plane (mesh_mapped_patch),
 /// else by the fallback (see mesh_patches), which then says why in `why`
@@ -336,9 +410,11 @@ PatchFailure mesh_patches(const SurfaceMesh& input, const Partition& part, const
   std::vector<std::optional<Result<PatchMesh>>> meshed(kBatch);
   std::vector<std::string> fell_back(kBatch);  // why, when the fallback meshed it
   std::vector<double> fallback_seconds(kBatch);
+  std::vector<Chord> chords;
+  PatchFailure failure;
   for (size_t b0 = 0; b0 < np; b0 += kBatch) {
     if (!report_progress(progress, 0.2 + 0.6 * double(b0) / double(np), "meshing patches"))
-      return {Status::Cancelled(), b0};
+      return {Status::Cancelled(), {}};
     const size_t nb = std::min(np - b0, kBatch);
     parallel_for(nb, 1, [&](size_t begin, size_t end) {
       for (size_t j = begin; j < end; ++j) {
@@ -348,8 +424,11 @@ PatchFailure mesh_patches(const SurfaceMesh& input, const Partition& part, const
       }
     });
     for (size_t j = 0; j < nb; ++j) {
+      // Every patch is meshed, so that all those that fail are split at once;
+      // after a failure the others are not assembled.
       const Result<PatchMesh>& pm = *meshed[j];
-      if (!pm.ok()) return {pm.status(), b0 + j};
+      if (!pm.ok()) failure.patches.emplace_back(b0 + j, pm.status());
+      if (!failure.patches.empty()) continue;
       const MappedPatch& p = part.patches[b0 + j];
       if (!fell_back[j].empty()) {
         FallbackPatch f;
@@ -375,9 +454,12 @@ PatchFailure mesh_patches(const SurfaceMesh& input, const Partition& part, const
         wall.home.push_back(p.triangle_of[size_t(patch_mesh.home[v])]);
         wall.fixed.push_back(kFree);
       }
+      note_chords(patch_mesh.mesh, b0 + j, n_seam, global, mesh.num_triangles(), chords);
       for (int32_t v : patch_mesh.mesh.triangles) mesh.triangles.push_back(global[size_t(v)]);
     }
   }
+  if (!failure.patches.empty()) return failure;
+  split_shared_chords(input, part.full_adj, chords, mesh, wall);
   return {};
 }
 
@@ -415,27 +497,31 @@ void measure_fallbacks(const SurfaceMesh& input, const Partition& part, const Su
   }
 }
 
-/// After phase 4 failed on a patch: its triangles get a size limit so that
-/// the next partition splits it (part.patches emptied). An error after
-/// options.max_splits splits, or for a patch too small to split (where the
-/// fallback failed too).
-Status split_failed_patch(const SurfaceMesh& input, const RemeshOptions& options,
-                          const PatchFailure& failure, Partition& part, RemeshStats& stats) {
-  const std::vector<int32_t> bad = part.patches[failure.patch].triangle_of;
-  if (stats.retries >= options.max_splits || bad.size() < 4) {
+/// After phase 4 failed on some patches: their triangles get a size limit
+/// so that the next partition splits them (part.patches emptied), one
+/// split more (stats.retries). An error after options.max_splits splits,
+/// or for a patch too small to split (where the fallback failed too).
+Status split_failed_patches(const SurfaceMesh& input, const RemeshOptions& options,
+                            const PatchFailure& failure, Partition& part, RemeshStats& stats) {
+  for (const auto& [patch, status] : failure.patches) {
+    const std::vector<int32_t>& bad = part.patches[patch].triangle_of;
+    if (stats.retries < options.max_splits && bad.size() >= 4) continue;
     // Where: the patch's centre; what helps: a surface with fewer folds
     // or creases at this size.
     const Vec3 centre = patch_centre(input, bad);
     return Status::Error("meshing a patch of " + std::to_string(bad.size()) +
                          " input triangles near " + point_text(centre) + " failed after " +
-                         std::to_string(stats.retries) + " splits: " + failure.status.message() +
+                         std::to_string(stats.retries) + " splits: " + status.message() +
                          "; the surface is too folded there for the size: smooth it "
                          "({smooth} 10), give a smaller {size}, or turn crease detection "
                          "off ({feature_angle} 180)");
   }
   std::vector<int32_t>& limit = part.options.size_limit;
   if (limit.empty()) limit.assign(input.num_triangles(), 0);
-  for (int32_t t : bad) limit[size_t(t)] = int32_t(bad.size());
+  for (const auto& [patch, status] : failure.patches) {
+    const std::vector<int32_t>& bad = part.patches[patch].triangle_of;
+    for (int32_t t : bad) limit[size_t(t)] = int32_t(bad.size());
+  }
   ++stats.retries;
   part.patches.clear();
   return Status::Ok();
@@ -516,9 +602,9 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
     // Phase 4: each patch in its plane.
     const PatchFailure failure = mesh_patches(input, part, seams, h, options, stats.retries,
                                               out.mesh, wall, fallbacks, fallback_of, progress);
-    if (failure.status.ok()) break;
+    if (failure.ok()) break;
     if (failure.status.cancelled()) return failure.status;
-    const Status split = split_failed_patch(input, options, failure, part, stats);
+    const Status split = split_failed_patches(input, options, failure, part, stats);
     if (!split.ok()) return split;
     t0 = std::chrono::steady_clock::now();
   }

@@ -353,6 +353,43 @@ TEST(RemeshSurface, EveryPatchByTheFallbackStillConforms) {
   check_remesh(in, r.value(), h, {}, "every patch by the fallback");
 }
 
+TEST(RemeshSurface, PatchesWhosePlanarMeshingFailsAreSplitThenFallBack) {
+  // The raw staircase of a noisy binary mask (no smoothing): some patches'
+  // planar boundaries cross themselves. Every failing patch is split at
+  // each round; with no split allowed they fall back at once, and the wall
+  // still keeps the whole contract.
+  PhantomOptions po;
+  po.kind = PhantomKind::kAneurysm;
+  po.binary = true;
+  po.noise = 0.5;
+  po.voxel = 0.15;
+  const SurfaceMesh in = phantom(po);
+  const double h = 0.15;
+  RemeshOptions o = testing::uniform_remesh(h);
+  RemeshStats split_stats;
+  auto split = remesh_surface(in, o, &split_stats);
+  ASSERT_TRUE(split.ok()) << split.message();
+  Expectations e;
+  e.check_size_and_quality = false;
+  check_remesh(in, split.value(), h, e, "staircase, split");
+  o.max_splits = 0;
+  RemeshStats stats;
+  auto r = remesh_surface(in, o, &stats);
+  ASSERT_TRUE(r.ok()) << r.message();
+  check_remesh(in, r.value(), h, e, "staircase, fallback");
+  EXPECT_EQ(stats.retries, 0u);
+  ASSERT_GT(split_stats.retries + stats.fallback_patches.size(), 0u) << "no patch failed";
+  for (const FallbackPatch& f : stats.fallback_patches) {
+    EXPECT_EQ(f.splits, 0u);
+    EXPECT_FALSE(f.reason.empty());
+    EXPECT_GT(f.triangles, 0u);
+    EXPECT_GT(f.quality_min, 0.0);
+    std::cout << "[ info ] fallback: " << f.input_triangles << " input triangles -> " << f.triangles
+              << ", gamma min " << f.quality_min << " mean " << f.quality_mean << " (" << f.reason
+              << ")\n";
+  }
+}
+
 TEST(RemeshSurface, InvalidSizeIsAnError) {
   const SurfaceMesh tube = testing::open_tube(16, 8);
   for (double s : {0.0, -0.5}) {
