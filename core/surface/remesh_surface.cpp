@@ -692,7 +692,7 @@ DecimatedSurface decimate_for_sizes(const SurfaceMesh& input, const RemeshOption
 
 std::string fallback_warning(const FallbackPatch& f, std::string_view unit) {
   std::string why = f.reason;
-  if (f.splits > 0) why = "after " + std::to_string(f.splits) + " splits: " + why;
+  if (f.splits > 0) why = "after " + std::to_string(f.splits) + " rounds of splits: " + why;
   return "a patch of " + std::to_string(f.input_triangles) + " input triangles near " +
          point_text(f.place) + " " + std::string(unit) + " could not be meshed through its map (" +
          why + "): it was remeshed on the surface itself instead, " + std::to_string(f.triangles) +

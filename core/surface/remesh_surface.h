@@ -93,10 +93,10 @@ struct RemeshOptions {
   bool decimate = true;
   size_t decimate_min_triangles = 200000;
   double decimate_ratio = 8, decimate_error = 0.02, decimate_edge = 0.5;
-  /// The fallback (isotropic_remesh_patch): a patch whose map or planar
-  /// meshing still fails after this many splits (counted over the whole
-  /// surface), or that is too small to split, is remeshed on its own
-  /// triangles instead.
+  /// The patches whose planar meshing fails are split, all at once, and
+  /// the surface partitioned again, at most this many times; then a patch
+  /// that still fails (or one too small to split) is remeshed on its own
+  /// triangles instead (isotropic_remesh_patch, options `fallback`).
   size_t max_splits = 16;
   IsotropicRemeshOptions fallback;
   /// For tests: the patches holding the input triangle nearest each of
@@ -110,7 +110,7 @@ struct FallbackPatch {
   std::array<double, 3> place{};  ///< the mean of its input triangles' corners
   size_t input_triangles = 0;     ///< of the surface the phases ran on
   std::string reason;             ///< why its map could not serve
-  size_t splits = 0;              ///< splits of failed patches before it fell back
+  size_t splits = 0;              ///< rounds of splits of failed patches before it
   /// The wall's triangles there at the end (those whose centroid lies on
   /// one of its input triangles) and their gamma_k.
   size_t triangles = 0;
@@ -130,7 +130,7 @@ struct RemeshStats {
   /// decimated (else 0).
   size_t decimated_triangles = 0;
   size_t feature_edges = 0;  ///< input edges kept as sharp features
-  size_t retries = 0;        ///< partitions redone because a patch failed to mesh
+  size_t retries = 0;        ///< partitions redone because patches failed to mesh
   /// Patches remeshed by the fallback, in patch order.
   std::vector<FallbackPatch> fallback_patches;
   size_t swaps = 0, moves = 0, collapses = 0;
