@@ -511,7 +511,7 @@ Status split_failed_patches(const SurfaceMesh& input, const RemeshOptions& optio
     const Vec3 centre = patch_centre(input, bad);
     return Status::Error("meshing a patch of " + std::to_string(bad.size()) +
                          " input triangles near " + point_text(centre) + " failed after " +
-                         std::to_string(stats.retries) + " splits: " + status.message() +
+                         std::to_string(stats.retries) + " rounds of splits: " + status.message() +
                          "; the surface is too folded there for the size: smooth it "
                          "({smooth} 10), give a smaller {size}, or turn crease detection "
                          "off ({feature_angle} 180)");
