@@ -514,7 +514,8 @@ Status split_failed_patches(const SurfaceMesh& input, const RemeshOptions& optio
                          std::to_string(stats.retries) + " rounds of splits: " + status.message() +
                          "; the surface is too folded there for the size: smooth it "
                          "({smooth} 10), give a smaller {size}, or turn crease detection "
-                         "off ({feature_angle} 180)");
+                         "off ({feature_angle} 180)")
+        .WithRemedy({"smooth", {centre}, 10});
   }
   std::vector<int32_t>& limit = part.options.size_limit;
   if (limit.empty()) limit.assign(input.num_triangles(), 0);
@@ -697,8 +698,7 @@ std::string fallback_warning(const FallbackPatch& f, std::string_view unit) {
          point_text(f.place) + " " + std::string(unit) + " could not be meshed through its map (" +
          why + "): it was remeshed on the surface itself instead, " + std::to_string(f.triangles) +
          " triangles there, gamma_k min " + number_text(f.quality_min, 3) + ", mean " +
-         number_text(f.quality_mean, 3) +
-         "; the surface is likely folded or crossing itself there: check the wall there";
+         number_text(f.quality_mean, 3) + "; the surface is likely folded or crossing itself there";
 }
 
 Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOptions& options,
