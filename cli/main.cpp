@@ -49,8 +49,10 @@ usage:
       tetrahedra and write Gmsh MSH: surfaces `wall`, `inlet`, `outlet_1..k`,
       volume `lumen` (and with a vessel wall: `outer_wall`, `wall_inlet`,
       `wall_outlet_k`, volume `vessel_wall`).
-  vesselmesh phantom OUT.stl [options]
-      Write a synthetic segmentation-like vessel surface (binary STL).
+  vesselmesh phantom OUT.stl|OUT.vtp [options]
+      Write a synthetic segmentation-like vessel surface (binary STL, or
+      VTK XML PolyData with its face labels as ModelFaceID when OUT ends
+      in .vtp).
   vesselmesh options [--json | --markdown]
       Print the option table (JSON: for tools; Markdown: the README's list).
   vesselmesh --help | --version
@@ -457,12 +459,25 @@ int cmd_phantom(int argc, char** argv) {
     return usage_error(e);
   vm::PhantomOptions o;
   if (std::string e = vm::cli::apply_all(a, o); !e.empty()) return usage_error(e);
-  auto r = vm::make_vessel_phantom(o);
+  vm::PhantomTruth truth;
+  auto r = vm::make_vessel_phantom(o, &truth);
   if (!r.ok()) return fail("", r.status());
-  std::vector<uint8_t> stl = vm::write_stl_binary(r.value(), "vesselmesh phantom");
+  // .vtp: the labelled surface, as SimVascular writes one; else STL.
+  const std::string& path = a.positional[0];
+  const bool vtp = path.size() > 4 && path.compare(path.size() - 4, 4, ".vtp") == 0;
+  std::vector<uint8_t> bytes;
+  if (vtp) {
+    vm::VtkWriteOptions wo;
+    wo.comment = "vesselmesh phantom";
+    auto text = vm::write_surface_vtp(r.value(), truth.face_labels, wo);
+    if (!text.ok()) return fail("", text.status());
+    bytes.assign(text.value().begin(), text.value().end());
+  } else {
+    bytes = vm::write_stl_binary(r.value(), "vesselmesh phantom");
+  }
   std::string err;
-  if (!write_file(a.positional[0], stl.data(), stl.size(), err)) return fail(err);
-  std::printf("wrote %s: %zu triangles\n", a.positional[0].c_str(), r.value().num_triangles());
+  if (!write_file(path, bytes.data(), bytes.size(), err)) return fail(err);
+  std::printf("wrote %s: %zu triangles\n", path.c_str(), r.value().num_triangles());
   return 0;
 }
 

@@ -16,6 +16,7 @@
 
 #include "core/io/provenance.h"
 #include "core/io/stl.h"
+#include "core/io/vtk_writer.h"
 #include "core/io/zip_writer.h"
 #include "core/layers/layer_thickness.h"
 #include "core/mesh/adjacency.h"
@@ -503,12 +504,22 @@ val layer_fractions(val opts) {
 val make_phantom(val opts) {
   vm::PhantomOptions o;
   if (vm::Status st = apply_js_options(o, opts, vm::kCommandPhantom); !st.ok()) return error(st);
-  auto m = vm::make_vessel_phantom(o);
+  vm::PhantomTruth truth;
+  auto m = vm::make_vessel_phantom(o, &truth);
   if (!m.ok()) return error(m.status());
   std::vector<uint8_t> stl = vm::write_stl_binary(m.value(), "vesselmesh phantom");
   val r = val::object();
   r.set("ok", true);
   r.set("stl", copy_out(stl.data(), stl.size(), "Uint8Array"));
+  // A labelled kind also as VTK XML PolyData with its ModelFaceID.
+  if (!truth.face_labels.empty()) {
+    vm::VtkWriteOptions wo;
+    wo.comment = "vesselmesh phantom";
+    auto vtp = vm::write_surface_vtp(m.value(), truth.face_labels, wo);
+    if (!vtp.ok()) return error(vtp.status());
+    r.set("vtp", copy_out(reinterpret_cast<const uint8_t*>(vtp.value().data()), vtp.value().size(),
+                          "Uint8Array"));
+  }
   return r;
 }
 

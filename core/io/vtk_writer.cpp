@@ -355,4 +355,16 @@ Result<std::string> write_vtp(const VtpSurface& s, const VtkWriteOptions& option
   return assemble(options, "PolyData", piece, std::move(sections));
 }
 
+Result<std::string> write_surface_vtp(const SurfaceMesh& mesh, std::span<const int32_t> face_ids,
+                                      const VtkWriteOptions& options) {
+  VtpSurface s;
+  s.points = mesh.points;
+  s.triangles = mesh.triangles;
+  if (face_ids.empty())
+    s.face_ids.assign(mesh.num_triangles(), 1);
+  else
+    s.face_ids.assign(face_ids.begin(), face_ids.end());
+  return write_vtp(s, options);
+}
+
 }  // namespace vm

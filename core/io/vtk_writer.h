@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/mesh/surface_mesh.h"
 #include "core/mesh/volume_mesh.h"
 #include "core/util/result.h"
 
@@ -85,5 +86,11 @@ struct VtpSurface {
 /// cells, a face id or global id count that is not one per cell or per
 /// point), a point index out of range.
 Result<std::string> write_vtp(const VtpSurface& s, const VtkWriteOptions& options = {});
+
+/// A triangle surface as a VTK XML PolyData with one ModelFaceID per
+/// triangle (`face_ids`; empty: all 1), as SimVascular writes its models.
+/// Errors: those of write_vtp (face ids not one per triangle).
+Result<std::string> write_surface_vtp(const SurfaceMesh& mesh, std::span<const int32_t> face_ids,
+                                      const VtkWriteOptions& options = {});
 
 }  // namespace vm

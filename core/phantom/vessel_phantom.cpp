@@ -17,6 +17,7 @@
 #include "core/mesh/marching_cubes.h"
 #include "core/mesh/topology.h"
 #include "core/phantom/dirty_phantom.h"
+#include "core/phantom/outlets_phantom.h"
 #include "core/util/portable_math.h"
 
 namespace vm {
@@ -201,6 +202,8 @@ Model build_model(PhantomKind kind) {
       m.genus = 1;
       return m;
     }
+    case PhantomKind::kOutlets:  // analytic (make_outlets_phantom)
+      break;
   }
   // Free ends: cut a twelfth of the way in. A single tube has two; in a
   // bifurcation or a tree the parents end and the children start at the
@@ -354,6 +357,16 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
     return Result<SurfaceMesh>::Error("phantom scale must be a positive number");
   if (!(o.noise >= 0) || o.noise > 2)
     return Result<SurfaceMesh>::Error("phantom noise must be between 0 and 2 voxels");
+  if (o.kind == PhantomKind::kOutlets) {
+    OutletsPhantom p = make_outlets_phantom(o.scale);
+    if (truth) {
+      *truth = PhantomTruth{};
+      truth->opening_radii = p.cap_radii;
+      truth->opening_centers = p.cap_centers;
+      truth->face_labels = std::move(p.labels);
+    }
+    return std::move(p.mesh);
+  }
   Model m = build_model(o.kind);
   // Grid around the model, with 3 voxels of margin.
   Vec3 lo = {1e30, 1e30, 1e30}, hi = {-1e30, -1e30, -1e30};

@@ -25,6 +25,11 @@ enum class PhantomKind {
   /// shell (as two separately modelled vessels never joined): the surface
   /// crosses itself where they overlap; 4 openings once cut.
   kCrossing,
+  /// A capped tube with 20 tiny capped side branches (6-triangle caps) and
+  /// 186 labelled faces, as SimVascular exports large models
+  /// (outlets_phantom.h); analytic: voxel, noise, binary, dirty and
+  /// open_ends do not apply.
+  kOutlets,
 };
 
 struct PhantomOptions {
@@ -81,6 +86,9 @@ struct PhantomTruth {
   std::vector<std::array<double, 3>> end_tips;
   std::vector<std::array<double, 3>> end_directions;
   std::vector<double> end_radii;
+  /// One face label per triangle (ModelFaceID) for the labelled kinds
+  /// (kOutlets), else empty.
+  std::vector<int32_t> face_labels;
 };
 
 /// Builds the phantom. The result is a closed or open, oriented (outward),

@@ -425,6 +425,8 @@ Status mesh_prepared(MeshJobResult& r, MeshJobOptions& options, const ProgressFn
     auto remeshed =
         remesh_surface(r.output_surface, remesh_options, &r.remesh_stats, remesh_progress);
     if (!remeshed.ok()) return remeshed.status();
+    for (const FallbackPatch& f : r.remesh_stats.fallback_patches)
+      r.warnings.push_back(fallback_warning(f, unit_symbol(r.surface.unit.unit)));
     wall_sizes = remeshed.value().sizes;
     const SurfaceMesh input = std::move(r.output_surface);
     r.output_surface = std::move(remeshed.value().mesh);

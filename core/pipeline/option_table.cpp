@@ -17,7 +17,7 @@ constexpr std::string_view kParams[] = {"lscm", "harmonic", "floater"};
 constexpr std::string_view kMeshers[] = {"frontal", "delaunay", "adapt"};
 constexpr std::string_view kMshVersions[] = {"4.1", "2.2"};
 constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm",
-                                              "torus",       "tree", "crossing"};
+                                              "torus",       "tree", "crossing", "outlets"};
 constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
 constexpr std::string_view kOffAuto[] = {"off", "auto"};
 constexpr std::string_view kFormats[] = {"msh", "vtu", "vtp", "stl", "mesh-complete", "foam"};
@@ -608,9 +608,11 @@ const OptionSpec kOptions[] = {
      .metavar = "KIND",
      .choices = kPhantomKinds,
      .default_text = "bifurcation",
-     .needs = "bifurcation, tube, aneurysm, torus, tree or crossing",
+     .needs = "bifurcation, tube, aneurysm, torus, tree, crossing or outlets",
      .doc = "the vessel model (tree: 17 branches, 11 openings; crossing: two vessels that touch "
-            "and pass into each other, each its own shell)"},
+            "and pass into each other, each its own shell; outlets: a capped tube with 20 tiny "
+            "capped branches and 186 labelled faces, as SimVascular exports; write it as .vtp to "
+            "keep the labels)"},
     {.id = "voxel",
      .cli = "voxel",
      .js = "voxel",
@@ -998,6 +1000,7 @@ Status apply_option(PhantomOptions& o, const OptionSpec& spec, const OptionValue
              : v.text == "torus"    ? PhantomKind::kTorus
              : v.text == "tree"     ? PhantomKind::kTree
              : v.text == "crossing" ? PhantomKind::kCrossing
+             : v.text == "outlets"  ? PhantomKind::kOutlets
                                     : PhantomKind::kBifurcation;
   } else if (id == "voxel") {
     o.voxel = v.number;

@@ -18,6 +18,33 @@ void write_quality(JsonWriter& j, const QualityStats& q) {
   j.end_object();
 }
 
+/// {"min": min, "mean": mean}
+void write_min_mean(JsonWriter& j, double min, double mean) {
+  j.begin_object();
+  j.key("min").value(min);
+  j.key("mean").value(mean);
+  j.end_object();
+}
+
+/// The patches remeshed by the fallback: place, input triangles, why,
+/// rounds of splits before, triangles there at the end and their gamma_k.
+void write_fallback_patches(JsonWriter& j, const std::vector<FallbackPatch>& patches) {
+  j.begin_array();
+  for (const FallbackPatch& f : patches) {
+    j.begin_object();
+    j.key("place").array(std::vector<double>(f.place.begin(), f.place.end()));
+    j.key("input_triangles").value(f.input_triangles);
+    j.key("reason").value(f.reason);
+    j.key("splits").value(f.splits);
+    j.key("triangles").value(f.triangles);
+    j.key("quality");
+    write_min_mean(j, f.quality_min, f.quality_mean);
+    j.key("seconds").value(f.seconds);
+    j.end_object();
+  }
+  j.end_array();
+}
+
 void write_smoothing(JsonWriter& j, const SmoothingOutcome& s) {
   const StaircaseReport& st = s.staircase;
   j.begin_object();
@@ -284,6 +311,9 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
     j.key("pinning_reverted").value(st.fidelity_reverted);
     j.key("size_rounds").value(st.fidelity_size_rounds);
     j.end_object();
+    j.key("splits").value(st.retries);
+    j.key("fallback_patches");
+    write_fallback_patches(j, st.fallback_patches);
     j.key("decimated_triangles").value(st.decimated_triangles);
     j.key("swaps").value(st.swaps);
     j.key("moves").value(st.moves);
@@ -309,10 +339,8 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
       j.key("normal").array(std::vector<double>(c.normal.begin(), c.normal.end()));
       j.key("triangles").value(c.triangles);
       j.key("max_projection_distance").value(c.max_projection_distance);
-      j.key("quality").begin_object();
-      j.key("min").value(c.quality_min);
-      j.key("mean").value(c.quality_mean);
-      j.end_object();
+      j.key("quality");
+      write_min_mean(j, c.quality_min, c.quality_mean);
       j.end_object();
     }
     j.end_array();

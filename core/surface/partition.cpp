@@ -276,23 +276,30 @@ Result<std::vector<MappedPatch>> partition_for_maps(const SurfaceMesh& mesh,
           if (options.size_limit[size_t(t)] > 0 &&
               comp.size() >= size_t(options.size_limit[size_t(t)]))
             small_enough = false;
-      if (small_enough && is_disk(p.mesh)) {
+      const bool disk = small_enough && is_disk(p.mesh);
+      if (disk) {
         auto uv = map(p.mesh);
-        if (!uv.ok()) {
-          node.error = uv.status();
-          return;
-        }
-        p.map = std::move(uv).value();
-        p.factor_ratio = p.map.flipped_triangles ? 1e300 : conformal_factor_ratio(p.mesh, p.map.uv);
-        accept = p.factor_ratio <= options.max_factor_ratio || comp.size() < 8;
-        if (!accept) ++node.stats.rejected_maps;
-        if (!accept && p.map.flipped_triangles && comp.size() < 8) {
-          node.error = Status::Error("the map folds a patch of " + std::to_string(comp.size()) +
-                                     " triangles: the input surface is folded there");
-          return;
+        if (uv.ok()) {
+          p.map = std::move(uv).value();
+          p.factor_ratio =
+              p.map.flipped_triangles ? 1e300 : conformal_factor_ratio(p.mesh, p.map.uv);
+          accept = p.factor_ratio <= options.max_factor_ratio || comp.size() < 8;
+          if (!accept) ++node.stats.rejected_maps;
+        } else if (comp.size() < 8) {
+          // No map, and too small to split: remeshed without one.
+          p.unmappable = "its map failed: " + uv.message();
+          accept = true;
+        } else {
+          ++node.stats.rejected_maps;  // no map: split further
         }
       }
       if (accept) {
+        node.accepted.push_back(std::move(p));
+        continue;
+      }
+      if (piece.depth + 1 > options.max_depth && (disk || is_disk(p.mesh))) {
+        p.unmappable = "its map still folds or crowds after " + std::to_string(options.max_depth) +
+                       " bisections";
         node.accepted.push_back(std::move(p));
         continue;
       }

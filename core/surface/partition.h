@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "core/mesh/adjacency.h"
@@ -40,6 +41,9 @@ struct MappedPatch {
   std::vector<int32_t> triangle_of;  ///< local triangle -> input triangle
   Parametrization map;               ///< uv of the local vertices
   double factor_ratio = 1;           ///< the measured crowding (see options)
+  /// Why no usable map was found for this disk ("" when `map` is one): it
+  /// is to be remeshed without a map (isotropic_remesh_patch).
+  std::string unmappable;
 };
 
 struct PartitionStats {
@@ -54,7 +58,10 @@ struct PartitionStats {
 /// median normal to its principal axis, the cut is straightened by moving
 /// teeth (triangles with two neighbors across it) to the other side, and
 /// each connected piece is tried again. Every input triangle ends in exactly
-/// one patch. Errors: the depth limit, a failing map.
+/// one patch. A map that fails is split further like one that folds; a
+/// disk under 8 triangles whose map fails, or a disk at the depth limit
+/// whose map still fails, folds or crowds, is a patch marked `unmappable`.
+/// Errors: the depth limit on a piece that is not a disk.
 Result<std::vector<MappedPatch>> partition_for_maps(const SurfaceMesh& mesh,
                                                     const TriangleAdjacency& adj,
                                                     const PatchMapFn& map,

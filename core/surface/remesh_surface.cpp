@@ -29,6 +29,7 @@
 #include "core/mesh/surface_distance.h"
 #include "core/mesh/triangle_bvh.h"
 #include "core/param/fixed_boundary_map.h"
+#include "core/quality/triangle_quality.h"
 #include "core/surface/element_estimate.h"
 #include "core/surface/fidelity.h"
 #include "core/surface/resample_curve.h"
@@ -43,6 +44,17 @@ namespace {
 uint64_t edge_key(int32_t a, int32_t b) {
   if (a > b) std::swap(a, b);
   return (uint64_t(uint32_t(a)) << 32) | uint32_t(b);
+}
+
+/// The mean of the corners of the triangles `tris` of `m`: where a patch
+/// is, for messages.
+Vec3 patch_centre(const SurfaceMesh& m, const std::vector<int32_t>& tris) {
+  Vec3 centre{0, 0, 0};
+  for (int32_t t : tris)
+    for (int k = 0; k < 3; ++k)
+      centre = centre + (1.0 / (3.0 * double(tris.size()))) *
+                            at(m.points, m.triangles[3 * size_t(t) + size_t(k)]);
+  return centre;
 }
 
 /// The shared discretization of every patch boundary.
@@ -200,6 +212,10 @@ struct Partition {
   PartitionOptions options;
   std::vector<MappedPatch> patches;  ///< empty: to be computed
   std::vector<int32_t> label;        ///< per input triangle: its patch
+  /// The input triangles nearest RemeshOptions::fallback_at, and per
+  /// patch whether it holds one (takes the fallback at once).
+  std::vector<int32_t> forced_triangles;
+  std::vector<uint8_t> forced;
 };
 
 Partition find_features(const SurfaceMesh& input, const RemeshOptions& options,
@@ -214,6 +230,15 @@ Partition find_features(const SurfaceMesh& input, const RemeshOptions& options,
       part.adj.opposite[he] = TriangleAdjacency::kBoundary, ++stats.feature_edges;
   stats.feature_edges /= 2;
   part.options = options.partition;
+  for (const std::array<double, 3>& x : options.fallback_at) {
+    int32_t nearest = 0;
+    double best = 1e300;
+    for (size_t t = 0; t < input.num_triangles(); ++t) {
+      const double d = norm(patch_centre(input, {int32_t(t)}) - x);
+      if (d < best) best = d, nearest = int32_t(t);
+    }
+    part.forced_triangles.push_back(nearest);
+  }
   return part;
 }
 
@@ -241,27 +266,140 @@ Status partition_into_patches(const SurfaceMesh& input, const RemeshOptions& opt
   part.label.assign(input.num_triangles(), -1);
   for (size_t i = 0; i < part.patches.size(); ++i)
     for (int32_t t : part.patches[i].triangle_of) part.label[size_t(t)] = int32_t(i);
+  part.forced.assign(part.patches.size(), 0);
+  for (int32_t t : part.forced_triangles) part.forced[size_t(part.label[size_t(t)])] = 1;
   return Status::Ok();
 }
 
-/// Why phase 4 stopped: the patch that failed to mesh (`patch`) and its
-/// error, or a cancellation (`status` cancelled), or nothing (ok).
+/// Why phase 4 stopped: the patches that failed to mesh and their errors
+/// (in patch order), or a cancellation (`status` cancelled), or nothing.
 struct PatchFailure {
   Status status = Status::Ok();
+  std::vector<std::pair<size_t, Status>> patches;
+  bool ok() const { return status.ok() && patches.empty(); }
+};
+
+/// An edge of a patch's mesh inside the patch between two of its seam
+/// samples (global vertex ids a < b), from one of its two triangles.
+struct Chord {
+  int32_t a = 0, b = 0, triangle = 0;
   size_t patch = 0;
 };
+
+/// Appends to `chords` the chords of the mesh `m` of patch `patch` (its
+/// first `n_seam` vertices its boundary samples in loop order; `global`:
+/// their wall ids; its triangles to become the wall's from
+/// `first_triangle` on).
+void note_chords(const SurfaceMesh& m, size_t patch, size_t n_seam,
+                 const std::vector<int32_t>& global, size_t first_triangle,
+                 std::vector<Chord>& chords) {
+  for (size_t t = 0; t < m.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const size_t u = size_t(m.triangles[3 * t + size_t(k)]),
+                   v = size_t(m.triangles[3 * t + size_t(k + 1) % 3]);
+      if (u >= n_seam || v >= n_seam || (u + 1) % n_seam == v || (v + 1) % n_seam == u) continue;
+      chords.push_back({std::min(global[u], global[v]), std::max(global[u], global[v]),
+                        int32_t(first_triangle + t), patch});
+    }
+}
+
+/// The end of phase 4: a chord that another patch's triangles use too
+/// (an edge of more than two triangles) is split at its midpoint on the
+/// input in the patch it crosses, so the wall stays manifold. Patches
+/// meshed in the plane or by the fallback may join two seam samples inside
+/// them; neighbours only share the seams.
+void split_shared_chords(const SurfaceMesh& input, const TriangleAdjacency& adj,
+                         const std::vector<Chord>& chords, SurfaceMesh& mesh, WallVertices& wall) {
+  if (chords.empty()) return;
+  std::unordered_map<uint64_t, int> uses;
+  for (const Chord& c : chords) uses[edge_key(c.a, c.b)] = 0;
+  for (size_t t = 0; t < mesh.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      auto it = uses.find(
+          edge_key(mesh.triangles[3 * t + size_t(k)], mesh.triangles[3 * t + size_t(k + 1) % 3]));
+      if (it != uses.end()) ++it->second;
+    }
+  for (const Chord& c : chords) {
+    // Each chord is noted from both its triangles: split from the one with
+    // the directed edge (a, b), t = (a, b, x), whose neighbour across it in
+    // the same patch is u = (b, a, y); into (a, m, x), (m, b, x), (b, m, y),
+    // (m, a, y).
+    if (uses[edge_key(c.a, c.b)] <= 2) continue;
+    int32_t* T = &mesh.triangles[3 * size_t(c.triangle)];
+    int k = 0;
+    while (k < 3 && !(T[k] == c.a && T[(k + 1) % 3] == c.b)) ++k;
+    if (k == 3) continue;
+    const int32_t x = T[(k + 2) % 3];
+    // Its partner: the triangle noted for the same chord with (b, a).
+    int32_t partner = -1, y = -1;
+    for (const Chord& d : chords) {
+      if (d.a != c.a || d.b != c.b || d.patch != c.patch || d.triangle == c.triangle) continue;
+      const int32_t* U = &mesh.triangles[3 * size_t(d.triangle)];
+      for (int j = 0; j < 3; ++j)
+        if (U[j] == c.b && U[(j + 1) % 3] == c.a) partner = d.triangle, y = U[(j + 2) % 3];
+    }
+    if (partner < 0) continue;
+    const Vec3 mid = 0.5 * (at(mesh.points, c.a) + at(mesh.points, c.b));
+    double p[3];
+    const int32_t m = int32_t(wall.home.size());
+    wall.home.push_back(project_near(mid.data(), wall.home[size_t(c.a)], input, adj, p));
+    wall.fixed.push_back(kFree);
+    mesh.points.insert(mesh.points.end(), p, p + 3);
+    int32_t* U = &mesh.triangles[3 * size_t(partner)];
+    T[0] = c.a, T[1] = m, T[2] = x;
+    U[0] = c.b, U[1] = m, U[2] = y;
+    mesh.triangles.insert(mesh.triangles.end(), {m, c.b, x, m, c.a, y});
+  }
+}
+
+/// Phase 4 for patch `i` of `part`: meshed in its plane (mesh_mapped_patch),
+/// else by the fallback (see mesh_patches), which then says why in `why`
+/// (else empty); `ids` gets the seam samples of its boundary, in order.
+Result<PatchMesh> mesh_one_patch(const Partition& part, size_t i, const Seams& seams,
+                                 const std::vector<double>& h, const RemeshOptions& options,
+                                 size_t splits, std::vector<int32_t>& ids, std::string& why) {
+  const MappedPatch& p = part.patches[i];
+  why.clear();
+  auto boundary = patch_boundary(p, seams, ids);
+  if (!boundary.ok()) return boundary.status();
+  std::vector<double> local_h(p.vertex_of.size());
+  for (size_t v = 0; v < local_h.size(); ++v) local_h[v] = h[size_t(p.vertex_of[v])];
+  if (p.unmappable.empty() && !part.forced[i]) {
+    auto planar = mesh_mapped_patch(p.mesh, p.map.uv, local_h, boundary.value(), options.patch);
+    if (planar.ok() || (splits < options.max_splits && p.triangle_of.size() >= 4)) return planar;
+    why = planar.message();
+  } else {
+    why = !p.unmappable.empty() ? p.unmappable : "the fallback was asked for";
+  }
+  auto fallback = isotropic_remesh_patch(p.mesh, local_h, boundary.value(), options.fallback);
+  if (!fallback.ok()) {
+    const Status failed = fallback.status().Prefixed(why + "; the fallback remesher failed too: ");
+    why.clear();
+    return failed;
+  }
+  return fallback;
+}
 
 /// Phase 4 (seed 2.1, Fig. 2 steps 2-4): each patch meshed in its plane at
 /// the sizes `h` (one per input vertex) against the shared seam samples,
 /// mapped back, and assembled into `mesh` by the sample ids; `wall` gets
-/// home and fixed of every output vertex (the seams' first).
-PatchFailure mesh_patches(const Partition& part, const Seams& seams, const std::vector<double>& h,
-                          const RemeshOptions& options, SurfaceMesh& mesh, WallVertices& wall,
+/// home and fixed of every output vertex (the seams' first). A patch the
+/// partition could not map, or asked for (Partition::forced), or whose
+/// planar meshing fails after `splits` splits of failed patches (at
+/// options.max_splits) or too small to split, is remeshed on its own
+/// triangles instead (isotropic_remesh_patch) and listed in `fallbacks`
+/// (`fallback_of`: their patches).
+PatchFailure mesh_patches(const SurfaceMesh& input, const Partition& part, const Seams& seams,
+                          const std::vector<double>& h, const RemeshOptions& options, size_t splits,
+                          SurfaceMesh& mesh, WallVertices& wall,
+                          std::vector<FallbackPatch>& fallbacks, std::vector<size_t>& fallback_of,
                           const ProgressFn& progress) {
   mesh.points = seams.points;
   mesh.triangles.clear();
   wall.home = seams.home;
   wall.fixed = seams.kind;
+  fallbacks.clear();
+  fallback_of.clear();
   // Batches of patches: within a batch the patches are meshed on the
   // threads (each depends only on its own input and the seams), then
   // assembled in patch order, so the wall does not depend on the thread
@@ -270,25 +408,38 @@ PatchFailure mesh_patches(const Partition& part, const Seams& seams, const std::
   const size_t np = part.patches.size();
   std::vector<std::vector<int32_t>> ids(kBatch);
   std::vector<std::optional<Result<PatchMesh>>> meshed(kBatch);
+  std::vector<std::string> fell_back(kBatch);  // why, when the fallback meshed it
+  std::vector<double> fallback_seconds(kBatch);
+  std::vector<Chord> chords;
+  PatchFailure failure;
   for (size_t b0 = 0; b0 < np; b0 += kBatch) {
     if (!report_progress(progress, 0.2 + 0.6 * double(b0) / double(np), "meshing patches"))
-      return {Status::Cancelled(), b0};
+      return {Status::Cancelled(), {}};
     const size_t nb = std::min(np - b0, kBatch);
     parallel_for(nb, 1, [&](size_t begin, size_t end) {
       for (size_t j = begin; j < end; ++j) {
-        const MappedPatch& p = part.patches[b0 + j];
-        auto boundary = patch_boundary(p, seams, ids[j]);
-        std::vector<double> local_h(p.vertex_of.size());
-        for (size_t v = 0; v < local_h.size(); ++v) local_h[v] = h[size_t(p.vertex_of[v])];
-        meshed[j] = boundary.ok() ? mesh_mapped_patch(p.mesh, p.map.uv, local_h, boundary.value(),
-                                                      options.patch)
-                                  : Result<PatchMesh>(boundary.status());
+        const auto t0 = std::chrono::steady_clock::now();
+        meshed[j] = mesh_one_patch(part, b0 + j, seams, h, options, splits, ids[j], fell_back[j]);
+        fallback_seconds[j] = seconds_since(t0);
       }
     });
     for (size_t j = 0; j < nb; ++j) {
+      // Every patch is meshed, so that all those that fail are split at once;
+      // after a failure the others are not assembled.
       const Result<PatchMesh>& pm = *meshed[j];
-      if (!pm.ok()) return {pm.status(), b0 + j};
+      if (!pm.ok()) failure.patches.emplace_back(b0 + j, pm.status());
+      if (!failure.patches.empty()) continue;
       const MappedPatch& p = part.patches[b0 + j];
+      if (!fell_back[j].empty()) {
+        FallbackPatch f;
+        f.place = patch_centre(input, p.triangle_of);
+        f.input_triangles = p.triangle_of.size();
+        f.reason = fell_back[j];
+        f.splits = splits;
+        f.seconds = fallback_seconds[j];
+        fallbacks.push_back(std::move(f));
+        fallback_of.push_back(b0 + j);
+      }
       const PatchMesh& patch_mesh = pm.value();
       const size_t n_seam = ids[j].size();
       std::vector<int32_t> global(patch_mesh.mesh.num_vertices());
@@ -303,36 +454,75 @@ PatchFailure mesh_patches(const Partition& part, const Seams& seams, const std::
         wall.home.push_back(p.triangle_of[size_t(patch_mesh.home[v])]);
         wall.fixed.push_back(kFree);
       }
+      note_chords(patch_mesh.mesh, b0 + j, n_seam, global, mesh.num_triangles(), chords);
       for (int32_t v : patch_mesh.mesh.triangles) mesh.triangles.push_back(global[size_t(v)]);
     }
   }
+  if (!failure.patches.empty()) return failure;
+  split_shared_chords(input, part.full_adj, chords, mesh, wall);
   return {};
 }
 
-/// After phase 4 failed on a patch: its triangles get a size limit so that
-/// the next partition splits it (part.patches emptied). An error after 16
-/// splits, or for a patch too small to split.
-Status split_failed_patch(const SurfaceMesh& input, const PatchFailure& failure, Partition& part,
-                          RemeshStats& stats) {
-  const std::vector<int32_t> bad = part.patches[failure.patch].triangle_of;
-  if (stats.retries >= 16 || bad.size() < 4) {
+/// The quality of the fallback patches (`fallbacks`, of the patches
+/// `fallback_of`) in the finished wall `mesh` (homes `home` on `input`):
+/// each output triangle counts for the patch holding the input point
+/// nearest its centroid.
+void measure_fallbacks(const SurfaceMesh& input, const Partition& part, const SurfaceMesh& mesh,
+                       const std::vector<int32_t>& home, std::vector<FallbackPatch>& fallbacks,
+                       const std::vector<size_t>& fallback_of) {
+  if (fallbacks.empty()) return;
+  std::vector<int32_t> slot(part.patches.size(), -1);
+  for (size_t i = 0; i < fallback_of.size(); ++i) slot[fallback_of[i]] = int32_t(i);
+  std::vector<double> sum(fallbacks.size(), 0);
+  for (FallbackPatch& f : fallbacks) f.quality_min = 1, f.triangles = 0;
+  for (size_t t = 0; t < mesh.num_triangles(); ++t) {
+    const int32_t* T = &mesh.triangles[3 * t];
+    const Vec3 centroid =
+        (1.0 / 3.0) * (at(mesh.points, T[0]) + at(mesh.points, T[1]) + at(mesh.points, T[2]));
+    double x[3];
+    const int32_t on = project_near(centroid.data(), home[size_t(T[0])], input, part.full_adj, x);
+    const int32_t i = slot[size_t(part.label[size_t(on)])];
+    if (i < 0) continue;
+    const double q = triangle_gamma(&mesh.points[3 * size_t(T[0])], &mesh.points[3 * size_t(T[1])],
+                                    &mesh.points[3 * size_t(T[2])]);
+    FallbackPatch& f = fallbacks[size_t(i)];
+    f.quality_min = std::min(f.quality_min, q);
+    sum[size_t(i)] += q;
+    ++f.triangles;
+  }
+  for (size_t i = 0; i < fallbacks.size(); ++i) {
+    if (fallbacks[i].triangles == 0) fallbacks[i].quality_min = 0;
+    fallbacks[i].quality_mean =
+        fallbacks[i].triangles ? sum[i] / double(fallbacks[i].triangles) : 0;
+  }
+}
+
+/// After phase 4 failed on some patches: their triangles get a size limit
+/// so that the next partition splits them (part.patches emptied), one
+/// split more (stats.retries). An error after options.max_splits splits,
+/// or for a patch too small to split (where the fallback failed too).
+Status split_failed_patches(const SurfaceMesh& input, const RemeshOptions& options,
+                            const PatchFailure& failure, Partition& part, RemeshStats& stats) {
+  for (const auto& [patch, status] : failure.patches) {
+    const std::vector<int32_t>& bad = part.patches[patch].triangle_of;
+    if (stats.retries < options.max_splits && bad.size() >= 4) continue;
     // Where: the patch's centre; what helps: a surface with fewer folds
     // or creases at this size.
-    Vec3 centre{0, 0, 0};
-    for (int32_t t : bad)
-      for (int k = 0; k < 3; ++k)
-        centre = centre + (1.0 / (3.0 * double(bad.size()))) *
-                              at(input.points, input.triangles[3 * size_t(t) + size_t(k)]);
+    const Vec3 centre = patch_centre(input, bad);
     return Status::Error("meshing a patch of " + std::to_string(bad.size()) +
                          " input triangles near " + point_text(centre) + " failed after " +
-                         std::to_string(stats.retries) + " splits: " + failure.status.message() +
+                         std::to_string(stats.retries) + " rounds of splits: " + status.message() +
                          "; the surface is too folded there for the size: smooth it "
                          "({smooth} 10), give a smaller {size}, or turn crease detection "
-                         "off ({feature_angle} 180)");
+                         "off ({feature_angle} 180)")
+        .WithRemedy({"smooth", {centre}, 10});
   }
   std::vector<int32_t>& limit = part.options.size_limit;
   if (limit.empty()) limit.assign(input.num_triangles(), 0);
-  for (int32_t t : bad) limit[size_t(t)] = int32_t(bad.size());
+  for (const auto& [patch, status] : failure.patches) {
+    const std::vector<int32_t>& bad = part.patches[patch].triangle_of;
+    for (int32_t t : bad) limit[size_t(t)] = int32_t(bad.size());
+  }
   ++stats.retries;
   part.patches.clear();
   return Status::Ok();
@@ -395,6 +585,8 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
   if (!report_progress(progress, 0.1, "partitioning")) return Status::Cancelled();
   auto t0 = std::chrono::steady_clock::now();
   WallVertices wall;  // per output vertex
+  std::vector<FallbackPatch> fallbacks;
+  std::vector<size_t> fallback_of;  // their patches
   // Phases 2-4, again with the failing patch forced to split if its planar
   // boundary crosses itself (a coarse resampling of a tortuous boundary).
   for (;;) {
@@ -409,10 +601,11 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
     const Seams seams = discretize_seams(input, part.full_adj, part.feature, part.label, h);
     stats.seam_points = seams.home.size();
     // Phase 4: each patch in its plane.
-    const PatchFailure failure = mesh_patches(part, seams, h, options, out.mesh, wall, progress);
-    if (failure.status.ok()) break;
+    const PatchFailure failure = mesh_patches(input, part, seams, h, options, stats.retries,
+                                              out.mesh, wall, fallbacks, fallback_of, progress);
+    if (failure.ok()) break;
     if (failure.status.cancelled()) return failure.status;
-    const Status split = split_failed_patch(input, failure, part, stats);
+    const Status split = split_failed_patches(input, options, failure, part, stats);
     if (!split.ok()) return split;
     t0 = std::chrono::steady_clock::now();
   }
@@ -433,6 +626,8 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
   t0 = std::chrono::steady_clock::now();
   pin_far_input_vertices(input, part.adj, h, asked, options, out.mesh, wall, out.input_gaps, stats);
   stats.seconds_fidelity += seconds_since(t0);
+  measure_fallbacks(input, part, out.mesh, wall.home, fallbacks, fallback_of);
+  stats.fallback_patches = std::move(fallbacks);
   out.home = std::move(wall.home);
   out.sizes = std::move(wall.size);
   out.on_opening.resize(wall.fixed.size());
@@ -495,6 +690,16 @@ DecimatedSurface decimate_for_sizes(const SurfaceMesh& input, const RemeshOption
 }
 
 }  // namespace
+
+std::string fallback_warning(const FallbackPatch& f, std::string_view unit) {
+  std::string why = f.reason;
+  if (f.splits > 0) why = "after " + std::to_string(f.splits) + " rounds of splits: " + why;
+  return "a patch of " + std::to_string(f.input_triangles) + " input triangles near " +
+         point_text(f.place) + " " + std::string(unit) + " could not be meshed through its map (" +
+         why + "): it was remeshed on the surface itself instead, " + std::to_string(f.triangles) +
+         " triangles there, gamma_k min " + number_text(f.quality_min, 3) + ", mean " +
+         number_text(f.quality_mean, 3) + "; the surface is likely folded or crossing itself there";
+}
 
 Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOptions& options,
                                        RemeshStats* stats_out, const ProgressFn& progress) {

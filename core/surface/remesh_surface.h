@@ -4,11 +4,15 @@
 // optimization on the input surface.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/mesh/surface_mesh.h"
+#include "core/surface/isotropic_remesh_patch.h"
 #include "core/surface/optimize_surface.h"
 #include "core/surface/partition.h"
 #include "core/surface/remesh_patch.h"
@@ -89,6 +93,29 @@ struct RemeshOptions {
   bool decimate = true;
   size_t decimate_min_triangles = 200000;
   double decimate_ratio = 8, decimate_error = 0.02, decimate_edge = 0.5;
+  /// The patches whose planar meshing fails are split, all at once, and
+  /// the surface partitioned again, at most this many times; then a patch
+  /// that still fails (or one too small to split) is remeshed on its own
+  /// triangles instead (isotropic_remesh_patch, options `fallback`).
+  size_t max_splits = 16;
+  IsotropicRemeshOptions fallback;
+  /// For tests: the patches holding the input triangle nearest each of
+  /// these points (model unit) take the fallback without trying their map.
+  std::vector<std::array<double, 3>> fallback_at;
+};
+
+/// A patch remeshed by the fallback (RemeshOptions::max_splits), for the
+/// warnings and the report.
+struct FallbackPatch {
+  std::array<double, 3> place{};  ///< the mean of its input triangles' corners
+  size_t input_triangles = 0;     ///< of the surface the phases ran on
+  std::string reason;             ///< why its map could not serve
+  size_t splits = 0;              ///< rounds of splits of failed patches before it
+  /// The wall's triangles there at the end (those whose centroid lies on
+  /// one of its input triangles) and their gamma_k.
+  size_t triangles = 0;
+  double quality_min = 0, quality_mean = 0;
+  double seconds = 0;  ///< meshing it (the failed planar attempt included)
 };
 
 /// The input-vertex distance to the output (over h) the statistics count.
@@ -103,7 +130,9 @@ struct RemeshStats {
   /// decimated (else 0).
   size_t decimated_triangles = 0;
   size_t feature_edges = 0;  ///< input edges kept as sharp features
-  size_t retries = 0;        ///< partitions redone because a patch failed to mesh
+  size_t retries = 0;        ///< partitions redone because patches failed to mesh
+  /// Patches remeshed by the fallback, in patch order.
+  std::vector<FallbackPatch> fallback_patches;
   size_t swaps = 0, moves = 0, collapses = 0;
   double size_min = 0, size_median = 0, size_max = 0;  ///< of the size field at input vertices
   /// Output edge length / asked size (mean of its ends' sizes, before any
@@ -143,11 +172,17 @@ struct RemeshedSurface {
   std::vector<double> sizes;
 };
 
+/// The warning for a patch the fallback remeshed: where (in `unit`), why,
+/// and the quality there.
+std::string fallback_warning(const FallbackPatch& patch, std::string_view unit);
+
 /// Remeshes `input` (one component, manifold, consistently oriented, as
 /// prepared by prepare_surface). The output has the same topology (genus,
 /// openings), every vertex on the input surface, openings resampled at the
-/// target size. Errors: invalid size options, an input that cannot be
-/// partitioned, a failing map or mesher, cancellation.
+/// target size. A patch whose map or planar mesher keeps failing is
+/// remeshed by the fallback (RemeshStats::fallback_patches). Errors:
+/// invalid size options, an input that cannot be partitioned into disks,
+/// a fallback that fails too, cancellation.
 Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOptions& options = {},
                                        RemeshStats* stats = nullptr,
                                        const ProgressFn& progress = {});

@@ -38,7 +38,7 @@ check "garbage" expect_exit 1 "not a surface file this tool reads" "$VM" info "$
 
 check "phantom" expect_exit 0 "wrote" "$VM" phantom "$T/bif.stl" --kind bifurcation --voxel 0.1 --noise 0.3
 check "phantom scale past float" expect_exit 2 "--scale needs a positive scale factor up to 1e30" "$VM" phantom "$T/x.stl" --scale 1e39
-check "phantom bad kind" expect_exit 2 "--kind needs bifurcation, tube, aneurysm, torus, tree or crossing" "$VM" phantom "$T/x.stl" --kind blob
+check "phantom bad kind" expect_exit 2 "--kind needs bifurcation, tube, aneurysm, torus, tree, crossing or outlets" "$VM" phantom "$T/x.stl" --kind blob
 check "phantom tree" expect_exit 0 "wrote" "$VM" phantom "$T/tree.stl" --kind tree --voxel 0.12
 check "tree has 11 openings" expect_exit 0 "openings:    11" "$VM" info "$T/tree.stl"
 head -c 1000 "$T/bif.stl" > "$T/truncated.stl"
@@ -80,6 +80,15 @@ check "info json quality" [ "$(json "$T/info.json" "0 <= d['quality']['min'] <= 
 check "info text" expect_exit 0 "openings:    3" "$VM" info "$T/bif.stl"
 "$VM" phantom "$T/dirty.stl" --kind aneurysm --dirty > /dev/null && "$VM" info "$T/dirty.stl" --json > "$T/dirty.json"
 check "dirty phantom: info lists closed holes apart from the 3 openings, mesh succeeds" [ "$(json "$T/dirty.json" "len(d['openings']) == 3 and len(d['holes']) >= 5 and all(h['closed'] for h in d['holes'])")" = True ] && check "mesh dirty" expect_exit 0 "wrote" "$VM" mesh "$T/dirty.stl" -o "$T/dirty.msh"
+# A SimVascular-like capped model with 186 labelled faces and 20 caps of 6
+# triangles (phantom --kind outlets as a labelled .vtp): at default options
+# every cap becomes an opening and the volume is written with a wall, an
+# inlet and 21 outlets.
+check "outlets phantom as labelled VTP" expect_exit 0 "wrote" "$VM" phantom "$T/outlets.vtp" --kind outlets
+check "outlets phantom: VTP with ModelFaceID" grep -q 'Name="ModelFaceID"' "$T/outlets.vtp"
+check "outlets phantom meshes at defaults" expect_exit 0 "outlet_21" "$VM" mesh "$T/outlets.vtp" -o "$T/outlets.msh" --report "$T/outlets.json" --verify
+check "outlets phantom: 22 caps removed, groups wall, inlet, outlet_1..21, lumen" [ "$(json "$T/outlets.json" "d['input']['caps_removed'] == 22 and d['input']['label_array'] == 'ModelFaceID' and [g['name'] for g in d['output']['groups']] == ['wall', 'inlet'] + ['outlet_%d' % k for k in range(1, 22)] + ['lumen'] and all(g['elements'] > 0 for g in d['output']['groups'])")" = True ]
+check "outlets phantom: the report lists the fallback patches (none here)" [ "$(json "$T/outlets.json" "d['output']['remesh']['fallback_patches'] == [] and d['output']['remesh']['splits'] >= 0")" = True ]
 "$VM" info "$T/dirty.stl" --repair off > "$T/dirty-off.txt" 2>&1
 check "dirty phantom, repair off: the fin's 2-vertex loop is a slit with its place, not an opening of radius 0" grep -q "^slits:       1 .* e.g. at (" "$T/dirty-off.txt"
 check "dirty phantom, repair off: no opening of 2 vertices" bash -c "! grep -q ', 2 vertices' '$T/dirty-off.txt'"

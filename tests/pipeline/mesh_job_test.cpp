@@ -7,8 +7,10 @@
 #include <numbers>
 #include <string>
 
+#include "core/io/vtk_writer.h"
 #include "core/mesh/enclosed_volume.h"
 #include "core/mesh/volume_check.h"
+#include "core/phantom/outlets_phantom.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/option_table.h"
 #include "core/pipeline/report_json.h"
@@ -508,6 +510,95 @@ TEST(MeshJob, LayersTheUserMayNotHaveMeantAreSaid) {
   EXPECT_NE(thin.find("--first-layer 1e-06 is"), std::string::npos) << thin;
   EXPECT_NE(thin.find("nearly flat"), std::string::npos) << thin;
   EXPECT_EQ(warnings_of({{"first_layer", "0.02"}}).find("nearly flat"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vm
+
+namespace vm {
+namespace {
+
+// The job on `bytes` with `o`: it succeeds, with the groups `names` (each
+// holding elements) and a volume that passes check_volume_mesh.
+Result<MeshJobResult> run_checked(const std::vector<uint8_t>& bytes, const MeshJobOptions& o,
+                                  const std::vector<std::string>& names) {
+  auto r = run_mesh_job(bytes, o);
+  EXPECT_TRUE(r.ok()) << r.message();
+  if (!r.ok()) return r;
+  EXPECT_EQ(group_names(r.value()), names);
+  const auto check = check_volume_mesh(r.value().volume);
+  EXPECT_TRUE(check.ok()) << check.message();
+  return r;
+}
+
+TEST(MeshJob, APatchByTheFallbackIsWarnedWithItsPlaceAndListedInTheReport) {
+  // The fallback forced on the patch at a wall point: the job still gives a
+  // valid volume with every group, warns naming the place and the quality,
+  // and the report lists the patch.
+  const SurfaceMesh phantom = testing::noisy_bifurcation(0.15);
+  MeshJobOptions o;
+  ASSERT_TRUE(set_option_text(o, "size", "0.25").ok());
+  o.verify = true;
+  o.remesh_options.fallback_at = {{phantom.points[30], phantom.points[31], phantom.points[32]}};
+  auto r =
+      run_checked(write_stl_binary(phantom), o, {"wall", "inlet", "outlet_1", "outlet_2", "lumen"});
+  ASSERT_TRUE(r.ok());
+  const MeshJobResult& res = r.value();
+  EXPECT_EQ(res.fidelity.self_intersections, 0u);
+  ASSERT_EQ(res.remesh_stats.fallback_patches.size(), 1u);
+  const FallbackPatch& f = res.remesh_stats.fallback_patches[0];
+  EXPECT_GT(f.triangles, 0u);
+  EXPECT_GT(f.quality_min, 0.0);
+  std::string warnings;
+  for (const std::string& w : res.warnings) warnings += w + "\n";
+  EXPECT_NE(warnings.find("could not be meshed through its map"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("near " + point_text(f.place) + " mm"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("gamma_k min " + number_text(f.quality_min, 3)), std::string::npos)
+      << warnings;
+  const std::string json = mesh_report_json(res);
+  EXPECT_NE(json.find("\"fallback_patches\":[{\"place\":["), std::string::npos) << json;
+  EXPECT_NE(json.find("\"input_triangles\":" + std::to_string(f.input_triangles)),
+            std::string::npos);
+  EXPECT_NE(json.find("\"triangles\":" + std::to_string(f.triangles) + ",\"quality\":{\"min\":"),
+            std::string::npos)
+      << json;
+  // Without it nothing is listed.
+  o.remesh_options.fallback_at.clear();
+  o.volume = false;
+  auto plain = run_mesh_job(write_stl_binary(phantom), o);
+  ASSERT_TRUE(plain.ok()) << plain.message();
+  EXPECT_TRUE(plain.value().remesh_stats.fallback_patches.empty());
+  EXPECT_NE(mesh_report_json(plain.value()).find("\"fallback_patches\":[]"), std::string::npos);
+}
+
+TEST(MeshJob, AModelWithManyLabelledFacesAndTinyCapsMeshesWithDefaults) {
+  // A SimVascular-like capped model (outlets_phantom.h): 186 labelled
+  // faces, 20 caps of 6 triangles on tiny branches. At default options
+  // every cap becomes an opening, and the job gives a checked volume with
+  // a wall, an inlet and 21 outlets.
+  PhantomOptions po;
+  po.kind = PhantomKind::kOutlets;
+  PhantomTruth truth;
+  const SurfaceMesh model = testing::phantom(po, &truth);
+  auto vtp = write_surface_vtp(model, truth.face_labels);
+  ASSERT_TRUE(vtp.ok()) << vtp.message();
+  MeshJobOptions o;
+  o.verify = true;
+  std::vector<std::string> groups = {"wall", "inlet"};
+  for (size_t k = 1; k < truth.opening_centers.size(); ++k)
+    groups.push_back("outlet_" + std::to_string(k));
+  groups.push_back("lumen");
+  auto r = run_checked(testing::bytes_of(vtp.value()), o, groups);
+  ASSERT_TRUE(r.ok());
+  const MeshJobResult& res = r.value();
+  EXPECT_EQ(res.surface.label_array, "ModelFaceID");
+  EXPECT_EQ(res.surface.caps_removed, truth.opening_centers.size());
+  ASSERT_EQ(res.surface.topology.openings.size(), truth.opening_centers.size());
+  size_t tiny = 0;
+  for (const Opening& op : res.surface.topology.openings) tiny += op.loop.size() == 6;
+  EXPECT_EQ(tiny, size_t(kOutletsBranches));
+  EXPECT_GT(res.tet_quality_stats.min, 0.0);
+  EXPECT_EQ(res.fidelity.self_intersections, 0u);
 }
 
 }  // namespace

@@ -75,7 +75,9 @@ void check_partition(const SurfaceMesh& in, const std::vector<MappedPatch>& patc
     EXPECT_EQ(topo.components, 1);
     EXPECT_EQ(topo.nonmanifold_vertices, 0u);
     EXPECT_EQ(topo.genus, 0);
-    // The map: one finite uv per vertex, nothing folded, not crowded.
+    // The map: one finite uv per vertex, nothing folded, not crowded
+    // (unless marked unmappable, for the fallback).
+    if (!p.unmappable.empty()) continue;
     ASSERT_EQ(p.map.uv.size(), 2 * p.mesh.num_vertices());
     for (double x : p.map.uv) ASSERT_TRUE(std::isfinite(x));
     EXPECT_EQ(count_flipped(p.mesh, p.map.uv), 0u);
@@ -199,16 +201,30 @@ TEST(Partition, ErrorsAreReported) {
   PartitionOptions shallow;
   shallow.max_depth = 0;
   EXPECT_FALSE(partition_for_maps(tube, adj, kLscm, shallow).ok());
-  // A failing map is an error, not a silent patch.
+  // A failing map is split further, down to pieces too small to split,
+  // which are patches marked unmappable (for the fallback), not silent.
   PatchMapFn failing = [](const SurfaceMesh&) -> Result<Parametrization> {
     return Result<Parametrization>::Error("no map today");
   };
-  auto r = partition_for_maps(tube, adj, failing);
-  ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.message().find("no map today"), std::string::npos) << r.message();
+  PartitionStats stats;
+  auto r = partition_for_maps(tube, adj, failing, {}, &stats);
+  ASSERT_TRUE(r.ok()) << r.message();
+  check_partition(tube, r.value(), {}, "no map");
+  EXPECT_GT(stats.rejected_maps, 0u);
+  for (const MappedPatch& p : r.value()) {
+    EXPECT_LT(p.triangle_of.size(), 8u);
+    EXPECT_NE(p.unmappable.find("no map today"), std::string::npos) << p.unmappable;
+  }
+  // At the depth limit a disk whose map still fails is marked too.
+  const SurfaceMesh square = testing::square_grid(6);
+  auto d = partition_for_maps(square, build_adjacency(square), failing, shallow);
+  ASSERT_TRUE(d.ok()) << d.message();
+  ASSERT_EQ(d.value().size(), 1u);
+  EXPECT_NE(d.value()[0].unmappable.find("after 0 bisections"), std::string::npos)
+      << d.value()[0].unmappable;
 }
 
-TEST(Partition, SamePatchesAndFirstErrorOnAnyThreadCount) {
+TEST(Partition, SamePatchesOnAnyThreadCount) {
   // Pieces of one depth run on the threads; the patches (and their order)
   // and the error reported must not depend on how many.
   const SurfaceMesh m = phantom(PhantomKind::kBifurcation, true, 0.15, 0.3);
@@ -236,18 +252,22 @@ TEST(Partition, SamePatchesAndFirstErrorOnAnyThreadCount) {
     ASSERT_TRUE(r.ok()) << r.message();
     std::vector<std::vector<int32_t>> tris;
     for (const MappedPatch& p : r.value()) tris.push_back(p.triangle_of);
+    // The failing maps: split down to unmappable pieces, the same ones.
     auto e = partition_for_maps(m, adj, failing, o);
-    ASSERT_FALSE(e.ok());
+    ASSERT_TRUE(e.ok()) << e.message();
+    std::string unmappable;
+    for (const MappedPatch& p : e.value()) unmappable += p.unmappable + ";";
+    EXPECT_NE(unmappable.find("no map at"), std::string::npos);
     if (threads == 1) {
       check_partition(m, r.value(), o, "1 thread");
       EXPECT_GE(tris.size(), 40u);
-      first = tris, first_stats = stats, first_error = e.message();
+      first = tris, first_stats = stats, first_error = unmappable;
       continue;
     }
     EXPECT_EQ(tris, first);
     EXPECT_EQ(stats.bisections, first_stats.bisections);
     EXPECT_EQ(stats.rejected_maps, first_stats.rejected_maps);
-    EXPECT_EQ(e.message(), first_error);
+    EXPECT_EQ(unmappable, first_error);
   }
   set_thread_count(0);
 }

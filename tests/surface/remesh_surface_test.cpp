@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/geom/closest_point.h"
+#include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/topology.h"
 #include "core/phantom/vessel_phantom.h"
@@ -305,6 +306,88 @@ TEST(RemeshSurface, AnOversampledInputIsDecimatedFirstAndTheOutputStaysOnIt) {
   });
   EXPECT_TRUE(cancelled.cancelled());
   EXPECT_EQ(stages, std::vector<std::string>{"decimating"});
+}
+
+TEST(RemeshSurface, AFailedPatchFallsBackConformingAndIsReported) {
+  // One patch forced to the fallback (as when its planar meshing keeps
+  // failing): the wall keeps the whole contract, and the patch is reported
+  // where it is with its quality.
+  const SurfaceMesh in = phantom(PhantomKind::kBifurcation, true, 0.15, 0.3);
+  const double h = 0.2;
+  RemeshOptions o = testing::uniform_remesh(h);
+  const std::array<double, 3> asked = {in.points[0], in.points[1], in.points[2]};
+  o.fallback_at = {asked};
+  RemeshStats stats;
+  auto r = remesh_surface(in, o, &stats);
+  ASSERT_TRUE(r.ok()) << r.message();
+  check_remesh(in, r.value(), h, {}, "one patch by the fallback");
+  ASSERT_EQ(stats.fallback_patches.size(), 1u);
+  const FallbackPatch& f = stats.fallback_patches[0];
+  EXPECT_EQ(f.reason, "the fallback was asked for");
+  EXPECT_GT(f.input_triangles, 0u);
+  EXPECT_GT(f.triangles, 0u);
+  EXPECT_LT(f.triangles, r.value().mesh.num_triangles());
+  // Its place is the patch's centre: within the patch's reach of the point.
+  EXPECT_LT(norm(Vec3(f.place) - Vec3(asked)), 0.1 * std::sqrt(double(f.input_triangles)));
+  EXPECT_GT(f.quality_min, 0.3);
+  EXPECT_GT(f.quality_mean, 0.9);
+  EXPECT_LE(f.quality_min, f.quality_mean);
+  const std::string w = fallback_warning(f, "mm");
+  EXPECT_NE(w.find(point_text(f.place) + " mm"), std::string::npos) << w;
+  EXPECT_NE(w.find("gamma_k min"), std::string::npos) << w;
+}
+
+TEST(RemeshSurface, EveryPatchByTheFallbackStillConforms) {
+  // Every patch meshed by the fallback: neighbours meet on their shared
+  // seam points only, so the wall is one manifold surface of the input's
+  // topology.
+  const SurfaceMesh in = phantom(PhantomKind::kBifurcation, true, 0.2, 0.3);
+  const double h = 0.25;
+  RemeshOptions o = testing::uniform_remesh(h);
+  for (size_t v = 0; v < in.num_vertices(); v += 7)
+    o.fallback_at.push_back({in.points[3 * v], in.points[3 * v + 1], in.points[3 * v + 2]});
+  RemeshStats stats;
+  auto r = remesh_surface(in, o, &stats);
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(stats.fallback_patches.size(), stats.patches);
+  check_remesh(in, r.value(), h, {}, "every patch by the fallback");
+}
+
+TEST(RemeshSurface, PatchesWhosePlanarMeshingFailsAreSplitThenFallBack) {
+  // The raw staircase of a noisy binary mask (no smoothing): some patches'
+  // planar boundaries cross themselves. Every failing patch is split at
+  // each round; with no split allowed they fall back at once, and the wall
+  // still keeps the whole contract.
+  PhantomOptions po;
+  po.kind = PhantomKind::kAneurysm;
+  po.binary = true;
+  po.noise = 0.5;
+  po.voxel = 0.15;
+  const SurfaceMesh in = phantom(po);
+  const double h = 0.15;
+  RemeshOptions o = testing::uniform_remesh(h);
+  RemeshStats split_stats;
+  auto split = remesh_surface(in, o, &split_stats);
+  ASSERT_TRUE(split.ok()) << split.message();
+  Expectations e;
+  e.check_size_and_quality = false;
+  check_remesh(in, split.value(), h, e, "staircase, split");
+  o.max_splits = 0;
+  RemeshStats stats;
+  auto r = remesh_surface(in, o, &stats);
+  ASSERT_TRUE(r.ok()) << r.message();
+  check_remesh(in, r.value(), h, e, "staircase, fallback");
+  EXPECT_EQ(stats.retries, 0u);
+  ASSERT_GT(split_stats.retries + stats.fallback_patches.size(), 0u) << "no patch failed";
+  for (const FallbackPatch& f : stats.fallback_patches) {
+    EXPECT_EQ(f.splits, 0u);
+    EXPECT_FALSE(f.reason.empty());
+    EXPECT_GT(f.triangles, 0u);
+    EXPECT_GT(f.quality_min, 0.0);
+    std::cout << "[ info ] fallback: " << f.input_triangles << " input triangles -> " << f.triangles
+              << ", gamma min " << f.quality_min << " mean " << f.quality_mean << " (" << f.reason
+              << ")\n";
+  }
 }
 
 TEST(RemeshSurface, InvalidSizeIsAnError) {

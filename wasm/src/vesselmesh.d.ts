@@ -111,8 +111,8 @@ export interface MeshOptions extends AnalyzeOptions {
 
 /** Options of makePhantom(). */
 export interface PhantomOptions {
-  /** the vessel model (tree: 17 branches, 11 openings) Needs bifurcation, tube, aneurysm, torus or tree. Default bifurcation. */
-  kind?: 'bifurcation' | 'tube' | 'aneurysm' | 'torus' | 'tree';
+  /** the vessel model (tree: 17 branches, 11 openings; outlets: a capped tube with 20 tiny capped branches and 186 labelled faces, as SimVascular exports; write it as .vtp to keep the labels) Needs bifurcation, tube, aneurysm, torus, tree or outlets. Default bifurcation. */
+  kind?: 'bifurcation' | 'tube' | 'aneurysm' | 'torus' | 'tree' | 'outlets';
   /** voxel edge (the parent vessel's radius is 1) In the model's unit. Needs a positive voxel size. Default 0.1. */
   voxel?: number;
   /** voxel-value noise, in voxels. Needs a noise amplitude >= 0 (in voxels). Default 0. */
@@ -275,8 +275,8 @@ export interface VesselmeshApi {
   layerFractions(options?: Pick<MeshOptions, 'layers' | 'growth'>): { ok: true; fractions: Float64Array } | Failure;
   /** The size field mesh() would remesh the last analyzed surface with: at each of its vertices the local vessel radius R and the asked edge length h, in the model's unit, before meshing; or the error mesh() would give. */
   sizeField(options?: MeshOptions): SizeFieldResult;
-  /** A synthetic segmentation-like vessel surface as binary STL. */
-  makePhantom(options?: PhantomOptions): { ok: true; stl: Uint8Array } | Failure;
+  /** A synthetic segmentation-like vessel surface as binary STL (a labelled kind also as VTK XML PolyData with ModelFaceID). */
+  makePhantom(options?: PhantomOptions): { ok: true; stl: Uint8Array; vtp?: Uint8Array } | Failure;
 }
 
 /**
@@ -320,7 +320,7 @@ export class VesselmeshClient {
   cutAt(point: ArrayLike<number>): Promise<{ ok: true; point: number[]; normal: number[]; radius: number; areaRemoved: number } | Failure>;
   layerFractions(options?: Pick<MeshOptions, 'layers' | 'growth'>): Promise<{ ok: true; fractions: Float64Array } | Failure>;
   sizeField(options?: MeshOptions): Promise<SizeFieldResult>;
-  makePhantom(options?: PhantomOptions): Promise<{ ok: true; stl: Uint8Array } | Failure>;
+  makePhantom(options?: PhantomOptions): Promise<{ ok: true; stl: Uint8Array; vtp?: Uint8Array } | Failure>;
   cancel(): void;
   dispose(): void;
 }

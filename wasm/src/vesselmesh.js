@@ -244,8 +244,10 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
     },
 
     /**
-     * Generates a synthetic segmentation-like vessel surface as binary STL.
-     * @returns {{ok: true, stl: Uint8Array} | {ok: false, error: string}}
+     * Generates a synthetic segmentation-like vessel surface as binary STL;
+     * a labelled kind ('outlets') also as VTK XML PolyData with its face
+     * labels (ModelFaceID), `vtp`.
+     * @returns {{ok: true, stl: Uint8Array, vtp?: Uint8Array} | {ok: false, error: string}}
      */
     makePhantom(options = {}) {
       return answer(core.makePhantom(options));

@@ -972,7 +972,7 @@ describe('makePhantom', () => {
     const a = api.makePhantom({ noise: 0.3, voxel: 0.2, seed: 7 });
     const b = api.makePhantom({ noise: 0.3, voxel: 0.2, seed: 7 });
     assert.deepEqual(a.stl, b.stl);
-    assert.equal(api.makePhantom({ kind: 'blob' }).error, 'kind needs bifurcation, tube, aneurysm, torus or tree');
+    assert.equal(api.makePhantom({ kind: 'blob' }).error, 'kind needs bifurcation, tube, aneurysm, torus, tree or outlets');
     assert.equal(api.makePhantom({ voxel: 0 }).error, 'voxel needs a positive voxel size');
     assert.match(api.makePhantom({ voxel: 1e-4 }).error, /too large/);
     assert.match(api.makePhantom({ seed: -1 }).error, /seed/);

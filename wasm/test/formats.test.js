@@ -6,6 +6,7 @@ import { readFileSync } from 'node:fs';
 import { before, describe, test } from 'node:test';
 import { inflateRawSync } from 'node:zlib';
 
+import { transferables } from '../src/transfer.js';
 import { createVesselmesh } from '../src/vesselmesh.js';
 import { cappedTubeVtp as cappedTubeText } from './capped-tube-vtp.js';
 
@@ -121,6 +122,35 @@ describe('files in', () => {
     assert.equal(kept.analysis.closed, true);
     assert.equal(kept.analysis.units.unit, 'cm');
     assert.equal(kept.analysis.units.guessed, false);
+  });
+
+  test('a SimVascular-like model with 186 labelled faces and tiny 6-triangle caps meshes at default options', () => {
+    // makePhantom({kind: 'outlets'}): a capped tube with 20 tiny capped
+    // branches, also as a labelled VTP. Every cap becomes an opening; the
+    // mesh has a wall, an inlet and 21 outlets.
+    const p = api.makePhantom({ kind: 'outlets' });
+    assert.equal(p.ok, true, p.error);
+    assert.ok(p.vtp instanceof Uint8Array && p.stl instanceof Uint8Array);
+    assert.deepEqual(transferables(p), [p.stl.buffer, p.vtp.buffer]); // the worker moves both
+    assert.match(text(p.vtp.subarray(0, 400)), /<VTKFile type="PolyData"/);
+    const a = api.analyze(p.vtp);
+    assert.equal(a.ok, true, a.error);
+    assert.equal(a.analysis.label_array, 'ModelFaceID');
+    assert.equal(a.analysis.caps_removed, 22);
+    assert.equal(a.analysis.openings.length, 22);
+    assert.ok(a.analysis.openings.every((o) => o.source === 'cap'));
+    assert.equal(a.analysis.openings.filter((o) => o.vertices.length === 6).length, 20);
+    const m = api.mesh(p.vtp);
+    assert.equal(m.ok, true, m.error);
+    const names = m.report.output.groups.map((g) => g.name);
+    const outlets = Array.from({ length: 21 }, (_, k) => `outlet_${k + 1}`);
+    assert.deepEqual(names, ['wall', 'inlet', ...outlets, 'lumen']);
+    assert.ok(m.report.output.groups.every((g) => g.elements > 0));
+    assert.ok(m.report.output.volume.tetrahedra > 0);
+    assert.ok(m.report.output.volume.quality.min > 0);
+    assert.ok(Array.isArray(m.report.output.remesh.fallback_patches));
+    // An unlabelled kind has no VTP.
+    assert.equal(api.makePhantom({ kind: 'tube', voxel: 0.3 }).vtp, undefined);
   });
 
   test('a flat-capped phantom in metres: 3 openings from caps, metres guessed', () => {
