@@ -34,7 +34,9 @@ TEST(RelaxWall, TakesOutANeedleAndLeavesTheRestOfTheWall) {
     const Vec3 q = at(before.points, int32_t(v));
     const bool far = norm(q - Vec3{0.2, 0, 4}) >= reach;
     const bool rim = q[2] < 1e-9 || q[2] > 8 - 1e-9;
-    if (far || rim) EXPECT_EQ(at(wall.points, int32_t(v)), q) << v;
+    if (far || rim) {
+      EXPECT_EQ(at(wall.points, int32_t(v)), q) << v;
+    }
   }
   // Nothing near: nothing done.
   const SurfaceMesh now = wall;
