@@ -16,7 +16,9 @@ namespace {
 constexpr std::string_view kParams[] = {"lscm", "harmonic", "floater"};
 constexpr std::string_view kMeshers[] = {"frontal", "delaunay", "adapt"};
 constexpr std::string_view kMshVersions[] = {"4.1", "2.2"};
-constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm", "torus", "tree"};
+constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm",
+                                              "torus",       "tree", "root"};
+constexpr std::string_view kCapShapes[] = {"flat", "fan", "dome"};
 constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
 constexpr std::string_view kOffAuto[] = {"off", "auto"};
 constexpr std::string_view kFormats[] = {"msh", "vtu", "vtp", "stl", "mesh-complete", "foam"};
@@ -143,9 +145,10 @@ const OptionSpec kOptions[] = {
      .group = "input",
      .metavar = "off|auto",
      .choices = kOffAuto,
-     .default_text = "off",
+     .default_text = "auto",
      .needs = "off or auto",
-     .doc = "auto: cut each vessel end of a closed surface open, perpendicular to the vessel"},
+     .doc = "auto: cut each blind vessel end open (closed or not, after the cuts given), "
+            "perpendicular to the vessel; off: keep the blind ends (they are proposed)"},
     {.id = "clip_distance",
      .cli = "clip-distance",
      .js = "clipDistance",
@@ -607,8 +610,9 @@ const OptionSpec kOptions[] = {
      .metavar = "KIND",
      .choices = kPhantomKinds,
      .default_text = "bifurcation",
-     .needs = "bifurcation, tube, aneurysm, torus or tree",
-     .doc = "the vessel model (tree: 17 branches, 11 openings)"},
+     .needs = "bifurcation, tube, aneurysm, torus, tree or root",
+     .doc = "the vessel model (tree: 17 branches, 11 openings; root: a short, wide root "
+            "splitting into 2 branches that split again, 5 ends)"},
     {.id = "voxel",
      .cli = "voxel",
      .js = "voxel",
@@ -686,6 +690,18 @@ const OptionSpec kOptions[] = {
      .commands = kCommandPhantom,
      .group = "phantom",
      .doc = "close the cut ends by flat caps (a capped model, as SimVascular exports)"},
+    {.id = "caps",
+     .cli = "caps",
+     .js = "caps",
+     .type = T::kChoice,
+     .commands = kCommandPhantom,
+     .group = "phantom",
+     .metavar = "flat|fan|dome",
+     .choices = kCapShapes,
+     .needs = "flat, fan or dome",
+     .doc = "close the cut ends by caps of this shape: flat (as --flat-caps), fan (around an "
+            "apex lifted 0.1 radius, as capping tools fill holes) or dome (smooth, bulging 0.3 "
+            "to 1 radius, meeting the wall at a crease)"},
 };
 
 #pragma GCC diagnostic pop
@@ -987,6 +1003,7 @@ Status apply_option(PhantomOptions& o, const OptionSpec& spec, const OptionValue
              : v.text == "aneurysm" ? PhantomKind::kAneurysm
              : v.text == "torus"    ? PhantomKind::kTorus
              : v.text == "tree"     ? PhantomKind::kTree
+             : v.text == "root"     ? PhantomKind::kRoot
                                     : PhantomKind::kBifurcation;
   } else if (id == "voxel") {
     o.voxel = v.number;
@@ -1004,6 +1021,11 @@ Status apply_option(PhantomOptions& o, const OptionSpec& spec, const OptionValue
     o.open_ends = v.flag;
   } else if (id == "flat_caps") {
     o.flat_caps = v.flag;
+  } else if (id == "caps") {
+    o.flat_caps = true;
+    o.cap_shape = v.text == "fan"    ? PhantomCapShape::kFan
+                  : v.text == "dome" ? PhantomCapShape::kDome
+                                     : PhantomCapShape::kFlat;
   } else {
     return Status::Internal("option " + std::string(id) + " is not a phantom option");
   }

@@ -282,6 +282,43 @@ bool take_islands(const Context& ctx, std::vector<uint8_t>& in_region, Region& r
   return added;
 }
 
+/// Triangle normals with the noise of a segmentation's wall smoothed and
+/// creases kept: a pass of bilateral normal filtering (Zheng, Fu, Au and
+/// Tai, "Bilateral normal filtering for mesh denoising", IEEE TVCG 2011)
+/// over the triangles sharing a vertex, weighted by area and by
+/// exp(-((1 - n.m) / (1 - cos 0.9 a))^2), a the crease angle: a neighbour
+/// turned by the crease angle weighs e^-1.5, by half of it e^-0.09 (a
+/// second pass lost more domes' rims than it found on the phantoms).
+/// Needles keep their normal and give none.
+std::vector<Vec3> bilateral_normals(const Context& ctx, const std::vector<uint8_t>& needle,
+                                    double crease_degrees) {
+  const SurfaceMesh& m = ctx.mesh;
+  const std::vector<Vec3>& n = ctx.normals;
+  const double scale = 1 - angle_cos(0.9 * crease_degrees);
+  std::vector<Vec3> out = n;
+  std::vector<int32_t> near;
+  for (size_t t = 0; t < n.size(); ++t) {
+    if (needle[t]) continue;
+    near.clear();
+    for (int k = 0; k < 3; ++k) {
+      const int32_t v = m.triangles[3 * t + size_t(k)];
+      for (int32_t i = ctx.adj.star_offsets[size_t(v)]; i < ctx.adj.star_offsets[size_t(v) + 1];
+           ++i)
+        near.push_back(ctx.adj.star[size_t(i)]);
+    }
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    Vec3 sum{};
+    for (int32_t s : near) {
+      if (needle[size_t(s)]) continue;
+      const double x = (1 - dot(n[t], n[size_t(s)])) / scale;
+      sum = sum + (ctx.areas[size_t(s)] * std::exp(-x * x)) * n[size_t(s)];
+    }
+    if (norm(sum) > 0) out[t] = normalized(sum);
+  }
+  return out;
+}
+
 /// Whether triangle t (of area `area`) is a needle: of height under 0.002%
 /// of its longest edge (two nearly coincident corners), its normal the
 /// direction of that tiny offset rather than the surface's.
@@ -500,6 +537,8 @@ CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& 
     // Needles are left out.
     std::vector<uint8_t> is_needle(nt, 0);
     for (size_t t = 0; t < nt; ++t) is_needle[t] = needle(mesh, t, tn.area[t]);
+    const std::vector<Vec3> filtered =
+        bilateral_normals(ctx, is_needle, options.crease_angle_degrees);
     // The largest turn between two triangles of each vertex's star.
     std::vector<double> spread(mesh.num_vertices(), 1);  // cosine
     std::vector<int32_t> star;
@@ -509,7 +548,8 @@ CapRecognition recognize_caps(const SurfaceMesh& mesh, const TriangleAdjacency& 
         if (!is_needle[size_t(adj.star[size_t(i)])]) star.push_back(adj.star[size_t(i)]);
       for (size_t i = 0; i < star.size(); ++i)
         for (size_t j = i + 1; j < star.size(); ++j)
-          spread[v] = std::min(spread[v], dot(normals[size_t(star[i])], normals[size_t(star[j])]));
+          spread[v] =
+              std::min(spread[v], dot(filtered[size_t(star[i])], filtered[size_t(star[j])]));
     }
     // Crease vertices: a turn over the crease angle (strong), or over 0.6
     // of it (weak) with at least two neighbours strong or weak, one of them

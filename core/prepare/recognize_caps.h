@@ -19,9 +19,10 @@
 // Caps that are not planar (method: our own), on unlabelled surfaces: after
 // phase 2, the triangles outside the planar caps are grown into regions
 // bounded by the edges joining two crease vertices (vertices two of whose
-// triangles' normals differ by more than the crease angle: every vertex of
-// a crease loop has triangles of both sides, so the loop has no gap for a
-// region to leak through); a region is a cap when it is a disk whose
+// triangles' normals, bilaterally filtered, differ by more than the crease
+// angle: every vertex of a crease loop has triangles of both sides, so the
+// loop has no gap for a region to leak through; a region's islands are
+// taken in); a region is a cap when it is a disk whose
 // rim (the crease loop) is a round loop near its best-fit plane, lying on
 // the outer side of that plane (bulging at most max_height rim radii, every
 // triangle facing out of it), with the wall meeting it at a right angle and
