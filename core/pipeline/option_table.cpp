@@ -699,7 +699,7 @@ const OptionSpec kOptions[] = {
      .metavar = "flat|fan|dome",
      .choices = kCapShapes,
      .needs = "flat, fan or dome",
-     .doc = "close the cut ends by caps of this shape: flat (as --flat-caps), fan (around an "
+     .doc = "close the cut ends by caps of this shape: flat (as flat caps), fan (around an "
             "apex lifted 0.1 radius, as capping tools fill holes) or dome (smooth, bulging 0.3 "
             "to 1 radius, meeting the wall at a crease)"},
 };
