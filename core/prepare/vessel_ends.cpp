@@ -654,6 +654,13 @@ VesselEnds find_vessel_ends(const SurfaceMesh& mesh, const VesselEndOptions& opt
   // short root (step 6).
   std::vector<std::pair<FieldMaximum, double>> maybe_short;
   std::vector<int32_t> found_at;  // the candidate vertex of each end found
+  // Whether an end cut within a radius of `end`'s cut was found already.
+  auto found_already = [&](const VesselEnd& end) {
+    return std::any_of(out.ends.begin(), out.ends.end(), [&](const VesselEnd& e) {
+      const Vec3 d = sub(e.plane.point, end.plane.point);
+      return std::sqrt(dot(d, d)) < std::max(e.radius, end.radius);
+    });
+  };
   // Extremities found to be no vessel end by the tests (not by
   // persistence): a second look from another vertex of theirs is not taken.
   std::vector<NotAVesselEnd> tested;
@@ -682,12 +689,7 @@ VesselEnds find_vessel_ends(const SurfaceMesh& mesh, const VesselEndOptions& opt
       if (!found && why.why != "too small to be a vessel" && first_radius > 0)
         maybe_short.push_back({c, first_radius});
       if (found) {
-        bool duplicate = false;
-        for (const VesselEnd& e : out.ends) {
-          const Vec3 d = sub(e.plane.point, end.plane.point);
-          duplicate |= std::sqrt(dot(d, d)) < std::max(e.radius, end.radius);
-        }
-        if (!duplicate) out.ends.push_back(end), found_at.push_back(c.vertex);
+        if (!found_already(end)) out.ends.push_back(end), found_at.push_back(c.vertex);
       } else if (report && c.persistence >= 1.5 * first_radius && first_radius > 0) {
         bool again = false;
         for (const NotAVesselEnd& r : out.rejected) {
@@ -724,12 +726,7 @@ VesselEnds find_vessel_ends(const SurfaceMesh& mesh, const VesselEndOptions& opt
     VesselEnd root;
     NotAVesselEnd why;
     if (!analysis.run(root, why) || root.radius < kRootWidth * widest) continue;
-    bool duplicate = false;
-    for (const VesselEnd& e : out.ends) {
-      const Vec3 d = sub(e.plane.point, root.plane.point);
-      duplicate |= std::sqrt(dot(d, d)) < std::max(e.radius, root.radius);
-    }
-    if (!duplicate) out.ends.push_back(root);
+    if (!found_already(root)) out.ends.push_back(root);
     break;
   }
   std::stable_sort(out.ends.begin(), out.ends.end(),

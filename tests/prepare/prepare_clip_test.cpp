@@ -185,13 +185,9 @@ namespace {
 
 TEST(PrepareClip, ByDefaultEveryBlindEndIsOpenedAndTheWidestRootIsTheInlet) {
   // A closed tree whose root is short and wider than its branches.
-  PhantomOptions o;
-  o.kind = PhantomKind::kRoot;
-  o.voxel = 0.15;
-  o.noise = 0.3;
-  o.open_ends = false;
   PhantomTruth truth;
-  auto r = prepare_surface(write_stl_binary(testing::phantom(o, &truth)));
+  auto r = prepare_surface(
+      write_stl_binary(testing::phantom(PhantomKind::kRoot, false, 0.15, 0.3, &truth)));
   ASSERT_TRUE(r.ok()) << r.message();
   const PreparedSurface& s = r.value();
   expect_clip_openings(s, 5);
