@@ -131,6 +131,11 @@ void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
     std::string from = src.kind == vm::OpeningSource::kFile
                            ? std::string()
                            : std::string(", from a ") + vm::opening_source_name(src.kind);
+    if (src.shape != vm::OpeningSource::kNone && src.shape != vm::OpeningSource::kLabelled) {
+      std::string shape = vm::opening_shape_name(src.shape);
+      std::replace(shape.begin(), shape.end(), '_', ' ');
+      from += " (" + shape + ")";
+    }
     if (src.label >= 0) from += " (" + s.label_array + " " + std::to_string(src.label) + ")";
     std::printf("  %zu: %s: perimeter %g %s, radius %g %s, centroid (%g, %g, %g), %zu vertices%s\n",
                 i + 1, names.ok() ? names.value()[i].c_str() : "?", o.perimeter, unit, o.radius,

@@ -184,6 +184,17 @@ Model build_model(PhantomKind kind) {
       }
       return m;
     }
+    case PhantomKind::kRoot: {
+      // A short, wide root (1.5 of its radii long to the branching) and two
+      // branches leaving it at 40 degrees, each splitting once more.
+      m.branches.push_back(spline_branch({{0, 0, -1.4}, {0.05, 0, -0.7}, {0, 0, 0}}, n,
+                                         [](double s) { return 1.7 - 0.05 * s; }));
+      m.joined_end.push_back(true);
+      const double a = 70 * std::numbers::pi / 180;
+      grow_tree(m, {0, 0, 0}, {pm::sin(a), 0, pm::cos(a)}, {0, 1, 0}, 1.1, 6.0, 1);
+      grow_tree(m, {0, 0, 0}, {-pm::sin(a), 0, pm::cos(a)}, {0, 1, 0}, 1.0, 6.0, 1);
+      break;
+    }
     case PhantomKind::kTorus: {
       std::vector<Vec3> ring;
       for (int i = 0; i <= 8; ++i) {
@@ -333,18 +344,79 @@ void keep_largest_component(SurfaceMesh& mesh) {
   if (r.components > 0) mesh = extract_component(mesh, r, 0);
 }
 
-/// Closes every boundary loop by a fan from its centroid, outward oriented
-/// (each fan triangle runs against the loop's boundary half-edge).
-void close_by_fans(SurfaceMesh& mesh) {
+/// Closes every boundary loop by a cap of `shape`, outward oriented (each
+/// triangle next to the rim runs against the loop's boundary half-edge): a
+/// fan from the loop's centroid (flat), from an apex lifted 0.1 radius off
+/// it (fan), or rings of a paraboloid rising 0.3, 0.6 or 1 radius (dome, in
+/// turn from loop to loop) up to its apex, each ring taking every m-th rim
+/// vertex's direction (m about the rim's radius over the ring's), so that
+/// its triangles keep the rim's size.
+void close_ends(SurfaceMesh& mesh, PhantomCapShape shape) {
   const TriangleAdjacency adj = build_adjacency(mesh);
-  for (const std::vector<int32_t>& loop : boundary_loops(mesh, adj)) {
+  const std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, adj);
+  for (size_t l = 0; l < loops.size(); ++l) {
+    const std::vector<int32_t>& loop = loops[l];
+    const size_t n = loop.size();
+    auto p = [&](size_t i) { return at(mesh.points, loop[i % n]); };
     Vec3 c = {0, 0, 0};
-    for (int32_t v : loop)
-      for (int k = 0; k < 3; ++k) c[k] += mesh.points[3 * size_t(v) + k] / double(loop.size());
-    const int32_t center = int32_t(mesh.num_vertices());
-    mesh.points.insert(mesh.points.end(), c.begin(), c.end());
-    for (size_t i = 0; i < loop.size(); ++i)
-      mesh.triangles.insert(mesh.triangles.end(), {loop[(i + 1) % loop.size()], loop[i], center});
+    for (size_t i = 0; i < n; ++i) c = c + (1.0 / double(n)) * p(i);
+    // The fan's outward normal (twice its vector area), the loop's
+    // equivalent radius and mean edge.
+    Vec3 area2 = {0, 0, 0};
+    double edge = 0;
+    for (size_t i = 0; i < n; ++i) {
+      area2 = area2 + cross(p(i) - p(i + 1), c - p(i + 1));
+      edge += norm(p(i + 1) - p(i)) / double(n);
+    }
+    const double radius = std::sqrt(0.5 * norm(area2) / std::numbers::pi);
+    const Vec3 normal = normalized(area2);
+    constexpr double kDomeHeights[3] = {0.3, 0.6, 1.0};
+    const double height = shape == PhantomCapShape::kFan    ? 0.1
+                          : shape == PhantomCapShape::kDome ? kDomeHeights[l % 3]
+                                                            : 0.0;
+    const int rings = shape == PhantomCapShape::kDome
+                          ? std::max(3, int(std::lround(radius / std::max(edge, 1e-12))))
+                          : 1;
+    // A ring: its vertices and the rim index each one's direction comes from.
+    std::vector<int32_t> outer = loop;
+    std::vector<size_t> outer_at(n);
+    for (size_t i = 0; i < n; ++i) outer_at[i] = i;
+    for (int k = 1; k < rings; ++k) {
+      const double r = 1 - double(k) / rings;
+      const size_t step = std::clamp<size_t>(size_t(std::lround(1 / r)), 1, n / 3);
+      std::vector<int32_t> inner;
+      std::vector<size_t> inner_at;
+      for (size_t i = 0; i < n; i += step) {
+        const Vec3 q = c + r * (p(i) - c) + (height * radius * (1 - r * r)) * normal;
+        inner.push_back(int32_t(mesh.num_vertices()));
+        inner_at.push_back(i);
+        mesh.points.insert(mesh.points.end(), q.begin(), q.end());
+      }
+      // Stitch the two rings in the order of their rim indices.
+      const size_t na = outer.size(), nb = inner.size();
+      auto param = [&](const std::vector<size_t>& ring_at, size_t j) {
+        return j >= ring_at.size() ? double(n) : double(ring_at[j]);
+      };
+      for (size_t a = 0, b = 0; a < na || b < nb;) {
+        if (b == nb || (a < na && param(outer_at, a + 1) <= param(inner_at, b + 1))) {
+          mesh.triangles.insert(mesh.triangles.end(),
+                                {outer[(a + 1) % na], outer[a % na], inner[b % nb]});
+          ++a;
+        } else {
+          mesh.triangles.insert(mesh.triangles.end(),
+                                {outer[a % na], inner[b % nb], inner[(b + 1) % nb]});
+          ++b;
+        }
+      }
+      outer = std::move(inner);
+      outer_at = std::move(inner_at);
+    }
+    const Vec3 apex = c + (height * radius) * normal;
+    const int32_t centre = int32_t(mesh.num_vertices());
+    mesh.points.insert(mesh.points.end(), apex.begin(), apex.end());
+    for (size_t i = 0; i < outer.size(); ++i)
+      mesh.triangles.insert(mesh.triangles.end(),
+                            {outer[(i + 1) % outer.size()], outer[i], centre});
   }
 }
 
@@ -451,7 +523,7 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
       for (const EndCut& c : m.cuts) clip(mesh, c);
     keep_largest_component(mesh);
   }
-  if (open && o.flat_caps) close_by_fans(mesh);
+  if (open && o.flat_caps) close_ends(mesh, o.cap_shape);
   const DirtTruth dirt = o.dirty ? add_segmentation_defects(mesh, o.seed) : DirtTruth{};
   if (open && !o.flat_caps && o.damaged_ends) add_damaged_ends(mesh, o.seed);
   for (double& x : mesh.points) x *= o.scale;

@@ -30,6 +30,23 @@ enum class PhantomKind {
   /// (outlets_phantom.h); analytic: voxel, noise, binary, dirty and
   /// open_ends do not apply.
   kOutlets,
+  /// A short, wide root (radius 1.7, its centerline 1.5 root radii long up
+  /// to the branching) splitting into two branches (radii 1.1 and 1.0) that
+  /// split again: 7 branches, 5 ends, the root the widest (a pulmonary
+  /// trunk's shape).
+  kRoot,
+};
+
+/// The shape of the caps closing the cut ends (PhantomOptions::flat_caps).
+enum class PhantomCapShape {
+  kFlat,  ///< a flat fan from the cut's centroid (SimVascular, VMTK)
+  /// A fan around one apex lifted 0.1 radius off the cut plane (a capping
+  /// tool's fill: the hard carotid's caps).
+  kFan,
+  /// A smooth dome (paraboloid) bulging 0.3, 0.6 or 1 radius beyond the cut
+  /// (in turn from end to end), meeting the wall at a crease of 59, 40 or
+  /// 27 degrees (a repair tool's smooth hole fill).
+  kDome,
 };
 
 struct PhantomOptions {
@@ -44,6 +61,9 @@ struct PhantomOptions {
   /// SimVascular and VMTK export them: planar caps meeting the wall at a
   /// sharp rim). The surface is then closed.
   bool flat_caps = false;
+  /// The shape of those caps (flat by default; the name flat_caps is kept
+  /// for the flag that asks for them).
+  PhantomCapShape cap_shape = PhantomCapShape::kFlat;
   /// Amplitude of the voxel-value noise, relative to the voxel size
   /// (0 = clean staircase). Deterministic for a given seed.
   double noise = 0.0;

@@ -17,7 +17,9 @@ constexpr std::string_view kParams[] = {"lscm", "harmonic", "floater"};
 constexpr std::string_view kMeshers[] = {"frontal", "delaunay", "adapt"};
 constexpr std::string_view kMshVersions[] = {"4.1", "2.2"};
 constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube", "aneurysm",
-                                              "torus",       "tree", "crossing", "outlets"};
+                                              "torus",       "tree", "crossing", "outlets",
+                                              "root"};
+constexpr std::string_view kCapShapes[] = {"flat", "fan", "dome"};
 constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
 constexpr std::string_view kOffAuto[] = {"off", "auto"};
 constexpr std::string_view kFormats[] = {"msh", "vtu", "vtp", "stl", "mesh-complete", "foam"};
@@ -144,9 +146,10 @@ const OptionSpec kOptions[] = {
      .group = "input",
      .metavar = "off|auto",
      .choices = kOffAuto,
-     .default_text = "off",
+     .default_text = "auto",
      .needs = "off or auto",
-     .doc = "auto: cut each vessel end of a closed surface open, perpendicular to the vessel"},
+     .doc = "auto: cut each blind vessel end open (closed or not, after the cuts given), "
+            "perpendicular to the vessel; off: keep the blind ends (they are proposed)"},
     {.id = "clip_distance",
      .cli = "clip-distance",
      .js = "clipDistance",
@@ -608,11 +611,12 @@ const OptionSpec kOptions[] = {
      .metavar = "KIND",
      .choices = kPhantomKinds,
      .default_text = "bifurcation",
-     .needs = "bifurcation, tube, aneurysm, torus, tree, crossing or outlets",
+     .needs = "bifurcation, tube, aneurysm, torus, tree, crossing, outlets or root",
      .doc = "the vessel model (tree: 17 branches, 11 openings; crossing: two vessels that touch "
             "and pass into each other, each its own shell; outlets: a capped tube with 20 tiny "
-            "capped branches and 186 labelled faces, as SimVascular exports; write it as .vtp to "
-            "keep the labels)"},
+            "capped branches and 186 labelled faces, as SimVascular exports, written as .vtp to "
+            "keep the labels; root: a short, wide root splitting into 2 branches that split "
+            "again, 5 ends)"},
     {.id = "voxel",
      .cli = "voxel",
      .js = "voxel",
@@ -698,6 +702,18 @@ const OptionSpec kOptions[] = {
      .commands = kCommandPhantom,
      .group = "phantom",
      .doc = "close the cut ends by flat caps (a capped model, as SimVascular exports)"},
+    {.id = "caps",
+     .cli = "caps",
+     .js = "caps",
+     .type = T::kChoice,
+     .commands = kCommandPhantom,
+     .group = "phantom",
+     .metavar = "flat|fan|dome",
+     .choices = kCapShapes,
+     .needs = "flat, fan or dome",
+     .doc = "close the cut ends by caps of this shape: flat (as flat caps), fan (around an "
+            "apex lifted 0.1 radius, as capping tools fill holes) or dome (smooth, bulging 0.3 "
+            "to 1 radius, meeting the wall at a crease)"},
 };
 
 #pragma GCC diagnostic pop
@@ -1001,6 +1017,7 @@ Status apply_option(PhantomOptions& o, const OptionSpec& spec, const OptionValue
              : v.text == "tree"     ? PhantomKind::kTree
              : v.text == "crossing" ? PhantomKind::kCrossing
              : v.text == "outlets"  ? PhantomKind::kOutlets
+             : v.text == "root"     ? PhantomKind::kRoot
                                     : PhantomKind::kBifurcation;
   } else if (id == "voxel") {
     o.voxel = v.number;
@@ -1020,6 +1037,11 @@ Status apply_option(PhantomOptions& o, const OptionSpec& spec, const OptionValue
     o.open_ends = v.flag;
   } else if (id == "flat_caps") {
     o.flat_caps = v.flag;
+  } else if (id == "caps") {
+    o.flat_caps = true;
+    o.cap_shape = v.text == "fan"    ? PhantomCapShape::kFan
+                  : v.text == "dome" ? PhantomCapShape::kDome
+                                     : PhantomCapShape::kFlat;
   } else {
     return Status::Internal("option " + std::string(id) + " is not a phantom option");
   }

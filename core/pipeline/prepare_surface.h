@@ -48,10 +48,13 @@ struct PrepareOptions {
   /// (detected by their facet normals), a count of passes smooths any
   /// surface, kOff never.
   Smoothing smoothing;
-  /// Clipping after cap recognition: at the vessel ends of a closed
-  /// surface (clip_auto, clip_distance local radii in from each tip), and
-  /// by the given planes (each removes the side its normal points to).
-  bool clip_auto = false;
+  /// Clipping after cap recognition: by the given planes (each removes the
+  /// side its normal points to), across the vessels at the given points,
+  /// then at the blind vessel ends left (clip_auto, clip_distance local
+  /// radii in from each tip), whether the surface is closed or has
+  /// openings already. Without clip_auto the blind ends are kept and
+  /// proposed (clip_proposals).
+  bool clip_auto = true;
   double clip_distance = 1;
   std::vector<ClipPlane> clip_planes;
   /// ... and across the vessel at the surface points nearest these (model
@@ -75,12 +78,32 @@ struct OpeningSource {
   /// Length of the flow extension added at this opening (model units; 0:
   /// none): the opening is then the extension's circular end.
   double extension = 0;
+  /// What was opened: a cap's shape (labelled, planar, fan, dome: the fans
+  /// and domes are cut at their rim's best-fit plane), or what a cut was
+  /// made at (a blind vessel end by {clip} auto, a plane given, a point
+  /// given, a damaged end trimmed by {repair} auto); kNone for an opening
+  /// of the file.
+  enum Shape {
+    kNone,
+    kLabelled,
+    kPlanar,
+    kFan,
+    kDome,
+    kBlindEnd,
+    kPlane,
+    kPoint,
+    kDamagedEnd
+  } shape = kNone;
 };
 
 /// "file", "cap", "clip".
 inline const char* opening_source_name(OpeningSource::Kind kind) {
   return kind == OpeningSource::kCap ? "cap" : kind == OpeningSource::kClip ? "clip" : "file";
 }
+
+/// "" (kNone), "labelled", "planar", "fan", "dome", "blind_end", "plane",
+/// "point", "damaged_end".
+const char* opening_shape_name(OpeningSource::Shape shape);
 
 /// A boundary loop too small to be an opening: a defect of the surface.
 struct Hole {
@@ -142,8 +165,8 @@ struct PreparedSurface {
   std::vector<ClipCut> clips;
   /// Separate pieces under 1% of the largest (triangles or area) removed.
   size_t specks_removed = 0;
-  /// A closed surface not clipped: the cuts {clip} auto would make, one per
-  /// vessel end found.
+  /// A surface not clipped ({clip} off): the cuts {clip} auto would make,
+  /// one per blind vessel end found.
   std::vector<VesselEnd> clip_proposals;
   /// The model's length unit and how it was decided.
   ModelUnit unit;

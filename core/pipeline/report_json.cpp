@@ -108,6 +108,11 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
     const OpeningSource& src = s.opening_sources[i];
     j.begin_object();
     j.key("source").value(opening_source_name(src.kind));
+    j.key("shape");
+    if (src.shape == OpeningSource::kNone)
+      j.null();
+    else
+      j.value(opening_shape_name(src.shape));
     j.key("label").value(src.label);
     j.key("extension").value(src.extension);
     j.key("name").value(names.ok() ? names.value()[i] : std::string());
@@ -152,6 +157,7 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
     j.key("radius").value(e.cut_radius);
     j.key("tip").array(e.tip);
     j.key("depth").value(e.cut_depth);
+    j.key("short_root").value(e.short_end);
     j.end_object();
   }
   j.end_array();

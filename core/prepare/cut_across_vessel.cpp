@@ -5,11 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/geom/vec3.h"
 #include "core/mesh/level_loops.h"
+#include "core/prepare/recognize_caps.h"
+#include "core/prepare/vessel_ends.h"
 #include "core/util/portable_math.h"
 
 namespace vm {
@@ -117,18 +120,89 @@ double roundness_of(const CurveShape& s) {
   return s.max_distance > 0 ? s.min_distance / s.max_distance : 0;
 }
 
-}  // namespace
-
-Result<VesselCut> cut_across_vessel(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
-                                    const std::array<double, 3>& near) {
-  if (mesh.num_triangles() == 0) return Status::Error("cannot cut: the surface is empty");
-  // Phase 1: the nearest vertex.
+/// Phase 1: the vertex nearest `near`.
+int32_t nearest_vertex(const SurfaceMesh& mesh, const Vec3& near) {
   int32_t v0 = 0;
   double best = 1e300;
   for (size_t v = 0; v < mesh.num_vertices(); ++v) {
     const Vec3 d = at(mesh.points, int32_t(v)) - near;
     if (dot(d, d) < best) best = dot(d, d), v0 = int32_t(v);
   }
+  return v0;
+}
+
+/// Step 5: the cut through `centre` perpendicular to `axis` (the section
+/// `shape`), removing the side with less surface.
+Result<VesselCut> smaller_side(const SurfaceMesh& mesh, const Vec3& centre, const Vec3& axis,
+                               const CurveShape& shape) {
+  ClipOptions options;
+  options.max_removed_fraction = 1;
+  VesselCut cut;
+  cut.radius = shape.radius;
+  cut.roundness = roundness_of(shape);
+  cut.area_removed = 1e300;
+  std::string last_error;
+  for (double sign : {1.0, -1.0}) {
+    const ClipPlane plane{centre, sign * axis};
+    Result<ClipResult> r = clip_surface(mesh, {}, std::span(&plane, 1), options);
+    if (!r.ok()) {
+      last_error = r.status().message();
+      continue;
+    }
+    const double removed = r.value().cuts[0].area_removed;
+    if (removed < cut.area_removed) {
+      cut.area_removed = removed;
+      cut.plane = plane;
+    }
+  }
+  if (cut.area_removed == 1e300) return Status::Error(last_error);
+  return cut;
+}
+
+/// Whether `p` lies on the end cut off by `plane` (normal toward the end):
+/// beyond `behind` radii behind it, within 1.5 radii of its axis.
+bool on_end(const Vec3& p, const ClipPlane& plane, double radius, double behind) {
+  const Vec3 d = p - plane.point;
+  const double along = dot(d, plane.normal);
+  return along >= -behind * radius && norm(d - along * plane.normal) <= 1.5 * radius;
+}
+
+/// Step 6: the cut of the vessel end that the surface point `p` lies on
+/// (a fan's or a dome's: at its rim, recognize_caps.h; else {clip} auto's),
+/// or an error when it lies on none.
+Result<VesselCut> end_cut(const SurfaceMesh& mesh, const TriangleAdjacency& adj, const Vec3& p) {
+  std::optional<ClipPlane> plane;
+  for (const RecognizedCap& cap : recognize_caps(mesh, adj, {}, {}).caps)
+    if (cap.cut_at_rim && on_end(p, {cap.centroid, cap.normal}, cap.radius, 0.5))
+      plane = ClipPlane{cap.centroid, cap.normal};
+  if (!plane) {
+    double best = 1e300;
+    for (const VesselEnd& e : find_vessel_ends(mesh).ends)
+      if (on_end(p, e.plane, e.radius, 1) && norm(p - e.tip) < best)
+        best = norm(p - e.tip), plane = e.plane;
+  }
+  if (!plane) return Status::Error("on no vessel end");
+  std::vector<double> field(mesh.num_vertices());
+  CurveShape shape;
+  if (!section_around(mesh, adj, plane->point, plane->normal, field, shape))
+    return Status::Error("the end's section is not a closed loop");
+  ClipOptions options;
+  options.max_removed_fraction = 1;
+  Result<ClipResult> r = clip_surface(mesh, {}, std::span(&*plane, 1), options);
+  if (!r.ok()) return r.status();
+  VesselCut cut;
+  cut.plane = *plane;
+  cut.radius = shape.radius;
+  cut.roundness = roundness_of(shape);
+  cut.area_removed = r.value().cuts[0].area_removed;
+  return cut;
+}
+
+/// Steps 1 to 5.
+Result<VesselCut> tube_cut(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
+                           const std::array<double, 3>& near) {
+  // Phase 1: the nearest vertex.
+  const int32_t v0 = nearest_vertex(mesh, near);
   const Vec3 p = at(mesh.points, v0);
   const std::vector<Vec3> normals = vertex_normals(mesh);
   std::vector<uint8_t> seen(mesh.num_vertices(), 0);
@@ -226,28 +300,21 @@ Result<VesselCut> cut_across_vessel(const SurfaceMesh& mesh, const TriangleAdjac
   }
 
   // Phase 5: remove the side with less surface.
-  ClipOptions options;
-  options.max_removed_fraction = 1;
-  VesselCut cut;
-  cut.radius = shape.radius;
-  cut.roundness = roundness_of(shape);
-  cut.area_removed = 1e300;
-  std::string last_error;
-  for (double sign : {1.0, -1.0}) {
-    const ClipPlane plane{shape.centroid, sign * axis};
-    Result<ClipResult> r = clip_surface(mesh, {}, std::span(&plane, 1), options);
-    if (!r.ok()) {
-      last_error = r.status().message();
-      continue;
-    }
-    const double removed = r.value().cuts[0].area_removed;
-    if (removed < cut.area_removed) {
-      cut.area_removed = removed;
-      cut.plane = plane;
-    }
-  }
-  if (cut.area_removed == 1e300) return refuse(last_error);
+  Result<VesselCut> cut = smaller_side(mesh, shape.centroid, axis, shape);
+  if (!cut.ok()) return refuse(cut.message());
   return cut;
+}
+
+}  // namespace
+
+Result<VesselCut> cut_across_vessel(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
+                                    const std::array<double, 3>& near) {
+  if (mesh.num_triangles() == 0) return Status::Error("cannot cut: the surface is empty");
+  Result<VesselCut> cut = tube_cut(mesh, adj, near);
+  if (cut.ok()) return cut;
+  // Step 6: on a vessel's end, that end's cut.
+  Result<VesselCut> end = end_cut(mesh, adj, at(mesh.points, nearest_vertex(mesh, near)));
+  return end.ok() ? end : cut;
 }
 
 }  // namespace vm

@@ -14,6 +14,12 @@
 // (4) rounds of (2)-(3) with the ball centred on the section's centroid, of
 // radius 1.5 R, until the axis settles; (5) the side removed is the one
 // with less surface (both cuts are tried with core/prepare/clip_surface.h).
+// (6) Where the vessel is no tube because the point lies on a vessel's end,
+// the cut is that end's: at the rim of a fan or a dome cap
+// (core/prepare/recognize_caps.h) when the point lies on it or within half
+// a radius of its rim, else the one {clip} auto makes at a rounded, flat or
+// short root's end (core/prepare/vessel_ends.h) when the point lies beyond
+// one radius behind it; within 1.5 radii of the end's axis.
 #pragma once
 
 #include <array>
@@ -37,12 +43,14 @@ struct VesselCut {
 };
 
 /// The cut across the vessel at the surface point nearest `near` (model
-/// coordinates). Preconditions: edge-manifold, consistently oriented, no
-/// degenerate triangle; `adj` is build_adjacency(mesh). Errors (kBadInput,
-/// saying where): an empty surface; a place where the section is not one
-/// closed loop round enough to be a vessel's (a branching, an aneurysm, a
-/// flat region); a section that does not split the surface in two.
-/// O(surface) per round, a few rounds.
+/// coordinates), or, on a vessel's end, that end's cut (step 6).
+/// Preconditions: edge-manifold, consistently oriented, no degenerate
+/// triangle; `adj` is build_adjacency(mesh). Errors (kBadInput, saying
+/// where): an empty surface; a place, not on a vessel's end, where the
+/// section is not one closed loop round enough to be a vessel's (a
+/// branching, an aneurysm, a flat region); a section that does not split
+/// the surface in two. O(surface) per round, a few rounds; step 6 finds
+/// the vessel ends (O(n log n)).
 Result<VesselCut> cut_across_vessel(const SurfaceMesh& mesh, const TriangleAdjacency& adj,
                                     const std::array<double, 3>& near);
 

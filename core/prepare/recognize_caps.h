@@ -1,9 +1,10 @@
-// Recognising the planar caps of a capped vessel model (what SimVascular,
-// VMTK and CAD-like segmentation exports hand over: a closed surface whose
-// inlets and outlets are flat disks), so that each can be removed and its rim
-// become an opening that vesselmesh caps itself, with the boundary layer's
-// rings in the cap plane (Marchandise et al., section 2: planar sections for
-// the flow conditions).
+// Recognising the caps of a capped vessel model (what SimVascular, VMTK and
+// CAD-like segmentation exports hand over: a closed surface whose inlets and
+// outlets are flat disks; what repair tools make of holes: fans around a
+// lifted apex, smooth domes), so that each can be removed and its rim become
+// an opening that vesselmesh caps itself, with the boundary layer's rings in
+// the cap plane (Marchandise et al., section 2: planar sections for the flow
+// conditions).
 //
 // Phases: (1) candidate regions, from the face labels when the file has them
 // (each connected part of a label), else grown across flat edges from seed
@@ -15,6 +16,18 @@
 // terrace does not); (3) unlabelled caps much narrower than the lumen
 // across their rim (flat spots of a noisy wall) are dropped; (4) caps
 // touching each other are dropped.
+// Caps that are not planar (method: our own), on unlabelled surfaces: after
+// phase 2, the triangles outside the planar caps are grown into regions
+// bounded by the edges joining two crease vertices (vertices two of whose
+// triangles' normals, bilaterally filtered, differ by more than the crease
+// angle: every vertex of a crease loop has triangles of both sides, so the
+// loop has no gap for a region to leak through; a region's islands are
+// taken in); a region is a cap when it is a disk whose
+// rim (the crease loop) is a round loop near its best-fit plane, lying on
+// the outer side of that plane (bulging at most max_height rim radii, every
+// triangle facing out of it), with the wall meeting it at a right angle and
+// going back like a vessel of the rim's radius (phase 2's tests, about the
+// rim's plane). Its shape: a fan (one vertex inside the rim) or a dome.
 #pragma once
 
 #include <array>
@@ -58,17 +71,48 @@ struct CapRecognitionOptions {
   /// the lumen's half width across its rim (the median half chord from its
   /// rim vertices; smaller: a flat spot on a vessel's side).
   double min_lumen_fraction = 0.25;
+  /// Caps that are not planar (unlabelled surfaces): bounded by edges that
+  /// turn the normal by more than this (degrees) ...
+  double crease_angle_degrees = 20;
+  /// ... a rim whose vertices lie within this fraction of its radius of its
+  /// best-fit plane ...
+  double rim_planar_distance = 0.15;
+  /// ... a cap on the outer side of that plane, bulging at most this many
+  /// rim radii beyond it ...
+  double max_height = 1.2;
+  /// ... each triangle facing out of it: its unit normal's component along
+  /// the plane's normal at least this.
+  double min_facing = 0.2;
 };
+
+/// What a recognised cap is: a labelled face, or by shape planar, a fan
+/// around an apex off the rim's plane, or a dome.
+enum class CapShape { kLabelled, kPlanar, kFan, kDome };
+
+/// "labelled", "planar", "fan", "dome".
+const char* cap_shape_name(CapShape shape);
 
 /// One recognised cap.
 struct RecognizedCap {
   std::vector<int32_t> triangles;  ///< triangle indices of the input
   int32_t label = -1;              ///< its face label, or -1 (found by shape)
   std::string name;                ///< the label's name in the file, or ""
-  double area = 0;                 ///< model units squared
-  double radius = 0;               ///< equivalent radius sqrt(area / pi)
+  CapShape shape = CapShape::kPlanar;
+  double area = 0;  ///< model units squared
+  /// Equivalent radius sqrt(area / pi); of the rim's loop for a fan or a
+  /// dome.
+  double radius = 0;
+  /// The cap's area-weighted centroid and mean normal (unit, out of the
+  /// surface); for a fan or a dome, the rim's best-fit plane: the mean of
+  /// its vertices and the unit normal of its vector area, out of the
+  /// surface. Removing a fan or a dome means cutting at that plane.
   std::array<double, 3> centroid{};
-  std::array<double, 3> normal{};  ///< unit, out of the surface
+  std::array<double, 3> normal{};
+  /// How far the cap bulges beyond that plane (0 for a planar one).
+  double height = 0;
+  /// Found by its rim (a fan, a dome, or a nearly flat cap that failed the
+  /// planar tests): removing it means cutting at the rim's best-fit plane.
+  bool cut_at_rim = false;
 };
 
 struct CapRecognition {

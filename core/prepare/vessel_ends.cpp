@@ -9,9 +9,11 @@
 
 #include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
+#include "core/mesh/boundary_loops.h"
 #include "core/mesh/edge_geodesics.h"
 #include "core/mesh/level_loops.h"
 #include "core/mesh/persistent_maxima.h"
+#include "core/mesh/topology.h"
 #include "core/util/portable_math.h"
 
 namespace vm {
@@ -96,11 +98,40 @@ struct Shared {
   }
 };
 
+/// A short end is taken as a root when its radius is at least this
+/// fraction of every other vessel end's and opening's.
+constexpr double kRootWidth = 0.9;
+
+/// What steps 3 and 4 ask of an end: of a vessel end (the options'), or of
+/// a short one (step 6 of the header: a short root, whose tube behind the
+/// cut is short but held to a tighter radius).
+struct Bounds {
+  double min_persistence = 1;  ///< of the tip, in radii
+  double tube_length = 2.5;    ///< the tube from the cap's end reaches this deep (radii)
+  double behind_cut = 1;       ///< ... and this far behind the cut (radii)
+  double radius_tolerance = 0.35;
+  /// The cap ends where full sections begin and go on for this many radii.
+  double full_run = 1;
+  /// Sections that step 3 needs to measure R (below: the first radius was
+  /// far off).
+  size_t min_sections = 6;
+  bool short_end = false;
+
+  static Bounds vessel_end(const VesselEndOptions& o) {
+    return {o.min_persistence, o.tube_length, 1, o.radius_tolerance, 1, 6, false};
+  }
+  static Bounds short_end_bounds() { return {0.35, 1.5, 0.5, 0.1, 0.5, 3, true}; }
+};
+
 /// The analysis of one candidate tip (steps 2 to 5 of the header).
 class EndAnalysis {
  public:
-  EndAnalysis(Shared& sh, int32_t tip, double persistence)
-      : sh_(sh), tip_(tip), persistence_(persistence), geo_(sh.graph, std::span(&tip, 1)) {}
+  EndAnalysis(Shared& sh, int32_t tip, double persistence, bool short_end)
+      : sh_(sh),
+        tip_(tip),
+        persistence_(persistence),
+        b_(short_end ? Bounds::short_end_bounds() : Bounds::vessel_end(sh.options)),
+        geo_(sh.graph, std::span(&tip, 1)) {}
   ~EndAnalysis() {
     for (int32_t t : touched_) sh_.touched_mark[size_t(t)] = 0;
   }
@@ -134,6 +165,7 @@ class EndAnalysis {
   Shared& sh_;
   int32_t tip_;
   double persistence_;
+  Bounds b_;
   EdgeDijkstra geo_;
   size_t settled_seen_ = 0;
   std::vector<int32_t> touched_;
@@ -343,13 +375,13 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   Vec3 c0{};
   for (const Vec3& c : centres)
     for (int k = 0; k < 3; ++k) c0[size_t(k)] += c[size_t(k)] / double(centres.size());
-  if (persistence_ < o.min_persistence * r0_) return reject("a bump");
+  if (persistence_ < b_.min_persistence * r0_) return reject("a bump");
 
   // Step 3: sections perpendicular to the axis marched from the tip, every
   // quarter radius down to `deepest` radii in.
   double R = r0_;
   // Deep enough for a cap ending 3.5 radii in and the tube behind it.
-  const double deepest = std::max({o.tube_length + 2.5, D, 4.5}) + 1.5;
+  const double deepest = std::max({b_.tube_length + 2.5, D, 4.5}) + 1.5;
   grow(ring[knee].s + (deepest + 1 + std::numbers::pi) * 1.2 * R);
   // The tip: the farthest point near the candidate along the axis.
   double h = -1e300;
@@ -371,33 +403,48 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   double cap_area = 0;
   for (int round = 0; round < 8; ++round) {
     samples = march(tip, a, R, z_cap + 0.5, deepest);
+    // R: the median section from 1 radius in; for a short end, the widest
+    // round section before the first that is not round from half a radius
+    // in (the cap grows to the tube's radius, the branching ends it).
     std::vector<double> radii;
-    for (const Sample& s : samples)
-      if (s.z >= 1 && s.section.found) radii.push_back(s.section.shape.radius);
+    double widest = 0;
+    for (const Sample& s : samples) {
+      if (!b_.short_end) {
+        if (s.z >= 1 && s.section.found) radii.push_back(s.section.shape.radius);
+        continue;
+      }
+      if (roundness(s.section) < 0.6) {
+        if (s.z >= 0.5) break;
+        continue;
+      }
+      widest = std::max(widest, s.section.shape.radius);
+      if (s.z >= 0.75) radii.push_back(s.section.shape.radius);
+    }
     // A first radius far off (from rings on a lopsided end): march again at
     // the scale of the sections (or a larger one if few sections were
     // found: all of them were on the end) before judging them.
-    if (radii.size() < 6) {
+    if (radii.size() < b_.min_sections) {
       if (round >= 3) return reject("no tube behind it");
       R *= 1.5;
       continue;
     }
-    const double R_new = median(radii);
+    const double R_new = b_.short_end ? widest : median(radii);
     if (round < 3 && std::abs(R_new - R) > 0.1 * R) {
       R = R_new;
       continue;
     }
     // The cap ends where full round sections begin and go on for a radius
     // (at about 1 for a rounded end, 0.5 for a flat one, deeper for a flat
-    // oblique one).
+    // oblique one; half a radius for a short end).
     auto full = [&](double z) {
       const Sample* s = at(samples, z);
-      return s && s->section.found && std::abs(s->section.shape.radius / R_new - 1) <= 0.15 &&
+      return s && s->section.found &&
+             std::abs(s->section.shape.radius / R_new - 1) <= std::min(0.15, b_.radius_tolerance) &&
              roundness(s->section) >= 0.6;
     };
     z_cap = -1;
     for (double z = 0.5; z <= 3.5 + 1e-9; z += 0.25)
-      if (full(z) && full(z + 0.5) && full(z + 1)) {
+      if (full(z) && full(z + 0.5) && (b_.full_run < 1 || full(z + 1))) {
         z_cap = z;
         break;
       }
@@ -405,7 +452,8 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
     // The axis at the end, from the sections just behind the cap.
     std::vector<Vec3> centres_near;
     for (const Sample& s : samples)
-      if (s.section.found && s.z >= z_cap - 1e-9 && s.z <= z_cap + 1.5 + 1e-9)
+      if (s.section.found && s.z >= z_cap - 1e-9 &&
+          s.z <= z_cap + (b_.short_end ? 0.5 : 1.5) + 1e-9)
         centres_near.push_back(s.section.shape.centroid);
     const Vec3 a_new = principal_direction(centres_near, a);
     // The tip: the farthest point beyond the cap's end along that axis.
@@ -474,7 +522,8 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   // over), then the section again with that normal.
   std::vector<Vec3> behind_cut = {cut.section.shape.centroid};
   for (const Sample& s : samples)
-    if (s.section.found && s.z > z_cut + 1e-9 && s.z <= std::max(z_cut, z_cap) + 1.5 + 1e-9)
+    if (s.section.found && s.z > z_cut + 1e-9 &&
+        s.z <= std::max(z_cut, z_cap) + (b_.short_end ? b_.behind_cut : 1.5) + 1e-9)
       behind_cut.push_back(s.section.shape.centroid);
   const Vec3 cut_axis = behind_cut.size() >= 3 ? principal_direction(behind_cut, cut.dir) : cut.dir;
   const Vec3 cut_point = cut.section.shape.centroid;
@@ -483,14 +532,14 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
 
   // Step 4: the tests: a tube from the cap's end on (to tube_length radii
   // in at least) and behind the cut, a round cut, a cap beyond it.
-  const double tube_end = std::max(o.tube_length, z_cap + o.tube_length - 1);
+  const double tube_end = std::max(b_.tube_length, z_cap + b_.tube_length - 1);
   for (const Sample& s : samples) {
     const bool in_tube = s.z >= z_cap - 1e-9 && s.z <= tube_end + 1e-9;
-    const bool behind = s.z >= z_cut - 1e-9 && s.z <= z_cut + 1 + 1e-9;
+    const bool behind = s.z >= z_cut - 1e-9 && s.z <= z_cut + b_.behind_cut + 1e-9;
     if (!in_tube && !behind) continue;
     const std::string where = number_text(s.z, 3) + " radii in";
     if (!s.section.found) return reject("no section around its axis " + where);
-    if (std::abs(s.section.shape.radius / R - 1) > o.radius_tolerance)
+    if (std::abs(s.section.shape.radius / R - 1) > b_.radius_tolerance)
       return reject("no tube of radius " + number_text(R, 3) + " behind it (radius " +
                     number_text(s.section.shape.radius, 3) + " " + where + ")");
     if (roundness(s.section) < o.min_roundness)
@@ -498,7 +547,7 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
     if (lateral(s.section.shape.centroid, s.point, s.dir) > o.max_offset * R)
       return reject("the section " + where + " is off the axis");
   }
-  if (cut_section.shape.radius > (1 + o.radius_tolerance) * R)
+  if (cut_section.shape.radius > (1 + b_.radius_tolerance) * R)
     return reject("wider than the tube behind it");
   if (roundness(cut_section) < o.min_roundness) return reject("the cut would not be round");
   set_plane(cut_point, cut_axis);
@@ -513,7 +562,7 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   }
   if (cap_area > 2 * (2 + 2 * z_cut) * std::numbers::pi * R * R)
     return reject("the part beyond the cut is too large for a cap");
-  if (persistence_ < o.min_persistence * R) return reject("a bump");
+  if (persistence_ < b_.min_persistence * R) return reject("a bump");
 
   end.axis = cut_axis;
   end.radius = R;
@@ -522,6 +571,7 @@ bool EndAnalysis::run(VesselEnd& end, NotAVesselEnd& why) {
   end.cut_radius = cut_section.shape.radius;
   end.cut_depth = z_cut;
   end.persistence = persistence_;
+  end.short_end = b_.short_end;
   // Claimed: the cap and everything within 2 R of the axis down to R below
   // the cut.
   for (int32_t t : touched_)
@@ -597,31 +647,87 @@ VesselEnds find_vessel_ends(const SurfaceMesh& mesh, const VesselEndOptions& opt
       [](const FieldMaximum& x, const FieldMaximum& y) { return x.persistence > y.persistence; });
 
   // Steps 2-5 per candidate, skipping those on an end found or a bulge
-  // rejected.
+  // rejected; the short end's test (step 6) for those that are no vessel
+  // end. `report`: rejected extremities are listed.
   std::vector<uint8_t> claimed(nv, 0);
-  for (const FieldMaximum& c : candidates) {
-    if (claimed[size_t(c.vertex)]) continue;
-    EndAnalysis analysis(sh, c.vertex, c.persistence);
-    VesselEnd end;
-    NotAVesselEnd why;
-    const bool found = analysis.run(end, why);
-    for (int32_t v : analysis.claimed()) claimed[size_t(v)] = 1;
-    claimed[size_t(c.vertex)] = 1;
-    if (found) {
-      bool duplicate = false;
-      for (const VesselEnd& e : out.ends) {
-        const Vec3 d = sub(e.plane.point, end.plane.point);
-        duplicate |= std::sqrt(dot(d, d)) < std::max(e.radius, end.radius);
+  // Candidates that are no vessel end, with their first radius: maybe a
+  // short root (step 6).
+  std::vector<std::pair<FieldMaximum, double>> maybe_short;
+  std::vector<int32_t> found_at;  // the candidate vertex of each end found
+  // Whether an end cut within a radius of `end`'s cut was found already.
+  auto found_already = [&](const VesselEnd& end) {
+    return std::any_of(out.ends.begin(), out.ends.end(), [&](const VesselEnd& e) {
+      const Vec3 d = sub(e.plane.point, end.plane.point);
+      return std::sqrt(dot(d, d)) < std::max(e.radius, end.radius);
+    });
+  };
+  // Extremities found to be no vessel end by the tests (not by
+  // persistence): a second look from another vertex of theirs is not taken.
+  std::vector<NotAVesselEnd> tested;
+  auto examine = [&](const std::vector<FieldMaximum>& list, bool report) {
+    for (const FieldMaximum& c : list) {
+      if (claimed[size_t(c.vertex)]) continue;
+      if (!report && std::any_of(tested.begin(), tested.end(), [&](const NotAVesselEnd& r) {
+            const Vec3 d = sub(r.where, sh.point(c.vertex));
+            return std::sqrt(dot(d, d)) < 2 * r.radius;
+          }))
+        continue;
+      VesselEnd end;
+      NotAVesselEnd why;
+      bool found = false;
+      double first_radius = 0;
+      {
+        EndAnalysis analysis(sh, c.vertex, c.persistence, false);
+        found = analysis.run(end, why);
+        first_radius = analysis.first_radius();
+        for (int32_t v : analysis.claimed()) claimed[size_t(v)] = 1;
       }
-      if (!duplicate) out.ends.push_back(end);
-    } else if (c.persistence >= 1.5 * analysis.first_radius() && analysis.first_radius() > 0) {
-      bool again = false;
-      for (const NotAVesselEnd& r : out.rejected) {
-        const Vec3 d = sub(r.where, why.where);
-        again |= std::sqrt(dot(d, d)) < 2 * std::max(r.radius, why.radius);
+      claimed[size_t(c.vertex)] = 1;
+      if (!found && first_radius > 0 && why.why != "a bump" &&
+          why.why != "too small to be a vessel")
+        tested.push_back(why);
+      if (!found && why.why != "too small to be a vessel" && first_radius > 0)
+        maybe_short.push_back({c, first_radius});
+      if (found) {
+        if (!found_already(end)) out.ends.push_back(end), found_at.push_back(c.vertex);
+      } else if (report && c.persistence >= 1.5 * first_radius && first_radius > 0) {
+        bool again = false;
+        for (const NotAVesselEnd& r : out.rejected) {
+          const Vec3 d = sub(r.where, why.where);
+          again |= std::sqrt(dot(d, d)) < 2 * std::max(r.radius, why.radius);
+        }
+        if (!again) out.rejected.push_back(why);
       }
-      if (!again) out.rejected.push_back(why);
     }
+  };
+  examine(candidates, true);
+  // Step 1 again: the maxima of the distance from the ends found (an end
+  // whose vessel is short and wide, which the far points' distance passes
+  // into the branches beside it, is far from all of them).
+  if (!found_at.empty()) {
+    EdgeDijkstra from_ends(sh.graph, found_at);
+    from_ends.settle_all();
+    std::vector<FieldMaximum> more = persistent_maxima(sh.graph, from_ends.distances(), floor);
+    examine(more, false);
+  }
+  // Step 6: the widest short end, if wider than every vessel end and
+  // opening (a root: an aneurysm is narrower than its parent vessel),
+  // tried from the widest candidates down (their first radius, from the
+  // rings, is rough: 0.7 of the widest is tried).
+  double widest = 0;
+  for (const VesselEnd& e : out.ends) widest = std::max(widest, e.radius);
+  for (const std::vector<int32_t>& loop : boundary_loops(mesh, sh.adj))
+    widest = std::max(widest, describe_loop(mesh, loop).radius);
+  std::stable_sort(maybe_short.begin(), maybe_short.end(),
+                   [](const auto& x, const auto& y) { return x.second > y.second; });
+  for (const auto& [c, first_radius] : maybe_short) {
+    if (first_radius < 0.7 * widest) break;
+    EndAnalysis analysis(sh, c.vertex, c.persistence, true);
+    VesselEnd root;
+    NotAVesselEnd why;
+    if (!analysis.run(root, why) || root.radius < kRootWidth * widest) continue;
+    if (!found_already(root)) out.ends.push_back(root);
+    break;
   }
   std::stable_sort(out.ends.begin(), out.ends.end(),
                    [](const VesselEnd& x, const VesselEnd& y) { return x.radius > y.radius; });

@@ -1,5 +1,6 @@
-// The vessel ends of a closed vessel surface (a segmentation with rounded or
-// flat ends) and where to cut each open, perpendicular to the vessel.
+// The blind vessel ends of a vessel surface (a segmentation with rounded or
+// flat ends, closed or open elsewhere) and where to cut each open,
+// perpendicular to the vessel.
 //
 // Method (our own; the placement follows VMTK's end clipping, Antiga et al.,
 // Med. Biol. Eng. Comput. 46, 2008: a plane perpendicular to the centerline
@@ -39,6 +40,18 @@
 //     cut obliquely across the vessel: segmentations cropped by the image
 //     have such ends), through the centroid of that section, normal along
 //     the axis of the sections behind it, toward the tip.
+// (1b) More candidates: the maxima of the geodesic distance from the ends
+//     found (a short, wide root, whose end the far points' distance passes
+//     by into the branches beside it, is far from every end), except near
+//     an extremity that the tests rejected.
+// (6) A short root: of the candidates that are no vessel end, the widest
+//     (first radius at least 0.7 of the widest end or opening) are tried
+//     again with the bounds of a short end: a persistence of 0.35 R, R the
+//     widest round section before the branching, a tube within 10% of R
+//     from the cap's end to 1.5 R in and half a radius behind the cut. The
+//     first that passes, if at least 0.9 times as wide as every vessel end
+//     and opening (a root; an aneurysm is narrower than its parent
+//     vessel), is an end.
 #pragma once
 
 #include <array>
@@ -82,6 +95,9 @@ struct VesselEnd {
   /// cut obliquely across the vessel).
   double cut_depth = 0;
   double persistence = 0;  ///< of the tip's geodesic maximum
+  /// A short root (step 6): its tube behind the cut is shorter than
+  /// tube_length radii, and it is the widest vessel end.
+  bool short_end = false;
 };
 
 /// A geodesic extremity that is not taken as a vessel end.
@@ -98,11 +114,11 @@ struct VesselEnds {
   std::vector<NotAVesselEnd> rejected;
 };
 
-/// Finds the vessel ends of `mesh`. Preconditions: edge-manifold,
-/// consistently outward oriented, no degenerate triangle; meant for closed
-/// surfaces (rings and sections that reach an opening fail the tests, so
-/// ends next to openings are not found). A surface without vessel ends (a
-/// torus, a sphere) gives none. O(n log n) for the candidates plus, per
+/// Finds the blind vessel ends of `mesh`. Preconditions: edge-manifold,
+/// consistently outward oriented, no degenerate triangle; closed, or open
+/// elsewhere (rings and sections that reach an opening fail the tests, so
+/// an opening's rim is never taken for an end, nor an end next to one). A
+/// surface without vessel ends (a torus, a sphere) gives none. O(n log n) for the candidates plus, per
 /// candidate, work proportional to the surface within a few radii of its tip.
 VesselEnds find_vessel_ends(const SurfaceMesh& mesh, const VesselEndOptions& options = {});
 

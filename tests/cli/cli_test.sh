@@ -38,7 +38,7 @@ check "garbage" expect_exit 1 "not a surface file this tool reads" "$VM" info "$
 
 check "phantom" expect_exit 0 "wrote" "$VM" phantom "$T/bif.stl" --kind bifurcation --voxel 0.1 --noise 0.3
 check "phantom scale past float" expect_exit 2 "--scale needs a positive scale factor up to 1e30" "$VM" phantom "$T/x.stl" --scale 1e39
-check "phantom bad kind" expect_exit 2 "--kind needs bifurcation, tube, aneurysm, torus, tree, crossing or outlets" "$VM" phantom "$T/x.stl" --kind blob
+check "phantom bad kind" expect_exit 2 "--kind needs bifurcation, tube, aneurysm, torus, tree, crossing, outlets or root" "$VM" phantom "$T/x.stl" --kind blob
 check "phantom tree" expect_exit 0 "wrote" "$VM" phantom "$T/tree.stl" --kind tree --voxel 0.12
 check "tree has 11 openings" expect_exit 0 "openings:    11" "$VM" info "$T/tree.stl"
 head -c 1000 "$T/bif.stl" > "$T/truncated.stl"
@@ -367,21 +367,24 @@ check "phantom flat caps" expect_exit 0 "wrote" "$VM" phantom "$T/capped.stl" --
 "$VM" info "$T/capped.stl" --json > "$T/capped.json"
 check "caps become openings" [ "$(json "$T/capped.json" "[o['source'] for o in d['openings']], d['caps_removed'], d['closed']")" = "['cap', 'cap', 'cap'] 3 False" ]
 check "info text says from a cap" expect_exit 0 "from a cap" "$VM" info "$T/capped.stl"
-check "keep caps" [ "$("$VM" info "$T/capped.stl" --keep-caps --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(len(d['openings']), d['closed'])")" = "0 True" ]
+check "keep caps, clip off" [ "$("$VM" info "$T/capped.stl" --keep-caps --clip off --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(len(d['openings']), d['closed'])")" = "0 True" ]
+check "keep caps: the flat ends cut as blind ends" [ "$("$VM" info "$T/capped.stl" --keep-caps --json | python3 -c "import json,sys; d=json.load(sys.stdin); print([(o['source'], o['shape']) for o in d['openings']])")" = "[('clip', 'blind_end'), ('clip', 'blind_end'), ('clip', 'blind_end')]" ]
 # Closed segmentations (rounded ends): cut open at their vessel ends, or by
 # planes.
 check "phantom closed" expect_exit 0 "wrote" "$VM" phantom "$T/closed.stl" --kind aneurysm --voxel 0.12 --noise 0.3 --closed
-check "closed surface warned about" expect_exit 0 "3 vessel ends were found: cut them open with --clip auto (or give --clip-plane or --clip-at)" "$VM" info "$T/closed.stl"
-check "info proposes the cuts" expect_exit 0 "vessel ends: 3 (the cuts --clip auto would make)" "$VM" info "$T/closed.stl"
+check "closed surface warned about" expect_exit 0 "3 vessel ends were found: cut them open with --clip auto (or give --clip-plane or --clip-at)" "$VM" info "$T/closed.stl" --clip off
+check "info proposes the cuts" expect_exit 0 "vessel ends: 3 (the cuts --clip auto would make)" "$VM" info "$T/closed.stl" --clip off
 # Each proposal is a --clip-plane that cuts one end open.
-plane=$("$VM" info "$T/closed.stl" | sed -n 's/.*--clip-plane \([^ ]*\)$/\1/p' | head -1)
-check "a proposed plane cuts one end" [ "$("$VM" info "$T/closed.stl" --clip-plane "$plane" --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(len(d['openings']), d['openings'][0]['source'], len(d['clip_proposals']))")" = "1 clip 0" ]
+plane=$("$VM" info "$T/closed.stl" --clip off | sed -n 's/.*--clip-plane \([^ ]*\)$/\1/p' | head -1)
+check "a proposed plane cuts one end" [ "$("$VM" info "$T/closed.stl" --clip-plane "$plane" --clip off --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(len(d['openings']), d['openings'][0]['source'], d['openings'][0]['shape'], len(d['clip_proposals']))")" = "1 clip plane 2" ]
+check "a plane given, then the blind ends left" [ "$("$VM" info "$T/closed.stl" --clip-plane "$plane" --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(sorted(o['shape'] for o in d['openings']), len(d['clip_proposals']))")" = "['blind_end', 'blind_end', 'plane'] 0" ]
 # --clip-at: across the vessel at the wall point nearest the one given.
-at=$("$VM" info "$T/closed.stl" --json | python3 -c "import json,sys; p=json.load(sys.stdin)['clip_proposals'][0]; print(','.join(str(p['point'][k] - 2 * p['radius'] * p['normal'][k]) for k in range(3)))")
+at=$("$VM" info "$T/closed.stl" --clip off --json | python3 -c "import json,sys; p=json.load(sys.stdin)['clip_proposals'][0]; print(','.join(str(p['point'][k] - 2 * p['radius'] * p['normal'][k]) for k in range(3)))")
 check "clip at a point cuts one end" expect_exit 0 "cut across the vessel at" "$VM" info "$T/closed.stl" --clip-at "$at"
 check "clip at bad value" expect_exit 2 "--clip-at needs 3 numbers" "$VM" info "$T/closed.stl" --clip-at 1,2
 "$VM" info "$T/closed.stl" --clip auto --json > "$T/clipped.json"
 check "clip auto opens 3 ends" [ "$(json "$T/clipped.json" "[o['source'] for o in d['openings']], d['closed'], d['genus'], d['components']")" = "['clip', 'clip', 'clip'] False 0 1" ]
+check "clip auto is the default" [ "$("$VM" info "$T/closed.stl" --json | python3 -c "import json,sys; d=json.load(sys.stdin); print([(o['source'], o['shape']) for o in d['openings']], d['closed'])")" = "[('clip', 'blind_end'), ('clip', 'blind_end'), ('clip', 'blind_end')] False" ]
 check "clips reported" [ "$(json "$T/clipped.json" "len(d['clips']), all(c['radius'] > 0.4 and c['area_removed'] > 0 for c in d['clips'])")" = "3 True" ]
 check "info text says from a clip" expect_exit 0 "from a clip" "$VM" info "$T/closed.stl" --clip auto --clip-distance 1.5
 check "clip plane bad value" expect_exit 2 "--clip-plane needs 6 numbers" "$VM" info "$T/closed.stl" --clip-plane 1,2,3
@@ -389,9 +392,25 @@ check "clip plane zero normal" expect_exit 2 "--clip-plane needs 6 numbers" "$VM
 check "clip bad value" expect_exit 2 "--clip needs off or auto" "$VM" info "$T/closed.stl" --clip sometimes
 check "clip distance bad value" expect_exit 2 "--clip-distance needs a positive number" "$VM" info "$T/closed.stl" --clip auto --clip-distance 0
 check "clip plane that misses" expect_exit 1 "the plane at (0, 30, 3) does not cut the surface within" "$VM" info "$T/closed.stl" --clip-plane 0,30,3,0,0,1
-check "clip plane cuts one end" [ "$("$VM" info "$T/closed.stl" --clip-plane 0,0,-5.5,0,0,-1 --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(len(d['openings']), d['openings'][0]['source'], round(d['openings'][0]['centroid'][2], 6))")" = "1 clip -5.5" ]
+check "clip plane cuts one end" [ "$("$VM" info "$T/closed.stl" --clip-plane 0,0,-5.5,0,0,-1 --clip off --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(len(d['openings']), d['openings'][0]['source'], round(d['openings'][0]['centroid'][2], 6))")" = "1 clip -5.5" ]
 check "mesh clip auto" expect_exit 0 "wrote" "$VM" mesh "$T/closed.stl" --clip auto -o "$T/clipped.msh" --size 0.3 --layers 1 --verify --report "$T/clipped-report.json"
 check "clipped groups" [ "$(json "$T/clipped-report.json" "','.join(g['name'] for g in d['output']['groups'])")" = "wall,inlet,outlet_1,outlet_2,lumen" ]
+# Caps a repair tool makes (fans, domes) and a closed tree whose root is
+# short and wide: each meshes with the default options.
+check "phantom fan caps" expect_exit 0 "wrote" "$VM" phantom "$T/fans.stl" --kind bifurcation --voxel 0.15 --noise 0.3 --caps fan
+check "phantom dome caps" expect_exit 0 "wrote" "$VM" phantom "$T/domes.stl" --kind bifurcation --voxel 0.1 --noise 0.1 --caps dome
+check "phantom closed root" expect_exit 0 "wrote" "$VM" phantom "$T/root.stl" --kind root --voxel 0.15 --noise 0.3 --closed
+check "phantom caps bad value" expect_exit 2 "--caps needs flat, fan or dome" "$VM" phantom "$T/x.stl" --caps cone
+check "fans become openings at their rims" [ "$("$VM" info "$T/fans.stl" --json | python3 -c "import json,sys; d=json.load(sys.stdin); print([(o['source'], o['shape']) for o in d['openings']], d['caps_removed'])")" = "[('cap', 'fan'), ('cap', 'fan'), ('cap', 'fan')] 3" ]
+check "domes become openings at their rims" [ "$("$VM" info "$T/domes.stl" --json | python3 -c "import json,sys; d=json.load(sys.stdin); print([(o['source'], o['shape']) for o in d['openings']])")" = "[('cap', 'dome'), ('cap', 'dome'), ('cap', 'dome')]" ]
+check "info says the caps' shapes" expect_exit 0 "3 caps were recognised and removed (0 planar, 3 fans, 0 domes)" "$VM" info "$T/fans.stl"
+check "root: the widest opening, a short root" [ "$("$VM" info "$T/root.stl" --json | python3 -c "import json,sys; d=json.load(sys.stdin); o=d['openings']; print(len(o), o[0]['name'], o[0]['shape'], round(o[0]['radius'], 1))")" = "5 inlet blind_end 1.7" ]
+check "info says the short root" expect_exit 0 "(a short, wide root)" "$VM" info "$T/root.stl"
+check "root proposals with clip off" [ "$("$VM" info "$T/root.stl" --clip off --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(len(d['clip_proposals']), sum(p['short_root'] for p in d['clip_proposals']))")" = "5 1" ]
+for m in fans domes root; do
+  check "mesh $m with default options" expect_exit 0 "wrote" "$VM" mesh "$T/$m.stl" -o "$T/$m.msh" --verify --report "$T/$m-report.json"
+  check "$m groups" [ "$(json "$T/$m-report.json" "' '.join(g['name'] for g in d['output']['groups'] if not g['name'].startswith('outlet_')), any(g['name'] == 'outlet_1' for g in d['output']['groups'])")" = "wall inlet lumen True" ]
+done
 check "units guessed mm, unconfirmed" [ "$(json "$T/info.json" "d['units']['unit'], d['units']['guessed'], d['units']['certain']")" = "mm True False" ]
 check "units given" [ "$("$VM" info "$T/bif.stl" --units cm --json | python3 -c "import json,sys; print(json.load(sys.stdin)['units'])")" = "{'unit': 'cm', 'guessed': False, 'certain': True, 'reason': ''}" ]
 check "bad units" expect_exit 2 "--units needs mm, cm or m" "$VM" info "$T/bif.stl" --units inch

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/mesh/topology.h"
@@ -58,7 +59,8 @@ INSTANTIATE_TEST_SUITE_P(All, PhantomKinds,
                                            Case{PhantomKind::kBifurcation, "bifurcation"},
                                            Case{PhantomKind::kAneurysm, "aneurysm"},
                                            Case{PhantomKind::kTorus, "torus"},
-                                           Case{PhantomKind::kTree, "tree"}),
+                                           Case{PhantomKind::kTree, "tree"},
+                                           Case{PhantomKind::kRoot, "root"}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Phantom, TreeHasElevenOpeningsOfMurrayRadii) {
@@ -88,6 +90,54 @@ TEST(Phantom, ClosedEndsGiveAClosedSurface) {
   EXPECT_TRUE(t.closed);
   EXPECT_EQ(t.genus, 0);
   EXPECT_EQ(truth.openings, 0);
+}
+
+TEST(Phantom, RootIsShortWideAndTheWidestEnd) {
+  PhantomTruth truth;
+  const SurfaceMesh m = testing::phantom(PhantomKind::kRoot, /*open_ends=*/false, 0.15, 0, &truth);
+  EXPECT_TRUE(analyze_topology(m).closed);
+  ASSERT_EQ(truth.end_radii.size(), 5u);
+  // The root (the first end) is the widest, 1.7 times the parent radius.
+  EXPECT_NEAR(truth.end_radii[0], 1.7, 1e-9);
+  for (size_t e = 1; e < 5; ++e) EXPECT_LT(truth.end_radii[e], 0.6 * truth.end_radii[0]);
+}
+
+TEST(Phantom, FanAndDomeCapsRiseBeyondTheCut) {
+  // Each cap's highest point beyond its cut plane: 0.1 radius for a fan;
+  // 0.3, 0.6 and 1 radius for the domes (in turn from end to end).
+  for (PhantomCapShape shape : {PhantomCapShape::kFan, PhantomCapShape::kDome}) {
+    SCOPED_TRACE(int(shape));
+    PhantomTruth truth;
+    const SurfaceMesh m = testing::capped_phantom(shape, 0.12, 0, &truth);
+    const TopologyReport t = analyze_topology(m);
+    EXPECT_TRUE(t.closed);
+    EXPECT_EQ(t.genus, 0);
+    EXPECT_EQ(t.nonmanifold_edges, 0u);
+    ASSERT_EQ(truth.opening_centers.size(), 3u);
+    std::vector<double> heights;
+    for (size_t e = 0; e < 3; ++e) {
+      const std::array<double, 3>& c = truth.opening_centers[e];
+      const std::array<double, 3>& dir = truth.end_directions[e];
+      const double R = truth.opening_radii[e];
+      double top = -1e300;
+      for (size_t v = 0; v < m.num_vertices(); ++v) {
+        double along = 0, dist2 = 0;
+        for (size_t k = 0; k < 3; ++k) {
+          const double x = m.points[3 * v + k] - c[k];
+          along += x * dir[k];
+          dist2 += x * x;
+        }
+        if (dist2 - along * along < 1.2 * R * 1.2 * R && std::abs(along) < 2 * R)
+          top = std::max(top, along);
+      }
+      heights.push_back(top / R);
+    }
+    std::sort(heights.begin(), heights.end());
+    const std::vector<double> expected = shape == PhantomCapShape::kFan
+                                             ? std::vector<double>{0.1, 0.1, 0.1}
+                                             : std::vector<double>{0.3, 0.6, 1.0};
+    for (size_t e = 0; e < 3; ++e) EXPECT_NEAR(heights[e], expected[e], 0.08) << e;
+  }
 }
 
 TEST(Phantom, IsDeterministicAndSeedDependent) {

@@ -346,7 +346,8 @@ TEST(ReportJson, HasTheDocumentedKeys) {
   std::string a = analysis_json(r.value().surface);
   for (const char* key :
        {"\"vertices\":96", "\"triangles\":160", "\"components\":1",
-        "\"openings\":[{\"source\":\"file\",\"label\":-1,\"extension\":0,\"name\":\"inlet\"",
+        "\"openings\":[{\"source\":\"file\",\"shape\":null,\"label\":-1,\"extension\":0,"
+        "\"name\":\"inlet\"",
         "\"genus\":0", "\"nonmanifold_edges\":0", "\"quality\":{\"min\":", "\"closed\":false",
         "\"format\":\"binary STL\"", "\"caps_removed\":0", "\"holes\":[]",
         "\"units\":{\"unit\":\"mm\",\"guessed\":true,\"certain\":false"})
@@ -397,8 +398,9 @@ TEST(MeshJob, ACappedModelGetsItsCapsBackAsNamedOpenings) {
     else
       EXPECT_GT(d, r.value().surface.topology.openings[1].radius);
   }
-  // Kept caps: a closed wall, no opening group.
+  // Kept caps with clip off: a closed wall, no opening group.
   ASSERT_TRUE(set_option_text(o, "keep_caps", "").ok());
+  ASSERT_TRUE(set_option_text(o, "clip", "off").ok());
   o.opening_names.clear();
   auto kept = run_mesh_job(bytes, o);
   ASSERT_TRUE(kept.ok()) << kept.message();
@@ -600,6 +602,58 @@ TEST(MeshJob, AModelWithManyLabelledFacesAndTinyCapsMeshesWithDefaults) {
   EXPECT_GT(res.tet_quality_stats.min, 0.0);
   EXPECT_EQ(res.fidelity.self_intersections, 0u);
 }
+
+/// Capped and closed models that users' files are like: each meshes with
+/// the default options into a valid mesh with a wall, an inlet and outlets.
+struct DefaultCase {
+  const char* name;
+  PhantomOptions phantom;
+  size_t openings;
+};
+
+class MeshesWithDefaultOptions : public ::testing::TestWithParam<DefaultCase> {};
+
+TEST_P(MeshesWithDefaultOptions, IntoAValidMeshWithAWallAnInletAndOutlets) {
+  const DefaultCase& c = GetParam();
+  MeshJobOptions o;
+  o.verify = true;
+  auto r = run_mesh_job(write_stl_binary(testing::phantom(c.phantom)), o);
+  ASSERT_TRUE(r.ok()) << r.message();
+  const MeshJobResult& res = r.value();
+  std::vector<std::string> expected = {"wall", "inlet"};
+  for (size_t k = 1; k < c.openings; ++k) expected.push_back("outlet_" + std::to_string(k));
+  expected.push_back("lumen");
+  EXPECT_EQ(group_names(res), expected);
+  auto check = check_volume_mesh(res.volume);
+  ASSERT_TRUE(check.ok()) << check.message();
+  EXPECT_GT(res.tet_quality_stats.min, 0.0);
+  // The inlet is the largest opening.
+  for (size_t k = 1; k < res.capped.caps.size(); ++k)
+    EXPECT_GE(res.capped.caps[0].area, res.capped.caps[k].area);
+}
+
+PhantomOptions default_case(PhantomKind kind, double noise, bool closed,
+                            PhantomCapShape shape = PhantomCapShape::kFlat) {
+  PhantomOptions o;
+  o.kind = kind;
+  o.voxel = 0.15;
+  o.noise = noise;
+  o.open_ends = !closed;
+  o.flat_caps = !closed;
+  o.cap_shape = shape;
+  return o;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    CappedAndClosed, MeshesWithDefaultOptions,
+    ::testing::Values(
+        DefaultCase{"domed_caps",
+                    default_case(PhantomKind::kBifurcation, 0.1, false, PhantomCapShape::kDome), 3},
+        DefaultCase{"fan_caps",
+                    default_case(PhantomKind::kBifurcation, 0.3, false, PhantomCapShape::kFan), 3},
+        DefaultCase{"closed_tree_with_a_short_wide_root",
+                    default_case(PhantomKind::kRoot, 0.3, true), 5}),
+    [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace vm

@@ -4,12 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/phantom/vessel_phantom.h"
+#include "core/prepare/vessel_ends.h"
 #include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
 
@@ -76,18 +79,81 @@ TEST(CutAcrossVessel, ABranchOfTheBifurcationIsCutAcross) {
   }
 }
 
-TEST(CutAcrossVessel, NotOnAVesselsRoundedEnd) {
+TEST(CutAcrossVessel, OnAVesselsRoundedEndTheEndsCut) {
+  // Where the vessel is no tube (its rounded end), a click gives the cut
+  // that clip auto makes at that end.
   const Phantom p = closed_phantom(PhantomKind::kBifurcation, 0);
+  const VesselEnds ends = find_vessel_ends(p.mesh);
+  ASSERT_EQ(ends.ends.size(), 3u);
   for (size_t e = 0; e < 3; ++e) {
     SCOPED_TRACE(e);
     const Vec3 out = p.truth.end_directions[e];
     const double R = p.truth.end_radii[e];
-    for (double depth : {0.2, 0.6}) {
+    for (double depth : {0.0, 0.2, 0.6}) {
       const Vec3 click = p.truth.end_tips[e] - (depth * R) * out + R * perpendicular(out);
       auto cut = cut_across_vessel(p.mesh, p.adj, click);
-      ASSERT_FALSE(cut.ok()) << depth << ": radius " << cut.value().radius;
-      EXPECT_NE(cut.message().find("cannot cut across the vessel at ("), std::string::npos);
+      ASSERT_TRUE(cut.ok()) << depth << ": " << cut.message();
+      size_t same = 0;
+      for (const VesselEnd& end : ends.ends)
+        same += end.plane.point == cut.value().plane.point &&
+                end.plane.normal == cut.value().plane.normal;
+      EXPECT_EQ(same, 1u) << depth;
+      EXPECT_GT(dot(cut.value().plane.normal, out), std::cos(5 * std::numbers::pi / 180));
+      EXPECT_NEAR(cut.value().radius, R, 0.1 * R);
     }
+  }
+}
+
+/// Surface vertices on end e of the truth (beyond `behind` radii behind
+/// `base`, within 1.5 radii of the axis through it), every k-th of them so
+/// that about `count` are left.
+std::vector<Vec3> points_on_end(const SurfaceMesh& m, const Vec3& base, const Vec3& dir, double R,
+                                double behind, size_t count) {
+  std::vector<Vec3> all;
+  for (size_t v = 0; v < m.num_vertices(); ++v) {
+    const Vec3 d = at(m.points, int32_t(v)) - base;
+    const double along = dot(d, dir);
+    if (along >= -behind * R && norm(d - along * dir) <= 1.5 * R && norm(d) < 3 * R)
+      all.push_back(at(m.points, int32_t(v)));
+  }
+  std::vector<Vec3> some;
+  const size_t step = std::max<size_t>(1, all.size() / count);
+  for (size_t i = 0; i < all.size(); i += step) some.push_back(all[i]);
+  return some;
+}
+
+TEST(CutAcrossVessel, AClickAnywhereOnADomedEndCutsAtItsRim) {
+  PhantomTruth truth;
+  const SurfaceMesh m = testing::capped_phantom(PhantomCapShape::kDome, 0.15, 0.1, &truth);
+  const TriangleAdjacency adj = build_adjacency(m);
+  for (size_t e : {size_t(0), size_t(2)}) {  // domes 0.3 and 1 radius high
+    SCOPED_TRACE(e);
+    const Vec3 base = truth.opening_centers[e], dir = truth.end_directions[e];
+    const double R = truth.opening_radii[e];
+    for (const Vec3& p : points_on_end(m, base, dir, R, 0.25, 5)) {
+      auto cut = cut_across_vessel(m, adj, p);
+      ASSERT_TRUE(cut.ok()) << point_text(p) << ": " << cut.message();
+      // Across the vessel, at the dome's rim or behind it where the click
+      // was on the wall.
+      const double along = dot(Vec3(cut.value().plane.point) - base, dir);
+      EXPECT_LT(along, 0.1 * R) << point_text(p);
+      EXPECT_GT(along, -0.5 * R) << point_text(p);
+      EXPECT_GT(std::abs(dot(Vec3(cut.value().plane.normal), dir)), std::cos(0.2));
+    }
+  }
+}
+
+TEST(CutAcrossVessel, AClickAnywhereOnAShortWideRootsEndCutsIt) {
+  PhantomTruth truth;
+  const SurfaceMesh m = testing::phantom(PhantomKind::kRoot, false, 0.2, 0.3, &truth);
+  const TriangleAdjacency adj = build_adjacency(m);
+  const Vec3 tip = truth.end_tips[0], dir = truth.end_directions[0];
+  const double R = truth.end_radii[0];
+  for (const Vec3& p : points_on_end(m, tip - R * dir, dir, R, 0.25, 8)) {
+    auto cut = cut_across_vessel(m, adj, p);
+    ASSERT_TRUE(cut.ok()) << point_text(p) << ": " << cut.message();
+    EXPECT_NEAR(cut.value().radius, R, 0.15 * R) << point_text(p);
+    EXPECT_GT(std::abs(dot(Vec3(cut.value().plane.normal), dir)), std::cos(0.2));
   }
 }
 

@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
+#include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/topology.h"
 #include "tests/support/phantoms.h"
@@ -119,6 +121,48 @@ TEST(RecognizeCaps, FlatCappedPhantomGivesOneCapPerVesselEnd) {
     const size_t i = testing::nearest_truth_opening(truth, c.centroid.data());
     EXPECT_NEAR(c.radius, truth.opening_radii[i], 0.15 * truth.opening_radii[i]);
   }
+}
+
+/// The caps of a capped phantom match its cut ends: one each, of `shape`,
+/// at the cut (the rim's plane through the cut's centre, along the vessel,
+/// of its radius), bulging by the heights expected (sorted, in radii).
+void expect_rim_caps(const SurfaceMesh& m, const PhantomTruth& truth, CapShape shape,
+                     std::vector<double> heights) {
+  const CapRecognition r = recognize(m);
+  ASSERT_EQ(r.caps.size(), truth.opening_centers.size());
+  std::vector<int> hits(r.caps.size(), 0);
+  std::vector<double> found;
+  for (const RecognizedCap& c : r.caps) {
+    EXPECT_EQ(c.shape, shape);
+    EXPECT_TRUE(c.cut_at_rim);
+    EXPECT_EQ(c.label, -1);
+    const size_t i = testing::nearest_truth_opening(truth, c.centroid.data());
+    ++hits[i];
+    const double R = truth.opening_radii[i];
+    EXPECT_NEAR(c.radius, R, 0.1 * R);
+    const Vec3 d = Vec3(c.centroid) - Vec3(truth.opening_centers[i]);
+    EXPECT_LT(norm(d), 0.15 * R);
+    EXPECT_GT(dot(Vec3(c.normal), Vec3(truth.end_directions[i])), std::cos(0.15));
+    found.push_back(c.height / c.radius);
+  }
+  for (int h : hits) EXPECT_EQ(h, 1);
+  std::sort(found.begin(), found.end());
+  for (size_t i = 0; i < heights.size() && i < found.size(); ++i)
+    EXPECT_NEAR(found[i], heights[i], 0.06) << i;
+}
+
+TEST(RecognizeCaps, FansAroundALiftedApexByTheirRim) {
+  // Fans of a capping tool (apex 0.1 radius off the cut) on a noisy wall.
+  PhantomTruth truth;
+  const SurfaceMesh m = testing::capped_phantom(PhantomCapShape::kFan, 0.1, 0.3, &truth);
+  expect_rim_caps(m, truth, CapShape::kFan, {0.1, 0.1, 0.1});
+}
+
+TEST(RecognizeCaps, DomesByTheirRimCrease) {
+  // Domes rising 0.3, 0.6 and 1 radius (creases of 59, 40 and 27 degrees).
+  PhantomTruth truth;
+  const SurfaceMesh m = testing::capped_phantom(PhantomCapShape::kDome, 0.1, 0.1, &truth);
+  expect_rim_caps(m, truth, CapShape::kDome, {0.3, 0.6, 1.0});
 }
 
 TEST(RecognizeCaps, TouchingFlatFacesAreNotCaps) {

@@ -2,9 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <span>
 
+#include "core/geom/vec3.h"
 #include "core/mesh/topology.h"
 #include "core/phantom/vessel_phantom.h"
 #include "tests/support/implicit_vessels.h"
@@ -161,6 +165,43 @@ TEST(VesselEnds, ClipDistanceMovesTheCut) {
     ASSERT_EQ(found.ends.size(), 2u);
     for (const VesselEnd& e : found.ends) EXPECT_NEAR(e.plane.point[2], 6 - D, 0.05);
   }
+}
+
+TEST(VesselEnds, AShortWideRootIsFound) {
+  // A root 1.7 times as wide as the parent radius, its centerline 0.8 of
+  // its radius long up to a T-shaped branching: no tube of 2.5 radii
+  // behind its end, and the far points' distance passes it by.
+  const Closed c = closed_phantom(PhantomKind::kRoot, 0.3, 0.15);
+  const VesselEnds found = find_vessel_ends(c.mesh);
+  ASSERT_EQ(found.ends.size(), 5u);
+  // By decreasing radius: the root first, the only short end.
+  const VesselEnd& root = found.ends[0];
+  EXPECT_TRUE(root.short_end);
+  EXPECT_NEAR(root.radius, c.truth.end_radii[0], 0.1 * c.truth.end_radii[0]);
+  EXPECT_LT(distance(root.tip, c.truth.end_tips[0]), 0.25 * c.truth.end_radii[0]);
+  EXPECT_GT(dot(root.axis, c.truth.end_directions[0]), std::cos(0.1));
+  for (size_t e = 1; e < 5; ++e) EXPECT_FALSE(found.ends[e].short_end) << e;
+}
+
+TEST(VesselEnds, AnOpeningIsNoEndAndTheBlindEndsBesideItAre) {
+  // The closed bifurcation with its parent vessel cut open: the two blind
+  // branches are found, the opening's rim is no end.
+  Closed c = closed_phantom(PhantomKind::kBifurcation, 0.3);
+  const double R = c.truth.end_radii[0];
+  std::array<double, 3> at{};
+  for (int k = 0; k < 3; ++k)
+    at[size_t(k)] = c.truth.end_tips[0][size_t(k)] - 2 * R * c.truth.end_directions[0][size_t(k)];
+  const ClipPlane plane{at, c.truth.end_directions[0]};
+  auto open = clip_surface(c.mesh, {}, std::span(&plane, 1));
+  ASSERT_TRUE(open.ok()) << open.message();
+  const VesselEnds found = find_vessel_ends(open.value().mesh);
+  ASSERT_EQ(found.ends.size(), 2u);
+  for (const VesselEnd& e : found.ends) {
+    EXPECT_GT(distance(e.plane.point, at), 3 * R);
+    EXPECT_LT(std::min(distance(e.tip, c.truth.end_tips[1]), distance(e.tip, c.truth.end_tips[2])),
+              0.25 * e.radius);
+  }
+  for (const NotAVesselEnd& r : found.rejected) EXPECT_GT(distance(r.where, at), 3 * R);
 }
 
 TEST(VesselEnds, FlatEndsAreEndsToo) {

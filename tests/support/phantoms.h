@@ -54,6 +54,21 @@ inline SurfaceMesh flat_capped_bifurcation(double voxel, PhantomTruth* truth = n
   return phantom(o, truth);
 }
 
+/// A capped model whose caps have `shape`: the bifurcation (or `kind`)
+/// with its cut ends closed by flat caps, fans around a lifted apex or
+/// domes (closed, genus 0).
+inline SurfaceMesh capped_phantom(PhantomCapShape shape, double voxel, double noise,
+                                  PhantomTruth* truth = nullptr,
+                                  PhantomKind kind = PhantomKind::kBifurcation) {
+  PhantomOptions o;
+  o.kind = kind;
+  o.voxel = voxel;
+  o.noise = noise;
+  o.flat_caps = true;
+  o.cap_shape = shape;
+  return phantom(o, truth);
+}
+
 /// Index of the truth opening whose center is nearest to `centroid`.
 inline size_t nearest_truth_opening(const PhantomTruth& truth, const double* centroid) {
   size_t best = 0;

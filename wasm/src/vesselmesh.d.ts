@@ -21,7 +21,7 @@ export interface AnalyzeOptions {
   keepCaps?: boolean;
   /** smooth the surface before meshing (volume-preserving, within half a voxel): auto smooths voxel staircases only; N passes on any surface. Needs auto, off or a number of smoothing passes from 1 to 1000. Default auto. */
   smooth?: string;
-  /** auto: cut each vessel end of a closed surface open, perpendicular to the vessel. Needs off or auto. Default off. */
+  /** auto: cut each blind vessel end open (closed or not, after the cuts given), perpendicular to the vessel; off: keep the blind ends (they are proposed) Needs off or auto. Default auto. */
   clip?: 'off' | 'auto';
   /** with clip auto: cut D local radii in from each vessel end's tip. Needs a positive number of local vessel radii. Default 1. */
   clipDistance?: number;
@@ -129,6 +129,8 @@ export interface PhantomOptions {
   openEnds?: boolean;
   /** close the cut ends by flat caps (a capped model, as SimVascular exports) Default false. */
   flatCaps?: boolean;
+  /** close the cut ends by caps of this shape: flat (as flat caps), fan (around an apex lifted 0.1 radius, as capping tools fill holes) or dome (smooth, bulging 0.3 to 1 radius, meeting the wall at a crease) Needs flat, fan or dome. */
+  caps?: 'flat' | 'fan' | 'dome';
 }
 
 /** A failure: nothing throws for a user error. */

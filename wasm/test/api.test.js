@@ -197,9 +197,9 @@ describe('analyze', () => {
     assert.match(r.analysis.warnings.join('\n'), /removed a small separate piece \(1 triangle, under 1% of the surface\) at \(1e\+06, 0, 0\)/);
   });
 
-  test('a closed surface: the vessel ends proposed as cuts, cutAt and clipPlanes/clipAt open it', () => {
+  test('a closed surface: with clip off the vessel ends proposed as cuts, cutAt and clipPlanes/clipAt open it', () => {
     const p = api.makePhantom({ kind: 'bifurcation', voxel: 0.12, noise: 0.3, openEnds: false });
-    const r = api.analyze(p.stl);
+    const r = api.analyze(p.stl, { clip: 'off' });
     assert.equal(r.ok, true, r.error);
     assert.equal(r.analysis.closed, true);
     assert.equal(r.analysis.openings.length, 0);
@@ -217,16 +217,69 @@ describe('analyze', () => {
     assert.ok(c.areaRemoved > 0);
     // The plane as clipPlanes: one opening from a clip there; clipAt the same.
     for (const options of [{ clipPlanes: [...c.point, ...c.normal] }, { clipAt: [click] }]) {
-      const cut = api.analyze(p.stl, options);
+      const cut = api.analyze(p.stl, { ...options, clip: 'off' });
       assert.equal(cut.ok, true, cut.error);
       assert.equal(cut.analysis.openings.length, 1);
       assert.equal(cut.analysis.openings[0].source, 'clip');
       assert.ok(distance(cut.analysis.openings[0].centroid, c.point) < 0.1 * c.radius);
-      assert.deepEqual(cut.analysis.clip_proposals, []);
+      // The two other ends are still proposed.
+      assert.equal(cut.analysis.clip_proposals.length, 2);
     }
+    // By default (clip auto) every end is cut: the cut given, then the others.
+    const opened = api.analyze(p.stl, { clipPlanes: [...c.point, ...c.normal] });
+    assert.equal(opened.ok, true, opened.error);
+    assert.deepEqual(opened.analysis.openings.map((o) => o.shape).sort(), ['blind_end', 'blind_end', 'plane']);
+    assert.deepEqual(opened.analysis.clip_proposals, []);
     const bad = api.cutAt([1, 2]);
     assert.equal(bad.ok, false);
     assert.match(bad.error, /cutAt needs a point \[x, y, z\]/);
+  });
+
+  test('default options open a closed tree at every blind end; its short, wide root is the inlet', () => {
+    const p = api.makePhantom({ kind: 'root', voxel: 0.15, noise: 0.3, openEnds: false });
+    assert.equal(p.ok, true, p.error);
+    const r = api.analyze(p.stl);
+    assert.equal(r.ok, true, r.error);
+    const o = r.analysis.openings;
+    assert.equal(o.length, 5);
+    assert.ok(o.every((x) => x.source === 'clip' && x.shape === 'blind_end'));
+    assert.equal(o[0].name, 'inlet');
+    assert.ok(Math.abs(o[0].radius - 1.7) < 0.17, `${o[0].radius}`);
+    assert.ok(o.slice(1).every((x) => x.radius < 0.6 * o[0].radius));
+    assert.match(r.analysis.warnings.join('\n'), /cut 5 vessel ends open \(clip auto.*\(a short, wide root\)/);
+    // clip off: the blind ends kept and proposed, the root among them.
+    const off = api.analyze(p.stl, { clip: 'off' });
+    assert.equal(off.analysis.openings.length, 0);
+    assert.equal(off.analysis.clip_proposals.length, 5);
+    assert.equal(off.analysis.clip_proposals.filter((x) => x.short_root).length, 1);
+    // A click on the root's end gives its cut, never "not a tube".
+    const tip = [0, 0, -3.1];
+    const c = api.cutAt(tip);
+    assert.equal(c.ok, true, c.error);
+    assert.ok(Math.abs(Math.abs(c.normal[2]) - 1) < 0.05, `${c.normal}`);
+    assert.ok(Math.abs(c.radius - 1.7) < 0.25, `${c.radius}`);
+  });
+
+  test('fan and dome caps become openings at their rims, their shape said', () => {
+    for (const [caps, noise, voxel] of [['fan', 0.3, 0.15], ['dome', 0.1, 0.1]]) {
+      const p = api.makePhantom({ kind: 'bifurcation', voxel, noise, caps });
+      assert.equal(p.ok, true, p.error);
+      const r = api.analyze(p.stl);
+      assert.equal(r.ok, true, r.error);
+      assert.deepEqual(r.analysis.openings.map((o) => [o.source, o.shape]), [['cap', caps], ['cap', caps], ['cap', caps]], caps);
+      assert.equal(r.analysis.caps_removed, 3);
+      assert.match(r.analysis.warnings.join('\n'), /3 caps were recognised and removed/);
+      // Caps kept as wall and clip off: a click on a cap cuts at its rim,
+      // the plane of the opening the default makes.
+      const kept = api.analyze(p.stl, { keepCaps: true, clip: 'off' });
+      assert.equal(kept.analysis.openings.length, 0);
+      const inlet = r.analysis.openings[0];
+      const onCap = inlet.centroid.map((x, k) => x + 0.05 * inlet.radius * inlet.normal[k]);
+      const c = api.cutAt(onCap);
+      assert.equal(c.ok, true, c.error);
+      assert.ok(Math.abs(dot(sub(c.point, inlet.centroid), inlet.normal)) < 0.05 * inlet.radius, caps);
+      assert.ok(Math.abs(dot(c.normal, inlet.normal)) > Math.cos((5 * Math.PI) / 180), caps);
+    }
   });
 
   test('a generated bifurcation: counts, openings, arrays consistent', () => {
@@ -589,6 +642,24 @@ describe('mesh: volume', () => {
     checkGroupsInMsh(r);
     // The wall surface is still returned, and is the wall group.
     assert.equal(r.surface.triangles.length, 3 * out.groups[0].elements);
+  });
+
+  test('capped and closed models mesh with the default options: wall, inlet, outlets, lumen, valid', () => {
+    for (const [options, openings] of [
+      [{ kind: 'bifurcation', voxel: 0.15, noise: 0.1, caps: 'dome' }, 3],
+      [{ kind: 'bifurcation', voxel: 0.15, noise: 0.3, caps: 'fan' }, 3],
+      [{ kind: 'root', voxel: 0.15, noise: 0.3, openEnds: false }, 5],
+    ]) {
+      const p = api.makePhantom(options);
+      assert.equal(p.ok, true, p.error);
+      const m = api.mesh(p.stl);
+      assert.equal(m.ok, true, m.error);
+      const names = m.report.output.groups.map((g) => g.name);
+      const outlets = Array.from({ length: openings - 1 }, (_, k) => `outlet_${k + 1}`);
+      assert.deepEqual(names, ['wall', 'inlet', ...outlets, 'lumen'], JSON.stringify(options));
+      checkVolume(m.volume, m.report);
+      checkGroupsInMsh(m);
+    }
   });
 
   test('default: volume arrays consistent, every tetrahedron positive', () => {
@@ -958,7 +1029,7 @@ describe('mesh: boundary layers and vessel wall', () => {
 
 describe('makePhantom', () => {
   test('each kind has its openings and genus', () => {
-    const expected = { tube: [2, 0], bifurcation: [3, 0], aneurysm: [3, 0], torus: [0, 1], tree: [11, 0] };
+    const expected = { tube: [2, 0], bifurcation: [3, 0], aneurysm: [3, 0], torus: [0, 1], tree: [11, 0], root: [5, 0] };
     for (const [kind, [openings, genus]] of Object.entries(expected)) {
       const p = api.makePhantom({ noise: 0.3, kind, voxel: 0.15 });
       assert.equal(p.ok, true, p.error);
@@ -972,7 +1043,8 @@ describe('makePhantom', () => {
     const a = api.makePhantom({ noise: 0.3, voxel: 0.2, seed: 7 });
     const b = api.makePhantom({ noise: 0.3, voxel: 0.2, seed: 7 });
     assert.deepEqual(a.stl, b.stl);
-    assert.equal(api.makePhantom({ kind: 'blob' }).error, 'kind needs bifurcation, tube, aneurysm, torus, tree or outlets');
+    assert.equal(api.makePhantom({ kind: 'blob' }).error, 'kind needs bifurcation, tube, aneurysm, torus, tree, crossing, outlets or root');
+    assert.equal(api.makePhantom({ caps: 'cone' }).error, 'caps needs flat, fan or dome');
     assert.equal(api.makePhantom({ voxel: 0 }).error, 'voxel needs a positive voxel size');
     assert.match(api.makePhantom({ voxel: 1e-4 }).error, /too large/);
     assert.match(api.makePhantom({ seed: -1 }).error, /seed/);

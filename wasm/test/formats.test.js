@@ -116,7 +116,9 @@ describe('files in', () => {
     const { unit, guessed, certain, reason } = a.analysis.units;
     assert.deepEqual([unit, guessed, certain], ['mm', true, false]);
     assert.ok(Math.abs(Number(reason.match(/radius ([\d.]+)/)[1]) - 0.99) < 0.01, reason);
-    const kept = api.analyze(vtp, { keepCaps: true, units: 'cm' });
+    // Caps kept and the flat ends not clipped (clip auto would cut them as
+    // blind ends): a closed wall.
+    const kept = api.analyze(vtp, { keepCaps: true, clip: 'off', units: 'cm' });
     assert.equal(kept.ok, true, kept.error);
     assert.equal(kept.analysis.openings.length, 0);
     assert.equal(kept.analysis.closed, true);
