@@ -312,10 +312,14 @@ void keep_largest_component(SurfaceMesh& mesh) {
 }
 
 /// Closes every boundary loop by a fan from its centroid, outward oriented
-/// (each fan triangle runs against the loop's boundary half-edge).
-void close_by_fans(SurfaceMesh& mesh) {
+/// (each fan triangle runs against the loop's boundary half-edge). Returns
+/// a face label per triangle: 1 the wall, 2, 3, ... each fan.
+std::vector<int32_t> close_by_fans(SurfaceMesh& mesh) {
   const TriangleAdjacency adj = build_adjacency(mesh);
+  std::vector<int32_t> labels(mesh.num_triangles(), 1);
+  int32_t label = 1;
   for (const std::vector<int32_t>& loop : boundary_loops(mesh, adj)) {
+    labels.resize(labels.size() + loop.size(), ++label);
     Vec3 c = {0, 0, 0};
     for (int32_t v : loop)
       for (int k = 0; k < 3; ++k) c[k] += mesh.points[3 * size_t(v) + k] / double(loop.size());
@@ -324,6 +328,7 @@ void close_by_fans(SurfaceMesh& mesh) {
     for (size_t i = 0; i < loop.size(); ++i)
       mesh.triangles.insert(mesh.triangles.end(), {loop[(i + 1) % loop.size()], loop[i], center});
   }
+  return labels;
 }
 
 }  // namespace
@@ -402,13 +407,16 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
   if (open)
     for (const EndCut& c : m.cuts) clip(mesh, c);
   keep_largest_component(mesh);
-  if (open && o.flat_caps) close_by_fans(mesh);
+  std::vector<int32_t> labels;
+  if (open && o.flat_caps) labels = close_by_fans(mesh);
   const DirtTruth dirt = o.dirty ? add_segmentation_defects(mesh, o.seed) : DirtTruth{};
+  if (o.dirty) labels.clear();
   for (double& x : mesh.points) x *= o.scale;
   if (truth) {
     truth->genus = m.genus;
     truth->holes = dirt.holes;
     truth->openings = open && !o.flat_caps ? int(m.cuts.size()) : 0;
+    truth->face_labels = std::move(labels);
     truth->opening_radii.clear();
     truth->opening_centers.clear();
     truth->end_tips.clear();

@@ -72,6 +72,9 @@ struct PhantomTruth {
   std::vector<std::array<double, 3>> end_tips;
   std::vector<std::array<double, 3>> end_directions;
   std::vector<double> end_radii;
+  /// With flat_caps (and not dirty): per triangle, 1 the wall, 2, 3, ...
+  /// each cap, as SimVascular labels its faces (ModelFaceID); else empty.
+  std::vector<int32_t> face_labels;
 };
 
 /// Builds the phantom. The result is a closed or open, oriented (outward),

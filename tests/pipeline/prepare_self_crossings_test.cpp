@@ -52,10 +52,12 @@ TEST(PrepareSelfCrossings, AFailingStageNamesTheCrossingFirst) {
   ASSERT_FALSE(r.ok());
   EXPECT_TRUE(r.message().starts_with("the input crosses itself at (")) << r.message();
   // With the model's unit and what to do, before the stage's own words.
-  EXPECT_NE(
-      r.message().find(
-          ") mm (1 place; fix it in the segmentation, or cut that part off with {clip_plane}): "),
-      std::string::npos)
+  auto prepared = prepare_surface(bytes);
+  ASSERT_TRUE(prepared.ok());
+  EXPECT_NE(r.message().find(") " + std::string(unit_symbol(prepared.value().unit.unit)) +
+                             " (1 place; fix it in the segmentation, or cut that part off with "
+                             "{clip_plane}): "),
+            std::string::npos)
       << r.message();
   // An option's error is the option's alone.
   MeshJobOptions o;
