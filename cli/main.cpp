@@ -50,7 +50,8 @@ usage:
       volume `lumen` (and with a vessel wall: `outer_wall`, `wall_inlet`,
       `wall_outlet_k`, volume `vessel_wall`).
   vesselmesh phantom OUT.stl [options]
-      Write a synthetic segmentation-like vessel surface (binary STL).
+      Write a synthetic segmentation-like vessel surface (binary STL; to
+      OUT.vtp, VTK PolyData with SimVascular's face labels ModelFaceID).
   vesselmesh options [--json | --markdown]
       Print the option table (JSON: for tools; Markdown: the README's list).
   vesselmesh --help | --version
@@ -99,12 +100,8 @@ void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
   const char* unit = u.c_str();
   std::printf("file:        %s (%s, %zu triangles)\n", path.c_str(), s.format.c_str(),
               s.input_triangles);
-  std::printf(
-      "units:       %s%s\n", unit,
-      !s.unit.guessed ? " (given)"
-      : s.unit.certain
-          ? (" (guessed: " + s.unit.reason + ")").c_str()
-          : (" (guessed, unconfirmed: " + s.unit.reason + "; could be cm, say --units)").c_str());
+  std::printf("units:       %s\n",
+              vm::phrase_options(vm::unit_summary(s.unit), vm::kFaceCli).c_str());
   std::printf("welded:      %zu vertices, %zu triangles, %zu edges\n", t.vertices, t.triangles,
               t.edges);
   std::printf("bounding box: [%g, %g, %g] - [%g, %g, %g] %s (diagonal %g %s)\n", s.box.min[0],
@@ -209,6 +206,8 @@ void print_mesh_summary(const std::string& out, const vm::MeshJobResult& res) {
         unit, y->target.velocity, y->target.density, y->target.viscosity, y->estimate.reynolds,
         y->estimate.skin_friction, y->estimate.wall_shear_stress, y->estimate.friction_velocity);
   }
+  std::printf("units: %s\n",
+              vm::phrase_options(vm::unit_summary(res.surface.unit), vm::kFaceCli).c_str());
   std::printf("wrote %s in %.3f s:", out.c_str(), res.seconds_total);
   for (const vm::OutputGroup& g : res.groups)
     std::printf(" %s %zu%s", g.name.c_str(), g.elements, &g == &res.groups.back() ? "\n" : ",");
@@ -453,15 +452,33 @@ int cmd_mesh(int argc, char** argv) {
 
 int cmd_phantom(int argc, char** argv) {
   Args a = vm::cli::parse_args(argc, argv, 2, vm::kCommandPhantom);
-  if (std::string e = one_argument_error(a, "phantom", "OUT.stl"); !e.empty())
+  if (std::string e = one_argument_error(a, "phantom", "OUT.stl or OUT.vtp"); !e.empty())
     return usage_error(e);
   vm::PhantomOptions o;
   if (std::string e = vm::cli::apply_all(a, o); !e.empty()) return usage_error(e);
-  auto r = vm::make_vessel_phantom(o);
+  vm::PhantomTruth truth;
+  auto r = vm::make_vessel_phantom(o, &truth);
   if (!r.ok()) return fail("", r.status());
-  std::vector<uint8_t> stl = vm::write_stl_binary(r.value(), "vesselmesh phantom");
+  // OUT.vtp: a VTK PolyData whose faces are labelled as SimVascular's
+  // (ModelFaceID: 1 the wall, 2.. each flat cap); else a binary STL.
+  const std::string& path = a.positional[0];
+  std::vector<uint8_t> bytes;
+  if (path.size() > 4 && path.compare(path.size() - 4, 4, ".vtp") == 0) {
+    vm::VtpSurface s;
+    s.points = r.value().points;
+    s.triangles = r.value().triangles;
+    s.face_ids = truth.face_labels;
+    s.face_ids.resize(r.value().num_triangles(), 1);
+    vm::VtkWriteOptions wo;
+    wo.comment = "vesselmesh phantom";
+    auto vtp = vm::write_vtp(s, wo);
+    if (!vtp.ok()) return fail("", vtp.status());
+    bytes.assign(vtp.value().begin(), vtp.value().end());
+  } else {
+    bytes = vm::write_stl_binary(r.value(), "vesselmesh phantom");
+  }
   std::string err;
-  if (!write_file(a.positional[0], stl.data(), stl.size(), err)) return fail(err);
+  if (!write_file(path, bytes.data(), bytes.size(), err)) return fail(err);
   std::printf("wrote %s: %zu triangles\n", a.positional[0].c_str(), r.value().num_triangles());
   return 0;
 }

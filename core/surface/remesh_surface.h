@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/mesh/surface_mesh.h"
@@ -27,6 +28,9 @@ enum class ParamMethod {
 
 struct RemeshOptions {
   SizeOptions size;
+  /// R per input vertex (vessel_radius) when the caller has it, for the
+  /// per-circumference sizes; else (empty) computed here.
+  std::span<const double> radius;
   ParamMethod param = ParamMethod::kLscm;
   PatchMeshOptions patch;  ///< 2D mesher and its options
   PartitionOptions partition;

@@ -346,12 +346,17 @@ TEST(ReportJson, HasTheDocumentedKeys) {
         "\"openings\":[{\"source\":\"file\",\"label\":-1,\"extension\":0,\"name\":\"inlet\"",
         "\"genus\":0", "\"nonmanifold_edges\":0", "\"quality\":{\"min\":", "\"closed\":false",
         "\"format\":\"binary STL\"", "\"caps_removed\":0", "\"holes\":[]",
-        "\"units\":{\"unit\":\"mm\",\"guessed\":true,\"certain\":false"})
+        // A tube of radius 1, 4 long: a 10 mm vessel in cm, or a 1 mm one
+        // in mm, 5 mm long (unusual).
+        "\"units\":{\"unit\":\"cm\",\"guessed\":true,\"certain\":false",
+        "\"confidence\":\"likely\",\"alternative\":\"mm\",\"measures\":{\"largest_radius\":",
+        "\"enclosed_share\":"})
     EXPECT_NE(a.find(key), std::string::npos) << key << " in " << a;
   EXPECT_EQ(count(a, "\"radius\":"), 2u);
   std::string m = mesh_report_json(r.value());
   for (const char* key :
-       {"\"remesh\":{\"patches\":", "\"seam_points\":", "\"genus\":0",
+       {"\"element_budget\":{\"max_elements\":15000000,\"coarsened\":false}",
+        "\"remesh\":{\"patches\":", "\"seam_points\":", "\"genus\":0",
         "\"caps\":[{\"name\":\"inlet\"", "\"volume\":{\"vertices\":", "\"tetrahedra\":",
         "\"groups\":[{\"dim\":2,\"tag\":1,\"name\":\"wall\",\"elements\":",
         "{\"dim\":3,\"tag\":4,\"name\":\"lumen\"",
@@ -417,11 +422,12 @@ TEST(MeshJob, SizesBeyondTheElementBudgetAreRefusedBeforeMeshing) {
     const char* blamed;
     const char* what;
   };
-  // A uniform or core size is checked before remeshing (tetrahedra); the
-  // wall's triangles once the size field is known.
+  // Checked before remeshing, named by the estimate that needs the larger
+  // elements: a uniform or core size's tetrahedra first; a field's
+  // triangles and tetrahedra from its sizes.
   for (const Case& c : {Case{"size", "1e-30", "size", "tetrahedra in the lumen"},
                         Case{"surface_only", "", "size", "triangles on the wall"},
-                        Case{"per_circumference", "1e7", "per_circumference", "triangles"},
+                        Case{"per_circumference", "1e7", "per_circumference", "tetrahedra"},
                         Case{"core_size", "1e-4", "core_size", "tetrahedra in the lumen"}}) {
     MeshJobOptions o;
     if (c.option == std::string("surface_only")) {
