@@ -9,6 +9,7 @@
 #include "core/geom/vec3.h"
 #include "core/mesh/enclosed_volume.h"
 #include "core/surface/element_estimate.h"
+#include "core/util/weighted_percentile.h"
 
 namespace vm {
 
@@ -36,7 +37,6 @@ Estimate estimate(const SurfaceMesh& wall, double volume, const std::vector<doub
   e.triangles = estimate_triangles(wall, h);
   if (!budget.volume || budget.core_size > 0 || !(volume > 0)) return e;
   std::vector<std::pair<double, double>> weighed;  // (size, triangles there)
-  double total = 0;
   for (size_t t = 0; t < wall.num_triangles(); ++t) {
     const int32_t* f = &wall.triangles[3 * t];
     const double size = (h[size_t(f[0])] + h[size_t(f[1])] + h[size_t(f[2])]) / 3;
@@ -44,17 +44,9 @@ Estimate estimate(const SurfaceMesh& wall, double volume, const std::vector<doub
     const double area = 0.5 * norm(cross(at(wall.points, f[1]) - a, at(wall.points, f[2]) - a));
     if (!(size > 0) || !(area > 0)) continue;
     weighed.emplace_back(size, area / (size * size));
-    total += weighed.back().second;
   }
-  if (weighed.empty()) return e;
-  std::sort(weighed.begin(), weighed.end());
-  double below = 0, median = weighed.back().first;
-  for (const auto& [size, weight] : weighed)
-    if ((below += weight) >= 0.5 * total) {
-      median = size;
-      break;
-    }
-  e.tetrahedra = estimate_tetrahedra(volume, median);
+  if (!weighed.empty())
+    e.tetrahedra = estimate_tetrahedra(volume, weighted_percentile(std::move(weighed), 0.5));
   return e;
 }
 

@@ -21,19 +21,14 @@ namespace vm {
 /// The largest element budget {max_elements} takes.
 inline constexpr double kMostElements = 1e9;
 
-/// What the budget weighs (the job's options).
+/// What the budget weighs: MeshJobOptions' fields of the same names (volume:
+/// a volume is meshed, its tetrahedra counted at the wall's median size
+/// unless core_size > 0, which check_volume_budget weighs); size_given: the
+/// wall's size was given, so it is refused, never coarsened; coarsening
+/// stops at fewest_per_circumference(max_volume_change).
 struct ElementBudget {
-  double max_elements = 15e6;
-  /// Tetrahedra are counted (a volume is meshed), at the median wall size
-  /// unless `core_size` > 0 (whose own check is check_volume_budget's).
-  bool volume = true;
-  double core_size = 0;
-  /// The wall's size was given ({size} or {per_circumference}): refused
-  /// when over the budget, never coarsened.
-  bool size_given = false;
-  /// The largest relative change of the enclosed volume the job accepts
-  /// ({max_volume_change}): it bounds the coarsening.
-  double max_volume_change = 0.05;
+  double max_elements = 15e6, core_size = 0, max_volume_change = 0.05;
+  bool volume = true, size_given = false;
 };
 
 /// What fitting the default size to the budget did (coarsened false: it

@@ -401,7 +401,9 @@ Status mesh_prepared(MeshJobResult& r, MeshJobOptions& options, const ProgressFn
   std::vector<double> wall_sizes;  // target size per wall vertex
   std::vector<double> radius;      // R per input vertex, for the size field
   if (options.remesh) {
+    const auto sized = std::chrono::steady_clock::now();
     if (Status st = fit_budget(r, options, radius); !st.ok()) return st;
+    const double seconds_radius = seconds_since(sized);
     ProgressFn remesh_progress = [&](double f, std::string_view stage) {
       return report_progress(progress, 0.2 + 0.7 * f, stage);
     };
@@ -412,6 +414,7 @@ Status mesh_prepared(MeshJobResult& r, MeshJobOptions& options, const ProgressFn
     auto remeshed =
         remesh_surface(r.output_surface, remesh_options, &r.remesh_stats, remesh_progress);
     if (!remeshed.ok()) return remeshed.status();
+    r.remesh_stats.seconds_size += seconds_radius;  // the radius, computed for the budget
     wall_sizes = remeshed.value().sizes;
     const SurfaceMesh input = std::move(r.output_surface);
     r.output_surface = std::move(remeshed.value().mesh);

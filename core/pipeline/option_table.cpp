@@ -688,8 +688,9 @@ const OptionSpec kOptions[] = {
      .type = T::kFlag,
      .commands = kCommandPhantom,
      .group = "phantom",
-     .doc = "close the cut ends by flat caps (a capped model, as SimVascular exports; written "
-            "to OUT.vtp, its faces are labelled ModelFaceID: 1 the wall, 2.. each cap)"},
+     .doc = "close the cut ends by flat caps (a capped model, as SimVascular exports; the "
+            "command writes OUT.vtp with SimVascular's face labels ModelFaceID: 1 the wall, 2.. "
+            "each cap)"},
 };
 
 #pragma GCC diagnostic pop

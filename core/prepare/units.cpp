@@ -10,6 +10,7 @@
 
 #include "core/geom/vec3.h"
 #include "core/mesh/chord_radius.h"
+#include "core/util/weighted_percentile.h"
 
 namespace vm {
 
@@ -63,24 +64,6 @@ std::string_view confidence_name(UnitConfidence confidence) {
 double VesselScale::smallest() const {
   return smallest_opening > 0 ? std::min(small_radius, smallest_opening) : small_radius;
 }
-
-namespace {
-
-/// The value of `values` below which `fraction` of the total `weight` lies
-/// (same length, weights >= 0, not all 0).
-double weighted_percentile(std::vector<std::pair<double, double>> values_weights, double fraction) {
-  std::sort(values_weights.begin(), values_weights.end());
-  double total = 0;
-  for (const auto& [v, w] : values_weights) total += w;
-  double below = 0;
-  for (const auto& [v, w] : values_weights) {
-    below += w;
-    if (below >= fraction * total) return v;
-  }
-  return values_weights.back().first;
-}
-
-}  // namespace
 
 VesselScale measure_vessel_scale(const SurfaceMesh& mesh, bool oriented,
                                  std::span<const double> opening_radii, std::string label_array) {

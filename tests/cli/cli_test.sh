@@ -371,8 +371,8 @@ check "clipped groups" [ "$(json "$T/clipped-report.json" "','.join(g['name'] fo
 # Units from anatomy: a carotid-sized bifurcation (radius 3.5) is mm; the
 # same a tenth as large is cm; an aorta with SimVascular's labelled caps
 # (VTP) is cm; the unit is said on every run, guessed or given.
-"$VM" phantom "$T/carotid.stl" --kind bifurcation --voxel 0.3 --scale 3.5 > /dev/null
-"$VM" phantom "$T/carotid-cm.stl" --kind bifurcation --voxel 0.03 --scale 0.35 > /dev/null
+"$VM" phantom "$T/carotid.stl" --kind bifurcation --voxel 0.15 --scale 3.5 > /dev/null
+"$VM" phantom "$T/carotid-cm.stl" --kind bifurcation --voxel 0.15 --scale 0.35 > /dev/null
 check "carotid in mm" expect_exit 0 "units:       mm (guessed, likely: vessel radius 3." "$VM" info "$T/carotid.stl"
 check "carotid in cm" expect_exit 0 "units:       cm (guessed, likely: vessel radius 0.3" "$VM" info "$T/carotid-cm.stl"
 check "carotid in cm, the alternative said" expect_exit 0 "; if it is mm, say --units mm)" "$VM" info "$T/carotid-cm.stl"

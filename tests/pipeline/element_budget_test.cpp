@@ -89,7 +89,8 @@ TEST(ElementBudget, AGivenSizeIsRefusedWithTheSizeThatFits) {
   const std::vector<uint8_t> stl = bifurcation_stl();
   auto prepared = prepare_surface(stl);
   ASSERT_TRUE(prepared.ok());
-  for (const auto& [option, value] : {std::pair{"per_circumference", "20"}, {"size", "0.05"}}) {
+  for (const auto& [option, value] : std::vector<std::pair<std::string, std::string>>{
+           {"per_circumference", "20"}, {"size", "0.05"}}) {
     MeshJobOptions o = with_budget("15000");
     ASSERT_TRUE(set_option_text(o, option, value).ok());
     int calls = 0;
@@ -104,11 +105,11 @@ TEST(ElementBudget, AGivenSizeIsRefusedWithTheSizeThatFits) {
     // The remedy: a coarser value of the same option, that fits.
     ASSERT_EQ(st.remedy().action, "coarser") << st.message();
     const double coarser = st.remedy().value;
-    EXPECT_NE(st.message().find("{" + std::string(option) + "} " + number_text(coarser) + " fits"),
+    EXPECT_NE(st.message().find("{" + option + "} " + number_text(coarser) + " fits"),
               std::string::npos)
         << st.message();
     ASSERT_TRUE(set_option_text(o, option, number_text(coarser)).ok());
-    EXPECT_TRUE(option == std::string("size") ? coarser > 0.05 : coarser < 20);
+    EXPECT_TRUE(option == "size" ? coarser > 0.05 : coarser < 20);
     EXPECT_TRUE(fits(prepared.value(), o)) << option << " " << coarser;
   }
 }

@@ -58,7 +58,9 @@ TEST(Units, TheTrueUnitIsTheGuessOrItsAlternative) {
                    unit_summary(u));
       EXPECT_TRUE(u.guessed);
       EXPECT_TRUE(u.unit == truth || u.alternative == truth);
-      if (u.certain) EXPECT_EQ(u.unit, truth);
+      if (u.certain) {
+        EXPECT_EQ(u.unit, truth);
+      }
       EXPECT_EQ(u.certain, u.confidence == UnitConfidence::kCertain);
       EXPECT_EQ(u.certain, u.alternative == LengthUnit::kGuess);
     }
