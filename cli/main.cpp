@@ -52,7 +52,7 @@ usage:
   vesselmesh phantom OUT.stl|OUT.vtp [options]
       Write a synthetic segmentation-like vessel surface (binary STL, or
       VTK XML PolyData with its face labels as ModelFaceID when OUT ends
-      in .vtp).
+      in .vtp: SimVascular's, 1 the wall, 2.. each flat cap).
   vesselmesh options [--json | --markdown]
       Print the option table (JSON: for tools; Markdown: the README's list).
   vesselmesh --help | --version
@@ -101,12 +101,8 @@ void print_text_report(const std::string& path, const vm::PreparedSurface& s) {
   const char* unit = u.c_str();
   std::printf("file:        %s (%s, %zu triangles)\n", path.c_str(), s.format.c_str(),
               s.input_triangles);
-  std::printf(
-      "units:       %s%s\n", unit,
-      !s.unit.guessed ? " (given)"
-      : s.unit.certain
-          ? (" (guessed: " + s.unit.reason + ")").c_str()
-          : (" (guessed, unconfirmed: " + s.unit.reason + "; could be cm, say --units)").c_str());
+  std::printf("units:       %s\n",
+              vm::phrase_options(vm::unit_summary(s.unit), vm::kFaceCli).c_str());
   std::printf("welded:      %zu vertices, %zu triangles, %zu edges\n", t.vertices, t.triangles,
               t.edges);
   std::printf("bounding box: [%g, %g, %g] - [%g, %g, %g] %s (diagonal %g %s)\n", s.box.min[0],
@@ -216,6 +212,8 @@ void print_mesh_summary(const std::string& out, const vm::MeshJobResult& res) {
         unit, y->target.velocity, y->target.density, y->target.viscosity, y->estimate.reynolds,
         y->estimate.skin_friction, y->estimate.wall_shear_stress, y->estimate.friction_velocity);
   }
+  std::printf("units: %s\n",
+              vm::phrase_options(vm::unit_summary(res.surface.unit), vm::kFaceCli).c_str());
   std::printf("wrote %s in %.3f s:", out.c_str(), res.seconds_total);
   for (const vm::OutputGroup& g : res.groups)
     std::printf(" %s %zu%s", g.name.c_str(), g.elements, &g == &res.groups.back() ? "\n" : ",");
@@ -460,7 +458,7 @@ int cmd_mesh(int argc, char** argv) {
 
 int cmd_phantom(int argc, char** argv) {
   Args a = vm::cli::parse_args(argc, argv, 2, vm::kCommandPhantom);
-  if (std::string e = one_argument_error(a, "phantom", "OUT.stl"); !e.empty())
+  if (std::string e = one_argument_error(a, "phantom", "OUT.stl or OUT.vtp"); !e.empty())
     return usage_error(e);
   vm::PhantomOptions o;
   if (std::string e = vm::cli::apply_all(a, o); !e.empty()) return usage_error(e);

@@ -351,9 +351,11 @@ void keep_largest_component(SurfaceMesh& mesh) {
 /// turn from loop to loop) up to its apex, each ring taking every m-th rim
 /// vertex's direction (m about the rim's radius over the ring's), so that
 /// its triangles keep the rim's size.
-void close_ends(SurfaceMesh& mesh, PhantomCapShape shape) {
+/// Returns a face label per triangle: 1 the wall, 2, 3, ... each cap.
+std::vector<int32_t> close_ends(SurfaceMesh& mesh, PhantomCapShape shape) {
   const TriangleAdjacency adj = build_adjacency(mesh);
   const std::vector<std::vector<int32_t>> loops = boundary_loops(mesh, adj);
+  std::vector<int32_t> labels(mesh.num_triangles(), 1);
   for (size_t l = 0; l < loops.size(); ++l) {
     const std::vector<int32_t>& loop = loops[l];
     const size_t n = loop.size();
@@ -417,7 +419,9 @@ void close_ends(SurfaceMesh& mesh, PhantomCapShape shape) {
     for (size_t i = 0; i < outer.size(); ++i)
       mesh.triangles.insert(mesh.triangles.end(),
                             {outer[(i + 1) % outer.size()], outer[i], centre});
+    labels.resize(mesh.num_triangles(), int32_t(l + 2));
   }
+  return labels;
 }
 
 }  // namespace
@@ -523,14 +527,20 @@ Result<SurfaceMesh> make_vessel_phantom(const PhantomOptions& o, PhantomTruth* t
       for (const EndCut& c : m.cuts) clip(mesh, c);
     keep_largest_component(mesh);
   }
-  if (open && o.flat_caps) close_ends(mesh, o.cap_shape);
+  // Flat caps are labelled as SimVascular labels its faces; fans and domes,
+  // as capping tools leave them, are not.
+  std::vector<int32_t> labels;
+  if (open && o.flat_caps) labels = close_ends(mesh, o.cap_shape);
+  if (o.cap_shape != PhantomCapShape::kFlat) labels.clear();
   const DirtTruth dirt = o.dirty ? add_segmentation_defects(mesh, o.seed) : DirtTruth{};
+  if (o.dirty) labels.clear();
   if (open && !o.flat_caps && o.damaged_ends) add_damaged_ends(mesh, o.seed);
   for (double& x : mesh.points) x *= o.scale;
   if (truth) {
     truth->genus = m.genus;
     truth->holes = dirt.holes;
     truth->openings = open && !o.flat_caps ? int(m.cuts.size()) : 0;
+    truth->face_labels = std::move(labels);
     truth->opening_radii.clear();
     truth->opening_centers.clear();
     truth->end_tips.clear();

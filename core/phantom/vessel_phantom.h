@@ -107,7 +107,8 @@ struct PhantomTruth {
   std::vector<std::array<double, 3>> end_directions;
   std::vector<double> end_radii;
   /// One face label per triangle (ModelFaceID) for the labelled kinds
-  /// (kOutlets), else empty.
+  /// (kOutlets), and with flat caps (not dirty): 1 the wall, 2, 3, ...
+  /// each cap, as SimVascular labels its faces; else empty.
   std::vector<int32_t> face_labels;
 };
 

@@ -20,12 +20,14 @@
 #include "core/mesh/self_intersection.h"
 #include "core/mesh/surface_distance.h"
 #include "core/mesh/volume_check.h"
+#include "core/pipeline/element_budget.h"
 #include "core/pipeline/opening_names.h"
 #include "core/pipeline/size_preview.h"
 #include "core/pipeline/write_outputs.h"
 #include "core/quality/tet_quality.h"
 #include "core/surface/element_estimate.h"
 #include "core/surface/relax_wall.h"
+#include "core/surface/vessel_radius.h"
 #include "core/util/parallel.h"
 #include "core/util/stage_timer.h"
 #include "core/volume/boundary_recovery.h"
@@ -87,20 +89,6 @@ Result<CappedSurface> cap_and_name(const MeshJobResult& r, const SurfaceMesh& su
   capped.caps = std::move(caps);
   for (int32_t& tag : capped.triangle_tag) tag = new_tag[size_t(tag)];
   return result;
-}
-
-/// The volume a wall encloses with each opening closed by a fan from its
-/// centroid (model units cubed; positive for an outward wall).
-double volume_inside(const SurfaceMesh& wall, const std::vector<Opening>& openings) {
-  SurfaceMesh closed = wall;
-  for (const Opening& op : openings) {
-    const int32_t c = int32_t(closed.num_vertices());
-    closed.points.insert(closed.points.end(), op.centroid.begin(), op.centroid.end());
-    for (size_t i = 0; i < op.loop.size(); ++i)
-      closed.triangles.insert(closed.triangles.end(),
-                              {op.loop[(i + 1) % op.loop.size()], op.loop[i], c});
-  }
-  return enclosed_volume(closed);
 }
 
 /// Refuses a remeshed wall whose volume differs from its input's by more
@@ -167,17 +155,28 @@ Status check_volume_budget(const SurfaceMesh& wall, const std::vector<Opening>& 
     h = wall_sizes[wall_sizes.size() / 2];
   }
   if (!(h > 0)) return Status::Ok();
-  const double estimate = estimate_tetrahedra(std::abs(volume_inside(wall, openings)), h);
+  const double volume = std::abs(volume_closed_by_fans(wall, openings));
+  const double estimate = estimate_tetrahedra(volume, h);
   if (estimate <= options.max_elements) return Status::Ok();
-  char buf[200];
+  // The remedy: the blamed option's value that fits.
+  const char* option = options.core_size > 0           ? "core_size"
+                       : so.mode == SizeMode::kUniform ? "size"
+                                                       : "per_circumference";
+  const double fits =
+      options.core_size > 0 ? fitting_size(0, volume, options.max_elements)
+      : so.mode == SizeMode::kUniform
+          ? fitting_size(surface_area(wall), volume, options.max_elements)
+          : std::floor(so.per_circumference / (1.02 * std::cbrt(estimate / options.max_elements)));
+  char buf[300];
   std::snprintf(buf, sizeof buf,
-                "makes about %.3g tetrahedra in the lumen, more than the element budget "
-                "({max_elements} %.0f) allows: ask for larger elements",
-                estimate, options.max_elements);
-  return Status::BadOption(options.core_size > 0           ? "core_size"
-                           : so.mode == SizeMode::kUniform ? "size"
-                                                           : "per_circumference",
-                           buf);
+                "makes about %.*g tetrahedra in the lumen, more than the element budget "
+                "({max_elements} %.0f) allows: ask for larger elements ({%s} %s fits)",
+                estimate < 1e6 ? 6 : 3, estimate, options.max_elements, option,
+                number_text(fits).c_str());
+  Status refused = Status::BadOption(option, buf);
+  const bool usable =
+      so.mode == SizeMode::kPerCircumference && !(options.core_size > 0) ? fits >= 3 : fits > 0;
+  return usable ? refused.WithRemedy({"coarser", {}, fits}) : refused;
 }
 
 Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
@@ -389,6 +388,21 @@ Status first_layer_from_yplus(MeshJobResult& r, MeshJobOptions& options) {
   return Status::Ok();
 }
 
+/// The element budget on the size field before remeshing (element_budget.h):
+/// the default size coarsened to fit it (said in a warning and r.budget), a
+/// given size refused. `radius` receives R per vertex of the prepared wall
+/// (per-circumference sizes), for the remeshing to reuse.
+Status fit_budget(MeshJobResult& r, MeshJobOptions& options, std::vector<double>& radius) {
+  SizeOptions& so = options.remesh_options.size;
+  if (so.mode == SizeMode::kPerCircumference) radius = vessel_radius(r.output_surface);
+  if (Status st = fit_element_budget(r.output_surface, r.surface.topology.openings, radius,
+                                     element_budget(options), so, r.budget);
+      !st.ok())
+    return st;
+  if (r.budget.coarsened) r.warnings.push_back(budget_warning(r.budget));
+  return Status::Ok();
+}
+
 /// Stages 2 to 7 on the prepared surface `r.surface`: checks, size field and
 /// remeshing, then mesh_volume. `options` gets what the surface decides.
 Status mesh_prepared(MeshJobResult& r, MeshJobOptions& options, const ProgressFn& progress) {
@@ -406,8 +420,9 @@ Status mesh_prepared(MeshJobResult& r, MeshJobOptions& options, const ProgressFn
       !r.surface.unit.certain)
     r.warnings.push_back("the mesh is written in " +
                          std::string(unit_symbol(options.output_units)) + " from a guessed unit, " +
-                         std::string(unit_symbol(r.surface.unit.unit)) +
-                         " (unconfirmed: " + r.surface.unit.reason + "); say {units} if it is not");
+                         std::string(unit_symbol(r.surface.unit.unit)) + " (" +
+                         std::string(confidence_name(r.surface.unit.confidence)) + ": " +
+                         r.surface.unit.reason + "); say {units} if it is not");
   r.output_surface = r.surface.mesh;
   if (options.volume) {
     // Known sizes are checked against the budget before remeshing.
@@ -415,18 +430,24 @@ Status mesh_prepared(MeshJobResult& r, MeshJobOptions& options, const ProgressFn
     if (!budget.ok()) return budget;
   }
   std::vector<double> wall_sizes;  // target size per wall vertex
+  std::vector<double> radius;      // R per input vertex, for the size field
   if (options.remesh) {
+    const auto sized = std::chrono::steady_clock::now();
+    if (Status st = fit_budget(r, options, radius); !st.ok()) return st;
+    const double seconds_radius = seconds_since(sized);
     ProgressFn remesh_progress = [&](double f, std::string_view stage) {
       return report_progress(progress, 0.2 + 0.7 * f, stage);
     };
     const TopologyReport in = analyze_topology(r.output_surface);
     RemeshOptions remesh_options = options.remesh_options;
     remesh_options.max_triangles = options.max_elements;
+    remesh_options.radius = radius;
     auto remeshed =
         remesh_surface(r.output_surface, remesh_options, &r.remesh_stats, remesh_progress);
     if (!remeshed.ok()) return remeshed.status();
     for (const FallbackPatch& f : r.remesh_stats.fallback_patches)
       r.warnings.push_back(fallback_warning(f, unit_symbol(r.surface.unit.unit)));
+    r.remesh_stats.seconds_size += seconds_radius;  // the radius, computed for the budget
     wall_sizes = remeshed.value().sizes;
     const SurfaceMesh input = std::move(r.output_surface);
     r.output_surface = std::move(remeshed.value().mesh);
@@ -450,8 +471,8 @@ Status mesh_prepared(MeshJobResult& r, MeshJobOptions& options, const ProgressFn
           "): the size is too coarse for some feature; try a smaller {size} or a larger "
           "{per_circumference}");
     // Never a wall that loses the vessels' volume (a size too coarse).
-    r.fidelity.input_volume = volume_inside(input, in.openings);
-    r.fidelity.output_volume = volume_inside(r.output_surface, out.openings);
+    r.fidelity.input_volume = volume_closed_by_fans(input, in.openings);
+    r.fidelity.output_volume = volume_closed_by_fans(r.output_surface, out.openings);
     r.fidelity.volume_change =
         r.fidelity.input_volume != 0 ? r.fidelity.output_volume / r.fidelity.input_volume - 1 : 0;
     if (Status st = check_volume_change(r.fidelity, options); !st.ok()) return st;
@@ -480,6 +501,16 @@ Status mesh_prepared(MeshJobResult& r, MeshJobOptions& options, const ProgressFn
 }
 
 }  // namespace
+
+ElementBudget element_budget(const MeshJobOptions& options) {
+  ElementBudget budget;
+  budget.max_elements = options.max_elements;
+  budget.volume = options.volume;
+  budget.core_size = options.core_size;
+  budget.size_given = options.size_given;
+  budget.max_volume_change = options.max_volume_change;
+  return budget;
+}
 
 Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const MeshJobOptions& given,
                                    const ProgressFn& progress,

@@ -15,6 +15,7 @@
 #include "core/layers/first_layer_yplus.h"
 #include "core/layers/layer_mesh.h"
 #include "core/mesh/volume_mesh.h"
+#include "core/pipeline/element_budget.h"
 #include "core/pipeline/prepare_surface.h"
 #include "core/quality/surface_group_quality.h"
 #include "core/surface/caps.h"
@@ -104,8 +105,11 @@ struct MeshJobOptions {
   /// quads, type 3) instead of splitting them into tetrahedra.
   bool keep_prisms = false;
   /// The element budget: a job whose wall triangles or tetrahedra are
-  /// estimated beyond it is refused before meshing them.
+  /// estimated beyond it is refused before meshing them, unless its size is
+  /// the default: that is coarsened to fit (element_budget.h).
   double max_elements = 15e6;
+  /// Whether the wall's size was given ({size} or {per_circumference}).
+  bool size_given = false;
   /// The remeshed wall may enclose at most this fraction more or less
   /// volume than its input; beyond, the size is refused as too coarse.
   double max_volume_change = 0.05;
@@ -180,6 +184,8 @@ struct MeshJobResult {
   RemeshStats remesh_stats;        ///< when remeshed
   TopologyReport output_topology;  ///< when remeshed (checked equal to the input's)
   SurfaceFidelity fidelity;        ///< when remeshed
+  /// The default size coarsened to fit the element budget (when remeshed).
+  BudgetFit budget;
   /// When the volume was meshed: the closed surface (wall + caps) and the
   /// volume mesh (tets, region 0 = lumen; its triangles are the surface as
   /// written, with one tag per triangle: 0 wall, i inlet/outlets as caps).
@@ -204,6 +210,9 @@ struct MeshJobResult {
   std::vector<std::string> warnings;
   double seconds_total = 0;
 };
+
+/// The element budget `options` set (element_budget.h).
+ElementBudget element_budget(const MeshJobOptions& options);
 
 /// Meshes the surface file `file_bytes` per `options`. `input_read`, if
 /// given, is called once the bytes are no longer needed (after the

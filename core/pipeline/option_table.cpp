@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/pipeline/element_budget.h"
 #include "core/pipeline/write_outputs.h"
 #include "core/util/json_writer.h"
 #include "core/util/portable_math.h"
@@ -103,8 +104,9 @@ const OptionSpec kOptions[] = {
      .metavar = "U",
      .choices = kUnits,
      .needs = "mm, cm or m",
-     .doc = "the unit of the file's numbers (default: guessed from the vessel radii: below "
-            "0.05 metres, else millimetres)"},
+     .doc = "the unit of the file's numbers (default: guessed from the vessel radii and the "
+            "model's size weighed against human anatomy, face labels hinting at cm; said "
+            "certain, likely or unsure)"},
     {.id = "flow_extension",
      .cli = "flow-extension",
      .js = "flowExtension",
@@ -333,11 +335,12 @@ const OptionSpec kOptions[] = {
      .group = "volume",
      .metavar = "N",
      .min = 1000,
-     .max = 1e9,
+     .max = kMostElements,
      .default_text = "15000000",
      .needs = "a number of elements from 1000 to 1000000000",
      .doc = "the element budget: sizes that would make more wall triangles or tetrahedra are "
-            "refused before meshing (the default fits a 4 GB browser tab)"},
+            "refused before meshing, the default size coarsened to fit (the default fits a 4 GB "
+            "browser tab)"},
     {.id = "max_volume_change",
      .cli = "max-volume-change",
      .js = "maxVolumeChange",
@@ -701,7 +704,9 @@ const OptionSpec kOptions[] = {
      .type = T::kFlag,
      .commands = kCommandPhantom,
      .group = "phantom",
-     .doc = "close the cut ends by flat caps (a capped model, as SimVascular exports)"},
+     .doc = "close the cut ends by flat caps (a capped model, as SimVascular exports; the "
+            "command writes OUT.vtp with SimVascular's face labels ModelFaceID: 1 the wall, 2.. "
+            "each cap)"},
     {.id = "caps",
      .cli = "caps",
      .js = "caps",
@@ -880,9 +885,11 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
   if (id == "size") {
     size.mode = SizeMode::kUniform;
     size.size = x;
+    o.size_given = true;
   } else if (id == "per_circumference") {
     size.mode = SizeMode::kPerCircumference;
     size.per_circumference = x;
+    o.size_given = true;
   } else if (id == "size_min") {
     size.size_min = x;
   } else if (id == "size_max") {

@@ -22,24 +22,6 @@ std::string num(size_t n) { return std::to_string(n); }
 
 Status cancelled() { return Status::Cancelled(); }
 
-/// A typical vessel radius of the prepared surface: the median radius of
-/// its openings, else the median half chord across the lumen (closed
-/// surfaces), else a tenth of the bounding box (too large to measure).
-double median_vessel_radius(const PreparedSurface& s) {
-  std::vector<double> radii;
-  for (const Opening& op : s.topology.openings) radii.push_back(op.radius);
-  if (radii.empty() && s.mesh.num_triangles() <= 2'000'000 && s.topology.components == 1 &&
-      s.topology.nonmanifold_edges == 0)
-    radii = chord_radius(s.mesh);
-  if (radii.empty()) return 0.1 * s.box.diagonal();
-  std::nth_element(radii.begin(), radii.begin() + long(radii.size() / 2), radii.end());
-  return radii[radii.size() / 2];
-}
-
-}  // namespace
-
-namespace {
-
 /// What the phases pass on besides the surface: face labels (one per
 /// triangle, or empty), the file's face names, the adjacency of the current
 /// mesh, and where openings come from: per vertex an index into `sources`
@@ -407,6 +389,39 @@ Status repair(PreparedSurface& s, Work& w, const PrepareOptions& options) {
     if (!s.holes.empty() || s.manifold.vertices_split > 0) w.adjacency = build_adjacency(s.mesh);
   }
   return Status::Ok();
+}
+
+/// A surface whose inward chords meet the wall on less than this share of its
+/// area is a sheet: a vessel's leave only through its openings (95-100% meet
+/// on real models), a flat disk's or a trough's never.
+constexpr double kSheetShare = 0.5;
+
+/// "the surface encloses no volume: ..." when it is a sheet, else "".
+std::string no_volume_text(const PreparedSurface& s) {
+  const double share = s.scale.enclosed_share;
+  if (!(share >= 0 && share < kSheetShare)) return "";
+  return "the surface encloses no volume: it is a single sheet (a flat disk, one side of a "
+         "wall), not a vessel's lumen: the inward normal on " +
+         number_text(100 * (1 - share), 3) + "% of its area meets no other part of it, e.g. at " +
+         point_text(s.scale.open_example) + " " + std::string(unit_symbol(s.unit.unit)) +
+         "; export the lumen's whole surface, closed or as a tube cut open at its ends";
+}
+
+/// Phase 2e: the model's scale and unit, given or guessed from the scale on
+/// the repaired surface (units.h): before smoothing, caps, cuts and flow
+/// extensions, so that no option of theirs changes it. The openings weighed
+/// are the surface's boundary loops but the holes left open.
+void decide_model_unit(PreparedSurface& s, Work& w, const PrepareOptions& options) {
+  std::vector<double> radii;
+  for (const Opening& op : w.current_topology(s.mesh).openings) {
+    bool hole = false;
+    for (const Hole& h : s.holes) hole |= !h.closed && h.centroid == op.centroid;
+    if (!hole) radii.push_back(op.radius);
+  }
+  s.scale = measure_vessel_scale(s.mesh, s.repair.orientable, radii, s.label_array);
+  s.unit = decide_unit(options.units, s.scale);
+  if (std::string sheet = no_volume_text(s); !sheet.empty())
+    s.warnings.push_back(sheet + " (meshing refuses it)");
 }
 
 /// Phase 3: only the largest component, when asked.
@@ -912,6 +927,7 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   if (Status st = read_and_weld(s, w, file_bytes, options); !st.ok()) return st;
   if (!report_progress(progress, 0.3, "repair")) return cancelled();
   if (Status st = repair(s, w, options); !st.ok()) return st;
+  decide_model_unit(s, w, options);
   if (options.largest_component_only) keep_largest_component(s, w);
   if (!report_progress(progress, 0.4, "smooth")) return cancelled();
   // The staircase test (phase 4) and the cap search (phase 5) read the same
@@ -940,7 +956,6 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   if (Status st = extend_openings(s, w, options); !st.ok()) return st;
   if (!report_progress(progress, 0.6, "analyze")) return cancelled();
   analyze(s, w);
-  s.unit = decide_unit(options.units, median_vessel_radius(s));
   if (w.smoothing_note != std::string::npos)
     s.warnings.insert(s.warnings.begin() + long(w.smoothing_note),
                       smoothing_note(s.smoothing, std::string(unit_symbol(s.unit.unit))));
@@ -979,6 +994,8 @@ Status check_meshable(const PreparedSurface& s) {
                          std::string(s.repaired ? "" : "; repair it with {repair} auto"))
         .WithRemedy(repair_on);
   }
+  if (std::string sheet = no_volume_text(s); !sheet.empty())
+    return Status::Error("cannot mesh: " + sheet);
   if (t.components > 1) {
     return Status::Error("cannot mesh: the surface has " + std::to_string(t.components) +
                          " connected components (the largest has " + num(t.component_triangles[0]) +

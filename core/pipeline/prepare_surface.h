@@ -168,7 +168,10 @@ struct PreparedSurface {
   /// A surface not clipped ({clip} off): the cuts {clip} auto would make,
   /// one per blind vessel end found.
   std::vector<VesselEnd> clip_proposals;
-  /// The model's length unit and how it was decided.
+  /// The model's scale, measured on the repaired surface before smoothing,
+  /// caps, cuts and flow extensions (measure_vessel_scale), and the length
+  /// unit given or guessed from it.
+  VesselScale scale;
   ModelUnit unit;
   /// Where the prepared surface crosses itself (a wall pushed through
   /// another): found on surfaces up to kSelfCrossingCheckLimit triangles,

@@ -93,7 +93,22 @@ std::string analysis_json(const PreparedSurface& s, OptionFace face) {
   j.key("guessed").value(s.unit.guessed);
   j.key("certain").value(s.unit.certain);
   j.key("reason").value(s.unit.reason);
+  // A guess: how sure (certain, likely, unsure), the next unit that gives
+  // human vessel sizes ("" none), and the measures weighed (model units).
+  j.key("confidence").value(confidence_name(s.unit.confidence));
+  j.key("alternative").value(unit_symbol(s.unit.alternative));
+  const VesselScale& v = s.scale;
+  j.key("measures").begin_object();
+  j.key("largest_radius").value(v.large_radius);
+  j.key("median_radius").value(v.median_radius);
+  j.key("smallest_radius").value(v.smallest());
+  j.key("diagonal").value(v.extent);
+  j.key("label_array").value(v.label_array);
   j.end_object();
+  j.end_object();
+  // The share of the wall whose inward chord meets the wall again (-1: not
+  // measured); a sheet (below one half) encloses no volume.
+  j.key("enclosed_share").value(v.enclosed_share);
   j.key("bounding_box").begin_object();
   j.key("min").array(s.box.min);
   j.key("max").array(s.box.max);
@@ -279,6 +294,20 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
     j.key("correlation").value("Cf = 0.026 Re^(-1/7)");
     j.end_object();
   }
+  // The element budget: the default size coarsened to fit it (else
+  // coarsened false and the default's N fitted, or the size was given).
+  j.key("element_budget").begin_object();
+  j.key("max_elements").value(r.budget.max_elements);
+  j.key("coarsened").value(r.budget.coarsened);
+  if (r.budget.coarsened) {
+    j.key("counted").value(r.budget.counted);
+    j.key("asked_per_circumference").value(r.budget.asked_per_circumference);
+    j.key("asked_elements").value(r.budget.asked_elements);
+    j.key("per_circumference").value(r.budget.per_circumference);
+    j.key("elements").value(r.budget.elements);
+    j.key("enough").value(r.budget.enough);
+  }
+  j.end_object();
   j.key("output").begin_object();
   // Lengths of the report are in the input's unit.
   j.key("unit").value(unit_symbol(r.surface.unit.unit));

@@ -2,6 +2,7 @@
 #include "core/pipeline/size_preview.h"
 
 #include "core/geom/vec3.h"
+#include "core/pipeline/element_budget.h"
 #include "core/surface/size_field.h"
 #include "core/surface/vessel_radius.h"
 
@@ -34,9 +35,12 @@ Result<SizePreview> size_preview(const PreparedSurface& surface, const MeshJobOp
     p.radius.assign(radius.begin(), radius.end());
   else
     p.radius = vessel_radius(surface.mesh);
-  auto sizes = vertex_sizes(surface.mesh, so, p.radius);
-  if (!sizes.ok()) return sizes.status();
-  p.size = std::move(sizes).value();
+  // The default size coarsened to the element budget as the job does.
+  SizeOptions fitted = so;
+  if (Status st = fit_element_budget(surface.mesh, surface.topology.openings, p.radius,
+                                     element_budget(options), fitted, p.budget, &p.size);
+      !st.ok())
+    return st;
   return p;
 }
 

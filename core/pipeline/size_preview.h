@@ -23,9 +23,12 @@ struct SizePreview {
   /// (vessel_radius, shrinking balls).
   std::vector<double> radius;
   /// h: the edge length the remeshing asks for there (size mode, curvature,
-  /// clamps {size_min} {size_max}, {refine} spheres, gradation), before the
-  /// fidelity rounds make it finer where the wall would leave the input.
+  /// clamps {size_min} {size_max}, {refine} spheres, gradation, the default
+  /// coarsened to the element budget), before the fidelity rounds make it
+  /// finer where the wall would leave the input.
   std::vector<double> size;
+  /// The default size coarsened to the element budget (element_budget.h).
+  BudgetFit budget;
 };
 
 /// The size field `run_mesh_job` would remesh `surface` with under

@@ -706,7 +706,10 @@ Result<RemeshedSurface> remesh_surface(const SurfaceMesh& input, const RemeshOpt
   RemeshStats stats;
   auto t0 = std::chrono::steady_clock::now();
   // Phase 1: size field (seed eq. 11).
-  auto sizes = vertex_sizes(input, options.size);
+  auto sizes = options.size.mode == SizeMode::kPerCircumference &&
+                       options.radius.size() == input.num_vertices()
+                   ? vertex_sizes(input, options.size, options.radius)
+                   : vertex_sizes(input, options.size);
   if (!sizes.ok()) return sizes.status();
   const std::vector<double> asked = std::move(sizes).value();
   stats.seconds_size = seconds_since(t0);

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,6 +32,9 @@ enum class ParamMethod {
 
 struct RemeshOptions {
   SizeOptions size;
+  /// R per input vertex (vessel_radius) when the caller has it, for the
+  /// per-circumference sizes; else (empty) computed here.
+  std::span<const double> radius;
   ParamMethod param = ParamMethod::kLscm;
   PatchMeshOptions patch;  ///< 2D mesher and its options
   PartitionOptions partition;

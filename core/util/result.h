@@ -26,7 +26,9 @@ enum class ErrorKind {
 /// already says it in words). `action` is one word of a fixed vocabulary:
 ///   "trim_end"   cut the vessel back across it at `where` (a damaged end);
 ///   "cut_here"   cut across the vessel at `where` (clip_at);
-///   "coarser"    a larger size: `value` is the size (model unit) that fits;
+///   "coarser"    larger elements: `value` is the value of the refused
+///                option (Status::option(): {size} or {core_size} in model
+///                units, {per_circumference} a count) that fits;
 ///   "no_layers"  mesh without a boundary layer;
 ///   "smooth"     smooth the surface (`value` passes);
 ///   "repair"     turn the repairs on;

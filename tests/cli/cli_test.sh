@@ -121,7 +121,8 @@ check "self-crossing, repair off: info names the place" expect_exit 0 "self-cros
 check "self-crossing, repair off: a warning says where" expect_exit 0 "warning: the surface crosses itself at 1 place" "$VM" info "$T/dent.stl" --repair off
 check "self-crossing, repair off: json place near (-1, 0, 4)" [ "$("$VM" info "$T/dent.stl" --json --repair off | python3 -c "import json,sys; c=json.load(sys.stdin)['self_crossings']; print(c['pairs'] > 0 and c['place_count'] == 1 and abs(c['places'][0][0] + 1) < 0.1 and abs(c['places'][0][2] - 4) < 0.6)")" = True ]
 check "self-crossing, repair off: mesh fails naming it" expect_exit 1 "error: $T/dent.stl: the input crosses itself at (-" "$VM" mesh "$T/dent.stl" -o "$T/dent.msh" --repair off
-check "self-crossing, repair off: the refusal says what to do, in CLI words" expect_exit 1 "mm (1 place; fix it in the segmentation, or cut that part off with --clip-plane): " "$VM" mesh "$T/dent.stl" -o "$T/dent.msh" --repair off
+dent_unit=$("$VM" info "$T/dent.stl" --json | python3 -c "import json,sys; print(json.load(sys.stdin)['units']['unit'])")
+check "self-crossing, repair off: the refusal says what to do, in CLI words" expect_exit 1 ") $dent_unit (1 place; fix it in the segmentation, or cut that part off with --clip-plane): " "$VM" mesh "$T/dent.stl" -o "$T/dent.msh" --repair off
 
 # Two vessels that pass into each other, each its own shell: re-surfaced
 # into one and meshed with an inlet and 3 outlets; with --repair off refused.
@@ -309,8 +310,11 @@ check "openfoam preset (the .msh name is yours)" expect_exit 0 "preset openfoam:
 check "openfoam: MSH 2.2" [ "$(sed -n 2p "$T/foam.msh")" = "2.2 0 8" ]
 check "openfoam: prisms (type 6) kept" [ "$(msh_types "$T/foam.msh")" = "2,3,4,6" ]
 check "openfoam: the report lists the preset's settings" [ "$(json "$T/foam.json" "d['preset']['solver'], [s['from'] for s in d['preset']['settings']]")" = "openfoam ['preset', 'preset', 'preset', 'user']" ]
-check "openfoam: a guessed unit converted warns" expect_exit 0 "written in m from a guessed unit, mm (unconfirmed" "$VM" mesh "$T/bif.stl" -o "$T/foam.msh" --size 0.25 --layers 2 --for openfoam
-check "openfoam: coordinates / 1000" [ "$(awk '/^\$Nodes/{n=1;getline;next} /^\$EndNodes/{n=0} n{for(i=2;i<=4;i++){x=$i<0?-$i:$i; if(x>m)m=x}} END{print (m>0.001 && m<0.02)}' "$T/foam.msh")" = 1 ]
+bif_unit=$(json "$T/info.json" "d['units']['unit'] + ' (' + d['units']['confidence']")
+check "openfoam: a guessed unit converted warns" expect_exit 0 "written in m from a guessed unit, $bif_unit: " "$VM" mesh "$T/bif.stl" -o "$T/foam.msh" --size 0.25 --layers 2 --for openfoam
+# The phantom reaches about 6 units from the origin: in metres, 6 times the unit.
+per_unit=$(json "$T/info.json" "{'mm': 0.001, 'cm': 0.01, 'm': 1}[d['units']['unit']]")
+check "openfoam: coordinates in metres" [ "$(awk -v f="$per_unit" '/^\$Nodes/{n=1;getline;next} /^\$EndNodes/{n=0} n{for(i=2;i<=4;i++){x=$i<0?-$i:$i; if(x>m)m=x}} END{print (m>f && m<20*f)}' "$T/foam.msh")" = 1 ]
 check "openfoam: explicit version wins" expect_exit 0 "msh_version 4.1, format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/foam41.msh" --size 0.25 --layers 2 --for openfoam --msh-version 4.1
 check "openfoam: explicit version written" [ "$(sed -n 2p "$T/foam41.msh")" = "4.1 0 8" ]
 check "fenics preset" expect_exit 0 "preset fenics: prisms false" "$VM" mesh "$T/bif.stl" -o "$T/fenics.msh" --size 0.25 --layers 2 --for fenics
@@ -323,7 +327,7 @@ check "no preset: a name without extension refused" expect_exit 2 "cannot tell t
 
 # First layer from a target y+.
 check "y+ sets the first layer" expect_exit 0 "first layer: " "$VM" mesh "$T/bif.stl" -o "$T/yplus.msh" --size 0.25 --layers 3 --first-layer-yplus 1 --inlet-velocity 0.3 --report "$T/yplus.json"
-check "y+ in the report" [ "$(json "$T/yplus.json" "' '.join(str(x) for x in (lambda y: (y['yplus'], y['inlet'], y['density'], y['viscosity'], abs(y['height'] - 1000 * y['height_m']) < 1e-12, 0 < y['height'] < 0.5))(d['first_layer_yplus']))")" = "1 inlet 1060 0.0035 True True" ]
+check "y+ in the report" [ "$(json "$T/yplus.json" "' '.join(str(x) for x in (lambda y: (y['yplus'], y['inlet'], y['density'], y['viscosity'], abs(y['height'] * $per_unit - y['height_m']) < 1e-12 * y['height_m'], 0 < y['height'] < 0.5))(d['first_layer_yplus']))")" = "1 inlet 1060 0.0035 True True" ]
 check "y+ and --first-layer refused" expect_exit 2 "--first-layer-yplus and --first-layer both set the first layer's height" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --first-layer-yplus 1 --inlet-velocity 0.3 --first-layer 0.01
 check "y+ needs a velocity" expect_exit 2 "--first-layer-yplus needs the flow's --inlet-velocity" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --first-layer-yplus 1
 check "density alone refused" expect_exit 2 "--density sizes the first layer from a target y+" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --density 1000
@@ -354,7 +358,7 @@ check "phantom binary" expect_exit 0 "wrote" "$VM" phantom "$T/stair.stl" --kind
 "$VM" info "$T/stair.stl" --json > "$T/stair.json"
 check "info json staircase smoothed" [ "$(json "$T/stair.json" "d['smoothing']['mode'], d['smoothing']['staircase'], round(d['smoothing']['voxel'], 6), d['smoothing']['applied'], d['smoothing']['passes'] >= 24, 0 < d['smoothing']['max_displacement_voxels'] <= 0.5")" = "auto True 0.16 True True True" ]
 check "info text staircase" expect_exit 0 "smoothing:   " "$VM" info "$T/stair.stl"
-check "info warns smoothing" expect_exit 0 "the surface is a voxel staircase (voxel 0.16 mm): smoothed with" "$VM" info "$T/stair.stl"
+check "info warns smoothing" expect_exit 0 "the surface is a voxel staircase (voxel 0.16 $(json "$T/stair.json" "d['units']['unit']")): smoothed with" "$VM" info "$T/stair.stl"
 check "info json smooth off" [ "$("$VM" info "$T/stair.stl" --smooth off --json | python3 -c "import json,sys; s=json.load(sys.stdin)['smoothing']; print(s['mode'], s['staircase'], s['applied'])")" = "off True False" ]
 check "info json smooth passes" [ "$("$VM" info "$T/stair.stl" --smooth 3 --json | python3 -c "import json,sys; s=json.load(sys.stdin)['smoothing']; print(s['mode'], s['applied'], s['passes'])")" = "passes True 3" ]
 check "noisy phantom not a staircase" [ "$(json "$T/info.json" "d['smoothing']['staircase'], d['smoothing']['applied']")" = "False False" ]
@@ -411,11 +415,27 @@ for m in fans domes root; do
   check "mesh $m with default options" expect_exit 0 "wrote" "$VM" mesh "$T/$m.stl" -o "$T/$m.msh" --verify --report "$T/$m-report.json"
   check "$m groups" [ "$(json "$T/$m-report.json" "' '.join(g['name'] for g in d['output']['groups'] if not g['name'].startswith('outlet_')), any(g['name'] == 'outlet_1' for g in d['output']['groups'])")" = "wall inlet lumen True" ]
 done
-check "units guessed mm, unconfirmed" [ "$(json "$T/info.json" "d['units']['unit'], d['units']['guessed'], d['units']['certain']")" = "mm True False" ]
-check "units given" [ "$("$VM" info "$T/bif.stl" --units cm --json | python3 -c "import json,sys; print(json.load(sys.stdin)['units'])")" = "{'unit': 'cm', 'guessed': False, 'certain': True, 'reason': ''}" ]
+# Units from anatomy: a carotid-sized bifurcation (radius 3.5) is mm; the
+# same a tenth as large is cm; an aorta with SimVascular's labelled caps
+# (VTP) is cm; the unit is said on every run, guessed or given.
+"$VM" phantom "$T/carotid.stl" --kind bifurcation --voxel 0.15 --scale 3.5 > /dev/null
+"$VM" phantom "$T/carotid-cm.stl" --kind bifurcation --voxel 0.15 --scale 0.35 > /dev/null
+check "carotid in mm" expect_exit 0 "units:       mm (guessed, likely: vessel radius 3." "$VM" info "$T/carotid.stl"
+check "carotid in cm" expect_exit 0 "units:       cm (guessed, likely: vessel radius 0.3" "$VM" info "$T/carotid-cm.stl"
+check "carotid in cm, the alternative said" expect_exit 0 "; if it is mm, say --units mm)" "$VM" info "$T/carotid-cm.stl"
+check "phantom vtp with labelled caps" expect_exit 0 "wrote" "$VM" phantom "$T/aorta.vtp" --kind bifurcation --voxel 0.15 --scale 1.2 --flat-caps
+check "aorta vtp: caps from ModelFaceID" [ "$("$VM" info "$T/aorta.vtp" --json | python3 -c "import json,sys; d=json.load(sys.stdin); print(d['label_array'], d['caps_removed'], sorted(o['label'] for o in d['openings']))")" = "ModelFaceID 3 [2, 3, 4]" ]
+check "aorta vtp: cm from the labels" expect_exit 0 "units:       cm (guessed, unsure: " "$VM" info "$T/aorta.vtp"
+check "aorta vtp: the labels said" expect_exit 0 "the face labels (ModelFaceID) hint at cm" "$VM" info "$T/aorta.vtp"
+"$VM" info "$T/aorta.vtp" --json > "$T/aorta.json"
+check "aorta vtp: the analysis says what to ask" [ "$(json "$T/aorta.json" "d['units']['unit'], d['units']['guessed'], d['units']['certain'], d['units']['confidence'], d['units']['alternative'], d['units']['measures']['label_array']")" = "cm True False unsure mm ModelFaceID" ]
+check "mesh says the unit" expect_exit 0 "units: cm (guessed, unsure: " "$VM" mesh "$T/aorta.vtp" -o "$T/aorta.msh" --size 0.4 --surface-only
+check "mesh says a given unit" expect_exit 0 "units: mm (given)" "$VM" mesh "$T/aorta.vtp" -o "$T/aorta.msh" --size 0.4 --surface-only --units mm
+check "mesh --quiet says nothing" [ -z "$("$VM" mesh "$T/aorta.vtp" -o "$T/aorta.msh" --size 0.4 --surface-only --quiet 2>/dev/null)" ]
+check "units given" [ "$("$VM" info "$T/bif.stl" --units cm --json | python3 -c "import json,sys; u=json.load(sys.stdin)['units']; print(u['unit'], u['guessed'], u['certain'], u['confidence'], repr(u['reason']), repr(u['alternative']))")" = "cm False True certain '' ''" ]
 check "bad units" expect_exit 2 "--units needs mm, cm or m" "$VM" info "$T/bif.stl" --units inch
 "$VM" phantom "$T/small.stl" --kind tube --voxel 0.2 --scale 0.002 > /dev/null
-check "metres guessed" expect_exit 0 "units:       m (guessed" "$VM" info "$T/small.stl"
+check "metres guessed" expect_exit 0 "units:       m (guessed, certain: " "$VM" info "$T/small.stl"
 check "mesh named capped" expect_exit 0 "wrote" "$VM" mesh "$T/capped.stl" -o "$T/capped.msh" --size 0.3 --layers 2 --name 2=left --name 1=aorta --report "$T/capped-report.json"
 check "named groups" [ "$(json "$T/capped-report.json" "sorted(g['name'] for g in d['output']['groups'])")" = "['aorta', 'left', 'lumen', 'outlet_1', 'wall']" ]
 check "name reserved" expect_exit 2 "--name cannot be 'lumen'" "$VM" mesh "$T/capped.stl" -o "$T/x.msh" --name 1=lumen
@@ -491,6 +511,29 @@ check "coarse size refused" expect_exit 2 "--size 5 makes a wall that encloses" 
 check "coarse size accepted when asked" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --size 5 --surface-only --max-volume-change 1
 check "volume change printed" expect_exit 0 "of the input's" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --surface-only
 check "budget option" expect_exit 2 "--max-elements needs" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --max-elements 10
+# The default size never refuses on the budget: it is coarsened, and said.
+check "default coarsened to the budget" expect_exit 0 "warning: the default size (--per-circumference 20) would make about" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --max-elements 15000 --report "$T/budget.json"
+check "coarsening reported" [ "$(json "$T/budget.json" "d['element_budget']['coarsened'], d['element_budget']['asked_per_circumference'], 13 <= d['element_budget']['per_circumference'] < 20, d['element_budget']['elements'] <= 15000 < d['element_budget']['asked_elements']")" = "True 20 True True" ]
+check "coarsening says how to ask for the finer mesh" expect_exit 0 "ask for the finer mesh with --per-circumference 20 and --max-elements" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --max-elements 15000
+check "a given size still refused, with the one that fits" expect_exit 2 "--per-circumference makes about" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --max-elements 15000 --per-circumference 20
+fitting=$("$VM" mesh "$T/bif.stl" -o "$T/x.msh" --max-elements 15000 --per-circumference 20 2>&1 | sed -n 's/.*(--per-circumference \([0-9.]*\) fits).*/\1/p')
+check "the size that fits fits" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --max-elements 15000 --per-circumference "$fitting"
+check "a budget too small for the default" expect_exit 2 "--max-elements 1000 is too small for this model" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --max-elements 1000
+# A surface that encloses no volume (a flat disk) is refused as such.
+python3 - "$T/disk.stl" <<'PY'
+import math, struct, sys
+n, tris = 24, []
+ring = lambda r, i: (r * math.cos(2 * math.pi * i / n), r * math.sin(2 * math.pi * i / n), 0.0)
+for i in range(n):
+    tris.append(((0, 0, 0), ring(5, i), ring(5, i + 1)))
+    tris += [(ring(5, i), ring(10, i), ring(10, i + 1)), (ring(5, i), ring(10, i + 1), ring(5, i + 1))]
+with open(sys.argv[1], "wb") as f:
+    f.write(b"disk".ljust(80, b" ") + struct.pack("<I", len(tris)))
+    for t in tris:
+        f.write(struct.pack("<12fH", 0, 0, 0, *t[0], *t[1], *t[2], 0))
+PY
+check "a disk encloses no volume (info)" expect_exit 0 "warning: the surface encloses no volume: it is a single sheet" "$VM" info "$T/disk.stl"
+check "a disk is refused as such" expect_exit 1 "cannot mesh: the surface encloses no volume: it is a single sheet (a flat disk, one side of a wall)" "$VM" mesh "$T/disk.stl" -o "$T/x.msh"
 
 # Gmsh reads both versions: the named groups, the element counts of the
 # report, and no inverted tetrahedron (signed volumes from the nodes).

@@ -350,12 +350,17 @@ TEST(ReportJson, HasTheDocumentedKeys) {
         "\"name\":\"inlet\"",
         "\"genus\":0", "\"nonmanifold_edges\":0", "\"quality\":{\"min\":", "\"closed\":false",
         "\"format\":\"binary STL\"", "\"caps_removed\":0", "\"holes\":[]",
-        "\"units\":{\"unit\":\"mm\",\"guessed\":true,\"certain\":false"})
+        // A tube of radius 1, 4 long: a 10 mm vessel in cm, or a 1 mm one
+        // in mm, 5 mm long (unusual).
+        "\"units\":{\"unit\":\"cm\",\"guessed\":true,\"certain\":false",
+        "\"confidence\":\"likely\",\"alternative\":\"mm\",\"measures\":{\"largest_radius\":",
+        "\"enclosed_share\":"})
     EXPECT_NE(a.find(key), std::string::npos) << key << " in " << a;
   EXPECT_EQ(count(a, "\"radius\":"), 2u);
   std::string m = mesh_report_json(r.value());
   for (const char* key :
-       {"\"remesh\":{\"patches\":", "\"seam_points\":", "\"genus\":0",
+       {"\"element_budget\":{\"max_elements\":15000000,\"coarsened\":false}",
+        "\"remesh\":{\"patches\":", "\"seam_points\":", "\"genus\":0",
         "\"caps\":[{\"name\":\"inlet\"", "\"volume\":{\"vertices\":", "\"tetrahedra\":",
         "\"groups\":[{\"dim\":2,\"tag\":1,\"name\":\"wall\",\"elements\":",
         "{\"dim\":3,\"tag\":4,\"name\":\"lumen\"",
@@ -422,11 +427,12 @@ TEST(MeshJob, SizesBeyondTheElementBudgetAreRefusedBeforeMeshing) {
     const char* blamed;
     const char* what;
   };
-  // A uniform or core size is checked before remeshing (tetrahedra); the
-  // wall's triangles once the size field is known.
+  // Checked before remeshing, named by the estimate that needs the larger
+  // elements: a uniform or core size's tetrahedra first; a field's
+  // triangles and tetrahedra from its sizes.
   for (const Case& c : {Case{"size", "1e-30", "size", "tetrahedra in the lumen"},
                         Case{"surface_only", "", "size", "triangles on the wall"},
-                        Case{"per_circumference", "1e7", "per_circumference", "triangles"},
+                        Case{"per_circumference", "1e7", "per_circumference", "tetrahedra"},
                         Case{"core_size", "1e-4", "core_size", "tetrahedra in the lumen"}}) {
     MeshJobOptions o;
     if (c.option == std::string("surface_only")) {
@@ -554,7 +560,10 @@ TEST(MeshJob, APatchByTheFallbackIsWarnedWithItsPlaceAndListedInTheReport) {
   std::string warnings;
   for (const std::string& w : res.warnings) warnings += w + "\n";
   EXPECT_NE(warnings.find("could not be meshed through its map"), std::string::npos) << warnings;
-  EXPECT_NE(warnings.find("near " + point_text(f.place) + " mm"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("near " + point_text(f.place) + " " +
+                          std::string(unit_symbol(res.surface.unit.unit))),
+            std::string::npos)
+      << warnings;
   EXPECT_NE(warnings.find("gamma_k min " + number_text(f.quality_min, 3)), std::string::npos)
       << warnings;
   const std::string json = mesh_report_json(res);

@@ -89,10 +89,12 @@ TEST(PrepareSelfCrossings, AFailingStageNamesTheCrossingFirst) {
   const Vec3 place = r.status().remedy().places[0];
   EXPECT_LT(std::abs(place[0] + 1) + std::abs(place[2] - 4), 0.7) << point_text(place);
   // With the model's unit and what to do, before the stage's own words.
-  EXPECT_NE(
-      r.message().find(
-          ") mm (1 place; fix it in the segmentation, or cut that part off with {clip_plane}): "),
-      std::string::npos)
+  auto prepared = prepare_surface(bytes);
+  ASSERT_TRUE(prepared.ok());
+  EXPECT_NE(r.message().find(") " + std::string(unit_symbol(prepared.value().unit.unit)) +
+                             " (1 place; fix it in the segmentation, or cut that part off with "
+                             "{clip_plane}): "),
+            std::string::npos)
       << r.message();
   // An option's error is the option's alone.
   MeshJobOptions o = off;

@@ -56,7 +56,9 @@ TEST(PrepareSmoothing, AStaircaseIsSmoothedByDefault) {
   EXPECT_TRUE(s.smoothing.applied);
   EXPECT_NEAR(s.smoothing.voxel, 0.16, 1e-6);
   EXPECT_GE(s.smoothing.report.passes, 24);
-  EXPECT_TRUE(has_warning(s, "the surface is a voxel staircase (voxel 0.16 mm): smoothed with " +
+  // Lengths in the model's unit.
+  EXPECT_TRUE(has_warning(s, "the surface is a voxel staircase (voxel 0.16 " +
+                                 std::string(unit_symbol(s.unit.unit)) + "): smoothed with " +
                                  std::to_string(s.smoothing.report.passes) +
                                  " passes, every vertex within half a voxel; turn it off with "
                                  "{smooth} off"));

@@ -13,7 +13,7 @@ export interface AnalyzeOptions {
   repair?: 'off' | 'auto';
   /** a boundary loop whose equivalent radius sqrt(area/pi) is below F local vessel radii is a hole (closed by repair auto), else an opening. Needs a fraction of the local vessel radius in [0, 1] (0: close no hole). Default 0.25. */
   holeFraction?: number;
-  /** the unit of the file's numbers (default: guessed from the vessel radii: below 0.05 metres, else millimetres) Needs mm, cm or m. */
+  /** the unit of the file's numbers (default: guessed from the vessel radii and the model's size weighed against human anatomy, face labels hinting at cm; said certain, likely or unsure) Needs mm, cm or m. */
   units?: 'mm' | 'cm' | 'm';
   /** extend the openings (K=L: opening K) straight along their normals by L local radii. Needs a length in local radii from 0 (none) to 100, or K=L for opening K. Default 0. */
   flowExtension?: number | Record<number, number> | number[];
@@ -61,7 +61,7 @@ export interface MeshOptions extends AnalyzeOptions {
   coreSize?: number;
   /** the group name of opening K (default: the file's face name, else inlet / outlet_k) Needs K=NAME with NAME 1-64 letters, digits, _ or -, starting with a letter. */
   names?: Record<number, string> | string[];
-  /** the element budget: sizes that would make more wall triangles or tetrahedra are refused before meshing (the default fits a 4 GB browser tab) Needs a number of elements from 1000 to 1000000000. Default 15000000. */
+  /** the element budget: sizes that would make more wall triangles or tetrahedra are refused before meshing, the default size coarsened to fit (the default fits a 4 GB browser tab) Needs a number of elements from 1000 to 1000000000. Default 15000000. */
   maxElements?: number;
   /** the remeshed wall may enclose at most this fraction more or less volume than the input; beyond, the size is refused as too coarse for the vessels. Needs a fraction from 0 to 1. Default 0.05. */
   maxVolumeChange?: number;
@@ -127,7 +127,7 @@ export interface PhantomOptions {
   scale?: number;
   /** cut the vessel ends open (off: a closed surface with rounded ends) Default true. */
   openEnds?: boolean;
-  /** close the cut ends by flat caps (a capped model, as SimVascular exports) Default false. */
+  /** close the cut ends by flat caps (a capped model, as SimVascular exports; the command writes OUT.vtp with SimVascular's face labels ModelFaceID: 1 the wall, 2.. each cap) Default false. */
   flatCaps?: boolean;
   /** close the cut ends by caps of this shape: flat (as flat caps), fan (around an apex lifted 0.1 radius, as capping tools fill holes) or dome (smooth, bulging 0.3 to 1 radius, meeting the wall at a crease) Needs flat, fan or dome. */
   caps?: 'flat' | 'fan' | 'dome';

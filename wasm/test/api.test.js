@@ -370,7 +370,8 @@ describe('analyze', () => {
     assert.match(r.analysis.warnings.join('\n'), /the surface crosses itself at 1 place \(\d+ pairs of triangles\), at \(-?[\d.]+, /);
     const failed = api.mesh(ascii(stl), { repair: 'off' });
     assert.equal(failed.ok, false);
-    assert.match(failed.error, /^the input crosses itself at \(-?[\d.]+, -?[\d.e-]+, [\d.]+\) mm \(1 place; fix it in the segmentation, or cut that part off with clipPlanes\): /);
+    const unit = r.analysis.units.unit;
+    assert.match(failed.error, new RegExp(`^the input crosses itself at \\(-?[\\d.]+, -?[\\d.e-]+, [\\d.]+\\) ${unit} \\(1 place; fix it in the segmentation, or cut that part off with clipPlanes\\): `));
     // A clean surface: checked, none.
     const clean = api.analyze(api.makePhantom({ kind: 'bifurcation', voxel: 0.12 }).stl).analysis.self_crossings;
     assert.deepEqual(clean, { checked: true, pairs: 0, place_count: 0, places: [] });
@@ -915,6 +916,43 @@ describe('mesh: boundary layers and vessel wall', () => {
       assert.equal(r.option, option);
       assert.match(r.error, /element budget \(maxElements 15000000\)/);
     }
+  });
+
+  test('the default size is coarsened to the budget and says so; a size given is refused with one that fits', () => {
+    const stl = api.makePhantom({ kind: 'bifurcation', voxel: 0.15 }).stl;
+    const m = api.mesh(stl, { maxElements: 15000 });
+    assert.equal(m.ok, true, m.error);
+    const b = m.report.element_budget;
+    assert.deepEqual([b.max_elements, b.coarsened, b.asked_per_circumference], [15000, true, 20]);
+    assert.ok(b.per_circumference >= 13 && b.per_circumference < 20, `${b.per_circumference}`);
+    assert.ok(b.elements <= 15000 && b.asked_elements > 15000, JSON.stringify(b));
+    assert.match(
+      m.report.warnings.join('\n'),
+      new RegExp(`the default size \\(perCircumference 20\\) would make about .* coarsened to perCircumference ${b.per_circumference} .* ask for the finer mesh with perCircumference 20 and maxElements ${b.enough}`),
+    );
+    const given = api.mesh(stl, { maxElements: 15000, perCircumference: 20 });
+    assert.equal(given.ok, false);
+    assert.equal(given.option, 'perCircumference');
+    assert.equal(given.remedy.action, 'coarser');
+    assert.ok(given.remedy.value < 20);
+    assert.match(given.error, new RegExp(`\\(perCircumference ${given.remedy.value} fits\\)`));
+  });
+
+  test('a surface that encloses no volume is refused as such', () => {
+    // A flat disk of radius 10: a fan of 24 triangles.
+    let text = 'solid disk\n';
+    for (let i = 0; i < 24; i++) {
+      const [a, b] = [i, i + 1].map((k) => [10 * Math.cos((k * Math.PI) / 12), 10 * Math.sin((k * Math.PI) / 12), 0]);
+      text += `facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex ${a.join(' ')}\nvertex ${b.join(' ')}\nendloop\nendfacet\n`;
+    }
+    const disk = ascii(`${text}endsolid disk\n`);
+    const a = api.analyze(disk);
+    assert.equal(a.ok, true, a.error);
+    assert.ok(a.analysis.enclosed_share < 0.5);
+    assert.match(a.analysis.warnings.join('\n'), /the surface encloses no volume: it is a single sheet/);
+    const m = api.mesh(disk);
+    assert.equal(m.ok, false);
+    assert.match(m.error, /^cannot mesh: the surface encloses no volume: .* e\.g\. at \(0, 0, 0\) (mm|cm|m); /);
   });
 
   test('a size too coarse for the vessels is refused naming the size to use', () => {

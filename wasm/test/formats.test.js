@@ -112,10 +112,17 @@ describe('files in', () => {
     assert.deepEqual(a.analysis.openings.map((o) => o.source), ['cap', 'cap']);
     assert.deepEqual(a.analysis.openings.map((o) => o.label).sort(), [2, 3]);
     assert.deepEqual(a.analysis.openings.map((o) => o.name), ['inlet', 'outlet_1']);
-    // A 24-gon of radius 1: the opening's equivalent radius is a little less.
-    const { unit, guessed, certain, reason } = a.analysis.units;
-    assert.deepEqual([unit, guessed, certain], ['mm', true, false]);
-    assert.ok(Math.abs(Number(reason.match(/radius ([\d.]+)/)[1]) - 0.99) < 0.01, reason);
+    // A tube of radius 1 and length 4 with labelled caps: a 10 mm vessel in
+    // cm (SimVascular's unit, which the labels hint at), or in mm a 1 mm
+    // vessel 4 mm long (unusual): cm, likely, mm the alternative.
+    const { unit, guessed, certain, confidence, alternative, reason, measures } = a.analysis.units;
+    assert.deepEqual([unit, guessed, certain, confidence, alternative], ['cm', true, false, 'likely', 'mm']);
+    // Measured across the lumen: 1 on the wall, along the tube from the caps
+    // (up to its half length, 2) on their share of the area.
+    assert.ok(measures.largest_radius >= 0.99 && measures.largest_radius <= 2, reason);
+    assert.ok(Math.abs(measures.median_radius - 1) < 0.01, reason);
+    assert.equal(measures.label_array, 'ModelFaceID');
+    assert.match(reason, /^vessel radius [\d.]+ largest, 1 median, /);
     // Caps kept and the flat ends not clipped (clip auto would cut them as
     // blind ends): a closed wall.
     const kept = api.analyze(vtp, { keepCaps: true, clip: 'off', units: 'cm' });
@@ -153,6 +160,24 @@ describe('files in', () => {
     assert.ok(Array.isArray(m.report.output.remesh.fallback_patches));
     // An unlabelled kind has no VTP.
     assert.equal(api.makePhantom({ kind: 'tube', voxel: 0.3 }).vtp, undefined);
+  });
+
+  test('units from anatomy: a carotid in cm or in mm, and what the page asks', () => {
+    // The bifurcation's parent has radius 1: at scale 0.35 a 3.5 mm carotid
+    // written in cm, at 3.5 the same in mm.
+    const inCm = api.analyze(api.makePhantom({ kind: 'bifurcation', voxel: 0.15, scale: 0.35 }).stl);
+    assert.equal(inCm.ok, true, inCm.error);
+    const cm = inCm.analysis.units;
+    assert.deepEqual([cm.unit, cm.guessed, cm.certain, cm.confidence, cm.alternative], ['cm', true, false, 'likely', 'mm']);
+    assert.match(cm.reason, /^vessel radius 0\.3\d* largest, .*: cm gives typical human vessel sizes, mm unusual ones \(/);
+    assert.ok(cm.measures.largest_radius < cm.measures.diagonal);
+    const inMm = api.analyze(api.makePhantom({ kind: 'bifurcation', voxel: 0.15, scale: 3.5 }).stl);
+    assert.deepEqual([inMm.analysis.units.unit, inMm.analysis.units.alternative], ['mm', 'cm']);
+    // Whatever is done to the surface, the guess stays.
+    const closed = api.makePhantom({ kind: 'bifurcation', voxel: 0.15, scale: 0.35, openEnds: false }).stl;
+    const before = api.analyze(closed).analysis.units;
+    const after = api.analyze(closed, { clip: 'auto', flowExtension: 3, smooth: 5 }).analysis.units;
+    assert.deepEqual(after, before);
   });
 
   test('a flat-capped phantom in metres: 3 openings from caps, metres guessed', () => {
@@ -264,7 +289,7 @@ describe('names and files out', () => {
   });
 
   test('foam: a zip of the OpenFOAM case, prisms kept, in metres', () => {
-    const m = api.mesh(tube, { size: 0.4, layers: 2, prisms: true, format: 'foam', outputUnits: 'm' });
+    const m = api.mesh(tube, { size: 0.4, layers: 2, prisms: true, format: 'foam', outputUnits: 'm', units: 'mm' });
     assert.equal(m.ok, true, m.error);
     assert.equal(m.format, 'foam');
     assert.equal(m.fileName, 'openfoam-case.zip');
