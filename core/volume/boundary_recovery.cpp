@@ -5,8 +5,10 @@
 //   2. rounds of: missing edges by flips (walk from an endpoint, flip the
 //      first crossed face (2-3) or remove the first crossed edge), missing
 //      faces by flips (remove the edges piercing the triangle), present
-//      faces constrained; then Steiner points on the edges still missing
-//      (and on the longest edge of faces still missing) at their midpoints
+//      faces constrained; then, once per edge still missing, flips along
+//      the whole segment (each crossed face flipped 2-3, or one of its edges
+//      removed; each crossed edge removed); then Steiner points on the edges
+//      still missing (and on the longest edge of faces still missing) at their midpoints
 //      or on concentric shells around input vertices (Ruppert 1995), the
 //      surface triangles on a split edge being split in two, inserted
 //      without crossing the faces already recovered;
@@ -22,6 +24,7 @@
 #include <cmath>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 #include "core/geom/predicates.h"
@@ -37,6 +40,8 @@ using Tri = std::array<int32_t, 3>;
 
 // Edges or faces looked up per chunk of the parallel queries.
 constexpr size_t kQueryGrain = 4096;
+// Crossings followed along a missing edge.
+constexpr int kMaxWalk = 256;
 
 uint64_t edge_key(int32_t a, int32_t b) {
   if (a > b) std::swap(a, b);
@@ -249,6 +254,12 @@ class Recovery {
       }
       for (auto [a, b] : missing_edges) {
         if (!s_.edges.count(edge_key(a, b))) continue;  // already split this round
+        // Flips along the whole segment first, once per edge (they may
+        // undo each other's work, and a Steiner point ends that).
+        if (flips_ && tried_along_.insert(edge_key(a, b)).second && recover_edge_along(a, b)) {
+          ++recovered_along_;
+          continue;
+        }
         Status st = split(a, b);
         if (!st.ok()) return st;
       }
@@ -259,6 +270,7 @@ class Recovery {
   Delaunay3D& kernel() { return d_; }
   Surface& surface() { return s_; }
   int64_t steiner() const { return steiner_; }
+  int64_t recovered_along() const { return recovered_along_; }
 
  private:
   const double* P(int32_t v) const { return d_.point(v); }
@@ -339,28 +351,88 @@ class Recovery {
       }
       const int32_t x = v[kFaceOut[sa][0]], y = v[kFaceOut[sa][1]], z = v[kFaceOut[sa][2]];
       if (orient3d(P(x), P(y), P(z), P(b)) >= 0) continue;  // b not beyond the face
-      const int s1 = sgn(orient3d(P(a), P(b), P(x), P(y)));
-      const int s2 = sgn(orient3d(P(a), P(b), P(y), P(z)));
-      const int s3 = sgn(orient3d(P(a), P(b), P(z), P(x)));
-      if ((s1 < 0 || s2 < 0 || s3 < 0) && (s1 > 0 || s2 > 0 || s3 > 0)) continue;
-      const int zeros = (s1 == 0) + (s2 == 0) + (s3 == 0);
-      if (zeros >= 2) return -1;
-      c.tet = t;
-      c.k = sa;
-      c.face = zeros == 0;
-      if (zeros == 1) {
-        c.x = s1 == 0 ? x : s2 == 0 ? y : z;
-        c.y = s1 == 0 ? y : s2 == 0 ? z : x;
-      }
-      return 0;
+      const int r = line_through_face(a, b, t, sa, c);
+      if (r < 0) continue;
+      return r == 0 ? 0 : -1;
     }
     return -1;
+  }
+
+  // Whether line (a, b) passes through face k of tet t: -1 not, 1 through
+  // a vertex of it; 0 through its interior or an edge, `c` then set.
+  int line_through_face(int32_t a, int32_t b, int32_t t, int k, Crossing& c) const {
+    const int32_t* v = d_.tet(t);
+    const int32_t x = v[kFaceOut[k][0]], y = v[kFaceOut[k][1]], z = v[kFaceOut[k][2]];
+    const int s1 = sgn(orient3d(P(a), P(b), P(x), P(y)));
+    const int s2 = sgn(orient3d(P(a), P(b), P(y), P(z)));
+    const int s3 = sgn(orient3d(P(a), P(b), P(z), P(x)));
+    if ((s1 < 0 || s2 < 0 || s3 < 0) && (s1 > 0 || s2 > 0 || s3 > 0)) return -1;
+    const int zeros = (s1 == 0) + (s2 == 0) + (s3 == 0);
+    if (zeros >= 2) return 1;
+    c = Crossing{};
+    c.tet = t;
+    c.k = k;
+    c.face = zeros == 0;
+    if (zeros == 1) {
+      c.x = s1 == 0 ? x : s2 == 0 ? y : z;
+      c.y = s1 == 0 ? y : s2 == 0 ? z : x;
+    }
+    return 0;
+  }
+
+  // The faces and edges segment a -> b crosses, in order from a (a walk
+  // through the tetrahedra it passes): the walk stops after an edge, at a
+  // vertex, or at b.
+  void crossings(int32_t a, int32_t b, std::vector<Crossing>& out) {
+    out.clear();
+    Crossing c;
+    if (first_crossing(a, b, c) != 0) return;
+    for (int step = 0; step < kMaxWalk; ++step) {
+      out.push_back(c);
+      if (!c.face) return;
+      const int32_t link = d_.neighbor(c.tet, c.k), u = link >> 2;
+      const int entry = link & 3;
+      if (d_.is_ghost(u) || d_.tet(u)[entry] == b) return;
+      int found = -1;
+      for (int k = 0; k < 4 && found < 0; ++k)
+        if (k != entry) found = line_through_face(a, b, u, k, c);
+      if (found != 0) return;
+    }
   }
 
   bool apply(const Crossing& c) {
     if (c.face) return d_.flip23(c.tet, c.k).ok();
     if (s_.edges.count(edge_key(c.x, c.y))) return false;  // a surface edge stays
     return d_.remove_edge(c.tet, c.x, c.y).ok();
+  }
+
+  // A crossing removed otherwise when its own flip is invalid: an edge of
+  // a crossed face (not a surface edge) by edge removal.
+  bool apply_or_remove_edge(const Crossing& c) {
+    if (apply(c)) return true;
+    if (!c.face) return false;
+    const int32_t* v = d_.tet(c.tet);
+    const int32_t f[3] = {v[kFaceOut[c.k][0]], v[kFaceOut[c.k][1]], v[kFaceOut[c.k][2]]};
+    for (int i = 0; i < 3; ++i) {
+      const int32_t x = f[i], y = f[(i + 1) % 3];
+      if (!s_.edges.count(edge_key(x, y)) && d_.remove_edge(c.tet, x, y).ok()) return true;
+    }
+    return false;
+  }
+
+  // Before a Steiner point: flips anywhere along the segment, in order
+  // from a, each crossed face by its 2-3 flip or the removal of one of its
+  // edges, each crossed edge by its removal.
+  bool recover_edge_along(int32_t a, int32_t b) {
+    for (int it = 0; it < 4 * o_.max_flips_per_item; ++it) {
+      crossings(a, b, walk_);
+      if (walk_.empty()) return d_.find_edge(a, b) >= 0;
+      bool flipped = false;
+      for (const Crossing& c : walk_)
+        if ((flipped = apply_or_remove_edge(c))) break;
+      if (!flipped) return false;
+    }
+    return d_.find_edge(a, b) >= 0;
   }
 
   bool recover_edge_by_flips(int32_t a, int32_t b) {
@@ -486,6 +558,9 @@ class Recovery {
   std::vector<uint8_t> done_;  // per surface triangle: a constrained face
   bool rescan_ = false;
   std::vector<int32_t> around_, ring_tets_, ring_;
+  std::vector<Crossing> walk_;
+  std::unordered_set<uint64_t> tried_along_;  // edges whose flips along were tried
+  int64_t recovered_along_ = 0;
 };
 
 // Phase 1 for one attempt: the kernel and the surface.
@@ -584,6 +659,7 @@ Result<RecoveredVolume> recover_boundary(const std::vector<double>& points,
 
   // Output.
   out.steiner_points = rec.steiner();
+  out.edges_recovered_along = rec.recovered_along();
   out.flips = d.stats().flips;
   out.mesh.points = d.points();
   d.for_each_finite_tet([&](int32_t t) {

@@ -7,7 +7,9 @@
 // quality tetrahedral mesh generator", ACM TOMS 41, 2015): Delaunay
 // tetrahedralization of the surface vertices (core/volume/delaunay3d.h);
 // missing edges, then missing faces, recovered by flips (2-3, 3-2/edge
-// removal); what flips cannot recover is split by Steiner points on the
+// removal; before a Steiner point, along the whole missing edge, and an edge
+// of a crossed face removed where the face's own flip is invalid); what
+// flips cannot recover is split by Steiner points on the
 // surface edges (midpoints, or concentric shells around input vertices), the
 // surface triangles being split with them so the surface stays conforming;
 // then the tetrahedra outside are removed by a flood fill from the convex
@@ -47,6 +49,9 @@ struct RecoveredVolume {
   /// Per output triangle: the index of the input triangle it came from.
   std::vector<int32_t> triangle_parent;
   int64_t steiner_points = 0;
+  /// Missing edges the first flips left that flips along the whole
+  /// segment then recovered (each would have been a Steiner point).
+  int64_t edges_recovered_along = 0;
   int64_t flips = 0;
   /// Whether the conforming-Delaunay fallback (Steiner points only) was
   /// needed after flips and Steiner points stalled.
