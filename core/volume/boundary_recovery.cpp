@@ -178,13 +178,16 @@ struct Crossing {
 
 class Recovery {
  public:
-  Recovery(Delaunay3D d, Surface s, const RecoveryOptions& o, bool flips, int64_t max_steiner)
+  Recovery(Delaunay3D d, Surface s, const RecoveryOptions& o, bool flips, int64_t max_steiner,
+           const std::vector<int32_t>& tags)
       : d_(std::move(d)),
         s_(std::move(s)),
         o_(o),
         flips_(flips),
         max_steiner_(max_steiner),
-        num_input_(int32_t(d_.num_vertices())) {}
+        num_input_(int32_t(d_.num_vertices())),
+        input_(s_.tri),
+        tags_(&tags) {}
 
   /// Phase 2 (or 3 without flips). Error when stalled or degenerate.
   Status run() {
@@ -260,6 +263,7 @@ class Recovery {
           ++recovered_along_;
           continue;
         }
+        if (flips_ && flip_surface_edge(a, b)) continue;
         Status st = split(a, b);
         if (!st.ok()) return st;
       }
@@ -271,6 +275,10 @@ class Recovery {
   Surface& surface() { return s_; }
   int64_t steiner() const { return steiner_; }
   int64_t recovered_along() const { return recovered_along_; }
+  int64_t surface_flips() const { return surface_flips_; }
+  const std::vector<int32_t>& flipped_edges() const { return flipped_edges_; }
+  /// The input triangles after the surface flips.
+  const std::vector<Tri>& input() const { return input_; }
 
  private:
   const double* P(int32_t v) const { return d_.point(v); }
@@ -508,6 +516,41 @@ class Recovery {
       for (int k = 0; k < 3; ++k) m[k] = 0.5 * (P(a)[k] + P(b)[k]);
   }
 
+  // The surface flip of missing edge (a, b) between two whole input
+  // triangles of one tag, when the caller allows it: (p, q, c) and
+  // (q, p, d) become (c, p, d) and (d, q, c).
+  bool flip_surface_edge(int32_t a, int32_t b) {
+    if (!o_.may_flip_surface || flipped_.count(edge_key(a, b))) return false;
+    const auto it = s_.edges.find(edge_key(a, b));
+    if (it == s_.edges.end()) return false;
+    const int32_t t1 = it->second[0], t2 = it->second[1];
+    const int32_t n_input = int32_t(input_.size());
+    if (t1 < 0 || t2 < 0 || t1 >= n_input || t2 >= n_input) return false;
+    if (s_.tri[size_t(t1)] != input_[size_t(t1)] || s_.tri[size_t(t2)] != input_[size_t(t2)])
+      return false;  // split already
+    const int32_t tag = (*tags_)[size_t(t1)];
+    if ((*tags_)[size_t(t2)] != tag) return false;
+    Tri u = s_.tri[size_t(t1)], w = s_.tri[size_t(t2)];
+    for (int r = 0; r < 3 && !((u[0] == a && u[1] == b) || (u[0] == b && u[1] == a)); ++r)
+      std::rotate(u.begin(), u.begin() + 1, u.end());
+    const int32_t p = u[0], q = u[1], c = u[2];
+    for (int r = 0; r < 3 && !(w[0] == q && w[1] == p); ++r)
+      std::rotate(w.begin(), w.begin() + 1, w.end());
+    const int32_t d = w[2];
+    if (w[0] != q || w[1] != p || c == d || s_.edges.count(edge_key(c, d))) return false;
+    if (!o_.may_flip_surface(p, q, c, d, tag)) return false;
+    s_.set(t1, {c, p, d});
+    s_.set(t2, {d, q, c});
+    input_[size_t(t1)] = s_.tri[size_t(t1)];
+    input_[size_t(t2)] = s_.tri[size_t(t2)];
+    for (int32_t t : {t1, t2})
+      if (size_t(t) < done_.size()) done_[size_t(t)] = 0;
+    flipped_.insert(edge_key(c, d));
+    flipped_edges_.insert(flipped_edges_.end(), {c, d});
+    ++surface_flips_;
+    return true;
+  }
+
   // Steiner point on surface edge (a, b).
   Status split(int32_t a, int32_t b) {
     if (steiner_ >= max_steiner_)
@@ -561,12 +604,17 @@ class Recovery {
   std::vector<Crossing> walk_;
   std::unordered_set<uint64_t> tried_along_;  // edges whose flips along were tried
   int64_t recovered_along_ = 0;
+  std::vector<Tri> input_;                // the input triangles, surface flips applied
+  const std::vector<int32_t>* tags_;      // per input triangle
+  std::unordered_set<uint64_t> flipped_;  // edges surface flips made
+  int64_t surface_flips_ = 0;
+  std::vector<int32_t> flipped_edges_;  // the edges surface flips made, in order
 };
 
 // Phase 1 for one attempt: the kernel and the surface.
 Result<Recovery> start(const std::vector<double>& points, const std::vector<int32_t>& triangles,
-                       const std::vector<int32_t>& parents, const RecoveryOptions& options,
-                       bool flips, int64_t max_steiner) {
+                       const std::vector<int32_t>& parents, const std::vector<int32_t>& tags,
+                       const RecoveryOptions& options, bool flips, int64_t max_steiner) {
   auto built = Delaunay3D::build(points);
   if (!built.ok()) return Result<Recovery>::Error("boundary recovery: " + built.message());
   for (int32_t v : triangles)
@@ -578,7 +626,7 @@ Result<Recovery> start(const std::vector<double>& points, const std::vector<int3
   s.edges.reserve(triangles.size());
   for (size_t t = 0; t < triangles.size() / 3; ++t)
     s.add({triangles[3 * t], triangles[3 * t + 1], triangles[3 * t + 2]}, parents[t]);
-  return Recovery(std::move(built.value()), std::move(s), options, flips, max_steiner);
+  return Recovery(std::move(built.value()), std::move(s), options, flips, max_steiner, tags);
 }
 
 // Phase 4: inside/outside by a layered flood fill from the ghosts: crossing
@@ -640,11 +688,11 @@ Result<RecoveredVolume> recover_boundary(const std::vector<double>& points,
 
   // Phases 1-2, then 3 if they stall.
   RecoveredVolume out;
-  auto attempt = start(points, triangles, parents, options, options.use_flips, max_steiner);
+  auto attempt = start(points, triangles, parents, tags, options, options.use_flips, max_steiner);
   if (!attempt.ok()) return R(attempt.status());
   Status st = attempt.value().run();
   if (!st.ok() && options.use_flips) {
-    auto fresh = start(points, triangles, parents, options, false, max_steiner);
+    auto fresh = start(points, triangles, parents, tags, options, false, max_steiner);
     if (!fresh.ok()) return R(fresh.status());
     attempt = std::move(fresh);
     out.used_fallback = true;
@@ -660,6 +708,10 @@ Result<RecoveredVolume> recover_boundary(const std::vector<double>& points,
   // Output.
   out.steiner_points = rec.steiner();
   out.edges_recovered_along = rec.recovered_along();
+  out.surface_flips = rec.surface_flips();
+  out.flipped_edges = rec.flipped_edges();
+  for (const Tri& t : rec.input())
+    out.input_triangles.insert(out.input_triangles.end(), t.begin(), t.end());
   out.flips = d.stats().flips;
   out.mesh.points = d.points();
   d.for_each_finite_tet([&](int32_t t) {
