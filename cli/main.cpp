@@ -227,11 +227,15 @@ void print_mesh_summary(const std::string& out, const vm::MeshJobResult& res) {
     const vm::VolumeStats& vs = res.volume_stats;
     std::printf(
         "volume: %zu vertices, %zu tetrahedra, core gamma_t min %.4f mean %.4f; %zu Steiner "
-        "points; time: layers %.2f s, caps %.2f s, recovery %.2f s, refinement %.2f s, check "
+        "points (%zu in the layer, %zu on the wall, %zu slid), %zu wall edges flipped; time: "
+        "layers %.2f s, caps %.2f s, recovery "
+        "%.2f s, refinement %.2f s, check "
         "%.2f s\n",
         res.volume.num_vertices(), res.volume.num_tets(), res.core_quality_stats.min,
-        res.core_quality_stats.mean, vs.steiner_points, vs.seconds_layers, vs.seconds_caps,
-        vs.seconds_recovery, vs.seconds_refinement, vs.seconds_check);
+        res.core_quality_stats.mean, vs.steiner_points, vs.absorbed_steiner_points,
+        vs.wall_steiner_points, vs.reoptimized_steiner_points, vs.wall_edges_flipped,
+        vs.seconds_layers, vs.seconds_caps, vs.seconds_recovery, vs.seconds_refinement,
+        vs.seconds_check);
     // The surfaces as written (after boundary recovery): gamma_k a group,
     // the layers' rings at the openings apart.
     std::printf("written surfaces gamma_k:");

@@ -1,13 +1,19 @@
 // Lumen and vessel-wall assembly (Marchandise et al., section 2.2), in
-// phases: the recovery's Steiner points on the core's boundary become new
-// layer columns; points are numbered (inner layer, outer layer, core);
+// phases: the recovery's Steiner points on the core's boundary stay in the
+// viscous layer's top slice, or become new layer columns; points are
+// numbered (inner layer, outer layer, core);
 // elements and regions; surfaces and their names.
 #include "core/layers/layered_volume.h"
 
 #include <algorithm>
+#include <optional>
+#include <utility>
 
+#include "core/layers/absorb_front_points.h"
+#include "core/layers/flip_wall_edges.h"
 #include "core/layers/layer_assembly.h"
 #include "core/layers/refine_layers.h"
+#include "core/layers/slide_wall_points.h"
 
 namespace vm {
 namespace {
@@ -18,6 +24,60 @@ int32_t cap_tag_of(const CappedSurface& caps, const LayerOpening& op) {
   for (const CapInfo& c : caps.caps)
     if (std::find(c.rim.begin(), c.rim.end(), op.rim[0]) != c.rim.end()) return c.tag;
   return -1;
+}
+
+/// The edge (a, b) on which vertex v of a refined triangulation lies: the
+/// triangles `tris` (3 ids each; with `tags`, only those tagged 0) using v
+/// have exactly two parents, triangles of `parent_tris` (3 ids each, minus
+/// `shift`), and these share the edge (a, b). Else (-1, -1).
+std::pair<int32_t, int32_t> shared_edge(const std::vector<int32_t>& parent_tris, int32_t shift,
+                                        const std::vector<int32_t>& tris,
+                                        const std::vector<int32_t>& parent, int32_t v,
+                                        const std::vector<int32_t>* tags = nullptr) {
+  int32_t p[2] = {-1, -1};
+  for (size_t t = 0; t < tris.size() / 3; ++t) {
+    if ((tags && (*tags)[t] != 0) ||
+        std::find(&tris[3 * t], &tris[3 * t] + 3, v) == &tris[3 * t] + 3)
+      continue;
+    const int32_t q = parent[t];
+    if (q == p[0] || q == p[1]) continue;
+    if (p[1] >= 0) return {-1, -1};  // a third parent
+    (p[0] < 0 ? p[0] : p[1]) = q;
+  }
+  if (p[1] < 0) return {-1, -1};
+  const int32_t* x = &parent_tris[3 * size_t(p[0])];
+  const int32_t* y = &parent_tris[3 * size_t(p[1])];
+  std::vector<int32_t> common;
+  for (int i = 0; i < 3; ++i)
+    if (std::find(y, y + 3, x[i]) != y + 3) common.push_back(x[i] - shift);
+  if (common.size() != 2) return {-1, -1};
+  return {common[0], common[1]};
+}
+
+/// Ring triangles `ring` (3 ids each) of opening `o` with the top-slice
+/// faces `a` changes replaced: those whose corners are all corners of one of
+/// its quads of `o` are left out, and its triangles there appended (ids
+/// through `id`).
+template <class Id>
+void replace_ring_faces(const AbsorbedFront& a, int32_t o, const Id& id,
+                        std::vector<int32_t>& ring) {
+  std::vector<int32_t> kept;
+  for (size_t t = 0; t < ring.size(); t += 3) {
+    bool replaced = false;
+    for (size_t q = 0; q < a.ring_opening.size() && !replaced; ++q) {
+      if (a.ring_opening[q] != o) continue;
+      const int32_t* quad = &a.ring_quads[4 * q];
+      replaced = std::all_of(&ring[t], &ring[t] + 3,
+                             [&](int32_t v) { return std::find(quad, quad + 4, v) != quad + 4; });
+    }
+    if (!replaced) kept.insert(kept.end(), &ring[t], &ring[t] + 3);
+  }
+  for (size_t q = 0; q < a.ring_opening.size(); ++q) {
+    if (a.ring_opening[q] != o) continue;
+    for (int32_t i = 3 * a.ring_first[q]; i < 3 * a.ring_first[q + 1]; ++i)
+      kept.push_back(id(a.ring_triangles[size_t(i)]));
+  }
+  ring.swap(kept);
 }
 
 }  // namespace
@@ -34,9 +94,11 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
 
   // Phase 1: the core's boundary triangles on the wall/front (tag 0) as
   // column ids; Steiner points there become new columns nv + j.
-  std::vector<int32_t> column(rec.num_vertices(), -1), tri, parent;
+  std::vector<int32_t> column(rec.num_vertices(), -1), tri, parent, new_vertex, wall_steiner;
   std::vector<double> new_points;
   LayerMesh in, ou;
+  std::vector<int32_t> wall_tris;  // the base layer's wall triangles, as the recovery flipped them
+  std::optional<AbsorbedFront> absorbed;
   if (base) {
     for (size_t v = 0; v < nv; ++v) column[v] = int32_t(v);
     for (size_t t = 0; t < rec.num_triangles(); ++t) {
@@ -45,6 +107,7 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
         const int32_t i = rec.triangles[3 * t + size_t(k)];
         if (column[size_t(i)] < 0) {
           column[size_t(i)] = int32_t(nv + new_points.size() / 3);
+          new_vertex.push_back(i);
           new_points.insert(new_points.end(), &rec.points[3 * size_t(i)],
                             &rec.points[3 * size_t(i)] + 3);
         }
@@ -53,11 +116,28 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
       parent.push_back(recovered.triangle_parent[t]);
     }
     out.front_steiner_points = new_points.size() / 3;
-    if (inner) in = *inner;
-    if (outer) ou = *outer;
-    if (!new_points.empty()) {
+    // The wall edges the recovery flipped (wall_flip_rule) flip in the
+    // layers' columns.
+    const size_t nt = base->wall_triangles;
+    wall_tris.assign(recovered.input_triangles.begin(),
+                     recovered.input_triangles.begin() + long(3 * nt));
+    const bool flipped =
+        !std::equal(wall_tris.begin(), wall_tris.end(), caps.mesh.triangles.begin());
+    if (inner) in = flipped ? retriangulate_layer(*inner, wall_tris) : *inner;
+    if (outer) ou = flipped ? retriangulate_layer(*outer, wall_tris) : *outer;
+    // Points on the viscous layer's front stay in its top slice when its
+    // tetrahedra there are valid: the wall keeps its triangles.
+    if (inner && !keep_prisms && !new_points.empty()) {
+      auto a = absorb_front_points(in, tri, parent, new_points);
+      if (a.ok()) {
+        absorbed = std::move(a).value();
+        out.absorbed_steiner_points = new_points.size() / 3;
+        for (int32_t i : new_vertex) column[size_t(i)] = -1;  // core points
+      }
+    }
+    if (!new_points.empty() && !absorbed) {
       if (inner) {
-        auto refined = refine_layer_columns(*inner, tri, parent, new_points, inner->layers);
+        auto refined = refine_layer_columns(in, tri, parent, new_points, inner->layers);
         if (!refined.ok()) return refined.status();
         in = std::move(refined).value();
       }
@@ -67,11 +147,21 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
             inner ? std::vector<double>(in.points.begin() + long(3 * nv),
                                         in.points.begin() + long(3 * in.wall_vertices))
                   : new_points;
-        auto refined = refine_layer_columns(*outer, tri, parent, wall_points, 0);
+        auto refined = refine_layer_columns(ou, tri, parent, wall_points, 0);
         if (!refined.ok()) return refined.status();
         ou = std::move(refined).value();
       }
+      out.wall_steiner_points = new_points.size() / 3;
     }
+  } else {
+    // No layer: the recovery's points on the wall (tag 0) are the core's.
+    for (size_t t = 0; t < rec.num_triangles(); ++t)
+      for (int k = 0; k < 3 && rec.triangle_tag[t] == 0; ++k)
+        if (size_t(rec.triangles[3 * t + size_t(k)]) >= caps.mesh.num_vertices())
+          wall_steiner.push_back(rec.triangles[3 * t + size_t(k)]);
+    std::sort(wall_steiner.begin(), wall_steiner.end());
+    wall_steiner.erase(std::unique(wall_steiner.begin(), wall_steiner.end()), wall_steiner.end());
+    out.wall_steiner_points = wall_steiner.size();
   }
 
   // Phase 2: points. Inner layer (all its layers), then the outer layer
@@ -100,11 +190,31 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
     }
   }
 
+  // An id of the absorbed front's (absorb_front_points.h) in the mesh.
+  auto absorbed_id = [&](int32_t v) {
+    return v >= 0 ? v : core_id[size_t(new_vertex[size_t(-1 - v)])];
+  };
+
   // Phase 3: elements and regions.
   const int32_t inner_region = tag_layer ? kRegionBoundaryLayer : kRegionLumen;
   if (inner && keep_prisms) {
     m.prisms = in.prisms;
     m.prism_region.assign(m.num_prisms(), inner_region);
+  } else if (inner && absorbed) {
+    // The prisms the top slice's tetrahedra replace are left out.
+    std::vector<int32_t> kept;
+    kept.reserve(in.prisms.size());
+    size_t r = 0;
+    for (size_t p = 0; p < in.num_prisms(); ++p) {
+      if (r < absorbed->replaced_prisms.size() && size_t(absorbed->replaced_prisms[r]) == p) {
+        ++r;
+        continue;
+      }
+      kept.insert(kept.end(), &in.prisms[6 * p], &in.prisms[6 * p] + 6);
+    }
+    m.tets = prisms_to_tets(kept);
+    for (int32_t v : absorbed->tets) m.tets.push_back(absorbed_id(v));
+    m.tet_region.assign(m.num_tets(), inner_region);
   } else if (inner) {
     m.tets = prisms_to_tets(in.prisms);
     m.tet_region.assign(m.num_tets(), inner_region);
@@ -159,6 +269,7 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
       std::vector<int32_t> ring = keep_prisms ? ring_quads(*layer, o) : ring_triangles(*layer, o);
       if (side == 1)
         for (int32_t& v : ring) v = outer_id(v);
+      if (side == 0 && absorbed) replace_ring_faces(*absorbed, int32_t(o), absorbed_id, ring);
       const int32_t tag = side == 0 ? cap : outer_wall + cap;
       if (keep_prisms) {
         m.quads.insert(m.quads.end(), ring.begin(), ring.end());
@@ -174,6 +285,40 @@ Result<LayeredVolume> assemble_layered_volume(const LayerMesh* inner, const Laye
     for (int32_t v : ou.front) m.triangles.push_back(outer_id(v));
     m.triangle_tag.resize(m.num_triangles(), outer_wall);
   }
+  // Phase 5: wall points of the recovery (columns carried to the wall, or
+  // on a wall without layers) slide along their edges.
+  std::vector<WallPointColumn> slide;
+  std::vector<int32_t> wall_ids;  // those points in m
+  if (base && !absorbed) {
+    for (size_t j = 0; j < new_vertex.size(); ++j) {
+      const int32_t c = int32_t(nv + j);
+      wall_ids.push_back(c);  // layer 0 of column c, inner or outer
+      const auto [a, b] = shared_edge(wall_tris, 0, tri, parent, c);
+      if (a < 0) continue;
+      WallPointColumn col;
+      if (inner)
+        for (int k = 0; k <= in.layers; ++k)
+          col.points.insert(col.points.end(),
+                            {in.layer_vertex(c, k), in.layer_vertex(a, k), in.layer_vertex(b, k)});
+      if (outer)
+        for (int k = inner ? 1 : 0; k <= ou.layers; ++k)
+          col.points.insert(col.points.end(),
+                            {outer_id(ou.layer_vertex(c, k)), outer_id(ou.layer_vertex(a, k)),
+                             outer_id(ou.layer_vertex(b, k))});
+      slide.push_back(std::move(col));
+    }
+  } else if (!base) {
+    for (int32_t i : wall_steiner) {
+      wall_ids.push_back(core_id[size_t(i)]);
+      const auto [a, b] = shared_edge(recovered.input_triangles, 0, rec.triangles,
+                                      recovered.triangle_parent, i, &rec.triangle_tag);
+      if (a >= 0) slide.push_back({{core_id[size_t(i)], core_id[size_t(a)], core_id[size_t(b)]}});
+    }
+  }
+  if (!slide.empty()) out.reoptimized_steiner_points = slide_wall_points(m, slide, 0).moved;
+  for (int32_t v : wall_ids)
+    out.wall_steiner_places.insert(out.wall_steiner_places.end(), &m.points[3 * size_t(v)],
+                                   &m.points[3 * size_t(v)] + 3);
   return out;
 }
 

@@ -11,7 +11,9 @@
 #include <optional>
 #include <tuple>
 
+#include "core/geom/vec3.h"
 #include "core/layers/extrude_layers.h"
+#include "core/layers/flip_wall_edges.h"
 #include "core/layers/layered_volume.h"
 #include "core/mesh/chord_radius.h"
 #include "core/mesh/edge_lengths.h"
@@ -134,6 +136,38 @@ void warn_about_layers(MeshJobResult& r, const MeshJobOptions& options,
                        "): the layer's elements are nearly flat (quality near 0) and solvers "
                        "may reject them; use {first_layer} " +
                        number_text(1e-3 * h, 2) + " or more");
+}
+
+/// Records where boundary recovery changed the wall (edges flipped, points
+/// splitting its triangles; ids below the wall's vertex count are the
+/// wall's in r.volume) and warns with the written wall's quality.
+void warn_about_wall_recovery(MeshJobResult& r, const RecoveredVolume& rec,
+                              const std::vector<double>& split_places) {
+  VolumeStats& st = r.volume_stats;
+  std::vector<std::array<double, 3>>& places = st.wall_change_places;
+  for (size_t e = 0; e < rec.flipped_edges.size(); e += 2) {
+    const double* p = &r.volume.points[3 * size_t(rec.flipped_edges[e])];
+    const double* q = &r.volume.points[3 * size_t(rec.flipped_edges[e + 1])];
+    places.push_back({0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]), 0.5 * (p[2] + q[2])});
+  }
+  for (size_t i = 0; i < split_places.size(); i += 3)
+    places.push_back({split_places[i], split_places[i + 1], split_places[i + 2]});
+  if (places.empty()) return;
+  double written = 1;
+  for (const SurfaceGroupQuality& g : r.written_quality)
+    if (g.tag == 0) written = g.quality.min;
+  std::string where;
+  for (size_t i = 0; i < std::min<size_t>(places.size(), 3); ++i)
+    where += (i ? ", " : "") + point_text(places[i]);
+  if (places.size() > 3) where += ", ...";
+  r.warnings.push_back(
+      "the volume's boundary recovery changed the wall at " + std::to_string(places.size()) +
+      " place" + (places.size() > 1 ? "s" : "") + " (" + where +
+      "): " + std::to_string(st.wall_edges_flipped) + " edge(s) flipped, " +
+      std::to_string(st.wall_steiner_points) + " point(s) splitting its triangles (" +
+      std::to_string(st.reoptimized_steiner_points) + " slid along their edge); the written " +
+      "wall's gamma_k min is " + number_text(written, 3) + " (remeshed " +
+      number_text(r.output_quality_stats.min, 3) + ")");
 }
 
 /// Stages 4 to 7: boundary layers, caps on the openings, the tetrahedra of
@@ -261,11 +295,19 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
 
   t0 = std::chrono::steady_clock::now();
   if (!report_progress(progress, 0.92, "tetrahedra")) return Status::Cancelled();
-  auto recovered =
-      recover_boundary(r.capped.mesh.points, r.capped.mesh.triangles, r.capped.triangle_tag);
+  // Wall edges recovery cannot recover flip on the wall where it keeps its
+  // shape, rather than split (none when the layer's top slice takes them).
+  RecoveryOptions recovery;
+  recovery.may_flip_surface =
+      wall_flip_rule(inner ? &*inner : nullptr, outer ? &*outer : nullptr, r.capped.mesh.points,
+                     core_surface.num_vertices(), options.keep_prisms);
+  auto recovered = recover_boundary(r.capped.mesh.points, r.capped.mesh.triangles,
+                                    r.capped.triangle_tag, recovery);
   if (!recovered.ok()) return Status::Error("volume meshing failed: " + recovered.message());
   RecoveredVolume& rec = recovered.value();
   st.steiner_points = size_t(rec.steiner_points);
+  st.edges_recovered_by_flips = size_t(rec.edges_recovered_along);
+  st.wall_edges_flipped = size_t(rec.surface_flips);
   st.seconds_recovery = seconds_since(t0);
 
   // Refinement and optimization inside, towards the sizes of the surface
@@ -317,6 +359,10 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
                             assembled.value().ring_end, options.prepare.histogram_bins);
   r.region_names = std::move(assembled.value().region_names);
   st.front_steiner_points = assembled.value().front_steiner_points;
+  st.absorbed_steiner_points = assembled.value().absorbed_steiner_points;
+  st.wall_steiner_points = assembled.value().wall_steiner_points;
+  st.reoptimized_steiner_points = assembled.value().reoptimized_steiner_points;
+  warn_about_wall_recovery(r, rec, assembled.value().wall_steiner_places);
   const size_t core_first = assembled.value().core_first;
   const size_t core_count = assembled.value().core_count;
   // Layer tets come before the core's, the vessel wall's after.

@@ -3,6 +3,7 @@
 // surface remeshing by conformal maps, boundary layers, caps, volume.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -130,7 +131,23 @@ struct VolumeStats {
   int viscous_layers = 0, wall_layers = 0;  ///< layers grown (0: none)
   size_t front_steiner_points = 0;          ///< recovery's points on the layer front
   size_t steiner_points = 0;                ///< added on the surface by boundary recovery
-  size_t inserted_points = 0;               ///< added inside by refinement
+  /// Of the front's, those the viscous layer's top slice took (the wall
+  /// keeps its triangles).
+  size_t absorbed_steiner_points = 0;
+  /// Recovery's points that split wall triangles (on a wall without a
+  /// viscous layer, or carried down the layers' columns), and of those the
+  /// ones moved along their edge to better the wall's triangles.
+  size_t wall_steiner_points = 0, reoptimized_steiner_points = 0;
+  /// Missing edges recovered by flips along the edge that would otherwise
+  /// each have had a Steiner point.
+  size_t edges_recovered_by_flips = 0;
+  /// Wall edges recovery flipped on the wall instead of splitting them
+  /// (wall_flip_rule, core/layers/flip_wall_edges.h).
+  size_t wall_edges_flipped = 0;
+  /// Where the wall changed: the flipped edges' midpoints, then the points
+  /// that split it (model units).
+  std::vector<std::array<double, 3>> wall_change_places;
+  size_t inserted_points = 0;  ///< added inside by refinement
   double seconds_layers = 0, seconds_caps = 0, seconds_recovery = 0, seconds_refinement = 0,
          seconds_assembly = 0, seconds_check = 0;
   /// Parts of seconds_refinement: point insertion, and the optimization.

@@ -386,6 +386,24 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
     j.key("lumen_volume").value(r.volume_stats.lumen_volume);
     j.key("boundary_triangles").value(r.volume.num_triangles());
     j.key("steiner_points").value(vs.steiner_points);
+    // Boundary recovery on the wall: its points (Steiner points) and where
+    // they went, the edges flips recovered instead, the wall edges flipped,
+    // and the wall's quality written against remeshed.
+    j.key("wall_recovery").begin_object();
+    j.key("steiner_points").value(vs.steiner_points);
+    j.key("on_layer_front").value(vs.front_steiner_points);
+    j.key("absorbed_in_layer").value(vs.absorbed_steiner_points);
+    j.key("splitting_wall").value(vs.wall_steiner_points);
+    j.key("reoptimized").value(vs.reoptimized_steiner_points);
+    j.key("edges_recovered_by_flips").value(vs.edges_recovered_by_flips);
+    j.key("wall_edges_flipped").value(vs.wall_edges_flipped);
+    j.key("places").begin_array();
+    for (const auto& p : vs.wall_change_places) j.array(p);
+    j.end_array();
+    j.key("remeshed_wall_quality_min").value(r.output_quality_stats.min);
+    for (const SurfaceGroupQuality& g : r.written_quality)
+      if (g.tag == 0) j.key("written_wall_quality_min").value(g.quality.min);
+    j.end_object();
     j.key("inserted_points").value(vs.inserted_points);
     j.key("quality");
     write_quality(j, r.tet_quality_stats);

@@ -5,8 +5,10 @@
 //   2. rounds of: missing edges by flips (walk from an endpoint, flip the
 //      first crossed face (2-3) or remove the first crossed edge), missing
 //      faces by flips (remove the edges piercing the triangle), present
-//      faces constrained; then Steiner points on the edges still missing
-//      (and on the longest edge of faces still missing) at their midpoints
+//      faces constrained; then, once per edge still missing, flips along
+//      the whole segment (each crossed face flipped 2-3, or one of its edges
+//      removed; each crossed edge removed); then Steiner points on the edges
+//      still missing (and on the longest edge of faces still missing) at their midpoints
 //      or on concentric shells around input vertices (Ruppert 1995), the
 //      surface triangles on a split edge being split in two, inserted
 //      without crossing the faces already recovered;
@@ -22,6 +24,7 @@
 #include <cmath>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 #include "core/geom/predicates.h"
@@ -37,6 +40,8 @@ using Tri = std::array<int32_t, 3>;
 
 // Edges or faces looked up per chunk of the parallel queries.
 constexpr size_t kQueryGrain = 4096;
+// Crossings followed along a missing edge.
+constexpr int kMaxWalk = 256;
 
 uint64_t edge_key(int32_t a, int32_t b) {
   if (a > b) std::swap(a, b);
@@ -173,13 +178,16 @@ struct Crossing {
 
 class Recovery {
  public:
-  Recovery(Delaunay3D d, Surface s, const RecoveryOptions& o, bool flips, int64_t max_steiner)
+  Recovery(Delaunay3D d, Surface s, const RecoveryOptions& o, bool flips, int64_t max_steiner,
+           const std::vector<int32_t>& tags)
       : d_(std::move(d)),
         s_(std::move(s)),
         o_(o),
         flips_(flips),
         max_steiner_(max_steiner),
-        num_input_(int32_t(d_.num_vertices())) {}
+        num_input_(int32_t(d_.num_vertices())),
+        input_(s_.tri),
+        tags_(&tags) {}
 
   /// Phase 2 (or 3 without flips). Error when stalled or degenerate.
   Status run() {
@@ -249,6 +257,13 @@ class Recovery {
       }
       for (auto [a, b] : missing_edges) {
         if (!s_.edges.count(edge_key(a, b))) continue;  // already split this round
+        // Flips along the whole segment first, once per edge (they may
+        // undo each other's work, and a Steiner point ends that).
+        if (flips_ && tried_along_.insert(edge_key(a, b)).second && recover_edge_along(a, b)) {
+          ++recovered_along_;
+          continue;
+        }
+        if (flips_ && flip_surface_edge(a, b)) continue;
         Status st = split(a, b);
         if (!st.ok()) return st;
       }
@@ -259,6 +274,11 @@ class Recovery {
   Delaunay3D& kernel() { return d_; }
   Surface& surface() { return s_; }
   int64_t steiner() const { return steiner_; }
+  int64_t recovered_along() const { return recovered_along_; }
+  int64_t surface_flips() const { return surface_flips_; }
+  const std::vector<int32_t>& flipped_edges() const { return flipped_edges_; }
+  /// The input triangles after the surface flips.
+  const std::vector<Tri>& input() const { return input_; }
 
  private:
   const double* P(int32_t v) const { return d_.point(v); }
@@ -339,28 +359,88 @@ class Recovery {
       }
       const int32_t x = v[kFaceOut[sa][0]], y = v[kFaceOut[sa][1]], z = v[kFaceOut[sa][2]];
       if (orient3d(P(x), P(y), P(z), P(b)) >= 0) continue;  // b not beyond the face
-      const int s1 = sgn(orient3d(P(a), P(b), P(x), P(y)));
-      const int s2 = sgn(orient3d(P(a), P(b), P(y), P(z)));
-      const int s3 = sgn(orient3d(P(a), P(b), P(z), P(x)));
-      if ((s1 < 0 || s2 < 0 || s3 < 0) && (s1 > 0 || s2 > 0 || s3 > 0)) continue;
-      const int zeros = (s1 == 0) + (s2 == 0) + (s3 == 0);
-      if (zeros >= 2) return -1;
-      c.tet = t;
-      c.k = sa;
-      c.face = zeros == 0;
-      if (zeros == 1) {
-        c.x = s1 == 0 ? x : s2 == 0 ? y : z;
-        c.y = s1 == 0 ? y : s2 == 0 ? z : x;
-      }
-      return 0;
+      const int r = line_through_face(a, b, t, sa, c);
+      if (r < 0) continue;
+      return r == 0 ? 0 : -1;
     }
     return -1;
+  }
+
+  // Whether line (a, b) passes through face k of tet t: -1 not, 1 through
+  // a vertex of it; 0 through its interior or an edge, `c` then set.
+  int line_through_face(int32_t a, int32_t b, int32_t t, int k, Crossing& c) const {
+    const int32_t* v = d_.tet(t);
+    const int32_t x = v[kFaceOut[k][0]], y = v[kFaceOut[k][1]], z = v[kFaceOut[k][2]];
+    const int s1 = sgn(orient3d(P(a), P(b), P(x), P(y)));
+    const int s2 = sgn(orient3d(P(a), P(b), P(y), P(z)));
+    const int s3 = sgn(orient3d(P(a), P(b), P(z), P(x)));
+    if ((s1 < 0 || s2 < 0 || s3 < 0) && (s1 > 0 || s2 > 0 || s3 > 0)) return -1;
+    const int zeros = (s1 == 0) + (s2 == 0) + (s3 == 0);
+    if (zeros >= 2) return 1;
+    c = Crossing{};
+    c.tet = t;
+    c.k = k;
+    c.face = zeros == 0;
+    if (zeros == 1) {
+      c.x = s1 == 0 ? x : s2 == 0 ? y : z;
+      c.y = s1 == 0 ? y : s2 == 0 ? z : x;
+    }
+    return 0;
+  }
+
+  // The faces and edges segment a -> b crosses, in order from a (a walk
+  // through the tetrahedra it passes): the walk stops after an edge, at a
+  // vertex, or at b.
+  void crossings(int32_t a, int32_t b, std::vector<Crossing>& out) {
+    out.clear();
+    Crossing c;
+    if (first_crossing(a, b, c) != 0) return;
+    for (int step = 0; step < kMaxWalk; ++step) {
+      out.push_back(c);
+      if (!c.face) return;
+      const int32_t link = d_.neighbor(c.tet, c.k), u = link >> 2;
+      const int entry = link & 3;
+      if (d_.is_ghost(u) || d_.tet(u)[entry] == b) return;
+      int found = -1;
+      for (int k = 0; k < 4 && found < 0; ++k)
+        if (k != entry) found = line_through_face(a, b, u, k, c);
+      if (found != 0) return;
+    }
   }
 
   bool apply(const Crossing& c) {
     if (c.face) return d_.flip23(c.tet, c.k).ok();
     if (s_.edges.count(edge_key(c.x, c.y))) return false;  // a surface edge stays
     return d_.remove_edge(c.tet, c.x, c.y).ok();
+  }
+
+  // A crossing removed otherwise when its own flip is invalid: an edge of
+  // a crossed face (not a surface edge) by edge removal.
+  bool apply_or_remove_edge(const Crossing& c) {
+    if (apply(c)) return true;
+    if (!c.face) return false;
+    const int32_t* v = d_.tet(c.tet);
+    const int32_t f[3] = {v[kFaceOut[c.k][0]], v[kFaceOut[c.k][1]], v[kFaceOut[c.k][2]]};
+    for (int i = 0; i < 3; ++i) {
+      const int32_t x = f[i], y = f[(i + 1) % 3];
+      if (!s_.edges.count(edge_key(x, y)) && d_.remove_edge(c.tet, x, y).ok()) return true;
+    }
+    return false;
+  }
+
+  // Before a Steiner point: flips anywhere along the segment, in order
+  // from a, each crossed face by its 2-3 flip or the removal of one of its
+  // edges, each crossed edge by its removal.
+  bool recover_edge_along(int32_t a, int32_t b) {
+    for (int it = 0; it < 4 * o_.max_flips_per_item; ++it) {
+      crossings(a, b, walk_);
+      if (walk_.empty()) return d_.find_edge(a, b) >= 0;
+      bool flipped = false;
+      for (const Crossing& c : walk_)
+        if ((flipped = apply_or_remove_edge(c))) break;
+      if (!flipped) return false;
+    }
+    return d_.find_edge(a, b) >= 0;
   }
 
   bool recover_edge_by_flips(int32_t a, int32_t b) {
@@ -436,6 +516,41 @@ class Recovery {
       for (int k = 0; k < 3; ++k) m[k] = 0.5 * (P(a)[k] + P(b)[k]);
   }
 
+  // The surface flip of missing edge (a, b) between two whole input
+  // triangles of one tag, when the caller allows it: (p, q, c) and
+  // (q, p, d) become (c, p, d) and (d, q, c).
+  bool flip_surface_edge(int32_t a, int32_t b) {
+    if (!o_.may_flip_surface || flipped_.count(edge_key(a, b))) return false;
+    const auto it = s_.edges.find(edge_key(a, b));
+    if (it == s_.edges.end()) return false;
+    const int32_t t1 = it->second[0], t2 = it->second[1];
+    const int32_t n_input = int32_t(input_.size());
+    if (t1 < 0 || t2 < 0 || t1 >= n_input || t2 >= n_input) return false;
+    if (s_.tri[size_t(t1)] != input_[size_t(t1)] || s_.tri[size_t(t2)] != input_[size_t(t2)])
+      return false;  // split already
+    const int32_t tag = (*tags_)[size_t(t1)];
+    if ((*tags_)[size_t(t2)] != tag) return false;
+    Tri u = s_.tri[size_t(t1)], w = s_.tri[size_t(t2)];
+    for (int r = 0; r < 3 && !((u[0] == a && u[1] == b) || (u[0] == b && u[1] == a)); ++r)
+      std::rotate(u.begin(), u.begin() + 1, u.end());
+    const int32_t p = u[0], q = u[1], c = u[2];
+    for (int r = 0; r < 3 && !(w[0] == q && w[1] == p); ++r)
+      std::rotate(w.begin(), w.begin() + 1, w.end());
+    const int32_t d = w[2];
+    if (w[0] != q || w[1] != p || c == d || s_.edges.count(edge_key(c, d))) return false;
+    if (!o_.may_flip_surface(p, q, c, d, tag)) return false;
+    s_.set(t1, {c, p, d});
+    s_.set(t2, {d, q, c});
+    input_[size_t(t1)] = s_.tri[size_t(t1)];
+    input_[size_t(t2)] = s_.tri[size_t(t2)];
+    for (int32_t t : {t1, t2})
+      if (size_t(t) < done_.size()) done_[size_t(t)] = 0;
+    flipped_.insert(edge_key(c, d));
+    flipped_edges_.insert(flipped_edges_.end(), {c, d});
+    ++surface_flips_;
+    return true;
+  }
+
   // Steiner point on surface edge (a, b).
   Status split(int32_t a, int32_t b) {
     if (steiner_ >= max_steiner_)
@@ -486,12 +601,20 @@ class Recovery {
   std::vector<uint8_t> done_;  // per surface triangle: a constrained face
   bool rescan_ = false;
   std::vector<int32_t> around_, ring_tets_, ring_;
+  std::vector<Crossing> walk_;
+  std::unordered_set<uint64_t> tried_along_;  // edges whose flips along were tried
+  int64_t recovered_along_ = 0;
+  std::vector<Tri> input_;                // the input triangles, surface flips applied
+  const std::vector<int32_t>* tags_;      // per input triangle
+  std::unordered_set<uint64_t> flipped_;  // edges surface flips made
+  int64_t surface_flips_ = 0;
+  std::vector<int32_t> flipped_edges_;  // the edges surface flips made, in order
 };
 
 // Phase 1 for one attempt: the kernel and the surface.
 Result<Recovery> start(const std::vector<double>& points, const std::vector<int32_t>& triangles,
-                       const std::vector<int32_t>& parents, const RecoveryOptions& options,
-                       bool flips, int64_t max_steiner) {
+                       const std::vector<int32_t>& parents, const std::vector<int32_t>& tags,
+                       const RecoveryOptions& options, bool flips, int64_t max_steiner) {
   auto built = Delaunay3D::build(points);
   if (!built.ok()) return Result<Recovery>::Error("boundary recovery: " + built.message());
   for (int32_t v : triangles)
@@ -503,7 +626,7 @@ Result<Recovery> start(const std::vector<double>& points, const std::vector<int3
   s.edges.reserve(triangles.size());
   for (size_t t = 0; t < triangles.size() / 3; ++t)
     s.add({triangles[3 * t], triangles[3 * t + 1], triangles[3 * t + 2]}, parents[t]);
-  return Recovery(std::move(built.value()), std::move(s), options, flips, max_steiner);
+  return Recovery(std::move(built.value()), std::move(s), options, flips, max_steiner, tags);
 }
 
 // Phase 4: inside/outside by a layered flood fill from the ghosts: crossing
@@ -565,11 +688,11 @@ Result<RecoveredVolume> recover_boundary(const std::vector<double>& points,
 
   // Phases 1-2, then 3 if they stall.
   RecoveredVolume out;
-  auto attempt = start(points, triangles, parents, options, options.use_flips, max_steiner);
+  auto attempt = start(points, triangles, parents, tags, options, options.use_flips, max_steiner);
   if (!attempt.ok()) return R(attempt.status());
   Status st = attempt.value().run();
   if (!st.ok() && options.use_flips) {
-    auto fresh = start(points, triangles, parents, options, false, max_steiner);
+    auto fresh = start(points, triangles, parents, tags, options, false, max_steiner);
     if (!fresh.ok()) return R(fresh.status());
     attempt = std::move(fresh);
     out.used_fallback = true;
@@ -584,6 +707,11 @@ Result<RecoveredVolume> recover_boundary(const std::vector<double>& points,
 
   // Output.
   out.steiner_points = rec.steiner();
+  out.edges_recovered_along = rec.recovered_along();
+  out.surface_flips = rec.surface_flips();
+  out.flipped_edges = rec.flipped_edges();
+  for (const Tri& t : rec.input())
+    out.input_triangles.insert(out.input_triangles.end(), t.begin(), t.end());
   out.flips = d.stats().flips;
   out.mesh.points = d.points();
   d.for_each_finite_tet([&](int32_t t) {

@@ -7,7 +7,10 @@
 // quality tetrahedral mesh generator", ACM TOMS 41, 2015): Delaunay
 // tetrahedralization of the surface vertices (core/volume/delaunay3d.h);
 // missing edges, then missing faces, recovered by flips (2-3, 3-2/edge
-// removal); what flips cannot recover is split by Steiner points on the
+// removal; before a Steiner point, along the whole missing edge, and an edge
+// of a crossed face removed where the face's own flip is invalid); what
+// flips cannot recover is flipped on the surface where the caller allows it,
+// else split by Steiner points on the
 // surface edges (midpoints, or concentric shells around input vertices), the
 // surface triangles being split with them so the surface stays conforming;
 // then the tetrahedra outside are removed by a flood fill from the convex
@@ -15,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,6 +35,13 @@ struct RecoveryOptions {
   int max_flips_per_item = 32;
   /// When false, only Steiner points are used (conforming Delaunay).
   bool use_flips = true;
+  /// When set, a missing surface edge (a, b) that flips cannot recover,
+  /// between two whole input triangles (a, b, c) and (b, a, d) of the same
+  /// tag, is flipped on the surface to (c, d) instead of split by a Steiner
+  /// point, if may_flip_surface(a, b, c, d, tag) says the surface may
+  /// change so (its shape and quality there are the caller's to judge).
+  /// Never an edge a surface flip made, and only with flips (use_flips).
+  std::function<bool(int32_t a, int32_t b, int32_t c, int32_t d, int32_t tag)> may_flip_surface;
 };
 
 /// Region tags the kernel carries after recovery (Delaunay3D::tag).
@@ -44,9 +55,21 @@ struct RecoveredVolume {
   /// like the input; triangle_tag: the tag of the input triangle each came
   /// from. Prisms empty.
   VolumeMesh mesh;
-  /// Per output triangle: the index of the input triangle it came from.
+  /// Per output triangle: the index of the input triangle it came from, in
+  /// input_triangles.
   std::vector<int32_t> triangle_parent;
+  /// The input triangles after the surface flips (may_flip_surface): 3 ids
+  /// each, same count and order as the input, equal to it but for the
+  /// flipped pairs; the output triangles tile them.
+  std::vector<int32_t> input_triangles;
+  /// Surface edges flipped instead of a Steiner point: their count, and
+  /// the new edges (2 point ids each).
+  int64_t surface_flips = 0;
+  std::vector<int32_t> flipped_edges;
   int64_t steiner_points = 0;
+  /// Missing edges the first flips left that flips along the whole
+  /// segment then recovered (each would have been a Steiner point).
+  int64_t edges_recovered_along = 0;
   int64_t flips = 0;
   /// Whether the conforming-Delaunay fallback (Steiner points only) was
   /// needed after flips and Steiner points stalled.

@@ -8,6 +8,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "core/geom/predicates.h"
@@ -225,9 +226,18 @@ RecoveredVolume recover_and_check(const Surf& s, const RecoveryOptions& options 
   EXPECT_EQ(output.size(), m.num_triangles()) << "repeated output triangle";
   EXPECT_TRUE(boundary == output) << "the tetrahedra's boundary (" << boundary.size()
                                   << " faces) is not the output surface (" << output.size() << ")";
-  // Each input triangle is covered by its pieces: same tag, same area, in
-  // its plane.
+  // Each input triangle (as surface flips left it) is covered by its
+  // pieces: same tag, same area, in its plane. Flips changed whole pairs
+  // only.
   const size_t nt = s.tris.size() / 3;
+  const std::vector<int32_t>& in = out.input_triangles;
+  EXPECT_EQ(in.size(), s.tris.size());
+  if (in.size() != s.tris.size()) return out;
+  size_t changed = 0;
+  for (size_t p = 0; p < nt; ++p)
+    changed += !std::equal(&in[3 * p], &in[3 * p] + 3, &s.tris[3 * p]);
+  EXPECT_EQ(changed, 2 * size_t(out.surface_flips));
+  EXPECT_EQ(out.flipped_edges.size(), 2 * size_t(out.surface_flips));
   std::vector<double> piece_area(nt, 0);
   EXPECT_EQ(out.triangle_parent.size(), m.num_triangles());
   if (out.triangle_parent.size() != m.num_triangles()) return out;
@@ -237,22 +247,22 @@ RecoveredVolume recover_and_check(const Surf& s, const RecoveryOptions& options 
     const double* q[3];
     for (int k = 0; k < 3; ++k) q[k] = &m.points[3 * size_t(m.triangles[3 * t + k])];
     piece_area[size_t(p)] += area(q[0], q[1], q[2]);
-    const double* a = &s.points[3 * size_t(s.tris[3 * size_t(p)])];
-    const double* b = &s.points[3 * size_t(s.tris[3 * size_t(p) + 1])];
-    const double* c = &s.points[3 * size_t(s.tris[3 * size_t(p) + 2])];
+    const double* a = &s.points[3 * size_t(in[3 * size_t(p)])];
+    const double* b = &s.points[3 * size_t(in[3 * size_t(p) + 1])];
+    const double* c = &s.points[3 * size_t(in[3 * size_t(p) + 2])];
     for (int k = 0; k < 3; ++k) {
       double h = std::fabs(tet_volume6(a, b, c, q[k])) / (2 * area(a, b, c));
       EXPECT_LT(h, 1e-12 * (1 + std::sqrt(area(a, b, c)))) << "piece off its input triangle";
     }
   }
   for (size_t p = 0; p < nt; ++p) {
-    const double* a = &s.points[3 * size_t(s.tris[3 * p])];
-    const double* b = &s.points[3 * size_t(s.tris[3 * p + 1])];
-    const double* c = &s.points[3 * size_t(s.tris[3 * p + 2])];
+    const double* a = &s.points[3 * size_t(in[3 * p])];
+    const double* b = &s.points[3 * size_t(in[3 * p + 1])];
+    const double* c = &s.points[3 * size_t(in[3 * p + 2])];
     EXPECT_NEAR(piece_area[p], area(a, b, c), 1e-9 * area(a, b, c)) << "input triangle " << p;
   }
   // Volume: the tetrahedra fill the enclosed volume.
-  const double enclosed = enclosed_volume(s.points, s.tris);
+  const double enclosed = enclosed_volume(s.points, in);
   EXPECT_NEAR(volume, enclosed, 1e-9 * enclosed);
   // The kernel is valid, its constrained faces are the output triangles.
   EXPECT_TRUE(out.kernel.check(false).ok()) << out.kernel.check(false).message();
@@ -334,6 +344,40 @@ TEST(BoundaryRecovery, LongThinTube) {
               s.tags.size(), out.mesh.num_triangles(), (long long)out.steiner_points,
               (long long)out.flips,
               out.used_fallback ? (" (fallback: " + out.fallback_reason + ")").c_str() : "");
+}
+
+TEST(BoundaryRecovery, WallEdgesFlippedInsteadOfSplitWhereAllowed) {
+  // The thin tube's wall misses most of its edges (see LongThinTube). With
+  // surface flips allowed on the wall (tag 0), whole wall pairs are flipped
+  // rather than split; the caps (other tags) never are.
+  const Surf s = tube(0.05, 10, 8, 6);
+  const RecoveredVolume plain = recover_and_check(s);
+  RecoveryOptions o;
+  std::vector<std::array<int32_t, 5>> asked;
+  o.may_flip_surface = [&](int32_t a, int32_t b, int32_t c, int32_t d, int32_t tag) {
+    asked.push_back({a, b, c, d, tag});
+    return tag == 0;
+  };
+  const RecoveredVolume flipped = recover_and_check(s, o);
+  EXPECT_FALSE(asked.empty());
+  EXPECT_GT(flipped.surface_flips, 0);
+  EXPECT_LT(flipped.steiner_points, plain.steiner_points);
+  EXPECT_EQ(plain.surface_flips, 0);
+  // Asked about each edge with the apexes of its two triangles, (a, b, c)
+  // and (b, a, d) being input triangles; the flipped edges are (c, d).
+  std::set<std::pair<int32_t, int32_t>> made;
+  for (size_t e = 0; e < flipped.flipped_edges.size(); e += 2)
+    made.insert(std::minmax(flipped.flipped_edges[e], flipped.flipped_edges[e + 1]));
+  size_t allowed = 0;
+  for (const auto& [a, b, c, d, tag] : asked) {
+    EXPECT_NE(c, d);
+    if (tag == 0) allowed += made.count(std::minmax(c, d));
+  }
+  EXPECT_EQ(allowed, size_t(flipped.surface_flips));
+  // The flipped input has no cap triangle changed.
+  for (size_t t = 0; t < s.tags.size(); ++t)
+    if (s.tags[t] != 0)
+      EXPECT_TRUE(std::equal(&s.tris[3 * t], &s.tris[3 * t] + 3, &flipped.input_triangles[3 * t]));
 }
 
 TEST(BoundaryRecovery, BoxWithNearlyCoplanarCaps) {
