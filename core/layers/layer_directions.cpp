@@ -121,8 +121,9 @@ Result<LayerDirections> layer_directions(const SurfaceMesh& wall, const Triangle
       out.opening_of[size_t(v)] = int32_t(o);
       const Vec3 d = rim_direction(wall, op, i, at(out.normal, v), outward);
       if (!(norm(d) > 0.5))
-        return R::Error("no in-plane direction at rim vertex " + std::to_string(v) + " " +
-                        where(wall, v) + " (degenerate rim)");
+        return Status::Error("no in-plane direction at rim vertex " + std::to_string(v) + " " +
+                             where(wall, v) + " (degenerate rim)")
+            .WithRemedy({"trim_end", {at(wall.points, v)}, 0});
       put(dir, v, d);
     }
   }
@@ -189,7 +190,9 @@ Result<LayerDirections> layer_directions(const SurfaceMesh& wall, const Triangle
                            (plane ? " from within its cap plane (the wall meets the plane at a "
                                     "grazing angle there)"
                                   : " (a needle-like spike or fold of the wall)"))
-          .WithRemedy({"no_layers", {at(wall.points, int32_t(v))}, 0});
+          // At a rim, the opening is better cut deeper, where the wall
+          // crosses its plane; elsewhere, no layer can start there.
+          .WithRemedy({plane ? "trim_end" : "no_layers", {at(wall.points, int32_t(v))}, 0});
     put(dir, int32_t(v), d);
     out.min_visibility = std::min(out.min_visibility, w);
   }

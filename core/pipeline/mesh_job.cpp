@@ -578,7 +578,21 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const Me
   // Every later stage's error passes here: on a surface that crosses itself
   // (the likely cause), it first says where (an option's value or a
   // cancellation is not the surface's doing).
-  if (Status st = mesh_prepared(r, options, progress); !st.ok()) {
+  Status st = mesh_prepared(r, options, progress);
+  // A layer that cannot start at an opening whose plane the wall meets at a
+  // grazing angle: that opening is cut deeper, where the wall crosses its
+  // plane, and the job runs again from the prepared surface (twice at most).
+  for (int attempt = 1; !st.ok() && st.remedy().action == "trim_end" && attempt <= 2; ++attempt) {
+    MeshJobResult again;
+    again.preset = r.preset;
+    again.surface = std::move(r.surface);
+    if (!cut_openings_deeper(again.surface, st.remedy().places, 0.5 * attempt).ok()) break;
+    again.warnings = again.surface.warnings;
+    options = given;
+    r = std::move(again);
+    st = mesh_prepared(r, options, progress);
+  }
+  if (!st.ok()) {
     if (st.cancelled() || st.kind() == ErrorKind::kBadOption) return st;
     st = st.Prefixed(self_crossing_prefix(r.surface));
     // Crossings left by {repair} off: the remedy is the repair, at its places.

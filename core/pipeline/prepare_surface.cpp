@@ -971,6 +971,61 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
   return s;
 }
 
+Status cut_openings_deeper(PreparedSurface& s, const std::vector<Vec3>& places, double depth) {
+  const TopologyReport& t = s.topology;
+  if (t.openings.empty()) return Status::Error("no opening to cut deeper");
+  // The openings at the places, each once, nearest by a rim vertex.
+  std::vector<size_t> which;
+  for (const Vec3& p : places) {
+    size_t best = 0;
+    double best_d = 1e300;
+    for (size_t o = 0; o < t.openings.size(); ++o)
+      for (int32_t v : t.openings[o].loop)
+        if (const double d = norm(at(s.mesh.points, v) - p); d < best_d) best_d = d, best = o;
+    if (std::find(which.begin(), which.end(), best) == which.end()) which.push_back(best);
+  }
+  // The work of the phases, rebuilt from the prepared surface: each rim's
+  // source, so the openings left keep theirs.
+  Work w;
+  w.adjacency = build_adjacency(s.mesh);
+  w.sources = s.opening_sources;
+  w.source_of_vertex.assign(s.mesh.num_vertices(), -1);
+  for (size_t o = 0; o < t.openings.size(); ++o)
+    for (int32_t v : t.openings[o].loop) w.source_of_vertex[size_t(v)] = int32_t(o);
+  std::vector<ClipPlane> planes;
+  for (size_t o : which) {
+    const Opening& op = t.openings[o];
+    // Out of the vessel: away from the wall's vertices near the rim.
+    Vec3 n = normalized(Vec3(op.normal));
+    Vec3 mean{0, 0, 0};
+    size_t count = 0;
+    for (size_t v = 0; v < s.mesh.num_vertices(); ++v)
+      if (const Vec3 q = at(s.mesh.points, int32_t(v)); norm(q - Vec3(op.centroid)) < 2 * op.radius)
+        mean = mean + q, ++count;
+    if (count > 0 && dot((1.0 / double(count)) * mean - Vec3(op.centroid), n) > 0) n = -1.0 * n;
+    planes.push_back({Vec3(op.centroid) - (depth * op.radius) * n, n});
+  }
+  for (size_t i = 0; i < planes.size(); ++i) {
+    const Opening& op = t.openings[which[i]];
+    const Vec3 was = op.centroid;
+    const double radius = op.radius;
+    if (Status st = clip_one(s, w, planes[i], OpeningSource::kPlane); !st.ok()) return st;
+    s.warnings.push_back("the opening at " + point_text(was) + " (radius " + number_text(radius) +
+                         ") was cut again " + number_text(depth, 2) +
+                         " radii deeper: the wall met its plane at a grazing angle, where the "
+                         "boundary layer cannot start");
+  }
+  s.opening_sources.clear();
+  analyze(s, w);
+  if (s.self_crossings_checked) {
+    s.self_crossings = {};
+    find_crossings(s);
+  }
+  s.quality = triangle_qualities(s.mesh);
+  s.quality_stats = quality_stats(s.quality, int(s.quality_stats.histogram.size()));
+  return Status::Ok();
+}
+
 Status check_meshable(const PreparedSurface& s) {
   const TopologyReport& t = s.topology;
   // Without the repairs, the remedy is to turn them on.

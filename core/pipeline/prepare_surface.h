@@ -200,6 +200,15 @@ Result<PreparedSurface> prepare_surface(std::span<const uint8_t> file_bytes,
                                         const PrepareOptions& options = {},
                                         const ProgressFn& progress = {});
 
+/// Cuts each opening nearest one of `places` (model units; e.g. where the
+/// boundary layer met the opening's plane at a grazing angle) again,
+/// `depth` of its radii deeper into the vessel, parallel to it, and
+/// analyzes the surface again (openings, their sources, self-crossings,
+/// quality), with a warning per cut. Errors: no opening, or a cut that
+/// fails (clip_surface's errors).
+Status cut_openings_deeper(PreparedSurface& surface, const std::vector<Vec3>& places,
+                           double depth);
+
 /// Checks that a prepared surface can be meshed: manifold, orientable, one
 /// component. The error message says what is wrong, where, and what to do.
 Status check_meshable(const PreparedSurface& surface);
