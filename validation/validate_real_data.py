@@ -16,10 +16,13 @@ import tempfile
 
 # Known facts about the reference inputs (their README).
 EXPECTED = {
-    "abdominal-aorta-closed.stl": dict(triangles=12932, openings=0, genus=0, closed=True),
+    # Closed with rounded ends: cut open at its 3 vessel ends by default.
+    "abdominal-aorta-closed.stl": dict(triangles=12932, openings=3, source="clip", genus=0,
+                                       closed=False),
     "abdominal-aorta-open.stl": dict(triangles=11887, openings=3, genus=0, closed=False),
-    "aortic-arch.stl": dict(triangles=41176, vertices=20730, openings=5, genus=0, closed=False),
-    "bifurcation.stl": dict(triangles=16448, openings=3, genus=0, closed=False),
+    "aortic-arch.stl": dict(triangles=41176, vertices=20730, openings=5, genus=0, closed=False,
+                            unit="cm"),
+    "bifurcation.stl": dict(triangles=16448, openings=3, genus=0, closed=False, unit="cm"),
     "carotid-metres.stl": dict(triangles=11594, openings=3, genus=0, closed=False, unit="m"),
     # Flat caps without labels (1 inlet + 6 outlets): recognised by shape.
     "coronary-closed-ascii.stl": dict(triangles=14336, openings=7, caps=7, genus=0, closed=False,
@@ -27,10 +30,10 @@ EXPECTED = {
     # SimVascular models: ModelFaceID 1-2 walls, 3-5 planar caps.
     "simvascular-aorta-capped.vtp": dict(triangles=16698, openings=3, caps=3, genus=0, closed=False,
                                          format="VTK XML PolyData (appended base64, zlib)",
-                                         labels="ModelFaceID"),
+                                         labels="ModelFaceID", unit="cm"),
     "simvascular-rom-capped.vtp": dict(triangles=18584, openings=3, caps=3, genus=0, closed=False,
                                        format="VTK XML PolyData (appended base64, zlib)",
-                                       labels="ModelFaceID"),
+                                       labels="ModelFaceID", unit="cm"),
 }
 # Opening perimeters from the data README (largest first), 2% tolerance.
 PERIMETERS = {
@@ -343,18 +346,22 @@ def check_volume(fname, path, tmp, args, d, have_gmsh, label, flags, layers):
               for sq in v["surfaces"] if sq["name"] != "wall" and sq["quality"]["count"] > 0))
 
 
+# The other files of ../shared/data/vascular: meshed with default options
+# only (check_default_mesh), with their unit from the data README.
+DEFAULT_ONLY = {"femoral-bypass.stl": dict(unit="cm", min_openings=2)}
+
 # The hard files (../shared/data/vascular-hard, its README): what preparation
 # must find and do there with default options.
 HARD = {
     # A patch stored twice over the aneurysm, glued to the wall and crossing
     # it: re-surfaced; the two flat-capped ends open.
-    "ica-aneurysm-overlapping-shells.stl": dict(resurfaced=1, min_openings=2),
+    "ica-aneurysm-overlapping-shells.stl": dict(resurfaced=1, min_openings=2, unit="mm"),
     # Three fan caps (lifted apex), a detached fragment, slivers: opened.
-    "carotid-fancapped-closed.stl": dict(min_openings=3),
+    "carotid-fancapped-closed.stl": dict(min_openings=3, unit="mm"),
     # Centimetres, 8 labelled caps facing inward.
-    "abdominal-aorta-seqseg-capped-cm.vtp": dict(min_openings=8),
-    # A closed raw segmentation: every vessel end blind.
-    "abdominal-visceral-segmentation-closed.vtp": dict(min_openings=3),
+    "abdominal-aorta-seqseg-capped-cm.vtp": dict(min_openings=8, unit="cm"),
+    # A closed raw segmentation in cm: every vessel end blind.
+    "abdominal-visceral-segmentation-closed.vtp": dict(min_openings=3, unit="cm"),
 }
 
 
@@ -380,6 +387,10 @@ def check_default_mesh(fname, path, tmp, args, have_gmsh, expect=None):
         check(fname, len(a["openings"]) >= expect["min_openings"],
               f"defaults: {len(a['openings'])} openings >= {expect['min_openings']} "
               f"({', '.join(o['source'] for o in a['openings'])})")
+    if "unit" in expect:
+        u = a["units"]
+        check(fname, u["unit"] == expect["unit"],
+              f"defaults: unit {u['unit']} == {expect['unit']} ({'guessed, ' + u['confidence'] if u['guessed'] else 'given'})")
     if "resurfaced" in expect:
         done = [p for p in a["repairs"]["crossings_resurfaced"] if p["resolved"]]
         check(fname, len(done) >= expect["resurfaced"] and a["self_crossings"]["pairs"] == 0,
@@ -618,14 +629,16 @@ def main():
             check(fname, not d["holes"] and not d["repairs"]["nonmanifold_edges_split"],
                   f"no hole, no non-manifold repair (a clean surface): {len(d['holes'])} holes")
             check(fname, d["format"] == exp.get("format", "binary STL"), f"format {d['format']}")
+            source = exp.get("source", "cap" if exp.get("caps") else "file")
             check(fname, d["caps_removed"] == exp.get("caps", 0)
-                  and all(o["source"] == ("cap" if exp.get("caps") else "file") for o in d["openings"]),
-                  f"{d['caps_removed']} caps recognised and opened == {exp.get('caps', 0)}")
+                  and all(o["source"] == source for o in d["openings"]),
+                  f"{d['caps_removed']} caps recognised and opened == {exp.get('caps', 0)}, "
+                  f"openings from {source}")
             check(fname, d["label_array"] == exp.get("labels", ""), f"face labels '{d['label_array']}'")
             u = d["units"]
             want_unit = exp.get("unit", "mm")
-            check(fname, u["unit"] == want_unit and u["guessed"] and u["certain"] == (want_unit == "m"),
-                  f"units {u['unit']} (guessed, {'certain' if u['certain'] else 'unconfirmed'}: {u['reason']})")
+            check(fname, u["unit"] == want_unit and u["guessed"],
+                  f"units {u['unit']} == {want_unit} (guessed, {u['confidence']}: {u['reason']})")
             for got, want in zip([o["perimeter"] for o in d["openings"]], PERIMETERS.get(fname, [])):
                 check(fname, abs(got - want) <= 0.02 * want, f"opening perimeter {got:.3f} ~ {want}")
             q = d["quality"]
@@ -660,6 +673,11 @@ def main():
                 check(fname, n == d["triangles"], f"Gmsh reads {n} triangles == {d['triangles']} (MSH {version})")
                 check(fname, "wall" in names, f"Gmsh finds physical group 'wall' (MSH {version}): {names}")
                 check(fname, orphans == 0, f"every triangle in a physical group (MSH {version})")
+        for fname, exp in DEFAULT_ONLY.items():
+            if args.files and fname not in args.files.split(","):
+                continue
+            print(fname)
+            check_default_mesh(fname, os.path.join(args.data, fname), tmp, args, have_gmsh, exp)
         if args.hard:
             for fname, exp in HARD.items():
                 if args.files and fname not in args.files.split(","):
