@@ -161,7 +161,7 @@ def check_remesh(fname, path, tmp, args, d, have_gmsh, mode, mesher="frontal"):
     check(fname, fid["input_gap_vertices"] == 0,
           f"remesh {tag}: input vertices within 0.1 h of the output (max {fid['max_input_gap']:.3f} h, "
           f"{fid['input_gap_vertices']} beyond; vesselmesh's report)")
-    if mode == "uniform" and d["caps_removed"] == 0 and path.endswith(".stl"):
+    if mode == "uniform" and d["caps_removed"] == 0 and not d["clips"] and path.endswith(".stl"):
         # The same, measured here from the STL and the MSH (for an STL whose
         # every vertex is the wall's: recognised caps are not).
         import numpy as np
@@ -481,7 +481,8 @@ def check_clip_at(fname, path, args, flags):
     each vessel end info proposes, beside the vessel: one opening from a
     clip, of about the end's radius, perpendicular to the vessel there."""
     import math
-    r = subprocess.run([args.vesselmesh, "info", path, "--json"] + flags, capture_output=True, text=True)
+    r = subprocess.run([args.vesselmesh, "info", path, "--json", "--clip", "off"] + flags,
+                       capture_output=True, text=True)
     ends = json.loads(r.stdout)["clip_proposals"] if r.returncode == 0 else []
     check(fname, r.returncode == 0 and len(ends) > 0, f"clip at: {len(ends)} vessel ends proposed")
     cut = 0
@@ -491,8 +492,8 @@ def check_clip_at(fname, path, args, flags):
             side = [n[1], -n[0], 0]
             length = math.hypot(*side) or 1
             at = [e["point"][k] - depth * radius * n[k] + 1.2 * radius * side[k] / length for k in range(3)]
-            c = subprocess.run([args.vesselmesh, "info", path, "--json", "--clip-at", ",".join(map(str, at))] + flags,
-                               capture_output=True, text=True)
+            c = subprocess.run([args.vesselmesh, "info", path, "--json", "--clip", "off", "--clip-at",
+                                ",".join(map(str, at))] + flags, capture_output=True, text=True)
             if c.returncode != 0:
                 print(f"  clip at {depth} radii in: refused: {c.stderr.strip()[:200]}")
                 continue
