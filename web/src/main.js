@@ -102,11 +102,12 @@ const openingChecks = new OpeningWarnings({
   bar,
   problems,
   model,
-  apply: (remedy) => remedyPressed(remedy, 'prepare'),
+  apply: (remedy, then) => remedyPressed(remedy, then ? 'mesh' : 'prepare', then),
 });
 let prepHistory = null; // undo and redo of the preparation (below)
 const prepare = new Prepare({
   viewer,
+  marks,
   cutAt: (point) => whenAnalyzed('a job is running; try again when it ends', () => client.cutAt(point)),
   reanalyze: () => reanalyze({ onError: () => {} }),
   words: (text) => problems.words(text),

@@ -155,7 +155,9 @@ export class VolumeView {
     this.context.renderOrder = 1;
     this.group = new THREE.Group();
     this.group.add(this.solid, this.edges, this.context);
-    this.viewer.setContent(this.group, this.data.sphere);
+    // The wall and caps hide the labels behind them.
+    const occluder = { positions: volume.positions, triangles: volume.triangles };
+    this.viewer.setContent(this.group, this.data.sphere, { occluder });
     this.update();
   }
 
