@@ -216,13 +216,14 @@ function clearError() {
   problems.clear();
 }
 
-/** A remedy's button pressed: applied (remedy-actions.js), one at a time. */
-async function remedyPressed(remedy, stage) {
+/** A remedy's button pressed: applied (remedy-actions.js), one at a time;
+ * at the 'mesh' stage, `then` (default: Mesh) goes on after it. */
+async function remedyPressed(remedy, stage, then = () => act(remesh)) {
   if (!current || busy || acting) return;
   problems.clear();
   document.body.dataset.remedy = 'applying';
   try {
-    await applyRemedy(remedy, stage, { prepare, reanalyze, mesh: () => act(remesh) });
+    await applyRemedy(remedy, stage, { prepare, reanalyze, mesh: then });
   } finally {
     document.body.dataset.remedy = 'done';
   }

@@ -336,13 +336,20 @@ export class Prepare {
    * there) and makes the cuts: a remedy's "Cut here" or, with `trim`,
    * "Trim the damaged end" (where the section at the point is no closed
    * loop, the vessel is cut further in: TRIM_STEPS radii from the nearest
-   * opening towards the model's middle). The error (also shown here), or
-   * null.
+   * opening towards the model's middle). A point of a listed or proposed
+   * cut (a vessel end) is that cut. The error (also shown here), or null.
    */
   async cutAtPlaces(points, { trim = false } = {}) {
     this.clearError();
     const missed = [];
+    const key = (p) => p.map((x) => Number(x).toPrecision(9)).join(',');
     for (const p of points) {
+      if (this.cuts.some((c) => key(c.point) === key(p))) continue;
+      const proposed = this.proposals.find((c) => key(c.point) === key(p));
+      if (proposed) {
+        this.cuts.push({ ...proposed });
+        continue;
+      }
       let found = await this.cutAt(p);
       for (const q of trim ? this._inward(p) : []) {
         if (found.ok) break;
