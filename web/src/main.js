@@ -726,7 +726,14 @@ function drawLegend(volume) {
 /** Shows a new mesh: the result part of the panel (its verdict in sight
  * and focused), the caps' names by the openings, the volume in the view. */
 function showResult(result) {
-  const showPlaces = (places, { zoom = true, tone } = {}) => problems.showPlaces(places, '', { zoom, tone });
+  const showPlaces = (places, { zoom = true, tone, clip = false } = {}) => {
+    // A place inside the volume: the clipping plane through it, facing the camera.
+    if (clip && zoom && shown === 'volume' && places.length) {
+      const { axis, position, flip } = volumeView.clipThrough(places[0].point);
+      [$('clip-axis').value, $('clip-position').value, $('clip-flip').checked] = [axis, String(position), flip];
+    }
+    problems.showPlaces(places, '', { zoom, tone });
+  };
   showMeshResult(result, { model: model(), client, showPlaces });
   if (result.volume) $('show').prepend(volumeOption);
   else volumeOption.remove();

@@ -113,8 +113,9 @@ function showPresetAndYplus(report) {
 /**
  * The verdict's list: one item a line, marked ok (✓), check (!) or note
  * (i), with a "Show" button for the items that have places.
- * @param {(places: object[]) => void} showPlaces marks the places in the
- *   view and zooms to the first
+ * @param {(places: object[], options?: {zoom?: boolean, tone?: string,
+ *   clip?: boolean}) => void} showPlaces marks the places in the view and
+ *   zooms to the first (with clip, the clipping plane through it)
  */
 function showVerdict(verdict, showPlaces) {
   const box = $('verdict');
@@ -139,8 +140,10 @@ function showVerdict(verdict, showPlaces) {
       button.className = 'verdict-show';
       button.textContent = item.places.length > 1 ? `Show the ${item.places.length} places` : 'Show where';
       button.setAttribute('data-testid', 'verdict-show');
-      // A fine item's places (the worst element) are shown as facts, not warnings.
-      button.addEventListener('click', () => showPlaces(item.places, { tone: item.level === 'ok' ? 'info' : 'warn' }));
+      // A fine item's places (the worst element) are shown as facts, not
+      // warnings; a tetrahedron's on the clipping plane.
+      const options = { tone: item.level === 'ok' ? 'info' : 'warn', clip: item.id === 'tets' };
+      button.addEventListener('click', () => showPlaces(item.places, options));
       li.append(' ', button);
     }
     return li;
