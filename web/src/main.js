@@ -31,6 +31,7 @@ import { Viewer } from './viewer.js';
 import { ViewMarks } from './view-marks.js';
 import { listenViewKeys } from './view-keys.js';
 import { withPrismsSplit } from './prisms.js';
+import { applySolverPreset, showSolverHint } from './solver-preset.js';
 import { Refinements } from './refine.js';
 import { Measure } from './measure.js';
 import { SizeView } from './size-view.js';
@@ -670,33 +671,6 @@ async function suggestedFirstLayer() {
   return r.ok ? String(Number((total * r.fractions[1]).toPrecision(2))) : '';
 }
 
-/** The preset of the chosen solver (from the core), or undefined. */
-const chosenPreset = () => client.solverPresets?.find((p) => p.name === $('solver').value);
-
-/** Says what the chosen solver's preset sets, under the select. */
-function showSolverHint() {
-  const preset = chosenPreset();
-  $('solver-hint').hidden = !preset;
-  if (!preset) return;
-  const units = preset.outputUnits ? `written in ${preset.outputUnits}` : 'in the input\'s unit';
-  const format = preset.format === 'msh' ? `MSH ${preset.mshVersion}` : exportFormat(preset.format).label;
-  const elements = preset.prisms ? 'layer prisms kept' : 'tetrahedra only';
-  $('solver-hint').textContent = `${preset.label}: ${elements}, ${format}, ${units}.${preset.note ? ` Then: ${preset.note}.` : ''}`;
-}
-
-/** Sets the controls a solver's preset decides (element types, export
- * format, units) to its values; the user may change them after. */
-function applySolverPreset() {
-  const preset = chosenPreset();
-  if (preset) {
-    $('keep-prisms').checked = preset.prisms;
-    $('export-format').value = preset.format === 'msh' ? `msh-${preset.mshVersion}` : preset.format;
-    $('output-units').value = preset.outputUnits;
-    syncExportFormats();
-  }
-  showSolverHint();
-}
-
 /** The clipping options chosen in the panel. */
 function volumeOptions() {
   return {
@@ -819,7 +793,7 @@ async function meshWith(options, write = {}) {
     showFailure(result, 'mesh', `Mesh failed: ${current.name}: `);
     // A refused flow extension is also said next to the extension fields.
     if (result.option === 'flowExtension' || /flow extension|flowExtension/i.test(result.error)) {
-      $('flow-error').textContent = result.error;
+      $('flow-error').textContent = problems.words(result.error);
       $('flow-error').hidden = false;
     }
     return null;
@@ -938,7 +912,7 @@ $('layer-mode').addEventListener('change', (e) => {
   syncLayerFields();
 });
 $('wall-on').addEventListener('change', syncLayerFields);
-$('solver').addEventListener('change', applySolverPreset);
+$('solver').addEventListener('change', () => applySolverPreset(client.solverPresets, syncExportFormats));
 $('surface-only').addEventListener('change', () => {
   syncLayerFields();
   syncExportFormats();
@@ -996,7 +970,7 @@ view.addEventListener('drop', (e) => {
 
 client.ready.then(
   () => {
-    showSolverHint();
+    showSolverHint(client.solverPresets);
     document.body.setAttribute('data-ready', 'true');
   },
   (e) => showError(`The mesher could not start: ${e.message}`),
@@ -1008,7 +982,7 @@ const settings = new Settings({
     showSizeLabel();
     syncLayerFields();
     syncExportFormats();
-    showSolverHint();
+    showSolverHint(client.solverPresets);
   },
 });
 listenShareLink(settings, settings.restore(), (text) => bar.announce(text));
