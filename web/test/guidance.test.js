@@ -210,6 +210,17 @@ describe('the verdict on a mesh', () => {
     assert.doesNotMatch(v.items.find((i) => i.id === 'warning-1').text, /say units/);
   });
 
+  test('a warning of the meshing that names places has them: the layer grown after the wall was relaxed', () => {
+    const warning =
+      'the boundary layer could not grow at (1, 2, 3) and 2 more places (a needle-like spike or fold the wall follows ' +
+      'from the input): the wall was smoothed there (14 vertices, moved at most 0.02)';
+    const v = meshVerdict(fakeResult({ tets: [[0.5, 0, [0, 0, 0]]], triangles: [[0.9, [0, 0, 0]]], warnings: [warning] }), { unit: 'mm', scale: 10 });
+    const item = v.items.find((i) => i.id === 'warning-1');
+    assert.equal(item.level, 'check');
+    assert.deepEqual(item.places.map((p) => p.point), [[1, 2, 3]]);
+    assert.match(item.text, /could not grow at \(1, 2, 3\) mm/);
+  });
+
   test('no layer is a note, not a check; surface only has no volume items', () => {
     const v = meshVerdict(fakeResult({ tets: [[0.5, 0, [0, 0, 0]]], triangles: [[0.9, [0, 0, 0]]] }));
     assert.equal(v.items.find((i) => i.id === 'layer').level, 'note');
