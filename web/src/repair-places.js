@@ -54,6 +54,7 @@ export function repairPlaces(analysis) {
   }
   for (const e of r.damaged_ends ?? []) {
     const what = damage(e);
+    const depth = Number((e.depth / e.radius).toPrecision(2));
     const end = `the damaged vessel end at ${at(e.where)} (radius ${withUnit(e.radius, unit).trim()}${what ? `; triangles ${what}` : ''})`;
     items.push(
       e.trimmed
@@ -62,7 +63,7 @@ export function repairPlaces(analysis) {
             point: e.point,
             radius: e.radius,
             what: 'a damaged vessel end, trimmed back',
-            text: `Trimmed back ${Number((e.depth / e.radius).toPrecision(2))} radii to a clean cross-section: ${end}.`,
+            text: `Trimmed back ${depth} ${depth === 1 ? 'radius' : 'radii'} to a clean cross-section: ${end}.`,
           }
         : {
             kind: 'damaged',

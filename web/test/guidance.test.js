@@ -350,6 +350,8 @@ describe('the places the preparation repaired', () => {
         '(radius 1 mm; triangles 5 crossing, 2 folded or twisted, 14 around tiny loops).',
     );
     assert.deepEqual(places[1].point, [0, 0, 8.6], 'the mark is at the clean cut');
+    const one = repairPlaces({ ...analysis, repairs: { damaged_ends: [{ ...analysis.repairs.damaged_ends[0], depth: 1 }] } });
+    assert.match(one[0].text, /^Trimmed back 1 radius to/);
     assert.match(places[2].text, /^Not trimmed: the damaged vessel end at \(0, 0, -9\.5\) mm \(radius 0\.5 mm; triangles 3 crossing\), the damage/);
     for (const p of places) assert.ok(!namesApiOption(p.text), p.text);
     assert.deepEqual(repairPlaces({ units: { unit: 'mm' }, bounding_box: { diagonal: 1 } }), []);
