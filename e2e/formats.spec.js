@@ -172,18 +172,18 @@ test('names the core refuses are marked at their input and nothing is meshed', a
   expect(errors).toEqual([]);
 });
 
-test('units: metres guessed plainly, an unsure guess asked and changed; caps kept as wall', async ({ page }) => {
+test('units: metres guessed plainly and not asked, an unsure guess asked and changed; caps kept as wall', async ({ page }) => {
   const api = await nodeApi();
   const phantom = (scale) => Buffer.from(api.makePhantom({ kind: 'tube', voxel: 0.12, flatCaps: true, scale }).stl);
   const { errors } = await open(page);
   const units = page.getByTestId('stat-units');
   const prompt = page.getByTestId('units-prompt');
 
-  // A model in metres: guessed plainly, still asked once (a guess until
-  // confirmed); every length in m.
+  // A model in metres: the core is certain, so nothing is asked; the
+  // summary says how it was guessed; every length in m.
   await upload(page, 'metres.stl', phantom(0.003));
   await expect(units).toHaveText('m (guessed from the median vessel radius 0.00327)');
-  await expect(prompt).toContainText('Units: m, guessed from the median vessel radius 0.00327. Right?');
+  await expect(prompt).toBeHidden();
   await expect(page.getByTestId('stat-bbox')).toContainText(' m, diagonal 0.03497 m');
   await expect(page.getByTestId('opening-item').first()).toContainText('radius 0.003273 m');
   await expect(page.getByTestId('warnings')).toContainText('the model is in metres');

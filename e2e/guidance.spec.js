@@ -1,13 +1,14 @@
 import { expect, test } from '@playwright/test';
 
 import { lookAt, meshThroughRemedies } from './guided.js';
-import { cappedTubeVtp, openApp, setSizeAndLayers, upload } from './helpers.js';
+import { cappedTubeVtp, closedBifurcation, openApp, screenshots, setSizeAndLayers, upload } from './helpers.js';
 
 // How the page leads to a mesh (issue 45): the verdict on a good mesh and
 // on a mesh with known defects, a refusal said in the page's words with its
 // remedy and cleared when its cause changes, a failed action of the
 // preparation said in the bar with the way to its message, a side effect
-// of a preparation change said with Undo. Screenshots: out/guidance-*.
+// of a preparation change said with Undo, a closed model's fix offered
+// first at a Mesh press. Screenshots: out/guidance-*.
 
 test.use({ viewport: { width: 1440, height: 900 } });
 
@@ -36,11 +37,22 @@ test('a good mesh: ready for CFD, the verdict in sight and focused, the tables f
   // γ explained; the detailed tables folded under the verdict.
   await expect(page.getByTestId('gamma-t-help')).toHaveAttribute('title', /1 for a regular tetrahedron, 0 for a flat sliver/);
   await expect(page.getByTestId('tet-histogram')).toBeHidden();
-  // Where the worst tetrahedron is: marked in the view on request.
+  // Where the worst tetrahedron is: marked in the view on request, on the
+  // clipping plane moved through it (the cut facing the camera), not in
+  // the removed half.
   await expect(page.getByTestId('place-mark')).toHaveCount(0);
+  const cut = async () => Number(await page.getByTestId('volume-view').getAttribute('data-cut'));
+  const plane = () => Promise.all(['clip-axis', 'clip-position'].map((id) => page.getByTestId(id).inputValue()));
+  const before = await plane();
   await items.nth(1).getByTestId('verdict-show').click();
   await expect(page.getByTestId('place-mark')).toHaveCount(1);
   await expect(page.getByTestId('place-mark')).toHaveAccessibleName(/the worst tetrahedron, γt 0\.\d\d/);
+  await expect.poll(plane).not.toEqual(before);
+  await expect.poll(cut).toBeGreaterThan(0);
+  await expect(page.getByTestId('place-mark')).toBeVisible();
+  const mark = await page.getByTestId('place-mark').boundingBox();
+  const view = await page.getByTestId('viewer').boundingBox();
+  expect(Math.abs(mark.x + mark.width / 2 - (view.x + view.width / 2)), 'the view turned to it').toBeLessThan(30);
   await lookAt(page, 'guidance-verdict-ready', verdict);
 });
 
@@ -110,4 +122,29 @@ test('a failed action of the preparation: the bar says so and leads to its messa
   await expect(page.getByTestId('stat-openings')).toHaveText('2');
   await expect(page.getByTestId('smooth')).toHaveValue('auto');
   await expect(notice).toBeHidden();
+});
+
+test('a closed model meshed before it is cut open: the warning says so, the fix is the first button and goes on to the mesh', async ({ page }) => {
+  test.setTimeout(150_000);
+  await openApp(page);
+  await upload(page, 'closed-bifurcation.stl', await closedBifurcation());
+  await expect(page.getByTestId('cut-row')).toHaveCount(3);
+  await setSizeAndLayers(page, '0.35', '1');
+  await page.getByTestId('remesh').click();
+  const error = page.getByTestId('error');
+  await expect(error).toContainText('The openings look wrong: The surface is closed');
+  // The fix first (primary, focused); meshing as it is only after it.
+  const buttons = page.getByTestId('error-actions').locator('button');
+  await expect(buttons).toHaveCount(2);
+  await expect(buttons.nth(0)).toHaveAttribute('data-testid', 'remedy-cut_here');
+  await expect(buttons.nth(0)).toHaveText('Cut the 3 vessel ends open');
+  await expect(buttons.nth(0)).toBeFocused();
+  await expect(buttons.nth(1)).toHaveAttribute('data-testid', 'mesh-anyway');
+  await screenshots(page, 'guidance-closed-fix', error);
+  // One press: the ends are cut open and the model meshed.
+  await buttons.nth(0).click();
+  await expect(page.getByTestId('verdict')).toBeVisible({ timeout: 120_000 });
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
+  await expect(page.locator('#out-caps')).toHaveText('inlet, outlet_1, outlet_2');
+  await expect(error).toBeHidden();
 });

@@ -1,10 +1,10 @@
 // The hard inputs of e2e/hard-files.spec.js, generated in the test (no
 // real data): each stands for a defect users' files have (README of
-// ../shared/data/vascular-hard). Made from the JS API's phantoms or voxels
-// (tree.js); when the core's phantoms of these kinds land (issue 44:
-// `makePhantom({kind: ...})`), they can replace these.
+// ../shared/data/vascular-hard). Made from the JS API's phantoms (damaged
+// ends, crossing vessels: the core's own), or from them and voxels
+// (tree.js) where the core has none of the kind.
 import { nodeApi } from './helpers.js';
-import { stlOf, treeStl, trianglesOf, voxelStl } from './tree.js';
+import { stlOf, treeStl, voxelStl } from './tree.js';
 
 /** Whether p is within `r` of the segment a-b (a capsule: rounded ends). */
 function inCapsule(p, a, b, r) {
@@ -56,18 +56,18 @@ export async function domedCapsTube(lift = 0.05) {
   return stlOf(triangles, 'vesselmesh e2e domed caps');
 }
 
-/**
- * An open tube (radius 1 along z) whose top end is damaged: its last
- * `depth` (0.6) is folded through itself (x mirrored and stretched), as a
- * segmentation leaves a vessel where it met the image border. The surface
- * crosses itself there.
- */
-export async function damagedEndTube(depth = 0.6) {
-  const tube = Buffer.from((await nodeApi()).makePhantom({ kind: 'tube', voxel: 0.12 }).stl);
-  const triangles = trianglesOf(tube);
-  const zmax = Math.max(...triangles.flat().map((v) => v[2]));
-  const fold = ([x, y, z]) => (z > zmax - depth ? [-1.6 * x, y, z] : [x, y, z]);
-  return stlOf(triangles.map((t) => t.map(fold)), 'vesselmesh e2e damaged end');
+/** A bifurcation whose every opening is damaged as an image border leaves
+ * it (folded rim triangles, a flap through the wall, tiny loops, a twist
+ * that makes the surface non-orientable): the core's phantom. */
+export async function damagedEnds() {
+  return Buffer.from((await nodeApi()).makePhantom({ kind: 'bifurcation', voxel: 0.12, damagedEnds: true }).stl);
+}
+
+/** Two vessels that touch and pass into each other, each its own closed
+ * shell but for its two open ends: the surface crosses itself where they
+ * meet (the core's phantom). */
+export async function crossingVessels() {
+  return Buffer.from((await nodeApi()).makePhantom({ kind: 'crossing' }).stl);
 }
 
 /** A bifurcation in centimetres (the parent's radius 0.1: 1 mm). */

@@ -1,6 +1,7 @@
 import { expect, test } from '@playwright/test';
 
 import { dentedTubeStl } from '../wasm/test/dented-tube.js';
+import { meshThroughRemedies } from './guided.js';
 import { bifurcationStl, nodeApi, openWatched as open, screenshots, setSizeAndLayers, upload } from './helpers.js';
 
 // Repairs in the Prepare step: a dirty segmentation (small holes, a fin,
@@ -8,6 +9,8 @@ import { bifurcationStl, nodeApi, openWatched as open, screenshots, setSizeAndLa
 // repaired with the defaults, its holes listed with where they are and
 // closed; with repair off or no hole size, the holes become openings and
 // meshing the non-manifold surface is refused, said where the user looks.
+// A surface that crosses itself is re-surfaced there by default (listed
+// and marked where), and refused with Repair off, the repair its remedy.
 // The largest volume change (Advanced) refuses a wall too coarse for the
 // vessel and lets the user accept it.
 
@@ -118,21 +121,59 @@ test('the largest volume change refuses a wall too coarse for the vessel, and th
   expect(errors).toEqual([]);
 });
 
-test('a surface that crosses itself: the warning says where, meshing refuses saying so, the page keeps working', async ({ page }) => {
+test('a surface that crosses itself: re-surfaced by default, said and marked where, meshed; with Repair off, refused with the repair as its remedy', async ({ page }) => {
+  test.setTimeout(150_000);
   const errors = await open(page);
   await upload(page, 'dented-tube.stl', Buffer.from(dentedTubeStl()));
-  const warnings = page.getByTestId('warnings');
-  await expect(warnings).toContainText(/the surface crosses itself at 1 place \(\d+ pairs of triangles\), at \(-?[\d.]+, -?[\d.e-]+, [\d.]+\) mm/);
-  await expect(warnings).toContainText('fix it in the segmentation');
+  // Re-surfaced by default: said in the repairs in the page's words, with
+  // its place, lettered as its mark in the view; nothing is left crossing.
+  await expect(page.getByTestId('repair-note')).toContainText('1 place re-surfaced where the surface crossed itself');
+  const place = page.getByTestId('repair-place');
+  await expect(place).toHaveCount(1);
+  await expect(place).toHaveAttribute('data-kind', 'resurfaced');
+  await expect(place).toContainText(
+    /Re-surfaced where the surface crossed itself, at \(-0\.8\d+, 0\.0\d+, 4\.2\d+\) mm: 58 pairs of crossing triangles, 1,416 triangles replaced by 1,112\./,
+  );
+  const mark = page.getByTestId('repair-mark');
+  await expect(mark).toHaveCount(1);
+  await expect(mark).toHaveText('A');
+  await expect(mark).toBeVisible();
+  await expect(mark).toHaveAccessibleName(/^Repair A: re-surfaced where the surface crossed itself/);
+  await place.hover();
+  await expect(mark).toHaveClass(/active/);
+  // The core's long account is not said twice; nothing is asked before meshing.
+  await expect(page.getByTestId('warnings')).not.toContainText('crossed itself');
+  await expect(page.getByTestId('openings-check')).toBeHidden();
+  await screenshots(page, 'repair-resurfaced', page.getByTestId('repair-places'));
+  await setSizeAndLayers(page, '0.3', '1');
+  expect(await meshThroughRemedies(page)).toEqual([]);
+  await expect(page.locator('#out-caps')).toHaveText('inlet, outlet_1');
+
+  // Repair off: the crossing stays, said before meshing with the repair as
+  // its fix; meshing refuses, saying where, with the same remedy, which
+  // re-surfaces it and meshes.
+  await page.getByTestId('repair').selectOption('off');
+  await expect(place).toHaveCount(0);
+  await expect(mark).toHaveCount(0);
+  await expect(page.getByTestId('warnings')).toContainText(/the surface crosses itself at 1 place \(\d+ pairs of triangles\), at \(-?[\d.]+, -?[\d.e-]+, [\d.]+\) mm/);
+  const warning = page.locator('[data-testid=opening-warning][data-warning=self-crossing]');
+  await expect(warning).toContainText('Repair is off');
+  await expect(warning.getByTestId('warning-repair')).toHaveText('Repair the surface');
   await page.getByTestId('remesh').click();
   const error = page.getByTestId('error');
   await expect(error).toContainText(/the input crosses itself at \(-?[\d.]+, -?[\d.e-]+, [\d.]+\) mm \(1 place; fix it in the segmentation/);
+  await expect(error).not.toContainText(/clipPlanes|repair off/);
   await expect(error).toBeInViewport();
+  const remedy = page.getByTestId('remedy-repair');
+  await expect(remedy).toHaveText('Repair the surface');
+  await expect(remedy).toBeFocused();
+  await expect(page.getByTestId('place-mark').first()).toBeVisible();
   await screenshots(page, 'self-crossing-refused', error);
-  // The page keeps working: the sample loads and meshes.
-  await upload(page, 'bifurcation.stl', phantom());
+  await remedy.click();
+  await expect(page.locator('body')).toHaveAttribute('data-remedy', 'done', { timeout: 120_000 });
+  await expect(page.getByTestId('repair')).toHaveValue('auto');
+  await expect(place).toHaveCount(1);
+  await expect(page.getByTestId('verdict')).toBeVisible();
   await expect(error).toBeHidden();
-  await page.getByTestId('remesh').click();
-  await expect(page.getByTestId('remesh-result')).toBeVisible({ timeout: 90_000 });
   expect(errors).toEqual([]);
 });

@@ -129,7 +129,7 @@ test('the options are in the address; a link sets them over the remembered ones'
   await other.goto('/#size-mode=size&size-value=0.5&layers=2&wall-on=1&export-format=vtu');
   await expect(other.locator('body')).toHaveAttribute('data-ready', 'true');
   await expect(other.locator('#link-notice-text')).toHaveText(
-    'The link changed these options: size-mode, size-value, layers, wall-on, mesher2d, export-format.',
+    'The link changed these options: “Size”, “Size N or h”, “Boundary layer: Layers”, “Grow the vessel wall outward”, “2D mesher”, “Format”.',
   );
   await other.getByTestId('load-sample').click();
   await expect(other.getByTestId('stat-openings')).toHaveText('3');
@@ -160,11 +160,13 @@ test('a link with invalid options: those are ignored and said, the valid ones se
   await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
   const notice = page.getByTestId('link-notice');
   await expect(notice).toBeVisible();
-  await expect(notice).toContainText('layers=2.5: must be a whole number from 0 to 100');
-  await expect(notice).toContainText('size-mode=huge: must be one of perCircumference, size');
-  await expect(notice).toContainText('colour: not an option of this page');
+  // Said in the page's words: the controls' names and choices, not the API's.
+  await expect(notice).toContainText('“Boundary layer: Layers” set to “2.5”: must be a whole number from 0 to 100');
+  await expect(notice).toContainText('“Size” set to “huge”: must be one of “Edges per circumference N (h = 2πR/N)”, “Uniform edge length h”');
+  await expect(notice).toContainText('“colour”: not an option of this page');
   await expect(notice).toContainText('ignored');
-  await expect(notice).toContainText('The link changed these options: growth, output-units.');
+  await expect(notice).toContainText('The link changed these options: “Boundary layer: Growth ratio”, “Output units”.');
+  await expect(notice).not.toContainText(/perCircumference|size-mode/);
   await screenshots(page, 'settings-link-notice', notice);
   await page.getByTestId('load-sample').click();
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
@@ -210,7 +212,7 @@ test('Copy link gives a link that opens with the same options', async ({ browser
   await expect(them.getByTestId('solver')).toHaveValue('svfsi');
   await expect(them.getByTestId('first-layer-yplus')).toHaveValue('2');
   await expect(them.getByTestId('yplus-fields')).toBeVisible();
-  await expect(them.getByTestId('link-notice')).toContainText('The link changed these options: solver, size-value,');
+  await expect(them.getByTestId('link-notice')).toContainText('The link changed these options: “Solver”, “Size N or h”,');
   await fresh.close();
 });
 

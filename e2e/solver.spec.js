@@ -47,8 +47,10 @@ test('OpenFOAM: the native case by default; as MSH 2.2: prisms in metres, tags u
   await page.getByTestId('layers').fill('2');
   await mesh(page);
   await expect(page.getByTestId('out-preset')).toBeVisible();
-  await expect(page.getByTestId('out-preset')).toContainText('Preset openfoam: mshVersion 2.2, outputUnits m');
-  await expect(page.getByTestId('out-preset')).toContainText('yours: prisms true'); // the checkbox says so
+  // In the page's words, not the API's option names.
+  await expect(page.getByTestId('out-preset')).toContainText('Preset for OpenFOAM (polyMesh case): MSH 2.2, written in m');
+  await expect(page.getByTestId('out-preset')).toContainText('yours: layer prisms kept'); // the checkbox says so
+  await expect(page.getByTestId('out-preset')).not.toContainText(/mshVersion|outputUnits|prisms true/);
   await screenshots(page, 'solver-openfoam', page.getByTestId('solver'));
 
   const { name, bytes } = await exportDownload(page);
@@ -90,7 +92,7 @@ test('FEniCS: tetrahedra only; a target y+ sizes the first layer, shown in the r
   await page.getByTestId('first-layer-yplus').fill('2');
   await page.getByTestId('inlet-velocity').fill('0.4');
   await mesh(page);
-  await expect(page.getByTestId('out-preset')).toContainText('Preset fenics:');
+  await expect(page.getByTestId('out-preset')).toContainText('Preset for FEniCS (dolfinx):');
   const yplus = page.getByTestId('out-yplus');
   await expect(yplus).toBeVisible();
   await expect(yplus).toContainText(/^First layer [\d.e-]+ mm for y\+ 2 at inlet \(diameter [\d.]+ mm, 0\.4 m\/s: Re \d+/);

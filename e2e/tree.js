@@ -112,11 +112,3 @@ export function stlOf(triangles, header = 'vesselmesh e2e') {
   triangles.forEach((t, f) => t.forEach((v, c) => v.forEach((x, a) => buf.writeFloatLE(x, 84 + 50 * f + 12 + 12 * c + 4 * a))));
   return buf;
 }
-
-/** The triangles [[x, y, z] x 3] of a binary STL. */
-export function trianglesOf(stl) {
-  const n = stl.readUInt32LE(80);
-  return Array.from({ length: n }, (_, t) =>
-    [0, 1, 2].map((c) => [0, 1, 2].map((a) => stl.readFloatLE(84 + 50 * t + 12 + 12 * c + 4 * a))),
-  );
-}

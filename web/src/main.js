@@ -31,6 +31,7 @@ import { Viewer } from './viewer.js';
 import { ViewMarks } from './view-marks.js';
 import { listenViewKeys } from './view-keys.js';
 import { withPrismsSplit } from './prisms.js';
+import { applySolverPreset, showSolverHint } from './solver-preset.js';
 import { Refinements } from './refine.js';
 import { Measure } from './measure.js';
 import { SizeView } from './size-view.js';
@@ -102,11 +103,12 @@ const openingChecks = new OpeningWarnings({
   bar,
   problems,
   model,
-  apply: (remedy) => remedyPressed(remedy, 'prepare'),
+  apply: (remedy, then) => remedyPressed(remedy, then ? 'mesh' : 'prepare', then),
 });
 let prepHistory = null; // undo and redo of the preparation (below)
 const prepare = new Prepare({
   viewer,
+  marks,
   cutAt: (point) => whenAnalyzed('a job is running; try again when it ends', () => client.cutAt(point)),
   reanalyze: () => reanalyze({ onError: () => {} }),
   words: (text) => problems.words(text),
@@ -215,13 +217,14 @@ function clearError() {
   problems.clear();
 }
 
-/** A remedy's button pressed: applied (remedy-actions.js), one at a time. */
-async function remedyPressed(remedy, stage) {
+/** A remedy's button pressed: applied (remedy-actions.js), one at a time;
+ * at the 'mesh' stage, `then` (default: Mesh) goes on after it. */
+async function remedyPressed(remedy, stage, then = () => act(remesh)) {
   if (!current || busy || acting) return;
   problems.clear();
   document.body.dataset.remedy = 'applying';
   try {
-    await applyRemedy(remedy, stage, { prepare, reanalyze, mesh: () => act(remesh) });
+    await applyRemedy(remedy, stage, { prepare, reanalyze, mesh: then });
   } finally {
     document.body.dataset.remedy = 'done';
   }
@@ -668,33 +671,6 @@ async function suggestedFirstLayer() {
   return r.ok ? String(Number((total * r.fractions[1]).toPrecision(2))) : '';
 }
 
-/** The preset of the chosen solver (from the core), or undefined. */
-const chosenPreset = () => client.solverPresets?.find((p) => p.name === $('solver').value);
-
-/** Says what the chosen solver's preset sets, under the select. */
-function showSolverHint() {
-  const preset = chosenPreset();
-  $('solver-hint').hidden = !preset;
-  if (!preset) return;
-  const units = preset.outputUnits ? `written in ${preset.outputUnits}` : 'in the input\'s unit';
-  const format = preset.format === 'msh' ? `MSH ${preset.mshVersion}` : exportFormat(preset.format).label;
-  const elements = preset.prisms ? 'layer prisms kept' : 'tetrahedra only';
-  $('solver-hint').textContent = `${preset.label}: ${elements}, ${format}, ${units}.${preset.note ? ` Then: ${preset.note}.` : ''}`;
-}
-
-/** Sets the controls a solver's preset decides (element types, export
- * format, units) to its values; the user may change them after. */
-function applySolverPreset() {
-  const preset = chosenPreset();
-  if (preset) {
-    $('keep-prisms').checked = preset.prisms;
-    $('export-format').value = preset.format === 'msh' ? `msh-${preset.mshVersion}` : preset.format;
-    $('output-units').value = preset.outputUnits;
-    syncExportFormats();
-  }
-  showSolverHint();
-}
-
 /** The clipping options chosen in the panel. */
 function volumeOptions() {
   return {
@@ -724,7 +700,14 @@ function drawLegend(volume) {
 /** Shows a new mesh: the result part of the panel (its verdict in sight
  * and focused), the caps' names by the openings, the volume in the view. */
 function showResult(result) {
-  const showPlaces = (places, { zoom = true, tone } = {}) => problems.showPlaces(places, '', { zoom, tone });
+  const showPlaces = (places, { zoom = true, tone, clip = false } = {}) => {
+    // A place inside the volume: the clipping plane through it, facing the camera.
+    if (clip && zoom && shown === 'volume' && places.length) {
+      const { axis, position, flip } = volumeView.clipThrough(places[0].point);
+      [$('clip-axis').value, $('clip-position').value, $('clip-flip').checked] = [axis, String(position), flip];
+    }
+    problems.showPlaces(places, '', { zoom, tone });
+  };
   showMeshResult(result, { model: model(), client, showPlaces });
   if (result.volume) $('show').prepend(volumeOption);
   else volumeOption.remove();
@@ -810,7 +793,7 @@ async function meshWith(options, write = {}) {
     showFailure(result, 'mesh', `Mesh failed: ${current.name}: `);
     // A refused flow extension is also said next to the extension fields.
     if (result.option === 'flowExtension' || /flow extension|flowExtension/i.test(result.error)) {
-      $('flow-error').textContent = result.error;
+      $('flow-error').textContent = problems.words(result.error);
       $('flow-error').hidden = false;
     }
     return null;
@@ -929,7 +912,7 @@ $('layer-mode').addEventListener('change', (e) => {
   syncLayerFields();
 });
 $('wall-on').addEventListener('change', syncLayerFields);
-$('solver').addEventListener('change', applySolverPreset);
+$('solver').addEventListener('change', () => applySolverPreset(client.solverPresets, syncExportFormats));
 $('surface-only').addEventListener('change', () => {
   syncLayerFields();
   syncExportFormats();
@@ -987,7 +970,7 @@ view.addEventListener('drop', (e) => {
 
 client.ready.then(
   () => {
-    showSolverHint();
+    showSolverHint(client.solverPresets);
     document.body.setAttribute('data-ready', 'true');
   },
   (e) => showError(`The mesher could not start: ${e.message}`),
@@ -999,7 +982,7 @@ const settings = new Settings({
     showSizeLabel();
     syncLayerFields();
     syncExportFormats();
-    showSolverHint();
+    showSolverHint(client.solverPresets);
   },
 });
 listenShareLink(settings, settings.restore(), (text) => bar.announce(text));

@@ -2,8 +2,9 @@
 // one opening only (no outlet), a vessel end left closed (the core proposed
 // to cut it, or proposes it still, and no opening is near it), openings so
 // small that they are defect loops of the surface rather than vessel ends;
-// and where the surface crosses itself (a damaged end to trim, or a place
-// to cut off). Pure logic over the analysis; the page shows the warnings
+// and where the surface still crosses itself (with the repairs off: turn
+// them on, they re-surface it; with them on, where they could not: a
+// damaged end to trim, or a place to cut off). Pure logic over the analysis; the page shows the warnings
 // by the openings and asks before meshing with openings that look wrong
 // (`blocking`: opening-warnings.js).
 import { crossingRemedy } from './remedies.js';
@@ -20,13 +21,15 @@ const distance = (p, q) => Math.hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]);
 
 /**
  * The warnings on the openings of `analysis`: [{id, text, places, remedy?,
- * blocking}] (remedy: a remedies.js remedy that fixes it; blocking: asked
- * about before meshing), [] when they look right.
+ * blocking}] (remedy: a remedies.js remedy that fixes it, `ends` when its
+ * places are vessel ends to cut open; blocking: asked about before
+ * meshing), [] when they look right.
  * @param {object} analysis the shown analysis
- * @param {{proposals?: object[]}} file the vessel ends proposed when the file
- *   was first analyzed (closed): {point, radius}
+ * @param {{proposals?: object[], prep?: object}} file the vessel ends
+ *   proposed when the file was first analyzed (closed): {point, radius};
+ *   the analyze options it was analyzed with (repair 'off')
  */
-export function openingWarnings(analysis, { proposals = [] } = {}) {
+export function openingWarnings(analysis, { proposals = [], prep = {} } = {}) {
   const openings = analysis.openings ?? [];
   // A surface meshing refuses anyway (pieces, non-manifold): its refusal,
   // with its remedy, comes first; the openings are said, not asked about.
@@ -37,28 +40,37 @@ export function openingWarnings(analysis, { proposals = [] } = {}) {
   const warnings = [];
   const crossings = analysis.self_crossings?.places ?? [];
   if (crossings.length) {
-    const remedy = crossingRemedy(crossings, openings);
+    const off = prep.repair === 'off';
+    const remedy = off ? { action: 'repair', places: crossings, value: 0 } : crossingRemedy(crossings, openings);
     const n = crossings.length;
     const where = n === 1 ? `at ${point(crossings[0], scale)} ${unit}` : `at ${n} places`;
     const end = remedy.action === 'trim_end' ? ', at a damaged vessel end' : '';
+    const why = off ? ' (Repair is off: with it on, such places are re-surfaced or trimmed)' : '';
     warnings.push({
       id: 'self-crossing',
-      text: `The surface crosses itself ${where} (marked in the view)${end}: meshing may fail there.`,
+      text: `The surface crosses itself ${where} (marked in the view)${end}: meshing may fail there${why}.`,
       places: crossings,
       remedy,
       blocking: false,
     });
   }
+  // The vessel ends proposed now and when the file was first analyzed,
+  // each once.
+  const seen = new Set();
+  const proposed = [...(analysis.clip_proposals ?? []), ...proposals].filter((end) => {
+    const key = end.point.map((x) => x.toPrecision(6)).join(',');
+    return !seen.has(key) && seen.add(key);
+  });
   if (!openings.length) {
     // Closed: no inlet nor outlet. Its vessel ends, when found, are the cuts.
-    const ends = [...(analysis.clip_proposals ?? []), ...proposals].map((end) => end.point);
+    const ends = proposed.map((end) => end.point);
     warnings.push({
       id: 'no-opening',
       text:
         'The surface is closed: it has no opening to be an inlet or an outlet. ' +
-        (ends.length ? 'Cut its vessel ends open (Cut these open).' : 'Add a cut on each vessel where it should end.'),
+        (ends.length ? 'Cut its vessel ends open.' : 'Add a cut on each vessel where it should end.'),
       places: [], // the proposed cuts are drawn already
-      ...(ends.length && { remedy: { action: 'cut_here', places: ends, value: 0 } }),
+      ...(ends.length && { remedy: { action: 'cut_here', places: ends, value: 0, ends: true } }),
       blocking: !refused,
     });
     return warnings;
@@ -67,13 +79,7 @@ export function openingWarnings(analysis, { proposals = [] } = {}) {
 
   // Ends still proposed, and ends proposed at first that no opening is near.
   const open = (end) => openings.some((o) => distance(o.centroid, end.point) < NEAR * end.radius);
-  const seen = new Set();
-  const closed = [...(analysis.clip_proposals ?? []), ...proposals].filter((end) => {
-    const key = end.point.map((x) => x.toPrecision(6)).join(',');
-    if (seen.has(key) || open(end)) return false;
-    seen.add(key);
-    return true;
-  });
+  const closed = proposed.filter((end) => !open(end));
   if (closed.length) {
     const widest = closed.reduce((a, b) => (b.radius > a.radius ? b : a));
     const wider = widest.radius > largest;
@@ -85,7 +91,7 @@ export function openingWarnings(analysis, { proposals = [] } = {}) {
         `${one ? 'A vessel end is' : `${closed.length} vessel ends are`} still closed${where}` +
         `${wider ? ': it is wider than every opening, so it is likely the inlet' : ''}.`,
       places: closed.map((end) => end.point),
-      remedy: { action: 'cut_here', places: closed.map((end) => end.point), value: 0 },
+      remedy: { action: 'cut_here', places: closed.map((end) => end.point), value: 0, ends: true },
       blocking: !refused,
     });
   }

@@ -1,7 +1,9 @@
 // The openings' warnings (opening-check.js) in the page: listed above the
 // openings, each with its remedy's button; and at a Mesh or Export press,
-// said in the action bar with their places marked and "Mesh anyway" (once
-// per analysis) before the model is meshed with openings that look wrong.
+// said in the action bar with their places marked, the fix as the first
+// (primary) button when the page has one (the cuts: made, then the press
+// goes on), and "Mesh anyway" (once per analysis) before the model is
+// meshed with openings that look wrong.
 import { openingWarnings } from './opening-check.js';
 import { remedyLabel } from './remedies.js';
 
@@ -13,7 +15,8 @@ export class OpeningWarnings {
    * @param {import('./action-bar.js').ActionBar} hooks.bar
    * @param {import('./problems.js').Problems} hooks.problems marks places
    * @param {() => {unit: string, scale: number}} hooks.model
-   * @param {(remedy: object) => Promise<void>} hooks.apply
+   * @param {(remedy: object, then?: () => Promise<void>) => Promise<void>} hooks.apply
+   *   applies a remedy; `then`: the press to go on with once it is applied
    */
   constructor({ bar, problems, model, apply }) {
     Object.assign(this, { bar, problems, model, apply });
@@ -46,18 +49,19 @@ export class OpeningWarnings {
   }
 
   /** Whether meshing may go on: no warning, or the user said so once; else
-   * the warnings are said in the bar with the way forward ("Mesh anyway"
-   * calls `again`: the press that was stopped), and false. */
+   * the warnings are said in the bar with the way forward (the first
+   * warning's fix that the page can apply, then `again`: the press that was
+   * stopped; or "Mesh anyway", which calls `again` at once), and false. */
   allowMesh(again) {
     const blocking = this.warnings.filter((w) => w.blocking);
     if (!blocking.length || this.accepted) return true;
-    const [first] = blocking;
+    const fix = blocking.find((w) => w.remedy)?.remedy;
     const actions = [];
-    if (first.remedy) {
+    if (fix) {
       actions.push({
-        label: remedyLabel(first.remedy, this.model()),
-        testId: `remedy-${first.remedy.action}`,
-        run: () => this.apply(first.remedy),
+        label: remedyLabel(fix, this.model()),
+        testId: `remedy-${fix.action}`,
+        run: () => this.apply(fix, again),
       });
     }
     actions.push({

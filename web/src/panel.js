@@ -1,8 +1,10 @@
 // The side panel's summary of the loaded surface: the file's format, its
 // length unit (and the question to confirm it when it was guessed without
 // certainty), counts, bounding box, caps, the quality histogram and the
-// analysis' warnings. The openings table is openings.js.
+// analysis' warnings (but those the repairs list: repair-places.js). The
+// openings table is openings.js.
 import { drawHistogram } from './histogram.js';
+import { saidAsRepair } from './repair-places.js';
 import { point, unitsQuestion, unitsText, withUnit } from './units.js';
 import { inputQualityNote } from './verdict.js';
 import { inPageWords } from './words.js';
@@ -58,8 +60,9 @@ export function showAnalysis(name, analysis, prep) {
   $('quality-note').hidden = !note;
   drawHistogram($('histogram'), a.quality.histogram);
 
+  // The repairs with a place are listed by the repairs (repair-places.js).
   $('warnings').replaceChildren(
-    ...a.warnings.map((w) => {
+    ...a.warnings.filter((w) => !saidAsRepair(w)).map((w) => {
       const li = document.createElement('li');
       li.textContent = inPageWords(w, { unit, scale: bb.diagonal });
       return li;

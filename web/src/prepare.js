@@ -48,6 +48,8 @@ export class Prepare {
   /**
    * @param {object} hooks
    * @param {import('./viewer.js').Viewer} hooks.viewer
+   * @param {import('./view-marks.js').ViewMarks} [hooks.marks] where the
+   *   repaired places are marked
    * @param {(point: number[]) => Promise<object>} hooks.cutAt the core's cut
    *   across the vessel at the analyzed surface's point nearest `point`:
    *   {ok, point, normal, radius} or {ok: false, error}
@@ -62,7 +64,7 @@ export class Prepare {
    * @param {(text: string) => string} [hooks.words] a core message in the
    *   page's words
    */
-  constructor({ viewer, cutAt, reanalyze, showInput, onChange = () => {}, onFail = () => {}, onCut = () => {}, words = (t) => t }) {
+  constructor({ viewer, marks, cutAt, reanalyze, showInput, onChange = () => {}, onFail = () => {}, onCut = () => {}, words = (t) => t }) {
     Object.assign(this, { viewer, cutAt, reanalyze, showInput, onChange, onFail, onCut, words });
     this.discs = new CutDiscs(viewer);
     this.cuts = []; // {point, normal, radius, tilt: [a, b] degrees, offset: radii moved, source}
@@ -76,7 +78,13 @@ export class Prepare {
     this.moving = null; // the running move along the vessel
     this.unit = 'mm';
     this.scale = 0;
-    this.repairs = new Repairs({ viewer, reanalyze: () => this._reanalyze(), showError: (m) => this._fail(m, 'Repair') });
+    this.repairs = new Repairs({
+      viewer,
+      marks,
+      reanalyze: () => this._reanalyze(),
+      showError: (m) => this._fail(m, 'Repair'),
+      showInput: () => this.showInput(),
+    });
     this._listen();
   }
 
@@ -328,13 +336,20 @@ export class Prepare {
    * there) and makes the cuts: a remedy's "Cut here" or, with `trim`,
    * "Trim the damaged end" (where the section at the point is no closed
    * loop, the vessel is cut further in: TRIM_STEPS radii from the nearest
-   * opening towards the model's middle). The error (also shown here), or
-   * null.
+   * opening towards the model's middle). A point of a listed or proposed
+   * cut (a vessel end) is that cut. The error (also shown here), or null.
    */
   async cutAtPlaces(points, { trim = false } = {}) {
     this.clearError();
     const missed = [];
+    const key = (p) => p.map((x) => Number(x).toPrecision(9)).join(',');
     for (const p of points) {
+      if (this.cuts.some((c) => key(c.point) === key(p))) continue;
+      const proposed = this.proposals.find((c) => key(c.point) === key(p));
+      if (proposed) {
+        this.cuts.push({ ...proposed });
+        continue;
+      }
       let found = await this.cutAt(p);
       for (const q of trim ? this._inward(p) : []) {
         if (found.ok) break;

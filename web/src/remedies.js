@@ -1,10 +1,15 @@
 // What the user can do about a refusal, as a control: the API's
-// Failure.remedy {action, places, value} when the core gives one, else
-// (until every refusal carries one) read from today's messages: the one
-// place that maps messages to remedies, so that it can later be switched
-// to `remedy` only (remedyOf: the `fromMessage` fallback). Each remedy has
-// the label of the button that applies it, in the page's words. Pure logic
-// (no DOM): the page applies them (remedy-actions.js).
+// Failure.remedy {action, places, value} when the core gives one (layers
+// that cannot grow: no_layers; crossings, non-manifold or non-orientable
+// surfaces with repair off: repair; several pieces: largest_component),
+// else read from the message, for the refusals that carry none yet: the
+// element budget (a coarser size), a crossing left with repair on (trim the
+// damaged end, or cut there), a patch too folded (smooth), a closed surface
+// (its proposed cuts), the unit. This is the one place that maps messages
+// to remedies (remedyOf: the `fromMessage` fallback), to go as the core
+// gives the rest. Each remedy has the label of the button that applies it,
+// in the page's words. Pure logic (no DOM): the page applies them
+// (remedy-actions.js).
 import { withUnit } from './units.js';
 
 /** The actions of the API's vocabulary, in the order they are offered. */
@@ -69,8 +74,9 @@ export function crossingRemedy(places, openings = []) {
 }
 
 /**
- * A remedy read from a message of today's core: {action, places, value}
- * (and for `coarser` the size `mode` its value is in), or null.
+ * A remedy read from a message of a refusal the core gives no remedy for:
+ * {action, places, value} (and for `coarser` the size `mode` its value is
+ * in), or null.
  * @param {{error: string, option?: string}} failure
  * @param {{size?: {mode: string, value: number}, proposals?: number[][],
  *   openings?: object[]}} context the size asked; the vessel ends the
@@ -85,9 +91,6 @@ export function fromMessage({ error = '', option }, { size, proposals = [], open
   }
   if (/crosses itself/.test(error)) return crossingRemedy(places.slice(0, 1), openings);
   if (/too folded there/.test(error)) return { action: 'smooth', places, value: 10 };
-  if (/boundary layer: .*\blayers 0\b/.test(error)) return { action: 'no_layers', places, value: 0 };
-  if (/non-manifold .*repair auto/.test(error)) return { action: 'repair', places, value: 0 };
-  if (/connected components/.test(error)) return { action: 'largest_component', places: [], value: 0 };
   if (/surface is closed|no opening/.test(error) && proposals.length) {
     return { action: 'cut_here', places: proposals, value: 0 };
   }
@@ -115,8 +118,9 @@ export const preparesAgain = (remedy) =>
 
 /**
  * The label of the button that applies `remedy`, in the page's words:
- * 'Trim the damaged end', 'Cut here', 'Use a coarser size (h = 0.5 mm)'.
- * @param {{action: string, places?: number[][], value?: number, mode?: string}} remedy
+ * 'Trim the damaged end', 'Cut here', 'Cut the 3 vessel ends open' (its
+ * places are vessel ends: `ends`), 'Use a coarser size (h = 0.5 mm)'.
+ * @param {{action: string, places?: number[][], value?: number, mode?: string, ends?: boolean}} remedy
  * @param {{unit?: string}} model
  */
 export function remedyLabel(remedy, { unit = '' } = {}) {
@@ -125,6 +129,7 @@ export function remedyLabel(remedy, { unit = '' } = {}) {
     case 'trim_end':
       return n > 1 ? `Trim the ${n} damaged ends` : 'Trim the damaged end';
     case 'cut_here':
+      if (remedy.ends) return n > 1 ? `Cut the ${n} vessel ends open` : 'Cut the vessel end open';
       return n > 1 ? `Cut at these ${n} places` : 'Cut here';
     case 'coarser':
       if (remedy.mode === 'perCircumference') return `Use a coarser size (N = ${remedy.value})`;

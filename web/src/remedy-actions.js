@@ -20,22 +20,26 @@ function setControl(id, value) {
 
 /**
  * Applies `remedy` of a failure at `stage` ('mesh': the mesh is made again
- * after a change of the options or of the surface that fixes it).
+ * after a change of the options or of the surface that fixes it, the cuts
+ * included).
  * @param {{action: string, places: number[][], value: number, mode?: string}} remedy
  * @param {string} stage
  * @param {object} hooks
  * @param {import('./prepare.js').Prepare} hooks.prepare
  * @param {(prep?: object) => Promise<string|null>} hooks.reanalyze analyzes
  *   again with the panel's analyze options; the error or null
- * @param {() => Promise<void>} hooks.mesh presses Mesh
+ * @param {() => Promise<void>} hooks.mesh presses Mesh (or the press that
+ *   was stopped: Export)
  */
 export async function applyRemedy(remedy, stage, { prepare, reanalyze, mesh }) {
   const { action, value } = remedy;
   switch (action) {
     case 'trim_end':
-    case 'cut_here':
-      await prepare.cutAtPlaces(remedy.places, { trim: action === 'trim_end' });
+    case 'cut_here': {
+      const error = await prepare.cutAtPlaces(remedy.places, { trim: action === 'trim_end' });
+      if (!error && stage === 'mesh') await mesh();
       return;
+    }
     case 'units':
       $('units-prompt').hidden = false;
       $('units-prompt').scrollIntoView({ block: 'center', behavior: 'instant' });

@@ -2,13 +2,17 @@
 // manifold and close small holes; off: only the safe repairs) and the hole
 // size (a boundary loop whose equivalent radius is under this fraction of
 // the local vessel radius is a hole, larger ones are openings), then what
-// the analysis repaired: a summary line (fins, split edges and vertices,
-// twists, specks, holes) and the holes, listed (centre, radius against the
-// vessel's, closed or left open) and marked on the surface. Changing a
+// the analysis repaired: a summary line (places re-surfaced, ends trimmed,
+// fins, split edges and vertices, twists, specks, holes), the places
+// re-surfaced where the surface crossed itself and the damaged ends
+// trimmed (repair-places.js: listed in the page's words and lettered as
+// their marks in the view), and the holes, listed (centre, radius against
+// the vessel's, closed or left open) and marked on the surface. Changing a
 // control analyzes the surface again.
 import * as THREE from 'three';
 
 import { disposeOverlay } from './overlay.js';
+import { repairPlaces } from './repair-places.js';
 import { length, point } from './units.js';
 
 const $ = (id) => document.getElementById(id);
@@ -26,7 +30,11 @@ export function repairSummary(a) {
   const r = a.repairs ?? {};
   const closed = (a.holes ?? []).filter((h) => h.closed);
   const added = closed.reduce((n, h) => n + h.triangles_added, 0);
+  const resurfaced = (r.crossings_resurfaced ?? []).filter((c) => c.resolved).length;
+  const trimmed = (r.damaged_ends ?? []).filter((e) => e.trimmed).length;
   const parts = [
+    [resurfaced, (n) => `${plural(n, 'place')} re-surfaced where the surface crossed itself`],
+    [trimmed, (n) => `${plural(n, 'damaged end')} trimmed`],
     [r.fins_removed, (n) => `${plural(n, 'fin')} removed`],
     [r.nonmanifold_edges_split, (n) => `${plural(n, 'non-manifold edge')} split into sheets`],
     [r.nonmanifold_vertices_split, (n) => `${plural(n, 'non-manifold vertex', 'non-manifold vertices')} split`],
@@ -49,13 +57,17 @@ export class Repairs {
   /**
    * @param {object} hooks
    * @param {import('./viewer.js').Viewer} hooks.viewer
+   * @param {import('./view-marks.js').ViewMarks} [hooks.marks] the repaired
+   *   places' marks
    * @param {() => void} hooks.reanalyze analyzes the surface again with the
    *   step's options
    * @param {(message: string) => void} hooks.showError
+   * @param {() => void} [hooks.showInput] shows the analyzed surface
    */
-  constructor({ viewer, reanalyze, showError }) {
-    Object.assign(this, { viewer, reanalyze, showError });
+  constructor({ viewer, marks = null, reanalyze, showError, showInput = () => {} }) {
+    Object.assign(this, { viewer, marks, reanalyze, showError, showInput });
     this.holes = [];
+    this.places = [];
     this.group = null;
     this.visible = true;
     this.hovered = -1;
@@ -99,6 +111,7 @@ export class Repairs {
     this.holes = analysis.holes ?? [];
     this.hovered = -1;
     $('repair-note').textContent = repairSummary(analysis);
+    this._showPlaces(repairPlaces(analysis));
     const off = $('repair').value === 'off';
     $('holes-hint').textContent = off
       ? 'Repair is off: every boundary loop is an opening, none is closed.'
@@ -115,7 +128,37 @@ export class Repairs {
    * only on it). */
   setVisible(on) {
     this.visible = on;
+    this.marks?.show('repairs', on);
     this._draw();
+  }
+
+  /** Lists the repaired places (lettered as their marks) and marks them. */
+  _showPlaces(places) {
+    this.places = places;
+    const rows = places.map((p) => {
+      const li = element('li', {}, 'repair-place');
+      li.dataset.id = p.id;
+      li.dataset.kind = p.kind;
+      const id = element('span', { className: 'repair-id', textContent: p.id });
+      id.setAttribute('aria-hidden', 'true');
+      const show = element('button', { type: 'button', className: 'repair-show', textContent: 'Show' }, 'repair-show');
+      show.setAttribute('aria-label', `Show repair ${p.id} in the view`);
+      show.addEventListener('click', () => {
+        this.showInput();
+        this.viewer.focusOn(p.point, p.radius);
+      });
+      li.append(id, element('span', { textContent: p.text }), show);
+      li.addEventListener('pointerenter', () => this.marks?.activeRepair(p.id));
+      li.addEventListener('pointerleave', () => this.marks?.activeRepair(null));
+      return li;
+    });
+    $('repair-places').replaceChildren(...rows);
+    $('repair-places').hidden = rows.length === 0;
+    this.marks?.setRepairs(places, {
+      onHover: (id) => {
+        for (const li of rows) li.classList.toggle('active', li.dataset.id === id);
+      },
+    });
   }
 
   setBusy(on) {

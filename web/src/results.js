@@ -7,6 +7,7 @@
 import { PARTS } from './groups.js';
 import { drawHistogram } from './histogram.js';
 import { showSurfaceQuality } from './surface-quality.js';
+import { presetSettingText } from './solver-preset.js';
 import { meshVerdict } from './verdict.js';
 
 const $ = (id) => document.getElementById(id);
@@ -86,18 +87,20 @@ function showTime(seconds, { threads = 1, threadsNote = '' }) {
   el.title = threads === 1 && threadsNote ? `One thread: ${threadsNote}` : '';
 }
 
-/** What the report says of the preset and the y+ sizing, in the result. */
-function showPresetAndYplus(report) {
+/** What the report says of the preset and the y+ sizing, in the result
+ * (the preset named as the solver select names it). */
+function showPresetAndYplus(report, presets = []) {
   const preset = report.preset;
   $('out-preset').hidden = !preset;
   if (preset) {
     const list = (from) =>
       preset.settings
         .filter((s) => s.from === from)
-        .map((s) => `${s.option} ${s.value || 'input\'s'}`)
+        .map(presetSettingText)
         .join(', ');
     const yours = list('user');
-    $('out-preset').textContent = `Preset ${preset.solver}: ${list('preset') || 'nothing'}${yours ? `; yours: ${yours}` : ''}.`;
+    const name = presets.find((p) => p.name === preset.solver)?.label ?? preset.solver;
+    $('out-preset').textContent = `Preset for ${name}: ${list('preset') || 'nothing'}${yours ? `; yours: ${yours}` : ''}.`;
   }
   const y = report.first_layer_yplus;
   $('out-yplus').hidden = !y;
@@ -113,8 +116,9 @@ function showPresetAndYplus(report) {
 /**
  * The verdict's list: one item a line, marked ok (✓), check (!) or note
  * (i), with a "Show" button for the items that have places.
- * @param {(places: object[]) => void} showPlaces marks the places in the
- *   view and zooms to the first
+ * @param {(places: object[], options?: {zoom?: boolean, tone?: string,
+ *   clip?: boolean}) => void} showPlaces marks the places in the view and
+ *   zooms to the first (with clip, the clipping plane through it)
  */
 function showVerdict(verdict, showPlaces) {
   const box = $('verdict');
@@ -139,8 +143,10 @@ function showVerdict(verdict, showPlaces) {
       button.className = 'verdict-show';
       button.textContent = item.places.length > 1 ? `Show the ${item.places.length} places` : 'Show where';
       button.setAttribute('data-testid', 'verdict-show');
-      // A fine item's places (the worst element) are shown as facts, not warnings.
-      button.addEventListener('click', () => showPlaces(item.places, { tone: item.level === 'ok' ? 'info' : 'warn' }));
+      // A fine item's places (the worst element) are shown as facts, not
+      // warnings; a tetrahedron's on the clipping plane.
+      const options = { tone: item.level === 'ok' ? 'info' : 'warn', clip: item.id === 'tets' };
+      button.addEventListener('click', () => showPlaces(item.places, options));
       li.append(' ', button);
     }
     return li;
@@ -155,8 +161,8 @@ function showVerdict(verdict, showPlaces) {
  * @param {object} result mesh()'s
  * @param {object} hooks
  * @param {{unit: string, scale: number}} hooks.model the model's unit and size
- * @param {{threads?: number, threadsNote?: string}} hooks.client
- * @param {(places: object[], options?: {zoom?: boolean, tone?: string}) => void} hooks.showPlaces
+ * @param {{threads?: number, threadsNote?: string, solverPresets?: object[]}} hooks.client
+ * @param {(places: object[], options?: {zoom?: boolean, tone?: string, clip?: boolean}) => void} hooks.showPlaces
  */
 export function showMeshResult(result, { model, client, showPlaces }) {
   const out = result.report.output;
@@ -178,7 +184,7 @@ export function showMeshResult(result, { model, client, showPlaces }) {
   }
   drawHistogram($('out-histogram'), wall.histogram);
   showTime(result.report.seconds, client);
-  showPresetAndYplus(result.report);
+  showPresetAndYplus(result.report, client.solverPresets);
   const elements = out.groups.reduce((n, g) => n + g.elements, 0);
   $('remesh-result').dataset.elements = String(elements);
   const volume = out.volume && result.volume;

@@ -212,7 +212,8 @@ export class Settings {
 export function listenShareLink(settings, link, announce) {
   const $ = (id) => document.getElementById(id);
   const notice = $('link-notice');
-  const text = linkNotice(link.changed, link.problems);
+  const name = (id) => settings.specs.find((s) => s.id === id)?.name ?? id;
+  const text = linkNotice(link.changed.map(name), link.problems);
   if (text) {
     $('link-notice-text').textContent = text;
     notice.hidden = false;

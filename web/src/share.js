@@ -2,24 +2,52 @@
 // from the page's defaults, in the URL's hash (#size-mode=size&layers=2).
 // Opening such a link sets those controls (the link wins over what this
 // browser remembered; the controls it does not name get their defaults);
-// a value that no control accepts is ignored and said. Per-file choices
-// (units, cuts, opening names) are not in the link. The functions here are
-// pure (tested in Node); the page gives them its controls' specs.
+// a value that no control accepts is ignored and said, in the page's words
+// (the controls' names and choices as the panel shows them, never the
+// API's option names). Per-file choices (units, cuts, opening names) are
+// not in the link. The functions here are pure (tested in Node) but
+// controlName; the page gives them its controls' specs.
 
 /**
- * A control's spec, from the element: {id, kind: 'checkbox'|'select'|
- * 'number'|'text', options (select values), min, max, integer, empty
- * (blank allowed: its default is blank)}.
+ * A control's name as the panel shows it: its data-setting-name, else its
+ * label's own text (without the control, hints and a trailing
+ * parenthesis), after its fieldset's legend when that is not in it:
+ * 'Size', 'Boundary layer: Layers', 'Keep prisms'.
+ * @param {HTMLElement} el
+ */
+export function controlName(el) {
+  const label = el.labels?.[0];
+  const own = (node) =>
+    node.nodeType === 3 ||
+    (node.nodeType === 1 && !['INPUT', 'SELECT', 'TEXTAREA', 'BUTTON'].includes(node.tagName) && !node.classList.contains('hint'));
+  const text = label ? [...label.childNodes].filter(own).map((n) => n.textContent).join('') : '';
+  const name =
+    el.dataset.settingName ??
+    (text.replace(/\s+/g, ' ').replace(/\s*\([^)]*\)\s*$/, '').trim() || el.getAttribute('aria-label') || el.id);
+  const legend = el.closest('fieldset')?.querySelector('legend')?.textContent.trim();
+  return legend && !name.toLowerCase().includes(legend.toLowerCase()) ? `${legend}: ${name}` : name;
+}
+
+/**
+ * A control's spec, from the element: {id, name (controlName), kind:
+ * 'checkbox'|'select'|'number'|'text', options (select values) and labels
+ * (their texts), min, max, integer, empty (blank allowed: its default is
+ * blank)}.
  * @param {HTMLInputElement|HTMLSelectElement} el
  * @param {string|boolean} byDefault the control's default value
  */
 export function controlSpec(el, byDefault) {
-  if (el.type === 'checkbox') return { id: el.id, kind: 'checkbox' };
-  if (el.tagName === 'SELECT') return { id: el.id, kind: 'select', options: [...el.options].map((o) => o.value) };
-  if (el.type !== 'number') return { id: el.id, kind: 'text' };
+  const name = controlName(el);
+  if (el.type === 'checkbox') return { id: el.id, name, kind: 'checkbox' };
+  if (el.tagName === 'SELECT') {
+    const options = [...el.options];
+    return { id: el.id, name, kind: 'select', options: options.map((o) => o.value), labels: options.map((o) => o.textContent.trim()) };
+  }
+  if (el.type !== 'number') return { id: el.id, name, kind: 'text' };
   const bound = (s) => (s === '' ? undefined : Number(s));
   return {
     id: el.id,
+    name,
     kind: 'number',
     min: bound(el.min),
     max: bound(el.max),
@@ -37,7 +65,8 @@ export function parseValue(spec, text) {
     return { problem: 'on or off (1 or 0)' };
   }
   if (spec.kind === 'select') {
-    return spec.options.includes(text) ? { value: text } : { problem: `one of ${spec.options.filter(Boolean).join(', ')}` };
+    const choices = (spec.labels ?? spec.options).filter((_, i) => spec.options[i]).map((c) => `“${c}”`);
+    return spec.options.includes(text) ? { value: text } : { problem: `one of ${choices.join(', ')}` };
   }
   if (spec.kind === 'number') {
     const range =
@@ -79,8 +108,9 @@ export function encodeSettings(ids, values, defaults) {
 
 /**
  * The settings in a link's hash: {values: {id: value} of those accepted,
- * problems: ['name=value: what it must be'] of those ignored, given:
- * whether the hash holds any setting at all}.
+ * problems: ['“Name” set to “value”: what it must be'] of those ignored
+ * (named as the page names their controls), given: whether the hash holds
+ * any setting at all}.
  * @param {string} hash location.hash ('#a=1&b=2', or '')
  * @param {object[]} specs controlSpec() of each remembered control
  */
@@ -94,11 +124,11 @@ export function decodeSettings(hash, specs) {
     given = true;
     const spec = byId.get(name);
     if (!spec) {
-      problems.push(`${name}: not an option of this page`);
+      problems.push(`“${name}”: not an option of this page`);
       continue;
     }
     const { value, problem } = parseValue(spec, text);
-    if (problem) problems.push(`${name}=${text}: must be ${problem}`);
+    if (problem) problems.push(`“${spec.name ?? name}” set to “${text}”: must be ${problem}`);
     else values[name] = value;
   }
   return { values, problems, given };
@@ -112,9 +142,10 @@ export function ignoredNotice(problems) {
 }
 
 /** The notice said when a link was opened: the options whose value it
- * changed from this browser's (`ids`) and those it had that were ignored;
- * '' when there is nothing to say (the page's own address reloaded). */
-export function linkNotice(ids, problems) {
-  const set = ids.length ? `The link changed these options: ${ids.join(', ')}.` : '';
+ * changed from this browser's (`names`: their controls' names) and those
+ * it had that were ignored; '' when there is nothing to say (the page's
+ * own address reloaded). */
+export function linkNotice(names, problems) {
+  const set = names.length ? `The link changed these options: ${names.map((n) => `“${n}”`).join(', ')}.` : '';
   return [set, ignoredNotice(problems)].filter(Boolean).join(' ');
 }

@@ -1,6 +1,6 @@
 // The length unit of the loaded model as the page says it: the summary's
-// text, the question asked when the core's guess is not certain, and lengths
-// with their unit.
+// text, the question asked only when the core's guess is not certain, and
+// lengths with their unit.
 
 const WORDS = { mm: 'millimetres', cm: 'centimetres', m: 'metres' };
 // The other unit a guess could be (the core guesses mm for vessel radii that
@@ -34,14 +34,13 @@ export function unitsText({ unit, guessed, certain, reason }) {
 }
 
 /**
- * The question to ask while the unit is a guess (until the user confirms
- * it), or null when the unit was given:
- * 'Units: mm? The numbers could also be centimetres (median vessel radius 0.994).',
- * 'Units: m, guessed from the median vessel radius 0.00327. Right?'.
+ * The question to ask while the core is unsure of the unit (until the
+ * user says it), or null when the unit was given or the core is certain
+ * (metres: radii of millimetres; the summary says how it was guessed):
+ * 'Units: mm? The numbers could also be centimetres (median vessel radius 0.994).'.
  */
 export function unitsQuestion({ unit, guessed, certain, reason }) {
-  if (!guessed) return null;
-  if (certain) return `Units: ${unit}, guessed from the ${reason}. Right?`;
+  if (!guessed || certain) return null;
   const other = WORDS[ALTERNATIVE[unit]] ?? 'another unit';
   return `Units: ${unit}? The numbers could also be ${other}${reason ? ` (${reason})` : ''}.`;
 }

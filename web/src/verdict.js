@@ -4,6 +4,7 @@
 // layer's coverage, the volume change against the input and the mesh's
 // warnings. Pure logic over a mesh() result (no DOM): verdict-view.js
 // shows it.
+import { placesIn } from './remedies.js';
 import { inPageWords } from './words.js';
 
 /** What a mesh must meet to be called ready (the items say them). */
@@ -154,11 +155,14 @@ export function meshVerdict(result, { unit = '', scale = 1 } = {}) {
     });
   }
 
-  // The meshing's own warnings (the preparation's are said with the input).
+  // The meshing's own warnings (the preparation's are said with the
+  // input), with the places they name (a layer grown after the wall was
+  // relaxed there).
   const prepared = new Set(result.report.input?.warnings ?? []);
   const warnings = (result.report.warnings ?? []).filter((w) => !prepared.has(w));
   for (const [i, w] of warnings.entries()) {
-    items.push({ id: `warning-${i + 1}`, level: 'check', text: inPageWords(w, { unit, scale }), places: [] });
+    const places = placesIn(w).map((point) => ({ point, radius: cell, what: 'named in the warning' }));
+    items.push({ id: `warning-${i + 1}`, level: 'check', text: inPageWords(w, { unit, scale }), places });
   }
 
   const checks = items.filter((i) => i.level === 'check').length;

@@ -1,9 +1,12 @@
 // Labels and marks drawn over the 3D view at model points, following the
 // camera each frame: the openings' labels (their number in their colour;
-// a click selects the opening's row, hovering highlights it) and the
-// places a message names (a self-crossing, a failed patch: numbered red
-// marks, buttons that zoom the view there). Labels that would cover one
-// another are moved down, so every opening keeps a readable label.
+// a click selects the opening's row, hovering highlights it), the places
+// the preparation repaired (lettered marks: a re-surfaced crossing, a
+// trimmed end) and the places a message names (a self-crossing, a failed
+// patch: numbered red marks, buttons that zoom the view there). Opening
+// labels hidden behind the surface shrink to dots, so the ones in sight
+// read first. Labels that would cover one another are moved down, so
+// every opening keeps a readable label, those in sight placed first.
 const GAP_PX = 2;
 
 function element(tag, className, testId) {
@@ -34,8 +37,9 @@ export class ViewMarks {
     this.layer = element('div', 'view-marks', 'view-marks');
     container.append(this.layer);
     this.openings = []; // {node, point}
+    this.repairs = []; // {node, point}
     this.places = []; // {node, point}
-    this.visible = { openings: true, places: true };
+    this.visible = { openings: true, repairs: true, places: true };
     viewer.onRender(() => this.update());
   }
 
@@ -89,31 +93,72 @@ export class ViewMarks {
     this.update();
   }
 
+  /**
+   * The places the preparation repaired: lettered buttons {id, point,
+   * radius, what} that zoom the view there; `onHover(id | null)` as the
+   * pointer enters and leaves.
+   */
+  setRepairs(items, { onHover = () => {} } = {}) {
+    for (const { node } of this.repairs) node.remove();
+    this.repairs = items.map(({ id, point, radius = 0, what }) => {
+      const node = element('button', 'repair-mark', 'repair-mark');
+      node.type = 'button';
+      node.textContent = id;
+      node.dataset.id = id;
+      const label = `Repair ${id}: ${what}. Zoom the view there`;
+      node.setAttribute('aria-label', label);
+      node.title = label;
+      node.addEventListener('click', () => this.viewer.focusOn(point, radius));
+      node.addEventListener('pointerenter', () => onHover(id));
+      node.addEventListener('pointerleave', () => onHover(null));
+      this.layer.append(node);
+      return { node, point };
+    });
+    this.update();
+  }
+
+  /** Marks repair `id`'s mark as the one pointed at in the list (null: none). */
+  activeRepair(id) {
+    for (const { node } of this.repairs) node.classList.toggle('active', node.dataset.id === id);
+  }
+
   /** Marks opening k's label as the one pointed at in the list (null: none). */
   activeOpening(k) {
     for (const { node } of this.openings) node.classList.toggle('active', node.dataset.k === String(k));
   }
 
-  /** Shows or hides a kind of marks ('openings' or 'places'). */
+  /** Shows or hides a kind of marks ('openings', 'repairs' or 'places'). */
   show(kind, on) {
     this.visible[kind] = on;
     this.update();
   }
 
   /** Puts every mark at its point's place in the view (hidden when behind
-   * the camera or out of the view); labels that would overlap move down.
-   * Sizes are read first, positions written after (one layout a frame). */
+   * the camera or out of the view; opening labels behind the surface as
+   * dots); labels that would overlap move down, those in sight placed
+   * first. Sizes are read first, positions written after (one
+   * layout a frame). */
   update() {
+    const at = (m, on) => (on && this.viewer.sphere ? this.viewer.viewPoint(m.point) : null);
+    // Places and repairs lie on or just inside the wall: always in full.
     const marks = [
-      ...this.places.map((m) => ({ ...m, on: this.visible.places })),
-      ...this.openings.map((m) => ({ ...m, on: this.visible.openings })),
-    ].map((m) => ({ ...m, at: m.on && this.viewer.sphere ? this.viewer.viewPoint(m.point) : null }));
+      ...this.places.map((m) => ({ ...m, at: at(m, this.visible.places), behind: false })),
+      ...this.repairs.map((m) => ({ ...m, at: at(m, this.visible.repairs), behind: false })),
+      ...this.openings.map((m) => {
+        const where = at(m, this.visible.openings);
+        return { ...m, at: where, behind: Boolean(where) && this.viewer.hiddenBehind(m.point) };
+      }),
+    ];
+    // The class first: a dot's size differs from a label's.
+    for (const { node, behind } of marks) node.classList.toggle('behind', behind);
     const sizes = marks.map(({ node, at }) => (at ? [node.offsetWidth || 20, node.offsetHeight || 20] : null));
+    const order = marks.map((_, i) => i).sort((i, j) => marks[i].behind - marks[j].behind);
     const placed = [];
-    const moves = marks.map(({ at }, i) => {
-      if (!at) return null;
+    const moves = [];
+    for (const i of order) {
+      if (!marks[i].at) continue;
       const [w, h] = sizes[i];
-      let [x, y] = [at[0] - w / 2, at[1] - h / 2];
+      let [x, y] = [marks[i].at[0] - w / 2, marks[i].at[1] - h / 2];
       for (let tries = 0; tries < 6; tries++) {
         const hit = placed.find(
           (b) => x < b.x + b.w + GAP_PX && b.x < x + w + GAP_PX && y < b.y + b.h + GAP_PX && b.y < y + h + GAP_PX,
@@ -122,8 +167,8 @@ export class ViewMarks {
         y = hit.y + hit.h + GAP_PX;
       }
       placed.push({ x, y, w, h });
-      return `translate(${Math.round(x)}px, ${Math.round(y)}px)`;
-    });
+      moves[i] = `translate(${Math.round(x)}px, ${Math.round(y)}px)`;
+    }
     marks.forEach(({ node }, i) => {
       node.hidden = !moves[i];
       if (moves[i]) node.style.transform = moves[i];

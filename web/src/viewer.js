@@ -4,11 +4,13 @@
 // that outlive the content (the cut discs), per-vertex colours of the
 // surface (the size view), picking a point on the surface, projecting
 // model points to the view (the labels and marks drawn over it follow each
-// frame: onRender) and zooming to a place.
+// frame: onRender, dimmed when hidden behind the surface: hiddenBehind) and
+// zooming to a place.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 
 import { qualityColor } from './colormap.js';
+import { Occluder } from './occlusion.js';
 
 export class Viewer {
   /** @param {HTMLElement} container */
@@ -95,7 +97,7 @@ export class Viewer {
     wire.visible = this.wireframe ?? false;
     const group = new THREE.Group();
     group.add(solid, wire);
-    this.setContent(group, geometry.boundingSphere, { fit });
+    this.setContent(group, geometry.boundingSphere, { fit, occluder: { positions, triangles } });
     this.wire = wire;
     this.solid = solid;
     this.surface = { triangles, quality };
@@ -125,12 +127,14 @@ export class Viewer {
 
   /**
    * Replaces the shown content (the previous one is disposed) and fits the
-   * view to `sphere` (a THREE.Sphere) unless fit is false.
+   * view to `sphere` (a THREE.Sphere) unless fit is false; `occluder`
+   * ({positions, triangles}) is the surface that hides what lies behind it.
    */
-  setContent(object, sphere, { fit = true } = {}) {
+  setContent(object, sphere, { fit = true, occluder = null } = {}) {
     this.clear();
     this.content = object;
     this.sphere = sphere;
+    this.occluderSource = occluder;
     this.scene.add(object);
     if (fit) this.fitView();
     else this.render();
@@ -145,6 +149,7 @@ export class Viewer {
       });
     }
     this.content = this.sphere = this.wire = this.solid = this.surface = null;
+    this.occluderSource = this.occluder = null;
     this.highlightLoop(null);
   }
 
@@ -217,6 +222,15 @@ export class Viewer {
     if (v.z > 1) return null;
     const rect = this.renderer.domElement.getBoundingClientRect();
     return [rect.left + ((v.x + 1) / 2) * rect.width, rect.top + ((1 - v.y) / 2) * rect.height];
+  }
+
+  /** Whether the model point p ([x, y, z]) is hidden from the camera by the
+   * content's surface (its occluder; the grid built at the first ask). */
+  hiddenBehind(p) {
+    if (!this.occluderSource) return false;
+    const { positions, triangles } = this.occluderSource;
+    this.occluder ??= new Occluder(positions, triangles);
+    return this.occluder.blocked(this.camera.position.toArray(), p);
   }
 
   /** The position of the model point p ([x, y, z]) in the view, in CSS

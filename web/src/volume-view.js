@@ -155,7 +155,9 @@ export class VolumeView {
     this.context.renderOrder = 1;
     this.group = new THREE.Group();
     this.group.add(this.solid, this.edges, this.context);
-    this.viewer.setContent(this.group, this.data.sphere);
+    // The wall and caps hide the labels behind them.
+    const occluder = { positions: volume.positions, triangles: volume.triangles };
+    this.viewer.setContent(this.group, this.data.sphere, { occluder });
     this.update();
   }
 
@@ -179,6 +181,29 @@ export class VolumeView {
     const k = AXES[axis];
     const center = this.data ? this.data.sphere.center.getComponent(k) : 0;
     return this.viewer.camera.position.getComponent(k) < center;
+  }
+
+  /**
+   * Moves the plane through the model point `point` (a place in the mesh:
+   * the worst tetrahedron), across the axis the camera looks along most,
+   * keeping the side away from the camera, so that the place is on the cut
+   * facing the viewer (not in the removed half). Returns the options set
+   * {axis, position, flip} (the panel's controls follow them).
+   */
+  clipThrough(point) {
+    const camera = this.viewer.camera.position.toArray();
+    const away = camera.map((x, k) => x - point[k]);
+    const k = [0, 1, 2].reduce((a, b) => (Math.abs(away[b]) > Math.abs(away[a]) ? b : a));
+    const axis = 'xyz'[k];
+    const flip = away[k] < 0; // the camera below: keep what is above
+    this.options.axis = axis;
+    this.planeValue();
+    const [lo, hi] = this.data.ranges[k];
+    // A hair past the point, so that its element is kept.
+    const value = point[k] + (flip ? -1 : 1) * 1e-4 * (hi - lo);
+    const position = hi > lo ? Math.min(1, Math.max(0, (value - lo) / (hi - lo))) : 0.5;
+    this.set({ axis, flip, position });
+    return { axis, position, flip };
   }
 
   /** The plane's coordinate along the axis, and the axis index. */

@@ -62,12 +62,12 @@ describe('units', () => {
     assert.equal(unitsText(guessMm), 'mm? (a guess from the median vessel radius 0.994)');
   });
 
-  test('a guess is asked about until confirmed (an unsure one with the other unit it could be)', () => {
+  test('an unsure guess is asked about (with the other unit it could be) until said; a certain one is not', () => {
     assert.equal(
       unitsQuestion(guessMm),
       'Units: mm? The numbers could also be centimetres (median vessel radius 0.994).',
     );
-    assert.equal(unitsQuestion(guessM), 'Units: m, guessed from the median vessel radius 0.00327. Right?');
+    assert.equal(unitsQuestion(guessM), null);
     assert.equal(unitsQuestion(given), null);
   });
 

@@ -2,13 +2,16 @@
 // words (web/src/words.js), remedies read from failures (remedies.js), the
 // verdict on a mesh (verdict.js), side effects of a preparation change
 // (side-effects.js), the openings' warnings (opening-check.js), the unit
-// question (units.js).
+// question (units.js), the places repaired (repair-places.js), a solver
+// preset's settings (solver-preset.js).
 import assert from 'node:assert/strict';
 import { describe, test } from 'node:test';
 
 import { openingWarnings } from '../src/opening-check.js';
+import { letter, repairPlaces, saidAsRepair } from '../src/repair-places.js';
 import { crossingRemedy, fittingSize, placesIn, preparesAgain, remedyLabel, remedyOf } from '../src/remedies.js';
 import { sideEffects, sideEffectText } from '../src/side-effects.js';
+import { presetSettingText } from '../src/solver-preset.js';
 import { unitsQuestion, withUnitGuess } from '../src/units.js';
 import { inputQualityNote, LIMITS, meshVerdict, placesBelow } from '../src/verdict.js';
 import { inPageWords, namesApiOption } from '../src/words.js';
@@ -64,17 +67,28 @@ describe('remedies', () => {
     assert.equal(remedyOf({ error: 'something', remedy: { action: 'dance', places: [], value: 0 } }), null);
   });
 
-  test('read from today’s messages: smoothing, self-crossing, layers, repair, components, closed', () => {
+  test('read from the messages the core gives no remedy for: smoothing, a crossing left, closed', () => {
     assert.deepEqual(remedyOf({ error: FOLDED }), { action: 'smooth', places: [[1.23456, -2.5, 3.75e-5]], value: 10 });
     assert.deepEqual(remedyOf({ error: CROSSING }), { action: 'cut_here', places: [[26.9164, 23.5701, 27.4715]], value: 0 });
-    assert.equal(remedyOf({ error: LAYER }).action, 'no_layers');
-    assert.equal(remedyOf({ error: 'cannot mesh: the surface has 4 non-manifold edges (…), e.g. near (1, 2, 3); split them into manifold sheets with repair auto' }).action, 'repair');
-    assert.equal(remedyOf({ error: 'cannot mesh: the surface has 2 connected components (the largest has 10 of 12 triangles); keep only the largest (largestComponentOnly)' }).action, 'largest_component');
     const ends = [[0, 0, 1], [0, 0, 9]];
     assert.deepEqual(remedyOf({ error: CLOSED }, { proposals: ends }), { action: 'cut_here', places: ends, value: 0 });
     assert.equal(remedyOf({ error: CLOSED }), null, 'closed, nothing proposed: no cut to offer');
     assert.equal(remedyOf({ error: 'Opening 2: names cannot be wall' }), null);
     assert.equal(remedyOf({ error: 'x', cancelled: true }), null);
+  });
+
+  test('the refusals the core gives a remedy for are not read from their message', () => {
+    // Layers, repairs and pieces: the core's remedy only (none: no button).
+    assert.equal(remedyOf({ error: LAYER }), null);
+    const nonManifold = 'cannot mesh: the surface has 4 non-manifold edges (…), e.g. near (1, 2, 3); split them into manifold sheets with repair auto';
+    assert.equal(remedyOf({ error: nonManifold }), null);
+    assert.equal(remedyOf({ error: 'cannot mesh: the surface has 2 connected components' }), null);
+    const layer = { error: LAYER, remedy: { action: 'no_layers', places: [[1, 2, 3]], value: 0 } };
+    assert.deepEqual(remedyOf(layer), layer.remedy);
+    // A crossing with repair off: the core says to repair, not to cut.
+    const repair = { action: 'repair', places: [[26.9164, 23.5701, 27.4715]], value: 0 };
+    assert.deepEqual(remedyOf({ error: CROSSING, remedy: repair }), repair);
+    assert.equal(remedyLabel(repair), 'Repair the surface');
   });
 
   test('a self-crossing by an opening is a damaged end: one trim an end', () => {
@@ -196,6 +210,17 @@ describe('the verdict on a mesh', () => {
     assert.doesNotMatch(v.items.find((i) => i.id === 'warning-1').text, /say units/);
   });
 
+  test('a warning of the meshing that names places has them: the layer grown after the wall was relaxed', () => {
+    const warning =
+      'the boundary layer could not grow at (1, 2, 3) and 2 more places (a needle-like spike or fold the wall follows ' +
+      'from the input): the wall was smoothed there (14 vertices, moved at most 0.02)';
+    const v = meshVerdict(fakeResult({ tets: [[0.5, 0, [0, 0, 0]]], triangles: [[0.9, [0, 0, 0]]], warnings: [warning] }), { unit: 'mm', scale: 10 });
+    const item = v.items.find((i) => i.id === 'warning-1');
+    assert.equal(item.level, 'check');
+    assert.deepEqual(item.places.map((p) => p.point), [[1, 2, 3]]);
+    assert.match(item.text, /could not grow at \(1, 2, 3\) mm/);
+  });
+
   test('no layer is a note, not a check; surface only has no volume items', () => {
     const v = meshVerdict(fakeResult({ tets: [[0.5, 0, [0, 0, 0]]], triangles: [[0.9, [0, 0, 0]]] }));
     assert.equal(v.items.find((i) => i.id === 'layer').level, 'note');
@@ -250,8 +275,19 @@ describe('the openings before meshing', () => {
     const [w] = openingWarnings(a, { proposals });
     assert.equal(w.id, 'closed-end');
     assert.match(w.text, /still closed at \(0, 0, -10\) mm \(radius 2 mm\): it is wider than every opening/);
-    assert.deepEqual(w.remedy, { action: 'cut_here', places: [[0, 0, -10]], value: 0 });
+    assert.deepEqual(w.remedy, { action: 'cut_here', places: [[0, 0, -10]], value: 0, ends: true });
     assert.deepEqual(openingWarnings(a, { proposals: proposals.slice(0, 2) }), []);
+  });
+
+  test('a crossing left: with the repairs off, the remedy is to repair; with them on, trim or cut', () => {
+    const a = { ...base, openings: [opening([0, 0, 6], 1), opening([0, 0, -6], 1)], self_crossings: { places: [[0.1, 0, 5.6]] } };
+    const [on] = openingWarnings(a);
+    assert.equal(on.id, 'self-crossing');
+    assert.equal(on.remedy.action, 'trim_end');
+    assert.match(on.text, /at a damaged vessel end: meshing may fail there\.$/);
+    const [off] = openingWarnings(a, { prep: { repair: 'off' } });
+    assert.deepEqual(off.remedy, { action: 'repair', places: [[0.1, 0, 5.6]], value: 0 });
+    assert.match(off.text, /Repair is off: with it on, such places are re-surfaced or trimmed\)\.$/);
   });
 
   test('one opening: no outlet; tiny loops: defect loops, not vessel ends', () => {
@@ -264,18 +300,97 @@ describe('the openings before meshing', () => {
     // Closed: said, with the proposed ends as the cuts.
     const [closed] = openingWarnings({ ...base, openings: [], clip_proposals: [{ point: [0, 0, 5], radius: 1 }] });
     assert.equal(closed.id, 'no-opening');
-    assert.deepEqual(closed.remedy, { action: 'cut_here', places: [[0, 0, 5]], value: 0 });
+    assert.deepEqual(closed.remedy, { action: 'cut_here', places: [[0, 0, 5]], value: 0, ends: true });
+    assert.equal(remedyLabel(closed.remedy), 'Cut the vessel end open');
     assert.equal(openingWarnings({ ...base, openings: [] })[0].remedy, undefined);
+    // The file's first proposals are the analysis' own again: each end is cut once.
+    const ends = [{ point: [0, 0, 5], radius: 1 }, { point: [0, 0, -5], radius: 1 }];
+    const [again] = openingWarnings({ ...base, openings: [], clip_proposals: ends }, { proposals: ends });
+    assert.deepEqual(again.remedy.places, [[0, 0, 5], [0, 0, -5]]);
   });
 });
 
 describe('the unit', () => {
   test('asked while it is a guess, sure or not; the first guess is kept', () => {
-    assert.equal(unitsQuestion({ unit: 'm', guessed: true, certain: true, reason: 'median vessel radius 0.00327' }), 'Units: m, guessed from the median vessel radius 0.00327. Right?');
+    assert.equal(unitsQuestion({ unit: 'm', guessed: true, certain: true, reason: 'median vessel radius 0.00327' }), null);
     assert.match(unitsQuestion({ unit: 'mm', guessed: true, certain: false, reason: 'r' }), /could also be centimetres/);
     assert.equal(unitsQuestion({ unit: 'cm', guessed: false }), null);
     assert.deepEqual(withUnitGuess({ smooth: 'off' }, { unit: 'cm' }), { smooth: 'off', units: 'cm' });
     assert.deepEqual(withUnitGuess({ units: 'mm' }, { unit: 'cm' }), { units: 'mm' });
     assert.deepEqual(withUnitGuess({}, null), {});
+  });
+});
+
+describe('the places the preparation repaired', () => {
+  const analysis = {
+    units: { unit: 'mm' },
+    bounding_box: { diagonal: 20 },
+    repairs: {
+      crossings_resurfaced: [
+        { where: [1, 2, 3], pairs: 58, resolved: true, box_min: [0, 0, 0], box_max: [2, 2, 1], triangles_removed: 1416, triangles_added: 1112 },
+        { where: [0, 0, 9], pairs: 4, resolved: false, box_min: [0, 0, 8], box_max: [1, 1, 10], triangles_removed: 0, triangles_added: 0, why: 'at an opening' },
+      ],
+      damaged_ends: [
+        { where: [0, 0, 9.5], radius: 1, trimmed: true, depth: 0.95, point: [0, 0, 8.6], normal: [0, 0, 1], triangles_removed: 526, crossing: 5, misoriented: 2, nonmanifold: 0, tiny_loops: 14 },
+        { where: [0, 0, -9.5], radius: 0.5, trimmed: false, depth: 0, point: [0, 0, 0], normal: [0, 0, -1], triangles_removed: 0, crossing: 3, misoriented: 0, nonmanifold: 0, tiny_loops: 0 },
+      ],
+    },
+  };
+
+  test('each re-surfaced crossing and damaged end, lettered, in the page’s words, where it is', () => {
+    const places = repairPlaces(analysis);
+    assert.deepEqual(places.map((p) => [p.id, p.kind]), [['A', 'resurfaced'], ['B', 'trimmed'], ['C', 'damaged']]);
+    assert.equal(
+      places[0].text,
+      'Re-surfaced where the surface crossed itself, at (1, 2, 3) mm: 58 pairs of crossing triangles, 1,416 triangles replaced by 1,112.',
+    );
+    assert.equal(
+      places[1].text,
+      'Trimmed back 0.95 radii to a clean cross-section: the damaged vessel end at (0, 0, 9.5) mm ' +
+        '(radius 1 mm; triangles 5 crossing, 2 folded or twisted, 14 around tiny loops).',
+    );
+    assert.deepEqual(places[1].point, [0, 0, 8.6], 'the mark is at the clean cut');
+    const one = repairPlaces({ ...analysis, repairs: { damaged_ends: [{ ...analysis.repairs.damaged_ends[0], depth: 1 }] } });
+    assert.match(one[0].text, /^Trimmed back 1 radius to/);
+    assert.match(places[2].text, /^Not trimmed: the damaged vessel end at \(0, 0, -9\.5\) mm \(radius 0\.5 mm; triangles 3 crossing\), the damage/);
+    for (const p of places) assert.ok(!namesApiOption(p.text), p.text);
+    assert.deepEqual(repairPlaces({ units: { unit: 'mm' }, bounding_box: { diagonal: 1 } }), []);
+    assert.equal(letter(0), 'A');
+    assert.equal(letter(26), 'AA');
+  });
+
+  test('the warnings they say already are not said again', () => {
+    assert.equal(saidAsRepair('the surface crossed itself at (1, 2, 3) (58 pairs of triangles: overlapping or intersecting sheets): re-surfaced there as the boundary'), true);
+    assert.equal(saidAsRepair('the vessel end at (1, 2, 3) (radius 1) is damaged (triangles 5 crossing): trimmed back'), true);
+    assert.equal(saidAsRepair('the surface crosses itself at (1, 2, 3) (4 pairs of triangles) and could not be re-surfaced there (too big)'), false);
+  });
+});
+
+describe('the preset said in the result', () => {
+  test('each setting in the page’s words, never the API’s option names', () => {
+    const said = [
+      ['prisms', 'true'],
+      ['prisms', 'false'],
+      ['mshVersion', '2.2'],
+      ['outputUnits', 'm'],
+      ['outputUnits', ''],
+      ['format', 'foam'],
+      ['format', 'msh'],
+      ['format', 'mesh-complete'],
+      ['layerThickness', '0.3'],
+      ['someOption', '2'],
+    ].map(([option, value]) => presetSettingText({ option, value }));
+    assert.deepEqual(said, [
+      'layer prisms kept',
+      'tetrahedra only',
+      'MSH 2.2',
+      'written in m',
+      "in the input's unit",
+      'OpenFOAM case',
+      'MSH',
+      'SimVascular mesh-complete',
+      'the layers’ total thickness 0.3',
+      'some option 2',
+    ]);
   });
 });

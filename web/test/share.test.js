@@ -7,12 +7,18 @@ import { describe, test } from 'node:test';
 import { decodeSettings, encodeSettings, ignoredNotice, linkNotice, parseValue } from '../src/share.js';
 
 const SPECS = [
-  { id: 'size-mode', kind: 'select', options: ['perCircumference', 'size'] },
-  { id: 'size-value', kind: 'number', min: 0, max: undefined, integer: false, empty: false },
-  { id: 'layers', kind: 'number', min: 0, max: 100, integer: true, empty: false },
-  { id: 'first-layer', kind: 'number', min: 0, max: undefined, integer: false, empty: true },
-  { id: 'wall-on', kind: 'checkbox' },
-  { id: 'output-units', kind: 'select', options: ['', 'mm', 'cm', 'm'] },
+  {
+    id: 'size-mode',
+    name: 'Size',
+    kind: 'select',
+    options: ['perCircumference', 'size'],
+    labels: ['Edges per circumference N (h = 2πR/N)', 'Uniform edge length h'],
+  },
+  { id: 'size-value', name: 'Size N or h', kind: 'number', min: 0, max: undefined, integer: false, empty: false },
+  { id: 'layers', name: 'Boundary layer: Layers', kind: 'number', min: 0, max: 100, integer: true, empty: false },
+  { id: 'first-layer', name: 'Boundary layer: First-layer height', kind: 'number', min: 0, max: undefined, integer: false, empty: true },
+  { id: 'wall-on', name: 'Vessel wall: Grow the vessel wall outward', kind: 'checkbox' },
+  { id: 'output-units', name: 'Output units', kind: 'select', options: ['', 'mm', 'cm', 'm'], labels: ['same as input', 'mm', 'cm', 'm'] },
 ];
 const IDS = SPECS.map((s) => s.id);
 const DEFAULTS = { 'size-mode': 'perCircumference', 'size-value': '20', layers: '4', 'first-layer': '', 'wall-on': false, 'output-units': '' };
@@ -51,16 +57,18 @@ describe('settings link', () => {
     );
     assert.equal(given, true);
     assert.deepEqual(values, { 'output-units': 'cm', 'first-layer': '' });
+    // Named as the page names the controls and their choices, not by the API's names.
     assert.deepEqual(problems, [
-      'size-mode=huge: must be one of perCircumference, size',
-      'layers=2.5: must be a whole number from 0 to 100',
-      'size-value=abc: must be a number of at least 0',
-      'wall-on=maybe: must be on or off (1 or 0)',
-      'colour: not an option of this page',
-      'size-value=-1: must be a number of at least 0',
-      'layers=200: must be a whole number from 0 to 100',
+      '“Size” set to “huge”: must be one of “Edges per circumference N (h = 2πR/N)”, “Uniform edge length h”',
+      '“Boundary layer: Layers” set to “2.5”: must be a whole number from 0 to 100',
+      '“Size N or h” set to “abc”: must be a number of at least 0',
+      '“Vessel wall: Grow the vessel wall outward” set to “maybe”: must be on or off (1 or 0)',
+      '“colour”: not an option of this page',
+      '“Size N or h” set to “-1”: must be a number of at least 0',
+      '“Boundary layer: Layers” set to “200”: must be a whole number from 0 to 100',
     ]);
-    assert.match(ignoredNotice(problems), /^The link's 7 settings size-mode=huge: .* ignored \(their defaults are used\)\.$/);
+    assert.ok(problems.every((p) => !/perCircumference|size-mode/.test(p)));
+    assert.match(ignoredNotice(problems), /^The link's 7 settings “Size” set to “huge”: .* ignored \(their defaults are used\)\.$/);
     assert.equal(ignoredNotice([]), '');
   });
 
@@ -72,12 +80,13 @@ describe('settings link', () => {
   });
 
   test('the notice of an opened link names what it changed and what it ignored', () => {
-    assert.equal(linkNotice(['layers', 'wall-on'], []), 'The link changed these options: layers, wall-on.');
+    assert.equal(linkNotice(['Boundary layer: Layers', 'Output units'], []), 'The link changed these options: “Boundary layer: Layers”, “Output units”.');
     assert.equal(
-      linkNotice(['layers'], ['size-mode=huge: must be one of perCircumference, size']),
-      "The link changed these options: layers. The link's setting size-mode=huge: must be one of perCircumference, size — ignored (its default is used).",
+      linkNotice(['Boundary layer: Layers'], ['“Size” set to “huge”: must be one of “Edges per circumference N (h = 2πR/N)”, “Uniform edge length h”']),
+      'The link changed these options: “Boundary layer: Layers”. The link\'s setting “Size” set to “huge”: must be one of ' +
+        '“Edges per circumference N (h = 2πR/N)”, “Uniform edge length h” — ignored (its default is used).',
     );
-    assert.match(linkNotice([], ['x: not an option of this page']), /^The link's setting x: /);
+    assert.match(linkNotice([], ['“x”: not an option of this page']), /^The link's setting “x”: /);
     assert.equal(linkNotice([], []), '');
   });
 
