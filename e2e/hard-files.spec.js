@@ -9,7 +9,15 @@ import {
   meshThroughRemedies,
   openingLabels,
 } from './guided.js';
-import { centimetreBifurcation, crossingVessels, damagedEnds, domedCapsTube, shortTrunkClosed, twentyOpenings } from './hard-inputs.js';
+import {
+  centimetreBifurcation,
+  crossingVessels,
+  damagedEnds,
+  domedCapsTube,
+  labelledOutlets,
+  shortTrunkClosed,
+  twentyOpenings,
+} from './hard-inputs.js';
 import { openApp, setSizeAndLayers, upload } from './helpers.js';
 
 // Hard models from load to a valid exported MSH with the page's controls
@@ -18,7 +26,8 @@ import { openApp, setSizeAndLayers, upload } from './helpers.js';
 // by their labels; a closed model whose widest end is a short trunk; a
 // model with domed caps; a model whose every end is damaged (trimmed by
 // default); two vessels that cross (re-surfaced by default); a model in
-// centimetres. The inputs are generated (hard-inputs.js).
+// centimetres; a SimVascular-like model with 186 labelled faces and tiny
+// 6-triangle caps. The inputs are generated (hard-inputs.js).
 
 test.use({ viewport: { width: 1440, height: 900 } });
 
@@ -198,6 +207,18 @@ test('two vessels that touch and cross (separate shells passing into each other)
   await page.locator('#fit-view').click();
   await lookAt(page, 'hard-crossing-prepare', page.getByTestId('repair-places'));
   await meshLookExport(page, 'hard-crossing', { size: '0.3', layers: '1', file: 'crossing.msh', outlets: 3 });
+});
+
+test('a SimVascular-like model with 186 labelled faces and 20 tiny 6-triangle caps: every cap an opening, meshed with the defaults', async ({ page }) => {
+  test.setTimeout(240_000);
+  await openApp(page);
+  await upload(page, 'outlets.vtp', await labelledOutlets());
+  await expect(page.getByTestId('stat-openings')).toHaveText('22');
+  await page.locator('#fit-view').click();
+  await lookAt(page, 'hard-outlets-load', page.getByTestId('openings-title'));
+  expect(await meshThroughRemedies(page, { timeout: 200_000 })).toEqual([]);
+  await lookAt(page, 'hard-outlets-inspect', page.getByTestId('verdict'));
+  await exportValidMsh(page, { name: 'outlets.msh', outlets: 21 });
 });
 
 test('a model in cm: one guess, asked until confirmed, never changed silently; cuts and spheres stay', async ({ page }) => {

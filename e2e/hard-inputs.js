@@ -79,3 +79,10 @@ export async function centimetreBifurcation() {
 export function twentyOpenings() {
   return treeStl(0.125, { spiral: 18 });
 }
+
+/** A SimVascular-like model: a capped tube with 20 tiny capped branches,
+ * each cap 6 triangles, 186 labelled faces (ModelFaceID), as a VTP (the
+ * core's outlets phantom). */
+export async function labelledOutlets() {
+  return Buffer.from((await nodeApi()).makePhantom({ kind: 'outlets' }).vtp);
+}
