@@ -674,16 +674,14 @@ def main():
                 check(fname, n == d["triangles"], f"Gmsh reads {n} triangles == {d['triangles']} (MSH {version})")
                 check(fname, "wall" in names, f"Gmsh finds physical group 'wall' (MSH {version}): {names}")
                 check(fname, orphans == 0, f"every triangle in a physical group (MSH {version})")
-        for fname, exp in DEFAULT_ONLY.items():
-            if args.files and fname not in args.files.split(","):
-                continue
-            print(fname)
-            check_default_mesh(fname, os.path.join(args.data, fname), tmp, args, have_gmsh, exp)
-        if args.hard:
-            for fname, exp in HARD.items():
+        # The files checked with default options only: the rest of the clean
+        # folder's, and the hard folder's when given.
+        default_only = [(args.data, DEFAULT_ONLY)] + ([(args.hard, HARD)] if args.hard else [])
+        for folder, files in default_only:
+            for fname, exp in files.items():
                 if args.files and fname not in args.files.split(","):
                     continue
-                path = os.path.join(args.hard, fname)
+                path = os.path.join(folder, fname)
                 print(fname)
                 if not os.path.exists(path):
                     check(fname, False, "file present")

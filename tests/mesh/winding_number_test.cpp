@@ -6,16 +6,10 @@
 #include <random>
 
 #include "tests/support/icosphere.h"
+#include "tests/support/test_meshes.h"
 
 namespace vm {
 namespace {
-
-SurfaceMesh joined(SurfaceMesh a, const SurfaceMesh& b) {
-  const int32_t base = int32_t(a.num_vertices());
-  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-  for (int32_t v : b.triangles) a.triangles.push_back(base + v);
-  return a;
-}
 
 TEST(WindingNumber, IsOneInsideAndZeroOutsideAClosedSurface) {
   const SurfaceMesh s = testing::icosphere(3, 1.0);
@@ -38,7 +32,7 @@ TEST(WindingNumber, IsOneInsideAndZeroOutsideAClosedSurface) {
 TEST(WindingNumber, CountsOverlappingShellsAndTheirOrientation) {
   SurfaceMesh a = testing::icosphere(2, 1.0);
   const SurfaceMesh b = testing::icosphere(2, 1.0, 0.8, 0, 0);
-  const SurfaceMesh both = joined(a, b);
+  const SurfaceMesh both = testing::joined(a, b);
   const WindingNumberTree tree = build_winding_number_tree(both);
   const double in_both[3] = {0.4, 0, 0}, in_a[3] = {-0.6, 0, 0}, out[3] = {3, 0, 0};
   EXPECT_NEAR(winding_number(both, tree, in_both), 2, 0.02);

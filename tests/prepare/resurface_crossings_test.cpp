@@ -11,16 +11,10 @@
 #include "core/mesh/topology.h"
 #include "tests/support/icosphere.h"
 #include "tests/support/phantoms.h"
+#include "tests/support/test_meshes.h"
 
 namespace vm {
 namespace {
-
-SurfaceMesh joined(SurfaceMesh a, const SurfaceMesh& b) {
-  const int32_t base = int32_t(a.num_vertices());
-  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-  for (int32_t v : b.triangles) a.triangles.push_back(base + v);
-  return a;
-}
 
 /// Manifold (every edge two triangles, or one on an opening), no crossing.
 void expect_clean(const SurfaceMesh& m) {
@@ -34,7 +28,7 @@ void expect_clean(const SurfaceMesh& m) {
 
 TEST(ResurfaceCrossings, TwoOverlappingSpheresBecomeTheirUnion) {
   const double r = 1, d = 0.8;
-  SurfaceMesh m = joined(testing::icosphere(4, r), testing::icosphere(4, r, d, 0, 0));
+  SurfaceMesh m = testing::joined(testing::icosphere(4, r), testing::icosphere(4, r, d, 0, 0));
   ASSERT_GT(find_self_intersections(m).pairs, 0u);
   std::vector<int32_t> labels(m.num_triangles(), 0);
   std::fill(labels.begin() + long(m.num_triangles() / 2), labels.end(), 1);
@@ -56,7 +50,7 @@ TEST(ResurfaceCrossings, TwoOverlappingSpheresBecomeTheirUnion) {
 }
 
 TEST(ResurfaceCrossings, AnInsideOutFileStaysInsideOut) {
-  SurfaceMesh m = joined(testing::icosphere(3, 1), testing::icosphere(3, 1, 0.8, 0, 0));
+  SurfaceMesh m = testing::joined(testing::icosphere(3, 1), testing::icosphere(3, 1, 0.8, 0, 0));
   for (size_t t = 0; t < m.num_triangles(); ++t)
     std::swap(m.triangles[3 * t + 1], m.triangles[3 * t + 2]);
   const ResurfaceReport report = resurface_crossings(m, nullptr);
@@ -104,14 +98,13 @@ TEST(ResurfaceCrossings, DoesNotReachAcrossAnOpening) {
   PhantomTruth truth;
   SurfaceMesh tube = testing::phantom(o, &truth);
   const auto& c = truth.opening_centers[0];
-  SurfaceMesh m = joined(tube, testing::icosphere(3, 0.5, c[0] + 0.9, c[1], c[2]));
+  SurfaceMesh m = testing::joined(tube, testing::icosphere(3, 0.5, c[0] + 0.9, c[1], c[2]));
   const size_t before = m.num_triangles();
   const ResurfaceReport report = resurface_crossings(m, nullptr);
   ASSERT_FALSE(report.places.empty());
-  EXPECT_FALSE(report.places[0].resolved) << point_text(report.places[0].where) << " "
-                                          << point_text(report.places[0].box_min) << " "
-                                          << point_text(report.places[0].box_max) << " "
-                                          << point_text(Vec3(c));
+  EXPECT_FALSE(report.places[0].resolved)
+      << point_text(report.places[0].where) << " " << point_text(report.places[0].box_min) << " "
+      << point_text(report.places[0].box_max) << " " << point_text(Vec3(c));
   EXPECT_TRUE(report.places[0].near_opening);
   EXPECT_EQ(m.num_triangles(), before);
   EXPECT_FALSE(report.left.empty());

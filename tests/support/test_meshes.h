@@ -88,6 +88,14 @@ inline SurfaceMesh torus(int n, int m, double R = 3.0, double r = 1.0) {
 
 /// ASCII STL text of a surface (one facet per triangle), every coordinate
 /// with 17 significant digits (it reads back as the same double).
+/// The triangles of `a` and of `b` as one surface (b's vertices after a's).
+inline SurfaceMesh joined(SurfaceMesh a, const SurfaceMesh& b) {
+  const int32_t base = int32_t(a.num_vertices());
+  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
+  for (int32_t v : b.triangles) a.triangles.push_back(base + v);
+  return a;
+}
+
 inline std::string ascii_stl(const SurfaceMesh& m, const std::string& name = "t") {
   std::string s = "solid " + name + "\n";
   char buf[128];
