@@ -91,7 +91,7 @@ export interface MeshOptions extends AnalyzeOptions {
   tagLayer?: boolean;
   /** keep the layers' prisms (MSH type 6) instead of 3 tetrahedra each. Default false. */
   prisms?: boolean;
-  /** defaults for this solver: element types, format, MSH version, output unit (README, Solver presets); options you give and the output's extension win. Needs gmsh, openfoam, fenics or svfsi. */
+  /** defaults for this solver: element types, format, MSH version, output unit (docs/outputs.md, Solver presets); options you give and the output's extension win. Needs gmsh, openfoam, fenics or svfsi. */
   solver?: 'gmsh' | 'openfoam' | 'fenics' | 'svfsi';
   /** the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip or a folder for mesh-complete, .foam or a folder with system/controlDict for an OpenFOAM case; JS: msh); foam: constant/polyMesh in a folder (-o case/), around NAME.foam, or zipped (.zip) Needs msh, vtu, vtp, stl, mesh-complete or foam. */
   format?: 'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete' | 'foam';
@@ -111,8 +111,8 @@ export interface MeshOptions extends AnalyzeOptions {
 
 /** Options of makePhantom(). */
 export interface PhantomOptions {
-  /** the vessel model (tree: 17 branches, 11 openings; outlets: a capped tube with 20 tiny capped branches and 186 labelled faces, as SimVascular exports; write it as .vtp to keep the labels) Needs bifurcation, tube, aneurysm, torus, tree or outlets. Default bifurcation. */
-  kind?: 'bifurcation' | 'tube' | 'aneurysm' | 'torus' | 'tree' | 'outlets';
+  /** the vessel model (tree: 17 branches, 11 openings; crossing: two vessels that touch and pass into each other, each its own shell; outlets: a capped tube with 20 tiny capped branches and 186 labelled faces, as SimVascular exports, written as .vtp to keep the labels; root: a short, wide root splitting into 2 branches that split again, 5 ends) Needs bifurcation, tube, aneurysm, torus, tree, crossing, outlets or root. Default bifurcation. */
+  kind?: 'bifurcation' | 'tube' | 'aneurysm' | 'torus' | 'tree' | 'crossing' | 'outlets' | 'root';
   /** voxel edge (the parent vessel's radius is 1) In the model's unit. Needs a positive voxel size. Default 0.1. */
   voxel?: number;
   /** voxel-value noise, in voxels. Needs a noise amplitude >= 0 (in voxels). Default 0. */
@@ -121,6 +121,8 @@ export interface PhantomOptions {
   binary?: boolean;
   /** add segmentation defects: small holes, a fin (non-manifold edge), touching holes (non-manifold vertex), duplicated faces, a flipped patch, a zero-area band. Default false. */
   dirty?: boolean;
+  /** damage each opening as an image border does: folded rim triangles, a flap through the wall, a tiny loop, a twisted band (non-orientable) Default false. */
+  damagedEnds?: boolean;
   /** noise seed. Needs an integer from 0 to 4294967295. Default 1. */
   seed?: number;
   /** scale of the coordinates. Needs a positive scale factor up to 1e30 (STL coordinates are 32-bit floats). Default 1. */
@@ -242,7 +244,7 @@ export type SizeFieldResult =
   | { ok: true; positions: Float32Array; triangles: Uint32Array; radius: Float32Array; size: Float32Array; unit: string }
   | Failure;
 
-/** A solver preset (`solver`): the defaults it sets (README, "Solver presets"). */
+/** A solver preset (`solver`): the defaults it sets (docs/outputs.md, "Solver presets"). */
 export interface SolverPreset {
   name: NonNullable<MeshOptions['solver']>;
   label: string;
