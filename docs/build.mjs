@@ -55,7 +55,7 @@ function siteHref(href) {
 function html(path, markdown = read(path)) {
   if (current.path !== path) current = { path, anchor: anchorMaker() };
   return marked
-    .parse(markdown.replace(/<!--[\s\S]*?-->/g, ''))
+    .parse(markdown)
     .replace(/<a href="([^"]+)">([\s\S]*?)<\/a>/g, (all, href, text) => {
       const to = siteHref(href.replace(/&amp;/g, '&'));
       return to === null ? `<code>${text.replace(/<\/?code>/g, '')}</code>` : `<a href="${escapeHtml(to)}">${text}</a>`;
