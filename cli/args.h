@@ -1,5 +1,5 @@
 // Command-line arguments through the option table (core/pipeline/
-// option_table.h): parsing, the help text and the README's option list.
+// option_table.h): parsing, the help text and the option list of docs/options.md.
 #pragma once
 
 #include <string>
@@ -35,7 +35,7 @@ std::string apply_all(const Args& args, PhantomOptions& options);
 /// The options section of --help for all commands, from the table.
 std::string options_help();
 
-/// The README's option list (Markdown tables), from the table.
+/// The option list of docs/options.md (Markdown tables), from the table.
 std::string options_markdown();
 
 }  // namespace vm::cli

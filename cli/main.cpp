@@ -54,7 +54,8 @@ usage:
       VTK XML PolyData with its face labels as ModelFaceID when OUT ends
       in .vtp: SimVascular's, 1 the wall, 2.. each flat cap).
   vesselmesh options [--json | --markdown]
-      Print the option table (JSON: for tools; Markdown: the README's list).
+      Print the option table (JSON: for tools; Markdown: the list in
+      docs/options.md).
   vesselmesh --help | --version
 
 FILE may be '-': the surface is read from standard input (a pipe).

@@ -1,15 +1,18 @@
 // Builds the documentation site into docs/dist/ (npm run build:docs; not
-// committed): getting started, the CLI and JS API references (the options
-// from the core's option table, with their units), the <vessel-mesher>
-// element's contract, the method (docs/site/method.md) and live examples
-// of the element meshing the bundled sample (written here by the API's
-// makePhantom) in place. Text comes from README.md's sections, so the site
-// and the README say the same. Needs the wasm and dist/element/ built.
+// committed): one page for each documentation page of the repository
+// (README.md as getting started, docs/*.md: the command line, options,
+// outputs, JS API, <vessel-mesher>, web app, method, benchmarks, limits,
+// architecture; docs/links.mjs lists them), the options as tables from the
+// core's option table (with their units), and live examples of the element
+// meshing the bundled sample (written here by the API's makePhantom) in
+// place. The site and the repository's Markdown say the same. Needs the
+// wasm and dist/element/ built.
 import { cpSync, existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 
 import { marked } from 'marked';
 
 import { createVesselmesh } from '../wasm/src/node.js';
+import { anchorMaker, headingText, PAGES, resolve } from './links.mjs';
 
 const root = new URL('../', import.meta.url);
 const out = new URL('docs/dist/', root);
@@ -20,31 +23,42 @@ if (!existsSync(new URL('dist/element/vessel-mesher.js', root))) {
   process.exit(1);
 }
 
-/** README.md's `## ` sections by title (the text under each heading). */
-function sections(markdown) {
-  const map = new Map();
-  let title = '';
-  for (const line of markdown.split('\n')) {
-    const m = /^## (.+)$/.exec(line);
-    if (m) {
-      title = m[1].trim();
-      map.set(title, '');
-    } else map.set(title, (map.get(title) ?? '') + line + '\n');
-  }
-  return map;
-}
-
 const escapeHtml = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
 
-/** Markdown to HTML, with links to the repository's files made plain text
- * (the site has no copy of them) except the pages it has. */
-function html(markdown) {
-  const pages = { 'docs/ARCHITECTURE.md': 'architecture.html' };
+/** The page being rendered: its repository path (for its relative links)
+ * and the anchors of its headings so far. */
+let current = { path: 'README.md', anchor: anchorMaker() };
+
+marked.use({
+  renderer: {
+    /** Headings with GitHub's anchors, so that links to them work on the
+     * site as in the repository. */
+    heading({ tokens, depth, text }) {
+      return `<h${depth} id="${escapeHtml(current.anchor(headingText(text)))}">${this.parser.parseInline(tokens)}</h${depth}>\n`;
+    },
+  },
+});
+
+/** A link of the current page on the site: to a documentation page, that
+ * page of the site (with its fragment); to another file of the repository,
+ * null (the site has no copy of it). */
+function siteHref(href) {
+  const target = resolve(current.path, href);
+  if (!target) return href;
+  const page = PAGES[target.path];
+  if (!page) return null;
+  return (target.path === current.path ? '' : page) + (target.fragment ? `#${encodeURIComponent(target.fragment)}` : '');
+}
+
+/** The Markdown of the repository page at `path` (or `markdown`, from it)
+ * as HTML; links to the repository's other files become plain text. */
+function html(path, markdown = read(path)) {
+  if (current.path !== path) current = { path, anchor: anchorMaker() };
   return marked
-    .parse(markdown.replace(/<!--[\s\S]*?-->/g, ''))
+    .parse(markdown)
     .replace(/<a href="([^"]+)">([\s\S]*?)<\/a>/g, (all, href, text) => {
-      if (pages[href]) return `<a href="${pages[href]}">${text}</a>`;
-      return /^(https?:|#)/.test(href) ? all : `<code>${text.replace(/<\/?code>/g, '')}</code>`;
+      const to = siteHref(href.replace(/&amp;/g, '&'));
+      return to === null ? `<code>${text.replace(/<\/?code>/g, '')}</code>` : `<a href="${escapeHtml(to)}">${text}</a>`;
     });
 }
 
@@ -55,26 +69,33 @@ const UNIT = {
   degrees: 'degrees',
 };
 
-/** The options of a command as a table: key, type, range, default, unit. */
-function optionsTable(table, command, keyOf) {
+/** The options of a command as a table: CLI flag, JS key, type, range,
+ * default, unit (rows `COMMAND-ID`). */
+function optionsTable(table, command) {
   const rows = table
-    .filter((o) => o.commands.includes(command) && o.faces.includes(keyOf === 'js' ? 'js' : 'cli'))
+    .filter((o) => o.commands.includes(command))
     .map((o) => {
-      const key = keyOf === 'js' ? o.js : `--${o.cli}${o.metavar ? ` ${o.metavar}` : ''}`;
+      const cli = o.faces.includes('cli') ? `<code>--${escapeHtml(o.cli)}${o.metavar ? ` ${escapeHtml(o.metavar)}` : ''}</code>` : '—';
+      const js = o.faces.includes('js') ? `<code>${escapeHtml(o.js)}</code>` : '—';
       const def = o.type === 'flag' ? String(o.defaultOn) : o.default || '—';
-      return `<tr id="${command}-${keyOf}-${escapeHtml(o.id)}"><td><code>${escapeHtml(key)}</code></td><td>${escapeHtml(o.type)}</td>` +
+      return `<tr id="${command}-${escapeHtml(o.id)}"><td>${cli}</td><td>${js}</td><td>${escapeHtml(o.type)}</td>` +
         `<td>${escapeHtml(o.needs || (o.choices.length ? o.choices.join(', ') : ''))}</td><td>${escapeHtml(def)}</td>` +
         `<td class="unit">${escapeHtml(UNIT[o.unit] ?? (o.unit || '—'))}</td><td>${escapeHtml(o.doc)}${o.offDoc ? ` (off: ${escapeHtml(o.offDoc)})` : ''}</td></tr>`;
     });
-  return `<table class="options" data-command="${command}"><thead><tr><th>Option</th><th>Type</th><th>Values</th><th>Default</th><th>Unit</th><th>What it does</th></tr></thead><tbody>${rows.join('')}</tbody></table>`;
+  return `<table class="options" data-command="${command}"><thead><tr><th>CLI</th><th>JS</th><th>Type</th><th>Values</th><th>Default</th><th>Unit</th><th>What it does</th></tr></thead><tbody>${rows.join('')}</tbody></table>`;
 }
 
 const NAV = [
   ['index.html', 'Getting started'],
   ['cli.html', 'Command line'],
+  ['options.html', 'Options'],
+  ['outputs.html', 'Outputs'],
   ['js-api.html', 'JavaScript API'],
   ['element.html', '<vessel-mesher>'],
+  ['app.html', 'Web app'],
   ['method.html', 'Method'],
+  ['benchmarks.html', 'Benchmarks'],
+  ['limits.html', 'Limits'],
   ['architecture.html', 'Architecture'],
 ];
 
@@ -120,56 +141,47 @@ const sample = api.makePhantom({ kind: 'bifurcation', voxel: 0.08, noise: 0.3 })
 if (!sample.ok) throw new Error(sample.error);
 writeFileSync(new URL('sample.stl', out), sample.stl);
 
-const readme = sections(read('README.md'));
-const s = (title) => {
-  const text = readme.get(title);
-  if (text === undefined) throw new Error(`README.md has no section '${title}'`);
-  return text;
-};
-const intro = readme.get('');
-const table = api.optionTable;
+/** A page's Markdown cut before its first `## ` heading (or `at`). */
+function split(markdown, at = /^## /m) {
+  const i = markdown.search(at);
+  if (i < 0) throw new Error(`no ${at} in the page`);
+  return [markdown.slice(0, i), markdown.slice(i)];
+}
 
+const [intro, rest] = split(read('README.md'));
 page(
   'index.html',
   'Getting started',
-  `${html(intro.replace(/^# .*\n/, ''))}
+  `${html('README.md', intro)}
 <h2>Try it here</h2>
 <p>The bundled sample (a generated bifurcation with segmentation noise) in a
 <code>&lt;vessel-mesher&gt;</code> element: press <em>Mesh</em>, then <em>Export</em>.</p>
 ${LIVE('start')}
-<h2>Install and run</h2>${html(s('The two commands (Debian 12, as root or with sudo)'))}
-<h2>npm package</h2>${html(s('npm package'))}`,
+${html('README.md', rest)}`,
   { element: true },
 );
 
+page('cli.html', 'Command line', html('docs/cli.md'));
+
+// The option list: the generated Markdown block gives way to the same
+// table with each option's unit, a table per command.
+const [optionsIntro] = split(read('docs/options.md'), /<!-- options:begin/);
 page(
-  'cli.html',
-  'Command line',
-  `<h1>Command line</h1>${html(s('Command line'))}
-<h2>Options</h2><p>Every option, from the core's option table (the CLI, the
-JS API and this page share it). Lengths are in the model's unit, R is the
-local vessel radius, K an opening number as the analysis lists them.</p>
-<h3><code>vesselmesh info</code></h3>${optionsTable(table, 'info', 'cli')}
-<h3><code>vesselmesh mesh</code></h3>${optionsTable(table, 'mesh', 'cli')}
-<h3><code>vesselmesh phantom</code></h3>${optionsTable(table, 'phantom', 'cli')}
-<h2>Output groups</h2>${html(s('Output groups'))}`,
+  'options.html',
+  'Options',
+  `${html('docs/options.md', optionsIntro)}
+<h2 id="info"><code>vesselmesh info</code> (JS <code>analyze()</code>)</h2>${optionsTable(api.optionTable, 'info')}
+<h2 id="mesh"><code>vesselmesh mesh</code> (JS <code>mesh()</code>)</h2>${optionsTable(api.optionTable, 'mesh')}
+<h2 id="phantom"><code>vesselmesh phantom</code> (JS <code>makePhantom()</code>)</h2>${optionsTable(api.optionTable, 'phantom')}`,
 );
 
-page(
-  'js-api.html',
-  'JavaScript API',
-  `<h1>JavaScript API</h1>${html(s('JavaScript API (WebAssembly)'))}
-<h2>npm package</h2>${html(s('npm package'))}
-<h2>Options</h2><p>By their JS keys, with JS types; the same table as the CLI's.</p>
-<h3><code>analyze()</code></h3>${optionsTable(table, 'info', 'js')}
-<h3><code>mesh()</code></h3>${optionsTable(table, 'mesh', 'js')}
-<h3><code>makePhantom()</code></h3>${optionsTable(table, 'phantom', 'js')}`,
-);
+page('outputs.html', 'Outputs', html('docs/outputs.md'));
+page('js-api.html', 'JavaScript API', html('docs/javascript.md'));
 
 page(
   'element.html',
   '<vessel-mesher>',
-  `<h1>&lt;vessel-mesher&gt;</h1>${html(s('Embedding: `<vessel-mesher>`'))}
+  `${html('docs/element.md')}
 <h2>Live: the full element</h2>${LIVE('full')}
 <h2>Live: compact, driven from a script</h2>
 <p>This one is meshed by <code>mesh()</code> once it has analyzed the sample; its events are logged below.</p>
@@ -198,7 +210,12 @@ ${LIVE('scripted', ' compact')}
   { element: true },
 );
 
-page('method.html', 'Method', html(read('docs/site/method.md')) + `<h2>Limits</h2>${html(s('Limits'))}`);
-page('architecture.html', 'Architecture', html(read('docs/ARCHITECTURE.md')));
+page('app.html', 'Web app', html('docs/page.md'));
+page('method.html', 'Method', html('docs/method.md'));
+page('benchmarks.html', 'Benchmarks', html('docs/benchmarks.md'));
+page('limits.html', 'Limits', html('docs/limits.md'));
+page('architecture.html', 'Architecture', html('docs/ARCHITECTURE.md'));
 
+const missing = Object.values(PAGES).filter((file) => !NAV.some(([href]) => href === file));
+if (missing.length) throw new Error(`pages not in the navigation: ${missing.join(', ')}`);
 console.log(`wrote ${new URL('.', out).pathname} (${NAV.length} pages, the element, sample.stl)`);

@@ -1,7 +1,8 @@
 // The documentation site (docs/dist/, npm run build:docs): its live
-// <vessel-mesher> examples mesh the bundled sample in place, the references
-// list every option of the table with its unit, and nothing is requested
-// outside the site's origin.
+// <vessel-mesher> examples mesh the bundled sample in place, the options
+// page lists every option of the table with its unit, every documentation
+// page is on it with its links resolved, and nothing is requested outside
+// the site's origin.
 import { existsSync } from 'node:fs';
 
 import { expect, test } from '@playwright/test';
@@ -59,27 +60,44 @@ test('the element page: a scripted example meshes and logs its events', async ({
   expect(errors).toEqual([]);
 });
 
-test('the references list every option of the table with its unit; every page is linked', async ({ page }) => {
+test('the options page lists every option of the table with its unit; every page is linked and its links resolve', async ({ page }) => {
   const { optionTable } = await createVesselmesh();
   const { foreign } = watch(page);
-  for (const [file, face] of [['cli.html', 'cli'], ['js-api.html', 'js']]) {
-    await page.goto(`${server.url}${file}`);
-    for (const [command] of [['info'], ['mesh'], ['phantom']]) {
-      const expected = optionTable.filter((o) => o.commands.includes(command) && o.faces.includes(face));
-      const rows = page.locator(`table[data-command="${command}"] tbody tr`);
-      await expect(rows).toHaveCount(expected.length);
-      for (const o of expected.filter((o) => o.unit === 'length')) {
-        await expect(page.locator(`[id="${command}-${face}-${o.id}"] .unit`)).toContainText("model's unit");
-      }
+  await page.goto(`${server.url}options.html`);
+  for (const command of ['info', 'mesh', 'phantom']) {
+    const expected = optionTable.filter((o) => o.commands.includes(command));
+    const rows = page.locator(`table[data-command="${command}"] tbody tr`);
+    await expect(rows).toHaveCount(expected.length);
+    for (const o of expected.filter((o) => o.unit === 'length')) {
+      await expect(page.locator(`[id="${command}-${o.id}"] .unit`)).toContainText("model's unit");
     }
   }
   const links = await page.locator('header nav a').evaluateAll((as) => as.map((a) => a.getAttribute('href')));
-  expect(links).toEqual(['index.html', 'cli.html', 'js-api.html', 'element.html', 'method.html', 'architecture.html']);
+  expect(links).toEqual([
+    'index.html', 'cli.html', 'options.html', 'outputs.html', 'js-api.html', 'element.html',
+    'app.html', 'method.html', 'benchmarks.html', 'limits.html', 'architecture.html',
+  ]);
+  const broken = [];
   for (const href of links) {
     const response = await page.goto(`${server.url}${href}`);
     expect(response.status()).toBe(200);
     await expect(page.locator('main h1, main h2').first()).toBeVisible();
+    // The links in the text: to a page of the site, and to a heading there.
+    const targets = await page.locator('main a[href]').evaluateAll((as) => as.map((a) => a.getAttribute('href')));
+    for (const target of targets.filter((t) => !/^https?:/.test(t))) {
+      const [file, fragment] = target.split('#');
+      if (file && !links.includes(file)) broken.push(`${href}: ${target}`);
+      else if (fragment) {
+        if (file && file !== href) await page.goto(`${server.url}${file}`);
+        if ((await page.locator(`[id="${decodeURIComponent(fragment)}"]`).count()) !== 1) broken.push(`${href}: ${target}`);
+        if (file && file !== href) await page.goto(`${server.url}${href}`);
+      }
+    }
   }
+  expect(broken).toEqual([]);
+  await page.goto(`${server.url}cli.html`);
+  await expect(page.locator('main')).toContainText('damaged_ends');
+  await screenshots(page, 'docs-cli');
   await page.goto(`${server.url}method.html`);
   await expect(page.locator('main')).toContainText('γ');
   await screenshots(page, 'docs-method');

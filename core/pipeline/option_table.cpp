@@ -498,8 +498,8 @@ const OptionSpec kOptions[] = {
      .metavar = "SOLVER",
      .choices = kSolvers,
      .needs = "gmsh, openfoam, fenics or svfsi",
-     .doc = "defaults for this solver: element types, format, MSH version, output unit (README, "
-            "Solver presets); options you give and the output's extension win"},
+     .doc = "defaults for this solver: element types, format, MSH version, output unit "
+            "(docs/outputs.md, Solver presets); options you give and the output's extension win"},
     {.id = "format",
      .cli = "format",
      .js = "format",

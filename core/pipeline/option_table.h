@@ -1,8 +1,8 @@
 // The option table: every user-settable option of vesselmesh, once, with its
 // type, range, default, unit and one line of documentation. The CLI parser
 // and help, the WebAssembly binding, the JavaScript API's type declarations
-// and the README's option list are all made from it (or checked against it),
-// so they cannot drift apart. See docs/ARCHITECTURE.md, "Options".
+// and the option list of docs/options.md are all made from it (or checked
+// against it), so they cannot drift apart. See docs/ARCHITECTURE.md, "Options".
 #pragma once
 
 #include <cstdint>
@@ -146,7 +146,7 @@ std::string phrase_error(const Status& status, OptionFace face);
 /// id, cli, js, type, commands [names], faces [names], group, metavar, min,
 /// max, minExclusive, maxExclusive, choices, listSize, defaultOn, default,
 /// unit, needs, doc, offDoc, repeatable, perOpening), for the JS side, its type
-/// declarations and the README check.
+/// declarations and the docs/options.md check.
 std::string option_table_json();
 
 }  // namespace vm

@@ -183,7 +183,7 @@ export function typesFor(table) {
     '  | { ok: true; positions: Float32Array; triangles: Uint32Array; radius: Float32Array; size: Float32Array; unit: string }',
     '  | Failure;',
     '',
-    '/** A solver preset (`solver`): the defaults it sets (README, "Solver presets"). */',
+    '/** A solver preset (`solver`): the defaults it sets (docs/outputs.md, "Solver presets"). */',
     'export interface SolverPreset {',
     "  name: NonNullable<MeshOptions['solver']>;",
     '  label: string;',

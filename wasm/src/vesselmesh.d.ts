@@ -91,7 +91,7 @@ export interface MeshOptions extends AnalyzeOptions {
   tagLayer?: boolean;
   /** keep the layers' prisms (MSH type 6) instead of 3 tetrahedra each. Default false. */
   prisms?: boolean;
-  /** defaults for this solver: element types, format, MSH version, output unit (README, Solver presets); options you give and the output's extension win. Needs gmsh, openfoam, fenics or svfsi. */
+  /** defaults for this solver: element types, format, MSH version, output unit (docs/outputs.md, Solver presets); options you give and the output's extension win. Needs gmsh, openfoam, fenics or svfsi. */
   solver?: 'gmsh' | 'openfoam' | 'fenics' | 'svfsi';
   /** the file format (default: from the output's extension, .msh .vtu .vtp .stl, .zip or a folder for mesh-complete, .foam or a folder with system/controlDict for an OpenFOAM case; JS: msh); foam: constant/polyMesh in a folder (-o case/), around NAME.foam, or zipped (.zip) Needs msh, vtu, vtp, stl, mesh-complete or foam. */
   format?: 'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete' | 'foam';
@@ -244,7 +244,7 @@ export type SizeFieldResult =
   | { ok: true; positions: Float32Array; triangles: Uint32Array; radius: Float32Array; size: Float32Array; unit: string }
   | Failure;
 
-/** A solver preset (`solver`): the defaults it sets (README, "Solver presets"). */
+/** A solver preset (`solver`): the defaults it sets (docs/outputs.md, "Solver presets"). */
 export interface SolverPreset {
   name: NonNullable<MeshOptions['solver']>;
   label: string;

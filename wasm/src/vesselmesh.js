@@ -158,7 +158,7 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
      * Meshes a surface file: remeshes the surface by conformal maps (unless
      * remesh is false), caps the openings, grows the boundary layers and
      * fills the lumen with tetrahedra (unless surfaceOnly). Options: the
-     * option table's mesh options by their JS keys (README, "Options";
+     * option table's mesh options by their JS keys (docs/options.md;
      * vesselmesh.d.ts). Returns the MSH file bytes, the report, the wall
      * surface and the volume (see vesselmesh.d.ts, MeshVolume). `file` is
      * the written file in `format` (default msh, then also as `msh`; a zip

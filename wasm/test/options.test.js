@@ -1,6 +1,6 @@
 // The option table is the one source of every option: the JS API, its type
 // declarations (vesselmesh.d.ts), the CLI (`vesselmesh options --json`) and
-// the README's option list must agree with it.
+// the option list of docs/options.md must agree with it.
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { existsSync, readFileSync } from 'node:fs';
@@ -64,10 +64,10 @@ describe('option table', () => {
     assert.deepEqual(fromCli, api.optionTable);
   });
 
-  test("the README's option list is the CLI's `options --markdown`", { skip: !existsSync(cli) && 'no native build' }, () => {
-    const readme = readFileSync(new URL('README.md', root), 'utf8');
-    const block = readme.match(/<!-- options:begin[^>]*-->\n([\s\S]*?)<!-- options:end -->/);
-    assert.ok(block, 'README.md has no <!-- options:begin --> ... <!-- options:end --> block');
+  test("docs/options.md's option list is the CLI's `options --markdown`", { skip: !existsSync(cli) && 'no native build' }, () => {
+    const page = readFileSync(new URL('docs/options.md', root), 'utf8');
+    const block = page.match(/<!-- options:begin[^>]*-->\n([\s\S]*?)<!-- options:end -->/);
+    assert.ok(block, 'docs/options.md has no <!-- options:begin --> ... <!-- options:end --> block');
     const generated = execFileSync(cli.pathname, ['options', '--markdown'], { encoding: 'utf8' });
     assert.equal(block[1], generated, 'regenerate it: build/vesselmesh options --markdown');
   });

@@ -84,6 +84,10 @@ describe('npm package', () => {
       assert.ok(files.includes(`package/${f}`), `${f} is in the tarball`);
     }
     assert.ok(files.some((f) => /^package\/dist\/element\/assets\/worker-.*\.js$/.test(f)));
+    // The README (the front door) and the pages it links to.
+    for (const f of ['README.md', 'docs/cli.md', 'docs/options.md', 'docs/javascript.md', 'docs/element.md']) {
+      assert.ok(files.includes(`package/${f}`), `${f} is in the tarball`);
+    }
     assert.ok(!files.some((f) => /^package\/(core|cli|web|e2e|tests)\//.test(f)));
     const pkg = JSON.parse(readFileSync(join(consumer.pkg, 'package.json'), 'utf8'));
     assert.equal(pkg.private, undefined);

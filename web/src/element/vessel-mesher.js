@@ -7,7 +7,7 @@
 //
 // Contract:
 //   attributes  src      URL of a surface file to load (on connect and on change)
-//               options  JSON of the JS API's mesh options (README, "Options")
+//               options  JSON of the JS API's mesh options (docs/options.md)
 //               compact  present: viewer + Mesh + Export only
 //   methods     load(fileOrBytes)  File | Blob | ArrayBuffer | typed array | URL
 //                                  -> Promise of the analysis (rejects with the
