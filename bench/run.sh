@@ -26,3 +26,9 @@ if [[ -f $data/aortic-arch.stl ]]; then
   [[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
   "$py" bench/remesh_speed.py --data "$data" --json out/speed/surface.json
 fi
+
+echo
+echo "== every real file with default options (native and wasm, median of 3)"
+py=python3
+[[ -x /usr/bin/python3 ]] && py=/usr/bin/python3
+"$py" bench/default_runs.py --runs 3 --json out/speed/default_runs.json || true
