@@ -52,6 +52,10 @@ test('a capped VTP: caps become openings, one named, the mesh exported as VTU th
   const rows = page.getByTestId('opening-item');
   await expect(rows).toHaveCount(2);
   await expect(rows.getByTestId('opening-source')).toHaveText(['cap, ModelFaceID 2', 'cap, ModelFaceID 3']);
+  // Face labels hint at cm (SimVascular's unit); this one is in mm.
+  await expect(page.getByTestId('stat-units')).toContainText('cm?');
+  await page.getByTestId('units').selectOption('mm');
+  await expect(page.getByTestId('stat-units')).toHaveText('mm');
   await expect(rows.nth(0)).toContainText('radius 0.9943 mm');
   await expect(page.getByTestId('warnings')).toContainText('2 planar caps were recognised and removed');
   await expect(page.getByTestId('warnings')).toContainText('(keep them with “Keep flat caps as wall”)');
@@ -182,7 +186,8 @@ test('units: metres guessed plainly and not asked, an unsure guess asked and cha
   // A model in metres: the core is certain, so nothing is asked; the
   // summary says how it was guessed; every length in m.
   await upload(page, 'metres.stl', phantom(0.003));
-  await expect(units).toHaveText('m (guessed from the median vessel radius 0.00327)');
+  await expect(units).toContainText('m (guessed from the vessel radius 0.00354 largest');
+  await expect(units).toContainText('only m gives human vessel sizes');
   await expect(prompt).toBeHidden();
   await expect(page.getByTestId('stat-bbox')).toContainText(' m, diagonal 0.03497 m');
   await expect(page.getByTestId('opening-item').first()).toContainText('radius 0.003273 m');
@@ -193,8 +198,8 @@ test('units: metres guessed plainly and not asked, an unsure guess asked and cha
   // The same shape in millimetres or centimetres: the page asks.
   await upload(page, 'unsure.stl', phantom(1));
   await expect(prompt).toBeVisible();
-  await expect(prompt).toContainText('Units: mm? The numbers could also be centimetres (median vessel radius 1.09).');
-  await expect(units).toHaveText('mm? (a guess from the median vessel radius 1.09)');
+  await expect(prompt).toContainText('Units: cm? The numbers could also be millimetres (vessel radius 1.18 largest');
+  await expect(units).toContainText('cm? (a guess from the vessel radius 1.18 largest');
   await expect(page.getByTestId('units')).toHaveValue('');
   await screenshots(page, 'formats-units', prompt);
   await prompt.getByRole('button', { name: 'cm', exact: true }).click();

@@ -70,9 +70,10 @@ export async function crossingVessels() {
   return Buffer.from((await nodeApi()).makePhantom({ kind: 'crossing' }).stl);
 }
 
-/** A bifurcation in centimetres (the parent's radius 0.1: 1 mm). */
+/** A bifurcation in centimetres (the parent's radius 1: 1 cm). */
 export async function centimetreBifurcation() {
-  return Buffer.from((await nodeApi()).makePhantom({ kind: 'bifurcation', voxel: 0.15, scale: 0.1 }).stl);
+  // An aorta and its iliacs in cm (radii 0.6-1): cm is likely, mm possible.
+  return Buffer.from((await nodeApi()).makePhantom({ kind: 'bifurcation', voxel: 0.12 }).stl);
 }
 
 /** A vessel tree with 20 open ends: a trunk and 18 side branches around it. */

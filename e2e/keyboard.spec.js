@@ -32,8 +32,13 @@ test('keyboard only: open a file, prepare, orbit the view, mesh, inspect and exp
   await tabTo(page, page.getByTestId('open-file'));
   await page.keyboard.press('Enter');
   await (await chooser).setFiles({ name: 'closed.stl', mimeType: 'model/stl', buffer: await closedBifurcation() });
-  await expect(page.getByTestId('stat-closed')).toHaveText('yes');
+  // Its blind ends cut open on load; Ctrl+Z takes the cuts back.
+  await expect(page.getByTestId('stat-openings')).toHaveText('3');
   await step('prepare');
+  await expect(page.locator('body')).toHaveAttribute('data-history', '2/2');
+  await page.keyboard.press('Control+z');
+  await expect(page.getByTestId('stat-closed')).toHaveText('yes');
+  await expect(page.locator('body')).toHaveAttribute('data-history', '1/2');
 
   // Prepare: the units (arrow keys on the select), undone with Ctrl+Z.
   await tabTo(page, page.getByTestId('units'));

@@ -1,6 +1,6 @@
 import { expect, test } from '@playwright/test';
 
-import { bifurcationStl, nodeApi, openWatched as open, screenshots, setSizeAndLayers, upload } from './helpers.js';
+import { bifurcationStl, nodeApi, openWatched as open, screenshots, setSizeAndLayers, undoOpenedEnds, upload } from './helpers.js';
 
 // The Prepare step: a closed surface (a bifurcation with rounded ends, as
 // segmentation tools export it) gets cuts proposed at its vessel ends, made
@@ -51,11 +51,16 @@ test('a closed bifurcation: proposed cuts made into openings, one replaced by a 
 }) => {
   const errors = await open(page);
   await upload(page, 'closed-bifurcation.stl', bifurcation({ openEnds: false }));
-  await expect(page.getByTestId('stat-closed')).toHaveText('yes');
-  await expect(page.getByTestId('stat-openings')).toHaveText('0');
+  // The three blind vessel ends are cut open by default, listed as made
+  // cuts; Undo (in the notice) takes them back to proposals.
+  const cuts = page.getByTestId('cut-row');
+  await expect(page.getByTestId('stat-closed')).toHaveText('no');
+  await expect(page.getByTestId('opening-source')).toHaveText(['cut', 'cut', 'cut']);
+  for (const row of await cuts.all()) await expect(row).toHaveAttribute('data-state', 'made');
+  await screenshots(page, 'prepare-opened', page.getByTestId('prepare'));
+  await undoOpenedEnds(page);
 
   // The three vessel ends are proposed, not yet made.
-  const cuts = page.getByTestId('cut-row');
   await expect(cuts).toHaveCount(3);
   for (const row of await cuts.all()) {
     await expect(row).toHaveAttribute('data-state', 'new');
@@ -142,10 +147,10 @@ test('a closed bifurcation: proposed cuts made into openings, one replaced by a 
   expect(errors).toEqual([]);
 });
 
-test('a click off the surface, or where no vessel can be cut, is said next to the cuts; the page keeps working', async ({ page }) => {
+test('a click off the surface is said next to the cuts, one on a rounded vessel end cuts there; the page keeps working', async ({ page }) => {
   const errors = await open(page);
   await upload(page, 'closed-bifurcation.stl', bifurcation({ openEnds: false }));
-  await expect(page.getByTestId('cut-row')).toHaveCount(3);
+  await undoOpenedEnds(page);
   await page.getByTestId('add-cut').click();
   const box = await page.getByTestId('viewer').boundingBox();
   await page.mouse.move(box.x + box.width - 10, box.y + box.height / 2);
@@ -153,13 +158,19 @@ test('a click off the surface, or where no vessel can be cut, is said next to th
   await page.mouse.click(box.x + box.width - 10, box.y + box.height / 2);
   await expect(page.getByTestId('prepare-error')).toContainText('No surface there');
   await expect(page.getByTestId('cut-row')).toHaveCount(3);
-  // On the rounded tip the section is no vessel's: the core's refusal is said there too.
-  const [x, y] = await pointAt(page, ([, , z]) => z < -6 && z > -6.5);
-  await page.mouse.click(x, y);
-  await expect(page.getByTestId('prepare-error')).toContainText('cannot cut across the vessel');
-  await expect(page.getByTestId('cut-row')).toHaveCount(3);
   await expect(page.getByTestId('add-cut')).toHaveAttribute('aria-pressed', 'true');
   await screenshots(page, 'prepare-error', page.getByTestId('prepare'));
+  // On the rounded tip of a vessel end: a cut there all the same (across
+  // the end, below its dome), the error gone; removed again.
+  const [x, y] = await pointAt(page, ([, , z]) => z < -6 && z > -6.5);
+  await page.mouse.click(x, y);
+  await expect(page.getByTestId('cut-row')).toHaveCount(4);
+  await expect(page.getByTestId('cut-row').nth(3)).toHaveAttribute('data-source', 'added');
+  await expect(page.getByTestId('prepare-error')).toBeHidden();
+  await page.getByRole('button', { name: 'Remove cut 4' }).click();
+  await expect(page.getByTestId('cut-row')).toHaveCount(3);
+  await page.getByTestId('add-cut').click();
+  await expect(page.getByTestId('add-cut')).toHaveAttribute('aria-pressed', 'true');
   // Escape stops adding; the cuts are still made.
   await page.keyboard.press('Escape');
   await expect(page.getByTestId('add-cut')).toHaveAttribute('aria-pressed', 'false');
@@ -175,7 +186,7 @@ test('smoothing says what it found; flow extensions of 3 radii move every cap ou
   await upload(page, 'bifurcation-mask.stl', bifurcation({ binary: true }));
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
   const note = page.getByTestId('smoothing-note');
-  await expect(note).toContainText('Voxel staircase detected (voxel 0.15 mm)');
+  await expect(note).toContainText('Voxel staircase detected (voxel 0.15 cm)');
   await expect(note).toContainText('smoothed in');
   await page.getByRole('combobox', { name: 'Smoothing' }).selectOption('off');
   await expect(note).toContainText('not smoothed');
@@ -199,7 +210,7 @@ test('smoothing says what it found; flow extensions of 3 radii move every cap ou
   await expect(page.getByTestId('remesh-result')).toBeVisible({ timeout: 90_000 });
   await expect(page.locator('#out-caps')).toHaveText('inlet, outlet_1, outlet_2');
   for (const row of await rows.all()) {
-    const radius = Number((await row.textContent()).match(/radius ([\d.]+) mm/)[1]);
+    const radius = Number((await row.textContent()).match(/radius ([\d.]+) cm/)[1]);
     const shift = Number(await row.getAttribute('data-cap-shift'));
     expect(shift).toBeGreaterThan(2 * radius);
     expect(shift).toBeLessThan(4 * radius);

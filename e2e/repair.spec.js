@@ -132,7 +132,7 @@ test('a surface that crosses itself: re-surfaced by default, said and marked whe
   await expect(place).toHaveCount(1);
   await expect(place).toHaveAttribute('data-kind', 'resurfaced');
   await expect(place).toContainText(
-    /Re-surfaced where the surface crossed itself, at \(-0\.8\d+, 0\.0\d+, 4\.2\d+\) mm: 58 pairs of crossing triangles, 1,416 triangles replaced by 1,112\./,
+    /Re-surfaced where the surface crossed itself, at \(-0\.8\d+, 0\.0\d+, 4\.2\d+\) cm: 58 pairs of crossing triangles, 1,416 triangles replaced by 1,112\./,
   );
   const mark = page.getByTestId('repair-mark');
   await expect(mark).toHaveCount(1);
@@ -155,13 +155,13 @@ test('a surface that crosses itself: re-surfaced by default, said and marked whe
   await page.getByTestId('repair').selectOption('off');
   await expect(place).toHaveCount(0);
   await expect(mark).toHaveCount(0);
-  await expect(page.getByTestId('warnings')).toContainText(/the surface crosses itself at 1 place \(\d+ pairs of triangles\), at \(-?[\d.]+, -?[\d.e-]+, [\d.]+\) mm/);
+  await expect(page.getByTestId('warnings')).toContainText(/the surface crosses itself at 1 place \(\d+ pairs of triangles\), at \(-?[\d.]+, -?[\d.e-]+, [\d.]+\) cm/);
   const warning = page.locator('[data-testid=opening-warning][data-warning=self-crossing]');
   await expect(warning).toContainText('Repair is off');
   await expect(warning.getByTestId('warning-repair')).toHaveText('Repair the surface');
   await page.getByTestId('remesh').click();
   const error = page.getByTestId('error');
-  await expect(error).toContainText(/the input crosses itself at \(-?[\d.]+, -?[\d.e-]+, [\d.]+\) mm \(1 place; fix it in the segmentation/);
+  await expect(error).toContainText(/the input crosses itself at \(-?[\d.]+, -?[\d.e-]+, [\d.]+\) cm \(1 place; fix it in the segmentation/);
   await expect(error).not.toContainText(/clipPlanes|repair off/);
   await expect(error).toBeInViewport();
   const remedy = page.getByTestId('remedy-repair');

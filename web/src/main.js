@@ -276,7 +276,9 @@ async function run(stage, job) {
  * top) and returned as { ok: false, message }. */
 async function analyze(name, bytes, prep, onError = (message, next, failure) => showFailure(failure, 'read', `${name}: `)) {
   held.analysis = null;
-  const result = await run('read', () => client.analyze(bytes, { ...prep, onProgress }));
+  // The page makes the cuts itself (the Prepare step lists, edits and
+  // undoes them), so the core never cuts a blind end the user kept closed.
+  const result = await run('read', () => client.analyze(bytes, { ...prep, clip: 'off', onProgress }));
   if (result.ok) return result;
   const message = result.cancelled ? 'Cancelled.' : `${name}: ${problems.words(result.error)}`;
   onError(message, result.cancelled ? 'cancelled' : 'read', result);
@@ -385,8 +387,21 @@ async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, ke
       },
       { stage: 'prepare', next: 'Keep the largest piece (the button below), or open another file.' },
     );
-  }
+  } else if (fresh && !prep.clipPlanes && current.proposals.length) await openBlindEnds();
   return null;
+}
+
+/** A new file's blind vessel ends cut open by default (as the core's clip
+ * auto does): the proposed cuts are made and listed, each can be moved or
+ * removed (its end kept closed), and Undo takes them all back. */
+async function openBlindEnds() {
+  const n = current.proposals.length;
+  const kept = $('change-notice').hidden ? '' : `${$('change-notice-text').textContent} `;
+  if (await prepare.apply({ focus: false })) return;
+  const ends = n === 1 ? 'Its blind vessel end was' : `Its ${n} blind vessel ends were`;
+  bar.notice(`${kept}${ends} cut open, 1 local radius in from the tip; remove a cut in Prepare to keep that end closed.`, () =>
+    prepHistory.undo(),
+  );
 }
 
 /** Says in the bar what a preparation change did beyond what was asked
@@ -462,7 +477,9 @@ async function loadSample() {
     showError(made.cancelled ? 'Cancelled.' : `sample: ${made.error}`, made.cancelled ? 'cancelled' : 'read');
     return;
   }
-  await loadBytes('sample-bifurcation.stl', made.stl, {}, [], { fresh: true });
+  // The sample is made in millimetres (a coronary-sized bifurcation, radii
+  // 0.6-1 mm), which its numbers alone cannot tell from an aorta in cm.
+  await loadBytes('sample-bifurcation.stl', made.stl, { units: 'mm' }, [], { fresh: true });
 }
 
 function download(name, bytes, type) {
@@ -597,6 +614,7 @@ function meshOptions(names) {
   const mode = $('size-mode').value;
   const options = {
     ...withUnitGuess(current.prep, current.unitGuess),
+    clip: 'off', // the cuts are the Prepare step's (analyze())
     ...($('solver').value && { solver: $('solver').value }),
     [mode]: Number($('size-value').value),
     param: $('param').value,

@@ -310,7 +310,9 @@ export class Prepare {
   }
 
   /** Analyzes the surface again with the listed cuts as clipPlanes. */
-  async apply() {
+  /** Makes the listed cuts (analyzes again with them); `focus`: then
+   * leads to the openings they made (onCut). The error, or null. */
+  async apply({ focus = true } = {}) {
     if (this.busy) return;
     const before = this.applied;
     this.applied = this.cuts.map(cutPlane);
@@ -321,7 +323,7 @@ export class Prepare {
       this._fail(`The cuts could not be made: ${error}`, 'Cut these open');
     }
     this._render();
-    if (!error) this.onCut();
+    if (!error && focus) this.onCut();
     return error;
   }
 

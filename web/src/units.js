@@ -3,8 +3,7 @@
 // lengths with their unit.
 
 const WORDS = { mm: 'millimetres', cm: 'centimetres', m: 'metres' };
-// The other unit a guess could be (the core guesses mm for vessel radii that
-// could as well be centimetres).
+// The other unit a guess could be, when the core names none.
 const ALTERNATIVE = { mm: 'cm', cm: 'mm', m: 'mm' };
 
 /** A length as the panel shows it: 4 significant digits, no trailing zeros
@@ -39,9 +38,9 @@ export function unitsText({ unit, guessed, certain, reason }) {
  * (metres: radii of millimetres; the summary says how it was guessed):
  * 'Units: mm? The numbers could also be centimetres (median vessel radius 0.994).'.
  */
-export function unitsQuestion({ unit, guessed, certain, reason }) {
+export function unitsQuestion({ unit, guessed, certain, reason, alternative }) {
   if (!guessed || certain) return null;
-  const other = WORDS[ALTERNATIVE[unit]] ?? 'another unit';
+  const other = WORDS[alternative || ALTERNATIVE[unit]] ?? 'another unit';
   return `Units: ${unit}? The numbers could also be ${other}${reason ? ` (${reason})` : ''}.`;
 }
 
