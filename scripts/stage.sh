@@ -23,3 +23,6 @@ stage_summary() {
   echo "== stage times ($1)"
   printf '%s\n' "${_stage_log[@]}"
 }
+# On a failure the times so far are printed too (set -e leaves before the
+# script's own stage_summary).
+trap '_rc=$?; ((_rc == 0)) || stage_summary "up to the failure (exit $_rc)"' EXIT
