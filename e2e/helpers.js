@@ -137,7 +137,7 @@ export const bifurcationStl = (vm, options = {}) => Buffer.from(vm.makePhantom({
  * `n` cuts back, leaving them proposed (not made) on the closed surface.
  */
 export async function undoOpenedEnds(page, n = 3) {
-  await expect(page.getByTestId('change-notice')).toContainText(`Its ${n} blind vessel ends were cut open`);
+  await expect(page.getByTestId('change-notice')).toContainText(`The ${n} blind vessel ends were cut open`);
   await expect(page.getByTestId('cut-row')).toHaveCount(n);
   await expect(page.getByTestId('stat-openings')).toHaveText(String(n));
   await page.getByTestId('change-undo').click();

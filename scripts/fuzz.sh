@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Fuzzing: builds the libFuzzer targets of tests/fuzz/ with clang
-# (build-fuzz/: AddressSanitizer and UBSan, no recovery) and runs each for
+# Fuzzing: the libFuzzer targets of tests/fuzz/, built by clang in the
+# sanitized build (build-asan/: AddressSanitizer and UBSan, halting on the
+# first report; scripts/test.sh builds it for the suite first), each run for
 # FUZZ_SECONDS (default 60) from generated seeds: every surface reader
 # (fuzz_read_surface) and the option table's parsing (fuzz_options). Any
 # crash, sanitizer report, timeout or memory blow-up fails the run; the
@@ -10,8 +11,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-${FUZZ_SECONDS:-60}}
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVM_FUZZ=ON >/dev/null
-cmake --build build-fuzz -j "$(nproc)"
+CC=clang CXX=clang++ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DVM_SANITIZE=ON >/dev/null
+cmake --build build-asan -j "$(nproc)" --target fuzz_read_surface fuzz_options
+export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 python3 tests/fuzz/make_seeds.py "$work/readers" "$work/options"
@@ -20,11 +22,11 @@ mkdir -p out/fuzz
 common=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1024 -artifact_prefix=out/fuzz/ -print_final_stats=1)
 status=0
 echo "== fuzz_read_surface ($seconds s)"
-build-fuzz/fuzz_read_surface "$work/readers" -dict=tests/fuzz/readers.dict -max_len=65536 "${common[@]}" 2>&1 |
+build-asan/fuzz_read_surface "$work/readers" -dict=tests/fuzz/readers.dict -max_len=65536 "${common[@]}" 2>&1 |
   grep -E '^(Done|stat::number_of_executed_units|==[0-9]+==ERROR|SUMMARY)|runtime error|artifact' || true
 [[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
 echo "== fuzz_options ($seconds s)"
-build-fuzz/fuzz_options "$work/options" -max_len=256 "${common[@]}" 2>&1 |
+build-asan/fuzz_options "$work/options" -max_len=256 "${common[@]}" 2>&1 |
   grep -E '^(Done|stat::number_of_executed_units|==[0-9]+==ERROR|SUMMARY)|runtime error|artifact|read back' || true
 [[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
 if [[ $status -ne 0 ]]; then

@@ -398,7 +398,7 @@ async function openBlindEnds() {
   const n = current.proposals.length;
   const kept = $('change-notice').hidden ? '' : `${$('change-notice-text').textContent} `;
   if (await prepare.apply({ focus: false })) return;
-  const ends = n === 1 ? 'Its blind vessel end was' : `Its ${n} blind vessel ends were`;
+  const ends = n === 1 ? 'The blind vessel end was' : `The ${n} blind vessel ends were`;
   bar.notice(`${kept}${ends} cut open, 1 local radius in from the tip; remove a cut in Prepare to keep that end closed.`, () =>
     prepHistory.undo(),
   );
