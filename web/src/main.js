@@ -62,8 +62,9 @@ const volumeView = new VolumeView(viewer, ({ triangles, cut, cutByPart, ms }) =>
     `(${count(cut)} cut faces${parts.length ? `: ${parts.join(', ')}` : ''}) in ${ms.toFixed(1)} ms`;
 });
 const volumeOption = $('show').querySelector('option[value=volume]');
-// { name, bytes, prep, analysis, surface, unitGuess, proposals }; prep: the
-// analyze options chosen; unitGuess: the first analysis' guess of the unit,
+// { name, bytes, prep, given, analysis, surface, unitGuess, proposals }; prep:
+// the analyze options chosen; given: those it was loaded with (a reset
+// goes back to them); unitGuess: the first analysis' guess of the unit,
 // kept (sent as the unit) until the user chooses one; proposals: the
 // vessel ends first proposed to cut.
 let current = null;
@@ -350,7 +351,9 @@ async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, ke
   const unitGuess = fresh ? (result.analysis.units.guessed ? result.analysis.units : null) : guess;
   if (!prep.units && unitGuess) result.analysis.units = { ...unitGuess };
   const proposals = before ? before.proposals : result.analysis.clip_proposals ?? [];
-  current = { name, bytes, prep, analysis: result.analysis, surface: result.surface, unitGuess, proposals };
+  // What the file came with (the sample's unit), kept through a reset.
+  const given = fresh ? prep : current?.given ?? {};
+  current = { name, bytes, prep, given, analysis: result.analysis, surface: result.surface, unitGuess, proposals };
   held.analysis = current;
   if (fresh) bar.notice('');
   if (fresh && !keepHistory && settings.newFile()) {
@@ -477,8 +480,9 @@ async function loadSample() {
     showError(made.cancelled ? 'Cancelled.' : `sample: ${made.error}`, made.cancelled ? 'cancelled' : 'read');
     return;
   }
-  // The sample is made in millimetres (a coronary-sized bifurcation, radii
-  // 0.6-1 mm), which its numbers alone cannot tell from an aorta in cm.
+  // The sample is shown in millimetres (a coronary-sized bifurcation, radii
+  // 0.6-1 mm): its numbers alone would fit an aorta in cm as well, which is
+  // what the core guesses for them.
   await loadBytes('sample-bifurcation.stl', made.stl, { units: 'mm' }, [], { fresh: true });
 }
 
@@ -1009,7 +1013,7 @@ $('reset-settings').addEventListener('click', async () => {
   if (busy || acting) return;
   const error = await resetAll({
     settings,
-    reload: async () => (current ? loadBytes(current.name, current.bytes, {}, [], { fresh: true, keepHistory: true }) : null),
+    reload: async () => (current ? loadBytes(current.name, current.bytes, current.given, [], { fresh: true, keepHistory: true }) : null),
     fit: () => viewer.fitView(),
   });
   if (!error) bar.announce('Everything reset to the defaults');

@@ -309,8 +309,7 @@ export class Prepare {
     }
   }
 
-  /** Analyzes the surface again with the listed cuts as clipPlanes. */
-  /** Makes the listed cuts (analyzes again with them); `focus`: then
+  /** Makes the listed cuts (analyzes again with them as clipPlanes); `focus`: then
    * leads to the openings they made (onCut). The error, or null. */
   async apply({ focus = true } = {}) {
     if (this.busy) return;
