@@ -52,6 +52,7 @@ test('a new file starts from the defaults, said; kept when asked, also after a r
   // Not remembered for the next visit either (the page opened anew, not
   // from the address that carries them: a reload, or a link, keeps them).
   await setSizeAndLayers(page, '0.5', '0');
+  await expect.poll(() => hashOf(page)).toContain('layers=0'); // in the address before the reload
   await page.reload();
   await expect(page.locator('body')).toHaveAttribute('data-ready', 'true');
   await expect(page.getByTestId('layers')).toHaveValue('0');
