@@ -129,8 +129,6 @@ export async function nodeApi() {
  * voxel 0.15, with `options` of makePhantom. */
 export const bifurcationStl = (vm, options = {}) => Buffer.from(vm.makePhantom({ kind: 'bifurcation', voxel: 0.15, ...options }).stl);
 
-/** A closed bifurcation phantom's STL (rounded vessel ends, as segmentation
- * tools export it: its cuts are proposed), made by the JS API here. */
 /**
  * A closed model's blind vessel ends are cut open on load (the page's
  * default, as the core's clip auto), said with Undo; Undo there takes the
@@ -146,6 +144,8 @@ export async function undoOpenedEnds(page, n = 3) {
   for (const row of await page.getByTestId('cut-row').all()) await expect(row).toHaveAttribute('data-state', 'new');
 }
 
+/** A closed bifurcation phantom's STL (rounded vessel ends, as segmentation
+ * tools export it: its cuts are proposed), made by the JS API here. */
 export async function closedBifurcation() {
   return bifurcationStl(await nodeApi(), { openEnds: false });
 }

@@ -69,6 +69,10 @@ describe('units', () => {
     );
     assert.equal(unitsQuestion(guessM), null);
     assert.equal(unitsQuestion(given), null);
+    // The core's alternative is the one named (a cm guess that could be m).
+    const guessCm = { unit: 'cm', guessed: true, certain: false, reason: 'r', alternative: 'm' };
+    assert.equal(unitsQuestion(guessCm), 'Units: cm? The numbers could also be metres (r).');
+    assert.match(unitsQuestion({ ...guessCm, alternative: '' }), /could also be millimetres/);
   });
 
   test('lengths carry their unit; rounding noise about 0 is shown as 0', () => {
