@@ -117,6 +117,8 @@ test('a closed model whose widest end is a short trunk: the trunk is cut open an
   await lookAt(page, 'hard-trunk-prepare', page.locator('#openings'));
 
   await meshLookExport(page, 'hard-trunk', { size: '0.25', layers: '2', file: 'short-trunk.msh', outlets: 2 });
+  // The notice of the cuts made on load went with the mesh.
+  await expect(page.getByTestId('change-notice')).toBeHidden();
 });
 
 test('a model with domed caps (fans around a lifted apex): opened at its ends and meshed', async ({ page }) => {

@@ -825,6 +825,9 @@ async function meshWith(options, write = {}) {
   remeshed = { key: JSON.stringify(options), result };
   held.mesh = remeshed;
   showResult(result);
+  // A mesh made: the notice of a preparation change (and its Undo) is done
+  // with, and would cover the verdict on a phone.
+  bar.notice('');
   bar.step('inspect');
   bar.announce(`Meshed: ${count(result.report.output.triangles)} wall triangles`);
   return result;
