@@ -20,12 +20,15 @@
 #include "core/io/vtk_writer.h"
 #include "core/io/zip_writer.h"
 #include "core/phantom/vessel_phantom.h"
+#include "core/pipeline/mesh_family.h"
 #include "core/pipeline/mesh_job.h"
 #include "core/pipeline/opening_names.h"
 #include "core/pipeline/report_json.h"
 #include "core/pipeline/size_preview.h"
 #include "core/pipeline/solver_preset.h"
 #include "core/pipeline/write_outputs.h"
+#include "core/report/methods_report.h"
+#include "core/report/render_views.h"
 #include "core/util/allocator_tuning.h"
 #include "core/util/parallel.h"
 #include "core/util/version.h"
@@ -429,6 +432,67 @@ bool write_outputs(const std::string& path, const Destination& d,
   return true;
 }
 
+/// `path` with "_k" after its last component's stem ("run/mesh.msh" ->
+/// "run/mesh_1.msh", "case/" -> "case_1/"): where a family's member k goes.
+std::string member_path(const std::string& path, int k) {
+  std::string p = path;
+  const bool slash = !p.empty() && p.back() == '/';
+  if (slash) p.pop_back();
+  const std::filesystem::path fp(p);
+  const bool dir = slash || std::filesystem::is_directory(fp);
+  const std::string stem = dir ? fp.filename().string() : fp.stem().string();
+  const std::string ext = dir ? "" : fp.extension().string();
+  return (fp.parent_path() / (stem + "_" + std::to_string(k) + ext)).string() + (slash ? "/" : "");
+}
+
+/// Where member k of a family goes: its path and destination (a folder
+/// format: its own folder; an OpenFOAM case NAME.foam: its own case folder
+/// with the same marker).
+std::pair<std::string, Destination> member_destination(const std::string& path,
+                                                       const Destination& d, int k) {
+  Destination m = d;
+  if (!d.marker.empty()) {
+    m.folder_path = member_path(d.folder_path + "/", k);
+    m.folder_path.pop_back();
+    return {(std::filesystem::path(m.folder_path) / d.marker).string(), m};
+  }
+  const std::string p = member_path(path, k);
+  if (d.folder) m.folder_path = p;
+  return {p, m};
+}
+
+/// The family's table as the CLI prints it.
+void print_family(const vm::MeshFamily& family) {
+  std::printf("family: %d meshes, ratio %g, layers %s (h = (V/N)^(1/3), %s)\n", family.members,
+              family.ratio, std::string(vm::family_layers_name(family.layers)).c_str(),
+              family.unit.c_str());
+  for (const vm::FamilyMember& m : family.rows) {
+    std::printf("  %d %s: %zu nodes, %zu cells, h %.4g", m.index, m.file.c_str(), m.nodes, m.cells,
+                m.h);
+    if (m.ratio > 0) std::printf(" (ratio %.3f)", m.ratio);
+    std::printf(", gamma_t min %.3f mean %.3f, %.2f s\n", m.quality.min, m.quality.mean, m.seconds);
+  }
+}
+
+/// The methods report of `res` (the family's first member when `family`)
+/// to `path`, with pictures rendered here.
+bool write_methods_report(const std::string& path, const std::string& input,
+                          const vm::MeshJobResult& res, const vm::MeshJobOptions& options,
+                          const std::string& hash, const std::string& options_text,
+                          const vm::MeshFamily* family, std::string& err) {
+  vm::MethodsReportInput in;
+  in.result = &res;
+  in.options = &options;
+  in.input_name = std::filesystem::path(input).filename().string();
+  in.input_hash = hash;
+  in.options_text = options_text;
+  in.version = vm::kVersion;
+  in.family = family;
+  in.images = vm::render_report_views(res);
+  const std::string html = vm::methods_report_html(in);
+  return write_file(path, html.data(), html.size(), err);
+}
+
 int cmd_mesh(int argc, char** argv) {
   Args a = vm::cli::parse_args(argc, argv, 2, vm::kCommandMesh);
   if (std::string e = one_argument_error(a, "mesh", "FILE"); !e.empty()) return usage_error(e);
@@ -443,13 +507,73 @@ int cmd_mesh(int argc, char** argv) {
   if (!bytes) return fail(err);
   // The file's hash for the provenance; its bytes are freed once prepared.
   const std::string hash = vm::input_hash(*bytes);
-  auto r = vm::run_mesh_job(*bytes, options, {}, [&] { bytes.reset(); });
-  if (!r.ok()) return fail(a.positional[0], r.status());
-  const vm::MeshJobResult& res = r.value();
+  const std::string options_text = vm::options_provenance(a.values);
   vm::WriteOptions wo;
   wo.msh_version = options.msh_version;
   wo.units = options.output_units;
-  wo.provenance = vm::provenance_text(vm::kVersion, hash, vm::options_provenance(a.values));
+  wo.provenance = vm::provenance_text(vm::kVersion, hash, options_text);
+  const vm::OptionValue* report_html = a.get("report_html");
+  if (options.family > 1) {
+    // Each member is written once meshed; the first is kept for the report.
+    std::optional<vm::MeshJobResult> first;
+    vm::MeshJobOptions first_options;
+    std::vector<std::string> paths;
+    auto write_member = [&](int k, const vm::MeshJobOptions& member,
+                            const vm::MeshJobResult& res) -> vm::Status {
+      vm::WriteOptions mo = wo;
+      mo.provenance = vm::provenance_text(vm::kVersion, hash,
+                                          options_text + " family_member=" + std::to_string(k));
+      auto files = vm::write_outputs(res, dest->format, mo);
+      if (!files.ok()) return files.status();
+      auto [path, d] = member_destination(out->text, *dest, k);
+      std::string error;
+      if (!write_outputs(path, d, files.value(), error)) return vm::Status::Error(error);
+      paths.push_back(path);
+      if (!a.get("quiet")) {
+        for (const std::string& w : res.warnings)
+          std::fprintf(stderr, "warning: member %d: %s\n", k,
+                       vm::phrase_options(w, vm::kFaceCli).c_str());
+        std::printf("wrote %s (member %d of %d) in %.3f s\n", path.c_str(), k + 1, options.family,
+                    res.seconds_total);
+      }
+      if (k == 0 && (report_html || a.get("report"))) {
+        first = res;
+        first_options = member;
+      }
+      return vm::Status::Ok();
+    };
+    auto family = vm::run_mesh_family(*bytes, options, write_member);
+    bytes.reset();
+    if (!family.ok()) return fail(a.positional[0], family.status());
+    vm::MeshFamily& fam = family.value();
+    for (size_t k = 0; k < fam.rows.size() && k < paths.size(); ++k) fam.rows[k].file = paths[k];
+    std::string stem = out->text;
+    if (!stem.empty() && stem.back() == '/') stem.pop_back();
+    const std::filesystem::path sp(stem);
+    const std::string table =
+        (sp.parent_path() / ((dest->folder ? sp.filename() : sp.stem()).string() + "_family"))
+            .string();
+    const std::string csv = vm::family_csv(fam), json = vm::family_json(fam) + "\n";
+    if (!write_file(table + ".csv", csv.data(), csv.size(), err) ||
+        !write_file(table + ".json", json.data(), json.size(), err))
+      return fail(err);
+    if (const vm::OptionValue* rep = a.get("report"); rep && first) {
+      std::string json = vm::mesh_report_json(*first) + "\n";
+      if (!write_file(rep->text, json.data(), json.size(), err)) return fail(err);
+    }
+    if (report_html && first &&
+        !write_methods_report(report_html->text, a.positional[0], *first, first_options, hash,
+                              options_text, &fam, err))
+      return fail(err);
+    if (!a.get("quiet")) {
+      print_family(fam);
+      std::printf("wrote %s.csv and %s.json\n", table.c_str(), table.c_str());
+    }
+    return 0;
+  }
+  auto r = vm::run_mesh_job(*bytes, options, {}, [&] { bytes.reset(); });
+  if (!r.ok()) return fail(a.positional[0], r.status());
+  const vm::MeshJobResult& res = r.value();
   auto files = vm::write_outputs(res, dest->format, wo);
   if (!files.ok()) return fail(a.positional[0], files.status());
   if (!write_outputs(out->text, *dest, files.value(), err)) return fail(err);
@@ -457,6 +581,9 @@ int cmd_mesh(int argc, char** argv) {
     std::string json = vm::mesh_report_json(res) + "\n";
     if (!write_file(rep->text, json.data(), json.size(), err)) return fail(err);
   }
+  if (report_html && !write_methods_report(report_html->text, a.positional[0], res, options, hash,
+                                           options_text, nullptr, err))
+    return fail(err);
   if (!a.get("quiet")) print_mesh_summary(out->text, res);
   return 0;
 }

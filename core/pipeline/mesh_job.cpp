@@ -334,6 +334,7 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
                  : options.remesh && so.mode == SizeMode::kUniform ? so.size
                                                                    : 0;
   fo.spheres = so.spheres;
+  fo.gradation /= options.gradation_divisor;
   FillStats fs;
   ProgressFn fill_progress = [&](double f, std::string_view stage) {
     return report_progress(progress, 0.92 + 0.06 * f, stage);
@@ -562,18 +563,29 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const Me
                                    const ProgressFn& progress,
                                    const std::function<void()>& input_read) {
   auto t0 = std::chrono::steady_clock::now();
-  MeshJobOptions options = given;  // with what the surface decides (a y+ height)
-  set_thread_count(options.threads);
-  MeshJobResult r;
-  r.preset = options.preset;
+  set_thread_count(given.threads);
   // Stage 1 takes the first fifth of the progress bar, remeshing most of the rest.
   ProgressFn sub = [&](double f, std::string_view stage) {
     return report_progress(progress, 0.2 * f, stage);
   };
-  Result<PreparedSurface> prepared = prepare_surface(file_bytes, options.prepare, sub);
+  Result<PreparedSurface> prepared = prepare_surface(file_bytes, given.prepare, sub);
   if (input_read) input_read();
   if (!prepared.ok()) return prepared.status();
-  r.surface = std::move(prepared).value();
+  auto r = run_mesh_job_on(std::move(prepared).value(), given, progress);
+  if (r.ok())
+    r.value().seconds_total =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+Result<MeshJobResult> run_mesh_job_on(PreparedSurface surface, const MeshJobOptions& given,
+                                      const ProgressFn& progress) {
+  auto t0 = std::chrono::steady_clock::now();
+  MeshJobOptions options = given;  // with what the surface decides (a y+ height)
+  set_thread_count(options.threads);
+  MeshJobResult r;
+  r.preset = options.preset;
+  r.surface = std::move(surface);
   r.warnings = r.surface.warnings;
   // Every later stage's error passes here: on a surface that crosses itself
   // (the likely cause), it first says where (an option's value or a

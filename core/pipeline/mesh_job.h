@@ -35,6 +35,12 @@ inline LayerSpec no_vessel_wall() {
   return s;
 }
 
+/// How a mesh family's boundary layer follows its sizes (mesh_family.h):
+/// refined with them (the first layer divided by r^k, more layers of the
+/// same total thickness), or fixed at the first member's (one first-layer
+/// height in every member: the y+ choice).
+enum class FamilyLayers { kRefine, kFixed };
+
 /// The solver a mesh is for (solver_preset.h): kNone, no preset.
 enum class Solver { kNone, kGmsh, kOpenFoam, kFenics, kSvFsi };
 
@@ -120,6 +126,15 @@ struct MeshJobOptions {
   /// Threads the loops use (set_thread_count, core/util/parallel.h): 0 all
   /// cores. The output is the same with any number.
   int threads = 0;
+  /// A mesh-independence family (mesh_family.h): this many meshes, member k
+  /// with its sizes divided by family_ratio^k (1: one mesh), its boundary
+  /// layer per family_layers.
+  int family = 1;
+  double family_ratio = 1.4;
+  FamilyLayers family_layers = FamilyLayers::kRefine;
+  /// The volume's size gradation is divided by this (a family member's
+  /// r^k, so that its field is the first member's scaled; not an option).
+  double gradation_divisor = 1;
 };
 
 /// Counts and timings of the volume stages.
@@ -239,5 +254,12 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes,
                                    const MeshJobOptions& options = {},
                                    const ProgressFn& progress = {},
                                    const std::function<void()>& input_read = {});
+
+/// The job after its preparation (stage 1), on a surface prepare_surface
+/// made with options.prepare: what run_mesh_job does once the file is read.
+/// An opening cut deeper for the layer (cut_openings_deeper) is cut in the
+/// result's `surface`. seconds_total counts from here.
+Result<MeshJobResult> run_mesh_job_on(PreparedSurface surface, const MeshJobOptions& options,
+                                      const ProgressFn& progress = {});
 
 }  // namespace vm

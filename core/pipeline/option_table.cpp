@@ -25,6 +25,7 @@ constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
 constexpr std::string_view kOffAuto[] = {"off", "auto"};
 constexpr std::string_view kFormats[] = {"msh", "vtu", "vtp", "stl", "mesh-complete", "foam"};
 constexpr std::string_view kSolvers[] = {"gmsh", "openfoam", "fenics", "svfsi"};
+constexpr std::string_view kFamilyLayers[] = {"refine", "fixed"};
 
 constexpr uint8_t kInfoMesh = kCommandInfo | kCommandMesh;
 
@@ -531,6 +532,42 @@ const OptionSpec kOptions[] = {
      .default_text = "4.1",
      .needs = "4.1 or 2.2",
      .doc = "Gmsh MSH format version"},
+    {.id = "family",
+     .cli = "family",
+     .js = "family",
+     .type = T::kInteger,
+     .group = "output",
+     .metavar = "N",
+     .min = 1,
+     .max = 6,
+     .default_text = "1",
+     .needs = "a number of meshes from 1 (one mesh) to 6",
+     .doc = "a mesh-independence family: N meshes, mesh k with every size divided by {ratio}^k "
+            "(wall, core, refinements, gradation), all of one prepared surface; written as "
+            "OUT_0 .. OUT_N-1 with a table OUT_family.csv and .json (JS: a zip) "
+            "(docs/family.md)"},
+    {.id = "ratio",
+     .cli = "ratio",
+     .js = "ratio",
+     .group = "output",
+     .metavar = "R",
+     .min = 1.1,
+     .max = 2,
+     .default_text = "1.4",
+     .needs = "a refinement ratio from 1.1 to 2 (1.3 or more for a grid convergence index)",
+     .doc = "with {family}: the refinement ratio r between neighbouring meshes"},
+    {.id = "family_layers",
+     .cli = "family-layers",
+     .js = "familyLayers",
+     .type = T::kChoice,
+     .group = "output",
+     .metavar = "refine|fixed",
+     .choices = kFamilyLayers,
+     .default_text = "refine",
+     .needs = "refine or fixed",
+     .doc = "with {family}: refine: the boundary layer's first height divided by r^k with more "
+            "layers of the same thickness; fixed: the first mesh's layers in every mesh (one "
+            "first-layer height, the y+ choice)"},
     {.id = "report",
      .cli = "report",
      .js = "",
@@ -540,6 +577,17 @@ const OptionSpec kOptions[] = {
      .metavar = "FILE.json",
      .needs = "a file name",
      .doc = "write the JSON report (the JS API returns it as `report`)"},
+    {.id = "report_html",
+     .cli = "report-html",
+     .js = "",
+     .type = T::kText,
+     .faces = kFaceCli,
+     .group = "output",
+     .metavar = "FILE.html",
+     .needs = "a file name",
+     .doc = "write the methods report: one offline HTML page with pictures, quality "
+            "histograms, parameters, openings, repairs, provenance, the family's table and a "
+            "paragraph for a paper's methods section (JS: report())"},
     {.id = "quiet",
      .cli = "quiet",
      .js = "",
@@ -1007,6 +1055,12 @@ Status apply_option(MeshJobOptions& o, const OptionSpec& spec, const OptionValue
     o.tag_layer = v.flag;
   } else if (id == "prisms") {
     o.keep_prisms = v.flag;
+  } else if (id == "family") {
+    o.family = int(x);
+  } else if (id == "ratio") {
+    o.family_ratio = x;
+  } else if (id == "family_layers") {
+    o.family_layers = v.text == "fixed" ? FamilyLayers::kFixed : FamilyLayers::kRefine;
   } else if (spec.faces != kFaceCli || !(spec.commands & (kCommandInfo | kCommandMesh))) {
     // Options of the CLI alone (paths, printing) are the CLI's business;
     // any other id must have been handled above.

@@ -574,5 +574,22 @@ else
   echo "note: gmsh Python API not installed; Gmsh read check skipped"
 fi
 
+# A mesh-independence family: three meshes of one surface, refined by 1.4,
+# with their table; the methods report beside it.
+check "family" expect_exit 0 "family: 3 meshes, ratio 1.4, layers refine" "$VM" mesh "$T/bif.stl" -o "$T/fam.msh" --per-circumference 10 --layers 2 --family 3 --report-html "$T/fam.html"
+check "family: three files and the table" [ -s "$T/fam_0.msh" -a -s "$T/fam_1.msh" -a -s "$T/fam_2.msh" -a -s "$T/fam_family.csv" -a -s "$T/fam_family.json" ]
+check "family: the achieved ratios are within 10% of r, h decreasing" [ "$(json "$T/fam_family.json" "all(abs(r['ratio'] - 1.4) < 0.14 for r in d['rows'][1:]) and d['rows'][0]['file'].endswith('fam_0.msh') and len(d['rows']) == 3")" = True ]
+check "family: the CSV has a row per member" [ "$(wc -l < "$T/fam_family.csv")" -eq 4 ]
+check "family: the members' provenance says which" grep -q "family_member=2" "$T/fam_2.msh"
+check "family: the report is offline and has the table" [ "$(python3 -c "import sys; h=open(sys.argv[1]).read(); print('<script' not in h and 'http://' not in h and 'https://' not in h and 'fam_2.msh' in h and 'data:image/png;base64,' in h)" "$T/fam.html")" = True ]
+check "family: bad count" expect_exit 2 "--family needs a number of meshes from 1 (one mesh) to 6" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --family 9
+check "family: bad ratio" expect_exit 2 "--ratio needs a refinement ratio from 1.1 to 2" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --family 2 --ratio 1
+check "family: surface only refused" expect_exit 2 "--family makes volume meshes" "$VM" mesh "$T/bif.stl" -o "$T/x.stl" --family 2 --surface-only
+check "family: folders for mesh-complete" expect_exit 0 "wrote $T/famc_1/" "$VM" mesh "$T/bif.stl" -o "$T/famc/" --per-circumference 10 --layers 1 --family 2 --format mesh-complete
+check "family: mesh-complete member folders" [ -d "$T/famc_0" -a -d "$T/famc_1" -a -s "$T/famc_family.csv" ]
+check "report-html of one mesh" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/one.msh" --per-circumference 10 --layers 2 --report-html "$T/one.html"
+check "report-html: the groups, no family" [ "$(python3 -c "import sys; h=open(sys.argv[1]).read(); print('lang=\"en\"' in h and 'outlet_2' in h and 'lumen' in h and 'fam_' not in h)" "$T/one.html")" = True ]
+check "report-html: an unwritable path" expect_exit 1 "cannot write" "$VM" mesh "$T/bif.stl" -o "$T/one2.msh" --per-circumference 10 --layers 0 --report-html "$T/nodir/r.html"
+
 echo "$passes passed, $failures failed"
 [[ $failures -eq 0 ]]
