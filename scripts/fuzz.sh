@@ -20,15 +20,23 @@ python3 tests/fuzz/make_seeds.py "$work/readers" "$work/options"
 cp tests/fuzz/regressions/readers/* "$work/readers/" 2>/dev/null || true
 mkdir -p out/fuzz
 common=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=1024 -artifact_prefix=out/fuzz/ -print_final_stats=1)
+# The two targets side by side (each runs on one core), their logs
+# printed in turn.
+run() {  # run NAME ARGS...: the target's exit status in $work/NAME.status
+  local name=$1; shift
+  set +e
+  build-asan/"$name" "$@" "${common[@]}" > "$work/$name.log" 2>&1
+  echo $? > "$work/$name.status"
+}
+run fuzz_read_surface "$work/readers" -dict=tests/fuzz/readers.dict -max_len=65536 &
+run fuzz_options "$work/options" -max_len=256 &
+wait
 status=0
-echo "== fuzz_read_surface ($seconds s)"
-build-asan/fuzz_read_surface "$work/readers" -dict=tests/fuzz/readers.dict -max_len=65536 "${common[@]}" 2>&1 |
-  grep -E '^(Done|stat::number_of_executed_units|==[0-9]+==ERROR|SUMMARY)|runtime error|artifact' || true
-[[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
-echo "== fuzz_options ($seconds s)"
-build-asan/fuzz_options "$work/options" -max_len=256 "${common[@]}" 2>&1 |
-  grep -E '^(Done|stat::number_of_executed_units|==[0-9]+==ERROR|SUMMARY)|runtime error|artifact|read back' || true
-[[ ${PIPESTATUS[0]} -eq 0 ]] || status=1
+for name in fuzz_read_surface fuzz_options; do
+  echo "== $name ($seconds s)"
+  grep -E '^(Done|stat::number_of_executed_units|==[0-9]+==ERROR|SUMMARY)|runtime error|artifact|read back' "$work/$name.log" || true
+  [[ $(cat "$work/$name.status") -eq 0 ]] || status=1
+done
 if [[ $status -ne 0 ]]; then
   echo "fuzzing found a failure: the input is in out/fuzz/" >&2
   exit 1

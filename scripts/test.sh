@@ -26,7 +26,7 @@ UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ctest --test-dir build-asan --o
 stage "hostile-input corpus (CLI under a 4 GiB memory cap)"
 /usr/bin/python3 -W ignore tests/hostile/run_corpus.py build/vesselmesh
 
-stage "fuzzing (libFuzzer, 30 s a target)"
+stage "fuzzing (libFuzzer, 30 s a target, side by side)"
 bash scripts/fuzz.sh 30
 
 stage "node --test (WebAssembly module)"
