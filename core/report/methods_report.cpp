@@ -668,15 +668,16 @@ std::string methods_report_html(const MethodsReportInput& in) {
     const std::string u = esc(fu);
     Table t{"Mesh family (lengths in " + fu + ")",
             {"Member", "File", "Nodes", "Cells", "h (" + u + ")", "Ratio",
-             std::string(kGammaT) + " min", std::string(kGammaT) + " mean", "Layers",
-             "First layer height (" + u + ")", "Thickness (" + u + ")", "Seconds"},
-            {true, false, true, true, true, true, true, true, true, true, true, true},
+             std::string(kGammaT) + " min", std::string(kGammaT) + " mean",
+             "Core " + std::string(kGammaT) + " min", "Layers", "First layer height (" + u + ")",
+             "Thickness (" + u + ")", "Seconds"},
+            {true, false, true, true, true, true, true, true, true, true, true, true, true},
             {}};
     for (const FamilyMember& m : f.rows)
       t.rows.push_back({std::to_string(m.index), esc(m.file.empty() ? "-" : m.file), cnt(m.nodes),
                         cnt(m.cells), num(m.h), m.ratio > 0 ? num(m.ratio) : "-",
-                        num(m.quality.min, 3), num(m.quality.mean, 3), std::to_string(m.layers),
-                        m.layers > 0 ? num(m.first_layer_height) : "-",
+                        num(m.quality.min, 3), num(m.quality.mean, 3), num(m.core_quality.min, 3),
+                        std::to_string(m.layers), m.layers > 0 ? num(m.first_layer_height) : "-",
                         m.layers > 0 ? num(m.layer_thickness) : "-", num(m.seconds, 3)});
     h += table_html(t);
   }
