@@ -92,6 +92,7 @@ const NAV = [
   ['outputs.html', 'Outputs'],
   ['js-api.html', 'JavaScript API'],
   ['element.html', '<vessel-mesher>'],
+  ['family.html', 'Family & report'],
   ['app.html', 'Web app'],
   ['method.html', 'Method'],
   ['benchmarks.html', 'Benchmarks'],
@@ -210,6 +211,16 @@ ${LIVE('scripted', ' compact')}
   { element: true },
 );
 
+page(
+  'family.html',
+  'Mesh families and the methods report',
+  `${html('docs/family.md')}
+<h2>Live: a family of three and its report</h2>
+<p>Press <em>Mesh</em>: the sample is meshed three times, each mesh 1.4 times finer than the last.
+<em>Export</em> gives the zip of the three meshes and their table, and <em>Download report</em> gives the methods report.</p>
+<vessel-mesher id="family" src="sample.stl" report options='{"perCircumference": 10, "family": 3, "ratio": 1.4}'></vessel-mesher>`,
+  { element: true },
+);
 page('app.html', 'Web app', html('docs/page.md'));
 page('method.html', 'Method', html('docs/method.md'));
 page('benchmarks.html', 'Benchmarks', html('docs/benchmarks.md'));

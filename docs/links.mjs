@@ -12,6 +12,7 @@ export const PAGES = {
   'docs/outputs.md': 'outputs.html',
   'docs/javascript.md': 'js-api.html',
   'docs/element.md': 'element.html',
+  'docs/family.md': 'family.html',
   'docs/page.md': 'app.html',
   'docs/method.md': 'method.html',
   'docs/benchmarks.md': 'benchmarks.html',

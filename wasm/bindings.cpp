@@ -22,6 +22,7 @@
 #include "core/mesh/adjacency.h"
 #include "core/mesh/prism_split.h"
 #include "core/phantom/vessel_phantom.h"
+#include "core/pipeline/mesh_family.h"
 #include "core/pipeline/mesh_job.h"
 #include "core/pipeline/opening_names.h"
 #include "core/pipeline/option_table.h"
@@ -31,6 +32,8 @@
 #include "core/pipeline/write_outputs.h"
 #include "core/prepare/cut_across_vessel.h"
 #include "core/quality/tet_quality.h"
+#include "core/report/methods_report.h"
+#include "core/report/render_views.h"
 #include "core/util/parallel.h"
 #include "core/util/version.h"
 
@@ -318,7 +321,10 @@ val analyze(val stl, val opts, val progress) {
 struct LastMesh {
   vm::MeshJobResult result;
   std::string input_hash;
-  Applied options;  ///< as given to mesh(), for provenance
+  Applied options;         ///< as given to mesh(), for provenance
+  vm::MeshJobOptions job;  ///< the options the result was meshed with
+  /// When mesh() made a family: its table (`result` is its first member).
+  std::optional<vm::MeshFamily> family;
 };
 std::optional<LastMesh> last_mesh;
 
@@ -360,6 +366,76 @@ bool set_file(val& r, vm::OutputFormat format, const vm::MeshJobOptions& options
   return true;
 }
 
+/// The files a family's member k adds to the family's zip: its files in
+/// `format`, as "mesh_k.<ext>" (a folder format: under "mesh_k/").
+vm::Status add_member_files(std::vector<vm::OutputFile>& zip, int k, const vm::MeshJobResult& res,
+                            vm::OutputFormat format, vm::WriteOptions wo) {
+  wo.provenance += " family_member=" + std::to_string(k);
+  auto files = vm::write_outputs(res, format, wo);
+  if (!files.ok()) return files.status();
+  const std::string member = "mesh_" + std::to_string(k);
+  const bool folder =
+      format == vm::OutputFormat::kMeshComplete || format == vm::OutputFormat::kFoam;
+  for (vm::OutputFile& f : files.value()) {
+    const std::string ext = f.path.substr(f.path.rfind('.'));
+    f.path = folder ? member + "/" + f.path : member + ext;
+    zip.push_back(std::move(f));
+  }
+  return vm::Status::Ok();
+}
+
+/// mesh() with options.family > 1: the family's files and tables as one
+/// zip ({file, fileName "mesh-family.zip"}), the table as `familyJson` and
+/// `familyCsv`; the first member is kept as the last mesh.
+val mesh_family(const std::vector<uint8_t>& bytes, const vm::MeshJobOptions& options,
+                vm::OutputFormat format, Applied applied, const std::string& hash, val progress) {
+  vm::WriteOptions wo;
+  wo.msh_version = options.msh_version;
+  wo.units = options.output_units;
+  wo.provenance = vm::provenance_text(vm::kVersion, hash, vm::options_provenance(applied));
+  std::vector<vm::OutputFile> zip;
+  std::optional<LastMesh> first;
+  auto family = vm::run_mesh_family(
+      bytes, options,
+      [&](int k, const vm::MeshJobOptions& member, const vm::MeshJobResult& res) {
+        if (vm::Status st = add_member_files(zip, k, res, format, wo); !st.ok()) return st;
+        if (k == 0) first = LastMesh{res, hash, applied, member, std::nullopt};
+        return vm::Status::Ok();
+      },
+      progress_from(progress));
+  if (!family.ok()) return error(family.status());
+  vm::MeshFamily& fam = family.value();
+  for (size_t k = 0; k < fam.rows.size(); ++k) {
+    const std::string stem = "mesh_" + std::to_string(k);
+    for (const vm::OutputFile& f : zip)
+      if (f.path.rfind(stem, 0) == 0 &&
+          (f.path[stem.size()] == '.' || f.path[stem.size()] == '/')) {
+        fam.rows[k].file = f.path[stem.size()] == '/' ? stem + "/" : f.path;
+        break;
+      }
+  }
+  const std::string csv = vm::family_csv(fam), json = vm::family_json(fam);
+  zip.push_back({"family.csv", csv});
+  zip.push_back({"family.json", json + "\n"});
+  auto archive = vm::write_zip(zip);
+  if (!archive.ok()) return error(archive.status());
+  first->family = std::move(fam);
+  last_mesh = std::move(first);
+  const vm::MeshJobResult& res = last_mesh->result;
+  val r = val::object();
+  r.set("ok", true);
+  const std::string& z = archive.value();
+  r.set("file", copy_out(reinterpret_cast<const uint8_t*>(z.data()), z.size(), "Uint8Array"));
+  r.set("fileName", std::string("mesh-family.zip"));
+  r.set("format", std::string(vm::format_name(format)));
+  r.set("familyJson", json);
+  r.set("familyCsv", csv);
+  r.set("reportJson", vm::mesh_report_json(res, vm::kFaceJs));
+  set_surface(r, res.output_surface, res.output_quality);
+  if (!res.volume.tets.empty()) set_volume(r, res);
+  return r;
+}
+
 /// options: the JS API's mesh options (the table's mesh options, by their
 /// JS keys, with JS types).
 val mesh(val stl, val opts, val progress) {
@@ -373,10 +449,11 @@ val mesh(val stl, val opts, val progress) {
   std::vector<uint8_t> bytes = bytes_from(stl);
   // The file's hash for the provenance; its bytes are freed once prepared.
   const std::string hash = vm::input_hash(bytes);
+  if (options.family > 1) return mesh_family(bytes, options, format, applied, hash, progress);
   auto result = vm::run_mesh_job(bytes, options, progress_from(progress),
                                  [&] { std::vector<uint8_t>().swap(bytes); });
   if (!result.ok()) return error(result.status());
-  last_mesh = LastMesh{std::move(result).value(), hash, std::move(applied)};
+  last_mesh = LastMesh{std::move(result).value(), hash, std::move(applied), options, std::nullopt};
   const vm::MeshJobResult& res = last_mesh->result;
   val r = val::object();
   r.set("ok", true);
@@ -384,6 +461,46 @@ val mesh(val stl, val opts, val progress) {
   r.set("reportJson", vm::mesh_report_json(res, vm::kFaceJs));
   set_surface(r, res.output_surface, res.output_quality);
   if (!res.volume.tets.empty()) set_volume(r, res);
+  return r;
+}
+
+/// The methods report of the last mesh (its family's first member, with the
+/// family's table): {file: the HTML's bytes, fileName}. options: inputName
+/// (the input file's name), images ([{title, alt, png: Uint8Array}], the
+/// page's views; absent: rendered here without a GPU).
+val methods_report(val opts) {
+  if (!last_mesh) return error(vm::Status::Error("no report yet: mesh a surface first"));
+  vm::MethodsReportInput in;
+  in.result = &last_mesh->result;
+  in.options = &last_mesh->job;
+  in.input_hash = last_mesh->input_hash;
+  in.options_text = vm::options_provenance(last_mesh->options);
+  in.version = vm::kVersion;
+  if (last_mesh->family) in.family = &*last_mesh->family;
+  const bool given = !opts.isUndefined() && !opts.isNull();
+  if (given && opts["inputName"].isString()) in.input_name = opts["inputName"].as<std::string>();
+  if (given && opts["images"].isArray()) {
+    const val images = opts["images"];
+    for (size_t i = 0; i < images["length"].as<size_t>(); ++i) {
+      const val im = images[i];
+      vm::ReportImage image;
+      if (im["title"].isString()) image.title = im["title"].as<std::string>();
+      if (im["alt"].isString()) image.alt = im["alt"].as<std::string>();
+      const std::vector<uint8_t> png = bytes_from(im["png"]);
+      image.png.assign(png.begin(), png.end());
+      if (image.png.size() < 8 || image.png.compare(1, 3, "PNG") != 0)
+        return error(
+            vm::Status::Error("report: image " + std::to_string(i + 1) + " is not a PNG file"));
+      in.images.push_back(std::move(image));
+    }
+  } else {
+    in.images = vm::render_report_views(last_mesh->result);
+  }
+  const std::string html = vm::methods_report_html(in);
+  val r = val::object();
+  r.set("ok", true);
+  r.set("file", copy_out(reinterpret_cast<const uint8_t*>(html.data()), html.size(), "Uint8Array"));
+  r.set("fileName", std::string("vesselmesh-report.html"));
   return r;
 }
 
@@ -550,6 +667,7 @@ EMSCRIPTEN_BINDINGS(vesselmesh) {
   emscripten::function("optionTable", &option_table);
   emscripten::function("solverPresets", &solver_presets);
   emscripten::function("exportMesh", &export_mesh);
+  emscripten::function("methodsReport", &methods_report);
   emscripten::function("openingNames", &opening_names);
   emscripten::function("cutAt", &cut_at);
   emscripten::function("layerFractions", &layer_fractions);

@@ -91,6 +91,11 @@ export class VesselmeshClient {
     return this._call('export', [format, options]);
   }
 
+  /** The methods report of the last mesh (API report()): {file, fileName}. */
+  report(options = {}) {
+    return this._call('report', [options]);
+  }
+
   /** The names the last analyzed surface's openings get (API openingNames()). */
   openingNames(options = {}) {
     return this._call('openingNames', [options]);

@@ -6,7 +6,9 @@ export type VesselMesherMeshOptions = Omit<MeshOptions, 'onProgress'>;
 
 /**
  * Attributes: src (URL of a surface to load), options (JSON of the mesh
- * options), compact (viewer + Mesh + Export only).
+ * options; with `family` N > 1 a mesh-independence family, exported as a
+ * zip), compact (viewer + Mesh + Export only), report (a "Download report"
+ * button once meshed).
  */
 export class VesselMesher extends HTMLElement {
   /** The options attribute, parsed ({} when absent). */
@@ -15,8 +17,10 @@ export class VesselMesher extends HTMLElement {
   load(fileOrBytes: Blob | ArrayBuffer | ArrayBufferView | string | URL): Promise<Record<string, unknown>>;
   /** Meshes the loaded surface; options override the attribute's. */
   mesh(options?: VesselMesherMeshOptions): Promise<MeshResult>;
-  /** The last mesh as a file (default: the format it was meshed in). */
+  /** The last mesh as a file (default: the format it was meshed in; after a family, its zip). */
   export(format?: OutputFormat): Promise<Blob>;
+  /** The methods report of the last mesh (text/html), with the pictures drawn by the element's view. */
+  report(): Promise<Blob>;
 }
 
 export interface VesselMesherEventMap {

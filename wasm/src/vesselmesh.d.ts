@@ -99,6 +99,12 @@ export interface MeshOptions extends AnalyzeOptions {
   outputUnits?: 'mm' | 'cm' | 'm';
   /** Gmsh MSH format version. Needs 4.1 or 2.2. Default 4.1. */
   mshVersion?: '4.1' | '2.2';
+  /** a mesh-independence family: N meshes, mesh k with every size divided by {ratio}^k (wall, core, refinements, gradation), all of one prepared surface; written as OUT_0 .. OUT_N-1 with a table OUT_family.csv and .json (JS: a zip) (docs/family.md) Needs a number of meshes from 1 (one mesh) to 6. Default 1. */
+  family?: number;
+  /** with {family}: the refinement ratio r between neighbouring meshes. Needs a refinement ratio from 1.1 to 2 (1.3 or more for a grid convergence index). Default 1.4. */
+  ratio?: number;
+  /** with {family}: refine: the boundary layer's first height divided by r^k with more layers of the same thickness; fixed: the first mesh's layers in every mesh (one first-layer height, the y+ choice) Needs refine or fixed. Default refine. */
+  familyLayers?: 'refine' | 'fixed';
   /** remesh the surface (off: mesh the repaired input as it is) Default true. */
   remesh?: boolean;
   /** auto: an input of 200,000 triangles or more, over 8 times the triangles the sizes ask for, is first decimated (edge collapses within 0.02 h of it, edges up to h/2), then remeshed; off: remeshed from the input as it is. Needs auto or off. Default auto. */
@@ -231,8 +237,30 @@ export type MeshResult =
       report: Record<string, unknown>;
       surface: Surface;
       volume?: MeshVolume;
+      /** With `family` > 1: the table (`file` is then a zip of the meshes and the table), and its CSV. */
+      family?: MeshFamilyTable;
+      familyCsv?: string;
     }
   | Failure;
+
+/** A mesh family's table (docs/family.md): a row per member, lengths in `unit`. */
+export interface MeshFamilyTable {
+  members: number;
+  ratio: number;
+  layers: 'refine' | 'fixed';
+  unit: string;
+  rows: Array<{ member: number; file: string; scale: number; nodes: number; tetrahedra: number; prisms: number; triangles: number; quads: number; wall_triangles: number; cells: number; lumen_volume: number; h: number; ratio: number; gamma_t_min: number; gamma_t_mean: number; core_gamma_t_min: number; core_gamma_t_mean: number; wall_gamma_k_min: number; wall_gamma_k_mean: number; layers: number; first_layer_height: number; layer_thickness: number; per_circumference?: number; size?: number; seconds: number }>;
+}
+
+/** A picture for report(): PNG bytes, a caption and a text alternative. */
+export interface ReportImage {
+  title: string;
+  alt: string;
+  png: Uint8Array;
+}
+
+/** What report() gives: the methods report, one offline HTML page. */
+export type ReportResult = { ok: true; file: Uint8Array; fileName: string } | Failure;
 
 /** What export() gives. */
 export type ExportResult = { ok: true; file: Uint8Array; fileName: string; format: OutputFormat } | Failure;
@@ -271,6 +299,8 @@ export interface VesselmeshApi {
   mesh(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: MeshOptions): MeshResult;
   /** The last meshed result in another format, without meshing again. */
   export(format: OutputFormat, options?: ExportOptions): ExportResult;
+  /** The methods report of the last mesh (and its family): images default to views rendered without a GPU. */
+  report(options?: { images?: ReportImage[]; inputName?: string }): ReportResult;
   /** The group names the last analyzed surface's openings get with these options, or the error mesh() would give. */
   openingNames(options?: Pick<MeshOptions, 'names' | 'inlet'>): { ok: true; names: string[] } | Failure;
   /** The cut across the vessel at the point of the last analyzed surface nearest `point`: the normal points to the side with less surface, which clipPlanes [...point, ...normal] removes. */
@@ -320,6 +350,7 @@ export class VesselmeshClient {
   analyze(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: ClientAnalyzeOptions): Promise<AnalyzeResult>;
   mesh(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: ClientMeshOptions): Promise<MeshResult>;
   export(format: OutputFormat, options?: ExportOptions): Promise<ExportResult>;
+  report(options?: { images?: ReportImage[]; inputName?: string }): Promise<ReportResult>;
   openingNames(options?: Pick<MeshOptions, 'names' | 'inlet'>): Promise<{ ok: true; names: string[] } | Failure>;
   cutAt(point: ArrayLike<number>): Promise<{ ok: true; point: number[]; normal: number[]; radius: number; areaRemoved: number } | Failure>;
   layerFractions(options?: Pick<MeshOptions, 'layers' | 'growth'>): Promise<{ ok: true; fractions: Float64Array } | Failure>;

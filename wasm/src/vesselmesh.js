@@ -162,7 +162,12 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
      * vesselmesh.d.ts). Returns the MSH file bytes, the report, the wall
      * surface and the volume (see vesselmesh.d.ts, MeshVolume). `file` is
      * the written file in `format` (default msh, then also as `msh`; a zip
-     * for mesh-complete and foam), `fileName` a name for it.
+     * for mesh-complete and foam), `fileName` a name for it. With `family`
+     * N > 1 (a mesh-independence family, `ratio`, `familyLayers`): `file` is
+     * a zip "mesh-family.zip" of the N meshes (mesh_k.<ext>) and the table
+     * (family.csv, family.json), `family` the table ({members, ratio,
+     * layers, unit, rows}) and `familyCsv` its CSV; the report, surface and
+     * volume are the first member's.
      * @returns {{ok: true, file: Uint8Array, fileName: string, format: string,
      *   msh?: Uint8Array, report: object, surface: object, volume?: object}
      *   | {ok: false, error: string}} (no volume when surfaceOnly)
@@ -179,7 +184,24 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
         ...(raw.format === 'msh' && { msh: raw.file }),
         report: JSON.parse(raw.reportJson),
         ...(raw.volume && { volume: raw.volume }),
+        ...(raw.familyJson && { family: JSON.parse(raw.familyJson), familyCsv: raw.familyCsv }),
       });
+    },
+
+    /**
+     * The methods report of the last mesh (with `family` > 1: its first
+     * member, and the family's table): one offline HTML page with pictures,
+     * quality histograms, parameters, openings, repairs, provenance and a
+     * paragraph for a paper's methods section. `images`: the pictures
+     * ([{title, alt, png: Uint8Array}], e.g. the page's views); without
+     * them, views rendered by the core without a GPU. `inputName`: the
+     * input file's name, shown in the report.
+     * @returns {{ok: true, file: Uint8Array, fileName: string}
+     *   | {ok: false, error: string}}
+     */
+    report({ images, inputName } = {}) {
+      if (images !== undefined && !Array.isArray(images)) return fail('report: images must be an array');
+      return answer(core.methodsReport({ ...(images && { images }), ...(inputName && { inputName }) }));
     },
 
     /**

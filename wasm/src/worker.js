@@ -1,6 +1,6 @@
 // Module Web Worker serving the vesselmesh API. Protocol:
-//   in:  { id, op: 'analyze' | 'mesh' | 'makePhantom' | 'export' | 'openingNames' |
-//          'cutAt' | 'layerFractions' | 'sizeField',
+//   in:  { id, op: 'analyze' | 'mesh' | 'makePhantom' | 'export' | 'report' |
+//          'openingNames' | 'cutAt' | 'layerFractions' | 'sizeField',
 //          args: [bytes?, options] }
 //        (export: args [format, options]: the last mesh in another format)
 //   out: { type: 'ready', version, threads, threadsNote, optionTable, solverPresets }
@@ -34,7 +34,7 @@ const apiPromise = createVesselmesh().then(
 
 // The operations but the two jobs (which report progress): the API's method
 // of that name called with the message's arguments.
-const ANSWERED_AS_IS = new Set(['makePhantom', 'export', 'openingNames', 'cutAt', 'layerFractions', 'sizeField']);
+const ANSWERED_AS_IS = new Set(['makePhantom', 'export', 'report', 'openingNames', 'cutAt', 'layerFractions', 'sizeField']);
 
 self.onmessage = async (event) => {
   const { id, op, args = [] } = event.data;

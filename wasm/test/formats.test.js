@@ -4,11 +4,11 @@
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { before, describe, test } from 'node:test';
-import { inflateRawSync } from 'node:zlib';
 
 import { transferables } from '../src/transfer.js';
 import { createVesselmesh } from '../src/vesselmesh.js';
 import { cappedTubeVtp as cappedTubeText } from './capped-tube-vtp.js';
+import { unzip } from './unzip.js';
 
 let api;
 before(async () => {
@@ -17,24 +17,6 @@ before(async () => {
 });
 
 const text = (bytes) => new TextDecoder().decode(bytes);
-
-/** The entries of a ZIP archive (local headers, stored or deflated) by name. */
-function unzip(bytes) {
-  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
-  const files = {};
-  for (let at = 0; view.getUint32(at, true) === 0x04034b50; ) {
-    const method = view.getUint16(at + 8, true);
-    const size = view.getUint32(at + 18, true);
-    const nameLength = view.getUint16(at + 26, true);
-    const extraLength = view.getUint16(at + 28, true);
-    const name = text(bytes.subarray(at + 30, at + 30 + nameLength));
-    const start = at + 30 + nameLength + extraLength;
-    const data = bytes.subarray(start, start + size);
-    files[name] = text(method === 8 ? inflateRawSync(data) : data);
-    at = start + size;
-  }
-  return files;
-}
 
 /** The capped tube VTP (capped-tube-vtp.js) as file bytes. */
 const cappedTubeVtp = (n, m) => new TextEncoder().encode(cappedTubeText(n, m));

@@ -10,6 +10,7 @@
 import { VesselmeshClient } from '../../wasm/src/client.js';
 import { ActionBar } from './action-bar.js';
 import { qualityGradientCss } from './colormap.js';
+import { Family } from './family.js';
 import { EXPORT_FORMATS, exportFileName, exportFormat } from './files.js';
 import { drawGroupLegend, drawPartLegend, foldLegend, PARTS } from './groups.js';
 import { prepChange } from './history.js';
@@ -21,6 +22,7 @@ import { PrepHistory } from './prep-history.js';
 import { Prepare } from './prepare.js';
 import { Problems } from './problems.js';
 import { applyRemedy } from './remedy-actions.js';
+import { Report } from './report.js';
 import { resetAll } from './reset.js';
 import { drawTetHistogram, focusVerdict, showMeshResult, volumeSummary } from './results.js';
 import { listenShareLink, Settings } from './settings.js';
@@ -244,6 +246,8 @@ const BUSY_CONTROLS = [
   'smooth',
   'smooth-passes',
   'reset-settings',
+  'mesh-family',
+  'download-report',
 ];
 
 function setBusy(on, stage = '') {
@@ -362,6 +366,8 @@ async function loadBytes(name, bytes, prep = {}, edits = [], { fresh = false, ke
   if (before && !prepHistory.restoring) announceSideEffects(before, current);
   remeshed = null;
   $('remesh-result').hidden = true;
+  report.meshed(false);
+  family.clear();
   $('drop-hint').hidden = true;
   $('primary-actions').hidden = false;
   bar.step('prepare');
@@ -731,6 +737,8 @@ function showResult(result) {
     problems.showPlaces(places, '', { zoom, tone });
   };
   showMeshResult(result, { model: model(), client, showPlaces });
+  report.meshed(true);
+  if (!result.family) family.clear();
   if (result.volume) $('show').prepend(volumeOption);
   else volumeOption.remove();
   openings.showCaps(result.report.output.caps, unitName());
@@ -803,8 +811,10 @@ async function checkedMeshOptions(again) {
 }
 
 /** Meshes `current` with `options` and `write` (the file to write: format,
- * mshVersion, outputUnits); shows and returns the result, or null. */
-async function meshWith(options, write = {}) {
+ * mshVersion, outputUnits); shows and returns the result, or null. `key`:
+ * the panel's options the result stands for (a family's first mesh is the
+ * mesh of the options without the family's). */
+async function meshWith(options, write = {}, key = JSON.stringify(options)) {
   held.mesh = null;
   document.body.dataset.meshJobs = String(++meshJobs);
   $('flow-error').hidden = true;
@@ -822,7 +832,7 @@ async function meshWith(options, write = {}) {
   }
   // Kept prisms are shown as the tetrahedra they split into.
   if (result.volume) result.volume = withPrismsSplit(result.volume);
-  remeshed = { key: JSON.stringify(options), result };
+  remeshed = { key, result };
   held.mesh = remeshed;
   showResult(result);
   // A mesh made: the notice of a preparation change (and its Undo) is done
@@ -898,6 +908,40 @@ function showExportLabel() {
   const { label } = exportFormat($('export-format').value);
   $('export').textContent = `Export ${label.replace(/ \(.*\)$/, '')}`;
 }
+
+// The export area's mesh family and methods report (family.js, report.js).
+const family = new Family({
+  act,
+  mesh: async (extra) => {
+    const options = await checkedMeshOptions(() => act(() => family.make()));
+    return options && meshWith({ ...options, ...extra }, writeOptions(), JSON.stringify(options));
+  },
+  inputName: () => current.name,
+  download,
+  showError,
+  onDone: (name, { members }) => {
+    const next = 'Change the options and mesh again, or open another file.';
+    bar.step('export', `Downloaded ${name}: ${members} meshes and their table. ${next}`);
+    bar.announce(`Downloaded ${name}`);
+  },
+});
+const report = new Report($('download-report'), {
+  act,
+  client,
+  viewer,
+  volumeView,
+  run,
+  download,
+  mesh: () => remeshed && { name: current.name, result: remeshed.result },
+  // A cancel (a new worker) loses the mesh the report is made of: made again.
+  ensureMeshed: async () => held.mesh === remeshed || Boolean(await meshWith(JSON.parse(remeshed.key))),
+  restoreView: () => show(shown, { fit: false }),
+  onFailure: (failure) => showFailure(failure, 'mesh', `Report failed: ${current.name}: `),
+  onDone: (name) => {
+    bar.step('export', `Downloaded ${name}. Change the options and press Mesh again, or open another file.`);
+    bar.announce(`Downloaded ${name}`);
+  },
+});
 
 $('size-mode').addEventListener('change', (e) => {
   const uniform = e.target.value === 'size';
@@ -996,6 +1040,7 @@ view.addEventListener('drop', (e) => {
 client.ready.then(
   () => {
     showSolverHint(client.solverPresets);
+    family.configure(client.optionTable);
     document.body.setAttribute('data-ready', 'true');
   },
   (e) => showError(`The mesher could not start: ${e.message}`),

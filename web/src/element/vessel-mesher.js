@@ -9,22 +9,32 @@
 //   attributes  src      URL of a surface file to load (on connect and on change)
 //               options  JSON of the JS API's mesh options (docs/options.md)
 //               compact  present: viewer + Mesh + Export only
+//               report   present: a "Download report" button once meshed
 //   methods     load(fileOrBytes)  File | Blob | ArrayBuffer | typed array | URL
 //                                  -> Promise of the analysis (rejects with the
 //                                  reason when the surface cannot be read)
 //               mesh(options?)     -> Promise of the JS API's mesh result
 //                                  ({ ok, file, msh, report, surface, ... } or
 //                                  { ok: false, error }); options override
-//                                  the `options` attribute
+//                                  the `options` attribute; with `family` N > 1
+//                                  a mesh-independence family (the result's
+//                                  `family` its table, `file` the zip)
 //               export(format)     -> Promise of a Blob of the last mesh in
 //                                  'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete'
+//                                  (after a family, in its format: the zip)
+//               report()           -> Promise of a Blob (text/html) of the methods
+//                                  report of the last mesh, with the pictures
+//                                  drawn by the element's view
 //   events      vm-analyzed  detail: the analysis
 //               vm-progress  detail: { fraction, stage }
 //               vm-meshed    detail: the mesh result
 //               vm-error     detail: { message }
 // Events bubble and cross the shadow boundary (composed).
 import { VesselmeshClient } from '../../../wasm/src/client.js';
+import { withPrismsSplit } from '../prisms.js';
+import { captureReportViews } from '../report-views.js';
 import { Viewer } from '../viewer.js';
+import { VolumeView } from '../volume-view.js';
 
 const FORMATS = ['msh', 'vtu', 'vtp', 'stl', 'mesh-complete'];
 const MIME = { msh: 'text/plain', vtu: 'application/xml', vtp: 'application/xml', stl: 'model/stl', 'mesh-complete': 'application/zip' };
@@ -49,6 +59,7 @@ button:focus-visible, select:focus-visible { outline: 2px solid #1d5fae; outline
 .status.error { color: #a11a1a; }
 progress { width: 6em; }
 :host([compact]) .full { display: none; }
+:host(:not([report])) .report { display: none; }
 `;
 
 const TEMPLATE = `
@@ -60,6 +71,7 @@ const TEMPLATE = `
   <button type="button" class="primary" data-act="mesh" disabled>Mesh</button>
   <select class="full" aria-label="Export format">${FORMATS.map((f) => `<option value="${f}">${f}</option>`).join('')}</select>
   <button type="button" data-act="export" disabled>Export</button>
+  <button type="button" class="report" data-act="report" hidden>Download report</button>
   <progress max="1" value="0" hidden></progress>
   <span class="status" role="status" aria-live="polite"></span>
 </div>`;
@@ -92,6 +104,7 @@ export class VesselMesher extends HTMLElement {
       mesh: $('[data-act=mesh]'),
       format: $('select'),
       export: $('[data-act=export]'),
+      report: $('[data-act=report]'),
       progress: $('progress'),
       status: $('.status'),
     };
@@ -102,6 +115,7 @@ export class VesselMesher extends HTMLElement {
     });
     this._ui.mesh.addEventListener('click', () => this.mesh());
     this._ui.export.addEventListener('click', () => this._download(this._ui.format.value));
+    this._ui.report.addEventListener('click', () => this._downloadReport());
     this._client = null;
     this._viewer = null;
     this._input = null; // { bytes, name }
@@ -121,6 +135,7 @@ export class VesselMesher extends HTMLElement {
     this._client = null;
     this._result = null;
     this._ui.export.disabled = true;
+    this._ui.report.hidden = true;
   }
 
   attributeChangedCallback(name, old, value) {
@@ -143,6 +158,7 @@ export class VesselMesher extends HTMLElement {
     this._ensureClient();
     this._result = null;
     this._ui.export.disabled = true;
+    this._ui.report.hidden = true;
     this._status('reading…');
     let input;
     try {
@@ -192,9 +208,12 @@ export class VesselMesher extends HTMLElement {
     this._result = result;
     this._viewer.setSurface(result.surface, { fit: false });
     this._ui.export.disabled = false;
+    this._ui.report.hidden = false;
     const tets = result.volume ? result.volume.tets.length / 4 : 0;
     const triangles = result.report.output?.triangles ?? 0;
-    this._status(`meshed: ${triangles.toLocaleString('en')} wall triangles, ${tets.toLocaleString('en')} tetrahedra`);
+    const family = result.family ? `; a family of ${result.family.members} meshes (Export: a zip)` : '';
+    const counts = `${triangles.toLocaleString('en')} wall triangles, ${tets.toLocaleString('en')} tetrahedra`;
+    this._status(`meshed: ${counts}${family}`);
     this._emit('vm-meshed', result);
     return result;
   }
@@ -203,12 +222,31 @@ export class VesselMesher extends HTMLElement {
   async export(format = this._result?.format ?? 'msh') {
     if (!this._result) throw this._fail('nothing to export: mesh first');
     let file = this._result.format === format ? this._result.file : null;
+    // A family's file is the zip of its meshes.
+    const zip = file && this._result.family;
     if (!file) {
       const result = await this._client.export(format);
       if (!result.ok) throw this._fail(result.error);
       file = result.file;
     }
-    return new Blob([file], { type: MIME[format] ?? 'application/octet-stream' });
+    return new Blob([file], { type: zip ? 'application/zip' : MIME[format] ?? 'application/octet-stream' });
+  }
+
+  /** The methods report of the last mesh as a Blob (text/html): the pictures
+   * are the element's view's (or, if it cannot draw them, the core's). */
+  async report() {
+    if (!this._result) throw this._fail('nothing to report on: mesh first');
+    const result = this._result;
+    const viewer = this._viewer;
+    const images = await captureReportViews({
+      viewer,
+      volumeView: new VolumeView(viewer),
+      result: { ...result, volume: withPrismsSplit(result.volume) },
+      restore: () => viewer.setSurface(result.surface, { fit: false }),
+    }).catch(() => undefined);
+    const made = await this._client.report({ ...(images && { images }), inputName: this._input.name });
+    if (!made.ok) throw this._fail(made.error);
+    return new Blob([made.file], { type: 'text/html' });
   }
 
   async _download(format) {
@@ -216,12 +254,36 @@ export class VesselMesher extends HTMLElement {
       const blob = await this.export(format);
       const a = document.createElement('a');
       a.href = URL.createObjectURL(blob);
-      a.download = `${this._input.name.replace(/\.[^.]*$/, '')}.${format === 'mesh-complete' ? 'zip' : format}`;
+      const base = this._baseName();
+      const family = this._result.family && format === this._result.format;
+      a.download = family ? `${base}-mesh-family.zip` : `${base}.${format === 'mesh-complete' ? 'zip' : format}`;
       a.click();
       setTimeout(() => URL.revokeObjectURL(a.href), 10_000);
     } catch {
       // reported by export() (vm-error, status line)
     }
+  }
+
+  async _downloadReport() {
+    this._ui.report.disabled = true;
+    this._status('writing the report…');
+    try {
+      const blob = await this.report();
+      const a = document.createElement('a');
+      a.href = URL.createObjectURL(blob);
+      a.download = `${this._baseName()}-report.html`;
+      a.click();
+      setTimeout(() => URL.revokeObjectURL(a.href), 10_000);
+      this._status(`report: ${a.download}`);
+    } catch {
+      // reported by report() (vm-error, status line)
+    } finally {
+      this._ui.report.disabled = false;
+    }
+  }
+
+  _baseName() {
+    return this._input.name.replace(/\.[^.]*$/, '');
   }
 
   _ensureClient() {
