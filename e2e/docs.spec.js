@@ -60,6 +60,25 @@ test('the element page: a scripted example meshes and logs its events', async ({
   expect(errors).toEqual([]);
 });
 
+test('the family page: its live element meshes a family of three and downloads the report', async ({ page }) => {
+  const { foreign, errors } = watch(page);
+  await page.goto(`${server.url}family.html`);
+  const el = page.locator('#family');
+  await expect(el.getByRole('status')).toContainText('3 openings', { timeout: 60_000 });
+  const meshed = page.evaluate(
+    () => new Promise((resolve) => document.getElementById('family').addEventListener('vm-meshed', (e) => resolve(e.detail.family), { once: true })),
+  );
+  await el.getByRole('button', { name: 'Mesh' }).click();
+  const family = await meshed;
+  expect(family.rows.map((r) => r.file)).toEqual(['mesh_0.msh', 'mesh_1.msh', 'mesh_2.msh']);
+  for (const row of family.rows.slice(1)) expect(Math.abs(row.ratio - 1.4)).toBeLessThan(0.14);
+  const download = page.waitForEvent('download');
+  await el.getByRole('button', { name: 'Download report' }).click();
+  expect((await download).suggestedFilename()).toMatch(/report\.html$/);
+  expect(foreign).toEqual([]);
+  expect(errors).toEqual([]);
+});
+
 test('the options page lists every option of the table with its unit; every page is linked and its links resolve', async ({ page }) => {
   const { optionTable } = await createVesselmesh();
   const { foreign } = watch(page);
@@ -75,7 +94,7 @@ test('the options page lists every option of the table with its unit; every page
   const links = await page.locator('header nav a').evaluateAll((as) => as.map((a) => a.getAttribute('href')));
   expect(links).toEqual([
     'index.html', 'cli.html', 'options.html', 'outputs.html', 'js-api.html', 'element.html',
-    'app.html', 'method.html', 'benchmarks.html', 'limits.html', 'architecture.html',
+    'family.html', 'app.html', 'method.html', 'benchmarks.html', 'limits.html', 'architecture.html',
   ]);
   const broken = [];
   for (const href of links) {
