@@ -24,24 +24,46 @@ double power(double r, int k) {
   return s;
 }
 
-/// A boundary layer refined with the family: about s times as many layers
-/// (at most 100) of the same total thickness, their growth the k-th root
-/// that keeps the first and last layers' height ratio, the first layer's
-/// height (when given) divided by s.
+/// 1 + g + ... + g^(n-1).
+double series(double g, int n) {
+  double sum = 0, h = 1;
+  for (int i = 0; i < n; ++i, h *= g) sum += h;
+  return sum;
+}
+
+/// A boundary layer refined with the family: its first layer's height
+/// divided by s exactly, in about s times as many layers (at most 100)
+/// growing by the n-th root that keeps the first and last layers' height
+/// ratio; the total thickness follows (within a few percent of the first
+/// member's, as the count is rounded).
 void refine_layers(LayerSpec& spec, double s) {
   if (spec.layers <= 0) return;
-  const int n = std::clamp(int(std::lround(spec.layers * s)), spec.layers, 100);
-  if (spec.growth != 1) spec.growth = pm::pow(spec.growth, double(spec.layers) / n);
-  spec.first_height /= s;  // 0 (a total thickness asked) stays 0
+  const int n0 = spec.layers;
+  const int n = std::clamp(int(std::lround(n0 * s)), n0, 100);
+  const double g = spec.growth == 1 ? 1 : pm::pow(spec.growth, double(n0) / n);
+  if (spec.first_height > 0)
+    spec.first_height /= s;
+  else  // the first layer is thickness / series(growth, n0) of R
+    spec.thickness_fraction =
+        std::min(0.9, spec.thickness_fraction / series(spec.growth, n0) / s * series(g, n));
+  spec.growth = g;
   spec.layers = n;
 }
 
 /// Of a layer of `layers` with growth `g`, the first layer's share of the
 /// total thickness.
 double first_layer_share(int layers, double g) {
-  double sum = 0, h = 1;
-  for (int i = 0; i < layers; ++i, h *= g) sum += h;
+  const double sum = series(g, layers);
   return sum > 0 ? 1 / sum : 0;
+}
+
+/// `row`'s lengths times `f` (to the written mesh's unit).
+void scale_lengths(FamilyMember& row, double f) {
+  row.h *= f;
+  row.lumen_volume *= f * f * f;
+  row.first_layer_height *= f;
+  row.layer_thickness *= f;
+  row.size *= f;
 }
 
 /// The volume of the tetrahedron q (4 indices into `points`, xyz).
@@ -289,6 +311,9 @@ Result<MeshFamily> run_mesh_family(std::span<const uint8_t> file_bytes,
     }
     FamilyMember row = family_member_row(res, member, k, previous_h);
     previous_h = row.h;
+    if (options.output_units != LengthUnit::kGuess)
+      scale_lengths(row, metres_per_unit(res.surface.unit.unit) /
+                             metres_per_unit(options.output_units));
     family.rows.push_back(std::move(row));
     surface = res.surface;  // with any opening cut deeper
     if (on_member)

@@ -10,7 +10,8 @@
 //   - the gradations (surface and volume) divided by r^k too, since a
 //     field h(x) / s has slopes |grad h| / s;
 //   - the boundary layer either refined with the family (the first layer
-//     divided by r^k, with as many more layers of the same total thickness)
+//     divided by r^k, in about r^k times as many layers of about the same
+//     total thickness)
 //     or kept as the first member's (one first-layer height, the y+ choice).
 // Every member meshes the same prepared surface (one preparation: the same
 // repairs, cuts, openings and names), so that the members differ by their
@@ -42,7 +43,8 @@ MeshJobOptions family_member_options(const MeshJobOptions& options, int k,
                                      double per_circumference = 0);
 
 /// One row of the family's table: what a member is, as a convergence study
-/// reports it. Lengths in the mesh's model unit (unit), volumes its cube.
+/// reports it. Lengths in the model's unit (family_member_row) or the
+/// written mesh's (run_mesh_family: MeshFamily::unit), volumes its cube.
 struct FamilyMember {
   int index = 0;     ///< k
   double scale = 1;  ///< 1 / r^k: its sizes over the first member's

@@ -42,9 +42,13 @@ TEST(MeshFamily, MemberOptionsDivideEverySizeByTheRatioPower) {
   EXPECT_DOUBLE_EQ(m2.remesh_options.size.gradation, o.remesh_options.size.gradation / 2.25);
   EXPECT_DOUBLE_EQ(m2.gradation_divisor, 2.25);
   EXPECT_TRUE(m2.size_given);  // refused over the budget, never coarsened alone
-  // Refined layers: 4 -> 9 of the same total thickness (0.2 R).
+  // Refined layers: 4 -> 9, the first layer (0.05 R) divided by 2.25
+  // exactly, the total thickness the same here (9 = 4 x 2.25).
   EXPECT_EQ(m2.viscous.layers, 9);
-  EXPECT_EQ(m2.viscous.thickness_fraction, o.viscous.thickness_fraction);
+  EXPECT_DOUBLE_EQ(m2.viscous.thickness_fraction / 9, 0.2 / 4 / 2.25);
+  const MeshJobOptions m1 = family_member_options(o, 1);  // 4 x 1.5 = 6
+  EXPECT_EQ(m1.viscous.layers, 6);
+  EXPECT_DOUBLE_EQ(m1.viscous.thickness_fraction / 6, 0.2 / 4 / 1.5);
 }
 
 TEST(MeshFamily, PerCircumferenceGrowsAndLayersRefineOrStayFixed) {
@@ -110,9 +114,23 @@ TEST(MeshFamily, ThreeMembersOfOneSurfaceRefineByTheRatio) {
     if (k > 0) {
       EXPECT_NEAR(m.ratio, 1.4, 0.14) << k;  // within 10 % of r
       EXPECT_NEAR(m.h * m.ratio, f.rows[size_t(k) - 1].h, 1e-12);
-      EXPECT_LT(m.first_layer_height, f.rows[size_t(k) - 1].first_layer_height);
+      // The first layer refined by r (its height measured from the layer's
+      // volume, not asked).
+      EXPECT_NEAR(f.rows[size_t(k) - 1].first_layer_height / m.first_layer_height, 1.4, 0.14)
+          << k;
     }
   }
+  // Written in metres: the table's lengths are the files'.
+  MeshJobOptions m = o;
+  m.family = 2;
+  ASSERT_TRUE(set_option_text(m, "output_units", "m").ok());
+  auto metres = run_mesh_family(stl, m, {});
+  ASSERT_TRUE(metres.ok()) << metres.message();
+  EXPECT_EQ(metres.value().unit, "m");
+  EXPECT_NEAR(metres.value().rows[1].h, f.rows[1].h / 100, 1e-9 * f.rows[1].h);
+  EXPECT_NEAR(metres.value().rows[1].lumen_volume, f.rows[1].lumen_volume / 1e6,
+              1e-9 * f.rows[1].lumen_volume);
+  EXPECT_EQ(metres.value().rows[1].ratio, f.rows[1].ratio);
   const std::string csv = family_csv(f);
   EXPECT_EQ(count(csv, "\n"), 4u);
   EXPECT_EQ(csv.rfind("member,file,scale,nodes,", 0), 0u);
