@@ -15,6 +15,14 @@ with, Debian's OpenFOAM (v1912) and FEniCS (dolfinx 0.5).
   fixed pressure 0 on the outlets, no slip on the wall, blood's kinematic
   viscosity; the outlets' flow rates (postProcess flowRatePatch) must add
   up to the inlet's within 0.1%.
+- Grid convergence (Celik et al. 2008, validation/gci.py, its self-test
+  run first): the bifurcation's mesh family (--family 3, ratio 1.5, the
+  flags above), each member through simpleFoam with the base mesh's
+  inflow, parabolic at Re 300 (no singular rim where a plug inflow meets
+  the wall); all must converge; the pressure drop (area-weighted mean of p on
+  the inlet minus that on the outlets, 0 there) must approach a limit
+  monotonically, 0 < (phi2 - phi1) / (phi3 - phi2) < 1 (1 = finest), with
+  GCI_fine21 < 5%. --no-family skips it.
 - FEniCS: the bifurcation meshed with split prisms (tetrahedra only, which
   dolfinx reads) into MSH 4.1, read by dolfinx.io.gmshio (model_to_mesh of
   the file opened by the gmsh module: read_from_msh of Debian's 0.5.2 is
@@ -24,7 +32,8 @@ with, Debian's OpenFOAM (v1912) and FEniCS (dolfinx 0.5).
   [0 - eps, 1 + eps] (maximum principle).
 
 usage: solver_check.py --data DIR --vesselmesh PATH [--files F ...]
-                       [--keep DIR] [--no-simplefoam] [--no-fenics] [--reynolds RE]
+                       [--keep DIR] [--no-simplefoam] [--no-family] [--no-fenics]
+                       [--reynolds RE]
 Exit status 0 when every check passes. Prints a table of the numbers.
 """
 import argparse
@@ -61,6 +70,23 @@ NU_BLOOD = 3.3e-6  # m^2/s: 3.5 mPa s / 1060 kg/m^3
 REYNOLDS = 600
 FENICS_FILE = "bifurcation.stl"
 EPS = 1e-3
+# Grid convergence study (Celik et al. 2008, validation/gci.py): the
+# bifurcation's mesh family (--family 3 --ratio FAMILY_RATIO, the flags of
+# its simpleFoam case), each member through simpleFoam at the base case's
+# inflow; the quantity is the pressure drop from the inlet to the outlets.
+FAMILY_FILE = "bifurcation.stl"
+FAMILY_MEMBERS = 3
+# 1.5: at 1.4 the default bifurcation's three members are not yet in the
+# asymptotic range for the drop (its changes, 0.4-0.5 %, grow from one
+# member to the next: measured 2026-12, eps21/eps32 1.24); at 1.5 they
+# shrink (0.90) within the same time.
+FAMILY_RATIO = 1.5
+GCI_MAX = 0.05  # GCI_fine21 of the pressure drop
+# The study's inflow: parabolic (parabolic_inflow), at this Reynolds number
+# on the inlet's diameter (its peak speed twice the mean: the steady flow of
+# the checks' Re 600 with a plug inflow).
+FAMILY_REYNOLDS = 300
+RHO_BLOOD = 1060.0  # kg/m^3: kinematic pressure (m^2/s^2) to Pa
 
 failures = []
 
@@ -155,10 +181,46 @@ def patches(case):
     return re.findall(r"^\s*([A-Za-z_][\w.-]*)\s*\n\s*\{\s*\n\s*type\s+(\w+);", text, re.M)
 
 
-def set_up_simplefoam(case, speed):
+def parabolic_inflow(case, speed):
+    """A Poiseuille-like inflow on the inlet: per face, 2 U (1 - d^2 / R^2)
+    (d the face centre's distance to the inlet's centroid, R the radius of
+    the disc of its area, 0 beyond R), scaled so that its flow is U times the
+    inlet's area. Unlike a plug profile it has no singular corner where it
+    meets the no-slip wall, whose entrance loss converges slowly with the
+    mesh. Returns the faces' normal speeds (m/s, inward)."""
+    pts, faces = read_patch_faces(case, "inlet")
+    centres, areas = [], []
+    for f in faces:
+        p0, a, c = pts[f[0]], 0.0, [0.0, 0.0, 0.0]
+        for i, j in zip(f[1:-1], f[2:]):
+            u = [pts[i][k] - p0[k] for k in range(3)]
+            v = [pts[j][k] - p0[k] for k in range(3)]
+            t = 0.5 * math.sqrt(sum(x * x for x in (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                                                   u[0] * v[1] - u[1] * v[0])))
+            for k in range(3):
+                c[k] += t * (p0[k] + pts[i][k] + pts[j][k]) / 3
+            a += t
+        centres.append([x / a for x in c])
+        areas.append(a)
+    area = sum(areas)
+    centroid = [sum(a * c[k] for a, c in zip(areas, centres)) / area for k in range(3)]
+    r2 = area / math.pi
+    shape = [max(0.0, 1 - sum((c[k] - centroid[k]) ** 2 for k in range(3)) / r2) for c in centres]
+    scale = speed * area / sum(a * w for a, w in zip(areas, shape))
+    return [scale * w for w in shape]
+
+
+def set_up_simplefoam(case, speed, profile=False):
+    """The 0/ fields and system/ of a laminar simpleFoam run: inflow normal
+    to the inlet, uniform at `speed` or (profile) parabolic_inflow's of the
+    same flow; p = 0 on the outlets; no slip on the wall."""
     names = [p for p, _ in patches(case)]
     outlets = [p for p in names if p.startswith("outlet")]
-    u_bc = {"inlet": f"type surfaceNormalFixedValue; refValue uniform {-speed:.6g};",
+    inflow = f"uniform {-speed:.6g}"
+    if profile:
+        v = parabolic_inflow(case, speed)
+        inflow = f"nonuniform List<scalar> {len(v)} (" + " ".join(f"{-x:.8g}" for x in v) + ")"
+    u_bc = {"inlet": f"type surfaceNormalFixedValue; refValue {inflow};",
             "wall": "type noSlip;"}
     p_bc = {"inlet": "type zeroGradient;", "wall": "type zeroGradient;"}
     for o in outlets:
@@ -207,18 +269,22 @@ def set_up_simplefoam(case, speed):
                "relaxationFactors { equations { U 0.9; \".*\" 0.9; } }\n")
 
 
-def run_simplefoam(name, case, reynolds):
+def run_simplefoam(name, case, reynolds, speed=None, profile=False):
+    """simpleFoam on `case` at `reynolds` on its inlet's equivalent diameter,
+    or at the given inflow `speed` (m/s) when one is given; a parabolic
+    inflow of that mean speed with `profile` (set_up_simplefoam)."""
     area = patch_area(case, "inlet")
     diameter = math.sqrt(4 * area / math.pi)
-    speed = reynolds * NU_BLOOD / diameter
-    set_up_simplefoam(case, speed)
+    speed = speed or reynolds * NU_BLOOD / diameter
+    reynolds = speed * diameter / NU_BLOOD
+    set_up_simplefoam(case, speed, profile)
     code, secs = foam("simpleFoam", case, os.path.join(case, "simpleFoam.log"))
     text = open(os.path.join(case, "simpleFoam.log")).read()
     m = re.search(r"SIMPLE solution converged in (\d+) iterations", text)
     its = int(m.group(1)) if m else None
     last = re.findall(r"^Time = (\d+)$", text, re.M)
     check(name, code == 0 and its is not None and its <= 1000,
-          f"simpleFoam (laminar, inflow {speed * 1000:.2f} mm/s normal to the inlet of "
+          f"simpleFoam (laminar, {'parabolic' if profile else 'uniform'} inflow {speed * 1000:.2f} mm/s normal to the inlet of "
           f"{diameter * 1000:.2f} mm, Re {reynolds:g}): "
           + (f"converged in {its} iterations" if its else
              f"not converged (exit {code}, {last[-1] if last else 0} iterations)")
@@ -239,6 +305,106 @@ def run_simplefoam(name, case, reynolds):
               f"{speed * area * 6e7:.4g}), out {q_out * 6e7:.4g} ml/min, split " +
               ", ".join(f"{p} {100 * q / q_in:.1f}%" for p, q in flows.items() if p != "inlet"))
     return dict(iterations=its, seconds=secs, speed=speed, diameter=diameter)
+
+
+def pressure_drop(case):
+    """The pressure drop of a converged case (latest time): the area-weighted
+    mean of the kinematic pressure p over the inlet minus its area-weighted
+    mean over all outlets together (postProcess patchAverage). The outlets
+    hold p = 0 (fixed value), so their mean is 0 and any weighting gives the
+    same drop. Returns (drop, inlet mean, outlet mean) in m^2/s^2."""
+    names = [p for p, _ in patches(case) if p == "inlet" or p.startswith("outlet")]
+    log = os.path.join(case, "patchAverage.log")
+    funcs = " ".join(f"patchAverage(name={p},p)" for p in names)
+    foam(f"postProcess -funcs '({funcs})' -latestTime", case, log)
+    found = {m.group(2): (float(m.group(1)), float(m.group(3))) for m in re.finditer(
+        r"total area\s+=\s+(\S+)\s+areaAverage\((\S+)\) of p = (\S+)", open(log).read())}
+    if set(found) != set(names):
+        return float("nan"), float("nan"), float("nan")
+    outlets = [found[p] for p in names if p != "inlet"]
+    p_out = sum(a * p for a, p in outlets) / sum(a for a, _ in outlets)
+    p_in = found["inlet"][1]
+    return p_in - p_out, p_in, p_out
+
+
+def family_study(args, path, tmp, rows):
+    """A grid convergence study (Celik et al. 2008, validation/gci.py) of
+    the pressure drop: the mesh family of `path` (FAMILY_MEMBERS members,
+    sizes divided by FAMILY_RATIO from one to the next, the flags of its
+    simpleFoam case), each member through simpleFoam with the same boundary
+    conditions (the inflow speed of member 0, the base mesh, at the chosen
+    Reynolds number); every member must converge, the pressure drops must
+    approach a limit monotonically (0 < (phi2 - phi1) / (phi3 - phi2) < 1,
+    1 = finest) and GCI_fine21 must stay below GCI_MAX."""
+    import json
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import gci
+    name = os.path.basename(path) + " (family)"
+    bad = gci.self_test(verbose=False)
+    check(name, not bad, "gci.py self-test (Celik et al. 2008 Table 1, phi0 + C h^2): "
+          + ("passed" if not bad else "; ".join(bad)))
+    start = time.time()
+    base = os.path.join(tmp, "bif-family")
+    r, secs = vesselmesh(args, path, base + "/", FILES[os.path.basename(path)] + FOAM_FLAGS +
+                         ["--format", "foam", "--family", str(FAMILY_MEMBERS),
+                          "--ratio", str(FAMILY_RATIO)])
+    if not check(name, r.returncode == 0, f"{FAMILY_MEMBERS} members meshed (ratio {FAMILY_RATIO}) in "
+                 f"{secs:.1f} s {r.stderr.strip()}"):
+        return
+    table = json.load(open(base + "_family.json"))
+    fam, unit = table["rows"], table["unit"]
+    speed, results = None, []
+    for row in fam:
+        k = row["member"]
+        case = os.path.join(tmp, f"bif-family_{k}")
+        label = f"{name} member {k}"
+        print(f"  member {k}: {row['cells']} cells ({row['tetrahedra']} tetrahedra, {row['prisms']} prisms, "
+              f"{row['layers']} layers), h {row['h']:.5g} {unit}, "
+              f"ratio {row['ratio']:.3f}", flush=True)
+        n = check_mesh(label, case)
+        if speed is None:
+            # The base mesh's inflow speed (that of the file's own case), kept
+            # for the finer members: the same boundary conditions.
+            diameter = math.sqrt(4 * patch_area(case, "inlet") / math.pi)
+            speed = FAMILY_REYNOLDS * NU_BLOOD / diameter
+        s = run_simplefoam(label, case, args.reynolds, speed, profile=True)
+        drop, p_in, p_out = pressure_drop(case) if s["iterations"] else (float("nan"),) * 3
+        print(f"  member {k}: pressure drop {drop:.7g} m^2/s^2 ({drop * RHO_BLOOD:.3f} Pa): inlet mean "
+              f"{p_in:.7g}, outlets' mean {p_out:.3g}", flush=True)
+        results.append(dict(member=k, h=row["h"], cells=n["cells"], drop=drop, **s))
+        rows.append((name, f"member {k}: simpleFoam + pressure drop", f"{n['cells']} cells, h {row['h']:.4g}",
+                     f"{s['iterations'] or 'NOT'} iterations, dp {drop:.6g} m^2/s^2 "
+                     f"({drop * RHO_BLOOD:.2f} Pa)", f"{s['seconds']:.1f} s"))
+    converged = all(x["iterations"] for x in results) and len(results) == FAMILY_MEMBERS
+    check(name, converged, "every member converged: "
+          + ", ".join(f"{x['iterations'] or 'NOT'}" for x in results) + " iterations")
+    if not converged or len(results) != 3:
+        return
+    fine = results[::-1]  # 1 = finest
+    g = gci.gci([x["h"] for x in fine], [x["drop"] for x in fine])
+    ratio = g["eps21"] / g["eps32"]
+    print(f"  GCI (Celik et al. 2008): phi1..3 = {fine[0]['drop']:.7g}, {fine[1]['drop']:.7g}, "
+          f"{fine[2]['drop']:.7g} m^2/s^2; r21 {g['r21']:.4f}, r32 {g['r32']:.4f}; "
+          f"eps21 {g['eps21']:.4g}, eps32 {g['eps32']:.4g} (eps21/eps32 {ratio:.3f}); "
+          f"s {g['s']:+.0f}; apparent order p {g['p']:.3f} ({g['iterations']} fixed-point iterations"
+          f"{'' if g['converged'] else ', NOT converged'}); phi_ext21 {g['phi_ext21']:.7g} "
+          f"({g['phi_ext21'] * RHO_BLOOD:.3f} Pa); e_a21 {100 * g['e_a21']:.3f}%, "
+          f"e_ext21 {100 * g['e_ext21']:.3f}%, GCI_fine21 {100 * g['gci_fine21']:.3f}%", flush=True)
+    check(name, g["monotone"],
+          f"pressure drops approach a limit: (phi2 - phi1) / (phi3 - phi2) = {ratio:.3f} in (0, 1) "
+          f"({', '.join(f'{x:.6g}' for x in (fine[0]['drop'], fine[1]['drop'], fine[2]['drop']))}, "
+          f"finest first)")
+    check(name, g["gci_fine21"] < GCI_MAX,
+          f"GCI_fine21 of the pressure drop {100 * g['gci_fine21']:.2f}% < {100 * GCI_MAX:g}% "
+          f"(p {g['p']:.2f}, phi_ext21 {g['phi_ext21']:.6g}"
+          + ("" if g["monotone"] else "; not monotone: the estimate does not hold") + ")")
+    drops = ", ".join(f"{x['drop']:.5g}" for x in fine)
+    rows.append((name, "GCI (Celik et al. 2008) of the pressure drop",
+                 f"r21 {g['r21']:.3f}, r32 {g['r32']:.3f}",
+                 f"dp {drops} (fine to coarse); p {g['p']:.2f}, "
+                 f"phi_ext {g['phi_ext21']:.5g}, e_a21 {100 * g['e_a21']:.2f}%, "
+                 f"GCI_fine21 {100 * g['gci_fine21']:.2f}%",
+                 f"{time.time() - start:.1f} s in all"))
 
 
 def wall_case(args, path, tmp, rows):
@@ -360,6 +526,8 @@ def main():
     ap.add_argument("--keep", help="write the cases here instead of a temporary folder")
     ap.add_argument("--no-simplefoam", action="store_true")
     ap.add_argument("--no-fenics", action="store_true")
+    ap.add_argument("--no-family", action="store_true",
+                    help="skip the grid convergence study (the mesh family through simpleFoam)")
     ap.add_argument("--reynolds", type=float, default=REYNOLDS,
                     help=f"inflow Reynolds number on the inlet's diameter (default {REYNOLDS})")
     args = ap.parse_args()
@@ -417,6 +585,9 @@ def main():
                 rows.append((name, "simpleFoam laminar", f"{n['cells']} cells",
                              f"{s['iterations'] or 'NOT'} iterations to converge",
                              f"{s['seconds']:.1f} s"))
+        if FAMILY_FILE in files and not args.no_simplefoam and not args.no_family:
+            print(f"== {FAMILY_FILE}: grid convergence study", flush=True)
+            family_study(args, os.path.join(args.data, FAMILY_FILE), tmp, rows)
         if not args.no_fenics and FENICS_FILE in files:
             print(f"== {FENICS_FILE}: FEniCS", flush=True)
             fenics_check(args, os.path.join(args.data, FENICS_FILE), tmp, rows)

@@ -66,6 +66,11 @@ SIZES = {
 FINE_CORE = {"aortic-arch.stl": 0.06}
 # Meshed with flow extensions of 5 local radii.
 FLOW_EXTENSION_FILES = ["bifurcation.stl", "abdominal-aorta-open.stl"]
+# Meshed as a mesh-independence family (--family 3 --ratio 1.4, defaults
+# otherwise): every member valid in Gmsh, the same groups, the achieved size
+# ratio between neighbours within 10% of the request, the core's quality.
+FAMILY_FILES = ["bifurcation.stl", "abdominal-aorta-open.stl"]
+FAMILY = dict(members=3, ratio=1.4, ratio_tol=0.1, core_min=0.25)
 # Outputs read by VTK and meshio (validation/check_vtk_outputs.py) on these.
 VTK_OUTPUT_FILES = ["bifurcation.stl", "coronary-closed-ascii.stl", "simvascular-aorta-capped.vtp"]
 # Seed Table 1 (iliac bifurcation, conformal map): each of our 2D meshers must
@@ -414,6 +419,67 @@ def check_default_mesh(fname, path, tmp, args, have_gmsh, expect=None):
     os.remove(out)
 
 
+def check_family(fname, path, tmp, args, have_gmsh):
+    """`--family 3 --ratio 1.4`: a mesh-independence family with default
+    options. Every member valid as Gmsh reads it (no inverted element,
+    conforming, every element in a group, the tets fill the enclosed volume,
+    planar caps), the same physical groups on every member, h of the
+    family JSON as measured from the file, the achieved ratio between
+    neighbours within 10% of the request, the core's gamma_t min >= 0.25 on
+    every member; prints the family table."""
+    import time
+    start = time.time()
+    n, ratio = FAMILY["members"], FAMILY["ratio"]
+    base = os.path.join(tmp, f"{fname}.family.msh")
+    r = subprocess.run([args.vesselmesh, "mesh", path, "-o", base, "--quiet", "--family", str(n),
+                        "--ratio", str(ratio)], capture_output=True, text=True)
+    check(fname, r.returncode == 0, f"family ({n} members, ratio {ratio}): exit 0 {r.stderr.strip()[-400:]}")
+    if r.returncode != 0:
+        return
+    stem = base[:-len(".msh")]
+    fam = json.load(open(stem + "_family.json"))
+    rows = fam["rows"]
+    files = [f"{stem}_{k}.msh" for k in range(n)]
+    check(fname, fam["members"] == n and len(rows) == n and abs(fam["ratio"] - ratio) < 1e-12
+          and all(os.path.exists(f) for f in files) and os.path.exists(stem + "_family.csv"),
+          f"family: {len(rows)} members ({', '.join(os.path.basename(f) for f in files)}), "
+          f"ratio {fam['ratio']}, layers {fam['layers']}, CSV and JSON written")
+    print(f"  family: | member | cells | tetrahedra | prisms | h ({fam['unit']}) | ratio | gamma_t min / mean "
+          f"| core gamma_t min / mean | wall gamma_k min / mean | layers | first layer | seconds |")
+    for row in rows:
+        print(f"  family: | {row['member']} | {row['cells']} | {row['tetrahedra']} | {row['prisms']} | "
+              f"{row['h']:.5g} | {row['ratio']:.3f} | {row['gamma_t_min']:.3f} / {row['gamma_t_mean']:.3f} | "
+              f"{row['core_gamma_t_min']:.3f} / {row['core_gamma_t_mean']:.3f} | "
+              f"{row['wall_gamma_k_min']:.3f} / {row['wall_gamma_k_mean']:.4f} | {row['layers']} | "
+              f"{row['first_layer_height']:.4g} | {row['seconds']:.2f} |")
+    achieved = [row["ratio"] for row in rows[1:]]
+    check(fname, len(achieved) == n - 1 and all(abs(a / ratio - 1) <= FAMILY["ratio_tol"] for a in achieved),
+          f"family: achieved ratios {', '.join(f'{a:.3f}' for a in achieved)} within "
+          f"{100 * FAMILY['ratio_tol']:g}% of {ratio}")
+    core = [row["core_gamma_t_min"] for row in rows]
+    check(fname, min(core) >= FAMILY["core_min"],
+          f"family: core gamma_t min {', '.join(f'{c:.3f}' for c in core)} >= {FAMILY['core_min']} on every member")
+    if have_gmsh:
+        names = []
+        for row, f in zip(rows, files):
+            g = gmsh_volume(f)
+            names.append(g["names"])
+            h = (g["volume"] / g["tets"]) ** (1 / 3) if g["tets"] else 0
+            k = row["member"]
+            check(fname, g["orphans"] == 0 and g["min_v6"] > 0 and g["unmatched"] == 0,
+                  f"family member {k}: Gmsh reads it: {g['tets']} tetrahedra, none inverted "
+                  f"(min 6V {g['min_v6']:.3g}), conforming, every element in a group")
+            check(fname, abs(g["volume"] - g["enclosed"]) <= 1e-9 * abs(g["enclosed"]) and g["planar"] <= 1e-9,
+                  f"family member {k}: tetrahedra fill the enclosed volume, caps planar ({g['planar']:.1e})")
+            check(fname, g["tets"] == row["tetrahedra"] and abs(h / row["h"] - 1) <= 1e-6,
+                  f"family member {k}: h = (V / N)^(1/3) from the file {h:.6g} = the JSON's {row['h']:.6g} "
+                  f"({g['tets']} tetrahedra)")
+            os.remove(f)
+        check(fname, all(x == names[0] for x in names) and "wall" in names[0] and "inlet" in names[0],
+              f"family: the same groups on every member: {names[0]}")
+    print(f"  family: {time.time() - start:.1f} s (meshing and checks)")
+
+
 def check_fine_core(fname, path, tmp, args):
     """A large uniform core (FINE_CORE): its quality meets the targets."""
     out, rep = os.path.join(tmp, f"{fname}.fine.msh"), os.path.join(tmp, f"{fname}.fine.json")
@@ -658,6 +724,8 @@ def main():
                 check_fine_core(fname, path, tmp, args)
             if fname in FLOW_EXTENSION_FILES:
                 check_flow_extensions(fname, path, tmp, args, d, have_gmsh)
+            if fname in FAMILY_FILES:
+                check_family(fname, path, tmp, args, have_gmsh)
             if fname in VTK_OUTPUT_FILES:
                 check_vtk_outputs(fname, path, tmp, args)
             if fname in CLIPPED:
