@@ -188,7 +188,7 @@ def option_values(spec):
     return vals
 
 
-SKIP = {"output", "report", "name", "quiet", "verify", "format", "msh_version", "output_units", "units", "solver"}
+SKIP = {"output", "report", "report_html", "name", "quiet", "verify", "format", "msh_version", "output_units", "units", "solver"}
 # Options that change what "the wall's volume" means, or allow more change.
 VOLUME_CHANGING = {"flow_extension", "clip", "clip_at", "clip_plane", "max_volume_change", "remesh", "largest_component"}
 
@@ -305,7 +305,9 @@ def run_case(vm, case, inputs, tmp):
         problem = "out of memory on a small input: " + err.strip()[:200]
     elif p.returncode == 0:
         allow = option in VOLUME_CHANGING or any(a.lstrip("-").replace("-", "_") in VOLUME_CHANGING for a in args if a.startswith("--"))
-        problem = check_mesh(out, rep, allow)
+        # A family (--family N) writes out_0.msh .. out_N-1.msh instead.
+        members = [out] if out.exists() else sorted(work.glob("out_*.msh"))
+        problem = next(filter(None, (check_mesh(m, rep, allow) for m in members or [out])), None)
     return name, problem, dt
 
 

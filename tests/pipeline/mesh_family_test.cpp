@@ -78,7 +78,7 @@ TEST(MeshFamily, PerCircumferenceGrowsAndLayersRefineOrStayFixed) {
 
 TEST(MeshFamily, ThreeMembersOfOneSurfaceRefineByTheRatio) {
   const std::vector<uint8_t> stl =
-      write_stl_binary(testing::phantom(PhantomKind::kBifurcation, true, 0.1));
+      write_stl_binary(testing::phantom(PhantomKind::kBifurcation, true, 0.2));
   MeshJobOptions o;
   ASSERT_TRUE(set_option_text(o, "family", "3").ok());
   ASSERT_TRUE(set_option_text(o, "per_circumference", "10").ok());
@@ -141,7 +141,7 @@ TEST(MeshFamily, ThreeMembersOfOneSurfaceRefineByTheRatio) {
 
 TEST(MeshFamily, SurfaceOnlyIsRefusedAndAMemberErrorSaysWhichMember) {
   const std::vector<uint8_t> stl =
-      write_stl_binary(testing::phantom(PhantomKind::kBifurcation, true, 0.1));
+      write_stl_binary(testing::phantom(PhantomKind::kBifurcation, true, 0.2));
   MeshJobOptions o;
   ASSERT_TRUE(set_option_text(o, "family", "2").ok());
   o.volume = false;

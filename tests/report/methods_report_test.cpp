@@ -30,7 +30,7 @@ const Meshed& meshed() {
     EXPECT_TRUE(set_option_text(m.options, "layers", "3").ok());
     EXPECT_TRUE(set_option_text(m.options, "growth", "1.2").ok());
     EXPECT_TRUE(set_option_text(m.options, "units", "mm").ok());
-    auto r = run_mesh_job(write_stl_binary(testing::phantom(PhantomKind::kBifurcation, true, 0.1)),
+    auto r = run_mesh_job(write_stl_binary(testing::phantom(PhantomKind::kBifurcation, true, 0.2)),
                           m.options);
     EXPECT_TRUE(r.ok()) << r.message();
     if (r.ok()) m.result = std::move(r).value();

@@ -112,7 +112,7 @@ const MeshJobResult& meshed(bool wall, bool volume = true) {
     }
     o.volume = volume;
     auto r =
-        run_mesh_job(write_stl_binary(testing::phantom(PhantomKind::kBifurcation, true, 0.1)), o);
+        run_mesh_job(write_stl_binary(testing::phantom(PhantomKind::kBifurcation, true, 0.2)), o);
     EXPECT_TRUE(r.ok()) << r.message();
     if (r.ok()) results[k] = std::move(r).value();
     done[k] = true;
