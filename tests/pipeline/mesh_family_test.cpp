@@ -8,16 +8,11 @@
 
 #include "core/io/stl.h"
 #include "core/pipeline/option_table.h"
+#include "tests/support/expect_has.h"
 #include "tests/support/phantoms.h"
 
 namespace vm {
 namespace {
-
-size_t count(const std::string& s, const std::string& what) {
-  size_t n = 0;
-  for (size_t p = s.find(what); p != std::string::npos; p = s.find(what, p + 1)) ++n;
-  return n;
-}
 
 TEST(MeshFamily, MemberOptionsDivideEverySizeByTheRatioPower) {
   MeshJobOptions o;
@@ -116,8 +111,7 @@ TEST(MeshFamily, ThreeMembersOfOneSurfaceRefineByTheRatio) {
       EXPECT_NEAR(m.h * m.ratio, f.rows[size_t(k) - 1].h, 1e-12);
       // The first layer refined by r (its height measured from the layer's
       // volume, not asked).
-      EXPECT_NEAR(f.rows[size_t(k) - 1].first_layer_height / m.first_layer_height, 1.4, 0.14)
-          << k;
+      EXPECT_NEAR(f.rows[size_t(k) - 1].first_layer_height / m.first_layer_height, 1.4, 0.14) << k;
     }
   }
   // Written in metres: the table's lengths are the files'.
@@ -132,10 +126,10 @@ TEST(MeshFamily, ThreeMembersOfOneSurfaceRefineByTheRatio) {
               1e-9 * f.rows[1].lumen_volume);
   EXPECT_EQ(metres.value().rows[1].ratio, f.rows[1].ratio);
   const std::string csv = family_csv(f);
-  EXPECT_EQ(count(csv, "\n"), 4u);
+  EXPECT_EQ(testing::count_of(csv, "\n"), 4u);
   EXPECT_EQ(csv.rfind("member,file,scale,nodes,", 0), 0u);
   const std::string json = family_json(f);
-  EXPECT_EQ(count(json, "\"member\":"), 3u);
+  EXPECT_EQ(testing::count_of(json, "\"member\":"), 3u);
   EXPECT_NE(json.find("\"layers\":\"refine\""), std::string::npos);
 }
 

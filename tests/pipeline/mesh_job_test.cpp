@@ -15,6 +15,7 @@
 #include "core/pipeline/option_table.h"
 #include "core/pipeline/report_json.h"
 #include "core/pipeline/write_outputs.h"
+#include "tests/support/expect_has.h"
 #include "tests/support/phantoms.h"
 #include "tests/support/test_meshes.h"
 #include "tests/support/tet_volume.h"
@@ -30,12 +31,6 @@ std::vector<uint8_t> two_components_stl() {
   a.points.insert(a.points.end(), b.points.begin(), b.points.end());
   for (int32_t v : b.triangles) a.triangles.push_back(v + off);
   return write_stl_binary(a);
-}
-
-size_t count(const std::string& s, const std::string& what) {
-  size_t n = 0;
-  for (size_t p = s.find(what); p != std::string::npos; p = s.find(what, p + 1)) ++n;
-  return n;
 }
 
 // The names of the job's groups; every group must hold elements.
@@ -356,7 +351,7 @@ TEST(ReportJson, HasTheDocumentedKeys) {
         "\"confidence\":\"likely\",\"alternative\":\"mm\",\"measures\":{\"largest_radius\":",
         "\"enclosed_share\":"})
     EXPECT_NE(a.find(key), std::string::npos) << key << " in " << a;
-  EXPECT_EQ(count(a, "\"radius\":"), 2u);
+  EXPECT_EQ(testing::count_of(a, "\"radius\":"), 2u);
   std::string m = mesh_report_json(r.value());
   for (const char* key :
        {"\"element_budget\":{\"max_elements\":15000000,\"coarsened\":false}",

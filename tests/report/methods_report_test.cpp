@@ -12,6 +12,7 @@
 #include "core/io/stl.h"
 #include "core/pipeline/option_table.h"
 #include "core/report/render_views.h"
+#include "tests/support/expect_has.h"
 #include "tests/support/phantoms.h"
 
 namespace vm {
@@ -51,12 +52,6 @@ MethodsReportInput input_of(const Meshed& m) {
   return in;
 }
 
-size_t count(const std::string& s, const std::string& what) {
-  size_t n = 0;
-  for (size_t p = s.find(what); p != std::string::npos; p = s.find(what, p + 1)) ++n;
-  return n;
-}
-
 bool has(const std::string& s, const std::string& what) {
   return s.find(what) != std::string::npos;
 }
@@ -92,7 +87,7 @@ TEST(MethodsReport, ParagraphStatesTheLayersAndCounts) {
   EXPECT_TRUE(has(p, report_count(m.result.volume.num_tets()) + " tetrahedra")) << p;
   EXPECT_TRUE(has(p, report_count(m.result.output_surface.num_triangles()) + " triangles")) << p;
   EXPECT_FALSE(has(p, "family")) << p;
-  EXPECT_EQ(count(p, "\n"), 0u);
+  EXPECT_EQ(testing::count_of(p, "\n"), 0u);
 }
 
 TEST(MethodsReport, HtmlIsSelfContainedAndHasEverySection) {
@@ -134,7 +129,7 @@ TEST(MethodsReport, HtmlIsSelfContainedAndHasEverySection) {
   EXPECT_FALSE(has(html, "https://"));
   EXPECT_FALSE(has(html, "<script"));
   EXPECT_FALSE(has(html, "url("));
-  EXPECT_EQ(count(html, "<main>"), 1u);
+  EXPECT_EQ(testing::count_of(html, "<main>"), 1u);
   EXPECT_TRUE(html.ends_with("</main>\n</body>\n</html>\n"));
   // The headings in order.
   const char* sections[] = {"<h1>Mesh methods report</h1>",
@@ -159,17 +154,17 @@ TEST(MethodsReport, HtmlIsSelfContainedAndHasEverySection) {
   EXPECT_TRUE(has(paragraph, "A family of 2 meshes refined by r = 1.4")) << paragraph;
   EXPECT_TRUE(has(html, "<p class=\"paste\">" + paragraph + "</p>"));
   // Pictures: data URIs with their alt texts and captions.
-  EXPECT_EQ(count(html, "<img src=\"data:image/png;base64,iVBORw0KGgo"), 3u);
-  EXPECT_EQ(count(html, "<img "), count(html, " alt=\""));
-  EXPECT_EQ(count(html, "<figcaption>"), count(html, "<figure>"));
+  EXPECT_EQ(testing::count_of(html, "<img src=\"data:image/png;base64,iVBORw0KGgo"), 3u);
+  EXPECT_EQ(testing::count_of(html, "<img "), testing::count_of(html, " alt=\""));
+  EXPECT_EQ(testing::count_of(html, "<figcaption>"), testing::count_of(html, "<figure>"));
   for (const ReportImage& img : in.images) EXPECT_TRUE(has(html, img.title));
   // Histograms as accessible SVG.
-  EXPECT_EQ(count(html, "<svg role=\"img\" aria-labelledby="), 2u);
-  EXPECT_EQ(count(html, "<title id=\"hist-"), 2u);
+  EXPECT_EQ(testing::count_of(html, "<svg role=\"img\" aria-labelledby="), 2u);
+  EXPECT_EQ(testing::count_of(html, "<title id=\"hist-"), 2u);
   // Tables: every header a column header, every table captioned.
-  EXPECT_EQ(count(html, "<th>"), 0u);
-  EXPECT_EQ(count(html, "<th "), count(html, "<th scope=\"col\">"));
-  EXPECT_EQ(count(html, "<table>"), count(html, "<caption>"));
+  EXPECT_EQ(testing::count_of(html, "<th>"), 0u);
+  EXPECT_EQ(testing::count_of(html, "<th "), testing::count_of(html, "<th scope=\"col\">"));
+  EXPECT_EQ(testing::count_of(html, "<table>"), testing::count_of(html, "<caption>"));
   // Openings and groups by name; counts grouped.
   ASSERT_EQ(r.opening_names.size(), 3u);
   for (const std::string& name : r.opening_names)
@@ -178,7 +173,8 @@ TEST(MethodsReport, HtmlIsSelfContainedAndHasEverySection) {
   EXPECT_TRUE(has(html, "<td class=\"n\">" + report_count(r.volume.num_tets()) + "</td>"));
   EXPECT_TRUE(has(html, "sha256:0123abcd"));
   // The options as given, in the parameters and the provenance.
-  EXPECT_EQ(count(html, "<code>--size 0.3 --layers 3 --growth 1.2 --units mm</code>"), 2u);
+  EXPECT_EQ(testing::count_of(html, "<code>--size 0.3 --layers 3 --growth 1.2 --units mm</code>"),
+            2u);
   // The family's rows.
   EXPECT_TRUE(has(html, "<td>mesh_0.msh</td><td class=\"n\">12,345</td><td class=\"n\">54,321"));
   EXPECT_TRUE(has(html, "<td>mesh_1.msh</td><td class=\"n\">32,345</td><td class=\"n\">144,321"));
@@ -195,7 +191,7 @@ TEST(MethodsReport, EscapesTheInputNameAndShowsTheNoteWithoutPictures) {
   EXPECT_FALSE(has(html, "a<b"));
   EXPECT_TRUE(has(html, "a&lt;b &amp; &quot;c&quot;.stl"));
   EXPECT_TRUE(has(html, "<p>Pictures are made by the page.</p>"));
-  EXPECT_EQ(count(html, "<img"), 0u);
+  EXPECT_EQ(testing::count_of(html, "<img"), 0u);
   EXPECT_FALSE(has(html, "<h2>Mesh family</h2>"));
 }
 
@@ -213,7 +209,7 @@ TEST(MethodsReport, SurfaceOnlyMeshSaysSo) {
   EXPECT_TRUE(has(p, "No volume mesh was generated.")) << p;
   EXPECT_FALSE(has(p, "tetrahedra")) << p;
   const std::string html = methods_report_html(input_of(s));
-  EXPECT_EQ(count(html, "<svg"), 1u);
+  EXPECT_EQ(testing::count_of(html, "<svg"), 1u);
 }
 
 }  // namespace
