@@ -489,8 +489,11 @@ val methods_report(val opts) {
       const std::vector<uint8_t> png = bytes_from(im["png"]);
       image.png.assign(png.begin(), png.end());
       if (image.png.size() < 8 || image.png.compare(1, 3, "PNG") != 0)
-        return error(
-            vm::Status::Error("report: image " + std::to_string(i + 1) + " is not a PNG file"));
+        return error(vm::Status::Error(
+            "report: image " + std::to_string(i + 1) + " ('" + image.title + "', " +
+            std::to_string(png.size()) +
+            " bytes) is not a PNG file: give PNG bytes (canvas.toBlob with 'image/png'), or no "
+            "images for views rendered by the core"));
       in.images.push_back(std::move(image));
     }
   } else {

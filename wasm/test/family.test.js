@@ -124,7 +124,7 @@ describe('methods report', () => {
     assert.equal((text(given.file).match(/data:image\/png;base64,/g) ?? []).length, 1);
     const bad = api.report({ images: [{ title: 'x', alt: 'x', png: new Uint8Array([1, 2, 3]) }] });
     assert.equal(bad.ok, false);
-    assert.match(bad.error, /image 1 is not a PNG file/);
+    assert.match(bad.error, /image 1 \('x', 3 bytes\) is not a PNG file: give PNG bytes/);
   });
 
   test('the report after a family has its table', () => {
