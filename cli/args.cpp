@@ -50,6 +50,7 @@ std::string describe(const OptionSpec& s) {
   std::string d(s.type == OptionType::kFlag && s.default_on ? s.off_doc : s.doc);
   if (!s.default_text.empty()) d += "; default " + std::string(s.default_text);
   if (s.repeatable) d += "; repeatable";
+  for (std::string_view a : s.cli_aliases) d += "; also --" + std::string(a) + " (its older name)";
   return d;
 }
 
@@ -171,6 +172,7 @@ std::string options_markdown() {
         if (!(s.commands & command) || s.group != group) continue;
         std::string cli = (s.faces & kFaceCli) ? "`" + flag_text(s) + "`" : "";
         if (s.id == "output") cli = "`-o`, " + cli;
+        for (std::string_view a : s.cli_aliases) cli += " (or `--" + std::string(a) + "`)";
         const std::string js = (s.faces & kFaceJs) ? "`" + std::string(s.js) + "`" : "";
         const std::string value = s.type == OptionType::kFlag ? "flag" : std::string(s.needs);
         std::string def(s.default_text);

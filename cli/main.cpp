@@ -26,6 +26,7 @@
 #include "core/pipeline/report_json.h"
 #include "core/pipeline/size_preview.h"
 #include "core/pipeline/solver_preset.h"
+#include "core/pipeline/validate_options.h"
 #include "core/pipeline/write_outputs.h"
 #include "core/report/methods_report.h"
 #include "core/report/render_views.h"
@@ -385,7 +386,7 @@ std::optional<Destination> destination(const std::string& path, vm::MeshJobOptio
     d.folder_path = p.has_parent_path() ? p.parent_path().string() : ".";
     d.marker = p.filename().string();
   }
-  if (vm::Status st = vm::check_format(d.format, options); !st.ok()) {
+  if (vm::Status st = vm::validate_options(options, d.format); !st.ok()) {
     error = vm::phrase_error(st, vm::kFaceCli);
     return std::nullopt;
   }

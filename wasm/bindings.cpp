@@ -29,6 +29,7 @@
 #include "core/pipeline/report_json.h"
 #include "core/pipeline/size_preview.h"
 #include "core/pipeline/solver_preset.h"
+#include "core/pipeline/validate_options.h"
 #include "core/pipeline/write_outputs.h"
 #include "core/prepare/cut_across_vessel.h"
 #include "core/quality/tet_quality.h"
@@ -445,7 +446,7 @@ val mesh(val stl, val opts, val progress) {
   if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh, &applied); !st.ok())
     return error(st);
   const vm::OutputFormat format = vm::resolve_output_format(options, std::nullopt);
-  if (vm::Status st = vm::check_format(format, options); !st.ok()) return error(st);
+  if (vm::Status st = vm::validate_options(options, format); !st.ok()) return error(st);
   std::vector<uint8_t> bytes = bytes_from(stl);
   // The file's hash for the provenance; its bytes are freed once prepared.
   const std::string hash = vm::input_hash(bytes);

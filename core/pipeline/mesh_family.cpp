@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "core/pipeline/prepare_surface.h"
+#include "core/pipeline/validate_options.h"
 #include "core/prepare/units.h"
 #include "core/util/json_writer.h"
 #include "core/util/parallel.h"
@@ -256,9 +257,7 @@ Result<MeshFamily> run_mesh_family(std::span<const uint8_t> file_bytes,
                                    const ProgressFn& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   const int n = std::max(1, options.family);
-  if (n > 1 && !options.volume)
-    return Status::BadOption("family",
-                             "makes volume meshes for a convergence study: drop {surface_only}");
+  if (Status st = validate_options(options, options.format); !st.ok()) return st;
   MeshFamily family;
   family.members = n;
   family.ratio = options.family_ratio;

@@ -25,6 +25,7 @@
 #include "core/pipeline/element_budget.h"
 #include "core/pipeline/opening_names.h"
 #include "core/pipeline/size_preview.h"
+#include "core/pipeline/validate_options.h"
 #include "core/pipeline/write_outputs.h"
 #include "core/quality/tet_quality.h"
 #include "core/surface/element_estimate.h"
@@ -405,18 +406,10 @@ Status mesh_volume(MeshJobResult& r, const MeshJobOptions& options,
 /// and recorded in `r`. Errors: no layer to size, {first_layer} given too,
 /// no inlet velocity, no opening.
 Status first_layer_from_yplus(MeshJobResult& r, MeshJobOptions& options) {
+  // The options were checked before (validate_options): a target y+ comes
+  // with a velocity, layers and no {first_layer}.
   const YPlusTarget& t = options.yplus;
   if (!(t.yplus > 0)) return Status::Ok();
-  if (options.viscous.first_height > 0)
-    return Status::BadOption("first_layer_yplus",
-                             "and {first_layer} both set the first layer's height: give one");
-  if (!(t.velocity > 0))
-    return Status::BadOption("first_layer_yplus",
-                             "needs the flow's {inlet_velocity} (m/s) to size the first layer");
-  if (options.viscous.layers <= 0 || !options.volume)
-    return Status::BadOption("first_layer_yplus",
-                             "sizes the boundary layer's first layer: there is none ({layers} 0 "
-                             "or {surface_only})");
   const std::vector<Opening>& openings = r.surface.topology.openings;
   if (openings.empty())
     return Status::Error(
@@ -563,6 +556,7 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const Me
                                    const ProgressFn& progress,
                                    const std::function<void()>& input_read) {
   auto t0 = std::chrono::steady_clock::now();
+  if (Status st = validate_options(given, given.format); !st.ok()) return st;
   set_thread_count(given.threads);
   // Stage 1 takes the first fifth of the progress bar, remeshing most of the rest.
   ProgressFn sub = [&](double f, std::string_view stage) {
@@ -581,6 +575,7 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const Me
 Result<MeshJobResult> run_mesh_job_on(PreparedSurface surface, const MeshJobOptions& given,
                                       const ProgressFn& progress) {
   auto t0 = std::chrono::steady_clock::now();
+  if (Status st = validate_options(given, given.format); !st.ok()) return st;
   MeshJobOptions options = given;  // with what the surface decides (a y+ height)
   set_thread_count(options.threads);
   MeshJobResult r;

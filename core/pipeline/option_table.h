@@ -45,12 +45,37 @@ enum class PerOpening : uint8_t {
   kRequired,  ///< always K=VALUE
 };
 
-/// One option. Names: `id` is the canonical snake_case id used in core
-/// messages ("{id}") and reports; `cli` the CLI flag without dashes (for a
-/// flag that defaults to on, the flag that turns it off, e.g. "no-remesh");
-/// `js` the JS API's camelCase key.
+/// One value of an option, as parsed from text (CLI) or converted from a JS
+/// value: the field the type uses, and the opening it names (1-based; 0:
+/// all openings, or not per-opening).
+struct OptionValue {
+  double number = 0;
+  bool flag = false;
+  std::string text;
+  std::vector<double> numbers;
+  int opening = 0;
+};
+
+/// One option: what a user gives, and where it goes in the job's options.
+///
+/// Names: a row gives one name, `key`, the JS API's camelCase key. The
+/// others are derived from it by option_table() (option_names.h): `id`, the
+/// snake_case id used in core messages ("{id}"), reports and provenance;
+/// `cli`, the CLI flag without dashes (kebab-case; for a repeatable option
+/// whose key is a plural, the singular: one value a flag; for a flag that
+/// defaults to on, "no-" and the key: the flag that turns it off); `js`,
+/// the key itself where JS takes the option (else empty). The page's
+/// control for the option has the id kebab-case(key), which is also its key
+/// in a shared link. `cli_aliases` are older CLI names still accepted.
+///
+/// Values: `set` applies a checked value to the job's options (false: the
+/// value is not what the option needs); `read` gives the value in a job's
+/// options as option_value_text() writes it ("" = unset, decided later).
+/// The default shown to users is read(MeshJobOptions{}): the struct's
+/// initialisers are the one source of defaults. `default_text` is given
+/// only for an option with no field of its own (CLI paths).
 struct OptionSpec {
-  std::string_view id, cli, js;
+  std::string_view key;
   OptionType type = OptionType::kNumber;
   uint8_t commands = kCommandMesh;
   uint8_t faces = kFaceBoth;
@@ -65,6 +90,7 @@ struct OptionSpec {
   int list_size = 0;                          ///< kNumbers
   bool default_on = false;                    ///< kFlag: its default
   /// The default as shown to users ("20", "0.2", "lscm"; empty: none/unset).
+  /// Derived from `read` (or `read_phantom`) when the row has one.
   std::string_view default_text;
   /// What a length is measured in: "length" (the model's unit), "fraction
   /// of R" (the local vessel radius), "degrees", or empty.
@@ -76,6 +102,17 @@ struct OptionSpec {
   std::string_view off_doc;
   bool repeatable = false;
   PerOpening per_opening = PerOpening::kNo;
+  std::span<const std::string_view> cli_aliases;
+  /// An info or mesh option: applies a checked value; false when the value
+  /// is not what the option needs (apply_option says `needs`).
+  bool (*set)(MeshJobOptions&, const OptionValue&) = nullptr;
+  /// The value's text in `options`; "" when unset.
+  std::string (*read)(const MeshJobOptions& options) = nullptr;
+  /// A phantom option: the same two.
+  bool (*set_phantom)(PhantomOptions&, const OptionValue&) = nullptr;
+  std::string (*read_phantom)(const PhantomOptions& options) = nullptr;
+  /// Derived names (above), filled by option_table().
+  std::string_view id, cli, js;
 };
 
 /// Whether `name` may name a group (an opening): 1-64 letters, digits, `_`
@@ -83,27 +120,16 @@ struct OptionSpec {
 /// a file name).
 bool valid_group_name(std::string_view name);
 
-/// Every option, in help order.
+/// Every option, in help order, with its derived names and defaults.
 std::span<const OptionSpec> option_table();
 
 /// The option with this id, or nullptr.
 const OptionSpec* find_option(std::string_view id);
-/// The option with this CLI name (without dashes) taken by `command`, or
-/// nullptr.
+/// The option with this CLI name (without dashes; or one of its older
+/// names) taken by `command`, or nullptr.
 const OptionSpec* find_cli_option(std::string_view cli, OptionCommand command);
 /// The option with this JS key taken by `command`, or nullptr.
 const OptionSpec* find_js_option(std::string_view js, OptionCommand command);
-
-/// One value of an option, as parsed from text (CLI) or converted from a JS
-/// value: the field the type uses, and the opening it names (1-based; 0:
-/// all openings, or not per-opening).
-struct OptionValue {
-  double number = 0;
-  bool flag = false;
-  std::string text;
-  std::vector<double> numbers;
-  int opening = 0;
-};
 
 /// Parses the CLI text of one value of `spec` ("K=VALUE" for per-opening
 /// options); checks type and range. Flags take no text: use a value with
@@ -142,8 +168,13 @@ std::string phrase_options(std::string_view message, OptionFace face);
 /// "<option name> <message>"; "{id}" references are phrased.
 std::string phrase_error(const Status& status, OptionFace face);
 
+/// The id of the page's control for an option, which is also its key in a
+/// shared link: kebab-case of its key ("coreSize": "core-size").
+std::string control_id(const OptionSpec& spec);
+
 /// The table as JSON (an array of objects with the fields of OptionSpec:
-/// id, cli, js, type, commands [names], faces [names], group, metavar, min,
+/// id, cli, js, control (control_id; "" for an option JS does not take),
+/// cliAliases, type, commands [names], faces [names], group, metavar, min,
 /// max, minExclusive, maxExclusive, choices, listSize, defaultOn, default,
 /// unit, needs, doc, offDoc, repeatable, perOpening), for the JS side, its type
 /// declarations and the docs/options.md check.

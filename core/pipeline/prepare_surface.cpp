@@ -1055,7 +1055,7 @@ Status check_meshable(const PreparedSurface& s) {
     return Status::Error("cannot mesh: the surface has " + std::to_string(t.components) +
                          " connected components (the largest has " + num(t.component_triangles[0]) +
                          " of " + num(t.triangles) +
-                         " triangles); keep only the largest ({largest_component}) or clean the "
+                         " triangles); keep only the largest ({largest_component_only}) or clean the "
                          "segmentation")
         .WithRemedy({"largest_component", {}, 0});
   }

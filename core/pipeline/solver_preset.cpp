@@ -2,6 +2,8 @@
 // (solver_preset.h).
 #include "core/pipeline/solver_preset.h"
 
+#include "core/pipeline/option_values.h"
+#include "core/pipeline/validate_options.h"
 #include "core/pipeline/write_outputs.h"
 #include "core/util/json_writer.h"
 
@@ -53,8 +55,6 @@ const SolverPreset kPresets[] = {
              "the interface wall.vtp"},
 };
 
-std::string_view msh_version_text(MshVersion v) { return v == MshVersion::k22 ? "2.2" : "4.1"; }
-
 bool given(std::span<const std::pair<const OptionSpec*, OptionValue>> values, std::string_view id) {
   for (const auto& [spec, value] : values)
     if (spec->id == id) return true;
@@ -97,7 +97,7 @@ Status apply_options(MeshJobOptions& options,
       out.settings.push_back({std::string(id), std::string(value), !given(values, id)});
     };
     record("prisms", preset->keep_prisms ? "true" : "false");
-    record("msh_version", msh_version_text(preset->msh_version));
+    record("msh_version", msh_version_word(preset->msh_version));
     if (preset->output_units != LengthUnit::kGuess)
       record("output_units", unit_symbol(preset->output_units));
   }
@@ -107,7 +107,7 @@ Status apply_options(MeshJobOptions& options,
     for (PresetSetting& s : options.preset.settings) {
       if (s.from_preset) continue;
       if (s.id == "prisms") s.value = options.keep_prisms ? "true" : "false";
-      if (s.id == "msh_version") s.value = msh_version_text(options.msh_version);
+      if (s.id == "msh_version") s.value = msh_version_word(options.msh_version);
       if (s.id == "output_units") s.value = unit_symbol(options.output_units);
     }
   }
@@ -117,13 +117,7 @@ Status apply_options(MeshJobOptions& options,
       return Status::BadOption(std::string(id),
                                "sizes the first layer from a target y+: give {first_layer_yplus} "
                                "too, or leave it out");
-  if (yplus && given(values, "first_layer"))
-    return Status::BadOption("first_layer_yplus",
-                             "and {first_layer} both set the first layer's height: give one");
-  if (yplus && !given(values, "inlet_velocity"))
-    return Status::BadOption("first_layer_yplus",
-                             "needs the flow's {inlet_velocity} (m/s) to size the first layer");
-  return Status::Ok();
+  return validate_options(options, options.format);
 }
 
 OutputFormat resolve_output_format(MeshJobOptions& options, std::optional<OutputFormat> from_name) {
@@ -161,7 +155,7 @@ std::string solver_presets_json() {
     j.key("label").value(p.label);
     j.key("prisms").value(p.keep_prisms);
     j.key("format").value(format_name(p.format));
-    j.key("mshVersion").value(msh_version_text(p.msh_version));
+    j.key("mshVersion").value(msh_version_word(p.msh_version));
     j.key("outputUnits").value(unit_symbol(p.output_units));
     j.key("note").value(p.note);
     j.end_object();

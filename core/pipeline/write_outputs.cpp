@@ -11,6 +11,7 @@
 #include "core/io/vtk_writer.h"
 #include "core/mesh/face_elements.h"
 #include "core/mesh/region_submesh.h"
+#include "core/pipeline/option_values.h"
 
 namespace vm {
 namespace {
@@ -22,10 +23,6 @@ constexpr std::pair<OutputFormat, std::string_view> kFormats[] = {
     {OutputFormat::kStl, "stl"},
     {OutputFormat::kMeshComplete, "mesh-complete"},
     {OutputFormat::kFoam, "foam"}};
-
-bool volume_format(OutputFormat f) {
-  return f == OutputFormat::kVtu || f == OutputFormat::kMeshComplete || f == OutputFormat::kFoam;
-}
 
 bool surface_only(const MeshJobResult& r) {
   return r.volume.tets.empty() && r.volume.prisms.empty();
@@ -105,17 +102,14 @@ Named named_mesh(const MeshJobResult& r, double scale) {
 
 }  // namespace
 
+bool volume_format(OutputFormat f) {
+  return f == OutputFormat::kVtu || f == OutputFormat::kMeshComplete || f == OutputFormat::kFoam;
+}
+
 std::string_view format_name(OutputFormat format) {
   for (const auto& [f, name] : kFormats)
     if (f == format) return name;
   return "";
-}
-
-Result<OutputFormat> parse_format(std::string_view name) {
-  for (const auto& [f, n] : kFormats)
-    if (n == name) return f;
-  return Result<OutputFormat>::Error("unknown output format '" + std::string(name) +
-                                     "' (msh, vtu, vtp, stl, mesh-complete or foam)");
 }
 
 Result<OutputFormat> format_for_path(std::string_view path) {
@@ -131,14 +125,6 @@ Result<OutputFormat> format_for_path(std::string_view path) {
       "cannot tell the output format from '" + std::string(path) +
       "': name it .msh (Gmsh), .vtu (VTK volume), .vtp (VTK boundary faces), .stl (the wall) or "
       ".zip (SimVascular mesh-complete), .foam (OpenFOAM case), or say {format}");
-}
-
-Status check_format(OutputFormat format, const MeshJobOptions& options) {
-  if (!options.volume && volume_format(format))
-    return Status::BadOption("format", "cannot be " + std::string(format_name(format)) +
-                                           ": it holds a volume mesh, and {surface_only} writes "
-                                           "the wall alone; use msh, vtp or stl");
-  return Status::Ok();
 }
 
 PhysicalTags physical_tags(const std::vector<std::string>& surface_names,

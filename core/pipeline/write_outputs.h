@@ -20,8 +20,6 @@ namespace vm {
 
 /// "msh", "vtu", "vtp", "stl", "mesh-complete", "foam".
 std::string_view format_name(OutputFormat format);
-/// The format of a name as format_name gives it.
-Result<OutputFormat> parse_format(std::string_view name);
 /// The format a file name asks for by its extension (.msh, .vtu, .vtp,
 /// .stl, .zip: mesh-complete, .foam: OpenFOAM case), case-insensitive. Errors list the extensions.
 Result<OutputFormat> format_for_path(std::string_view path);
@@ -37,11 +35,8 @@ struct WriteOptions {
   std::string provenance;
 };
 
-/// Whether a job with these settings can be written in `format`: the volume
-/// formats (VTU, mesh-complete, foam) need a volume. Checked before meshing, so
-/// that a job never runs only to fail at writing. Error: kBadOption on
-/// `format`.
-Status check_format(OutputFormat format, const MeshJobOptions& options);
+/// Whether `format` holds a volume mesh (VTU, mesh-complete, foam).
+bool volume_format(OutputFormat format);
 
 /// The physical tag number of each group of a result's files, unique across
 /// dimensions (gmshToFoam names cell zones by number, so a surface group and

@@ -38,9 +38,6 @@ struct Smoothing {
   int passes = 0;  ///< kPasses: the number of passes (1..1000)
 };
 
-/// "auto", "off" or a pass count 1..1000; nullopt for anything else.
-std::optional<Smoothing> parse_smoothing(std::string_view text);
-
 /// "auto", "off" or "passes".
 const char* smoothing_mode_name(Smoothing::Mode mode);
 

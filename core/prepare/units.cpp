@@ -42,13 +42,6 @@ double metres_per_unit(LengthUnit unit) {
   return 0;
 }
 
-LengthUnit parse_unit(std::string_view s) {
-  if (s == "mm") return LengthUnit::kMm;
-  if (s == "cm") return LengthUnit::kCm;
-  if (s == "m") return LengthUnit::kM;
-  return LengthUnit::kGuess;
-}
-
 std::string_view confidence_name(UnitConfidence confidence) {
   switch (confidence) {
     case UnitConfidence::kCertain:

@@ -21,8 +21,6 @@ enum class LengthUnit { kGuess, kMm, kCm, kM };
 std::string_view unit_symbol(LengthUnit unit);
 /// Metres per unit (0 for kGuess).
 double metres_per_unit(LengthUnit unit);
-/// kGuess for anything but "mm", "cm", "m".
-LengthUnit parse_unit(std::string_view symbol);
 
 /// How sure a guessed unit is: kCertain, no other unit gives human vessel
 /// sizes; kLikely, another does but only unusual ones; kUnsure, another

@@ -303,26 +303,27 @@ check "msh 2.2 tags unique across dimensions" [ "$(unique_tags "$T/bif22.msh")" 
 check "report groups carry the tags" [ "$(json "$T/w.json" "[(g['dim'], g['tag']) for g in d['output']['groups']][-3:]")" = "[(3, 9), (3, 10), (3, 11)]" ]
 
 # Solver presets: defaults under the user's options.
-check "svfsi with a vessel wall" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/fsi/" --for svfsi --wall-thickness 0.1 --size 0.4 --layers 1
+check "svfsi with a vessel wall" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/fsi/" --solver svfsi --wall-thickness 0.1 --size 0.4 --layers 1
 check "svfsi: fluid and solid mesh-complete folders sharing the wall" [ -f "$T/fsi/fluid/mesh-complete.mesh.vtu" -a -f "$T/fsi/solid/mesh-complete.mesh.vtu" -a -f "$T/fsi/fluid/mesh-surfaces/wall.vtp" -a -f "$T/fsi/solid/mesh-surfaces/wall.vtp" -a -f "$T/fsi/solid/mesh-surfaces/outer_wall.vtp" -a ! -e "$T/fsi/fluid/mesh-surfaces/outer_wall.vtp" ]
-check "bad solver" expect_exit 2 "--for needs gmsh, openfoam, fenics or svfsi" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --for ansys
-check "openfoam preset (the .msh name is yours)" expect_exit 0 "preset openfoam: prisms true, msh_version 2.2, output_units m (the preset); format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/foam.msh" --size 0.25 --for openfoam --report "$T/foam.json"
+check "older name --for: the solver option" expect_exit 2 "--solver needs gmsh, openfoam, fenics or svfsi" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --for ansys
+check "bad solver" expect_exit 2 "--solver needs gmsh, openfoam, fenics or svfsi" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --solver ansys
+check "openfoam preset (the .msh name is yours)" expect_exit 0 "preset openfoam: prisms true, msh_version 2.2, output_units m (the preset); format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/foam.msh" --size 0.25 --solver openfoam --report "$T/foam.json"
 check "openfoam: MSH 2.2" [ "$(sed -n 2p "$T/foam.msh")" = "2.2 0 8" ]
 check "openfoam: prisms (type 6) kept" [ "$(msh_types "$T/foam.msh")" = "2,3,4,6" ]
 check "openfoam: the report lists the preset's settings" [ "$(json "$T/foam.json" "d['preset']['solver'], [s['from'] for s in d['preset']['settings']]")" = "openfoam ['preset', 'preset', 'preset', 'user']" ]
 bif_unit=$(json "$T/info.json" "d['units']['unit'] + ' (' + d['units']['confidence']")
-check "openfoam: a guessed unit converted warns" expect_exit 0 "written in m from a guessed unit, $bif_unit: " "$VM" mesh "$T/bif.stl" -o "$T/foam.msh" --size 0.25 --layers 2 --for openfoam
+check "openfoam: a guessed unit converted warns" expect_exit 0 "written in m from a guessed unit, $bif_unit: " "$VM" mesh "$T/bif.stl" -o "$T/foam.msh" --size 0.25 --layers 2 --solver openfoam
 # The phantom reaches about 6 units from the origin: in metres, 6 times the unit.
 per_unit=$(json "$T/info.json" "{'mm': 0.001, 'cm': 0.01, 'm': 1}[d['units']['unit']]")
 check "openfoam: coordinates in metres" [ "$(awk -v f="$per_unit" '/^\$Nodes/{n=1;getline;next} /^\$EndNodes/{n=0} n{for(i=2;i<=4;i++){x=$i<0?-$i:$i; if(x>m)m=x}} END{print (m>f && m<20*f)}' "$T/foam.msh")" = 1 ]
-check "openfoam: explicit version wins" expect_exit 0 "msh_version 4.1, format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/foam41.msh" --size 0.25 --layers 2 --for openfoam --msh-version 4.1
+check "openfoam: explicit version wins" expect_exit 0 "msh_version 4.1, format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/foam41.msh" --size 0.25 --layers 2 --solver openfoam --msh-version 4.1
 check "openfoam: explicit version written" [ "$(sed -n 2p "$T/foam41.msh")" = "4.1 0 8" ]
-check "fenics preset" expect_exit 0 "preset fenics: prisms false" "$VM" mesh "$T/bif.stl" -o "$T/fenics.msh" --size 0.25 --layers 2 --for fenics
+check "fenics preset" expect_exit 0 "preset fenics: prisms false" "$VM" mesh "$T/bif.stl" -o "$T/fenics.msh" --size 0.25 --layers 2 --solver fenics
 check "fenics: tetrahedra only" [ "$(msh_types "$T/fenics.msh")" = "2,4" ]
-check "fenics + --prisms: prisms (yours)" expect_exit 0 "prisms true, format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/fenicsp.msh" --size 0.25 --layers 2 --for fenics --prisms
-check "svfsi preset: a mesh-complete folder" expect_exit 0 "format mesh-complete (the preset)" "$VM" mesh "$T/bif.stl" -o "$T/svfsi-out" --size 0.25 --layers 2 --for svfsi
+check "fenics + --prisms: prisms (yours)" expect_exit 0 "prisms true, format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/fenicsp.msh" --size 0.25 --layers 2 --solver fenics --prisms
+check "svfsi preset: a mesh-complete folder" expect_exit 0 "format mesh-complete (the preset)" "$VM" mesh "$T/bif.stl" -o "$T/svfsi-out" --size 0.25 --layers 2 --solver svfsi
 check "svfsi folder written" [ -f "$T/svfsi-out/mesh-complete.mesh.vtu" ] && [ -f "$T/svfsi-out/mesh-surfaces/wall.vtp" ]
-check "svfsi: a .msh name wins" expect_exit 0 "format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/svfsi.msh" --size 0.25 --layers 2 --for svfsi
+check "svfsi: a .msh name wins" expect_exit 0 "format msh (yours)" "$VM" mesh "$T/bif.stl" -o "$T/svfsi.msh" --size 0.25 --layers 2 --solver svfsi
 check "no preset: a name without extension refused" expect_exit 2 "cannot tell the output format" "$VM" mesh "$T/bif.stl" -o "$T/noext" --size 0.25
 
 # First layer from a target y+.
@@ -332,7 +333,7 @@ check "y+ and --first-layer refused" expect_exit 2 "--first-layer-yplus and --fi
 check "y+ needs a velocity" expect_exit 2 "--first-layer-yplus needs the flow's --inlet-velocity" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --first-layer-yplus 1
 check "density alone refused" expect_exit 2 "--density sizes the first layer from a target y+" "$VM" mesh "$T/bif.stl" -o "$T/x.msh" --density 1000
 
-# Two components: refused, then accepted with --largest-component.
+# Two components: refused, then accepted with --largest-component-only.
 cat "$T/bif.stl" > "$T/two.stl"
 python3 - "$T/bif.stl" "$T/two.stl" <<'PY'
 import struct, sys
@@ -351,7 +352,8 @@ for i in range(n):
 open(sys.argv[2], 'wb').write(data[:80] + struct.pack('<I', 2*n) + tris + bytes(shifted))
 PY
 check "two components refused" expect_exit 1 "2 connected components" "$VM" mesh "$T/two.stl" -o "$T/two.msh"
-check "largest component" expect_exit 0 "wrote" "$VM" mesh "$T/two.stl" -o "$T/two.msh" --largest-component
+check "largest component" expect_exit 0 "wrote" "$VM" mesh "$T/two.stl" -o "$T/two.msh" --largest-component-only
+check "largest component, older name" expect_exit 0 "wrote" "$VM" mesh "$T/two.stl" -o "$T/two-old.msh" --largest-component
 
 # Voxel staircases: the raw marching cubes of a binary mask, smoothed by default.
 check "phantom binary" expect_exit 0 "wrote" "$VM" phantom "$T/stair.stl" --kind tube --voxel 0.16 --binary
@@ -375,7 +377,7 @@ check "keep caps, clip off" [ "$("$VM" info "$T/capped.stl" --keep-caps --clip o
 check "keep caps: the flat ends cut as blind ends" [ "$("$VM" info "$T/capped.stl" --keep-caps --json | python3 -c "import json,sys; d=json.load(sys.stdin); print([(o['source'], o['shape']) for o in d['openings']])")" = "[('clip', 'blind_end'), ('clip', 'blind_end'), ('clip', 'blind_end')]" ]
 # Closed segmentations (rounded ends): cut open at their vessel ends, or by
 # planes.
-check "phantom closed" expect_exit 0 "wrote" "$VM" phantom "$T/closed.stl" --kind aneurysm --voxel 0.12 --noise 0.3 --closed
+check "phantom closed" expect_exit 0 "wrote" "$VM" phantom "$T/closed.stl" --kind aneurysm --voxel 0.12 --noise 0.3 --no-open-ends
 check "closed surface warned about" expect_exit 0 "3 vessel ends were found: cut them open with --clip auto (or give --clip-plane or --clip-at)" "$VM" info "$T/closed.stl" --clip off
 check "info proposes the cuts" expect_exit 0 "vessel ends: 3 (the cuts --clip auto would make)" "$VM" info "$T/closed.stl" --clip off
 # Each proposal is a --clip-plane that cuts one end open.
@@ -403,7 +405,7 @@ check "clipped groups" [ "$(json "$T/clipped-report.json" "','.join(g['name'] fo
 # short and wide: each meshes with the default options.
 check "phantom fan caps" expect_exit 0 "wrote" "$VM" phantom "$T/fans.stl" --kind bifurcation --voxel 0.15 --noise 0.3 --caps fan
 check "phantom dome caps" expect_exit 0 "wrote" "$VM" phantom "$T/domes.stl" --kind bifurcation --voxel 0.1 --noise 0.1 --caps dome
-check "phantom closed root" expect_exit 0 "wrote" "$VM" phantom "$T/root.stl" --kind root --voxel 0.15 --noise 0.3 --closed
+check "phantom closed root (older name --closed)" expect_exit 0 "wrote" "$VM" phantom "$T/root.stl" --kind root --voxel 0.15 --noise 0.3 --closed
 check "phantom caps bad value" expect_exit 2 "--caps needs flat, fan or dome" "$VM" phantom "$T/x.stl" --caps cone
 check "fans become openings at their rims" [ "$("$VM" info "$T/fans.stl" --json | python3 -c "import json,sys; d=json.load(sys.stdin); print([(o['source'], o['shape']) for o in d['openings']], d['caps_removed'])")" = "[('cap', 'fan'), ('cap', 'fan'), ('cap', 'fan')] 3" ]
 check "domes become openings at their rims" [ "$("$VM" info "$T/domes.stl" --json | python3 -c "import json,sys; d=json.load(sys.stdin); print([(o['source'], o['shape']) for o in d['openings']])")" = "[('cap', 'dome'), ('cap', 'dome'), ('cap', 'dome')]" ]

@@ -105,7 +105,7 @@ def input_cases(base, bif, tmp):
     for far in (1e3, 1e6, 1e30):
         outlier = np.array([[far, 0, 0, far + 1, 0, 0, far, 1, 0]], dtype=np.float32)
         add(f"far-triangle-{far:g}", stl_binary(np.vstack([tri, outlier])))
-        add(f"far-triangle-largest-{far:g}", stl_binary(np.vstack([tri, outlier])), ["--largest-component"])
+        add(f"far-triangle-largest-{far:g}", stl_binary(np.vstack([tri, outlier])), ["--largest-component-only"])
     for scale in (1e-6, 1e-3, 1e3, 1e6):
         add(f"scaled-{scale:g}", stl_binary(tri * scale))
     for offset in (1e3, 1e5, 1e7):
@@ -126,7 +126,7 @@ def input_cases(base, bif, tmp):
         t[idx] = t[idx][:, [0, 1, 2, 6, 7, 8, 3, 4, 5]]
         add(f"flipped-{k}", stl_binary(t))
     add("two-copies", stl_binary(np.vstack([tri, tri + np.float32(10)])))
-    add("two-copies-largest", stl_binary(np.vstack([tri, tri * np.float32(0.5) + np.float32(10)])), ["--largest-component"])
+    add("two-copies-largest", stl_binary(np.vstack([tri, tri * np.float32(0.5) + np.float32(10)])), ["--largest-component-only"])
     add("overlapping-copies", stl_binary(np.vstack([tri, tri + np.float32(0.3)])))
     add("single-triangle", stl_binary(tri[:1]))
     add("two-triangles", stl_binary(tri[:2]))
@@ -190,7 +190,7 @@ def option_values(spec):
 
 SKIP = {"output", "report", "report_html", "name", "quiet", "verify", "format", "msh_version", "output_units", "units", "solver"}
 # Options that change what "the wall's volume" means, or allow more change.
-VOLUME_CHANGING = {"flow_extension", "clip", "clip_at", "clip_plane", "max_volume_change", "remesh", "largest_component"}
+VOLUME_CHANGING = {"flow_extension", "clip", "clip_at", "clip_plane", "max_volume_change", "remesh", "largest_component_only"}
 
 
 def option_cases(table):

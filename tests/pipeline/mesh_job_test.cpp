@@ -99,7 +99,7 @@ TEST(MeshJob, SeveralComponentsAreRefusedUnlessLargestIsKept) {
   auto r = run_mesh_job(bytes);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("2 connected components"), std::string::npos) << r.message();
-  EXPECT_NE(r.message().find("{largest_component}"), std::string::npos) << r.message();
+  EXPECT_NE(r.message().find("{largest_component_only}"), std::string::npos) << r.message();
   EXPECT_EQ(r.status().remedy().action, "largest_component");
 
   MeshJobOptions o;

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace vm {
 namespace {
@@ -69,6 +71,111 @@ TEST(OptionTable, NamesAreUniquePerCommandAndComplete) {
       EXPECT_FALSE(s.choices.empty()) << s.id;
     }
     EXPECT_EQ(find_option(s.id), &s);
+  }
+}
+
+/// camelCase `key` as lower-case words joined by `sep`.
+std::string words(std::string_view key, char sep) {
+  std::string out;
+  for (char c : key) {
+    if (c >= 'A' && c <= 'Z') {
+      out += sep;
+      out += char(c - 'A' + 'a');
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// The CLI flag, the JS key, the id and the page's control id all come from
+// the row's one key, by one rule each.
+TEST(OptionTable, EveryNameComesFromTheKey) {
+  for (const OptionSpec& s : option_table()) {
+    std::string_view one = s.key;
+    if (s.repeatable && one.ends_with('s')) one.remove_suffix(1);
+    EXPECT_EQ(s.id, words(one, '_')) << s.key;
+    const std::string flag = words(one, '-');
+    EXPECT_EQ(s.cli, s.type == OptionType::kFlag && s.default_on ? "no-" + flag : flag) << s.key;
+    EXPECT_EQ(s.js, (s.faces & kFaceJs) ? s.key : std::string_view()) << s.key;
+    EXPECT_EQ(control_id(s), words(s.key, '-')) << s.key;
+    for (std::string_view alias : s.cli_aliases)
+      for (OptionCommand c : {kCommandInfo, kCommandMesh, kCommandPhantom})
+        if (s.commands & c) {
+          EXPECT_EQ(find_cli_option(alias, c), &s) << alias;
+        }
+  }
+  // The older names users' scripts have.
+  EXPECT_EQ(find_cli_option("for", kCommandMesh), find_option("solver"));
+  EXPECT_EQ(find_cli_option("closed", kCommandPhantom), find_option("open_ends"));
+  EXPECT_EQ(find_cli_option("largest-component", kCommandInfo),
+            find_option("largest_component_only"));
+}
+
+/// Every row's reading of `options` (or of the phantom's), by id.
+std::map<std::string_view, std::string> reads(const MeshJobOptions& m, const PhantomOptions& p) {
+  std::map<std::string_view, std::string> out;
+  for (const OptionSpec& s : option_table()) {
+    if (s.read) out[s.id] = s.read(m);
+    if (s.read_phantom) out[s.id] = s.read_phantom(p);
+  }
+  return out;
+}
+
+// The table's defaults are MeshJobOptions{} (and PhantomOptions{}): each is
+// read from the struct, and giving it changes nothing in a default job.
+TEST(OptionTable, DefaultsAreTheStructs) {
+  const auto defaults = reads(MeshJobOptions{}, PhantomOptions{});
+  for (const OptionSpec& s : option_table()) {
+    const bool job = s.commands & (kCommandInfo | kCommandMesh);
+    // Every option but the CLI's own (paths, printing) is set and read
+    // through its row.
+    if (job && (s.faces & kFaceJs)) {
+      EXPECT_TRUE(s.set && s.read) << s.id;
+    }
+    if (s.commands & kCommandPhantom) {
+      EXPECT_TRUE(s.set_phantom && s.read_phantom) << s.id;
+    }
+    if (!s.read && !s.read_phantom) continue;
+    const std::string text = defaults.at(s.id);
+    if (s.type == OptionType::kFlag) {
+      EXPECT_EQ(text, s.default_on ? "true" : "false") << s.id;
+      continue;
+    }
+    EXPECT_EQ(s.default_text, text) << s.id;
+    if (text.empty()) continue;  // unset: decided from the surface
+    auto v = parse_option_text(s, text);
+    ASSERT_TRUE(v.ok()) << s.id << ": the default " << text << " is refused: " << v.message();
+    MeshJobOptions m;
+    PhantomOptions p;
+    Status st = s.set ? apply_option(m, s, v.value()) : apply_option(p, s, v.value());
+    ASSERT_TRUE(st.ok()) << s.id << ": " << st.message();
+    EXPECT_EQ(reads(m, p), defaults)
+        << "giving " << s.id << " its default " << text << " changed the job's options";
+  }
+}
+
+// What a row sets, it reads back: every choice, and a value in range.
+TEST(OptionTable, WhatIsSetIsRead) {
+  for (const OptionSpec& s : option_table()) {
+    if (!s.read && !s.read_phantom) continue;
+    std::vector<std::string> texts;
+    if (s.type == OptionType::kChoice)
+      texts.assign(s.choices.begin(), s.choices.end());
+    else if (s.type == OptionType::kNumber || s.type == OptionType::kInteger)
+      texts.push_back(valid_text(s));
+    for (const std::string& text : texts) {
+      auto v = parse_option_text(s, text);
+      ASSERT_TRUE(v.ok()) << s.id << " " << text;
+      MeshJobOptions m;
+      PhantomOptions p;
+      ASSERT_TRUE((s.set ? apply_option(m, s, v.value()) : apply_option(p, s, v.value())).ok());
+      const std::string back = s.read ? s.read(m) : s.read_phantom(p);
+      // A value that leaves the job as by default may read as unset (the
+      // inlet 1, the largest opening; 0 wall layers, no wall).
+      if (back.empty() && reads(m, p) == reads(MeshJobOptions{}, PhantomOptions{})) continue;
+      EXPECT_EQ(back, option_value_text(s, v.value())) << s.id << " " << text;
+    }
   }
 }
 

@@ -44,7 +44,7 @@ TEST(PrepareUnits, TheGuessIsMadeOnceWhateverIsDoneToTheSurface) {
   for (const PrepareOptions& o :
        {prepare_options({{"clip", "auto"}}),
         prepare_options({{"clip", "auto"}, {"flow_extension", "4"}, {"smooth", "10"}}),
-        prepare_options({{"keep_caps", ""}, {"largest_component", ""}, {"smooth", "off"}})}) {
+        prepare_options({{"keep_caps", ""}, {"largest_component_only", ""}, {"smooth", "off"}})}) {
     auto other = prepare_surface(stl, o);
     ASSERT_TRUE(other.ok()) << other.message();
     const PreparedSurface& s = other.value();

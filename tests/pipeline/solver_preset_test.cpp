@@ -130,9 +130,11 @@ TEST(SolverPreset, YPlusOptionsAreCheckedTogether) {
   EXPECT_EQ(both.option(), "first_layer_yplus");
   EXPECT_NE(phrase_error(both, kFaceCli).find("--first-layer both set"), std::string::npos)
       << phrase_error(both, kFaceCli);
+  o = {};
   auto no_velocity = apply_options(o, given({{"first_layer_yplus", "1"}}));
   ASSERT_FALSE(no_velocity.ok());
   EXPECT_NE(phrase_error(no_velocity, kFaceJs).find("inletVelocity"), std::string::npos);
+  o = {};
   auto alone = apply_options(o, given({{"density", "1000"}}));
   ASSERT_FALSE(alone.ok());
   EXPECT_EQ(alone.option(), "density");
@@ -192,12 +194,17 @@ TEST(SolverPreset, YPlusSetsTheFirstLayerInTheModelsUnit) {
   EXPECT_LT(y.height, 1.0);
   const std::string report = mesh_report_json(r.value());
   EXPECT_NE(report.find("\"first_layer_yplus\":{\"yplus\":1"), std::string::npos) << report;
-  // No boundary layer to size: refused, naming the option.
+  // No boundary layer to size: refused before the job starts, naming the
+  // option; and by the job itself when its options were filled in by hand.
   MeshJobOptions o;
-  ASSERT_TRUE(
-      apply_options(o,
-                    given({{"first_layer_yplus", "1"}, {"inlet_velocity", "0.5"}, {"layers", "0"}}))
-          .ok());
+  EXPECT_EQ(apply_options(
+                o, given({{"first_layer_yplus", "1"}, {"inlet_velocity", "0.5"}, {"layers", "0"}}))
+                .option(),
+            "first_layer_yplus");
+  o = {};
+  o.yplus.yplus = 1;
+  o.yplus.velocity = 0.5;
+  o.viscous.layers = 0;
   auto none = run_mesh_job(write_stl_binary(testing::open_tube(24, 8, 1.0, 4.0)), o);
   ASSERT_FALSE(none.ok());
   EXPECT_EQ(none.status().option(), "first_layer_yplus");

@@ -8,6 +8,8 @@
 
 #include "core/io/stl.h"
 #include "core/pipeline/option_table.h"
+#include "core/pipeline/option_values.h"
+#include "core/pipeline/validate_options.h"
 #include "tests/support/meshed_tube.h"
 #include "tests/support/test_meshes.h"
 #include "tests/support/vtk_xml_reader.h"
@@ -194,9 +196,9 @@ TEST(WriteOutputs, VolumeFormatsNeedAVolume) {
     EXPECT_NE(r.message().find("surface only ({surface_only})"), std::string::npos) << r.message();
     MeshJobOptions o;
     o.volume = false;
-    EXPECT_FALSE(check_format(f, o).ok());
+    EXPECT_FALSE(validate_options(o, f).ok());
     o.volume = true;
-    EXPECT_TRUE(check_format(f, o).ok());
+    EXPECT_TRUE(validate_options(o, f).ok());
   }
   for (auto f : {OutputFormat::kMsh, OutputFormat::kVtp, OutputFormat::kStl})
     EXPECT_TRUE(write_outputs(tube(false), f).ok());

@@ -13,6 +13,7 @@
 #include "core/mesh/topology.h"
 #include "core/mesh/marching_cubes.h"
 #include "core/phantom/vessel_phantom.h"
+#include "core/pipeline/option_values.h"
 #include "core/prepare/recognize_caps.h"
 #include "tests/support/icosphere.h"
 #include "tests/support/phantoms.h"

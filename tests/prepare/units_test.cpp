@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/pipeline/option_values.h"
 #include "tests/support/phantoms.h"
 
 namespace vm {
