@@ -2,7 +2,11 @@
 // JS values in, call core, copy results out as owned typed arrays (heap views
 // detach when memory grows), report errors as {ok: false, error}. Nothing
 // throws across this boundary; JSON reports come from core/pipeline/
-// report_json.h and are parsed by the JS wrapper.
+// report_json.h and are parsed by the JS wrapper. No state is kept here
+// between calls: analyze() and mesh() give their result as a handle (an
+// Embind object of class Analysis or Mesh, owned by JS and freed with its
+// delete()) and the calls on an analysis or a mesh take it (the JS wrapper
+// checks it is one of its live handles: a deleted one would throw).
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
@@ -280,46 +284,45 @@ void set_volume(val& r, const vm::MeshJobResult& res) {
   r.set("volume", v);
 }
 
-/// The last analyzed surface, for openingNames(), cutAt() and sizeField().
-std::optional<vm::PreparedSurface> last_analysis;
-/// Its local vessel radius once sizeField() computed it (it depends on the
-/// surface only), else empty.
-std::vector<double> last_radius;
+/// An analyzed surface, owned by JS: analyze() gives it as an Embind object
+/// (`handle`), freed with its delete(); openingNames(), cutAt() and
+/// sizeField() take it.
+struct Analysis {
+  vm::PreparedSurface surface;
+  /// Its local vessel radius once sizeField() computed it (it depends on
+  /// the surface only), else empty.
+  std::vector<double> radius;
+};
 
-/// Why a call on the last analyzed surface cannot run: nothing analyzed yet.
-vm::Status nothing_analyzed() {
-  return vm::Status::Error("nothing analyzed yet: analyze a surface first");
-}
-
-/// The mesh options `opts` for a call on the last analyzed surface, or the
-/// error: nothing analyzed yet, or an option's.
-vm::Result<vm::MeshJobOptions> options_on_last_analysis(const val& opts) {
-  if (!last_analysis) return nothing_analyzed();
+/// The mesh options `opts` for a call on an analyzed surface, or an
+/// option's error.
+vm::Result<vm::MeshJobOptions> mesh_options(const val& opts) {
   vm::MeshJobOptions options;
   if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh); !st.ok()) return st;
   return options;
 }
 
 /// options: the JS API's analyze options (the table's info options).
+/// {ok, analysisJson, surface, handle: the Analysis} or the error.
 val analyze(val stl, val opts, val progress) {
-  last_analysis.reset();
-  last_radius.clear();
   vm::MeshJobOptions options;
   if (vm::Status st = apply_js_options(options, opts, vm::kCommandInfo); !st.ok()) return error(st);
   std::vector<uint8_t> bytes = bytes_from(stl);
   auto prepared = vm::prepare_surface(bytes, options.prepare, progress_from(progress));
   if (!prepared.ok()) return error(prepared.status());
-  last_analysis = prepared.value();
   val r = val::object();
   r.set("ok", true);
   r.set("analysisJson", vm::analysis_json(prepared.value(), vm::kFaceJs));
   set_surface(r, prepared.value().mesh, prepared.value().quality);
+  r.set("handle", val(Analysis{std::move(prepared).value(), {}}));
   return r;
 }
 
-/// The last meshed result, kept so that export() can write it in another
-/// format without meshing again, with its input's provenance.
-struct LastMesh {
+/// A meshed result, owned by JS: mesh() gives it as an Embind object
+/// (`handle`), freed with its delete(); exportMesh() writes it in another
+/// format without meshing again, with its input's provenance, and
+/// methodsReport() reports it.
+struct Mesh {
   vm::MeshJobResult result;
   std::string input_hash;
   Applied options;         ///< as given to mesh(), for provenance
@@ -327,22 +330,21 @@ struct LastMesh {
   /// When mesh() made a family: its table (`result` is its first member).
   std::optional<vm::MeshFamily> family;
 };
-std::optional<LastMesh> last_mesh;
 
-/// The files of the last result in `format` as one file (a zip for
+/// The files of `mesh` in `format` as one file (a zip for
 /// mesh-complete and foam): {file, fileName} on `r`; false with `r` an error.
 /// `extra`: export()'s own options, recorded after mesh()'s in the
 /// provenance (a later value of an option wins).
-bool set_file(val& r, vm::OutputFormat format, const vm::MeshJobOptions& options,
-              const Applied& extra = {}) {
+bool set_file(val& r, const Mesh& mesh, vm::OutputFormat format,
+              const vm::MeshJobOptions& options, const Applied& extra = {}) {
   vm::WriteOptions wo;
   wo.msh_version = options.msh_version;
   wo.units = options.output_units;
-  Applied all = last_mesh->options;
+  Applied all = mesh.options;
   all.insert(all.end(), extra.begin(), extra.end());
   wo.provenance =
-      vm::provenance_text(vm::kVersion, last_mesh->input_hash, vm::options_provenance(all));
-  auto files = vm::write_outputs(last_mesh->result, format, wo);
+      vm::provenance_text(vm::kVersion, mesh.input_hash, vm::options_provenance(all));
+  auto files = vm::write_outputs(mesh.result, format, wo);
   if (!files.ok()) {
     r = error(files.status());
     return false;
@@ -387,7 +389,7 @@ vm::Status add_member_files(std::vector<vm::OutputFile>& zip, int k, const vm::M
 
 /// mesh() with options.family > 1: the family's files and tables as one
 /// zip ({file, fileName "mesh-family.zip"}), the table as `familyJson` and
-/// `familyCsv`; the first member is kept as the last mesh.
+/// `familyCsv`; the first member is the handle's mesh (with the table).
 val mesh_family(const std::vector<uint8_t>& bytes, const vm::MeshJobOptions& options,
                 vm::OutputFormat format, Applied applied, const std::string& hash, val progress) {
   vm::WriteOptions wo;
@@ -395,12 +397,12 @@ val mesh_family(const std::vector<uint8_t>& bytes, const vm::MeshJobOptions& opt
   wo.units = options.output_units;
   wo.provenance = vm::provenance_text(vm::kVersion, hash, vm::options_provenance(applied));
   std::vector<vm::OutputFile> zip;
-  std::optional<LastMesh> first;
+  std::optional<Mesh> first;
   auto family = vm::run_mesh_family(
       bytes, options,
       [&](int k, const vm::MeshJobOptions& member, const vm::MeshJobResult& res) {
         if (vm::Status st = add_member_files(zip, k, res, format, wo); !st.ok()) return st;
-        if (k == 0) first = LastMesh{res, hash, applied, member, std::nullopt};
+        if (k == 0) first = Mesh{res, hash, applied, member, std::nullopt};
         return vm::Status::Ok();
       },
       progress_from(progress));
@@ -421,8 +423,7 @@ val mesh_family(const std::vector<uint8_t>& bytes, const vm::MeshJobOptions& opt
   auto archive = vm::write_zip(zip);
   if (!archive.ok()) return error(archive.status());
   first->family = std::move(fam);
-  last_mesh = std::move(first);
-  const vm::MeshJobResult& res = last_mesh->result;
+  const vm::MeshJobResult& res = first->result;
   val r = val::object();
   r.set("ok", true);
   const std::string& z = archive.value();
@@ -434,13 +435,14 @@ val mesh_family(const std::vector<uint8_t>& bytes, const vm::MeshJobOptions& opt
   r.set("reportJson", vm::mesh_report_json(res, vm::kFaceJs));
   set_surface(r, res.output_surface, res.output_quality);
   if (!res.volume.tets.empty()) set_volume(r, res);
+  r.set("handle", val(std::move(*first)));
   return r;
 }
 
 /// options: the JS API's mesh options (the table's mesh options, by their
-/// JS keys, with JS types).
+/// JS keys, with JS types). {ok, file, fileName, format, reportJson,
+/// surface, volume?, handle: the Mesh} or the error.
 val mesh(val stl, val opts, val progress) {
-  last_mesh.reset();  // its memory, before meshing again
   vm::MeshJobOptions options;
   Applied applied;
   if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh, &applied); !st.ok())
@@ -454,30 +456,30 @@ val mesh(val stl, val opts, val progress) {
   auto result = vm::run_mesh_job(bytes, options, progress_from(progress),
                                  [&] { std::vector<uint8_t>().swap(bytes); });
   if (!result.ok()) return error(result.status());
-  last_mesh = LastMesh{std::move(result).value(), hash, std::move(applied), options, std::nullopt};
-  const vm::MeshJobResult& res = last_mesh->result;
+  Mesh mesh{std::move(result).value(), hash, std::move(applied), options, std::nullopt};
+  const vm::MeshJobResult& res = mesh.result;
   val r = val::object();
   r.set("ok", true);
-  if (!set_file(r, format, options)) return r;
+  if (!set_file(r, mesh, format, options)) return r;
   r.set("reportJson", vm::mesh_report_json(res, vm::kFaceJs));
   set_surface(r, res.output_surface, res.output_quality);
   if (!res.volume.tets.empty()) set_volume(r, res);
+  r.set("handle", val(std::move(mesh)));
   return r;
 }
 
-/// The methods report of the last mesh (its family's first member, with the
+/// The methods report of `mesh` (after a family: its first member, with the
 /// family's table): {file: the HTML's bytes, fileName}. options: inputName
 /// (the input file's name), images ([{title, alt, png: Uint8Array}], the
 /// page's views; absent: rendered here without a GPU).
-val methods_report(val opts) {
-  if (!last_mesh) return error(vm::Status::Error("no report yet: mesh a surface first"));
+val methods_report(const Mesh& mesh, val opts) {
   vm::MethodsReportInput in;
-  in.result = &last_mesh->result;
-  in.options = &last_mesh->job;
-  in.input_hash = last_mesh->input_hash;
-  in.options_text = vm::options_provenance(last_mesh->options);
+  in.result = &mesh.result;
+  in.options = &mesh.job;
+  in.input_hash = mesh.input_hash;
+  in.options_text = vm::options_provenance(mesh.options);
   in.version = vm::kVersion;
-  if (last_mesh->family) in.family = &*last_mesh->family;
+  if (mesh.family) in.family = &*mesh.family;
   const bool given = !opts.isUndefined() && !opts.isNull();
   if (given && opts["inputName"].isString()) in.input_name = opts["inputName"].as<std::string>();
   if (given && opts["images"].isArray()) {
@@ -498,7 +500,7 @@ val methods_report(val opts) {
       in.images.push_back(std::move(image));
     }
   } else {
-    in.images = vm::render_report_views(last_mesh->result);
+    in.images = vm::render_report_views(mesh.result);
   }
   const std::string html = vm::methods_report_html(in);
   val r = val::object();
@@ -508,10 +510,9 @@ val methods_report(val opts) {
   return r;
 }
 
-/// The last meshed result in another format, without meshing again.
+/// `mesh` in another format, without meshing again.
 /// options: format (required), mshVersion, outputUnits.
-val export_mesh(val opts) {
-  if (!last_mesh) return error(vm::Status::Error("nothing to export: mesh a surface first"));
+val export_mesh(const Mesh& mesh, val opts) {
   vm::MeshJobOptions options;
   if (!opts.isUndefined() && !opts.isNull()) {
     val keys = val::global("Object").call<val>("keys", opts);
@@ -528,7 +529,7 @@ val export_mesh(val opts) {
   // The mesh's solver preset (its unit and MSH version), then the export's
   // own options, which win.
   Applied all;
-  for (const auto& given : last_mesh->options)
+  for (const auto& given : mesh.options)
     if (given.first->id == "solver") all.push_back(given);
   all.insert(all.end(), applied.begin(), applied.end());
   options = vm::MeshJobOptions{};
@@ -538,18 +539,18 @@ val export_mesh(val opts) {
         vm::Status::BadOption("format", "is needed: msh, vtu, vtp, stl, mesh-complete or foam"));
   val r = val::object();
   r.set("ok", true);
-  set_file(r, *options.format, options, applied);
+  set_file(r, mesh, *options.format, options, applied);
   return r;
 }
 
-/// The group names the openings of the last analyzed surface would get with
-/// these mesh options (names, inlet; others ignored): {ok, names} or the
-/// error meshing would give.
-val opening_names(val opts) {
-  auto options = options_on_last_analysis(opts);
+/// The group names the openings of `analysis` would get with these mesh
+/// options (names, inlet; others ignored): {ok, names} or the error meshing
+/// would give.
+val opening_names(const Analysis& analysis, val opts) {
+  auto options = mesh_options(opts);
   if (!options.ok()) return error(options.status());
-  auto names =
-      vm::opening_names(*last_analysis, options.value().opening_names, options.value().inlet);
+  auto names = vm::opening_names(analysis.surface, options.value().opening_names,
+                                 options.value().inlet);
   if (!names.ok()) return error(names.status());
   val r = val::object();
   r.set("ok", true);
@@ -559,11 +560,10 @@ val opening_names(val opts) {
   return r;
 }
 
-/// The cut across the vessel at the surface point of the last analyzed
-/// surface nearest `point` ([x, y, z], model coordinates):
+/// The cut across the vessel at the point of `analysis` nearest `point`
+/// ([x, y, z], model coordinates):
 /// {ok, point, normal (toward the side removed), radius, areaRemoved}.
-val cut_at(val point) {
-  if (!last_analysis) return error(nothing_analyzed());
+val cut_at(const Analysis& analysis, val point) {
   if (!point.isArray() || point["length"].as<size_t>() != 3)
     return error(vm::Status::Error("cutAt needs a point [x, y, z]"));
   std::array<double, 3> p{};
@@ -572,7 +572,7 @@ val cut_at(val point) {
       return error(vm::Status::Error("cutAt needs a point [x, y, z] of 3 finite numbers"));
     p[k] = point[k].as<double>();
   }
-  const vm::SurfaceMesh& mesh = last_analysis->mesh;
+  const vm::SurfaceMesh& mesh = analysis.surface.mesh;
   auto cut = vm::cut_across_vessel(mesh, vm::build_adjacency(mesh), p);
   if (!cut.ok()) return error(cut.status());
   val r = val::object();
@@ -584,17 +584,18 @@ val cut_at(val point) {
   return r;
 }
 
-/// The size field the mesh options would remesh the last analyzed surface
-/// with (size_preview.h): {ok, positions, triangles (its vertices and
-/// triangles, as analyze() gave them), radius (R a vertex), size (h a
-/// vertex), unit} or the error mesh() would give for these size options.
-val size_field(val opts) {
-  auto options = options_on_last_analysis(opts);
+/// The size field the mesh options would remesh `analysis` with
+/// (size_preview.h): {ok, positions, triangles (its vertices and triangles,
+/// as analyze() gave them), radius (R a vertex), size (h a vertex), unit}
+/// or the error mesh() would give for these size options. The radius is
+/// kept on `analysis` for the next call.
+val size_field(Analysis& analysis, val opts) {
+  auto options = mesh_options(opts);
   if (!options.ok()) return error(options.status());
-  auto preview = vm::size_preview(*last_analysis, options.value(), last_radius);
+  auto preview = vm::size_preview(analysis.surface, options.value(), analysis.radius);
   if (!preview.ok()) return error(preview.status());
-  const vm::SurfaceMesh& m = last_analysis->mesh;
-  last_radius = preview.value().radius;
+  const vm::SurfaceMesh& m = analysis.surface.mesh;
+  analysis.radius = preview.value().radius;
   val r = val::object();
   r.set("ok", true);
   std::vector<float> positions(m.points.begin(), m.points.end());
@@ -605,7 +606,7 @@ val size_field(val opts) {
   const std::vector<float> size(preview.value().size.begin(), preview.value().size.end());
   r.set("radius", copy_out(radius.data(), radius.size(), "Float32Array"));
   r.set("size", copy_out(size.data(), size.size(), "Float32Array"));
-  r.set("unit", std::string(vm::unit_symbol(last_analysis->unit.unit)));
+  r.set("unit", std::string(vm::unit_symbol(analysis.surface.unit.unit)));
   return r;
 }
 
@@ -663,6 +664,9 @@ int set_thread_limit(int limit) {
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(vesselmesh) {
+  // Handles: made only by analyze() and mesh(), owned by JS (delete()).
+  emscripten::class_<Analysis>("Analysis");
+  emscripten::class_<Mesh>("Mesh");
   emscripten::function("analyze", &analyze);
   emscripten::function("mesh", &mesh);
   emscripten::function("makePhantom", &make_phantom);

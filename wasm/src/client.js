@@ -1,6 +1,10 @@
 // Promise-based client of the vesselmesh worker (worker.js): the page's only
 // way to the WebAssembly core. One job runs at a time in the worker; cancel()
-// terminates it and starts a fresh worker.
+// terminates it and starts a fresh worker. A result's `handle` is
+// { kind, id, worker }: an id of the analysis or mesh the worker holds; the
+// calls on one take it (options `analysis` or `mesh`), or act on the
+// worker's newest. The worker frees the newest of a kind when a newer job
+// replaces it, unless kept (keep()); release() frees one; a cancel frees all.
 
 const defaultWorker = () =>
   new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
@@ -73,37 +77,43 @@ export class VesselmeshClient {
   }
 
   /** Reads, repairs and analyzes a surface file's bytes (copied, not moved);
-   * options as in the API's analyze(). */
+   * options as in the API's analyze(). The result's `handle` is the
+   * worker's analysis, now its newest. */
   analyze(bytes, { onProgress, ...options } = {}) {
     return this._call('analyze', [bytes, options], onProgress);
   }
 
   /**
    * Meshes STL bytes; options as in the API's mesh(). The result's typed
-   * arrays (msh, surface, volume) arrive moved from the worker, not copied.
+   * arrays (msh, surface, volume) arrive moved from the worker, not copied;
+   * its `handle` is the worker's mesh, now its newest.
    */
   mesh(bytes, { onProgress, ...options } = {}) {
     return this._call('mesh', [bytes, options], onProgress);
   }
 
-  /** The last mesh in another format (API export()): no meshing again. */
+  /** A mesh (options.mesh: its handle; default the newest) in another
+   * format (API export()): no meshing again. */
   export(format, options = {}) {
     return this._call('export', [format, options]);
   }
 
-  /** The methods report of the last mesh (API report()): {file, fileName}. */
+  /** The methods report of a mesh (options.mesh: its handle; default the
+   * newest) (API report()): {file, fileName}. */
   report(options = {}) {
     return this._call('report', [options]);
   }
 
-  /** The names the last analyzed surface's openings get (API openingNames()). */
+  /** The names an analyzed surface's openings get (options.analysis: its
+   * handle; default the newest) (API openingNames()). */
   openingNames(options = {}) {
     return this._call('openingNames', [options]);
   }
 
-  /** The cut across the vessel nearest a point of the last analyzed surface (API cutAt()). */
-  cutAt(point) {
-    return this._call('cutAt', [Array.from(point)]);
+  /** The cut across the vessel nearest a point of an analyzed surface
+   * (options.analysis: its handle; default the newest) (API cutAt()). */
+  cutAt(point, options = {}) {
+    return this._call('cutAt', [Array.from(point), options]);
   }
 
   /** The layers' cumulative height fractions (API layerFractions()). */
@@ -111,7 +121,8 @@ export class VesselmeshClient {
     return this._call('layerFractions', [options]);
   }
 
-  /** The size field of the last analyzed surface for these mesh options (API sizeField()). */
+  /** The size field of an analyzed surface (options.analysis: its handle;
+   * default the newest) for these mesh options (API sizeField()). */
   sizeField(options = {}) {
     return this._call('sizeField', [options]);
   }
@@ -119,6 +130,17 @@ export class VesselmeshClient {
   /** Generates a phantom STL; options as in the API's makePhantom(). */
   makePhantom(options = {}) {
     return this._call('makePhantom', [options]);
+  }
+
+  /** Keeps a result's handle in the worker when a newer job replaces it as
+   * the newest, until release(handle) (API keep()). */
+  keep(handle) {
+    return this._call('keep', [handle]);
+  }
+
+  /** Frees a result's handle in the worker now (API release()). */
+  release(handle) {
+    return this._call('release', [handle]);
   }
 
   /** Stops the running job: its promise resolves { ok: false, cancelled: true }. */

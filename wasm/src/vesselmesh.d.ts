@@ -221,11 +221,44 @@ export interface OptionSpec {
 
 export type OutputFormat = NonNullable<MeshOptions['format']>;
 
-/** What analyze() gives (the analysis has the keys of `vesselmesh info --json`). */
-export type AnalyzeResult = { ok: true; analysis: Record<string, unknown>; surface: Surface } | Failure;
+declare const analysisHandle: unique symbol;
+declare const meshHandle: unique symbol;
 
-/** What mesh() gives (the report has the keys of `vesselmesh mesh --report`). */
-export type MeshResult =
+/**
+ * An analyzed surface held in the module: analyze()'s `handle`, an Embind
+ * object. The calls on an analysis (openingNames, cutAt, sizeField) take
+ * it as their `analysis` option; given none, they use the API's newest.
+ * Freed by release() (or its delete()), or when a newer analyze()
+ * replaces it as the newest, unless kept (keep()).
+ */
+export interface AnalysisHandle {
+  readonly [analysisHandle]: true;
+  delete(): void;
+  isDeleted(): boolean;
+}
+
+/**
+ * A mesh held in the module: mesh()'s `handle` (a family: its first
+ * member, with the table), an Embind object. export() and report() take
+ * it as their `mesh` option; given none, they use the API's newest.
+ * Freed by release() (or its delete()), or when a newer mesh() replaces
+ * it as the newest, unless kept (keep()).
+ */
+export interface MeshHandle {
+  readonly [meshHandle]: true;
+  delete(): void;
+  isDeleted(): boolean;
+}
+
+/** The worker client's handles: ids of the analysis or mesh its worker holds (same rules). */
+export interface ClientAnalysisHandle { readonly kind: 'analysis'; readonly id: number; readonly worker: string }
+export interface ClientMeshHandle { readonly kind: 'mesh'; readonly id: number; readonly worker: string }
+
+/** What analyze() gives (the analysis has the keys of `vesselmesh info --json`); `handle`: the analyzed surface. */
+export type AnalyzeResult<H = AnalysisHandle> = { ok: true; analysis: Record<string, unknown>; surface: Surface; handle: H } | Failure;
+
+/** What mesh() gives (the report has the keys of `vesselmesh mesh --report`); `handle`: the mesh. */
+export type MeshResult<H = MeshHandle> =
   | {
       ok: true;
       /** The file in `format` (a zip for 'mesh-complete' and 'foam'), and a name for it. */
@@ -240,6 +273,7 @@ export type MeshResult =
       /** With `family` > 1: the table (`file` is then a zip of the meshes and the table), and its CSV. */
       family?: MeshFamilyTable;
       familyCsv?: string;
+      handle: H;
     }
   | Failure;
 
@@ -267,7 +301,10 @@ export type ExportResult = { ok: true; file: Uint8Array; fileName: string; forma
 
 export type ExportOptions = Pick<MeshOptions, 'mshVersion' | 'outputUnits'>;
 
-/** What sizeField() gives: the last analyzed surface and, a vertex, the local vessel radius R and the asked edge length h (the model's unit). */
+/** What keep() and release() give. */
+export type HandleResult = { ok: true } | Failure;
+
+/** What sizeField() gives: the analyzed surface and, a vertex, the local vessel radius R and the asked edge length h (the model's unit). */
 export type SizeFieldResult =
   | { ok: true; positions: Float32Array; triangles: Uint32Array; radius: Float32Array; size: Float32Array; unit: string }
   | Failure;
@@ -293,22 +330,26 @@ export interface VesselmeshApi {
   optionTable: OptionSpec[];
   /** The solver presets, in the order of the `solver` option's choices. */
   solverPresets: SolverPreset[];
-  /** Reads, repairs and analyzes a surface file (the analysis has the keys of `vesselmesh info --json`). */
+  /** Reads, repairs and analyzes a surface file (the analysis has the keys of `vesselmesh info --json`); its handle becomes the newest analysis. */
   analyze(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: AnalyzeOptions): AnalyzeResult;
-  /** Meshes a surface file (the report has the keys of `vesselmesh mesh --report`). */
+  /** Meshes a surface file (the report has the keys of `vesselmesh mesh --report`); its handle becomes the newest mesh. */
   mesh(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: MeshOptions): MeshResult;
-  /** The last meshed result in another format, without meshing again. */
-  export(format: OutputFormat, options?: ExportOptions): ExportResult;
-  /** The methods report of the last mesh (and its family): images default to views rendered without a GPU. */
-  report(options?: { images?: ReportImage[]; inputName?: string }): ReportResult;
-  /** The group names the last analyzed surface's openings get with these options, or the error mesh() would give. */
-  openingNames(options?: Pick<MeshOptions, 'names' | 'inlet'>): { ok: true; names: string[] } | Failure;
-  /** The cut across the vessel at the point of the last analyzed surface nearest `point`: the normal points to the side with less surface, which clipPlanes [...point, ...normal] removes. */
-  cutAt(point: ArrayLike<number>): { ok: true; point: number[]; normal: number[]; radius: number; areaRemoved: number } | Failure;
+  /** A mesh (`mesh`; default the newest) in another format, without meshing again. */
+  export(format: OutputFormat, options?: ExportOptions & { mesh?: MeshHandle }): ExportResult;
+  /** The methods report of a mesh (`mesh`; default the newest; and its family): images default to views rendered without a GPU. */
+  report(options?: { mesh?: MeshHandle; images?: ReportImage[]; inputName?: string }): ReportResult;
+  /** The group names an analyzed surface's openings (`analysis`; default the newest) get with these options, or the error mesh() would give. */
+  openingNames(options?: Pick<MeshOptions, 'names' | 'inlet'> & { analysis?: AnalysisHandle }): { ok: true; names: string[] } | Failure;
+  /** The cut across the vessel at the point of an analyzed surface (`analysis`; default the newest) nearest `point`: the normal points to the side with less surface, which clipPlanes [...point, ...normal] removes. */
+  cutAt(point: ArrayLike<number>, options?: { analysis?: AnalysisHandle }): { ok: true; point: number[]; normal: number[]; radius: number; areaRemoved: number } | Failure;
   /** The layers' cumulative height fractions (layers + 1 values from 0 to 1). */
   layerFractions(options?: Pick<MeshOptions, 'layers' | 'growth'>): { ok: true; fractions: Float64Array } | Failure;
-  /** The size field mesh() would remesh the last analyzed surface with: at each of its vertices the local vessel radius R and the asked edge length h, in the model's unit, before meshing; or the error mesh() would give. */
-  sizeField(options?: MeshOptions): SizeFieldResult;
+  /** The size field mesh() would remesh an analyzed surface (`analysis`; default the newest) with: at each of its vertices the local vessel radius R and the asked edge length h, in the model's unit, before meshing; or the error mesh() would give. */
+  sizeField(options?: MeshOptions & { analysis?: AnalysisHandle }): SizeFieldResult;
+  /** Keeps a handle when a newer job replaces it as the newest of its kind, until release(handle): to use two analyses or meshes at once. */
+  keep(handle: AnalysisHandle | MeshHandle): HandleResult;
+  /** Frees a handle now (again: nothing); if it was the newest, calls given no handle refuse until the next job. */
+  release(handle: AnalysisHandle | MeshHandle): HandleResult;
   /** A synthetic segmentation-like vessel surface as binary STL (a labelled kind also as VTK XML PolyData with ModelFaceID). */
   makePhantom(options?: PhantomOptions): { ok: true; stl: Uint8Array; vtp?: Uint8Array } | Failure;
 }
@@ -335,7 +376,8 @@ export type ClientMeshOptions = Omit<MeshOptions, 'onProgress'> & { onProgress?:
 /**
  * The API in a Web Worker (browser only), as promises: one job at a time;
  * cancel() ends the running job ({ ok: false, cancelled: true }) and
- * starts a fresh worker.
+ * starts a fresh worker (which holds none of the old handles).
+ * Handles are the worker's ids (ClientAnalysisHandle, ClientMeshHandle).
  */
 export class VesselmeshClient {
   constructor(options?: { createWorker?: () => Worker });
@@ -347,14 +389,18 @@ export class VesselmeshClient {
   threadsNote?: string;
   /** The option table, once ready. */
   optionTable?: OptionSpec[];
-  analyze(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: ClientAnalyzeOptions): Promise<AnalyzeResult>;
-  mesh(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: ClientMeshOptions): Promise<MeshResult>;
-  export(format: OutputFormat, options?: ExportOptions): Promise<ExportResult>;
-  report(options?: { images?: ReportImage[]; inputName?: string }): Promise<ReportResult>;
-  openingNames(options?: Pick<MeshOptions, 'names' | 'inlet'>): Promise<{ ok: true; names: string[] } | Failure>;
-  cutAt(point: ArrayLike<number>): Promise<{ ok: true; point: number[]; normal: number[]; radius: number; areaRemoved: number } | Failure>;
+  analyze(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: ClientAnalyzeOptions): Promise<AnalyzeResult<ClientAnalysisHandle>>;
+  mesh(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: ClientMeshOptions): Promise<MeshResult<ClientMeshHandle>>;
+  export(format: OutputFormat, options?: ExportOptions & { mesh?: ClientMeshHandle }): Promise<ExportResult>;
+  report(options?: { mesh?: ClientMeshHandle; images?: ReportImage[]; inputName?: string }): Promise<ReportResult>;
+  openingNames(options?: Pick<MeshOptions, 'names' | 'inlet'> & { analysis?: ClientAnalysisHandle }): Promise<{ ok: true; names: string[] } | Failure>;
+  cutAt(point: ArrayLike<number>, options?: { analysis?: ClientAnalysisHandle }): Promise<{ ok: true; point: number[]; normal: number[]; radius: number; areaRemoved: number } | Failure>;
   layerFractions(options?: Pick<MeshOptions, 'layers' | 'growth'>): Promise<{ ok: true; fractions: Float64Array } | Failure>;
-  sizeField(options?: MeshOptions): Promise<SizeFieldResult>;
+  sizeField(options?: Omit<MeshOptions, 'onProgress'> & { analysis?: ClientAnalysisHandle }): Promise<SizeFieldResult>;
+  /** Keeps a handle in the worker when a newer job replaces it as the newest, until release(handle). */
+  keep(handle: ClientAnalysisHandle | ClientMeshHandle): Promise<HandleResult>;
+  /** Frees a handle in the worker now. */
+  release(handle: ClientAnalysisHandle | ClientMeshHandle): Promise<HandleResult>;
   makePhantom(options?: PhantomOptions): Promise<{ ok: true; stl: Uint8Array; vtp?: Uint8Array } | Failure>;
   cancel(): void;
   dispose(): void;

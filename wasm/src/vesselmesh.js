@@ -2,10 +2,17 @@
 // input is bytes, parses the JSON reports and returns every failure as
 // { ok: false, error, kind } (nothing throws for a user error). Options are
 // checked by the core against its option table, in the JS vocabulary.
+// analyze() and mesh() give their result's `handle`; the calls on an
+// analysis or a mesh take one, or act on this API object's newest
+// (handles.js).
 import createVesselmeshCore from '../dist/vesselmesh_core.mjs';
+import { HandleRegistry } from './handles.js';
 import { createThreadedCore, defaultThreads, MAX_THREADS, singleThreadReason } from './threaded-core.js';
 
 const fail = (error) => ({ ok: false, error });
+
+/** What the calls on an analysis say when there is none. */
+const NOTHING_ANALYZED = 'nothing analyzed yet: analyze a surface first';
 
 /** Uint8Array view of STL input, or null when the input is not bytes. */
 function asBytes(input) {
@@ -116,6 +123,9 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
   const { core } = loaded;
 
   const withSurface = (raw, extra) => ({ ok: true, ...extra, surface: raw.surface });
+  /** The analyses and meshes this API object gave, and its newest of each:
+   * what the calls given no handle act on. */
+  const handles = new HandleRegistry();
   /** The option table (core/pipeline/option_table.h) as parsed JSON. */
   const optionTable = JSON.parse(core.optionTable());
   /** The solver presets (core/pipeline/solver_preset.h) as parsed JSON. */
@@ -142,16 +152,23 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
     solverPresets,
 
     /**
-     * Reads, welds, repairs and analyzes a surface file (STL).
+     * Reads, welds, repairs and analyzes a surface file (STL). `handle`:
+     * the analyzed surface, for openingNames, cutAt and sizeField (option
+     * `analysis`); it becomes this API's newest analysis, which those calls
+     * use when given none. The newest before it is freed as the job starts,
+     * unless kept (keep()).
      * @returns {{ok: true, analysis: object, surface: {positions: Float32Array,
-     *   triangles: Uint32Array, quality: Float32Array}} | {ok: false, error: string}}
+     *   triangles: Uint32Array, quality: Float32Array}, handle: object}
+     *   | {ok: false, error: string}}
      */
     analyze(bytesIn, { onProgress, ...options } = {}) {
       const { bytes, progress, failed } = jobInput('analyze', bytesIn, onProgress);
       if (failed) return failed;
+      handles.retire('analysis');
       const raw = core.analyze(bytes, options, progress);
       if (!raw.ok) return failure(raw);
-      return withSurface(raw, { analysis: JSON.parse(raw.analysisJson) });
+      const handle = handles.issue('analysis', raw.handle);
+      return withSurface(raw, { analysis: JSON.parse(raw.analysisJson), handle });
     },
 
     /**
@@ -167,17 +184,23 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
      * a zip "mesh-family.zip" of the N meshes (mesh_k.<ext>) and the table
      * (family.csv, family.json), `family` the table ({members, ratio,
      * layers, unit, rows}) and `familyCsv` its CSV; the report, surface and
-     * volume are the first member's.
+     * volume are the first member's. `handle`: the mesh (a family: its
+     * first member, with the table), for export and report (option
+     * `mesh`); it becomes this API's newest mesh, which they use when given
+     * none. The newest before it is freed as the job starts, unless kept
+     * (keep()).
      * @returns {{ok: true, file: Uint8Array, fileName: string, format: string,
-     *   msh?: Uint8Array, report: object, surface: object, volume?: object}
-     *   | {ok: false, error: string}} (no volume when surfaceOnly)
+     *   msh?: Uint8Array, report: object, surface: object, volume?: object,
+     *   handle: object} | {ok: false, error: string}} (no volume when surfaceOnly)
      */
     mesh(bytesIn, { onProgress, ...options } = {}) {
       const { bytes, progress, failed } = jobInput('mesh', bytesIn, onProgress);
       if (failed) return failed;
+      handles.retire('mesh');
       const raw = core.mesh(bytes, options, progress);
       if (!raw.ok) return failure(raw);
       return withSurface(raw, {
+        handle: handles.issue('mesh', raw.handle),
         file: raw.file,
         fileName: raw.fileName,
         format: raw.format,
@@ -189,8 +212,9 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
     },
 
     /**
-     * The methods report of the last mesh (with `family` > 1: its first
-     * member, and the family's table): one offline HTML page with pictures,
+     * The methods report of a mesh (`mesh`: its handle; default this API's
+     * newest mesh; after a family: its first member, and the family's
+     * table): one offline HTML page with pictures,
      * quality histograms, parameters, openings, repairs, provenance and a
      * paragraph for a paper's methods section. `images`: the pictures
      * ([{title, alt, png: Uint8Array}], e.g. the page's views); without
@@ -199,13 +223,16 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
      * @returns {{ok: true, file: Uint8Array, fileName: string}
      *   | {ok: false, error: string}}
      */
-    report({ images, inputName } = {}) {
+    report({ mesh, images, inputName } = {}) {
       if (images !== undefined && !Array.isArray(images)) return fail('report: images must be an array');
-      return answer(core.methodsReport({ ...(images && { images }), ...(inputName && { inputName }) }));
+      const { handle, failed } = handles.pick('mesh', mesh, 'report', 'no report yet: mesh a surface first');
+      if (failed) return failed;
+      return answer(core.methodsReport(handle, { ...(images && { images }), ...(inputName && { inputName }) }));
     },
 
     /**
-     * The last meshed result in another format, without meshing again:
+     * A mesh in another format, without meshing again (`mesh`: its handle;
+     * default this API's newest mesh):
      * 'msh' | 'vtu' | 'vtp' | 'stl' | 'mesh-complete' (a zip of the
      * folder) | 'foam' (a zip of the OpenFOAM case: constant/polyMesh,
      * system/controlDict, case.foam), with mshVersion and outputUnits as in
@@ -213,36 +240,45 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
      * @returns {{ok: true, file: Uint8Array, fileName: string, format: string}
      *   | {ok: false, error: string}}
      */
-    export(format, options = {}) {
-      return answer(core.exportMesh({ ...options, format }));
+    export(format, { mesh, ...options } = {}) {
+      const { handle, failed } = handles.pick('mesh', mesh, 'export', 'nothing to export: mesh a surface first');
+      if (failed) return failed;
+      return answer(core.exportMesh(handle, { ...options, format }));
     },
 
     /**
-     * The cut across the vessel at the point of the last analyzed surface
-     * nearest `point` ([x, y, z]): perpendicular to the vessel, through the
-     * centre of its section, the normal toward the side with less surface
-     * (the side a cut by clipPlanes [...point, ...normal] removes).
+     * The cut across the vessel at the point of an analyzed surface
+     * (`analysis`: its handle; default this API's newest analysis) nearest
+     * `point` ([x, y, z]): perpendicular to the vessel, through the centre
+     * of its section, the normal toward the side with less surface (the
+     * side a cut by clipPlanes [...point, ...normal] removes).
      * @returns {{ok: true, point: number[], normal: number[], radius: number,
      *   areaRemoved: number} | {ok: false, error: string}}
      */
-    cutAt(point) {
-      const raw = core.cutAt(Array.from(point ?? []));
+    cutAt(point, { analysis } = {}) {
+      const { handle, failed } = handles.pick('analysis', analysis, 'cutAt', NOTHING_ANALYZED);
+      if (failed) return failed;
+      const raw = core.cutAt(handle, Array.from(point ?? []));
       return raw.ok ? { ...raw, point: Array.from(raw.point), normal: Array.from(raw.normal) } : failure(raw);
     },
 
     /**
-     * The group names the openings of the last analyzed surface get with
-     * these mesh options (`names`, `inlet`), as mesh() would name them, or
-     * the error mesh() would give (a bad or repeated name).
+     * The group names the openings of an analyzed surface (`analysis`: its
+     * handle; default this API's newest analysis) get with these mesh
+     * options (`names`, `inlet`), as mesh() would name them, or the error
+     * mesh() would give (a bad or repeated name).
      * @returns {{ok: true, names: string[]} | {ok: false, error: string}}
      */
-    openingNames(options = {}) {
-      return answer(core.openingNames(options));
+    openingNames({ analysis, ...options } = {}) {
+      const { handle, failed } = handles.pick('analysis', analysis, 'openingNames', NOTHING_ANALYZED);
+      if (failed) return failed;
+      return answer(core.openingNames(handle, options));
     },
 
     /**
-     * The size field mesh() would remesh the last analyzed surface with,
-     * before meshing: at each vertex of that surface (its positions and
+     * The size field mesh() would remesh an analyzed surface (`analysis`:
+     * its handle; default this API's newest analysis) with, before
+     * meshing: at each vertex of that surface (its positions and
      * triangles, as analyze() gave them) the local vessel radius R and the
      * edge length h the size options ask for (perCircumference or size,
      * sizeMin, sizeMax, curvature, gradation, refine), in the model's
@@ -251,8 +287,32 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
      *   radius: Float32Array, size: Float32Array, unit: string}
      *   | {ok: false, error: string}}
      */
-    sizeField(options = {}) {
-      return answer(core.sizeField(options));
+    sizeField({ analysis, ...options } = {}) {
+      const { handle, failed } = handles.pick('analysis', analysis, 'sizeField', NOTHING_ANALYZED);
+      if (failed) return failed;
+      return answer(core.sizeField(handle, options));
+    },
+
+    /**
+     * Keeps a result's `handle` (of analyze() or mesh()) alive when a newer
+     * job replaces it as this API's newest, until release(handle): to use
+     * two meshes or analyses at once. Without keep(), only the newest of
+     * each kind is held, so a long session does not grow.
+     * @returns {{ok: true} | {ok: false, error: string}}
+     */
+    keep(handle) {
+      return handles.keep(handle);
+    },
+
+    /**
+     * Frees a result's `handle` now (its surface or mesh in the module's
+     * memory); calls given it then refuse, and if it was the newest of its
+     * kind, calls given no handle refuse until the next job. Releasing
+     * twice is nothing.
+     * @returns {{ok: true} | {ok: false, error: string}}
+     */
+    release(handle) {
+      return handles.release(handle);
     },
 
     /**

@@ -31,7 +31,8 @@ export async function meshIt(bytes: Uint8Array): Promise<number> {
   const options: MeshOptions = { perCircumference: 12, layers: 3, format: 'vtu', mshVersion: '2.2' };
   const result: MeshResult = api.mesh(bytes, options);
   if (!result.ok) throw new Error(result.error + (result.option ?? ''));
-  const exported = api.export('msh', { mshVersion: '4.1' });
+  const exported = api.export('msh', { mshVersion: '4.1', mesh: result.handle });
+  api.release(result.handle);
   return result.file.length + (exported.ok ? exported.file.length : 0) + api.optionTable.length;
 }
 
@@ -39,7 +40,7 @@ export async function inBrowser(bytes: Uint8Array): Promise<string> {
   const client = new VesselmeshClient();
   const version: string = await client.ready;
   const analyzed = await client.analyze(bytes, { onProgress: (fraction: number, stage: string) => void [fraction, stage] });
-  if (analyzed.ok) void analyzed.surface.positions;
+  if (analyzed.ok) void (await client.sizeField({ analysis: analyzed.handle, perCircumference: 12 })).ok;
   client.cancel();
   const el = document.createElement('vessel-mesher');
   const typed: VesselMesher = el;
