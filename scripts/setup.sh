@@ -9,7 +9,7 @@ source scripts/stage.sh
 
 # openfoam and python3-dolfinx: the solvers validation/solver_check.py runs the
 # meshes in (CI's real-data step).
-packages=(build-essential cmake ninja-build libeigen3-dev libnanoflann-dev libgtest-dev
+packages=(build-essential cmake ninja-build libeigen3-dev libnanoflann-dev libfast-float-dev libgtest-dev
   libxxhash-dev libfmt-dev zlib1g-dev dpkg-dev emscripten chromium gmsh python3-gmsh python3-vtk9
   python3-meshio clang libclang-rt-14-dev openfoam python3-dolfinx nodejs npm)
 missing=()

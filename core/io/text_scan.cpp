@@ -1,60 +1,17 @@
-// Token cursor and number parsing for the text readers. Decimals with at
-// most 15 significant digits and a power-of-ten exponent within +-22 are
-// converted by one exact division or multiplication (Clinger's fast path:
-// both operands are exact doubles, so the result is correctly rounded);
-// anything else goes to strtod.
+// Token cursor and number parsing for the text readers. Decimal numbers are
+// converted by fast_float (Debian libfast-float-dev: Lemire's algorithm,
+// exact, locale-free, the same bits as a correctly rounded strtod), the same
+// natively and in WebAssembly.
 #include "core/io/text_scan.h"
+
+#include <fast_float/fast_float.h>
 
 #include <charconv>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 
 namespace vm {
 namespace {
-
-bool parse_decimal_fast(std::string_view tok, double& out) {
-  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                      1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                      1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-  size_t i = 0, n = tok.size();
-  bool negative = false;
-  if (i < n && (tok[i] == '-' || tok[i] == '+')) negative = tok[i++] == '-';
-  uint64_t mantissa = 0;
-  int digits = 0, scale = 0;
-  bool any = false;
-  for (; i < n && tok[i] >= '0' && tok[i] <= '9'; ++i, any = true) {
-    if (mantissa == 0 && tok[i] == '0') continue;
-    if (++digits > 15) return false;
-    mantissa = mantissa * 10 + uint64_t(tok[i] - '0');
-  }
-  if (i < n && tok[i] == '.') {
-    for (++i; i < n && tok[i] >= '0' && tok[i] <= '9'; ++i, any = true) {
-      --scale;
-      if (mantissa == 0 && tok[i] == '0') continue;
-      if (++digits > 15) return false;
-      mantissa = mantissa * 10 + uint64_t(tok[i] - '0');
-    }
-  }
-  if (!any) return false;
-  if (i < n && (tok[i] == 'e' || tok[i] == 'E')) {
-    ++i;
-    bool eneg = false;
-    if (i < n && (tok[i] == '-' || tok[i] == '+')) eneg = tok[i++] == '-';
-    if (i == n) return false;
-    int e = 0;
-    for (; i < n && tok[i] >= '0' && tok[i] <= '9'; ++i) {
-      if (e > 1000) return false;
-      e = e * 10 + (tok[i] - '0');
-    }
-    scale += eneg ? -e : e;
-  }
-  if (i != n || scale < -22 || scale > 22) return false;
-  double v = double(mantissa);  // exact: < 10^15 < 2^53
-  v = scale < 0 ? v / kPow10[-scale] : v * kPow10[scale];
-  out = negative ? -v : v;
-  return true;
-}
 
 // A byte as \xNN (two lowercase hex digits).
 void append_hex_escape(std::string& s, unsigned char c) {
@@ -66,14 +23,11 @@ void append_hex_escape(std::string& s, unsigned char c) {
 }  // namespace
 
 bool parse_double(std::string_view tok, double& out) {
-  if (parse_decimal_fast(tok, out)) return true;
-  char buf[128];
-  if (tok.empty() || tok.size() >= sizeof(buf)) return false;
-  std::memcpy(buf, tok.data(), tok.size());
-  buf[tok.size()] = '\0';
-  char* end = nullptr;
-  out = std::strtod(buf, &end);
-  return end == buf + tok.size();
+  // One leading '+' as the formats write it (from_chars takes none).
+  if (!tok.empty() && tok[0] == '+') tok.remove_prefix(1);
+  if (tok.empty() || tok[0] == '+') return false;
+  const auto r = fast_float::from_chars(tok.data(), tok.data() + tok.size(), out);
+  return r.ec == std::errc() && r.ptr == tok.data() + tok.size();
 }
 
 bool parse_int64(std::string_view tok, int64_t& out) {

@@ -15,9 +15,10 @@ inline bool is_text_space(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
 }
 
-/// Parses a whole token as a double, correctly rounded (decimal syntax; also
-/// "inf", "nan" and hexadecimal floats through strtod, so callers must check
-/// finiteness themselves). False on anything else or trailing characters.
+/// Parses a whole token as a double, correctly rounded: decimal syntax with
+/// an optional sign, also "inf" and "nan" (callers check finiteness
+/// themselves). False on anything else (hexadecimal floats too) or trailing
+/// characters.
 bool parse_double(std::string_view token, double& out);
 
 /// Parses a whole token as a decimal integer (optional sign). False on

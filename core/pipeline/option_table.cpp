@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <deque>
 
+#include "core/io/text_scan.h"
 #include "core/pipeline/option_rows.h"
 #include "core/util/json_writer.h"
 
@@ -90,12 +90,7 @@ std::string_view type_name(OptionType t) {
 }
 
 bool parse_number(std::string_view text, double& out) {
-  // strtod needs a terminated string; from_chars(double) is missing in libc++ 14.
-  std::string s(text);
-  if (s.empty()) return false;
-  char* end = nullptr;
-  out = std::strtod(s.c_str(), &end);
-  return end == s.c_str() + s.size() && std::isfinite(out);
+  return parse_double(text, out) && std::isfinite(out);
 }
 
 Status needs(const OptionSpec& spec) {
@@ -118,7 +113,8 @@ std::string option_rows::shortest_text(double x) {
   char buf[32];
   for (int digits = 15; digits <= 17; ++digits) {
     std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-    if (std::strtod(buf, nullptr) == x) break;
+    double back = 0;
+    if (parse_double(buf, back) && back == x) break;
   }
   return buf;
 }
@@ -144,7 +140,8 @@ const OptionSpec* find_option(std::string_view id) {
 const OptionSpec* find_cli_option(std::string_view cli, OptionCommand command) {
   for (const OptionSpec& s : option_table())
     if ((s.faces & kFaceCli) && (s.commands & command) &&
-        (s.cli == cli || std::ranges::find(s.cli_aliases, cli) != s.cli_aliases.end()))
+        (s.cli == cli ||
+         std::find(s.cli_aliases.begin(), s.cli_aliases.end(), cli) != s.cli_aliases.end()))
       return &s;
   return nullptr;
 }
