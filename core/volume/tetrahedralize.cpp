@@ -11,10 +11,10 @@
 #include <cmath>
 #include <string>
 
+#include "core/geom/hilbert_sort.h"
 #include "core/util/parallel.h"
 #include "core/util/stage_timer.h"
 #include "core/volume/size_field3d.h"
-#include "core/volume/spatial_sort.h"
 #include "core/volume/tet_mesh.h"
 
 namespace vm {
