@@ -31,7 +31,7 @@
 #include "core/util/allocator_tuning.h"
 #include "core/util/parallel.h"
 #include "core/volume/boundary_recovery.h"
-#include "core/volume/tetrahedralize.h"
+#include "core/volume/fill_volume.h"
 
 namespace {
 
