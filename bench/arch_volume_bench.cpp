@@ -27,11 +27,11 @@
 #include "core/pipeline/mesh_job.h"
 #include "core/pipeline/option_table.h"
 #include "core/quality/tet_quality.h"
-#include "core/surface/caps.h"
+#include "core/surface/cap_openings.h"
 #include "core/util/allocator_tuning.h"
 #include "core/util/parallel.h"
 #include "core/volume/boundary_recovery.h"
-#include "core/volume/tetrahedralize.h"
+#include "core/volume/fill_volume.h"
 
 namespace {
 

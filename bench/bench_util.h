@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "core/quality/tet_quality.h"
-#include "core/volume/tetrahedralize.h"
+#include "core/volume/fill_volume.h"
 
 namespace vm::bench {
 

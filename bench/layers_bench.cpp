@@ -20,7 +20,7 @@
 #include "core/layers/extrude_layers.h"
 #include "core/mesh/chord_radius.h"
 #include "core/phantom/vessel_phantom.h"
-#include "core/surface/caps.h"
+#include "core/surface/cap_openings.h"
 #include "core/surface/remesh_surface.h"
 #include "core/util/allocator_tuning.h"
 #include "core/volume/boundary_recovery.h"

@@ -34,7 +34,7 @@
 #include "bench/bench_util.h"
 #include "core/quality/tet_quality.h"
 #include "core/util/allocator_tuning.h"
-#include "core/volume/tetrahedralize.h"
+#include "core/volume/fill_volume.h"
 #include "tests/support/volume_inputs.h"
 
 namespace {

@@ -2,7 +2,7 @@
 // committed): one page for each documentation page of the repository
 // (README.md as getting started, docs/*.md: the command line, options,
 // outputs, JS API, <vessel-mesher>, web app, method, benchmarks, limits,
-// architecture; docs/links.mjs lists them), the options as tables from the
+// architecture, decisions; docs/links.mjs lists them), the options as tables from the
 // core's option table (with their units), and live examples of the element
 // meshing the bundled sample (written here by the API's makePhantom) in
 // place. The site and the repository's Markdown say the same. Needs the
@@ -98,6 +98,7 @@ const NAV = [
   ['benchmarks.html', 'Benchmarks'],
   ['limits.html', 'Limits'],
   ['architecture.html', 'Architecture'],
+  ['decisions.html', 'Decisions'],
 ];
 
 const CSS = `
@@ -226,6 +227,7 @@ page('method.html', 'Method', html('docs/method.md'));
 page('benchmarks.html', 'Benchmarks', html('docs/benchmarks.md'));
 page('limits.html', 'Limits', html('docs/limits.md'));
 page('architecture.html', 'Architecture', html('docs/ARCHITECTURE.md'));
+page('decisions.html', 'Decisions', html('docs/decisions.md'));
 
 const missing = Object.values(PAGES).filter((file) => !NAV.some(([href]) => href === file));
 if (missing.length) throw new Error(`pages not in the navigation: ${missing.join(', ')}`);

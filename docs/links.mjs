@@ -18,6 +18,7 @@ export const PAGES = {
   'docs/benchmarks.md': 'benchmarks.html',
   'docs/limits.md': 'limits.html',
   'docs/ARCHITECTURE.md': 'architecture.html',
+  'docs/decisions.md': 'decisions.html',
 };
 
 const ENTITIES = { '&lt;': '<', '&gt;': '>', '&amp;': '&', '&quot;': '"', '&#39;': "'" };

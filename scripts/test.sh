@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# README command 2: set up, build, run every test: GoogleTest + CLI (ctest),
+# README command 2: set up, build, check that core's includes keep to the
+# module table, run every test: GoogleTest + CLI (ctest),
 # the same suite under AddressSanitizer/UBSan, the hostile-input corpus, a
 # short libFuzzer run of the readers and the option table, the Node test of
 # the built
@@ -10,6 +11,10 @@ source scripts/stage.sh
 stage "setup (scripts/setup.sh)"
 bash scripts/setup.sh
 jobs=$(nproc)
+
+stage "module floors (scripts/check_layers.py: core's includes against docs/ARCHITECTURE.md)"
+/usr/bin/python3 scripts/check_layers.py --self-test
+/usr/bin/python3 scripts/check_layers.py
 
 stage "ctest (native, Release)"
 ctest --test-dir build --output-on-failure -j "$jobs"

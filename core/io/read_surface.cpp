@@ -15,6 +15,7 @@
 #include "core/io/inflate.h"
 #include "core/io/obj_reader.h"
 #include "core/io/ply_reader.h"
+#include "core/io/stl.h"
 #include "core/io/text_scan.h"
 #include "core/io/vtk_legacy_reader.h"
 #include "core/io/vtk_xml_reader.h"

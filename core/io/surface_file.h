@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/io/stl.h"
+#include "core/mesh/triangle_soup.h"
 
 namespace vm {
 
@@ -20,8 +20,8 @@ namespace vm {
 /// as doubles) is non-empty.
 struct SurfaceFile {
   /// STL only: `ascii` and `header`; binary STL: `coords`, 9 floats per
-  /// triangle (see stl.h). Its `points`/`triangles` are always empty (an
-  /// ASCII STL's are moved to the fields below).
+  /// triangle (see triangle_soup.h). Its `points`/`triangles` are always
+  /// empty (an ASCII STL's are moved to the fields below).
   TriangleSoup soup;
   /// Indexed formats: 3 doubles per point (x y z), 3 point indices per
   /// triangle, in the file's orientation. Polygons are split into triangles

@@ -21,7 +21,7 @@
 #include "core/mesh/boundary_loops.h"
 #include "core/mesh/surface_distance.h"
 #include "core/quality/triangle_quality.h"
-#include "core/surface/caps.h"
+#include "core/surface/cap_openings.h"
 #include "core/util/stage_timer.h"
 
 namespace vm {

@@ -21,7 +21,7 @@ namespace vm {
 
 /// Grows spec.layers layers of prisms from `wall`, inward (into the lumen)
 /// or outward (spec.outward), in phases:
-///  1. openings: each boundary loop's plane by fit_opening_plane (caps.h)
+///  1. openings: each boundary loop's plane by fit_opening_plane (cap_openings.h)
 ///     and its rim vertices moved onto it with the same arithmetic as
 ///     cap_openings, so caps built later on the same wall agree bitwise;
 ///  2. directions (layer_directions.h): smoothed Gouraud normals, rim

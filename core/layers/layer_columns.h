@@ -10,7 +10,7 @@
 #include "core/layers/layer_geometry.h"
 #include "core/layers/layer_mesh.h"
 #include "core/mesh/surface_mesh.h"
-#include "core/surface/caps.h"
+#include "core/surface/cap_openings.h"
 
 namespace vm {
 

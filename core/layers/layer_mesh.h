@@ -62,7 +62,7 @@ struct LayerSpec {
 
 /// One opening (boundary loop of the wall) and its column of layer points.
 struct LayerOpening {
-  /// The cap plane (caps.h fit_opening_plane): origin, unit normal out of
+  /// The cap plane (cap_openings.h fit_opening_plane): origin, unit normal out of
   /// the lumen, in-plane frame e1 x e2 = normal.
   std::array<double, 3> origin{}, normal{}, e1{}, e2{};
   /// Wall vertex ids in the order of the wall's boundary half-edges

@@ -10,7 +10,7 @@
 
 #include "core/layers/layer_mesh.h"
 #include "core/mesh/volume_mesh.h"
-#include "core/surface/caps.h"
+#include "core/surface/cap_openings.h"
 #include "core/util/result.h"
 #include "core/volume/boundary_recovery.h"
 

@@ -16,11 +16,11 @@
 #include <numbers>
 #include <span>
 
+#include "core/geom/hilbert_sort.h"
+#include "core/geom/triangle_gamma.h"
 #include "core/geom/vec3.h"
 #include "core/mesh/adjacency.h"
-#include "core/quality/triangle_quality.h"
 #include "core/util/portable_math.h"
-#include "core/volume/spatial_sort.h"
 
 namespace vm {
 namespace {

@@ -1,9 +1,9 @@
-// Welding an STL triangle soup, or the indexed points of another surface
-// format, into an indexed surface.
+// Welding an STL triangle soup (triangle_soup.h), or the indexed points of
+// another surface format, into an indexed surface.
 #pragma once
 
-#include "core/io/stl.h"
 #include "core/mesh/surface_mesh.h"
+#include "core/mesh/triangle_soup.h"
 
 namespace vm {
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 
 #include "core/geom/predicates.h"
-#include "core/quality/triangle_quality.h"
+#include "core/geom/triangle_gamma.h"
 
 namespace vm {
 namespace {

@@ -34,7 +34,7 @@
 #include "core/util/parallel.h"
 #include "core/util/stage_timer.h"
 #include "core/volume/boundary_recovery.h"
-#include "core/volume/tetrahedralize.h"
+#include "core/volume/fill_volume.h"
 
 namespace vm {
 

@@ -19,7 +19,7 @@
 #include "core/pipeline/element_budget.h"
 #include "core/pipeline/prepare_surface.h"
 #include "core/quality/surface_group_quality.h"
-#include "core/surface/caps.h"
+#include "core/surface/cap_openings.h"
 #include "core/surface/remesh_surface.h"
 #include "core/util/progress.h"
 #include "core/util/result.h"

@@ -6,7 +6,7 @@
 #include <numeric>
 
 #include "core/io/foam_writer.h"
-#include "core/io/mesh_complete.h"
+#include "core/io/mesh_complete_writer.h"
 #include "core/io/stl.h"
 #include "core/io/vtk_writer.h"
 #include "core/mesh/face_elements.h"

@@ -2,9 +2,9 @@
 // CAD-like segmentation exports hand over: a closed surface whose inlets and
 // outlets are flat disks; what repair tools make of holes: fans around a
 // lifted apex, smooth domes), so that each can be removed and its rim become
-// an opening that vesselmesh caps itself, with the boundary layer's rings in
-// the cap plane (Marchandise et al., section 2: planar sections for the flow
-// conditions).
+// an opening that vesselmesh caps itself (surface/cap_openings.h), with the
+// boundary layer's rings in the cap plane (Marchandise et al., section 2:
+// planar sections for the flow conditions).
 //
 // Phases: (1) candidate regions, from the face labels when the file has them
 // (each connected part of a label), else grown across flat edges from seed

@@ -1,17 +1,17 @@
 // Triangle quality gamma_k of the seed paper (Marchandise et al., section 3):
 // gamma = 4 sin a sin b sin c / (sin a + sin b + sin c) = 2 r_in / r_circ,
-// 1 for the equilateral triangle, 0 for a degenerate one.
+// 1 for the equilateral triangle, 0 for a degenerate one: over a whole mesh,
+// and the summary (min, mean, histogram) of any measure in [0, 1]. The
+// formula of one triangle, triangle_gamma, is geom/triangle_gamma.h's.
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
+#include "core/geom/triangle_gamma.h"
 #include "core/mesh/surface_mesh.h"
 
 namespace vm {
-
-/// gamma_k of the triangle with corners a, b, c (3 doubles each).
-double triangle_gamma(const double* a, const double* b, const double* c);
 
 /// Distribution summary of a quality measure in [0, 1].
 struct QualityStats {

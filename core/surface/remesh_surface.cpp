@@ -23,6 +23,7 @@
 #include <optional>
 #include <unordered_map>
 
+#include "core/geom/hilbert_sort.h"
 #include "core/geom/vec3.h"
 #include "core/mesh/boundary_loops.h"
 #include "core/mesh/decimate.h"
@@ -36,7 +37,6 @@
 #include "core/surface/sharp_features.h"
 #include "core/util/parallel.h"
 #include "core/util/stage_timer.h"
-#include "core/volume/spatial_sort.h"
 
 namespace vm {
 namespace {

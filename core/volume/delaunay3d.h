@@ -8,7 +8,7 @@
 //   breadth-first search and re-triangulated by starring its boundary from
 //   the point.
 // - Order: BRIO rounds along a Hilbert curve (Amenta, Choi, Rote, SoCG 2003;
-//   core/volume/spatial_sort.h).
+//   core/geom/hilbert_sort.h).
 // - Location: visibility walk, remembering and stochastic (Devillers, Pion,
 //   Teillaud, "Walking in a triangulation", IJFCS 13, 2002).
 // - Predicates: Shewchuk's filtered exact orient3d/insphere (DCG 18, 1997);
@@ -28,8 +28,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/geom/hilbert_sort.h"
 #include "core/util/result.h"
-#include "core/volume/spatial_sort.h"
 #include "core/volume/tet_topology.h"
 
 namespace vm {

@@ -46,10 +46,10 @@
 #include <thread>
 
 #include "core/geom/closest_point.h"
+#include "core/geom/hilbert_sort.h"
 #include "core/util/parallel.h"
 #include "core/util/portable_math.h"
 #include "core/volume/slabs.h"
-#include "core/volume/spatial_sort.h"
 #include "core/volume/tet_topology.h"
 
 namespace vm {

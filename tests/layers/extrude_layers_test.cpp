@@ -17,7 +17,7 @@
 #include "core/mesh/volume_mesh.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/quality/triangle_quality.h"
-#include "core/surface/caps.h"
+#include "core/surface/cap_openings.h"
 #include "core/surface/remesh_surface.h"
 #include "core/surface/vessel_radius.h"
 #include "tests/support/phantoms.h"

@@ -1,6 +1,6 @@
 // The caller's assembly of a layered volume, end to end: viscous layer
 // inward, vessel wall outward, the front capped and filled with tetrahedra
-// (caps.h, boundary_recovery.h), everything merged into one VolumeMesh with
+// (cap_openings.h, boundary_recovery.h), everything merged into one VolumeMesh with
 // the output groups and checked by check_volume_mesh (exact positivity,
 // conformity, boundary = surface triangles).
 #include <gtest/gtest.h>
@@ -17,7 +17,7 @@
 #include "core/mesh/enclosed_volume.h"
 #include "core/mesh/volume_check.h"
 #include "core/phantom/vessel_phantom.h"
-#include "core/surface/caps.h"
+#include "core/surface/cap_openings.h"
 #include "core/surface/remesh_surface.h"
 #include "core/volume/boundary_recovery.h"
 #include "tests/support/phantoms.h"

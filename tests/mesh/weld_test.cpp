@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/io/stl.h"
 #include "tests/support/test_meshes.h"
 
 namespace vm {

@@ -1,10 +1,13 @@
-// Spatial sorting of points for incremental Delaunay insertion: Biased
-// Randomized Insertion Order (Amenta, Choi and Rote, "Incremental
-// constructions con BRIO", SoCG 2003) with each round ordered along a 3D
-// Hilbert curve (Hilbert index by Skilling, "Programming the Hilbert curve",
-// AIP Conf. Proc. 707, 2004). Rounds keep the expected-case guarantees of a
-// random order; the curve order inside a round makes consecutive points
-// close, so the point-location walk from the previous insertion is short.
+// Points ordered along a 3D Hilbert curve, so that points near in the order
+// are near in space: one sort of a set (hilbert_sort: for locality, e.g. the
+// wall's vertex numbering, the decimation's, the refinement's queues), or,
+// for incremental Delaunay insertion (the volume kernel), Biased Randomized
+// Insertion Order (Amenta, Choi and Rote, "Incremental constructions con
+// BRIO", SoCG 2003) with each round ordered along the curve (Hilbert index
+// by Skilling, "Programming the Hilbert curve", AIP Conf. Proc. 707, 2004).
+// Rounds keep the expected-case guarantees of a random order; the curve
+// order inside a round makes consecutive points close, so the
+// point-location walk from the previous insertion is short.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "core/volume/spatial_sort.h"
+#include "core/geom/hilbert_sort.h"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 namespace vm {
 namespace {
 
-TEST(SpatialSort, HilbertIndexIsABijectionWithFaceAdjacentSteps) {
+TEST(HilbertSort, HilbertIndexIsABijectionWithFaceAdjacentSteps) {
   for (int bits : {1, 2, 3, 4, 5, 6}) {
     const uint32_t side = 1u << bits;
     std::vector<int> cell_of(size_t(side) * side * side, -1);
@@ -35,7 +35,7 @@ TEST(SpatialSort, HilbertIndexIsABijectionWithFaceAdjacentSteps) {
   }
 }
 
-TEST(SpatialSort, HilbertIndexIsInjectiveOnFineGrids) {
+TEST(HilbertSort, HilbertIndexIsInjectiveOnFineGrids) {
   // Up to 21 bits per axis (63-bit indices): distinct cells get distinct
   // indices below 2^(3 bits).
   std::mt19937_64 rng(4);
@@ -67,7 +67,7 @@ double mean_step(const std::vector<double>& p, const std::vector<int32_t>& order
   return s / double(to - from - 1);
 }
 
-TEST(SpatialSort, BrioOrderIsAPermutation) {
+TEST(HilbertSort, BrioOrderIsAPermutation) {
   for (int n : {0, 1, 2, 63, 64, 65, 1000, 20000}) {
     auto p = testing::random_cube_points(n, 7);
     auto order = brio_hilbert_order(p);
@@ -79,7 +79,7 @@ TEST(SpatialSort, BrioOrderIsAPermutation) {
   }
 }
 
-TEST(SpatialSort, ConsecutivePointsOfTheLastRoundAreClose) {
+TEST(HilbertSort, ConsecutivePointsOfTheLastRoundAreClose) {
   const int n = 50000;
   auto p = testing::random_cube_points(n, 3);
   auto order = brio_hilbert_order(p);
@@ -94,7 +94,7 @@ TEST(SpatialSort, ConsecutivePointsOfTheLastRoundAreClose) {
   EXPECT_GT(mean_step(p, identity, 0, n), 1.0);
 }
 
-TEST(SpatialSort, HilbertSortHandlesDegenerateBoxes) {
+TEST(HilbertSort, HilbertSortHandlesDegenerateBoxes) {
   // All points equal, and points on a line: still a permutation.
   std::vector<double> p(3 * 100, 2.5);
   std::vector<int32_t> ids(100);

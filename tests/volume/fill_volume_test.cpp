@@ -1,4 +1,4 @@
-#include "core/volume/tetrahedralize.h"
+#include "core/volume/fill_volume.h"
 
 #include <gtest/gtest.h>
 

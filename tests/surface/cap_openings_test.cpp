@@ -1,4 +1,4 @@
-#include "core/surface/caps.h"
+#include "core/surface/cap_openings.h"
 
 #include <gtest/gtest.h>
 
@@ -205,7 +205,7 @@ CapQuality check_capped(const SurfaceMesh& wall, const CappedSurface& r, const C
   return worst;
 }
 
-TEST(Caps, StraightTubeIsClosedByTwoDisks) {
+TEST(CapOpenings, StraightTubeIsClosedByTwoDisks) {
   const double r = 1.0, len = 4.0;
   const int n = 48;
   const SurfaceMesh wall = straight_tube(n, r, len);
@@ -238,7 +238,7 @@ TEST(Caps, StraightTubeIsClosedByTwoDisks) {
   EXPECT_GE(q.worst_mean, 0.97);
 }
 
-TEST(Caps, NamesFollowAreaAndInletIndexIsHonored) {
+TEST(CapOpenings, NamesFollowAreaAndInletIndexIsHonored) {
   // A frustum: the bottom opening (r = 1) is larger than the top (r = 0.6).
   const SurfaceMesh wall = tube_between(40, 30, circle(1.0, 0), circle(0.6, 3.0));
   auto a = cap_openings(wall, {});
@@ -261,7 +261,7 @@ TEST(Caps, NamesFollowAreaAndInletIndexIsHonored) {
   EXPECT_EQ(b.value().caps[0].area, a.value().caps[1].area);
 }
 
-TEST(Caps, NonPlanarRimsAreProjectedAndReported) {
+TEST(CapOpenings, NonPlanarRimsAreProjectedAndReported) {
   // Top rim waves by +-0.05 around z = 3 (sin 3 theta: best plane z = 3);
   // bottom rim lies exactly in the tilted plane z = 0.5 y.
   const double amp = 0.05;
@@ -292,7 +292,7 @@ TEST(Caps, NonPlanarRimsAreProjectedAndReported) {
   EXPECT_NEAR(wavy_cap.centroid[2], 3.0, 1e-12);
 }
 
-TEST(Caps, RemeshedBifurcationGetsThreeNamedCaps) {
+TEST(CapOpenings, RemeshedBifurcationGetsThreeNamedCaps) {
   PhantomTruth truth;
   const SurfaceMesh in = testing::noisy_bifurcation(0.15, &truth);
   ASSERT_EQ(truth.openings, 3);
@@ -333,7 +333,7 @@ TEST(Caps, RemeshedBifurcationGetsThreeNamedCaps) {
   std::cout << "[ info ] bifurcation caps: gamma min " << q.min << ", mean " << q.mean << "\n";
 }
 
-TEST(Caps, AneurysmAtPerCircumferenceSizes) {
+TEST(CapOpenings, AneurysmAtPerCircumferenceSizes) {
   // The pipeline's default: h = 2 pi R / 20 from the vessel radius.
   const SurfaceMesh in = testing::phantom(PhantomKind::kAneurysm, true, 0.12, 0.3);
   ASSERT_GT(in.num_triangles(), 0u);
@@ -351,7 +351,7 @@ TEST(Caps, AneurysmAtPerCircumferenceSizes) {
   EXPECT_GE(q.worst_mean, 0.93);
 }
 
-TEST(Caps, FarFromOriginAndLargeScale) {
+TEST(CapOpenings, FarFromOriginAndLargeScale) {
   // Coordinates in the hundreds, sizes in the tens: tolerances are relative.
   SurfaceMesh wall = straight_tube(32, 12.0, 60.0);
   for (size_t i = 0; i < wall.points.size(); i += 3) {
@@ -366,7 +366,7 @@ TEST(Caps, FarFromOriginAndLargeScale) {
   EXPECT_NEAR(enclosed_volume(res.value().mesh), polygon * 60, 1e-9 * polygon * 60);
 }
 
-TEST(Caps, RequestedSizeCoarsensTheInterior) {
+TEST(CapOpenings, RequestedSizeCoarsensTheInterior) {
   const SurfaceMesh wall = straight_tube(64, 1.0, 2.0);  // rim edges ~0.098
   auto fine = cap_openings(wall, {});
   ASSERT_TRUE(fine.ok()) << fine.message();
@@ -379,7 +379,7 @@ TEST(Caps, RequestedSizeCoarsensTheInterior) {
   EXPECT_GE(q.min, 0.4);
 }
 
-TEST(Caps, ClosedSurfaceGetsNoCap) {
+TEST(CapOpenings, ClosedSurfaceGetsNoCap) {
   const SurfaceMesh torus = testing::torus(30, 12);
   CapOptions o;
   o.inlet_index = 3;  // ignored: no opening
@@ -396,7 +396,7 @@ void expect_error(const Result<CappedSurface>& r, const std::string& fragment) {
   EXPECT_NE(r.message().find(fragment), std::string::npos) << r.message();
 }
 
-TEST(Caps, ClearErrors) {
+TEST(CapOpenings, ClearErrors) {
   const SurfaceMesh wall = straight_tube(24, 1.0, 2.0);
   CapOptions o;
   o.inlet_index = 2;

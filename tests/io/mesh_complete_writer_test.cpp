@@ -1,4 +1,4 @@
-#include "core/io/mesh_complete.h"
+#include "core/io/mesh_complete_writer.h"
 
 #include <gtest/gtest.h>
 
@@ -78,7 +78,7 @@ bool outward_face_of(const VolumeMesh& m, int32_t e, const std::vector<int32_t>&
   return false;
 }
 
-TEST(MeshComplete, CubeLayoutAndIds) {
+TEST(MeshCompleteWriter, CubeLayoutAndIds) {
   VolumeMesh m = testing::cube_tets(2);
   auto r = mesh_complete_files(m, kCubeFaces, {"lumen"}, "vesselmesh test; input xxh128:0");
   ASSERT_TRUE(r.ok()) << r.message();
@@ -128,7 +128,7 @@ TEST(MeshComplete, CubeLayoutAndIds) {
             std::string::npos);
 }
 
-TEST(MeshComplete, InterfaceBetweenTwoTetRegionsIsNotExterior) {
+TEST(MeshCompleteWriter, InterfaceBetweenTwoTetRegionsIsNotExterior) {
   VolumeMesh m = testing::cube_tets(2);
   const size_t boundary = m.num_triangles();
   testing::split_regions(m, 6);
@@ -159,7 +159,7 @@ TEST(MeshComplete, InterfaceBetweenTwoTetRegionsIsNotExterior) {
   EXPECT_NE(json.find("{\"id\":2,\"name\":\"vessel_wall\",\"elements\":24"), std::string::npos);
 }
 
-TEST(MeshComplete, PrismsQuadsAndInterface) {
+TEST(MeshCompleteWriter, PrismsQuadsAndInterface) {
   VolumeMesh m = testing::prism_tet_stack();
   auto r = mesh_complete_files(m, {"bottom", "sides", "top", "wall"}, {"lumen", "layer"}, "p");
   ASSERT_TRUE(r.ok()) << r.message();
@@ -195,7 +195,7 @@ TEST(MeshComplete, PrismsQuadsAndInterface) {
             std::string::npos);
 }
 
-TEST(MeshComplete, UnusedAndUnnamedTags) {
+TEST(MeshCompleteWriter, UnusedAndUnnamedTags) {
   VolumeMesh m = testing::cube_tets(1);
   for (int32_t& t : m.triangle_tag) t = t == 0 ? 9 : 1;  // tags 1 and 9 only
   std::vector<std::string> names = {"", "sides"};        // tag 9 unnamed, beyond the list
@@ -208,7 +208,7 @@ TEST(MeshComplete, UnusedAndUnnamedTags) {
   EXPECT_NE(r.value().back().bytes.find("\"name\":\"region_1\""), std::string::npos);
 }
 
-TEST(MeshComplete, Errors) {
+TEST(MeshCompleteWriter, Errors) {
   VolumeMesh m = testing::cube_tets(1);
   EXPECT_FALSE(mesh_complete_files(m, {"../x"}, {"lumen"}, "").ok());
   EXPECT_FALSE(mesh_complete_files(m, {"a", "a", "b", "c", "d", "e"}, {"lumen"}, "").ok());

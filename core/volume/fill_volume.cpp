@@ -1,20 +1,20 @@
 // Volume fill after boundary recovery (Marchandise et al., sections 2.2 and
-// 3); see tetrahedralize.h.
+// 3); see fill_volume.h.
 //
 // Phases: (1) checks and the region's initial vertices; (2) size field from
 // their sizes; (3) refinement in the kernel; (4) the region as a TetMesh,
 // initial vertices first in their order, new vertices along a Hilbert curve
 // (memory locality for the optimizer); (5) optimization; (6) extraction.
-#include "core/volume/tetrahedralize.h"
+#include "core/volume/fill_volume.h"
 
 #include <chrono>
 #include <cmath>
 #include <string>
 
+#include "core/geom/hilbert_sort.h"
 #include "core/util/parallel.h"
 #include "core/util/stage_timer.h"
 #include "core/volume/size_field3d.h"
-#include "core/volume/spatial_sort.h"
 #include "core/volume/tet_mesh.h"
 
 namespace vm {

@@ -3,7 +3,7 @@
 // grid over the bounding box (cubic cells, so elongated sets keep their
 // aspect), (2) a deterministic Fisher-Yates shuffle, (3) cut into rounds of
 // geometrically growing size, each radix-sorted by index.
-#include "core/volume/spatial_sort.h"
+#include "core/geom/hilbert_sort.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 // rim polygon with the blended rim size, optimization, checks that the rim
 // is shared edge for edge, map back; (6) outward orientation of the result;
 // (7) wall triangles flipped by the projection.
-#include "core/surface/caps.h"
+#include "core/surface/cap_openings.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -124,7 +124,7 @@ Status check_simple(const Opening& op) {
   return Status::Ok();
 }
 
-// Phase 5a: the cap's size field in plane coordinates (see caps.h).
+// Phase 5a: the cap's size field in plane coordinates (see cap_openings.h).
 class CapSize {
  public:
   CapSize(const Opening& op, const std::vector<double>& vertex_size, double blend)

@@ -1,7 +1,7 @@
 // mesh-complete layout: the VTU of the volume, then the exterior faces and
 // each tag's faces as VTPs sharing the volume's point numbering
 // (SimVascular's svMeshSim/TetGen export, which svFSI reads).
-#include "core/io/mesh_complete.h"
+#include "core/io/mesh_complete_writer.h"
 
 #include <set>
 
