@@ -22,12 +22,12 @@ export function download(name, bytes, type) {
 
 /** Fills the format select with the export formats. */
 export function fillExportFormats() {
-  $('export-format').replaceChildren(...EXPORT_FORMATS.map(({ value, label }) => new Option(label, value)));
+  $('format').replaceChildren(...EXPORT_FORMATS.map(({ value, label }) => new Option(label, value)));
 }
 
 /** The chosen file format and units to write: export() and mesh() options. */
 export function writeOptions() {
-  const { format, mshVersion } = exportFormat($('export-format').value);
+  const { format, mshVersion } = exportFormat($('format').value);
   const outputUnits = $('output-units').value;
   return { format, ...(mshVersion && { mshVersion }), ...(outputUnits && { outputUnits }) };
 }
@@ -35,17 +35,17 @@ export function writeOptions() {
 /** The export formats that apply: a surface-only mesh has no volume formats. */
 export function syncExportFormats() {
   const surfaceOnly = $('surface-only').checked;
-  for (const option of $('export-format').options) {
+  for (const option of $('format').options) {
     option.disabled = surfaceOnly && exportFormat(option.value).volume === true;
   }
-  if ($('export-format').selectedOptions[0]?.disabled) $('export-format').value = EXPORT_FORMATS[0].value;
+  if ($('format').selectedOptions[0]?.disabled) $('format').value = EXPORT_FORMATS[0].value;
   $('export-hint').hidden = !surfaceOnly;
   showExportLabel();
 }
 
 /** The Export button names the chosen format: 'Export MSH 4.1'. */
 export function showExportLabel() {
-  const { label } = exportFormat($('export-format').value);
+  const { label } = exportFormat($('format').value);
   $('export').textContent = `Export ${label.replace(/ \(.*\)$/, '')}`;
 }
 
@@ -66,7 +66,7 @@ export function showExportLabel() {
 export async function exportFile(options, { inputName, held, exportHeld, meshWith, onDone }) {
   const { format, ...write } = writeOptions();
   const file = held(options) ? await exportHeld(format, write) : (await meshWith(options, { format, ...write }))?.file;
-  const chosen = exportFormat($('export-format').value);
+  const chosen = exportFormat($('format').value);
   if (file) {
     const name = exportFileName(inputName(), chosen.value);
     download(name, file, chosen.mime);

@@ -7,6 +7,7 @@
 // sends it when ready; the core checks again). The refinements
 // (refine.js), the openings' names, inlet and flow extensions (openings.js)
 // and the cuts (prepare.js) join the options here.
+import { fromDisplay } from './option-controls.js';
 import { withUnitGuess } from './units.js';
 
 const $ = (id) => document.getElementById(id);
@@ -16,6 +17,12 @@ export function numberIn(id) {
   const input = $(id);
   const value = input.value.trim();
   return input.validity.badInput || value === '' ? NaN : Number(value);
+}
+
+/** The number in an option's input as the option's value (a percent
+ * field's: the fraction; option-controls.js). */
+function optionNumber(id) {
+  return fromDisplay(numberIn(id), $(id).dataset.display);
 }
 
 /** Marks `input` valid or not; returns `message` when it is not. */
@@ -78,7 +85,7 @@ export class OptionsForm {
     const prep = this.hooks.prepare.prepOptions();
     if ($('units').value) prep.units = $('units').value;
     if ($('keep-caps').checked) prep.keepCaps = true;
-    if ($('largest-only').checked) prep.largestComponentOnly = true;
+    if ($('largest-component-only').checked) prep.largestComponentOnly = true;
     return prep;
   }
 
@@ -86,7 +93,7 @@ export class OptionsForm {
   showPrep(prep) {
     $('units').value = prep.units ?? '';
     $('keep-caps').checked = Boolean(prep.keepCaps);
-    $('largest-only').checked = Boolean(prep.largestComponentOnly);
+    $('largest-component-only').checked = Boolean(prep.largestComponentOnly);
     this.hooks.prepare.showPrep(prep);
   }
 
@@ -109,10 +116,12 @@ export class OptionsForm {
     return check(input, !bad, `Core size must be a length ≥ 0 in ${this.hooks.unitName()}, or blank for the default.`);
   }
 
-  /** Why the largest volume change field is unusable, or null. */
+  /** Why the largest volume change field (a percent) is unusable, or null. */
   volumeChangeProblem() {
+    const input = $('max-volume-change');
     const x = numberIn('max-volume-change');
-    return check($('max-volume-change'), x >= 0 && x <= 100, 'Largest volume change must be a percentage from 0 to 100 (Advanced).');
+    const ok = x >= Number(input.min) && x <= Number(input.max);
+    return check(input, ok, `Largest volume change must be a percentage from ${input.min} to ${input.max} (Advanced).`);
   }
 
   /** Why the boundary layer or vessel wall fields are unusable: every field
@@ -200,8 +209,9 @@ export class OptionsForm {
     };
     if (!$('fidelity-on').checked) options.fidelity = 0;
     if (!$('decimate-on').checked) options.decimate = 'off';
-    const volumeChange = numberIn('max-volume-change') / 100;
-    if (volumeChange !== Number($('max-volume-change').defaultValue) / 100) options.maxVolumeChange = volumeChange;
+    const volumeChange = optionNumber('max-volume-change');
+    const byDefault = fromDisplay(Number($('max-volume-change').defaultValue), $('max-volume-change').dataset.display);
+    if (volumeChange !== byDefault) options.maxVolumeChange = volumeChange;
     const coreSize = $('core-size').value.trim();
     if (coreSize !== '') options.coreSize = Number(coreSize);
     const refine = refinements.options();
@@ -224,7 +234,7 @@ export class OptionsForm {
         } else options.layerThickness = numberIn('layer-thickness');
         options.growth = numberIn('growth');
         options.tagLayer = $('tag-layer').checked;
-        options.prisms = $('keep-prisms').checked;
+        options.prisms = $('prisms').checked;
       }
       if ($('wall-on').checked) {
         options.wallThickness = numberIn('wall-thickness');
@@ -238,7 +248,7 @@ export class OptionsForm {
   syncLayerFields() {
     const none = numberIn('layers') === 0;
     const yplusIds = ['first-layer-yplus', 'inlet-velocity', 'density', 'viscosity'];
-    for (const id of ['layer-mode', 'layer-thickness', 'first-layer', ...yplusIds, 'growth', 'tag-layer', 'keep-prisms']) {
+    for (const id of ['layer-mode', 'layer-thickness', 'first-layer', ...yplusIds, 'growth', 'tag-layer', 'prisms']) {
       $(id).disabled = none;
     }
     const mode = $('layer-mode').value;

@@ -14,7 +14,7 @@ const BUSY_CONTROLS = [
   'remesh',
   'units',
   'keep-caps',
-  'largest-only',
+  'largest-component-only',
   'smooth',
   'smooth-passes',
   'reset-settings',

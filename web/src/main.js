@@ -560,7 +560,7 @@ const report = new Report($('download-report'), {
 });
 
 view.listen();
-$('export-format').addEventListener('change', showExportLabel);
+$('format').addEventListener('change', showExportLabel);
 form.listen();
 $('solver').addEventListener('change', () => applySolverPreset(client.solverPresets, syncExportFormats));
 $('surface-only').addEventListener('change', () => {
@@ -570,7 +570,7 @@ $('surface-only').addEventListener('change', () => {
 $('remesh').addEventListener('click', () => act(remesh));
 listenOpen({ onFile: loadFile, onSample: loadSample });
 $('export').addEventListener('click', () => act(exportPressed));
-for (const id of ['units', 'keep-caps', 'largest-only']) $(id).addEventListener('change', reanalyze);
+for (const id of ['units', 'keep-caps', 'largest-component-only']) $(id).addEventListener('change', reanalyze);
 for (const button of $('units-prompt').querySelectorAll('button')) {
   button.addEventListener('click', () => {
     $('units').value = button.dataset.unit;
@@ -599,7 +599,6 @@ $('wireframe').addEventListener('change', (e) => viewer.setWireframe(e.target.ch
 client.ready.then(
   () => {
     showSolverHint(client.solverPresets);
-    family.configure(client.optionTable);
     document.body.setAttribute('data-ready', 'true');
   },
   (e) => showError(`The mesher could not start: ${e.message}`),
