@@ -8,7 +8,7 @@
 // a link with settings sets them (the link wins over this browser's, the
 // controls it does not name get their defaults). Per-file choices (the
 // input's units, cuts, opening names) are not settings.
-import { controlSpec, decodeSettings, encodeSettings, linkNotice, settingId } from './share.js';
+import { byCurrentIds, controlSpec, decodeSettings, encodeSettings, linkNotice } from './share.js';
 
 const KEY = 'vesselmesh.settings.v1';
 const KEEP_KEY = 'vesselmesh.keep-settings.v1';
@@ -126,8 +126,8 @@ export class Settings {
       saved = null; // unreadable: the defaults
     }
     if (saved && typeof saved === 'object') {
-      // Remembered before a control was renamed: under its old id (the new one wins).
-      const values = { ...Object.fromEntries(Object.entries(saved).map(([key, value]) => [settingId(key), value])), ...saved };
+      // Remembered before a control was renamed: under its old id.
+      const values = byCurrentIds(saved);
       for (const el of this.controls) if (el.id in values) write(el, values[el.id]);
     }
     const link = decodeSettings(this.location?.hash ?? '', this.specs);

@@ -18,6 +18,13 @@ export const LINK_ALIASES = { 'keep-prisms': 'prisms', 'export-format': 'format'
 /** The id a link's (or the remembered settings') key stands for. */
 export const settingId = (key) => LINK_ALIASES[key] ?? key;
 
+/** Remembered settings ({key: value}) by the controls' ids: those kept
+ * under an old key renamed (where the new key is not there too). */
+export const byCurrentIds = (saved) => ({
+  ...Object.fromEntries(Object.entries(saved).map(([key, value]) => [settingId(key), value])),
+  ...saved,
+});
+
 /**
  * A control's name as the panel shows it: its data-setting-name, else its
  * label's own text (without the control, hints and a trailing

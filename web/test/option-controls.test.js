@@ -23,7 +23,7 @@ import {
   withOptionTable,
 } from '../src/option-controls.js';
 import { SETTING_IDS } from '../src/settings.js';
-import { decodeSettings, encodeSettings, LINK_ALIASES } from '../src/share.js';
+import { byCurrentIds, decodeSettings, encodeSettings, LINK_ALIASES } from '../src/share.js';
 
 const TABLE = JSON.parse(readFileSync(new URL('../../wasm/src/option-table.json', import.meta.url), 'utf8'));
 const HTML = readFileSync(new URL('../index.html', import.meta.url), 'utf8');
@@ -257,6 +257,15 @@ describe('settings and links', () => {
     assert.equal(link.given, true);
     assert.deepEqual(link.values, { prisms: true, format: 'vtu', layers: '2' });
     assert.match(decodeSettings('#export-format=doc', specs).problems[0], /^“format” set to “doc”: must be one of/);
+    // So are this browser's remembered settings (the new key wins when both are there).
+    assert.deepEqual(byCurrentIds({ 'keep-prisms': true, 'export-format': 'vtu', layers: '2' }), {
+      prisms: true,
+      format: 'vtu',
+      layers: '2',
+      'keep-prisms': true,
+      'export-format': 'vtu',
+    });
+    assert.equal(byCurrentIds({ 'export-format': 'vtu', format: 'stl' }).format, 'stl');
     // The aliases name renamed controls only.
     for (const [old, id] of Object.entries(LINK_ALIASES)) {
       assert.ok(SETTING_IDS.includes(id), id);
