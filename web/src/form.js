@@ -60,23 +60,34 @@ export class OptionsForm {
     this.hooks = hooks;
   }
 
+  /** The option table's row of the option of the control with this id (data-option), once the table is there. */
+  spec(id) {
+    const js = $(id).dataset.option;
+    return this.hooks.table()?.find((s) => s.js === js);
+  }
+
   /**
-   * Whether `x` is a valid value of the option with this id, by the core's
-   * option table: its range and, for integers, wholeness. True before the
-   * table has arrived (the core checks again).
+   * Whether `x`, a number in the control with this id, is a valid value of
+   * its option, by the core's option table (its range, exclusive bounds
+   * and, for integers, wholeness), within the narrower range the page
+   * needs (data-min, data-max). The table's checks pass before it has
+   * arrived (the core checks again).
    */
   fits(id, x) {
-    const spec = this.hooks.table()?.find((s) => s.id === id);
+    const { min, max, display } = $(id).dataset;
+    if ((min !== undefined && !(x >= Number(min))) || (max !== undefined && !(x <= Number(max)))) return false;
+    const spec = this.spec(id);
     if (!spec) return true;
-    if (!Number.isFinite(x) || (spec.type === 'integer' && !Number.isInteger(x))) return false;
-    if (spec.min !== undefined && (spec.minExclusive ? x <= spec.min : x < spec.min)) return false;
-    if (spec.max !== undefined && (spec.maxExclusive ? x >= spec.max : x > spec.max)) return false;
+    const value = fromDisplay(x, display);
+    if (!Number.isFinite(value) || (spec.type === 'integer' && !Number.isInteger(value))) return false;
+    if (spec.min !== undefined && (spec.minExclusive ? value <= spec.min : value < spec.min)) return false;
+    if (spec.max !== undefined && (spec.maxExclusive ? value >= spec.max : value > spec.max)) return false;
     return true;
   }
 
-  /** What a valid value of the option with this id is, from the table. */
+  /** What a valid value of the option of the control with this id is, from the table. */
   needs(id) {
-    return this.hooks.table()?.find((s) => s.id === id)?.needs ?? 'a valid value';
+    return this.spec(id)?.needs ?? 'a valid value';
   }
 
   /** The analyze options chosen in the panel (units, caps, components,
@@ -130,57 +141,33 @@ export class OptionsForm {
   layerProblems() {
     for (const id of LAYER_FIELDS) $(id).setAttribute('aria-invalid', 'false');
     if ($('surface-only').checked) return null; // no volume: the fields are unused
-    const fits = (id, x) => this.fits(id, x);
     const needs = (id) => this.needs(id);
     const unit = this.hooks.unitName();
     const layers = numberIn('layers') > 0;
     const mode = $('layer-mode').value;
-    const first = mode === 'first';
-    const yplus = mode === 'yplus';
     const wall = $('wall-on').checked;
-    // [field, applies, valid(value), message]
+    // [field, applies, message]
     const rules = [
-      ['layers', true, (x) => fits('layers', x), `Boundary layer: the number of layers must be ${needs('layers')}.`],
-      [
-        'layer-thickness',
-        layers && mode === 'thickness',
-        (x) => fits('layer_thickness', x),
-        `Boundary layer: the total thickness must be ${needs('layer_thickness')} (e.g. 0.2).`,
-      ],
-      [
-        'first-layer',
-        layers && first,
-        (x) => fits('first_layer', x),
-        `Boundary layer: the first-layer height must be ${needs('first_layer')} in ${unit}.`,
-      ],
+      ['layers', true, `Boundary layer: the number of layers must be ${needs('layers')}.`],
+      ['layer-thickness', layers && mode === 'thickness', `Boundary layer: the total thickness must be ${needs('layer-thickness')} (e.g. 0.2).`],
+      ['first-layer', layers && mode === 'first', `Boundary layer: the first-layer height must be ${needs('first-layer')} in ${unit}.`],
       ...[
-        ['first-layer-yplus', 'first_layer_yplus', 'the target y+'],
-        ['inlet-velocity', 'inlet_velocity', 'the inlet velocity'],
-        ['density', 'density', 'the density'],
-        ['viscosity', 'viscosity', 'the viscosity'],
-      ].map(([id, option, what]) => [
-        id,
-        layers && yplus,
-        (x) => fits(option, x),
-        `Boundary layer: ${what} must be ${needs(option)}.`,
-      ]),
-      ['growth', layers, (x) => fits('growth', x), `Boundary layer: the growth must be ${needs('growth')}.`],
-      [
-        'wall-thickness',
-        wall,
-        (x) => fits('wall_thickness', x),
-        `Vessel wall: the thickness must be ${needs('wall_thickness')} (e.g. 0.1).`,
-      ],
+        ['first-layer-yplus', 'the target y+'],
+        ['inlet-velocity', 'the inlet velocity'],
+        ['density', 'the density'],
+        ['viscosity', 'the viscosity'],
+      ].map(([id, what]) => [id, layers && mode === 'yplus', `Boundary layer: ${what} must be ${needs(id)}.`]),
+      ['growth', layers, `Boundary layer: the growth must be ${needs('growth')}.`],
+      ['wall-thickness', wall, `Vessel wall: the thickness must be ${needs('wall-thickness')} (e.g. 0.1).`],
       [
         'wall-layers',
         wall,
-        (x) => fits('wall_layers', x) && x >= 1,
-        'Vessel wall: the number of layers must be a whole number from 1 (with the wall on).',
+        `Vessel wall: the number of layers must be a whole number from ${$('wall-layers').min} (with the wall on).`,
       ],
     ];
     const problems = rules
       .filter(([, applies]) => applies)
-      .map(([id, , valid, message]) => check($(id), valid(numberIn(id)), message));
+      .map(([id, , message]) => check($(id), this.fits(id, numberIn(id)), message));
     return problems.find(Boolean) ?? null;
   }
 
@@ -281,7 +268,7 @@ export class OptionsForm {
     const radii = (this.hooks.current()?.analysis.openings ?? []).map((o) => o.radius).sort((a, b) => a - b);
     if (!radii.length) return '';
     const f = numberIn('layer-thickness');
-    const total = (this.fits('layer_thickness', f) ? f : 0.2) * radii[Math.floor(radii.length / 2)];
+    const total = (this.fits('layer-thickness', f) ? f : 0.2) * radii[Math.floor(radii.length / 2)];
     const layers = this.fits('layers', numberIn('layers')) && numberIn('layers') >= 1 ? numberIn('layers') : 4;
     const growth = this.fits('growth', numberIn('growth')) ? numberIn('growth') : 1;
     const r = await this.hooks.layerFractions({ layers, growth });
