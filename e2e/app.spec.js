@@ -45,7 +45,7 @@ for (const version of ['4.1', '2.2']) {
     await openApp(page);
     await upload(page, 'tetra.stl', Buffer.from(TETRA_ASCII));
     await expect(page.getByTestId('stat-triangles')).toHaveText('4');
-    await page.getByTestId('export-format').selectOption(`msh-${version}`);
+    await page.getByTestId('format').selectOption(`msh-${version}`);
     // Closed, without an opening: the page says so before meshing; the user goes on.
     await page.getByTestId('export').click();
     await expect(page.getByTestId('error')).toContainText('The surface is closed');
@@ -97,7 +97,7 @@ test('several components: export refused, then allowed with the largest only', a
   await expect(page.getByTestId('stat-components')).toHaveText('2');
   await page.getByTestId('export').click();
   await expect(page.getByTestId('error')).toContainText('2 connected components');
-  await page.getByTestId('largest-only').check();
+  await page.getByTestId('largest-component-only').check();
   // One opening: the page warns (no outlet) before meshing; the user goes on.
   await page.getByTestId('export').click();
   await expect(page.getByTestId('error')).toContainText('no outlet');

@@ -50,7 +50,7 @@ async function expectSameBytes(page, setUp, url = '/') {
     await openApp(page, url);
     await upload(page, 'bifurcation.stl', readFileSync(stl));
     await expect(page.getByTestId('stat-openings')).toHaveText('3');
-    await page.getByTestId('export-format').selectOption('msh-4.1');
+    await page.getByTestId('format').selectOption('msh-4.1');
     await setUp(page);
     await meshAgain(page);
     const { bytes } = await exportDownload(page);

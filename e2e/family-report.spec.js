@@ -66,8 +66,8 @@ test('Mesh family: a zip of 3 meshes with the same groups, tabled; the report fr
   test.setTimeout(300_000);
   const { errors, foreign } = await loadSample(page);
   // The fields' ranges and defaults are the option table's.
-  const members = page.getByTestId('family-members');
-  const ratio = page.getByTestId('family-ratio');
+  const members = page.getByTestId('family');
+  const ratio = page.getByTestId('ratio');
   await expect(members).toHaveValue('3');
   await expect(members).toHaveAttribute('min', '2');
   await expect(members).toHaveAttribute('max', '6');
@@ -181,7 +181,7 @@ test('Mesh family: a zip of 3 meshes with the same groups, tabled; the report fr
   expect(width, 'page scroll width on a phone').toBeLessThanOrEqual(390);
   const [scroll, client] = await page.locator('#panel-body').evaluate((el) => [el.scrollWidth, el.clientWidth]);
   expect(scroll, 'panel scroll width on a phone').toBeLessThanOrEqual(client);
-  for (const id of ['mesh-family', 'download-report', 'family-members', 'family-ratio', 'family-layers']) {
+  for (const id of ['mesh-family', 'download-report', 'family', 'ratio', 'family-layers']) {
     const box = await page.getByTestId(id).boundingBox();
     expect(box.x + box.width, `${id} within the phone's width`).toBeLessThanOrEqual(390);
   }

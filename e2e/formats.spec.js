@@ -79,11 +79,11 @@ test('a capped VTP: caps become openings, one named, the mesh exported as VTU th
   await expect(page.locator('#out-caps')).toHaveText('inlet, distal');
 
   // Export: the VTU, then the MSH, both written from the mesh shown.
-  await page.getByTestId('export-format').selectOption('vtu');
+  await page.getByTestId('format').selectOption('vtu');
   const vtu = await exportDownload(page);
   expect(vtu.name).toBe('model.vtu');
   expect(vtu.bytes.toString()).toContain('<VTKFile type="UnstructuredGrid"');
-  await page.getByTestId('export-format').selectOption('msh-4.1');
+  await page.getByTestId('format').selectOption('msh-4.1');
   const msh = await exportDownload(page);
   expect(msh.name).toBe('model.msh');
   const text = msh.bytes.toString();
@@ -93,19 +93,19 @@ test('a capped VTP: caps become openings, one named, the mesh exported as VTU th
   // In centimetres, the boundary faces, the wall, the SimVascular folder.
   await page.getByTestId('output-units').selectOption('cm');
   expect(mshMaxZ((await exportDownload(page)).bytes.toString())).toBeCloseTo(0.4, 6);
-  await page.getByTestId('export-format').selectOption('vtp');
+  await page.getByTestId('format').selectOption('vtp');
   const vtp = await exportDownload(page);
   expect(vtp.name).toBe('model-boundary.vtp');
   expect(vtp.bytes.toString()).toContain('<VTKFile type="PolyData"');
-  await page.getByTestId('export-format').selectOption('stl');
+  await page.getByTestId('format').selectOption('stl');
   expect((await exportDownload(page)).name).toBe('model-wall.stl');
-  await page.getByTestId('export-format').selectOption('mesh-complete');
+  await page.getByTestId('format').selectOption('mesh-complete');
   const zip = await exportDownload(page);
   expect(zip.name).toBe('model-mesh-complete.zip');
   expect([...zip.bytes.subarray(0, 4)]).toEqual([0x50, 0x4b, 0x03, 0x04]);
   expect(zip.bytes.toString('latin1')).toContain('mesh-surfaces/distal.vtp');
   // The OpenFOAM case, zipped: constant/polyMesh with its boundary file.
-  await page.getByTestId('export-format').selectOption('foam');
+  await page.getByTestId('format').selectOption('foam');
   const foam = await exportDownload(page);
   expect(foam.name).toBe('model-openfoam.zip');
   expect([...foam.bytes.subarray(0, 4)]).toEqual([0x50, 0x4b, 0x03, 0x04]);
@@ -118,7 +118,7 @@ test('a capped VTP: caps become openings, one named, the mesh exported as VTU th
 
   // Another name: the shown mesh no longer matches, so Export meshes first.
   await names.nth(1).fill('iliac');
-  await page.getByTestId('export-format').selectOption('msh-2.2');
+  await page.getByTestId('format').selectOption('msh-2.2');
   const renamed = await exportDownload(page);
   expect(renamed.bytes.toString().startsWith('$MeshFormat\n2.2 0 8\n')).toBe(true);
   expect(renamed.bytes.toString()).toContain('"iliac"');

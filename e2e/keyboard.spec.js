@@ -118,9 +118,9 @@ test('keyboard only: open a file, prepare, orbit the view, mesh, inspect and exp
   await expect(page.getByTestId('clip-info')).not.toHaveText(info);
 
   // Export: MSH 2.2 chosen with the arrows, Space on the button.
-  await tabTo(page, page.getByTestId('export-format'));
+  await tabTo(page, page.getByTestId('format'));
   await page.keyboard.press('ArrowDown');
-  await expect(page.getByTestId('export-format')).toHaveValue('msh-2.2');
+  await expect(page.getByTestId('format')).toHaveValue('msh-2.2');
   await tabTo(page, page.getByTestId('export'));
   await expect(page.getByTestId('export')).toHaveText('Export MSH 2.2');
   const [download] = await Promise.all([page.waitForEvent('download'), page.keyboard.press('Space')]);

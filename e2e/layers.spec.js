@@ -180,7 +180,7 @@ test('layers 0: no layer part; bad layer and wall input give readable errors and
 
 test('kept prisms: shown split in the cut, written as prisms and quads', async ({ page }) => {
   const { errors } = await loadSample(page);
-  await page.getByTestId('keep-prisms').check();
+  await page.getByTestId('prisms').check();
   await mesh(page);
   const view = page.getByTestId('volume-view');
   await expect(page.getByTestId('part-legend').locator('li')).toHaveText(['core', 'boundary layer']);

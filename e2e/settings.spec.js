@@ -20,7 +20,7 @@ const CHANGES = [
   ['growth', 'fill', '1.2'],
   ['wall-on', 'check', true],
   ['mesher2d', 'select', 'delaunay'],
-  ['export-format', 'select', 'vtu'],
+  ['format', 'select', 'vtu'],
   ['output-units', 'select', 'm'],
 ];
 
@@ -125,7 +125,8 @@ test('the options are in the address; a link sets them over the remembered ones'
 
   // Another tab of the same browser opens a link: the link's options win,
   // the ones it does not name get their defaults; the notice says which
-  // changed.
+  // changed. An old link's key (export-format, the control's id before it
+  // became its option's, format) is still read.
   const other = await context.newPage();
   await other.goto('/#size-mode=size&size-value=0.5&layers=2&wall-on=1&export-format=vtu');
   await expect(other.locator('body')).toHaveAttribute('data-ready', 'true');
@@ -152,7 +153,7 @@ test('the options are in the address; a link sets them over the remembered ones'
   await expect(other.getByTestId('link-notice')).toBeHidden();
   await expect(other.getByTestId('layers')).toHaveValue('2');
   await expect(other.getByTestId('layers')).toHaveValue('2');
-  expect(hashOf(other)).toBe('#size-mode=size&size-value=0.5&layers=2&wall-on=1&export-format=vtu');
+  expect(hashOf(other)).toBe('#size-mode=size&size-value=0.5&layers=2&wall-on=1&format=vtu');
   await other.close();
 });
 
@@ -239,7 +240,7 @@ async function clickSurface(page) {
 /** Every control of the preparation and the view, by test id or id. */
 async function prepAndView(page) {
   const ids = ['units', 'smooth', 'smooth-passes', 'repair', 'hole-fraction', 'flow-all', 'clip-axis', 'clip-position', 'volume-color'];
-  const checks = ['keep-caps', 'largest-only', 'wireframe', 'clip-flip', 'show-boundary', 'show-edges', 'tet-histogram-all'];
+  const checks = ['keep-caps', 'largest-component-only', 'wireframe', 'clip-flip', 'show-boundary', 'show-edges', 'tet-histogram-all'];
   const out = {};
   for (const id of ids) out[id] = await page.locator(`#${id}`).inputValue();
   for (const id of checks) out[id] = await page.locator(`#${id}`).isChecked();

@@ -54,7 +54,7 @@ test('the one-file app works from file:// with the network off', async ({ page, 
   await expect(page.getByTestId('stat-openings')).toHaveText('3');
   await page.getByTestId('remesh').click();
   await expect(page.getByTestId('remesh-result')).toBeVisible({ timeout: 60_000 });
-  await page.getByTestId('export-format').selectOption('msh-4.1');
+  await page.getByTestId('format').selectOption('msh-4.1');
   const { name, bytes } = await exportDownload(page);
   expect(name).toMatch(/\.msh$/);
   const counts = gmshCounts(bytes);

@@ -36,14 +36,14 @@ test('OpenFOAM: the native case by default; as MSH 2.2: prisms in metres, tags u
   await expect(page.getByTestId('solver-hint')).toBeHidden();
   await page.getByTestId('solver').selectOption('openfoam');
   // The preset sets the controls it decides; the user may change them after.
-  await expect(page.getByTestId('keep-prisms')).toBeChecked();
-  await expect(page.getByTestId('export-format')).toHaveValue('foam');
+  await expect(page.getByTestId('prisms')).toBeChecked();
+  await expect(page.getByTestId('format')).toHaveValue('foam');
   await expect(page.getByTestId('output-units')).toHaveValue('m');
   await expect(page.getByTestId('solver-hint')).toContainText('layer prisms kept, OpenFOAM case');
   await expect(page.getByTestId('solver-hint')).toContainText('written in m');
   await expect(page.getByTestId('solver-hint')).toContainText('wall is a wall patch');
   // The user may still want gmshToFoam's input: MSH 2.2, chosen after.
-  await page.getByTestId('export-format').selectOption('msh-2.2');
+  await page.getByTestId('format').selectOption('msh-2.2');
   await page.getByTestId('layers').fill('2');
   await mesh(page);
   await expect(page.getByTestId('out-preset')).toBeVisible();
@@ -79,10 +79,10 @@ test('OpenFOAM: the native case by default; as MSH 2.2: prisms in metres, tags u
 
 test('FEniCS: tetrahedra only; a target y+ sizes the first layer, shown in the result', async ({ page }) => {
   const { errors } = await loadSample(page);
-  await page.getByTestId('keep-prisms').check();
+  await page.getByTestId('prisms').check();
   await page.getByTestId('solver').selectOption('fenics');
-  await expect(page.getByTestId('keep-prisms')).not.toBeChecked();
-  await expect(page.getByTestId('export-format')).toHaveValue('msh-4.1');
+  await expect(page.getByTestId('prisms')).not.toBeChecked();
+  await expect(page.getByTestId('format')).toHaveValue('msh-4.1');
   await expect(page.getByTestId('output-units')).toHaveValue('');
   await page.getByTestId('layers').fill('3');
   await page.getByTestId('layer-mode').selectOption('yplus');
@@ -112,7 +112,7 @@ test('FEniCS: tetrahedra only; a target y+ sizes the first layer, shown in the r
 test('svFSI with a vessel wall: the download holds fluid/ and solid/ mesh-complete folders', async ({ page }) => {
   const { errors, foreign } = await loadSample(page);
   await page.getByTestId('solver').selectOption('svfsi');
-  await expect(page.getByTestId('export-format')).toHaveValue('mesh-complete');
+  await expect(page.getByTestId('format')).toHaveValue('mesh-complete');
   await page.getByTestId('layers').fill('1');
   await page.getByTestId('wall-on').check();
   await mesh(page);

@@ -17,6 +17,7 @@ import { viteSingleFile } from 'vite-plugin-singlefile';
 // on one thread): the dev and preview servers send these headers; on a
 // static host, which does not, the service worker adds them (src/sw.js).
 import { ISOLATION_HEADERS } from './src/isolation-headers.js';
+import { withOptionTable } from './src/option-controls.js';
 
 const here = dirname(fileURLToPath(import.meta.url));
 
@@ -27,6 +28,17 @@ const renameHtml = (name) => ({
   generateBundle(_options, bundle) {
     const html = bundle['index.html'];
     if (html) html.fileName = name;
+  },
+});
+
+/** The option controls' ranges and defaults (min, max, value, checked,
+ * selected) filled in from the core's option table (option-controls.js),
+ * in the page's HTML: the controls show them before the wasm is loaded. */
+export const optionTable = () => ({
+  name: 'vm-option-table',
+  transformIndexHtml: {
+    order: 'pre',
+    handler: (html) => withOptionTable(html, JSON.parse(readFileSync(resolve(here, '../wasm/src/option-table.json'), 'utf8'))),
   },
 });
 
@@ -120,6 +132,7 @@ function singleFileConfig() {
     // file:// page.
     worker: { format: 'iife', plugins: () => [dropCoreWasmUrl()] },
     plugins: [
+      optionTable(),
       dropCoreWasmUrl(),
       inlineIcon(),
       viteSingleFile({ removeViteModuleLoader: true }),
@@ -172,7 +185,7 @@ export default defineConfig(({ mode }) =>
           chunkSizeWarningLimit: 1024,
         },
         worker: { format: 'es' },
-        plugins: [installable()],
+        plugins: [optionTable(), installable()],
         server: { fs: { allow: [resolve(here, '..')] }, headers: ISOLATION_HEADERS },
         preview: { port: 4173, strictPort: true, headers: ISOLATION_HEADERS },
       },

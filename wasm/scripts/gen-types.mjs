@@ -1,9 +1,10 @@
 // Writes wasm/src/vesselmesh.d.ts, the JS API's (and worker client's) type
 // declarations, from the core's option table (read from the built
-// WebAssembly module), and wasm/src/element.d.ts, the <vessel-mesher>
-// element's. A test (wasm/test/options.test.js) checks that the committed
-// files are up to date: after changing the table, run
-// `node wasm/scripts/gen-types.mjs`.
+// WebAssembly module), wasm/src/element.d.ts, the <vessel-mesher>
+// element's, and wasm/src/option-table.json, the table itself (the page
+// builds its controls' ranges and defaults from it: web/src/option-controls.js).
+// A test (wasm/test/options.test.js) checks that the committed files are up
+// to date: after changing the table, run `node wasm/scripts/gen-types.mjs`.
 import fs from 'node:fs';
 import { fileURLToPath } from 'node:url';
 
@@ -345,6 +346,10 @@ export function typesFor(table) {
 
 export const TYPES_PATH = fileURLToPath(new URL('../src/vesselmesh.d.ts', import.meta.url));
 export const ELEMENT_TYPES_PATH = fileURLToPath(new URL('../src/element.d.ts', import.meta.url));
+export const TABLE_PATH = fileURLToPath(new URL('../src/option-table.json', import.meta.url));
+
+/** The option table as JSON text, one option a line. */
+export const tableJson = (table) => `[\n${table.map((spec) => `  ${JSON.stringify(spec)}`).join(',\n')}\n]\n`;
 
 /** The .d.ts text of the <vessel-mesher> element (package export './element'). */
 export function elementTypes() {
@@ -397,5 +402,6 @@ if (process.argv[1] === fileURLToPath(import.meta.url)) {
   const api = await createVesselmesh({ wasmBinary });
   fs.writeFileSync(TYPES_PATH, typesFor(api.optionTable));
   fs.writeFileSync(ELEMENT_TYPES_PATH, elementTypes());
-  console.log(`wrote ${TYPES_PATH} and ${ELEMENT_TYPES_PATH}`);
+  fs.writeFileSync(TABLE_PATH, tableJson(api.optionTable));
+  console.log(`wrote ${TYPES_PATH}, ${ELEMENT_TYPES_PATH} and ${TABLE_PATH}`);
 }

@@ -6,7 +6,7 @@ import { execFileSync } from 'node:child_process';
 import { existsSync, readFileSync } from 'node:fs';
 import { before, describe, test } from 'node:test';
 
-import { ELEMENT_TYPES_PATH, elementTypes, TYPES_PATH, typesFor } from '../scripts/gen-types.mjs';
+import { ELEMENT_TYPES_PATH, elementTypes, TABLE_PATH, tableJson, TYPES_PATH, typesFor } from '../scripts/gen-types.mjs';
 import { createVesselmesh } from '../src/vesselmesh.js';
 
 const root = new URL('../../', import.meta.url);
@@ -40,6 +40,11 @@ describe('option table', () => {
   test('the committed vesselmesh.d.ts is generated from the table (node wasm/scripts/gen-types.mjs)', () => {
     assert.equal(readFileSync(TYPES_PATH, 'utf8'), typesFor(api.optionTable));
     assert.equal(readFileSync(ELEMENT_TYPES_PATH, 'utf8'), elementTypes());
+  });
+
+  test('the committed option-table.json (the page builds its controls from it) is the table (node wasm/scripts/gen-types.mjs)', () => {
+    assert.equal(readFileSync(TABLE_PATH, 'utf8'), tableJson(api.optionTable));
+    assert.deepEqual(JSON.parse(readFileSync(TABLE_PATH, 'utf8')), api.optionTable);
   });
 
   test('every JS option of the table is declared in vesselmesh.d.ts with its JS key', () => {

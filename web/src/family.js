@@ -4,7 +4,9 @@
 // familyLayers}, downloaded as one zip (the meshes, family.csv and
 // family.json) and tabled here: per mesh its cells, its h = (V/N)^(1/3),
 // the ratio achieved to the previous one, its quality, its layers and its
-// time. The fields' ranges and defaults are the core's option table's.
+// time. The fields' ranges and defaults are the core's option table's
+// (index.html as built: option-controls.js; a family of one is no family:
+// at least 2 meshes here).
 import { baseName } from './files.js';
 
 const count = (n) => n.toLocaleString('en');
@@ -31,34 +33,14 @@ export class Family {
   constructor(hooks) {
     const $ = (id) => document.getElementById(id);
     this.hooks = hooks;
-    this.members = $('family-members');
-    this.ratio = $('family-ratio');
+    this.members = $('family');
+    this.ratio = $('ratio');
     this.layers = $('family-layers');
     this.table = $('family-table');
     for (const input of [this.members, this.ratio]) {
       input.addEventListener('input', () => input.setAttribute('aria-invalid', 'false'));
     }
     $('mesh-family').addEventListener('click', () => hooks.act(() => this.make()));
-  }
-
-  /** Takes the fields' ranges and defaults from the core's option table
-   * (a family of one is no family: at least 2 here). */
-  configure(table = []) {
-    const spec = (id) => table.find((s) => s.id === id);
-    const family = spec('family');
-    const ratio = spec('ratio');
-    if (family) {
-      this.members.min = String(Math.max(2, family.min ?? 2));
-      if (family.max !== undefined) this.members.max = String(family.max);
-    }
-    if (ratio) {
-      if (ratio.min !== undefined) this.ratio.min = String(ratio.min);
-      if (ratio.max !== undefined) this.ratio.max = String(ratio.max);
-      if (ratio.default) this.ratio.value = this.ratio.defaultValue = ratio.default;
-    }
-    const choices = spec('family_layers')?.choices ?? [];
-    for (const option of this.layers.options) option.hidden = choices.length > 0 && !choices.includes(option.value);
-    if (spec('family_layers')?.default) this.layers.value = spec('family_layers').default;
   }
 
   /** The family options of the fields, or null with the field marked and the problem said. */

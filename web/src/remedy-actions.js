@@ -50,7 +50,7 @@ export async function applyRemedy(remedy, stage, { prepare, reanalyze, mesh }) {
     case 'smooth': {
       // Quietly (no change events): the surface is analyzed once, here.
       if (action === 'repair') $('repair').value = 'auto';
-      if (action === 'largest_component') $('largest-only').checked = true;
+      if (action === 'largest_component') $('largest-component-only').checked = true;
       if (action === 'smooth') {
         $('smooth').value = 'passes';
         $('smooth-passes').value = String(value || 10);

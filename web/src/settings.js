@@ -8,12 +8,14 @@
 // a link with settings sets them (the link wins over this browser's, the
 // controls it does not name get their defaults). Per-file choices (the
 // input's units, cuts, opening names) are not settings.
-import { controlSpec, decodeSettings, encodeSettings, linkNotice } from './share.js';
+import { byCurrentIds, controlSpec, decodeSettings, encodeSettings, linkNotice } from './share.js';
 
 const KEY = 'vesselmesh.settings.v1';
 const KEEP_KEY = 'vesselmesh.keep-settings.v1';
 
-/** The remembered controls, by id. */
+/** The remembered controls, by id (a control of one option: the option's JS
+ * key in kebab-case, marked data-option in index.html; the others are the
+ * page's compositions of options). Their order is the link's. */
 export const SETTING_IDS = [
   'solver',
   'size-mode',
@@ -30,7 +32,7 @@ export const SETTING_IDS = [
   'viscosity',
   'growth',
   'tag-layer',
-  'keep-prisms',
+  'prisms',
   'wall-on',
   'wall-thickness',
   'wall-layers',
@@ -39,7 +41,7 @@ export const SETTING_IDS = [
   'fidelity-on',
   'decimate-on',
   'max-volume-change',
-  'export-format',
+  'format',
   'output-units',
 ];
 
@@ -124,7 +126,9 @@ export class Settings {
       saved = null; // unreadable: the defaults
     }
     if (saved && typeof saved === 'object') {
-      for (const el of this.controls) if (el.id in saved) write(el, saved[el.id]);
+      // Remembered before a control was renamed: under its old id.
+      const values = byCurrentIds(saved);
+      for (const el of this.controls) if (el.id in values) write(el, values[el.id]);
     }
     const link = decodeSettings(this.location?.hash ?? '', this.specs);
     const changed = [];

@@ -5,8 +5,25 @@
 // a value that no control accepts is ignored and said, in the page's words
 // (the controls' names and choices as the panel shows them, never the
 // API's option names). Per-file choices (units, cuts, opening names) are
-// not in the link. The functions here are pure (tested in Node) but
-// controlName; the page gives them its controls' specs.
+// not in the link. A setting's key is its control's id, which for a
+// control of one option is the option's JS key in kebab-case
+// (option-controls.js); the keys of controls since renamed are still read
+// (LINK_ALIASES), so old links keep working. The functions here are pure
+// (tested in Node) but controlName; the page gives them its controls' specs.
+
+/** The keys older links (and remembered settings) used for controls since
+ * renamed to their option's key: old key -> id. */
+export const LINK_ALIASES = { 'keep-prisms': 'prisms', 'export-format': 'format' };
+
+/** The id a link's (or the remembered settings') key stands for. */
+export const settingId = (key) => LINK_ALIASES[key] ?? key;
+
+/** Remembered settings ({key: value}) by the controls' ids: those kept
+ * under an old key renamed (where the new key is not there too). */
+export const byCurrentIds = (saved) => ({
+  ...Object.fromEntries(Object.entries(saved).map(([key, value]) => [settingId(key), value])),
+  ...saved,
+});
 
 /**
  * A control's name as the panel shows it: its data-setting-name, else its
@@ -120,11 +137,12 @@ export function decodeSettings(hash, specs) {
   const values = {};
   const problems = [];
   let given = false;
-  for (const [name, text] of params) {
+  for (const [key, text] of params) {
     given = true;
+    const name = byId.has(key) ? key : settingId(key);
     const spec = byId.get(name);
     if (!spec) {
-      problems.push(`“${name}”: not an option of this page`);
+      problems.push(`“${key}”: not an option of this page`);
       continue;
     }
     const { value, problem } = parseValue(spec, text);

@@ -27,8 +27,8 @@ export function showSolverHint(presets) {
 export function applySolverPreset(presets, onFormats) {
   const preset = chosen(presets);
   if (preset) {
-    $('keep-prisms').checked = preset.prisms;
-    $('export-format').value = preset.format === 'msh' ? `msh-${preset.mshVersion}` : preset.format;
+    $('prisms').checked = preset.prisms;
+    $('format').value = preset.format === 'msh' ? `msh-${preset.mshVersion}` : preset.format;
     $('output-units').value = preset.outputUnits;
     onFormats();
   }
