@@ -105,7 +105,6 @@ Result<LayerDirections> layer_directions(const SurfaceMesh& wall, const Triangle
                                          const layers::VertexRings& rings,
                                          const std::vector<LayerOpening>& openings, bool outward,
                                          int passes, const std::vector<double>& reach) {
-  using R = Result<LayerDirections>;
   const size_t nv = wall.num_vertices();
   LayerDirections out;
   gouraud_normals(wall, outward ? 1.0 : -1.0, out.normal, out.triangle_normal);

@@ -375,9 +375,11 @@ TEST(BoundaryRecovery, WallEdgesFlippedInsteadOfSplitWhereAllowed) {
   }
   EXPECT_EQ(allowed, size_t(flipped.surface_flips));
   // The flipped input has no cap triangle changed.
-  for (size_t t = 0; t < s.tags.size(); ++t)
-    if (s.tags[t] != 0)
+  for (size_t t = 0; t < s.tags.size(); ++t) {
+    if (s.tags[t] != 0) {
       EXPECT_TRUE(std::equal(&s.tris[3 * t], &s.tris[3 * t] + 3, &flipped.input_triangles[3 * t]));
+    }
+  }
 }
 
 TEST(BoundaryRecovery, BoxWithNearlyCoplanarCaps) {
