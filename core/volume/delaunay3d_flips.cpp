@@ -11,6 +11,7 @@
 #include "core/geom/predicates.h"
 #include "core/volume/delaunay3d.h"
 #include "core/volume/delaunay3d_internal.h"
+#include "core/volume/edge_removal.h"
 
 namespace vm {
 
@@ -114,24 +115,17 @@ Result<std::vector<int32_t>> Delaunay3D::remove_edge(int32_t t, int32_t a, int32
   around.erase(std::remove(around.begin(), around.end(), kInfinite), around.end());
   const size_t n = ring.size();
   if (n < 3) return R::Error("remove_edge: fewer than 3 tetrahedra around the edge");
-  // Fans from each ring vertex; ring order makes (a, b, r_i, r_i+1)
-  // positive, hence (r_x, r_y, r_z, b) and (r_y, r_x, r_z, a) for a
-  // triangle (x, y, z) in ring order.
-  std::vector<std::array<int32_t, 4>> best, cand;
-  double best_q = 0;
-  for (size_t s = 0; s < (n == 3 ? 1 : n); ++s) {
-    cand.clear();
+  // The fan from one ring vertex whose smallest tetrahedron shape (its
+  // volume over its longest edge cubed; ghosts have none) is largest, every
+  // new tetrahedron valid (core/volume/edge_removal.h). Ring order makes
+  // (a, b, r_i, r_i+1) positive, hence (r_x, r_y, r_z, b) and
+  // (r_y, r_x, r_z, a) for a triangle (x, y, z) in ring order.
+  auto shape = [&](int x, int y, int z, double) {
+    std::array<int32_t, 4> two[2];
+    ring_triangle_tets(a, b, ring[size_t(x)], ring[size_t(y)], ring[size_t(z)], two);
     double q = 1e300;
-    for (size_t i = 1; i + 1 < n; ++i) {
-      const int32_t x = ring[s], y = ring[(s + i) % n], z = ring[(s + i + 1) % n];
-      cand.resize(cand.size() + 2);
-      ring_triangle_tets(a, b, x, y, z, &cand[cand.size() - 2]);
-    }
-    for (const auto& c : cand) {
-      if (!new_tet_valid(c, around)) {
-        q = -1;
-        break;
-      }
+    for (const auto& c : two) {
+      if (!new_tet_valid(c, around)) return -HUGE_VAL;
       if (inf_slot(c.data()) >= 0) continue;  // ghosts: no shape
       const double* p[4] = {point(c[0]), point(c[1]), point(c[2]), point(c[3])};
       double vol = -((p[1][0] - p[0][0]) * ((p[2][1] - p[0][1]) * (p[3][2] - p[0][2]) -
@@ -149,12 +143,14 @@ Result<std::vector<int32_t>> Delaunay3D::remove_edge(int32_t t, int32_t a, int32
         }
       q = std::min(q, std::fabs(vol) / (longest * std::sqrt(longest)));
     }
-    if (q > best_q || (best.empty() && q >= 0)) {
-      best_q = q;
-      best = cand;
-    }
-  }
-  if (best.empty()) return R::Error("remove_edge: no fan of the ring gives positive tetrahedra");
+    return q;
+  };
+  // Any valid fan (shapes are >= 0), the best one.
+  std::vector<RingTriangle> tris;
+  best_ring_triangulation(int(n), RingCandidates::kFans, -1, shape, &tris);
+  if (tris.empty()) return R::Error("remove_edge: no fan of the ring gives positive tetrahedra");
+  std::vector<std::array<int32_t, 4>> best(2 * tris.size());
+  ring_removal_tets(a, b, ring.data(), tris, best.data());
   auto res = replace_tets(ring_tets, best);
   if (!res.ok()) return R::Error("remove_edge: " + res.message());
   return res;

@@ -4,7 +4,8 @@
 // Klingner and Shewchuk, "Aggressive tetrahedral mesh improvement", IMR
 // 2007), the ring of a removed edge re-triangulated by Klincsek's dynamic
 // program ("Minimal triangulations of polygonal domains", 1980) maximizing
-// the smallest gamma_t. A change is made only when it raises the smallest
+// the smallest gamma_t (core/volume/edge_removal.h, shared with the
+// Delaunay kernel's edge removal). A change is made only when it raises the smallest
 // quality of the tetrahedra it replaces. A pass on many tetrahedra runs on
 // kParts slabs of vertices at the same time (on the threads), then
 // sequentially on what crosses slabs: parallel_flips() says why no slab
@@ -19,6 +20,7 @@
 #include "core/geom/vec3.h"
 #include "core/quality/tet_quality.h"
 #include "core/util/parallel.h"
+#include "core/volume/edge_removal.h"
 #include "core/volume/optimize_volume_internal.h"
 #include "core/volume/tet_topology.h"
 
@@ -37,18 +39,18 @@ using v3::sub;
 
 OptimizeStats& stats_of(Optimizer& op, FlipWork& w) { return w.part < 0 ? op.stats : w.counts; }
 
-// Klincsek's dynamic program over the ring polygon `ring`: the
-// triangulation maximizing the smallest quality of its tetrahedra pairs
-// (x, y, z, b), (y, x, z, a). Returns that quality (stops early, returning
-// something <= floor, when it cannot beat floor); triangles into tris.
-// A triangle (or sub-polygon) whose quality is not above floor is never
-// part of an answer above floor, so it is dropped at once; the squared
-// lengths and the areas of the faces through a or b are computed once
-// per pair of ring vertices (lazily) instead of once per tetrahedron.
-double best_ring_triangulation(Optimizer& op, int32_t a, int32_t b,
-                               const std::vector<int32_t>& ring, double floor,
-                               std::vector<std::array<int, 3>>* tris) {
-  constexpr double kNone = -1e300;
+// The triangulation of the ring of edge (a, b) (ring vertex ids, at most
+// kMaxRing) maximizing the smallest gamma_t of its tetrahedra pairs
+// (x, y, z, b), (y, x, z, a), among every triangulation (Klincsek's
+// dynamic program, core/volume/edge_removal.h). Returns that quality
+// (stops early, returning something <= floor, when it cannot beat floor);
+// triangles into tris. gamma_t of a triangle's two tetrahedra shares their
+// face (x, y, z): the squared lengths and the areas of the faces through a
+// or b are computed once per pair of ring vertices (lazily) instead of
+// once per tetrahedron, and the second tetrahedron is not measured when
+// the first is already no better than the bound.
+double best_ring_gamma(Optimizer& op, int32_t a, int32_t b, const std::vector<int32_t>& ring,
+                       double floor, std::vector<RingTriangle>* tris) {
   const int n = int(ring.size());
   const double* pa = op.m.point(a);
   const double* pb = op.m.point(b);
@@ -78,60 +80,27 @@ double best_ring_triangulation(Optimizer& op, int32_t a, int32_t b,
     }
   };
   constexpr double kSqrt6 = 2.449489742783178;
-  double best[kMaxRing][kMaxRing];
-  int arg[kMaxRing][kMaxRing];
-  for (int i = 0; i + 1 < n; ++i) best[i][i + 1] = 1e300;
-  for (int len = 2; len < n; ++len)
-    for (int i = 0; i + len < n; ++i) {
-      const int j = i + len;
-      double bij = kNone;
-      int aij = -1;
-      for (int k = i + 1; k < j; ++k) {
-        const double sub_q = std::min(best[i][k], best[k][j]);
-        if (sub_q <= bij || sub_q <= floor) continue;
-        // Triangle (x, y, z) = ring (i, k, j); n = (y - x) x (z - x).
-        double u[3], w[3], nr[3], d[3];
-        sub(P[k], P[i], u), sub(P[j], P[i], w), cross(u, w, nr);
-        sub(pb, P[i], d);
-        const double vol_b = dot(nr, d);
-        if (!(vol_b > 0)) continue;
-        pair(i, k), pair(k, j), pair(i, j);
-        const double area = std::sqrt(dot(nr, nr));
-        const double lmax = std::max({len2[i][k], len2[k][j], len2[i][j]});
-        const double den_b = 0.5 * (area + fb[i][k] + fb[k][j] + fb[i][j]) *
-                             std::sqrt(std::max({lmax, db[i], db[k], db[j]}));
-        double q = den_b > 0 ? kSqrt6 * vol_b / den_b : 0;
-        if (q <= bij || q <= floor) continue;
-        sub(pa, P[i], d);
-        const double vol_a = -dot(nr, d);
-        const double den_a = 0.5 * (area + fa[i][k] + fa[k][j] + fa[i][j]) *
-                             std::sqrt(std::max({lmax, da[i], da[k], da[j]}));
-        q = std::min(q, den_a > 0 ? kSqrt6 * vol_a / den_a : 0);
-        q = std::min(q, sub_q);
-        if (q <= bij || q <= floor) continue;
-        bij = q;
-        aij = k;
-      }
-      best[i][j] = bij;
-      arg[i][j] = aij;
-    }
-  const double result = best[0][n - 1];
-  if (tris) {
-    tris->clear();
-    if (result <= floor) return result;
-    int stack[2 * kMaxRing][2], top = 0;
-    stack[top][0] = 0, stack[top][1] = n - 1, ++top;
-    while (top > 0) {
-      --top;
-      const int i = stack[top][0], j = stack[top][1];
-      if (j - i < 2) continue;
-      const int k = arg[i][j];
-      tris->push_back({i, k, j});
-      stack[top][0] = i, stack[top][1] = k, ++top;
-      stack[top][0] = k, stack[top][1] = j, ++top;
-    }
-  }
-  return result;
+  auto gamma = [&](int i, int k, int j, double bound) {
+    // Triangle (x, y, z) = ring (i, k, j); n = (y - x) x (z - x).
+    double u[3], w[3], nr[3], d[3];
+    sub(P[k], P[i], u), sub(P[j], P[i], w), cross(u, w, nr);
+    sub(pb, P[i], d);
+    const double vol_b = dot(nr, d);
+    if (!(vol_b > 0)) return -HUGE_VAL;
+    pair(i, k), pair(k, j), pair(i, j);
+    const double area = std::sqrt(dot(nr, nr));
+    const double lmax = std::max({len2[i][k], len2[k][j], len2[i][j]});
+    const double den_b = 0.5 * (area + fb[i][k] + fb[k][j] + fb[i][j]) *
+                         std::sqrt(std::max({lmax, db[i], db[k], db[j]}));
+    const double q = den_b > 0 ? kSqrt6 * vol_b / den_b : 0;
+    if (q <= bound) return q;
+    sub(pa, P[i], d);
+    const double vol_a = -dot(nr, d);
+    const double den_a = 0.5 * (area + fa[i][k] + fa[k][j] + fa[i][j]) *
+                         std::sqrt(std::max({lmax, da[i], da[k], da[j]}));
+    return std::min(q, den_a > 0 ? kSqrt6 * vol_a / den_a : 0);
+  };
+  return best_ring_triangulation(n, RingCandidates::kAll, floor, gamma, tris);
 }
 
 }  // namespace
@@ -182,7 +151,7 @@ Flip improve_topology(Optimizer& op, int32_t t, FlipWork& w) {
     if (n < 3) continue;
     double old_min = 1e300;
     for (int32_t u : w.ring_tets) old_min = std::min(old_min, op.cached(u));
-    const double new_min = best_ring_triangulation(op, a, b, w.ring, old_min + best_gain, nullptr);
+    const double new_min = best_ring_gamma(op, a, b, w.ring, old_min + best_gain, nullptr);
     if (new_min - old_min > best_gain) {
       best_gain = new_min - old_min;
       best_kind = 2;
@@ -191,7 +160,6 @@ Flip improve_topology(Optimizer& op, int32_t t, FlipWork& w) {
   }
   if (best_kind == 0 || best_gain < 1e-9) return Flip::kNone;
   std::array<int32_t, 4> nt[2 * kMaxRing];
-  int n_new = 0;
   if (best_kind == 1) {
     flip23_tets(op.m.topology(), t, best_arg, nt);
     w.old[0] = t, w.old[1] = op.m.neighbor(t, best_arg) >> 2;
@@ -201,12 +169,9 @@ Flip improve_topology(Optimizer& op, int32_t t, FlipWork& w) {
   }
   const int32_t a = v[kTetEdges[best_arg][0]], b = v[kTetEdges[best_arg][1]];
   op.m.edge_ring(t, a, b, w.ring_tets, w.ring, kMaxRing);
-  if (!(best_ring_triangulation(op, a, b, w.ring, 0, &w.tris) > 0)) return Flip::kNone;
-  for (const auto& tri : w.tris) {
-    ring_triangle_tets(a, b, w.ring[size_t(tri[0])], w.ring[size_t(tri[1])], w.ring[size_t(tri[2])],
-                       nt + n_new);
-    n_new += 2;
-  }
+  if (!(best_ring_gamma(op, a, b, w.ring, 0, &w.tris) > 0)) return Flip::kNone;
+  ring_removal_tets(a, b, w.ring.data(), w.tris, nt);
+  const int n_new = 2 * int(w.tris.size());
   for (size_t i = 0; i < w.ring_tets.size(); ++i) w.old[i] = w.ring_tets[i];
   const Flip r = commit(op, w, w.old, int(w.ring_tets.size()), nt, n_new);
   if (r == Flip::kDone) ++stats_of(op, w).edge_removals;

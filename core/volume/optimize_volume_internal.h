@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/quality/tet_quality.h"
+#include "core/volume/edge_removal.h"
 #include "core/volume/optimize_volume.h"
 #include "core/volume/tet_mesh.h"
 #include "core/volume/tet_topology.h"
@@ -23,7 +24,7 @@ namespace vm {
 namespace optimize_volume_detail {
 
 /// Largest ring of an edge removal (tetrahedra around the edge).
-constexpr int kMaxRing = 8;
+constexpr int kMaxRing = kMaxProgramRing;
 /// Largest cavity of a vertex insertion near a sliver (tetrahedra).
 constexpr int kMaxCavity = 24;
 /// Slabs of a parallel smoothing or flip pass: fixed, so that the mesh does
@@ -55,7 +56,7 @@ struct FlipWork {
   SlotPool pool;
   ReplaceScratch replace;
   std::vector<int32_t> ring_tets, ring, ids, created, work, later, touched;
-  std::vector<std::array<int, 3>> tris;
+  std::vector<RingTriangle> tris;
   int32_t old[64];
   OptimizeStats counts;
 };
