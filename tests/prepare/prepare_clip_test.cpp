@@ -1,4 +1,4 @@
-// Phases 5 and 6 of the preparation (core/pipeline/prepare_surface.cpp):
+// Phases 5 and 6 of the preparation (core/pipeline/prepare_surface_openings.cpp):
 // caps removed (fans and domes cut at their rims), blind vessel ends cut
 // open by default (closed surfaces or not), and cuts by given planes.
 #include <gtest/gtest.h>
