@@ -52,9 +52,10 @@ const SolverPreset* find_solver_preset(std::string_view name);
 /// `options`: the solver preset's defaults first (when a `solver` value is
 /// among them), recorded in options.preset with each setting marked as the
 /// user's when the user gave that option; then every value with
-/// apply_option. Also refuses the flow options without a target y+
+/// apply_option. Refuses the flow options given without a target y+
 /// ({inlet_velocity}, {density}, {viscosity} without
-/// {first_layer_yplus}) and a target y+ with {first_layer}. Errors are
+/// {first_layer_yplus}), then checks the options as a whole
+/// (validate_options, with {format} when given). Errors are
 /// apply_option's, or kBadOption.
 Status apply_options(MeshJobOptions& options,
                      std::span<const std::pair<const OptionSpec*, OptionValue>> values);
