@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/io/provenance.h"
@@ -25,6 +26,7 @@
 #include "core/layers/layer_thickness.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/prism_split.h"
+#include "core/mesh/tet_face_adjacency.h"
 #include "core/phantom/vessel_phantom.h"
 #include "core/pipeline/mesh_family.h"
 #include "core/pipeline/mesh_job.h"
@@ -227,9 +229,33 @@ void set_surface(val& r, const vm::SurfaceMesh& m, const std::vector<float>& qua
   r.set("surface", s);
 }
 
+/// The clipped view's face adjacency of the view's tetrahedra `tets` (the
+/// mesh's, then with prisms their split) with its boundary `triangles` (the
+/// mesh's, then the quads' halves) tagged `tags`: per face f of view
+/// tetrahedron t (opposite vertex f), across[4t+f] = the view tetrahedron
+/// across, or on the boundary -1 - g with g the tag of the triangle there
+/// (0x7fff when none): web/src/clip.js's encoding. If the adjacency fails
+/// (a face of three tetrahedra: never in a mesh check_volume_mesh passed),
+/// every face is a boundary face.
+std::vector<int32_t> view_across(const std::vector<int32_t>& tets, size_t num_vertices,
+                                 const std::vector<int32_t>& triangles,
+                                 const std::vector<int32_t>& tags) {
+  constexpr int32_t kUnknownTag = 0x7fff;  // clip.js's UNKNOWN_TAG
+  const size_t nt = tets.size() / 4;
+  auto links = vm::tet_face_adjacency(tets.data(), nt, num_vertices);
+  // A face of three tetrahedra (never in a checked mesh): all faces shown.
+  std::vector<int32_t> across =
+      links.ok() ? std::move(links).value() : std::vector<int32_t>(4 * nt, vm::kNoTetAcross);
+  const std::vector<int32_t> on = vm::boundary_face_triangles(
+      tets.data(), nt, across, triangles.data(), triangles.size() / 3);
+  for (size_t i = 0; i < across.size(); ++i)
+    across[i] = across[i] >= 0 ? across[i] >> 2 : -1 - (on[i] >= 0 ? tags[size_t(on[i])] : kUnknownTag);
+  return across;
+}
+
 /// The volume mesh for display: positions, tets and their gamma_t and
-/// region, the boundary triangles with their surface tag, and the names of
-/// the tags.
+/// region, the boundary triangles with their surface tag, the names of
+/// the tags, and the face adjacency of the clipped view (view_across).
 void set_volume(val& r, const vm::MeshJobResult& res) {
   const vm::VolumeMesh& m = res.volume;
   std::vector<float> positions(m.points.begin(), m.points.end());
@@ -243,6 +269,10 @@ void set_volume(val& r, const vm::MeshJobResult& res) {
   v.set("triangles", copy_out(reinterpret_cast<const uint32_t*>(m.triangles.data()),
                               m.triangles.size(), "Uint32Array"));
   v.set("triangleTag", copy_out(m.triangle_tag.data(), m.triangle_tag.size(), "Int32Array"));
+  // The clipped view's tetrahedra and boundary (with prisms, their split
+  // appended, as web/src/prisms.js appends it).
+  std::vector<int32_t> view_tets = m.tets, view_triangles = m.triangles,
+                       view_tags = m.triangle_tag;
   if (!m.prisms.empty()) {  // kept prisms and their faces at the openings
     v.set("prisms", copy_out(reinterpret_cast<const uint32_t*>(m.prisms.data()), m.prisms.size(),
                              "Uint32Array"));
@@ -274,7 +304,13 @@ void set_volume(val& r, const vm::MeshJobResult& res) {
     v.set("prismTetQuality", copy_out(quality.data(), quality.size(), "Float32Array"));
     v.set("quadTriangles", copy_out(reinterpret_cast<const uint32_t*>(quad_triangles.data()),
                                     quad_triangles.size(), "Uint32Array"));
+    view_tets.insert(view_tets.end(), split.begin(), split.end());
+    view_triangles.insert(view_triangles.end(), quad_triangles.begin(), quad_triangles.end());
+    for (size_t q = 0; q < 2 * m.num_quads(); ++q) view_tags.push_back(m.quad_tag[q / 2]);
   }
+  const std::vector<int32_t> across =
+      view_across(view_tets, m.num_vertices(), view_triangles, view_tags);
+  v.set("across", copy_out(across.data(), across.size(), "Int32Array"));
   val names = val::array();
   for (const std::string& n : res.surface_names) names.call<void>("push", n);
   v.set("surfaceNames", names);

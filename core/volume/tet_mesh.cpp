@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/geom/predicates.h"
+#include "core/mesh/tet_face_adjacency.h"
 #include "core/volume/delaunay3d.h"
 
 namespace vm {
@@ -99,28 +100,12 @@ Result<TetMesh> TetMesh::from_arrays(std::vector<double> points, const std::vect
   tp.tagged = false;
   tp.stamp.assign(nt, 0);
   for (size_t i = 0; i < tets.size(); ++i) tp.vertex_tet[size_t(tets[i])] = int32_t(i / 4);
-  // Faces matched by sorting their keys.
-  struct F {
-    std::array<int32_t, 3> key;
-    int32_t code;
-  };
-  std::vector<F> faces(tets.size());
-  for (size_t t = 0; t < tets.size() / 4; ++t)
-    for (int k = 0; k < 4; ++k)
-      faces[4 * t + size_t(k)] = {face_key(&tets[4 * t], k), int32_t(4 * t) + k};
-  std::sort(faces.begin(), faces.end(), [](const F& a, const F& b) {
-    return a.key < b.key || (a.key == b.key && a.code < b.code);
-  });
-  for (size_t i = 0; i < faces.size();) {
-    size_t j = i + 1;
-    while (j < faces.size() && faces[j].key == faces[i].key) ++j;
-    if (j - i > 2) return R::Error("tet mesh: a face shared by more than two tetrahedra");
-    if (j - i == 2) {
-      tp.link(faces[i].code) = faces[i + 1].code;
-      tp.link(faces[i + 1].code) = faces[i].code;
-    }
-    i = j;
-  }
+  // Faces matched by the one tetrahedron face adjacency (its boundary entry
+  // is kBoundary).
+  static_assert(kBoundary == kNoTetAcross);
+  auto across = tet_face_adjacency(tets.data(), nt, nv);
+  if (!across.ok()) return R::Error("tet mesh: a face shared by more than two tetrahedra");
+  for (size_t i = 0; i < tets.size(); ++i) tp.link(int32_t(i)) = across.value()[i];
   return m;
 }
 

@@ -121,6 +121,8 @@ export function typesFor(table) {
     '  prismTets?: Uint32Array;',
     '  prismTetQuality?: Float32Array;',
     '  quadTriangles?: Uint32Array;',
+    "  /** The clipped view's face adjacency, 4 a tetrahedron of the view (tets, then with prisms prismTets): the view tetrahedron across face f of t (opposite vertex f), or on the boundary -1 - g with g the tag of the triangle there (triangles, then quadTriangles; 0x7fff when none). */",
+    '  across: Int32Array;',
     "  /** 'wall', 'inlet', 'outlet_1', ...; '' for an unused tag. */",
     '  surfaceNames: string[];',
     "  /** 'lumen', 'boundary_layer' or '', 'vessel_wall' or ''. */",

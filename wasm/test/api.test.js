@@ -771,8 +771,8 @@ describe('mesh: volume', () => {
       ArrayBuffer.isView(a),
     );
     // msh; surface positions, triangles, quality; volume positions, tets,
-    // tetQuality, tetRegion, tetPart, triangles, triangleTag.
-    assert.equal(arrays.length, 11);
+    // tetQuality, tetRegion, tetPart, triangles, triangleTag, across.
+    assert.equal(arrays.length, 12);
     assert.ok(list.includes(m.volume.tetPart.buffer));
     assert.equal(new Set(list).size, list.length);
     for (const a of arrays) assert.ok(list.includes(a.buffer));

@@ -7,7 +7,7 @@
 // transparent for context (or hidden).
 import * as THREE from 'three';
 
-import { ClipBuffers, clipBoundary, faceAdjacency, tetCentroids } from './clip.js';
+import { ClipBuffers, clipBoundary, tetCentroids } from './clip.js';
 import { qualityColor } from './colormap.js';
 import { groupColor, groupColors, PARTS } from './groups.js';
 
@@ -33,11 +33,11 @@ function colorsByIndex(index, table) {
 function prepare(volume) {
   let data = prepared.get(volume);
   if (data) return data;
-  const { positions, tets, tetQuality, triangles, triangleTag, surfaceNames } = volume;
+  const { tets, tetQuality, positions, surfaceNames } = volume;
   const nt = tets.length / 4;
   const tetPart = volume.tetPart ?? new Uint8Array(nt);
   const regionNames = volume.regionNames ?? ['lumen'];
-  const across = faceAdjacency(tets, positions.length / 3, triangles, triangleTag);
+  const { across } = volume; // the core's, for the tets and the prisms' split (clip.js)
   // gamma_t colors through a 256-entry table of the colormap.
   const table = new Uint8Array(3 * 256);
   const rgb = [0, 0, 0];

@@ -1,12 +1,16 @@
 // Node tests of the clipped volume view (web/src/clip.js) on a generated
-// tetrahedral grid and on the volume the WebAssembly module makes of the
-// bifurcation phantom (wasm/dist must be built).
+// tetrahedral grid (its adjacency from the page's old face matcher,
+// face-matcher.js) and on the volume the WebAssembly module makes of the
+// bifurcation phantom, whose adjacency (volume.across) the core gives
+// (wasm/dist must be built).
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { before, describe, test } from 'node:test';
 
 import { createVesselmesh } from '../../wasm/src/vesselmesh.js';
-import { ClipBuffers, clipBoundary, faceAdjacency, tetCentroids, UNKNOWN_TAG } from '../src/clip.js';
+import { ClipBuffers, clipBoundary, tetCentroids, UNKNOWN_TAG } from '../src/clip.js';
+import { withPrismsSplit } from '../src/prisms.js';
+import { faceAdjacency } from './face-matcher.js';
 import { facesByVertices, kuhnGrid } from './kuhn-grid.js';
 
 const TAG_COLORS = new Uint8Array([10, 0, 0, 20, 0, 0, 30, 0, 0, 40, 0, 0, 50, 0, 0, 60, 0, 0, 70, 0, 0]);
@@ -153,6 +157,7 @@ describe('clip: a 4x4x4 Kuhn grid', () => {
 describe('clip: the volume of the bifurcation phantom', () => {
   let volume; // with the boundary layer (the default)
   let walled; // and the vessel wall: `wall` triangles between two tets
+  let prismatic; // prisms kept, as the page shows them (withPrismsSplit)
   before(async () => {
     const wasmBinary = readFileSync(new URL('../../wasm/dist/vesselmesh_core.wasm', import.meta.url));
     const api = await createVesselmesh({ wasmBinary });
@@ -163,11 +168,23 @@ describe('clip: the volume of the bifurcation phantom', () => {
     const w = api.mesh(stl, { size: 0.3, wallThickness: 0.1 });
     assert.equal(w.ok, true, w.error);
     walled = w.volume;
+    const p = api.mesh(stl, { size: 0.3, prisms: true, wallThickness: 0.1 });
+    assert.equal(p.ok, true, p.error);
+    assert.ok(p.volume.prisms.length > 0);
+    prismatic = withPrismsSplit(p.volume);
+  });
+
+  test("the core's adjacency equals the page's old face matcher's", () => {
+    for (const v of [volume, walled, prismatic]) {
+      const { tets, triangles, triangleTag, positions, across } = v;
+      assert.ok(across instanceof Int32Array);
+      assert.equal(across.length, tets.length);
+      assert.deepEqual(across, faceAdjacency(tets, positions.length / 3, triangles, triangleTag));
+    }
   });
 
   test('adjacency agrees with a brute-force face map; boundary = tagged triangles', () => {
-    const { tets, triangles, triangleTag, positions } = volume;
-    const across = faceAdjacency(tets, positions.length / 3, triangles, triangleTag);
+    const { tets, triangles, triangleTag, across } = volume;
     const faces = facesByVertices(tets);
     const tags = new Map();
     triangleTag.forEach((g, b) => tags.set(Array.from(triangles.subarray(3 * b, 3 * b + 3)).sort((x, y) => x - y).join(), g));
@@ -183,8 +200,7 @@ describe('clip: the volume of the bifurcation phantom', () => {
   });
 
   test('clips along each axis are closed and enclose the kept tets', () => {
-    const { tets, triangles, triangleTag, positions } = volume;
-    const across = faceAdjacency(tets, positions.length / 3, triangles, triangleTag);
+    const { tets, triangleTag, positions, across } = volume;
     const all = clip(volume, across, 0, Infinity);
     assert.equal(all.count, triangleTag.length);
     for (const axis of [0, 1, 2]) {
@@ -198,8 +214,7 @@ describe('clip: the volume of the bifurcation phantom', () => {
   });
 
   test('with the vessel wall the interface is inside: the outer boundary is drawn, cuts are closed', () => {
-    const { tets, triangles, triangleTag, positions, surfaceNames, tetPart } = walled;
-    const across = faceAdjacency(tets, positions.length / 3, triangles, triangleTag);
+    const { tets, triangleTag, positions, surfaceNames, tetPart, across } = walled;
     const wall = surfaceNames.indexOf('wall');
     const interfaces = triangleTag.filter((g) => g === wall).length;
     assert.ok(interfaces > 0);
