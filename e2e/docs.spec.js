@@ -94,7 +94,7 @@ test('the options page lists every option of the table with its unit; every page
   const links = await page.locator('header nav a').evaluateAll((as) => as.map((a) => a.getAttribute('href')));
   expect(links).toEqual([
     'index.html', 'cli.html', 'options.html', 'outputs.html', 'js-api.html', 'element.html',
-    'family.html', 'app.html', 'method.html', 'benchmarks.html', 'limits.html', 'architecture.html',
+    'family.html', 'app.html', 'method.html', 'benchmarks.html', 'limits.html', 'architecture.html', 'decisions.html',
   ]);
   const broken = [];
   for (const href of links) {
