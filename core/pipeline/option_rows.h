@@ -27,6 +27,10 @@ using V = OptionValue;
 
 constexpr uint8_t kInfoMesh = kCommandInfo | kCommandMesh;
 
+/// Choices that rows of several groups take.
+inline constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
+inline constexpr std::string_view kOffAuto[] = {"off", "auto"};
+
 /// The shortest of %.15g .. %.17g that reads back to x exactly.
 std::string shortest_text(double x);
 

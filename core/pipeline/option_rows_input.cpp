@@ -8,8 +8,6 @@
 namespace vm::option_rows {
 namespace {
 
-constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
-constexpr std::string_view kOffAuto[] = {"off", "auto"};
 constexpr std::string_view kLargestAliases[] = {"largest-component"};
 
 // GCC 12 warns about every member a designated initializer leaves to its

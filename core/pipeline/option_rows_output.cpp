@@ -15,8 +15,6 @@ constexpr std::string_view kMshVersions[] = {"4.1", "2.2"};
 constexpr std::string_view kPhantomKinds[] = {"bifurcation", "tube",     "aneurysm", "torus",
                                               "tree",        "crossing", "outlets",  "root"};
 constexpr std::string_view kCapShapes[] = {"flat", "fan", "dome"};
-constexpr std::string_view kUnits[] = {"mm", "cm", "m"};
-constexpr std::string_view kOffAuto[] = {"off", "auto"};
 constexpr std::string_view kFormats[] = {"msh", "vtu", "vtp", "stl", "mesh-complete", "foam"};
 constexpr std::string_view kSolvers[] = {"gmsh", "openfoam", "fenics", "svfsi"};
 constexpr std::string_view kFamilyLayers[] = {"refine", "fixed"};
