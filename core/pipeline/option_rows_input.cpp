@@ -1,7 +1,6 @@
 // The rows of the input and size options (option_rows.h): what each takes,
 // its help, and where its value goes in the job's options.
 #include "core/pipeline/option_rows.h"
-
 #include "core/pipeline/option_values.h"
 #include "core/util/portable_math.h"
 

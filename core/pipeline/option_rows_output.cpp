@@ -2,7 +2,6 @@
 // what each takes, its help, and where its value goes in the job's (or the
 // phantom's) options.
 #include "core/pipeline/option_rows.h"
-
 #include "core/pipeline/option_values.h"
 #include "core/pipeline/write_outputs.h"
 
