@@ -63,9 +63,11 @@ let current = null;
 let remeshed = null; // { key, result } of the last remeshing of `current`
 let meshJobs = 0;
 // What the worker holds: the surface openingNames() names (its last
-// analysis) and the result export() writes (its last mesh). A failed or
-// cancelled job loses them (a cancel restarts the worker).
-const held = { analysis: null, mesh: null };
+// analysis, whose handle is analysisHandle) and the result export() writes
+// (its last mesh; the handle is its result's). A failed or cancelled job
+// loses them (a cancel restarts the worker). The calls on them name their
+// handle rather than rely on the worker's newest.
+const held = { analysis: null, analysisHandle: undefined, mesh: null };
 const openings = new OpeningsTable($('openings'), {
   openingNames,
   onHover: (loop, k) => {
@@ -110,7 +112,8 @@ const run = (stage, job) => jobs.run(stage, job);
 const prepare = new Prepare({
   viewer,
   marks,
-  cutAt: (point) => whenAnalyzed('a job is running; try again when it ends', () => client.cutAt(point)),
+  cutAt: (point) =>
+    whenAnalyzed('a job is running; try again when it ends', () => client.cutAt(point, { analysis: held.analysisHandle })),
   reanalyze: () => reanalyze({ onError: () => {} }),
   words: (text) => problems.words(text),
   onFail: (what) =>
@@ -165,7 +168,10 @@ const form = new OptionsForm({
 // The size field before meshing (size-view.js) and measurements (measure.js).
 const sizeView = new SizeView({
   viewer,
-  sizeField: (options) => whenAnalyzed('a job is running; the colours follow when it ends', () => client.sizeField(options)),
+  sizeField: (options) =>
+    whenAnalyzed('a job is running; the colours follow when it ends', () =>
+      client.sizeField({ ...options, analysis: held.analysisHandle }),
+    ),
   sizeOptions: () => form.sizeOptions(),
   surface: () => current?.surface ?? null,
   canColour: () => view.shown === 'input',
@@ -268,7 +274,10 @@ async function analyze(name, bytes, prep, onError = (message, next, failure) => 
   // The page makes the cuts itself (the Prepare step lists, edits and
   // undoes them), so the core never cuts a blind end the user kept closed.
   const result = await run('read', () => client.analyze(bytes, { ...prep, clip: 'off', onProgress }));
-  if (result.ok) return result;
+  if (result.ok) {
+    held.analysisHandle = result.handle;
+    return result;
+  }
   const message = result.cancelled ? 'Cancelled.' : `${name}: ${problems.words(result.error)}`;
   onError(message, result.cancelled ? 'cancelled' : 'read', result);
   return { ok: false, message };
@@ -295,7 +304,7 @@ async function whenAnalyzed(whileBusy, call) {
 async function openingNames(options) {
   const here = current;
   if (!(await ensureAnalyzed()) || here !== current) return { ok: false, error: 'not analyzed' };
-  return client.openingNames(options);
+  return client.openingNames({ ...options, analysis: held.analysisHandle });
 }
 
 /**
@@ -513,7 +522,7 @@ async function exportPressed() {
     inputName: () => current.name,
     held: (o) => remeshed?.key === JSON.stringify(o) && held.mesh === remeshed,
     exportHeld: async (format, write) => {
-      const result = await run('export', () => client.export(format, write));
+      const result = await run('export', () => client.export(format, { ...write, mesh: remeshed.result.handle }));
       if (!result.ok) showFailure(result, 'mesh', `Export failed: ${current.name}: `);
       return result.ok && result.file;
     },

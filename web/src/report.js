@@ -49,7 +49,7 @@ export class Report {
       result,
       restore: hooks.restoreView,
     }).catch(() => undefined);
-    const made = await hooks.run('report', () => hooks.client.report({ images, inputName: name }));
+    const made = await hooks.run('report', () => hooks.client.report({ images, inputName: name, mesh: result.handle }));
     if (!made.ok) {
       hooks.onFailure(made);
       return null;

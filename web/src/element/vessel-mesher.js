@@ -225,7 +225,7 @@ export class VesselMesher extends HTMLElement {
     // A family's file is the zip of its meshes.
     const zip = file && this._result.family;
     if (!file) {
-      const result = await this._client.export(format);
+      const result = await this._client.export(format, { mesh: this._result.handle });
       if (!result.ok) throw this._fail(result.error);
       file = result.file;
     }
@@ -244,7 +244,7 @@ export class VesselMesher extends HTMLElement {
       result: { ...result, volume: withPrismsSplit(result.volume) },
       restore: () => viewer.setSurface(result.surface, { fit: false }),
     }).catch(() => undefined);
-    const made = await this._client.report({ ...(images && { images }), inputName: this._input.name });
+    const made = await this._client.report({ ...(images && { images }), inputName: this._input.name, mesh: result.handle });
     if (!made.ok) throw this._fail(made.error);
     return new Blob([made.file], { type: 'text/html' });
   }
