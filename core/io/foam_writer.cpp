@@ -318,15 +318,15 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
   // Phase 5: the files.
   const std::string poly = "constant/polyMesh";
   std::vector<OutputFile> files;
-  files.push_back(list_file("vectorField", poly, "points", comment, Indices{nv},
-                            [&](TextOut& t, size_t v) {
-                              t.ch('(');
-                              for (int k = 0; k < 3; ++k) {
-                                if (k) t.ch(' ');
-                                t.real(mesh.points[3 * v + size_t(k)]);
-                              }
-                              t.str(")\n");
-                            }));
+  files.push_back(
+      list_file("vectorField", poly, "points", comment, Indices{nv}, [&](TextOut& t, size_t v) {
+        t.ch('(');
+        for (int k = 0; k < 3; ++k) {
+          if (k) t.ch(' ');
+          t.real(mesh.points[3 * v + size_t(k)]);
+        }
+        t.str(")\n");
+      }));
   files.push_back(list_file("faceList", poly, "faces", comment, order, [&](TextOut& t, size_t g) {
     const CellFace& owner = faces[group_first[g]];
     int32_t v[4];

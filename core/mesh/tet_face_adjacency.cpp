@@ -78,9 +78,10 @@ Result<std::vector<int32_t>> tet_face_adjacency(const int32_t* tets, size_t num_
       BucketFace* j = i + 1;
       while (j < end && j->mid == i->mid && j->hi == i->hi) ++j;
       if (j - i > 2)
-        return R::Error("tetrahedron face adjacency: a face shared by more than two tetrahedra "
-                        "(tetrahedron " +
-                        std::to_string(i->code >> 2) + ")");
+        return R::Error(
+            "tetrahedron face adjacency: a face shared by more than two tetrahedra "
+            "(tetrahedron " +
+            std::to_string(i->code >> 2) + ")");
       if (j - i == 2) {
         across[size_t(i[0].code)] = i[1].code;
         across[size_t(i[1].code)] = i[0].code;
@@ -106,7 +107,8 @@ std::vector<int32_t> boundary_face_triangles(const int32_t* tets, size_t num_tet
     const int32_t* tri = &triangles[3 * k];
     for (int f = 0; f < 4; ++f) {
       if (v[f] == tri[0] || v[f] == tri[1] || v[f] == tri[2]) continue;
-      if (across[4 * size_t(t) + size_t(f)] == kNoTetAcross) out[4 * size_t(t) + size_t(f)] = int32_t(k);
+      if (across[4 * size_t(t) + size_t(f)] == kNoTetAcross)
+        out[4 * size_t(t) + size_t(f)] = int32_t(k);
     }
   }
   return out;
