@@ -1,38 +1,20 @@
 // OpenFOAM polyMesh writer (foam_writer.h): every cell face is found once by
-// sorting the faces of all cells by vertex set; a set met twice is an
-// internal face (owner the lower cell), once a boundary face, which a tagged
-// triangle or quad names the patch of.
+// grouping the faces of all cells and the tagged triangles and quads by
+// vertex set (group_faces); a set of two cells is an internal face (owner
+// the lower cell), of one a boundary face, which a tagged face in its group
+// names the patch of.
 #include "core/io/foam_writer.h"
 
 #include <algorithm>
-#include <array>
 #include <charconv>
 #include <cstdio>
 #include <set>
 
 #include "core/io/text_out.h"
+#include "core/mesh/face_groups.h"
 
 namespace vm {
 namespace {
-
-/// Outward vertex cycles of a cell's faces (face_elements.h): tetrahedron
-/// (4 triangles), prism (2 triangles, 3 quads); -1 ends a triangle.
-constexpr int8_t kTetFaces[4][4] = {{1, 2, 3, -1}, {0, 3, 2, -1}, {0, 1, 3, -1}, {0, 2, 1, -1}};
-constexpr int8_t kPrismFaces[5][4] = {
-    {0, 2, 1, -1}, {3, 4, 5, -1}, {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}};
-
-/// A face of a cell, by its sorted vertex set (a triangle's 4th = INT32_MAX).
-struct CellFace {
-  std::array<int32_t, 4> key;
-  int32_t cell;
-  int8_t local;
-};
-
-std::array<int32_t, 4> face_key(const int32_t* v, int n) {
-  std::array<int32_t, 4> k{v[0], v[1], v[2], n == 4 ? v[3] : INT32_MAX};
-  std::sort(k.begin(), k.end());
-  return k;
-}
 
 /// The FoamFile header of a file; `note` and `comment` optional.
 void header(TextOut& t, std::string_view cls, std::string_view location, std::string_view object,
@@ -160,15 +142,6 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
       if (tag < 0 || tag > 1000000)
         return R::Error("OpenFOAM: tag " + std::to_string(tag) + " out of range");
 
-  // The vertices of a cell's local face (n = 3 or 4).
-  auto cell_face = [&](int32_t cell, int local, int32_t out[4]) {
-    const bool tet = size_t(cell) < nt;
-    const int8_t* f = tet ? kTetFaces[local] : kPrismFaces[local];
-    const int32_t* v = tet ? &mesh.tets[4 * size_t(cell)] : &mesh.prisms[6 * (size_t(cell) - nt)];
-    const int n = f[3] < 0 ? 3 : 4;
-    for (int k = 0; k < n; ++k) out[k] = v[f[k]];
-    return n;
-  };
   auto where = [&](int32_t vertex) {
     const double* p = &mesh.points[3 * size_t(vertex)];
     char tmp[96];
@@ -176,47 +149,40 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
     return std::string(tmp);
   };
 
-  // Phase 1: every cell face, sorted by vertex set, then by cell.
-  std::vector<CellFace> faces;
-  faces.reserve(4 * nt + 5 * np);
-  for (size_t c = 0; c < ncells; ++c) {
-    const int nf = c < nt ? 4 : 5;
-    for (int l = 0; l < nf; ++l) {
-      int32_t v[4];
-      const int n = cell_face(int32_t(c), l, v);
-      faces.push_back({face_key(v, n), int32_t(c), int8_t(l)});
-    }
-  }
-  std::sort(faces.begin(), faces.end(), [](const CellFace& a, const CellFace& b) {
-    return a.key != b.key ? a.key < b.key : a.cell < b.cell;
-  });
-
-  // Phase 2: internal faces (a set twice) and boundary faces (once).
-  // group_first[g]: index in `faces` of group g's first entry.
-  std::vector<size_t> group_first;
-  std::vector<uint8_t> group_size;
-  for (size_t i = 0; i < faces.size();) {
-    size_t j = i + 1;
-    while (j < faces.size() && faces[j].key == faces[i].key) ++j;
-    if (j - i > 2)
-      return R::Error("OpenFOAM: a face at " + where(faces[i].key[0]) + " is shared by " +
-                      std::to_string(j - i) + " cells; the volume mesh is not conforming");
-    group_first.push_back(i);
-    group_size.push_back(uint8_t(j - i));
-    i = j;
-  }
-  const size_t ngroups = group_first.size();
-  auto find_group = [&](const std::array<int32_t, 4>& key) -> int64_t {
-    size_t lo = 0, hi = ngroups;
-    while (lo < hi) {
-      const size_t mid = (lo + hi) / 2;
-      if (faces[group_first[mid]].key < key)
-        lo = mid + 1;
-      else
-        hi = mid;
-    }
-    return lo < ngroups && faces[group_first[lo]].key == key ? int64_t(lo) : -1;
+  // Phase 1: the cells' faces (4 a tetrahedron, 5 a prism, each an outward
+  // cycle), then the tagged triangles and quads, grouped by vertex set:
+  // in each group its cells' faces first, by cell.
+  const std::vector<int32_t> faces = volume_mesh_faces(mesh);
+  const size_t ncf = 4 * nt + 5 * np;  // the cells' faces
+  const FaceGroups groups = group_faces(faces.data(), faces.size() / 4, nv);
+  auto size_of = [&](size_t f) { return faces[4 * f + 3] == kNoFourthVertex ? 3 : 4; };
+  auto smallest = [&](size_t f) {
+    return *std::min_element(&faces[4 * f], &faces[4 * f] + size_of(f));
   };
+  auto cell_of = [&](size_t f) { return int32_t(face_element(f, nt)); };
+
+  // Phase 2: the faces of the mesh, the groups with cells: internal faces
+  // (two cells) and boundary faces (one). Face g is face owner_face[g] of
+  // the list, of cell owner[g] (the lower cell); neighbour[g] is the other
+  // cell, -1 on the boundary. group_of[f]: the face of tagged face f, -1
+  // when none.
+  std::vector<int32_t> owner_face, owner, neighbour;
+  std::vector<int32_t> group_of(ntri + nq, -1);
+  for (size_t g = 0; g < groups.num_groups(); ++g) {
+    const size_t n = groups.size(g);
+    size_t cells = 0;
+    while (cells < n && groups.face(g, cells) < ncf) ++cells;
+    if (cells > 2)
+      return R::Error("OpenFOAM: a face at " + where(smallest(groups.face(g, 0))) +
+                      " is shared by " + std::to_string(cells) +
+                      " cells; the volume mesh is not conforming");
+    if (cells == 0) continue;
+    for (size_t k = cells; k < n; ++k) group_of[groups.face(g, k) - ncf] = int32_t(owner.size());
+    owner_face.push_back(int32_t(groups.face(g, 0)));
+    owner.push_back(cell_of(groups.face(g, 0)));
+    neighbour.push_back(cells == 2 ? cell_of(groups.face(g, 1)) : -1);
+  }
+  const size_t ngroups = owner.size();
 
   // Phase 3: the tagged faces name the patch of a boundary face, or put an
   // internal face in a face zone.
@@ -230,26 +196,23 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
   size_t ntags = 0;
   for (size_t f = 0; f < ntri + nq; ++f) {
     const bool tri = f < ntri;
-    const int32_t* v = tri ? &mesh.triangles[3 * f] : &mesh.quads[4 * (f - ntri)];
+    const int32_t* v = &faces[4 * (ncf + f)];
     const int n = tri ? 3 : 4;
     const int32_t tag = tri ? mesh.triangle_tag[f] : mesh.quad_tag[f - ntri];
     ntags = std::max(ntags, size_t(tag) + 1);
-    const int64_t g = find_group(face_key(v, n));
+    const int32_t g = group_of[f];
     if (g < 0)
       return R::Error("OpenFOAM: a face of " + name_or(surface_names, size_t(tag), "patch_") +
                       " at " + where(v[0]) + " is no cell's face");
-    if (group_size[size_t(g)] == 1) {
+    if (neighbour[size_t(g)] < 0)
       group_tag[size_t(g)] = tag;
-    } else {
-      const CellFace& owner = faces[group_first[size_t(g)]];
-      int32_t cycle[4];
-      cell_face(owner.cell, owner.local, cycle);
-      zone_faces.push_back({tag, size_t(g), !same_turn(v, cycle, n)});
-    }
+    else
+      zone_faces.push_back(
+          {tag, size_t(g), !same_turn(v, &faces[4 * size_t(owner_face[size_t(g)])], n)});
   }
   for (size_t g = 0; g < ngroups; ++g)
-    if (group_size[g] == 1 && group_tag[g] < 0)
-      return R::Error("OpenFOAM: a boundary face at " + where(faces[group_first[g]].key[0]) +
+    if (neighbour[g] < 0 && group_tag[g] < 0)
+      return R::Error("OpenFOAM: a boundary face at " + where(smallest(size_t(owner_face[g]))) +
                       " has no surface tag (no triangle or quad of the mesh covers it)");
 
   // Phase 4: face order. Internal faces by (owner, neighbour); boundary
@@ -258,18 +221,17 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
   order.reserve(ngroups);
   size_t ninternal = 0;
   for (size_t g = 0; g < ngroups; ++g)
-    if (group_size[g] == 2) order.push_back(g);
+    if (neighbour[g] >= 0) order.push_back(g);
   ninternal = order.size();
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    const CellFace &a0 = faces[group_first[a]], &b0 = faces[group_first[b]];
-    if (a0.cell != b0.cell) return a0.cell < b0.cell;
-    return faces[group_first[a] + 1].cell < faces[group_first[b] + 1].cell;
+    if (owner[a] != owner[b]) return owner[a] < owner[b];
+    return neighbour[a] < neighbour[b];
   });
   for (size_t g = 0; g < ngroups; ++g)
-    if (group_size[g] == 1) order.push_back(g);
+    if (neighbour[g] < 0) order.push_back(g);
   std::stable_sort(order.begin() + long(ninternal), order.end(), [&](size_t a, size_t b) {
     if (group_tag[a] != group_tag[b]) return group_tag[a] < group_tag[b];
-    return faces[group_first[a]].cell < faces[group_first[b]].cell;
+    return owner[a] < owner[b];
   });
   std::vector<size_t> patch_start(ntags + 1, ngroups), patch_size(ntags, 0);
   for (size_t i = order.size(); i-- > ninternal;) {
@@ -318,20 +280,19 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
   // Phase 5: the files.
   const std::string poly = "constant/polyMesh";
   std::vector<OutputFile> files;
-  files.push_back(list_file("vectorField", poly, "points", comment, Indices{nv},
-                            [&](TextOut& t, size_t v) {
-                              t.ch('(');
-                              for (int k = 0; k < 3; ++k) {
-                                if (k) t.ch(' ');
-                                t.real(mesh.points[3 * v + size_t(k)]);
-                              }
-                              t.str(")\n");
-                            }));
+  files.push_back(
+      list_file("vectorField", poly, "points", comment, Indices{nv}, [&](TextOut& t, size_t v) {
+        t.ch('(');
+        for (int k = 0; k < 3; ++k) {
+          if (k) t.ch(' ');
+          t.real(mesh.points[3 * v + size_t(k)]);
+        }
+        t.str(")\n");
+      }));
   files.push_back(list_file("faceList", poly, "faces", comment, order, [&](TextOut& t, size_t g) {
-    const CellFace& owner = faces[group_first[g]];
-    int32_t v[4];
-    const int n = cell_face(owner.cell, owner.local, v);
-    t.integer(n);
+    const int32_t* v = &faces[4 * size_t(owner_face[g])];
+    const int n = size_of(size_t(owner_face[g]));
+    t.ch(char('0' + n));  // 3 or 4
     t.ch('(');
     for (int k = 0; k < n; ++k) {
       if (k) t.ch(' ');
@@ -345,13 +306,13 @@ Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
   {
     TextOut t;
     header(t, "labelList", poly, "owner", comment, note);
-    label_list(t, ngroups, [&](size_t i) { return faces[group_first[order[i]]].cell; });
+    label_list(t, ngroups, [&](size_t i) { return owner[order[i]]; });
     files.push_back({poly + "/owner", t.take()});
   }
   {
     TextOut t;
     header(t, "labelList", poly, "neighbour", comment, note);
-    label_list(t, ninternal, [&](size_t i) { return faces[group_first[order[i]] + 1].cell; });
+    label_list(t, ninternal, [&](size_t i) { return neighbour[order[i]]; });
     files.push_back({poly + "/neighbour", t.take()});
   }
   files.push_back(list_file(

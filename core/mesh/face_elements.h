@@ -27,9 +27,10 @@ struct FaceElements {
 
 /// Outward faces of the elements: tetrahedron (0,1,2,3): (1,2,3), (0,3,2),
 /// (0,1,3), (0,2,1); prism: (0,2,1), (3,4,5), (0,1,4,3), (1,2,5,4),
-/// (2,0,3,5). Only the faces of the mesh are hashed, so the cost is one
-/// lookup per element face. Vertex indices are only compared (no range
-/// precondition); a partial element or face at an array's end is ignored.
+/// (2,0,3,5). The element faces and the mesh's faces are grouped by vertex
+/// set in one list (group_faces, core/mesh/face_groups.h). Vertex indices
+/// are only compared (no range precondition); a partial element or face at
+/// an array's end is ignored.
 FaceElements face_elements(const VolumeMesh& mesh);
 
 }  // namespace vm

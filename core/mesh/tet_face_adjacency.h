@@ -1,9 +1,9 @@
 // The face adjacency of a tetrahedral mesh: for every face of every
-// tetrahedron, the tetrahedron across it. The one tetrahedron-to-tetrahedron
-// face matcher of the code (TetMesh::from_arrays, the page's clipped view
-// through the WebAssembly binding); faces are matched on their vertex sets,
-// bucketed by their smallest vertex (a counting sort), so the cost is linear
-// in the number of faces plus a sort of each small bucket.
+// tetrahedron, the tetrahedron across it (TetMesh::from_arrays, the page's
+// clipped view through the WebAssembly binding). Faces are matched on their
+// vertex sets by the one face matcher, group_faces (core/mesh/face_groups.h),
+// so the cost is linear in the number of faces plus a sort of each small
+// bucket.
 #pragma once
 
 #include <cstddef>

@@ -1,45 +1,30 @@
 // Volume mesh checks (docs/ARCHITECTURE.md, stage 7), in phases: element
-// positivity; every element face listed with its orientation parity and
-// sorted, so the uses of a face are adjacent; conformity and boundary
-// matching on the sorted list; the surface triangles matched against the
-// boundary faces.
+// positivity; every element face and surface face grouped by vertex set
+// (group_faces), so the uses of a face are together; conformity and
+// boundary matching on each group, by the orientation parity of its uses.
 #include "core/mesh/volume_check.h"
 
 #include <algorithm>
-#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "core/geom/predicates.h"
+#include "core/mesh/face_groups.h"
 #include "core/mesh/prism_split.h"
 #include "core/util/parallel.h"
 
 namespace vm {
 namespace {
 
-/// One use of a face by an element (or by a surface triangle): its sorted
-/// vertices (a 4th of -1 for triangles), the orientation parity of the use,
-/// and who uses it (element index, or -1 - t for surface triangle t).
-struct FaceUse {
-  std::array<int32_t, 4> key;
-  uint8_t parity;
-  int32_t region;
-  int64_t owner;
-};
-
-/// Sorted key and parity of the cyclic polygon f (3 or 4 ids): parity 0 if
-/// the cycle read from its smallest id goes towards the smaller of that
-/// id's two neighbors.
-FaceUse make_use(const int32_t* f, int n, int32_t region, int64_t owner) {
-  FaceUse u{{-1, -1, -1, -1}, 0, region, owner};
+/// Orientation parity of the cyclic polygon f (3 or 4 ids): 0 if the cycle
+/// read from its smallest id goes towards the smaller of that id's two
+/// neighbors.
+int parity(const int32_t* f, int n) {
   const int first = int(std::min_element(f, f + n) - f);
   const int32_t next = f[(first + 1) % n], prev = f[(first + n - 1) % n];
-  u.parity = next < prev ? 0 : 1;
-  std::copy(f, f + n, u.key.begin());
-  std::sort(u.key.begin(), u.key.begin() + n);
-  return u;
+  return next < prev ? 0 : 1;
 }
 
 bool indices_in_range(const int32_t* v, int n, const VolumeMesh& m) {
@@ -124,71 +109,51 @@ Result<VolumeCheck> check_volume_mesh(const VolumeMesh& m) {
   VolumeCheck c = oriented.value();
   auto in_range = [&](const int32_t* v, int n) { return indices_in_range(v, n, m); };
 
-  // Phase 2: every face use, outward orientation.
-  std::vector<FaceUse> uses;
-  uses.reserve(4 * m.num_tets() + 5 * m.num_prisms() + m.num_triangles() + m.num_quads());
-  for (size_t e = 0; e < m.num_tets(); ++e) {
-    const int32_t* t = &m.tets[4 * e];
-    const int32_t region = m.tet_region.empty() ? 0 : m.tet_region[e];
-    for (const auto& f : kFaceOut) {
-      const int32_t g[3] = {t[f[0]], t[f[1]], t[f[2]]};
-      uses.push_back(make_use(g, 3, region, int64_t(e)));
-    }
-  }
-  for (size_t e = 0; e < m.num_prisms(); ++e) {
-    const int32_t* p = &m.prisms[6 * e];
-    const int32_t region = m.prism_region.empty() ? 0 : m.prism_region[e];
-    const int64_t owner = int64_t(m.num_tets() + e);
-    const int32_t bottom[3] = {p[0], p[2], p[1]}, top[3] = {p[3], p[4], p[5]};
-    const int32_t q0[4] = {p[0], p[1], p[4], p[3]}, q1[4] = {p[1], p[2], p[5], p[4]},
-                  q2[4] = {p[2], p[0], p[3], p[5]};
-    uses.push_back(make_use(bottom, 3, region, owner));
-    uses.push_back(make_use(top, 3, region, owner));
-    for (const int32_t* q : {q0, q1, q2}) uses.push_back(make_use(q, 4, region, owner));
-  }
-  for (size_t t = 0; t < m.num_triangles(); ++t) {
-    const int32_t* f = &m.triangles[3 * t];
-    if (!in_range(f, 3))
+  // Phase 2: every face use, grouped by vertex set: the elements' faces
+  // (outward) first, then the surface's (volume_mesh_faces).
+  for (size_t t = 0; t < m.num_triangles(); ++t)
+    if (!in_range(&m.triangles[3 * t], 3))
       return R::Error("surface triangle " + std::to_string(t) + " has a bad vertex");
-    uses.push_back(make_use(f, 3, -1, -1 - int64_t(t)));
-  }
-  for (size_t q = 0; q < m.num_quads(); ++q) {
-    const int32_t* f = &m.quads[4 * q];
-    if (!in_range(f, 4)) return R::Error("surface quad " + std::to_string(q) + " has a bad vertex");
-    uses.push_back(make_use(f, 4, -1, -1 - int64_t(m.num_triangles() + q)));
-  }
-  std::sort(uses.begin(), uses.end(), [](const FaceUse& a, const FaceUse& b) {
-    return a.key != b.key ? a.key < b.key : a.owner > b.owner;  // elements first
-  });
+  for (size_t q = 0; q < m.num_quads(); ++q)
+    if (!in_range(&m.quads[4 * q], 4))
+      return R::Error("surface quad " + std::to_string(q) + " has a bad vertex");
+  const std::vector<int32_t> faces = volume_mesh_faces(m);
+  const FaceGroups groups = group_faces(faces.data(), faces.size() / 4, m.num_vertices());
+  const size_t ne = 4 * m.num_tets() + 5 * m.num_prisms();  // the elements' faces
+  auto size_of = [&](size_t f) { return faces[4 * f + 3] == kNoFourthVertex ? 3 : 4; };
+  auto parity_of = [&](size_t f) { return parity(&faces[4 * f], size_of(f)); };
+  auto region_of = [&](size_t f) {
+    const size_t e = face_element(f, m.num_tets());
+    if (e < m.num_tets()) return m.tet_region.empty() ? 0 : m.tet_region[e];
+    return m.prism_region.empty() ? 0 : m.prism_region[e - m.num_tets()];
+  };
 
   // Phase 3: the uses of each face.
-  for (size_t i = 0; i < uses.size();) {
-    size_t j = i;
-    size_t elements = 0, triangles = 0;
-    while (j < uses.size() && uses[j].key == uses[i].key) {
-      (uses[j].owner >= 0 ? elements : triangles) += 1;
-      ++j;
-    }
-    const FaceUse& a = uses[i];
-    const std::string at = "face at " + where(m, a.key[0]);
+  for (size_t g = 0; g < groups.num_groups(); ++g) {
+    const size_t n = groups.size(g);
+    size_t elements = 0;  // the group's elements' faces, first in it
+    while (elements < n && groups.face(g, elements) < ne) ++elements;
+    const size_t triangles = n - elements;
+    const size_t a = groups.face(g, 0), b = n > 1 ? groups.face(g, 1) : a;
+    const auto at = [&] {
+      return "face at " + where(m, *std::min_element(&faces[4 * a], &faces[4 * a] + size_of(a)));
+    };
     if (elements > 2)
-      return R::Error("non-conforming mesh: " + at + " has " + std::to_string(elements) +
+      return R::Error("non-conforming mesh: " + at() + " has " + std::to_string(elements) +
                       " elements");
-    if (triangles > 1) return R::Error("duplicate surface triangle: " + at);
+    if (triangles > 1) return R::Error("duplicate surface triangle: " + at());
     if (elements == 2) {
-      if (uses[i].parity == uses[i + 1].parity)
-        return R::Error("two elements overlap across the " + at);
-      if (triangles == 1 && uses[i].region == uses[i + 1].region)
-        return R::Error("surface triangle inside one region: " + at);
+      if (parity_of(a) == parity_of(b)) return R::Error("two elements overlap across the " + at());
+      if (triangles == 1 && region_of(a) == region_of(b))
+        return R::Error("surface triangle inside one region: " + at());
     } else if (elements == 1) {
       ++c.boundary_faces;
-      if (triangles == 0) return R::Error("boundary " + at + " is not a surface triangle");
-      if (uses[i + 1].parity != a.parity)
-        return R::Error("surface triangle oriented inward: " + at);
+      if (triangles == 0) return R::Error("boundary " + at() + " is not a surface triangle");
+      if (parity_of(b) != parity_of(a))
+        return R::Error("surface triangle oriented inward: " + at());
     } else {
-      return R::Error("surface triangle not on any element: " + at);
+      return R::Error("surface triangle not on any element: " + at());
     }
-    i = j;
   }
   return c;
 }

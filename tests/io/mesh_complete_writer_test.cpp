@@ -245,5 +245,28 @@ TEST(FaceElements, CountsAndOwners) {
   EXPECT_EQ(fe.element[8], 2);
 }
 
+TEST(FaceElements, AnyIndicesGiveTheSameAnswers) {
+  // Indices are only compared: negative ones, ones far beyond the points,
+  // and an order-reversing renumbering give the same uses and elements.
+  VolumeMesh m = testing::prism_tet_stack();
+  m.triangles.insert(m.triangles.end(), {4, 5, 6, 0, 1, 8});  // a duplicate, a face of none
+  m.triangle_tag.insert(m.triangle_tag.end(), {3, 0});
+  const FaceElements want = face_elements(m);
+  EXPECT_EQ(want.uses[8], 2);
+  EXPECT_EQ(want.uses[9], 0);
+  EXPECT_EQ(want.element[9], -1);
+  for (int32_t (*map)(int32_t) :
+       {+[](int32_t v) { return v - 4; }, +[](int32_t v) { return v * 100000 + 7; },
+        +[](int32_t v) { return v * 200000000 - 900000000; }, +[](int32_t v) { return 8 - v; }}) {
+    VolumeMesh n = m;
+    n.points.clear();
+    for (auto* a : {&n.tets, &n.prisms, &n.triangles, &n.quads})
+      for (int32_t& v : *a) v = map(v);
+    const FaceElements got = face_elements(n);
+    EXPECT_EQ(got.uses, want.uses);
+    EXPECT_EQ(got.element, want.element);
+  }
+}
+
 }  // namespace
 }  // namespace vm
