@@ -1,7 +1,8 @@
 // Faces grouped by vertex set: the one face matcher of the code (the
 // tetrahedra's face links, tet_face_adjacency; the elements beside each
 // surface face, face_elements; the volume mesh check, check_volume_mesh;
-// the OpenFOAM writer's faces, foam_case_files). Triangles and quads go in
+// the OpenFOAM writer's faces, foam_case_files; the faces a region
+// submesh keeps, region_submesh). Triangles and quads go in
 // one list; each face goes into the bucket of its smallest vertex (a stable
 // counting sort), and each bucket is sorted by the face's other vertices, so
 // the cost is linear in the number of faces and vertices plus a sort of each
