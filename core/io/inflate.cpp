@@ -1,7 +1,8 @@
 // Decompression through zlib's inflate(): windowBits 15 reads the zlib
 // format, 16 + 15 the gzip format (RFC 1950 / 1952). The output buffer grows
 // by doubling, never past the caller's limit + 1 byte (the extra byte
-// detects a stream that would go on).
+// detects a stream that would go on), or past the prefix's length when only a
+// prefix is asked for.
 #include "core/io/inflate.h"
 
 #include <zlib.h>
@@ -28,9 +29,11 @@ std::string limit_error(size_t limit, size_t consumed) {
 }
 
 // Runs inflate over `in` with the given windowBits. For gzip, members are
-// read until the input ends or does not start another member.
+// read until the input ends or does not start another member. With `prefix`,
+// inflate stops once max_output bytes are out and returns them (no limit
+// error).
 Result<std::vector<uint8_t>> run_inflate(std::span<const uint8_t> in, size_t max_output, bool gzip,
-                                         std::vector<std::string>* warnings) {
+                                         std::vector<std::string>* warnings, bool prefix = false) {
   const char* what = gzip ? "gzip" : "zlib";
   z_stream z{};
   if (inflateInit2(&z, gzip ? 16 + MAX_WBITS : MAX_WBITS) != Z_OK) {
@@ -42,12 +45,13 @@ Result<std::vector<uint8_t>> run_inflate(std::span<const uint8_t> in, size_t max
     ~Guard() { inflateEnd(z); }
   } guard{&z};
   const size_t cap_limit =
-      max_output == std::numeric_limits<size_t>::max() ? max_output : max_output + 1;
+      prefix || max_output == std::numeric_limits<size_t>::max() ? max_output : max_output + 1;
   std::vector<uint8_t> out;
   out.resize(std::min(cap_limit, std::max<size_t>(size_t(1) << 16, 4 * in.size())));
   size_t in_pos = 0, out_pos = 0;
   while (true) {
     if (out_pos == out.size()) {
+      if (prefix && out.size() >= cap_limit) break;
       if (out.size() >= cap_limit)
         return Result<std::vector<uint8_t>>::Error(limit_error(max_output, in_pos));
       out.resize(std::min(cap_limit, out.size() > cap_limit / 2 ? cap_limit : 2 * out.size()));
@@ -103,6 +107,10 @@ Result<std::vector<uint8_t>> inflate_zlib(std::span<const uint8_t> in, size_t ma
 Result<std::vector<uint8_t>> inflate_gzip(std::span<const uint8_t> in, size_t max_output,
                                           std::vector<std::string>* warnings) {
   return run_inflate(in, max_output, true, warnings);
+}
+
+Result<std::vector<uint8_t>> inflate_gzip_prefix(std::span<const uint8_t> in, size_t n) {
+  return run_inflate(in, n, true, nullptr, true);
 }
 
 Status inflate_zlib_exact(std::span<const uint8_t> in, std::span<uint8_t> out) {

@@ -26,6 +26,13 @@ Result<std::vector<uint8_t>> inflate_zlib(std::span<const uint8_t> in, size_t ma
 Result<std::vector<uint8_t>> inflate_gzip(std::span<const uint8_t> in, size_t max_output,
                                           std::vector<std::string>* warnings = nullptr);
 
+/// The first min(n, whole size) bytes of what inflate_gzip gives for `in`
+/// (members read in order), inflating no further: a format is told from a
+/// stream's start without inflating the whole. Errors: those of inflate_gzip
+/// met within that part (a member's CRC is checked only when its end is
+/// within it); never the limit's.
+Result<std::vector<uint8_t>> inflate_gzip_prefix(std::span<const uint8_t> in, size_t n);
+
 /// Decompresses one zlib stream into exactly out.size() bytes (a block of a
 /// VTK XML array, whose uncompressed size the block header gives). Errors: a
 /// corrupt stream, or a stream that gives fewer or more bytes than out.size().

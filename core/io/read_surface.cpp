@@ -29,6 +29,9 @@ constexpr const char* kSupported =
 
 enum class Format { kVtkXml, kVtkLegacy, kPly, kStl, kObj, kUnknown };
 
+/// How much of a file's start sniff_start reads (looks_like_obj's 64 KiB).
+constexpr size_t kSniffBytes = 65536;
+
 std::string_view as_text(std::span<const uint8_t> b) {
   return std::string_view(reinterpret_cast<const char*>(b.data()), b.size());
 }
@@ -85,7 +88,7 @@ bool is_obj_keyword(std::string_view w) {
 // Text whose first statements (up to 5 lines that are neither empty nor
 // comments, within the first 64 KiB) are all OBJ keywords.
 bool looks_like_obj(std::span<const uint8_t> b) {
-  std::string_view s = as_text(b.first(std::min<size_t>(b.size(), 65536)));
+  std::string_view s = as_text(b.first(std::min<size_t>(b.size(), kSniffBytes)));
   if (s.starts_with("\xEF\xBB\xBF")) s.remove_prefix(3);
   for (char c : s) {
     unsigned char u = static_cast<unsigned char>(c);
@@ -109,12 +112,11 @@ bool looks_like_obj(std::span<const uint8_t> b) {
   return statements > 0;
 }
 
-Format sniff(std::span<const uint8_t> bytes) {
-  // The binary STL size law first: its 80-byte header is free text (it may
-  // start like another format), and text never satisfies the law (bytes
-  // 80-83 of text read as a count above 0x09090909, a file of gigabytes).
-  if (bytes.size() >= 84 && 84 + 50 * uint64_t(load_u32le(bytes.data() + 80)) == bytes.size())
-    return Format::kStl;
+// The format by the start of the content, the binary STL size law aside: no
+// more than the first kSniffBytes are read, and no more than the first 16
+// after the whitespace content_start skips, except by looks_like_binary_stl
+// (the first 484).
+Format sniff_start(std::span<const uint8_t> bytes) {
   std::string_view s = content_start(bytes);
   if (s.starts_with("<?xml") || s.starts_with("<VTKFile")) return Format::kVtkXml;
   if (istarts_with(s, "# vtk DataFile")) return Format::kVtkLegacy;
@@ -123,6 +125,15 @@ Format sniff(std::span<const uint8_t> bytes) {
   if (looks_like_binary_stl(bytes)) return Format::kStl;
   if (looks_like_obj(bytes)) return Format::kObj;
   return Format::kUnknown;
+}
+
+Format sniff(std::span<const uint8_t> bytes) {
+  // The binary STL size law first: its 80-byte header is free text (it may
+  // start like another format), and text never satisfies the law (bytes
+  // 80-83 of text read as a count above 0x09090909, a file of gigabytes).
+  if (bytes.size() >= 84 && 84 + 50 * uint64_t(load_u32le(bytes.data() + 80)) == bytes.size())
+    return Format::kStl;
+  return sniff_start(bytes);
 }
 
 std::string hint(std::span<const uint8_t> b) {
@@ -134,7 +145,55 @@ std::string hint(std::span<const uint8_t> b) {
   if (s.size() >= 132 && s.substr(128, 4) == "DICM") {
     return " (a DICOM image: segment it and export the surface first)";
   }
+  const size_t zeros = s.find_first_not_of('\0');
+  if (zeros == std::string_view::npos) return " (all zero bytes)";
+  if (zeros >= 16) return " (its first " + std::to_string(zeros) + " bytes are zero)";
   return "";
+}
+
+// The first bytes, quoted, and what they are when known.
+std::string quoted_start(std::span<const uint8_t> bytes) {
+  return "'" + printable_prefix(bytes, 16) + "'" + hint(bytes);
+}
+
+bool is_gzip(std::span<const uint8_t> b) { return b.size() >= 2 && b[0] == 0x1f && b[1] == 0x8b; }
+
+const char* const kGzipPrefix = "gzip-compressed file: ";
+const char* const kCompressedTwice =
+    "it holds another gzip stream (compressed twice): decompress it once first";
+
+/// Refuses a gzip file from the first kSniffBytes of its content when the
+/// whole content would be refused anyway, so that a large stream of no
+/// surface format is not inflated whole: another gzip stream, bytes of no
+/// format sniff() knows (the binary STL size law ruled out by the header's
+/// count: below the prefix's length or above max_decompressed_bytes), a binary
+/// STL header announcing more than max_triangles. Ok when the whole content
+/// must be read to tell (shorter than kSniffBytes, nearly all whitespace),
+/// and when that part cannot be inflated (the whole inflate then says why).
+Status sniff_gzip_start(std::span<const uint8_t> gz, const SurfaceReadOptions& options) {
+  Result<std::vector<uint8_t>> head = inflate_gzip_prefix(gz, kSniffBytes);
+  if (!head.ok()) return Status::Ok();
+  const std::vector<uint8_t>& b = head.value();
+  if (is_gzip(b)) return Status::Error(std::string(kGzipPrefix) + kCompressedTwice);
+  if (b.size() < kSniffBytes || content_start(b).size() < 16) return Status::Ok();
+  const Format format = sniff_start(b);
+  const uint64_t count = load_u32le(b.data() + 80);
+  if (format == Format::kStl && !istarts_with(content_start(b), "solid") &&
+      count > options.max_triangles) {
+    return Status::Error(std::string(kGzipPrefix) +
+                         "file too large: the binary STL header announces " +
+                         std::to_string(count) + " triangles, the limit of this build is " +
+                         std::to_string(options.max_triangles));
+  }
+  const uint64_t law_size = 84 + 50 * count;
+  if (format != Format::kUnknown ||
+      (law_size >= b.size() && law_size <= options.max_decompressed_bytes)) {
+    return Status::Ok();
+  }
+  return Status::Error(std::string(kGzipPrefix) + "its first " + std::to_string(b.size()) +
+                       " decompressed bytes are not the start of a surface file this tool reads (" +
+                       kSupported + "): they start with " + quoted_start(b) +
+                       "; the rest was not decompressed");
 }
 
 Result<SurfaceFile> read_stl_file(std::span<const uint8_t> bytes,
@@ -174,10 +233,8 @@ Result<SurfaceFile> read_sniffed(std::span<const uint8_t> bytes,
       break;
   }
   return Status::Error(std::string("not a surface file this tool reads (") + kSupported +
-                       "): it starts with '" + printable_prefix(bytes, 16) + "'" + hint(bytes));
+                       "): it starts with " + quoted_start(bytes));
 }
-
-bool is_gzip(std::span<const uint8_t> b) { return b.size() >= 2 && b[0] == 0x1f && b[1] == 0x8b; }
 
 /// Whether the bytes start with a UTF-16 byte order mark (FF FE: little
 /// endian, FE FF: big endian).
@@ -229,16 +286,15 @@ Result<SurfaceFile> read_surface(std::span<const uint8_t> bytes,
     return r;
   }
   if (!is_gzip(bytes)) return read_sniffed(bytes, options);
-  const std::string prefix = "gzip-compressed file: ";
+  const std::string prefix = kGzipPrefix;
+  if (Status start = sniff_gzip_start(bytes, options); !start.ok()) return start;
   std::vector<std::string> gzip_warnings;
   Result<std::vector<uint8_t>> inner =
       inflate_gzip(bytes, options.max_decompressed_bytes, &gzip_warnings);
   if (!inner.ok()) return Status::Error(prefix + inner.message());
   if (inner.value().empty()) return Status::Error(prefix + "it holds an empty file");
   if (is_gzip(inner.value())) {
-    return Status::Error(prefix +
-                         "it holds another gzip stream (compressed twice): decompress "
-                         "it once first");
+    return Status::Error(prefix + kCompressedTwice);
   }
   Result<SurfaceFile> r = read_sniffed(inner.value(), options);
   if (!r.ok()) return Status::Error(prefix + r.message());

@@ -34,13 +34,17 @@ Status check_surface_size(std::span<const uint8_t> prefix, uint64_t file_size,
                           const SurfaceReadOptions& options = {});
 
 /// Reads a surface file held in memory. The format is sniffed from the
-/// content: gzip magic (1f 8b: decompressed, then sniffed once more), "<?xml"
-/// or "<VTKFile" (VTK XML PolyData), "# vtk DataFile" (legacy VTK), a "ply"
-/// line (PLY), "solid" or the binary STL size law (STL, see read_stl), lines
-/// of OBJ statements (v, vn, vt, f, g, o, #, mtllib, usemtl, s, ...). Anything
-/// else: "not a surface file this tool reads (binary or ASCII STL, VTK XML
-/// PolyData .vtp, legacy VTK .vtk, Wavefront .obj, PLY; any of them
-/// gzip-compressed): it starts with '...'". Errors of a recognised format are
+/// content: "<?xml" or "<VTKFile" (VTK XML PolyData), "# vtk DataFile"
+/// (legacy VTK), a "ply" line (PLY), "solid" or the binary STL size law (STL,
+/// see read_stl), lines of OBJ statements (v, vn, vt, f, g, o, #, mtllib,
+/// usemtl, s, ...). Anything else: "not a surface file this tool reads
+/// (binary or ASCII STL, VTK XML PolyData .vtp, legacy VTK .vtk, Wavefront
+/// .obj, PLY; any of them gzip-compressed): it starts with '...'". Gzip magic
+/// (1f 8b): the first 64 KiB are decompressed and sniffed, and refused there
+/// when they are another gzip stream, a binary STL header over max_triangles
+/// or of no format above ("its first 65536 decompressed bytes are not the
+/// start of a surface file..."); only then is the whole decompressed (within
+/// max_decompressed_bytes) and sniffed. Errors of a recognised format are
 /// that reader's, prefixed "gzip-compressed file: " when it was compressed.
 Result<SurfaceFile> read_surface(std::span<const uint8_t> bytes,
                                  const SurfaceReadOptions& options = {});

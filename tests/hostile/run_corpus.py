@@ -11,7 +11,9 @@ ways:
 - exit 0 with a valid mesh: the MSH file reads back, no tetrahedron has a
   non-positive volume, every element is in a physical group, and the wall
   encloses within 5% of the input's volume (the report's volume_change),
-  unless the case itself allows more.
+  unless the case itself allows more;
+- for the cases in REFUSED, exit 1 with their message under their own,
+  smaller memory cap (a 1 GiB gzip of zeros refused without inflating it).
 
 Nothing is stored: the inputs are made from a small generated tube and
 bifurcation (`vesselmesh phantom`) by byte-level mutations and small
@@ -31,6 +33,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import zlib
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -43,8 +46,16 @@ TIMEOUT_S = 120
 BAD_TEXT = ("Sanitizer", "terminate called", "Aborted", "Segmentation", "std::", "what():")
 
 
-def limit_memory():
-    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_CAP, MEMORY_CAP))
+# Cases that must be refused with exit 1 and a message containing the given
+# words, under a smaller memory cap (bytes of address space) than MEMORY_CAP.
+REFUSED = {
+    # 1 GiB of zeros is refused from its first 64 KiB, never inflated whole.
+    "input/gzip-zeros-1G": ("its first 65536 decompressed bytes are not the start of a surface file", 256 << 20),
+}
+
+
+def limit_memory(cap=MEMORY_CAP):
+    resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
 
 
 # ---------------------------------------------------------------- inputs
@@ -71,6 +82,13 @@ def stl_ascii(tri, name="corpus", eol="\n", fmt="{:.9g}"):
         out += ["vertex " + " ".join(fmt.format(float(x)) for x in t[3 * k:3 * k + 3]) for k in range(3)]
         out += ["endloop", "endfacet"]
     return (eol.join(out + [f"endsolid {name}", ""])).encode()
+
+
+def gzip_zeros(n):
+    """A gzip member of n zero bytes (a multiple of 1 MiB), made 1 MiB at a time
+    at level 1 (1 GiB in 4.5 MB, as gzip -1 makes it)."""
+    z, chunk = zlib.compressobj(1, zlib.DEFLATED, 16 + 15), bytes(1 << 20)
+    return b"".join(z.compress(chunk) for _ in range(n >> 20)) + z.flush()
 
 
 def input_cases(base, bif, tmp):
@@ -156,6 +174,7 @@ def input_cases(base, bif, tmp):
     add("gzip-twice", gzip.compress(gzip.compress(base)))
     add("gzip-of-nothing", gzip.compress(b""))
     add("gzip-zeros-64M", gzip.compress(bytes(64 << 20)))
+    add("gzip-zeros-1G", gzip_zeros(1 << 30))
     add("obj-bad-index", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n")
     add("obj-negative-index", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -3\nf -1 -2 -9\n")
     add("obj-huge-index", b"v 0 0 0\nf 1 2 99999999999999999999\n")
@@ -285,9 +304,10 @@ def run_case(vm, case, inputs, tmp):
         infile = inputs[source]
     out, rep = work / "out.msh", work / "report.json"
     cmd = [vm, "mesh", str(infile), "-o", str(out), "--report", str(rep), "--quiet"] + args
+    refused, cap = REFUSED.get(name, (None, MEMORY_CAP))
     t0 = time.time()
     try:
-        p = subprocess.run(cmd, capture_output=True, text=True, errors="replace", timeout=TIMEOUT_S, preexec_fn=limit_memory)
+        p = subprocess.run(cmd, capture_output=True, text=True, errors="replace", timeout=TIMEOUT_S, preexec_fn=lambda: limit_memory(cap))
     except subprocess.TimeoutExpired:
         return name, f"hang: no end within {TIMEOUT_S} s", TIMEOUT_S
     dt = time.time() - t0
@@ -299,6 +319,8 @@ def run_case(vm, case, inputs, tmp):
         problem = f"exit {p.returncode}"
     elif any(b in err for b in BAD_TEXT):
         problem = "a runtime report: " + err.strip().splitlines()[-1][:200]
+    elif refused and (p.returncode != 1 or refused not in err):
+        problem = f"exit {p.returncode} under a {cap >> 20} MiB cap, not refused with '{refused}': " + err.strip()[:200]
     elif p.returncode == 1 and "vesselmesh: error:" not in err:
         problem = "exit 1 without an error message"
     elif p.returncode == 1 and "out of memory" in err and infile.exists() and infile.is_file() and infile.stat().st_size < (64 << 20):

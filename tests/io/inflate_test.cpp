@@ -55,22 +55,7 @@ TEST(Inflate, EmptyPayload) {
 // 100 MB of zeros compress to about 100 KB: with a 10 MB limit the output
 // must be refused, not allocated.
 TEST(Inflate, GzipBombIsRefused) {
-  z_stream z{};
-  ASSERT_EQ(deflateInit2(&z, 9, Z_DEFLATED, 16 + 15, 9, Z_DEFAULT_STRATEGY), Z_OK);
-  Bytes zeros(1 << 20, 0), out(1 << 20);
-  Bytes gz;
-  for (int mb = 0; mb < 100; ++mb) {
-    z.next_in = zeros.data();
-    z.avail_in = uInt(zeros.size());
-    int flush = mb == 99 ? Z_FINISH : Z_NO_FLUSH;
-    do {
-      z.next_out = out.data();
-      z.avail_out = uInt(out.size());
-      deflate(&z, flush);
-      gz.insert(gz.end(), out.begin(), out.end() - z.avail_out);
-    } while (z.avail_out == 0);
-  }
-  deflateEnd(&z);
+  const Bytes gz = testing::gzip_zeros(size_t(100) << 20);
   ASSERT_LT(gz.size(), 200000u);
   const size_t limit = 10 << 20;
   auto r = inflate_gzip(gz, limit);
@@ -84,6 +69,47 @@ TEST(Inflate, GzipBombIsRefused) {
   r = inflate_gzip(gz, 100 << 20);
   ASSERT_TRUE(r.ok()) << r.message();
   EXPECT_EQ(r.value().size(), size_t(100) << 20);
+}
+
+TEST(Inflate, GzipPrefix) {
+  const Bytes data = sample(300000);
+  const Bytes gz = testing::gzip(data);
+  auto r = inflate_gzip_prefix(gz, 1000);
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(r.value(), Bytes(data.begin(), data.begin() + 1000));
+  // Content shorter than asked for: all of it; nothing asked for: nothing.
+  r = inflate_gzip_prefix(testing::gzip(sample(500)), 1000);
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(r.value(), sample(500));
+  r = inflate_gzip_prefix(gz, 0);
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_TRUE(r.value().empty());
+  // Members are read in order.
+  Bytes two = testing::gzip(sample(10));
+  const Bytes second = testing::gzip(data);
+  two.insert(two.end(), second.begin(), second.end());
+  r = inflate_gzip_prefix(two, 100);
+  ASSERT_TRUE(r.ok()) << r.message();
+  Bytes want = sample(10);
+  want.insert(want.end(), data.begin(), data.begin() + 90);
+  EXPECT_EQ(r.value(), want);
+  // Nothing past the prefix is read: a truncated stream, or one with a bad
+  // CRC, still gives its start, and a bomb gives its start at once.
+  r = inflate_gzip_prefix(Bytes(gz.begin(), gz.begin() + long(gz.size() / 2)), 1000);
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(r.value(), Bytes(data.begin(), data.begin() + 1000));
+  Bytes bad = gz;
+  bad[bad.size() - 5] ^= 0xff;
+  EXPECT_TRUE(inflate_gzip_prefix(bad, 1000).ok());
+  r = inflate_gzip_prefix(testing::gzip_zeros(size_t(16) << 20), 65536);
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_EQ(r.value(), Bytes(65536, 0));
+  // Errors within the prefix are inflate_gzip's.
+  bad = gz;
+  bad[3] = 0xe0;  // reserved flag bits
+  r = inflate_gzip_prefix(bad, 1000);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.message(), inflate_gzip(bad, 1 << 20).message());
 }
 
 TEST(Inflate, TruncatedAndCorruptStreams) {

@@ -277,6 +277,69 @@ TEST(ReadSurface, GzipErrors) {
              "gzip-compressed file: gzip data ends before the end of the compressed stream");
 }
 
+TEST(ReadSurface, GzipOfNoSurfaceIsRefusedFromItsStart) {
+  // 64 MiB of zeros, with a limit below that but above the 64 KiB sniffed
+  // first: the refusal names the content, so the rest was never inflated.
+  const Bytes zeros = testing::gzip_zeros(size_t(64) << 20);
+  SurfaceReadOptions o;
+  o.max_decompressed_bytes = size_t(1) << 20;
+  std::string zeros16;
+  for (int i = 0; i < 16; ++i) zeros16 += "\\x00";
+  EXPECT_EQ(error_of(zeros, o),
+            "gzip-compressed file: its first 65536 decompressed bytes are not the start of a "
+            "surface file this tool reads (binary or ASCII STL, VTK XML PolyData .vtp, legacy VTK "
+            ".vtk, Wavefront .obj, PLY; any of them gzip-compressed): they start with '" +
+                zeros16 + "...' (all zero bytes); the rest was not decompressed");
+  EXPECT_EQ(error_of(zeros), error_of(zeros, o));
+  // Uncompressed, zero bytes are named too.
+  EXPECT_EQ(error_of(Bytes(100000, 0)),
+            std::string(kNotASurface) + zeros16 + "...' (all zero bytes)");
+  Bytes mostly_zero(200, 0);
+  mostly_zero[40] = 7;
+  EXPECT_HAS(error_of(mostly_zero), "...' (its first 40 bytes are zero)");
+  // Another gzip stream inside, also told from the start.
+  Bytes twice = testing::gzip(zeros);
+  EXPECT_EQ(error_of(twice, o),
+            "gzip-compressed file: it holds another gzip stream (compressed twice): decompress "
+            "it once first");
+  // A binary STL header over the triangle limit.
+  Bytes stl = write_stl_binary(testing::open_tube(64, 40));
+  ASSERT_GT(stl.size(), 65536u);
+  o.max_triangles = 1000;
+  EXPECT_EQ(error_of(testing::gzip(stl), o),
+            "gzip-compressed file: file too large: the binary STL header announces 5120 "
+            "triangles, the limit of this build is 1000");
+}
+
+TEST(ReadSurface, GzipReadsAsTheUncompressedBytes) {
+  // Files longer than the 64 KiB sniffed first, one of each format, and one
+  // whose text starts after 70,000 line ends.
+  SurfaceMesh mesh = testing::open_tube(64, 40);
+  for (double& x : mesh.points) x = double(float(x));
+  std::vector<Sample> all = samples(mesh);
+  all.push_back({"late text", to_bytes(std::string(70000, '\n') + testing::ascii_stl(mesh)),
+                 "ASCII STL", "stl"});
+  size_t checked = 0;
+  for (const Sample& s : all) {
+    if (s.name.starts_with("gzip") || s.bytes.size() <= 65536) continue;
+    SCOPED_TRACE(s.name);
+    ++checked;
+    auto plain = read_surface(s.bytes);
+    auto gz = read_surface(testing::gzip(s.bytes));
+    ASSERT_TRUE(plain.ok()) << plain.message();
+    ASSERT_TRUE(gz.ok()) << gz.message();
+    EXPECT_EQ(gz.value().format, "gzip, " + plain.value().format);
+    EXPECT_EQ(gz.value().points, plain.value().points);
+    EXPECT_EQ(gz.value().triangles, plain.value().triangles);
+    EXPECT_EQ(gz.value().soup.coords, plain.value().soup.coords);
+    EXPECT_EQ(gz.value().face_labels, plain.value().face_labels);
+    EXPECT_EQ(gz.value().warnings, plain.value().warnings);
+  }
+  // The late text and the 12 formats but the two VTK XML files with zlib
+  // arrays (shorter than 64 KiB).
+  EXPECT_EQ(checked, 11u);
+}
+
 TEST(ReadSurface, MisnamedContentIsStillRecognised) {
   // Sniffing ignores names and leading whitespace / byte order marks.
   std::string v = "\xEF\xBB\xBF\n  " + testing::vtp(testing::cells_of(float_tube()));
