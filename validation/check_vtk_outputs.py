@@ -282,6 +282,7 @@ def check_surface(label, path, msh, expected, vtu, face_id=None):
     vtu_node = vtu.msh_node
     pts = msh.points
     bad_elem, inward = 0, 0
+    by_shape = {}  # (face size, element size): (faces' nodes, elements' nodes)
     for c, e in zip(cells, gel.tolist()):
         nodes = node[c]
         if not (1 <= e <= len(vtu.cells)):
@@ -291,12 +292,14 @@ def check_surface(label, path, msh, expected, vtu, face_id=None):
         if not set(nodes.tolist()) <= set(elem.tolist()):
             bad_elem += 1
             continue
-        p = pts[nodes]
-        normal = np.zeros(3)
-        for k in range(len(p)):  # Newell's normal
-            normal += np.cross(p[k], p[(k + 1) % len(p)])
-        if np.dot(normal, pts[elem].mean(axis=0) - p.mean(axis=0)) >= 0:
-            inward += 1
+        faces, elems = by_shape.setdefault((len(nodes), len(elem)), ([], []))
+        faces.append(nodes)
+        elems.append(elem)
+    for (n, _), (faces, elems) in by_shape.items():
+        p = pts[np.array(faces)]
+        normal = sum(np.cross(p[:, k], p[:, (k + 1) % n]) for k in range(n))  # Newell's
+        towards = pts[np.array(elems)].mean(axis=1) - p.mean(axis=1)
+        inward += int((np.einsum("ij,ij->i", normal, towards) >= 0).sum())
     report(bad_elem == 0, f"{label}: each GlobalElementID is a VTU cell having the face",
            f"{bad_elem} of {len(cells)} wrong")
     report(inward == 0, f"{label}: faces oriented outward of that cell", f"{inward} of {len(cells)} inward")

@@ -197,6 +197,18 @@ def check_remesh(fname, path, tmp, args, d, have_gmsh, mode, mesher="frontal"):
 TET_TARGET = dict(min=0.2, mean=0.67)
 
 
+def face_keys(faces):
+    """One sortable key per row of `faces` (n x 3 node tags, each row
+    sorted): the tags packed into one int64 when they fit in 21 bits (one
+    sort instead of numpy's row-wise unique), else each row as one opaque
+    value. Equal rows, equal keys."""
+    import numpy as np
+    faces = np.ascontiguousarray(faces, dtype=np.int64)
+    if len(faces) == 0 or (faces.min() >= 0 and faces.max() < (1 << 21)):
+        return (faces[:, 0] << 42) | (faces[:, 1] << 21) | faces[:, 2]
+    return faces.view(np.dtype((np.void, faces.itemsize * 3))).ravel()
+
+
 def gmsh_volume(path):
     """What Gmsh reads from a volume MSH file: physical names, element counts
     per group, and checks computed from the nodes: the smallest signed tet
@@ -239,8 +251,8 @@ def gmsh_volume(path):
         v6 = np.einsum("ij,ij->i", np.cross(b - a, c - a), e - a)
         oriented = np.concatenate([tet[:, [1, 2, 3]], tet[:, [0, 3, 2]], tet[:, [0, 1, 3]], tet[:, [0, 2, 1]]])
         owner = np.tile(group, 4)
-        key = np.sort(oriented, axis=1)
-        uniq, inverse, cnt = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+        key = face_keys(np.sort(oriented, axis=1))
+        uniq, inverse, cnt = np.unique(key, return_inverse=True, return_counts=True)
         inverse = inverse.ravel()
         once = cnt[inverse] == 1
         bnd = oriented[once]
@@ -251,10 +263,11 @@ def gmsh_volume(path):
         gmax = np.full(len(uniq), -1)
         np.minimum.at(gmin, inverse, owner)
         np.maximum.at(gmax, inverse, owner)
-        boundary = {tuple(f) for f in uniq[cnt == 1]}
-        interface = {tuple(f) for f in uniq[(cnt == 2) & (gmin != gmax)]}
-        surface = {tuple(f) for f in np.sort(tri, axis=1)}
-        unmatched = len(boundary - surface) + len(surface - boundary - interface)
+        boundary = uniq[cnt == 1]
+        interface = uniq[(cnt == 2) & (gmin != gmax)]
+        surface = np.unique(face_keys(np.sort(tri, axis=1)))
+        unmatched = (len(np.setdiff1d(boundary, surface, assume_unique=True))
+                     + len(np.setdiff1d(surface, np.union1d(boundary, interface), assume_unique=True)))
         import meshquality
         group_min = {name: float(meshquality.gamma_k(xyz, np.concatenate(arrs)).min())
                      for name, arrs in groups.items() if arrs[0].shape[1] == 3}
