@@ -153,7 +153,11 @@ std::string hint(std::span<const uint8_t> b) {
 
 // The first bytes, quoted, and what they are when known.
 std::string quoted_start(std::span<const uint8_t> bytes) {
-  return "'" + printable_prefix(bytes, 16) + "'" + hint(bytes);
+  std::string s = "'";  // appended, not "'" + ...: GCC 12 warns falsely on that (-Wrestrict)
+  s += printable_prefix(bytes, 16);
+  s += "'";
+  s += hint(bytes);
+  return s;
 }
 
 bool is_gzip(std::span<const uint8_t> b) { return b.size() >= 2 && b[0] == 0x1f && b[1] == 0x8b; }
