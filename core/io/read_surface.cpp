@@ -196,8 +196,12 @@ Status sniff_gzip_start(std::span<const uint8_t> gz, const SurfaceReadOptions& o
   }
   return Status::Error(std::string(kGzipPrefix) + "its first " + std::to_string(b.size()) +
                        " decompressed bytes are not the start of a surface file this tool reads (" +
-                       kSupported + "): they start with " + quoted_start(b) +
-                       "; the rest was not decompressed");
+                       kSupported + "): they " +
+                       (as_text(b).find_first_not_of('\0') == std::string_view::npos
+                            ? std::string("are all zero bytes")
+                            : "start with " + quoted_start(b)) +
+                       "; the rest was not decompressed. Open the surface file itself (a "
+                       "download or export that failed can leave such a file)");
 }
 
 Result<SurfaceFile> read_stl_file(std::span<const uint8_t> bytes,

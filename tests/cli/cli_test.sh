@@ -63,7 +63,7 @@ check "too many triangles, refused from the header" expect_exit 1 "the binary ST
 # within a 256 MiB address space: the rest is never inflated.
 head -c 1G /dev/zero | gzip -1 > "$T/zeros.stl.gz"
 check "gzip of zeros, refused from its start" expect_exit 1 "gzip-compressed file: its first 65536 decompressed bytes are not the start of a surface file this tool reads" sh -c 'ulimit -v 262144 && "$1" mesh "$2" -o "$3"' _ "$VM" "$T/zeros.stl.gz" "$T/zeros.msh"
-check "gzip of zeros: the message names them" expect_exit 1 "(all zero bytes); the rest was not decompressed" "$VM" mesh "$T/zeros.stl.gz" -o "$T/zeros.msh"
+check "gzip of zeros: the message names them" expect_exit 1 "they are all zero bytes; the rest was not decompressed. Open the surface file itself" "$VM" mesh "$T/zeros.stl.gz" -o "$T/zeros.msh"
 rm -f "$T/huge.stl"
 # Text as segmentation tools write it: a UTF-8 byte order mark, a form feed
 # or NUL in the solid's name, classic Mac line ends (CR only), UTF-16.

@@ -288,8 +288,9 @@ TEST(ReadSurface, GzipOfNoSurfaceIsRefusedFromItsStart) {
   EXPECT_EQ(error_of(zeros, o),
             "gzip-compressed file: its first 65536 decompressed bytes are not the start of a "
             "surface file this tool reads (binary or ASCII STL, VTK XML PolyData .vtp, legacy VTK "
-            ".vtk, Wavefront .obj, PLY; any of them gzip-compressed): they start with '" +
-                zeros16 + "...' (all zero bytes); the rest was not decompressed");
+            ".vtk, Wavefront .obj, PLY; any of them gzip-compressed): they are all zero bytes; the "
+            "rest was not decompressed. Open the surface file itself (a download or export that "
+            "failed can leave such a file)");
   EXPECT_EQ(error_of(zeros), error_of(zeros, o));
   // Uncompressed, zero bytes are named too.
   EXPECT_EQ(error_of(Bytes(100000, 0)),
