@@ -1,6 +1,8 @@
+import { gzipSync } from 'node:zlib';
+
 import { expect, test } from '@playwright/test';
 
-import { expectStats, openApp, openBoxBinary, TETRA_ASCII, upload } from './helpers.js';
+import { expectStats, openApp, openBoxBinary, screenshots, TETRA_ASCII, upload } from './helpers.js';
 
 const num = async (page, id) => Number((await page.getByTestId(id).textContent()).replace(/,/g, ''));
 
@@ -69,6 +71,14 @@ test('bad inputs give readable errors and the page keeps working', async ({ page
 
   await upload(page, 'garbage.stl', Buffer.from('this is not a mesh\n'));
   await expect(error).toContainText('garbage.stl: not a surface file this tool reads');
+
+  // 256 MiB of zeros, gzipped (256 members of 1 MiB): refused from its
+  // first inflated bytes, the rest never inflated.
+  const member = gzipSync(Buffer.alloc(1 << 20), { level: 9 });
+  await upload(page, 'zeros.stl.gz', Buffer.concat(Array(256).fill(member)));
+  await expect(error).toContainText('zeros.stl.gz: gzip-compressed file: its first 65536 decompressed bytes are not');
+  await expect(error).toContainText('they are all zero bytes; the rest was not decompressed. Open the surface file itself');
+  await screenshots(page, 'refused-gzip', error);
 
   const truncated = openBoxBinary().subarray(0, 300);
   await upload(page, 'truncated.stl', truncated);

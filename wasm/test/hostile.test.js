@@ -71,6 +71,26 @@ test('broken bytes are refused with a message, never thrown', () => {
   assert.equal(api.analyze(tube).ok, true, 'the module works after');
 });
 
+test('a gzip of no surface is refused from its first inflated bytes, not inflated whole', () => {
+  // 512 members of 1 MiB of zeros each: 512 MiB inflated, about 0.5 MB given.
+  const member = gzipSync(new Uint8Array(1 << 20), { level: 9 });
+  const bomb = new Uint8Array(member.length * 512);
+  for (let k = 0; k < 512; ++k) bomb.set(member, k * member.length);
+  const r = settles('analyze: gzip of 512 MiB of zeros', () => api.analyze(bomb));
+  assert.equal(r.ok, false);
+  assert.match(r.error, /^gzip-compressed file: its first 65536 decompressed bytes are not the start of a surface file/);
+  assert.match(r.error, /they are all zero bytes; the rest was not decompressed\. Open the surface file itself/);
+  const meshed = settles('mesh: gzip of 512 MiB of zeros', () => api.mesh(bomb, { size: 0.5, layers: 0 }));
+  assert.equal(meshed.ok, false);
+  assert.match(meshed.error, /the rest was not decompressed/);
+  // A gzipped surface still reads as itself.
+  const plain = api.analyze(tube);
+  const zipped = api.analyze(gzipSync(tube));
+  assert.equal(zipped.ok, true, zipped.error);
+  assert.equal(zipped.analysis.input_triangles, plain.analysis.input_triangles);
+  assert.equal(zipped.analysis.format, `gzip, ${plain.analysis.format}`);
+});
+
 test('every numeric option at hostile values is refused or meshes, never thrown', () => {
   const values = (s) => {
     const v = [0, -1, 1e-30, 1e300, NaN, Infinity, -Infinity, 'abc', '', 1.5, 2 ** 31];
