@@ -345,6 +345,7 @@ std::string mesh_report_json(const MeshJobResult& r, OptionFace face) {
     j.key("pinning_rounds").value(st.fidelity_rounds);
     j.key("pinning_reverted").value(st.fidelity_reverted);
     j.key("size_rounds").value(st.fidelity_size_rounds);
+    j.key("local_rounds").value(st.fidelity_local_rounds);
     j.end_object();
     j.key("splits").value(st.retries);
     j.key("fallback_patches");

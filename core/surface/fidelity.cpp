@@ -16,6 +16,7 @@
 #include "core/quality/triangle_quality.h"
 #include "core/surface/optimize_surface.h"
 #include "core/surface/pin_to_input.h"
+#include "core/surface/size_field.h"
 #include "core/util/stage_timer.h"
 
 namespace vm {
@@ -64,6 +65,7 @@ constexpr double kNeedle = 0.05;
 /// restored when a round is undone.
 struct KeptWall {
   SurfaceMesh mesh;
+  std::vector<double> h;  ///< Pinning::h then
   std::vector<int32_t> home;
   std::vector<uint8_t> fixed;
   std::vector<int32_t> pin_of;
@@ -83,7 +85,8 @@ struct Floors {
 struct Pinning {
   const SurfaceMesh& input;
   const TriangleAdjacency& adj;      ///< of the input, cut along the features
-  const std::vector<double>& h;      ///< per input vertex: the size meshed at
+  std::vector<double> h;             ///< per input vertex: the size meshed at, finer
+                                     ///< where a local size round ran
   const std::vector<double>& asked;  ///< per input vertex: the size asked for
   const RemeshOptions& options;
   SurfaceMesh& mesh;
@@ -98,6 +101,7 @@ struct Pinning {
   Floors floors{};
   /// Self-intersecting pairs of the kept wall when known exactly, else -1.
   int64_t kept_pairs = -1;
+  bool floors_set = false;  ///< set_floors ran
 };
 
 /// Flags (one per output vertex) the vertices whose `fixed` flag differs
@@ -138,11 +142,12 @@ bool is_clean(const Pinning& p) {
 }
 
 void keep(Pinning& p) {
-  p.kept = {p.mesh, p.wall.home, p.wall.fixed, p.wall.pin_of, p.stats.fidelity_pinned};
+  p.kept = {p.mesh, p.h, p.wall.home, p.wall.fixed, p.wall.pin_of, p.stats.fidelity_pinned};
 }
 
 void restore(Pinning& p) {
   p.mesh = p.kept.mesh;
+  p.h = p.kept.h;
   p.wall.home = p.kept.home;
   p.wall.fixed = p.kept.fixed;
   p.wall.pin_of = p.kept.pin_of;
@@ -168,18 +173,25 @@ void set_floors(Pinning& p) {
   p.floors.crossings = find_self_intersections(p.mesh, 0).pairs;
   p.kept_pairs = int64_t(p.floors.crossings);
   p.floors.needles = count_needles(p.mesh);
+  p.floors_set = true;
   keep(p);
 }
 
-/// A few optimization passes where the `fixed` flags changed since
-/// `before` (one per output vertex of the wall then).
-void relax(Pinning& p, const std::vector<uint8_t>& before) {
+/// A few optimization passes from the output vertices flagged in `start`
+/// (one per output vertex), at the sizes p.h.
+void relax_from(Pinning& p, const std::vector<uint8_t>& start) {
   p.wall.size = output_sizes(p.input, p.wall.home, p.h);
-  const auto more = optimize_on_surface(p.mesh, p.wall, p.input, p.adj, p.relax_options,
-                                        around_changes(p.mesh, p.wall.fixed, before), &p.slack);
+  const auto more =
+      optimize_on_surface(p.mesh, p.wall, p.input, p.adj, p.relax_options, start, &p.slack);
   p.stats.collapses += more.collapses;
   p.stats.swaps += more.swaps;
   p.stats.moves += more.moves;
+}
+
+/// relax_from where the `fixed` flags changed since `before` (one per
+/// output vertex of the wall then).
+void relax(Pinning& p, const std::vector<uint8_t>& before) {
+  relax_from(p, around_changes(p.mesh, p.wall.fixed, before));
 }
 
 /// Frees the pins of triangles below min_gamma (given up on), then relaxes
@@ -197,8 +209,8 @@ size_t unpin_and_relax(Pinning& p, double min_gamma) {
 /// then the floors (pins of ever better triangles freed until they hold).
 /// The round is kept when they hold and it made no self-intersection or
 /// needle; else it is undone (the pins freed stay given up, so the next
-/// round tries the others).
-void settle_round(Pinning& p, const std::vector<uint8_t>& before, double min_quality) {
+/// round tries the others). Returns whether it was kept.
+bool settle_round(Pinning& p, const std::vector<uint8_t>& before, double min_quality) {
   relax(p, before);
   for (int step = 0; step < 8 && unpin_and_relax(p, min_quality) > 0; ++step) {
   }
@@ -209,12 +221,19 @@ void settle_round(Pinning& p, const std::vector<uint8_t>& before, double min_qua
     keep(p);
     // is_clean allows no new pair: exact when there was none.
     p.kept_pairs = p.floors.crossings == 0 ? 0 : -1;
-  } else {
-    restore(p);
+    return true;
   }
+  restore(p);
+  return false;
 }
 
 }  // namespace
+
+bool worth_size_round(size_t far, size_t vertices, const RemeshOptions& options) {
+  const double share = double(far) / double(std::max<size_t>(vertices, 1));
+  return far > 0 && share <= options.fidelity_noise_share &&
+         (vertices <= options.fidelity_small_surface || share > options.fidelity_size_share);
+}
 
 size_t count_gaps(const std::vector<double>& gaps, const std::vector<double>& asked,
                   double fidelity, RemeshStats& stats) {
@@ -230,11 +249,106 @@ size_t count_gaps(const std::vector<double>& gaps, const std::vector<double>& as
   return far;
 }
 
+namespace {
+
+/// The pinning rounds on p's wall (RemeshOptions::fidelity_rounds, then
+/// fidelity_last_rounds): returns how many input vertices are left beyond
+/// fidelity h, p.input_gaps and p.bvh measured on the wall left.
+size_t pin_rounds(Pinning& p) {
+  const RemeshOptions& options = p.options;
+  // The last rounds retry every vertex left far, accepting poorer
+  // triangles around the pins (the floors still hold).
+  const int rounds =
+      options.fidelity_rounds + (options.fidelity_rounds > 0 ? options.fidelity_last_rounds : 0);
+  // No size round may follow on a large wall: its last rounds accept
+  // triangles down to the floor.
+  const bool large_wall = p.mesh.num_vertices() > options.fidelity_small_surface;
+  std::fill(p.given_up.begin(), p.given_up.end(), 0);
+  int undone = 0;  // rounds undone in a row
+  for (int round = 0;; ++round) {
+    const size_t far = measure_gaps(p);
+    // Noise everywhere (more pins than a share of the output's vertices)
+    // would cost more quality than the floors allow: not tried.
+    if (far == 0 || round >= rounds ||
+        (!p.floors_set &&
+         double(far) > options.fidelity_max_share * double(p.mesh.num_vertices())))
+      return far;
+    const double min_quality =
+        round < options.fidelity_rounds ? options.fidelity_min_quality
+        : large_wall ? std::min(options.fidelity_last_min_quality, options.fidelity_floor_min)
+                     : options.fidelity_last_min_quality;
+    if (round == options.fidelity_rounds) {
+      std::fill(p.given_up.begin(), p.given_up.end(), 0);
+      undone = 0;
+    }
+    if (!p.floors_set) set_floors(p);
+    const std::vector<uint8_t> before = p.wall.fixed;
+    const PinStats pinned = pin_to_input(p.mesh, p.wall, p.input, p.asked, p.input_gaps,
+                                         options.fidelity, p.given_up, &p.bvh);
+    if (pinned.pinned == 0) {
+      // Nothing left to try at this quality: on to the last rounds.
+      if (round < options.fidelity_rounds) {
+        round = options.fidelity_rounds - 1;
+        continue;
+      }
+      return far;
+    }
+    ++p.stats.fidelity_rounds;
+    p.stats.fidelity_pinned += pinned.pinned;
+    undone = settle_round(p, before, min_quality) ? 0 : undone + 1;
+    // Twice undone in a row (the wall too noisy or too tight there for
+    // these pins): on to the last rounds, or done (the wall is the kept
+    // one, its gaps measured before the round).
+    if (undone == 2) {
+      undone = 0;
+      if (round >= options.fidelity_rounds) return far;
+      round = options.fidelity_rounds - 1;
+    }
+  }
+}
+
+/// A local size round (RemeshOptions::fidelity_local_rounds): p.h halved
+/// within h of each input vertex still beyond fidelity h (graded), and the
+/// wall split, swapped and smoothed from the output vertices whose target
+/// size fell, so that it follows the input there; kept on the terms of a
+/// pinning round (floors, no new needle or crossing), else undone.
+/// `tree`: over p.input.points. Returns whether it was kept.
+bool refine_around_far(Pinning& p, const PointKdTree& tree) {
+  const std::vector<int32_t> far =
+      far_input_vertices(p.input_gaps, p.asked, p.options.fidelity);
+  std::vector<double> finer = p.h;
+  std::vector<std::pair<uint32_t, double>> near;
+  const nanoflann::SearchParams unsorted(32, 0, false);
+  for (int32_t v : far) {
+    const double h = p.h[size_t(v)];
+    const double target = std::max(0.5 * h, p.options.size.size_min);
+    tree.radiusSearch(&p.input.points[3 * size_t(v)], h * h, near, unsorted);
+    for (const auto& item : near) finer[item.first] = std::min(finer[item.first], target);
+  }
+  limit_gradation(p.input, finer, p.options.size.gradation);
+  const std::vector<double> old_size = p.wall.size;
+  p.h = std::move(finer);
+  const std::vector<double> new_size = output_sizes(p.input, p.wall.home, p.h);
+  std::vector<uint8_t> start(new_size.size());
+  for (size_t v = 0; v < start.size(); ++v) start[v] = new_size[v] < old_size[v];
+  relax_from(p, start);
+  if (holds_floors(p) && is_clean(p)) {
+    keep(p);
+    p.kept_pairs = p.floors.crossings == 0 ? 0 : -1;
+    ++p.stats.fidelity_local_rounds;
+    return true;
+  }
+  restore(p);
+  return false;
+}
+
+}  // namespace
+
 void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& adj,
-                            const std::vector<double>& h, const std::vector<double>& asked,
+                            std::vector<double>& h, const std::vector<double>& asked,
                             const RemeshOptions& options, SurfaceMesh& mesh, WallVertices& wall,
                             std::vector<double>& input_gaps, RemeshStats& stats) {
-  stats.fidelity_rounds = stats.fidelity_pinned = 0;
+  stats.fidelity_rounds = stats.fidelity_pinned = stats.fidelity_local_rounds = 0;
   stats.fidelity_reverted = false;
   stats.self_intersections = -1;
   Pinning p{.input = input,
@@ -252,44 +366,53 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
       std::min(p.relax_options.valence_passes, options.fidelity_passes);
   p.given_up.assign(input.num_vertices(), 0);
   wall.pin_of.assign(wall.fixed.size(), -1);
-  p.slack.input_h = &h;
+  p.slack.input_h = &p.h;
   p.slack.slack = options.fidelity_pin_slack * options.fidelity;
-  // The last rounds retry every vertex left far, accepting poorer
-  // triangles around the pins (the floors still hold).
-  const int rounds =
-      options.fidelity_rounds + (options.fidelity_rounds > 0 ? options.fidelity_last_rounds : 0);
-  // No size round may follow on a large wall: its last rounds accept
-  // triangles down to the floor.
-  const bool large_wall = mesh.num_vertices() > options.fidelity_small_surface;
-  for (int round = 0;; ++round) {
-    const size_t far = measure_gaps(p);
-    // Noise everywhere (more pins than a share of the output's vertices)
-    // would cost more quality than the floors allow: not tried.
-    if (far == 0 || round >= rounds ||
-        (round == 0 && double(far) > options.fidelity_max_share * double(mesh.num_vertices())))
-      break;
-    const double min_quality =
-        round < options.fidelity_rounds ? options.fidelity_min_quality
-        : large_wall ? std::min(options.fidelity_last_min_quality, options.fidelity_floor_min)
-                     : options.fidelity_last_min_quality;
-    if (round == options.fidelity_rounds) std::fill(p.given_up.begin(), p.given_up.end(), 0);
-    if (round == 0) set_floors(p);
-    const std::vector<uint8_t> before = wall.fixed;
-    const PinStats pinned =
-        pin_to_input(mesh, wall, input, asked, input_gaps, options.fidelity, p.given_up, &p.bvh);
-    if (pinned.pinned == 0) {
-      // Nothing left to try at this quality: on to the last rounds.
-      if (round < options.fidelity_rounds) {
-        round = options.fidelity_rounds - 1;
-        continue;
-      }
-      break;
+  size_t far = pin_rounds(p);
+  if (p.floors_set && options.fidelity_local_rounds > 0 &&
+      worth_size_round(far, mesh.num_vertices(), options)) {
+    const PointCloud cloud{input.points};
+    PointKdTree tree(3, cloud);
+    tree.buildIndex();
+    for (int local = 0; local < options.fidelity_local_rounds &&
+                        worth_size_round(far, mesh.num_vertices(), options);
+         ++local) {
+      // Undone, the wall is the kept one its gaps were measured on.
+      if (!refine_around_far(p, tree)) break;
+      far = pin_rounds(p);
     }
-    ++stats.fidelity_rounds;
-    stats.fidelity_pinned += pinned.pinned;
-    settle_round(p, before, min_quality);
   }
+  h = std::move(p.h);
   stats.self_intersections = p.kept_pairs;
+}
+
+std::vector<double> finer_where_far(const SurfaceMesh& input, const PointKdTree& tree,
+                                    const RemeshOptions& options, std::vector<double> h,
+                                    const std::vector<double>& asked,
+                                    const std::vector<int32_t>& far,
+                                    const std::vector<double>& gaps) {
+  std::vector<std::pair<uint32_t, double>> near;
+  const nanoflann::SearchParams unsorted(32, 0, false);
+  std::vector<double> finer = h;
+  for (int32_t v : far) {
+    // A chord's gap from a bend grows as h^2.
+    const double rel = gaps[size_t(v)] / asked[size_t(v)];
+    const double target =
+        std::max(h[size_t(v)] * std::clamp(std::sqrt(0.8 * options.fidelity / rel), 0.5, 0.9),
+                 options.size.size_min);
+    tree.radiusSearch(&input.points[3 * size_t(v)], h[size_t(v)] * h[size_t(v)], near, unsorted);
+    for (const auto& item : near) finer[item.first] = std::min(finer[item.first], target);
+  }
+  limit_gradation(input, finer, options.size.gradation);
+  return finer;
+}
+
+std::vector<int32_t> far_input_vertices(const std::vector<double>& gaps,
+                                        const std::vector<double>& asked, double fidelity) {
+  std::vector<int32_t> far;
+  for (size_t v = 0; v < asked.size(); ++v)
+    if (gaps[v] > fidelity * asked[v]) far.push_back(int32_t(v));
+  return far;
 }
 
 Status refine_size_where_far(const SurfaceMesh& input, const RemeshOptions& options,
@@ -299,12 +422,8 @@ Status refine_size_where_far(const SurfaceMesh& input, const RemeshOptions& opti
   const PointCloud cloud{input.points};
   PointKdTree tree(3, cloud);
   if (options.fidelity_size_rounds > 0) tree.buildIndex();
-  // The input vertices beyond fidelity h, given their gaps.
   auto far_vertices = [&](const std::vector<double>& gaps) {
-    std::vector<int32_t> far;
-    for (size_t v = 0; v < asked.size(); ++v)
-      if (gaps[v] > options.fidelity * asked[v]) far.push_back(int32_t(v));
-    return far;
+    return far_input_vertices(gaps, asked, options.fidelity);
   };
   // Each round refines the last one's sizes; the surface kept is the one
   // with the fewest far vertices (meshing is not monotone: a round can
@@ -317,23 +436,8 @@ Status refine_size_where_far(const SurfaceMesh& input, const RemeshOptions& opti
   for (int round = 0; round < options.fidelity_size_rounds && result.ok(); ++round) {
     auto t0 = std::chrono::steady_clock::now();
     const std::vector<int32_t> far = far_vertices(gaps);
-    const double share = double(far.size()) / double(vertices);
-    if (far.empty() || share > options.fidelity_noise_share ||
-        (vertices > options.fidelity_small_surface && !(share > options.fidelity_size_share)))
-      break;
-    std::vector<double> finer = h;
-    std::vector<std::pair<uint32_t, double>> near;
-    const nanoflann::SearchParams unsorted(32, 0, false);
-    for (int32_t v : far) {
-      // A chord's gap from a bend grows as h^2.
-      const double rel = gaps[size_t(v)] / asked[size_t(v)];
-      const double target =
-          std::max(h[size_t(v)] * std::clamp(std::sqrt(0.8 * options.fidelity / rel), 0.5, 0.9),
-                   options.size.size_min);
-      tree.radiusSearch(&input.points[3 * size_t(v)], h[size_t(v)] * h[size_t(v)], near, unsorted);
-      for (const auto& item : near) finer[item.first] = std::min(finer[item.first], target);
-    }
-    limit_gradation(input, finer, options.size.gradation);
+    if (!worth_size_round(far.size(), vertices, options)) break;
+    std::vector<double> finer = finer_where_far(input, tree, options, h, asked, far, gaps);
     latest.seconds_fidelity += seconds_since(t0);
     RemeshStats next = latest;
     auto again = remesh(finer, next);

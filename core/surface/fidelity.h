@@ -11,6 +11,7 @@
 #include <functional>
 #include <vector>
 
+#include "core/geom/point_kdtree.h"
 #include "core/mesh/adjacency.h"
 #include "core/mesh/surface_mesh.h"
 #include "core/surface/remesh_surface.h"
@@ -40,22 +41,50 @@ size_t count_gaps(const std::vector<double>& gaps, const std::vector<double>& as
 /// options.fidelity times `asked` from the output (pin_to_input), then
 /// options.fidelity_passes optimization passes around them; pins that cost
 /// quality are freed, and a round is undone if the quality floors still
-/// fail, or if it made a self-intersection or a needle.
+/// fail, or if it made a self-intersection or a needle (twice undone in a
+/// row ends the rounds at that quality). Where vertices stay far, local
+/// size rounds (options.fidelity_local_rounds) halve `h` around them and
+/// split the wall there, on the same terms, and the pinning rounds run
+/// again.
 /// `input`: manifold, oriented, `adj` its adjacency with the sharp features
-/// cut; `h`: the size the wall was meshed at, `asked`: the size asked for
-/// (size rounds make h finer, never asked), one per input vertex, > 0,
-/// model unit. `mesh`: the optimized wall, manifold, oriented like the
-/// input, every vertex on it; `wall`: its per-vertex data (home, fixed and
-/// size as the optimizer left them; pin_of is reset to -1), kept in step
-/// with the mesh (size made output_sizes(h) again where a round ran). On
-/// return `input_gaps` holds each input vertex's distance to the wall
-/// (model unit), and `stats` the fidelity counts (reset first), the
-/// self-intersections when counted exactly, and the optimizer's counts
-/// added.
+/// cut; `h`: the size the wall was meshed at (made finer where a local
+/// size round was kept), `asked`: the size asked for (a distinct vector),
+/// one per input vertex, > 0, model unit. `mesh`: the optimized wall,
+/// manifold, oriented like the input, every vertex on it; `wall`: its
+/// per-vertex data (home, fixed and size as the optimizer left them;
+/// pin_of is reset to -1), kept in step with the mesh (size made
+/// output_sizes(h) again where a round ran). On return `input_gaps` holds
+/// each input vertex's distance to the wall (model unit), and `stats` the
+/// fidelity counts (reset first), the self-intersections when counted
+/// exactly, and the optimizer's counts added.
 void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& adj,
-                            const std::vector<double>& h, const std::vector<double>& asked,
+                            std::vector<double>& h, const std::vector<double>& asked,
                             const RemeshOptions& options, SurfaceMesh& mesh, WallVertices& wall,
                             std::vector<double>& input_gaps, RemeshStats& stats);
+
+/// Whether `far` input vertices left beyond fidelity h on a wall of
+/// `vertices` call for a size round: some, not noise everywhere (at most
+/// options.fidelity_noise_share of the vertices), and on a wall of more
+/// than options.fidelity_small_surface vertices more than
+/// options.fidelity_size_share of them.
+bool worth_size_round(size_t far, size_t vertices, const RemeshOptions& options);
+
+/// The input vertices (ascending ids) whose `gaps` to the wall exceed
+/// `fidelity` times their `asked` size (both one per input vertex).
+std::vector<int32_t> far_input_vertices(const std::vector<double>& gaps,
+                                        const std::vector<double>& asked, double fidelity);
+
+/// `h` (one per input vertex, model unit) made finer within h of each input
+/// vertex of `far` (ids), to the size at which its gap (`gaps`, one per
+/// input vertex) would fall within 0.8 options.fidelity of `asked` (a
+/// chord's gap over a bend grows as h^2; each size at most 0.9 and at least
+/// 0.5 times what it was, and not below options.size.size_min), then
+/// graded (options.size.gradation). `tree`: over input.points.
+std::vector<double> finer_where_far(const SurfaceMesh& input, const PointKdTree& tree,
+                                    const RemeshOptions& options, std::vector<double> h,
+                                    const std::vector<double>& asked,
+                                    const std::vector<int32_t>& far,
+                                    const std::vector<double>& gaps);
 
 /// Meshes the whole surface again at `sizes` (one per input vertex, model
 /// unit), adding its times and counts to `stats`.

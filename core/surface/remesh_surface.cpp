@@ -565,14 +565,34 @@ void renumber_along_curve(SurfaceMesh& mesh, WallVertices& wall) {
   wall.fixed.swap(fixed);
 }
 
-/// Phases 2-6 at the sizes `sizes` (one per input vertex) on the features
-/// of `part`, fidelity measured against `asked` (one per input vertex);
-/// adds to `stats`.
-Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOptions& options,
-                                        std::vector<double> sizes, const std::vector<double>& asked,
-                                        Partition& part, RemeshStats& stats,
-                                        const ProgressFn& progress) {
+/// The opening and feature flags of `out` from `wall.fixed`.
+void set_flags(const WallVertices& wall, RemeshedSurface& out) {
+  out.on_opening.resize(wall.fixed.size());
+  out.on_feature.resize(wall.fixed.size());
+  for (size_t v = 0; v < wall.fixed.size(); ++v) {
+    out.on_opening[v] = wall.fixed[v] == kOnOpening;
+    out.on_feature[v] = wall.fixed[v] == kOnFeature;
+  }
+}
+
+/// A wall after phases 2-5, before phase 6 pins it: the surface (mesh and
+/// input_sizes; input_gaps measured when asked), its per-vertex data and
+/// the patches the fallback meshed (`fallback_of`: their patch ids).
+struct OptimizedWall {
   RemeshedSurface out;
+  WallVertices wall;
+  std::vector<FallbackPatch> fallbacks;
+  std::vector<size_t> fallback_of;
+};
+
+/// Phases 2-4 at the sizes `sizes` (one per input vertex) on the features
+/// of `part`; adds to `stats`.
+Result<OptimizedWall> mesh_wall(const SurfaceMesh& input, const RemeshOptions& options,
+                                std::vector<double> sizes, Partition& part, RemeshStats& stats,
+                                const ProgressFn& progress) {
+  OptimizedWall o;
+  RemeshedSurface& out = o.out;
+  WallVertices& wall = o.wall;
   out.input_sizes = std::move(sizes);
   const std::vector<double>& h = out.input_sizes;
   {
@@ -584,9 +604,6 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
   }
   if (!report_progress(progress, 0.1, "partitioning")) return Status::Cancelled();
   auto t0 = std::chrono::steady_clock::now();
-  WallVertices wall;  // per output vertex
-  std::vector<FallbackPatch> fallbacks;
-  std::vector<size_t> fallback_of;  // their patches
   // Phases 2-4, again with the failing patch forced to split if its planar
   // boundary crosses itself (a coarse resampling of a tortuous boundary).
   for (;;) {
@@ -602,7 +619,7 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
     stats.seam_points = seams.home.size();
     // Phase 4: each patch in its plane.
     const PatchFailure failure = mesh_patches(input, part, seams, h, options, stats.retries,
-                                              out.mesh, wall, fallbacks, fallback_of, progress);
+                                              out.mesh, wall, o.fallbacks, o.fallback_of, progress);
     if (failure.ok()) break;
     if (failure.status.cancelled()) return failure.status;
     const Status split = split_failed_patches(input, options, failure, part, stats);
@@ -610,33 +627,122 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
     t0 = std::chrono::steady_clock::now();
   }
   renumber_along_curve(out.mesh, wall);
+  set_flags(wall, out);
   stats.seconds_mesh += seconds_since(t0);
-  if (!report_progress(progress, 0.85, "optimizing")) return Status::Cancelled();
+  return o;
+}
 
-  // Phase 5: swaps and smoothing on the input surface (seed section 3).
-  t0 = std::chrono::steady_clock::now();
-  wall.size = output_sizes(input, wall.home, h);
-  const auto ostats = optimize_on_surface(out.mesh, wall, input, part.adj, options.optimize);
+/// Phase 5 on `o` (from mesh_wall, its sizes in o.out.input_sizes): swaps
+/// and smoothing on the input surface (seed section 3); adds to `stats`.
+Status optimize_wall(const SurfaceMesh& input, const RemeshOptions& options,
+                     const Partition& part, OptimizedWall& o, RemeshStats& stats,
+                     const ProgressFn& progress) {
+  if (!report_progress(progress, 0.85, "optimizing")) return Status::Cancelled();
+  const auto t0 = std::chrono::steady_clock::now();
+  WallVertices& wall = o.wall;
+  wall.size = output_sizes(input, wall.home, o.out.input_sizes);
+  const auto ostats = optimize_on_surface(o.out.mesh, wall, input, part.adj, options.optimize);
   stats.collapses = ostats.collapses;
   stats.swaps = ostats.swaps;
   stats.moves = ostats.moves;
+  set_flags(wall, o.out);
   stats.seconds_optimize += seconds_since(t0);
+  return Status::Ok();
+}
 
-  // Phase 6: fidelity, output vertices pinned onto far input vertices.
-  t0 = std::chrono::steady_clock::now();
-  pin_far_input_vertices(input, part.adj, h, asked, options, out.mesh, wall, out.input_gaps, stats);
+/// Phases 2-5 (mesh_wall, optimize_wall).
+Result<OptimizedWall> mesh_and_optimize(const SurfaceMesh& input, const RemeshOptions& options,
+                                        std::vector<double> sizes, Partition& part,
+                                        RemeshStats& stats, const ProgressFn& progress) {
+  auto o = mesh_wall(input, options, std::move(sizes), part, stats, progress);
+  if (!o.ok()) return o;
+  const Status optimized = optimize_wall(input, options, part, o.value(), stats, progress);
+  if (!optimized.ok()) return optimized;
+  return o;
+}
+
+/// Phase 6 on `o` (fidelity measured against `asked`, one per input
+/// vertex): output vertices pinned onto far input vertices; then the
+/// fallback patches' quality and the per-vertex data into the surface.
+RemeshedSurface pin_and_finish(const SurfaceMesh& input, const RemeshOptions& options,
+                               const std::vector<double>& asked, const Partition& part,
+                               OptimizedWall&& o, RemeshStats& stats) {
+  RemeshedSurface out = std::move(o.out);
+  WallVertices& wall = o.wall;
+  const auto t0 = std::chrono::steady_clock::now();
+  pin_far_input_vertices(input, part.adj, out.input_sizes, asked, options, out.mesh, wall,
+                         out.input_gaps, stats);
   stats.seconds_fidelity += seconds_since(t0);
-  measure_fallbacks(input, part, out.mesh, wall.home, fallbacks, fallback_of);
-  stats.fallback_patches = std::move(fallbacks);
+  measure_fallbacks(input, part, out.mesh, wall.home, o.fallbacks, o.fallback_of);
+  stats.fallback_patches = std::move(o.fallbacks);
   out.home = std::move(wall.home);
   out.sizes = std::move(wall.size);
-  out.on_opening.resize(wall.fixed.size());
-  out.on_feature.resize(wall.fixed.size());
-  for (size_t v = 0; v < wall.fixed.size(); ++v) {
-    out.on_opening[v] = wall.fixed[v] == kOnOpening;
-    out.on_feature[v] = wall.fixed[v] == kOnFeature;
-  }
+  set_flags(wall, out);
   return out;
+}
+
+/// Phases 2-6 at the sizes `sizes` (one per input vertex) on the features
+/// of `part`, fidelity measured against `asked` (one per input vertex);
+/// adds to `stats`.
+Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOptions& options,
+                                        std::vector<double> sizes, const std::vector<double>& asked,
+                                        Partition& part, RemeshStats& stats,
+                                        const ProgressFn& progress) {
+  auto o = mesh_and_optimize(input, options, std::move(sizes), part, stats, progress);
+  if (!o.ok()) return o.status();
+  return pin_and_finish(input, options, asked, part, std::move(o).value(), stats);
+}
+
+/// Phase 7 before phases 5 and 6, once: the wall `o` just meshed at `asked`
+/// (phases 2-4) probes its own chord error. Where it leaves input vertices
+/// beyond fidelity h, and not as noise everywhere, the sizes around them
+/// are made finer (finer_where_far) and phases 2-4 run again on the same
+/// partition, so that few vertices are left for the pins. Then phase 5.
+/// The finer wall replaces `o` (its sizes `h`) unless its edges drift from
+/// the asked size (RemeshOptions::fidelity_size_drift); then the probe's
+/// meshing time (`probe_seconds`, in stats.seconds_mesh) counts as
+/// fidelity's. Returns an error only when cancelled.
+Status size_by_chord_error(const SurfaceMesh& input, const RemeshOptions& options,
+                           const std::vector<double>& asked, Partition& part, OptimizedWall& o,
+                           std::vector<double>& h, double probe_seconds, RemeshStats& stats,
+                           const ProgressFn& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<double> gaps = distances_to_surface(o.out.mesh, input.points, true).per_point;
+  const std::vector<int32_t> far = far_input_vertices(gaps, asked, options.fidelity);
+  if (!worth_size_round(far.size(), o.out.mesh.num_vertices(), options)) {
+    stats.seconds_fidelity += seconds_since(t0);
+    return optimize_wall(input, options, part, o, stats, progress);
+  }
+  const PointCloud cloud{input.points};
+  PointKdTree tree(3, cloud);
+  tree.buildIndex();
+  std::vector<double> finer = finer_where_far(input, tree, options, h, asked, far, gaps);
+  stats.seconds_fidelity += seconds_since(t0);
+  RemeshStats next = stats;
+  auto again = mesh_wall(input, options, finer, part, next, progress);
+  if (!again.ok() && again.cancelled()) return again.status();
+  if (again.ok()) {
+    const Status optimized = optimize_wall(input, options, part, again.value(), next, progress);
+    if (!optimized.ok()) return optimized;
+  }
+  const bool kept =
+      again.ok() && edge_ratios(again.value().out,
+                                output_sizes(input, again.value().wall.home, asked))[1] >=
+                        1 - options.fidelity_size_drift;
+  if (!kept) {
+    stats.seconds_mesh = next.seconds_mesh;
+    stats.seconds_optimize = next.seconds_optimize;
+    stats.seconds_partition = next.seconds_partition;
+    return optimize_wall(input, options, part, o, stats, progress);
+  }
+  // The probe's meshing is the price of fidelity.
+  o = std::move(again).value();
+  h = std::move(finer);
+  stats = next;
+  stats.seconds_mesh -= probe_seconds;
+  stats.seconds_fidelity += probe_seconds;
+  ++stats.fidelity_size_rounds;
+  return Status::Ok();
 }
 
 /// Phases 2-7 on `input` at the sizes `asked` (one per input vertex).
@@ -646,13 +752,25 @@ Result<RemeshedSurface> remesh_at(const SurfaceMesh& input, const RemeshOptions&
   auto t0 = std::chrono::steady_clock::now();
   Partition part = find_features(input, options, asked, stats);
   stats.seconds_partition += seconds_since(t0);
-  // Phases 2-6.
-  auto result = remesh_at_sizes(input, options, asked, asked, part, stats, progress);
+  // Phases 2-4, finer sizes where the wall's chord error calls for them
+  // (and phases 2-4 again), phase 5, then phase 6.
+  const bool sized = options.fidelity_rounds > 0 && options.fidelity_size_rounds > 0;
+  const double mesh_seconds = stats.seconds_mesh;
+  auto optimized = mesh_wall(input, options, asked, part, stats, progress);
+  if (!optimized.ok()) return optimized.status();
+  std::vector<double> h = asked;
+  const Status sized_ok =
+      sized ? size_by_chord_error(input, options, asked, part, optimized.value(), h,
+                                  stats.seconds_mesh - mesh_seconds, stats, progress)
+            : optimize_wall(input, options, part, optimized.value(), stats, progress);
+  if (!sized_ok.ok()) return sized_ok;
+  Result<RemeshedSurface> result =
+      pin_and_finish(input, options, asked, part, std::move(optimized).value(), stats);
   // Phase 7: where more than a few input vertices stay far from the output
   // (a bend tighter than h can follow, coarse facets), a finer size within
   // h of each, and phases 3-6 again on the same partition.
   const Status refined = refine_size_where_far(
-      input, options, asked, asked, result, stats,
+      input, options, h, asked, result, stats,
       [&](const std::vector<double>& finer, RemeshStats& round_stats) {
         return remesh_at_sizes(input, options, finer, asked, part, round_stats, progress);
       });

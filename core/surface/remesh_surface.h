@@ -63,6 +63,11 @@ struct RemeshOptions {
   /// surface: on outputs of more than fidelity_small_surface vertices,
   /// only when more than fidelity_size_share of them are far.
   int fidelity_size_rounds = 10;
+  /// Local size rounds: when the pinning rounds leave input vertices beyond
+  /// fidelity h, the size is halved within h of each and the wall split
+  /// and relaxed there, then pinned again, at most this many times, before
+  /// any size round meshes the whole surface again.
+  int fidelity_local_rounds = 2;
   size_t fidelity_small_surface = 30000;
   double fidelity_size_share = 0.0005, fidelity_noise_share = 0.2, fidelity_size_drift = 0.095;
   /// Optimization passes after each fidelity round, in which a pinned
@@ -149,6 +154,7 @@ struct RemeshStats {
   size_t fidelity_rounds = 0, fidelity_pinned = 0;
   bool fidelity_reverted = false;   ///< a pinning round was undone
   size_t fidelity_size_rounds = 0;  ///< meshings again at a finer size
+  size_t fidelity_local_rounds = 0;  ///< local size rounds kept
   double max_input_gap = 0;
   size_t input_gap_vertices = 0;
   /// Pairs of self-intersecting output triangles when the fidelity stage

@@ -360,7 +360,7 @@ TEST(ReportJson, HasTheDocumentedKeys) {
         "\"groups\":[{\"dim\":2,\"tag\":1,\"name\":\"wall\",\"elements\":",
         "{\"dim\":3,\"tag\":4,\"name\":\"lumen\"",
         "\"input_gap_vertices\":", "\"pinned_vertices\":", "\"pinning_rounds\":",
-        "\"pinning_reverted\":", "\"size_rounds\":", "\"fidelity\":"})
+        "\"pinning_reverted\":", "\"size_rounds\":", "\"local_rounds\":", "\"fidelity\":"})
     EXPECT_NE(m.find(key), std::string::npos) << key << " in " << m;
 }
 

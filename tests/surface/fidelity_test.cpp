@@ -68,7 +68,8 @@ TEST(Fidelity, PinningRoundsBringFarInputVerticesOntoTheWall) {
   SurfaceMesh mesh = u.out.mesh;
   std::vector<double> gaps;
   RemeshStats stats;
-  pin_far_input_vertices(in, build_adjacency(in), u.asked, u.asked, u.options, mesh, u.wall, gaps,
+  std::vector<double> sizes = u.asked;
+  pin_far_input_vertices(in, build_adjacency(in), sizes, u.asked, u.options, mesh, u.wall, gaps,
                          stats);
 
   // The gaps returned are the wall's, and far fewer are beyond the limit.
@@ -159,6 +160,72 @@ TEST(Fidelity, SizeRoundsMakeTheSizeFinerAtFarVerticesAndKeepTheBestWall) {
         return Status::Cancelled();
       });
   EXPECT_TRUE(cancelled.cancelled());
+}
+
+TEST(Fidelity, LocalSizeRoundsHalveTheSizeAroundWhatThePinsLeaveFar) {
+  const double h = kH;
+  Unpinned u = unpinned_bifurcation(h);
+  ASSERT_GT(u.out.mesh.num_triangles(), 0u);
+  const SurfaceMesh& in = u.input;
+  const TriangleAdjacency adj = build_adjacency(in);
+  // The same rounds without and with local size rounds (the pinning rounds
+  // are deterministic: both walls are the same until the first local one).
+  struct Run {
+    SurfaceMesh mesh;
+    WallVertices wall;
+    std::vector<double> sizes, gaps;
+    RemeshStats stats;
+  };
+  auto run = [&](int local_rounds) {
+    Run r{u.out.mesh, u.wall, u.asked, {}, {}};
+    RemeshOptions o = u.options;
+    o.fidelity_local_rounds = local_rounds;
+    pin_far_input_vertices(in, adj, r.sizes, u.asked, o, r.mesh, r.wall, r.gaps, r.stats);
+    return r;
+  };
+  const Run off = run(0), on = run(2);
+  const double limit = u.options.fidelity * h;
+  const size_t far_off = count_far(off.gaps, limit), far_on = count_far(on.gaps, limit);
+  std::cout << "[ info ] far after the pinning rounds " << far_off << ", after "
+            << on.stats.fidelity_local_rounds << " local size rounds " << far_on << "\n";
+  ASSERT_GT(far_off, 0u) << "the pinning rounds should leave some far here";
+  EXPECT_EQ(off.stats.fidelity_local_rounds, 0u);
+  EXPECT_EQ(off.sizes, u.asked);
+  EXPECT_GT(on.stats.fidelity_local_rounds, 0u);
+  EXPECT_LT(far_on, far_off);
+  // Finer (at most by half) only near what was far, never coarser.
+  size_t finer = 0;
+  for (size_t v = 0; v < on.sizes.size(); ++v) {
+    EXPECT_LE(on.sizes[v], h);
+    EXPECT_GE(on.sizes[v], 0.5 * h * (1 - 1e-12));
+    finer += on.sizes[v] < h;
+  }
+  EXPECT_GT(finer, 0u);
+  EXPECT_LT(finer, on.sizes.size() / 4);
+  // The wall: its data in step, on the input, no crossing, floors held,
+  // the gaps its own.
+  ASSERT_EQ(on.wall.size.size(), on.mesh.num_vertices());
+  ASSERT_EQ(on.wall.home.size(), on.mesh.num_vertices());
+  EXPECT_LE(distances_to_surface(in, on.mesh.points).max, 1e-9);
+  EXPECT_EQ(find_self_intersections(on.mesh, 0).pairs, 0u);
+  const QualityStats q0 = quality_stats(triangle_qualities(u.out.mesh));
+  const QualityStats q1 = quality_stats(triangle_qualities(on.mesh));
+  EXPECT_GE(q1.min, std::min(q0.min, u.options.fidelity_floor_min));
+  EXPECT_GE(q1.mean, std::min(q0.mean, u.options.fidelity_floor_mean));
+  EXPECT_EQ(on.gaps, distances_to_surface(on.mesh, in.points, true).per_point);
+}
+
+TEST(Fidelity, ASizeRoundIsWorthItForSomeFarVerticesButNotForNoise) {
+  RemeshOptions o;
+  o.fidelity_small_surface = 1000;
+  o.fidelity_size_share = 0.01;
+  o.fidelity_noise_share = 0.2;
+  EXPECT_FALSE(worth_size_round(0, 500, o));
+  EXPECT_TRUE(worth_size_round(1, 500, o));     // a small wall: any far vertex
+  EXPECT_TRUE(worth_size_round(100, 500, o));   // a share of 0.2 is not noise yet
+  EXPECT_FALSE(worth_size_round(101, 500, o));  // beyond it, noise everywhere
+  EXPECT_FALSE(worth_size_round(10, 2000, o));  // a large wall: a share of 0.005
+  EXPECT_TRUE(worth_size_round(21, 2000, o));   // above its share of 0.01
 }
 
 }  // namespace

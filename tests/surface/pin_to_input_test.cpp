@@ -308,6 +308,40 @@ TEST(RemeshSurface, SizeRoundsRefineAroundWhatTheWallCannotFollow) {
   EXPECT_NEAR(on_stats.edge_ratio_median, median / h, 0.01);
 }
 
+TEST(RemeshSurface, TheWallsOwnChordErrorSizesItBeforeThePins) {
+  // The bifurcation phantom at 0.3: the first wall (phases 2-4) leaves input
+  // vertices far; the sizes finer around them leave fewer for the pins.
+  const SurfaceMesh in = testing::phantom(PhantomKind::kBifurcation, true, 0.1, 0.1);
+  const double h = 0.3;
+  RemeshOptions o = testing::uniform_remesh(h);
+  RemeshStats pins_only, sized;
+  o.fidelity_size_rounds = 0;
+  o.fidelity_local_rounds = 0;
+  auto off = remesh_surface(in, o, &pins_only);
+  o = testing::uniform_remesh(h);
+  auto on = remesh_surface(in, o, &sized);
+  ASSERT_TRUE(off.ok()) << off.message();
+  ASSERT_TRUE(on.ok()) << on.message();
+  std::cout << "[ info ] pinned " << pins_only.fidelity_pinned << " -> " << sized.fidelity_pinned
+            << " in " << pins_only.fidelity_rounds << " -> " << sized.fidelity_rounds
+            << " rounds; far left " << pins_only.input_gap_vertices << " -> "
+            << sized.input_gap_vertices << "; size rounds " << sized.fidelity_size_rounds
+            << ", sizes " << sized.size_min << ".." << sized.size_max << "\n";
+  EXPECT_GE(sized.fidelity_size_rounds, 1u);
+  EXPECT_LT(sized.size_min, h);
+  EXPECT_GE(sized.size_min, h / 2);
+  EXPECT_EQ(sized.size_max, h);
+  EXPECT_LT(sized.fidelity_pinned, pins_only.fidelity_pinned);
+  EXPECT_EQ(sized.input_gap_vertices, 0u);
+  EXPECT_LE(sized.max_input_gap, o.fidelity);
+  const QualityStats q = quality_stats(triangle_qualities(on.value().mesh));
+  EXPECT_GE(q.min, o.fidelity_floor_min);
+  EXPECT_GE(q.mean, o.fidelity_floor_mean);
+  EXPECT_EQ(find_self_intersections(on.value().mesh, 0).pairs, 0u);
+  // Where the probe's meshing went: counted as fidelity's, not twice.
+  EXPECT_GT(sized.seconds_fidelity, 0);
+}
+
 TEST(RemeshSurface, LargeWallsPinDownToTheQualityFloor) {
   // Without size rounds (a wall taken as large, few far vertices), the
   // last pinning rounds accept triangles down to the seed's floor.
