@@ -511,6 +511,7 @@ int cmd_mesh(int argc, char** argv) {
   const std::string options_text = vm::options_provenance(a.values);
   vm::WriteOptions wo;
   wo.msh_version = options.msh_version;
+  wo.msh_binary = options.msh_binary;
   wo.units = options.output_units;
   wo.provenance = vm::provenance_text(vm::kVersion, hash, options_text);
   const vm::OptionValue* report_html = a.get("report_html");

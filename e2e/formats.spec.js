@@ -93,6 +93,26 @@ test('a capped VTP: caps become openings, one named, the mesh exported as VTU th
   // In centimetres, the boundary faces, the wall, the SimVascular folder.
   await page.getByTestId('output-units').selectOption('cm');
   expect(mshMaxZ((await exportDownload(page)).bytes.toString())).toBeCloseTo(0.4, 6);
+  // MSH 4.1 binary: the downloaded bytes as written (the int 1 after the
+  // header, little-endian), the names in text, as many nodes as the text file.
+  await page.getByTestId('format').selectOption('msh-4.1-binary');
+  await expect(page.getByTestId('export')).toHaveText('Export MSH 4.1 binary');
+  await screenshots(page, 'formats-msh-binary', page.getByTestId('format'));
+  const binary = await exportDownload(page);
+  expect(binary.name).toBe('model.msh');
+  const head = Buffer.from('$MeshFormat\n4.1 1 8\n\x01\x00\x00\x00\n$EndMeshFormat\n', 'latin1');
+  expect(binary.bytes.subarray(0, head.length).equals(head)).toBe(true);
+  expect(binary.bytes.toString('latin1')).toContain('"distal"');
+  const nodesAt = binary.bytes.indexOf('\n$Nodes\n') + 8;
+  const textNodes = text.split('$Nodes\n')[1].split('\n');
+  const nodes = Number(textNodes[0].split(' ')[1]);
+  expect(Number(binary.bytes.readBigUInt64LE(nodesAt + 8))).toBe(nodes);
+  // The first node's doubles (after the counts, the block's header and the
+  // tags) are the text file's, in cm: bytes no text decoding would keep.
+  const firstAt = nodesAt + 32 + 20 + 8 * nodes;
+  const first = textNodes[2 + nodes].split(' ').map(Number);
+  [0, 1, 2].forEach((k) => expect(binary.bytes.readDoubleLE(firstAt + 8 * k)).toBeCloseTo(first[k] / 10, 12));
+  expect(binary.bytes.subarray(-14).toString()).toBe('\n$EndElements\n');
   await page.getByTestId('format').selectOption('vtp');
   const vtp = await exportDownload(page);
   expect(vtp.name).toBe('model-boundary.vtp');

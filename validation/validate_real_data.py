@@ -743,10 +743,11 @@ def main():
                 check_vtk_outputs(fname, path, tmp, args)
             if fname in CLIPPED:
                 check_clip(fname, path, tmp, args, have_gmsh)
-            for version in ("4.1", "2.2"):
-                out = os.path.join(tmp, f"{fname}.{version}.msh")
+            for version, flags in (("4.1", []), ("2.2", []), ("4.1 binary", ["--msh-binary"])):
+                out = os.path.join(tmp, f"{fname}.{version.replace(' ', '-')}.msh")
                 r = subprocess.run([args.vesselmesh, "mesh", path, "-o", out, "--no-remesh",
-                                    "--surface-only", "--msh-version", version, "--quiet"],
+                                    "--surface-only", "--msh-version", version.split()[0], *flags,
+                                    "--quiet"],
                                    capture_output=True, text=True)
                 check(fname, r.returncode == 0, f"mesh --msh-version {version} exit 0 {r.stderr.strip()}")
                 if r.returncode != 0 or not have_gmsh:

@@ -375,6 +375,7 @@ bool set_file(val& r, const Mesh& mesh, vm::OutputFormat format,
               const vm::MeshJobOptions& options, const Applied& extra = {}) {
   vm::WriteOptions wo;
   wo.msh_version = options.msh_version;
+  wo.msh_binary = options.msh_binary;
   wo.units = options.output_units;
   Applied all = mesh.options;
   all.insert(all.end(), extra.begin(), extra.end());
@@ -430,6 +431,7 @@ val mesh_family(const std::vector<uint8_t>& bytes, const vm::MeshJobOptions& opt
                 vm::OutputFormat format, Applied applied, const std::string& hash, val progress) {
   vm::WriteOptions wo;
   wo.msh_version = options.msh_version;
+  wo.msh_binary = options.msh_binary;
   wo.units = options.output_units;
   wo.provenance = vm::provenance_text(vm::kVersion, hash, vm::options_provenance(applied));
   std::vector<vm::OutputFile> zip;
@@ -547,16 +549,17 @@ val methods_report(const Mesh& mesh, val opts) {
 }
 
 /// `mesh` in another format, without meshing again.
-/// options: format (required), mshVersion, outputUnits.
+/// options: format (required), mshVersion, mshBinary, outputUnits.
 val export_mesh(const Mesh& mesh, val opts) {
   vm::MeshJobOptions options;
   if (!opts.isUndefined() && !opts.isNull()) {
     val keys = val::global("Object").call<val>("keys", opts);
     for (size_t i = 0; i < keys["length"].as<size_t>(); ++i) {
       const std::string key = keys[i].as<std::string>();
-      if (key != "format" && key != "mshVersion" && key != "outputUnits")
+      if (key != "format" && key != "mshVersion" && key != "mshBinary" && key != "outputUnits")
         return error(vm::Status::BadOption(
-            "", "unknown export option '" + key + "' (format, mshVersion, outputUnits)"));
+            "",
+            "unknown export option '" + key + "' (format, mshVersion, mshBinary, outputUnits)"));
     }
   }
   Applied applied;

@@ -1,12 +1,16 @@
-// Gmsh MSH ASCII writer (Gmsh reference manual, section "MSH file format":
-// version 4.1 with $Entities and entity blocks, and the legacy 2.2 layout).
-// All nodes go in one block on the first entity of the highest dimension;
-// each element block is its own entity carrying one physical tag.
+// Gmsh MSH writer (Gmsh reference manual, section "MSH file format":
+// version 4.1 with $Entities and entity blocks, ASCII or binary, and the
+// legacy 2.2 layout, ASCII). All nodes go in one block on the first entity
+// of the highest dimension; each element block is its own entity carrying
+// one physical tag.
 #include "core/io/msh_writer.h"
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <set>
 
@@ -14,6 +18,18 @@
 
 namespace vm {
 namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "the binary MSH writer copies values as little-endian bytes");
+
+// The bytes of `v` as they are in memory (little-endian), for the binary
+// sections; TextOut appends them like text.
+template <class T>
+void put(TextOut& out, T v) {
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  out.str(std::string_view(b, sizeof(T)));
+}
 
 Status validate(const MshModel& m) {
   const size_t nn = m.points.size() / 3;
@@ -39,10 +55,21 @@ Status validate(const MshModel& m) {
   return Status::Ok();
 }
 
-void write_header(TextOut& out, const MshModel& m, const char* version) {
+// "$MeshFormat" with the version, the file type (0 ASCII, 1 binary: then
+// the int 1 in binary, by which a reader tells the byte order) and
+// sizeof(size_t) = 8, then the provenance comment and $PhysicalNames, which
+// are text in both file types.
+void write_header(TextOut& out, const MshModel& m, const char* version, bool binary) {
   out.str("$MeshFormat\n");
   out.str(version);
-  out.str(" 0 8\n$EndMeshFormat\n");
+  if (binary) {
+    out.str(" 1 8\n");
+    put<int32_t>(out, 1);
+    out.ch('\n');
+  } else {
+    out.str(" 0 8\n");
+  }
+  out.str("$EndMeshFormat\n");
   if (!m.comment.empty()) {
     // A section Gmsh and meshio skip (they ignore unknown sections): one
     // line, no '$' that could end it early.
@@ -103,15 +130,44 @@ void write_point(TextOut& out, const double* p) {
   out.real(p[2]);
 }
 
+// The bounding box of a block's nodes (lo, hi: 3 doubles each; zeros for
+// an empty block), its entity's in $Entities.
+void entity_box(const MshModel& m, const MshBlock& b, double lo[3], double hi[3]) {
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = b.nodes.empty() ? 0 : std::numeric_limits<double>::max();
+    hi[k] = b.nodes.empty() ? 0 : std::numeric_limits<double>::lowest();
+  }
+  for (int32_t v : b.nodes)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], m.points[3 * v + k]);
+      hi[k] = std::max(hi[k], m.points[3 * v + k]);
+    }
+}
+
+// The entity the one node block is on: {dim, tag} of the first block of
+// the highest dimension ({2, 1} without blocks).
+std::pair<int, int> node_entity(const MshModel& m) {
+  for (int dim = 3; dim >= 2; --dim)
+    for (const auto& b : m.blocks)
+      if (element_dimension(b.type) == dim) return {dim, b.entity_tag};
+  return {2, 1};
+}
+
+// The number of entities of dimensions 0..3 (the blocks': 2 and 3).
+std::array<size_t, 4> entity_counts(const MshModel& m) {
+  std::array<size_t, 4> counts{};
+  for (const auto& b : m.blocks) ++counts[size_t(element_dimension(b.type))];
+  return counts;
+}
+
 std::string write41(const MshModel& m) {
   TextOut out;
   const size_t nn = m.points.size() / 3;
   out.reserve(text_size_bound(m, 0));
-  write_header(out, m, "4.1");
+  write_header(out, m, "4.1", false);
 
   // Entities: bounding box of each block's nodes.
-  int counts[4] = {0, 0, 0, 0};
-  for (const auto& b : m.blocks) ++counts[element_dimension(b.type)];
+  const auto counts = entity_counts(m);
   out.str("$Entities\n0 0 ");
   out.integer(counts[2]);
   out.ch(' ');
@@ -121,17 +177,7 @@ std::string write41(const MshModel& m) {
     for (const auto& b : m.blocks) {
       if (element_dimension(b.type) != dim) continue;
       double lo[3], hi[3];
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::numeric_limits<double>::max();
-        hi[k] = std::numeric_limits<double>::lowest();
-      }
-      for (int32_t v : b.nodes)
-        for (int k = 0; k < 3; ++k) {
-          lo[k] = std::min(lo[k], m.points[3 * v + k]);
-          hi[k] = std::max(hi[k], m.points[3 * v + k]);
-        }
-      if (b.nodes.empty())
-        for (int k = 0; k < 3; ++k) lo[k] = hi[k] = 0;
+      entity_box(m, b, lo, hi);
       out.integer(b.entity_tag);
       out.ch(' ');
       write_point(out, lo);
@@ -145,16 +191,7 @@ std::string write41(const MshModel& m) {
   out.str("$EndEntities\n");
 
   // Nodes: one block on the first entity of the highest dimension.
-  int node_dim = 2, node_entity = 1;
-  for (int dim = 3; dim >= 2; --dim) {
-    auto it = std::find_if(m.blocks.begin(), m.blocks.end(),
-                           [&](const MshBlock& b) { return element_dimension(b.type) == dim; });
-    if (it != m.blocks.end()) {
-      node_dim = dim;
-      node_entity = it->entity_tag;
-      break;
-    }
-  }
+  const auto [node_dim, node_tag] = node_entity(m);
   out.str("$Nodes\n");
   out.integer(nn > 0 ? 1 : 0);
   out.ch(' ');
@@ -165,7 +202,7 @@ std::string write41(const MshModel& m) {
   if (nn > 0) {
     out.integer(node_dim);
     out.ch(' ');
-    out.integer(node_entity);
+    out.integer(node_tag);
     out.str(" 0 ");
     out.integer(nn);
     out.ch('\n');
@@ -208,11 +245,76 @@ std::string write41(const MshModel& m) {
   return out.take();
 }
 
+// The same sections in Gmsh's binary layout (file type 1, data size 8):
+// counts and tags as size_t (uint64), entity dimensions, tags and types
+// as int (int32), coordinates as double; each section's binary data ends
+// with a newline before its $End line.
+std::string write41_binary(const MshModel& m) {
+  TextOut out;
+  const size_t nn = m.points.size() / 3, ne = element_count(m);
+  size_t refs = 0;
+  for (const auto& b : m.blocks) refs += b.nodes.size();
+  out.reserve(4096 + m.comment.size() + 256 * m.physicals.size() + 96 * m.blocks.size() + 32 * nn +
+              8 * (ne + refs));
+  write_header(out, m, "4.1", true);
+
+  // Entities: 4 counts, then per surface / volume: tag, box, its physical
+  // tag, no bounding entities.
+  out.str("$Entities\n");
+  for (size_t count : entity_counts(m)) put<uint64_t>(out, count);
+  for (int dim = 2; dim <= 3; ++dim) {
+    for (const auto& b : m.blocks) {
+      if (element_dimension(b.type) != dim) continue;
+      double box[6];
+      entity_box(m, b, box, box + 3);
+      put<int32_t>(out, b.entity_tag);
+      for (double x : box) put<double>(out, x);
+      put<uint64_t>(out, 1);
+      put<int32_t>(out, b.physical_tag);
+      put<uint64_t>(out, 0);
+    }
+  }
+  out.str("\n$EndEntities\n");
+
+  // Nodes: one block, its tags 1..nn, then the coordinates.
+  const auto [node_dim, node_tag] = node_entity(m);
+  out.str("$Nodes\n");
+  for (size_t x : {nn > 0 ? size_t(1) : size_t(0), nn, size_t(1), nn}) put<uint64_t>(out, x);
+  if (nn > 0) {
+    put<int32_t>(out, node_dim);
+    put<int32_t>(out, node_tag);
+    put<int32_t>(out, 0);
+    put<uint64_t>(out, nn);
+    for (size_t i = 1; i <= nn; ++i) put<uint64_t>(out, i);
+    for (size_t i = 0; i < 3 * nn; ++i) put<double>(out, m.points[i]);
+  }
+  out.str("\n$EndNodes\n");
+
+  // Elements: per block its entity, type and count, then each element's
+  // tag and one-based node tags.
+  out.str("$Elements\n");
+  for (size_t x : {m.blocks.size(), ne, size_t(1), ne}) put<uint64_t>(out, x);
+  uint64_t tag = 1;
+  for (const auto& b : m.blocks) {
+    const size_t npe = size_t(nodes_per_element(b.type));
+    put<int32_t>(out, element_dimension(b.type));
+    put<int32_t>(out, b.entity_tag);
+    put<int32_t>(out, int32_t(b.type));
+    put<uint64_t>(out, b.nodes.size() / npe);
+    for (size_t e = 0; e < b.nodes.size(); e += npe) {
+      put<uint64_t>(out, tag++);
+      for (size_t k = 0; k < npe; ++k) put<uint64_t>(out, uint64_t(b.nodes[e + k]) + 1);
+    }
+  }
+  out.str("\n$EndElements\n");
+  return out.take();
+}
+
 std::string write22(const MshModel& m) {
   TextOut out;
   out.reserve(text_size_bound(m, 24));
   const size_t nn = m.points.size() / 3;
-  write_header(out, m, "2.2");
+  write_header(out, m, "2.2", false);
   out.str("$Nodes\n");
   out.integer(nn);
   out.ch('\n');
@@ -265,10 +367,13 @@ int element_dimension(MshElementType type) {
   return type == MshElementType::kTriangle || type == MshElementType::kQuad ? 2 : 3;
 }
 
-Result<std::string> write_msh(const MshModel& model, MshVersion version) {
+Result<std::string> write_msh(const MshModel& model, MshVersion version, MshEncoding encoding) {
+  if (encoding == MshEncoding::kBinary && version != MshVersion::k41)
+    return Status::Error("binary MSH is written in version 4.1 only: ask for 4.1, or text for 2.2");
   Status s = validate(model);
   if (!s.ok()) return s;
-  return version == MshVersion::k41 ? write41(model) : write22(model);
+  if (version == MshVersion::k22) return write22(model);
+  return encoding == MshEncoding::kBinary ? write41_binary(model) : write41(model);
 }
 
 Result<MshVersion> parse_msh_version(const std::string& text) {

@@ -1,4 +1,4 @@
-// Gmsh MSH writer, ASCII format 4.1 (default) and 2.2.
+// Gmsh MSH writer: format 4.1 (default), ASCII or binary, and 2.2 (ASCII).
 // Format reference: Gmsh reference manual, "MSH file format".
 #pragma once
 
@@ -11,6 +11,11 @@
 namespace vm {
 
 enum class MshVersion { k41, k22 };
+
+/// The file type: text, or Gmsh's binary layout (version 4.1 only:
+/// little-endian, size_t of 8 bytes; $PhysicalNames and the $Comments
+/// stay text). Both hold the same nodes, elements and tags.
+enum class MshEncoding { kAscii, kBinary };
 
 /// Gmsh element type codes used by vesselmesh.
 enum class MshElementType : int { kTriangle = 2, kQuad = 3, kTetrahedron = 4, kPrism = 6 };
@@ -48,10 +53,12 @@ struct MshModel {
 int nodes_per_element(MshElementType type);
 int element_dimension(MshElementType type);
 
-/// Serializes `model`. Errors: a block referring to a missing physical group,
-/// a node index out of range, duplicate entity tags in one dimension.
-/// Nodes no element uses are still written (Gmsh accepts them).
-Result<std::string> write_msh(const MshModel& model, MshVersion version = MshVersion::k41);
+/// Serializes `model` (binary: the file's bytes in the string). Errors: a
+/// block referring to a missing physical group, a node index out of range,
+/// duplicate entity tags in one dimension, binary with version 2.2. Nodes
+/// no element uses are still written (Gmsh accepts them).
+Result<std::string> write_msh(const MshModel& model, MshVersion version = MshVersion::k41,
+                              MshEncoding encoding = MshEncoding::kAscii);
 
 /// Parses "4.1" / "2.2"; error for anything else.
 Result<MshVersion> parse_msh_version(const std::string& text);

@@ -47,6 +47,9 @@ Status validate_options(const MeshJobOptions& options, std::optional<OutputForma
   if (options.family > 1 && !options.volume)
     return Status::BadOption("family",
                              "makes volume meshes for a convergence study: drop {surface_only}");
+  if (!format || *format == OutputFormat::kMsh)
+    if (auto encoding = msh_encoding(options.msh_version, options.msh_binary); !encoding.ok())
+      return encoding.status();
   if (format && !options.volume && volume_format(*format))
     return Status::BadOption("format", "cannot be " + std::string(format_name(*format)) +
                                            ": it holds a volume mesh, and {surface_only} writes "

@@ -18,8 +18,9 @@ namespace vm {
 /// elements a circumference, size_min <= size_max, refinement spheres of
 /// positive radius and size), the first layer from a target y+ (not with
 /// {first_layer}, with an {inlet_velocity}, with layers to size), a mesh
-/// family (volume meshes only), and `format` (when known: the option, the
-/// output's name or the preset's) against {surface_only}. Errors are
+/// family (volume meshes only), binary MSH with version 2.2 (when `format` is
+/// MSH or not known), and `format` (when known: the option, the output's
+/// name or the preset's) against {surface_only}. Errors are
 /// kBadOption, naming the option to change.
 Status validate_options(const MeshJobOptions& options, std::optional<OutputFormat> format);
 

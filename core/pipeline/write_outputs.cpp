@@ -102,6 +102,16 @@ Named named_mesh(const MeshJobResult& r, double scale) {
 
 }  // namespace
 
+Result<MshEncoding> msh_encoding(MshVersion version, bool binary) {
+  if (!binary) return MshEncoding::kAscii;
+  if (version != MshVersion::k41)
+    return Status::BadOption("msh_binary",
+                             "writes MSH 4.1 only, and the MSH version is 2.2 (asked, or the "
+                             "openfoam preset's: gmshToFoam reads text): give {msh_version} 4.1, "
+                             "or drop {msh_binary}");
+  return MshEncoding::kBinary;
+}
+
 bool volume_format(OutputFormat f) {
   return f == OutputFormat::kVtu || f == OutputFormat::kMeshComplete || f == OutputFormat::kFoam;
 }
@@ -208,7 +218,9 @@ Result<std::vector<OutputFile>> write_outputs(const MeshJobResult& r, OutputForm
     case OutputFormat::kMsh: {
       MshModel model = msh_model(r, scale);
       model.comment = options.provenance;
-      auto text = write_msh(model, options.msh_version);
+      auto encoding = msh_encoding(options.msh_version, options.msh_binary);
+      if (!encoding.ok()) return encoding.status();
+      auto text = write_msh(model, options.msh_version, encoding.value());
       if (!text.ok()) return text.status();
       files.push_back({"mesh.msh", std::move(text).value()});
       break;

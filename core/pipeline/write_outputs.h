@@ -26,6 +26,8 @@ Result<OutputFormat> format_for_path(std::string_view path);
 
 struct WriteOptions {
   MshVersion msh_version = MshVersion::k41;
+  /// MSH in Gmsh's binary layout (version 4.1 only).
+  bool msh_binary = false;
   /// The unit to write in (kGuess: the input's, no conversion).
   LengthUnit units = LengthUnit::kGuess;
   /// One line of provenance (provenance_text), written where the format
@@ -34,6 +36,10 @@ struct WriteOptions {
   /// bytes).
   std::string provenance;
 };
+
+/// The MSH file type of the options {msh_version} and {msh_binary}: binary
+/// is version 4.1 only (a kBadOption naming {msh_binary} with 2.2).
+Result<MshEncoding> msh_encoding(MshVersion version, bool binary);
 
 /// Whether `format` holds a volume mesh (VTU, mesh-complete, foam).
 bool volume_format(OutputFormat format);

@@ -60,6 +60,16 @@ TEST(ValidateOptions, ASurfaceOnlyJobMakesNoVolume) {
   EXPECT_EQ(refused(o, OutputFormat::kMsh), "family");
 }
 
+TEST(ValidateOptions, BinaryMshIsVersion41Only) {
+  MeshJobOptions o;
+  o.msh_binary = true;
+  EXPECT_EQ(refused(o), "");
+  o.msh_version = MshVersion::k22;
+  EXPECT_EQ(refused(o), "msh_binary");
+  EXPECT_EQ(refused(o, OutputFormat::kMsh), "msh_binary");
+  EXPECT_EQ(refused(o, OutputFormat::kVtu), "");  // no MSH file is written
+}
+
 // The CLI and JS path (apply_options) refuses before the job starts, in
 // the interface's words.
 TEST(ValidateOptions, ApplyingOptionsValidates) {

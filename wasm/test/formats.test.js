@@ -332,6 +332,36 @@ describe('names and files out', () => {
     assert.equal(calls, 0);
   });
 
+  test('MSH 4.1 binary: bytes in Gmsh\'s layout, the same nodes and elements as the text file; 2.2 refused', () => {
+    const m = api.mesh(tube, { size: 0.4, layers: 1, mshBinary: true });
+    assert.equal(m.ok, true, m.error);
+    assert.ok(m.file instanceof Uint8Array && m.msh === m.file);
+    assert.ok(transferables(m).includes(m.file.buffer), 'moved from the worker, not copied');
+    const head = '$MeshFormat\n4.1 1 8\n';
+    assert.equal(text(m.file.subarray(0, head.length)), head);
+    assert.deepEqual([...m.file.subarray(head.length, head.length + 5)], [1, 0, 0, 0, 10], 'the int 1, little-endian');
+    // One character a byte (windows-1252), so that offsets in the text are offsets in the bytes.
+    const bytewise = (bytes) => new TextDecoder('latin1').decode(bytes);
+    // The 4 size_t after "$Nodes\n" and "$Elements\n": blocks, count, min and max tag.
+    const counts = (bytes, section) => {
+      const at = bytewise(bytes).indexOf(`\n$${section}\n`) + section.length + 3;
+      const view = new DataView(bytes.buffer, bytes.byteOffset + at, 32);
+      return [0, 8, 16, 24].map((k) => Number(view.getBigUint64(k, true)));
+    };
+    const ascii = api.export('msh', { mesh: m.handle });
+    const line = (section) => text(ascii.file).split(`$${section}\n`)[1].split('\n')[0].split(' ').map(Number);
+    assert.deepEqual(counts(m.file, 'Nodes'), line('Nodes'));
+    assert.deepEqual(counts(m.file, 'Elements'), line('Elements'));
+    assert.equal(counts(m.file, 'Nodes')[1], m.volume.positions.length / 3);
+    const again = api.export('msh', { mshBinary: true, mesh: m.handle });
+    assert.ok(again.file instanceof Uint8Array);
+    const body = (bytes) => bytes.subarray(bytewise(bytes).indexOf('$EndComments\n'));
+    assert.deepEqual(body(again.file), body(m.file));
+    const refused = api.mesh(tube, { mshBinary: true, mshVersion: '2.2' });
+    assert.equal(refused.option, 'mshBinary');
+    assert.match(refused.error, /^mshBinary writes MSH 4\.1 only.*give mshVersion 4\.1, or drop mshBinary$/);
+  });
+
   test('export() records its own options in the provenance', () => {
     assert.equal(api.mesh(tube, { size: 0.4, layers: 0 }).ok, true);
     const msh = api.export('msh', { outputUnits: 'cm' });

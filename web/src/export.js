@@ -1,14 +1,15 @@
 // The export: the format select (the formats of files.js; those that need
 // the volume off for a surface-only mesh), the Export button named after
 // the chosen format, the options of the file to write (format, MSH
-// version, output units), and the press: the file written again from the
+// version and binary, output units), and the press: the file written again from the
 // worker's last mesh when that has the panel's options, else meshed
 // first; then downloaded, named after the input.
 import { EXPORT_FORMATS, exportFileName, exportFormat } from './files.js';
 
 const $ = (id) => document.getElementById(id);
 
-/** Downloads `bytes` as a file `name` of MIME type `type`. */
+/** Downloads `bytes` (a Uint8Array, never decoded: binary MSH stays
+ * bytes) as a file `name` of MIME type `type`. */
 export function download(name, bytes, type) {
   const url = URL.createObjectURL(new Blob([bytes], { type }));
   const a = document.createElement('a');
@@ -27,9 +28,9 @@ export function fillExportFormats() {
 
 /** The chosen file format and units to write: export() and mesh() options. */
 export function writeOptions() {
-  const { format, mshVersion } = exportFormat($('format').value);
+  const { format, mshVersion, mshBinary } = exportFormat($('format').value);
   const outputUnits = $('output-units').value;
-  return { format, ...(mshVersion && { mshVersion }), ...(outputUnits && { outputUnits }) };
+  return { format, ...(mshVersion && { mshVersion }), ...(mshBinary && { mshBinary }), ...(outputUnits && { outputUnits }) };
 }
 
 /** The export formats that apply: a surface-only mesh has no volume formats. */

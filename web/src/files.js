@@ -18,11 +18,21 @@ export function baseName(name) {
 
 /**
  * The export formats offered: the select's value, its label, the API's
- * `format` and `mshVersion`, the file's suffix after the base name, its
- * MIME type, and whether it needs the volume (not a surface-only result).
+ * `format`, `mshVersion` and `mshBinary`, the file's suffix after the base
+ * name, its MIME type, and whether it needs the volume (not a surface-only
+ * result).
  */
 export const EXPORT_FORMATS = [
   { value: 'msh-4.1', label: 'MSH 4.1 (Gmsh)', format: 'msh', mshVersion: '4.1', suffix: '.msh', mime: 'text/plain' },
+  {
+    value: 'msh-4.1-binary',
+    label: 'MSH 4.1 binary (Gmsh)',
+    format: 'msh',
+    mshVersion: '4.1',
+    mshBinary: true,
+    suffix: '.msh',
+    mime: 'application/octet-stream',
+  },
   { value: 'msh-2.2', label: 'MSH 2.2 (Gmsh)', format: 'msh', mshVersion: '2.2', suffix: '.msh', mime: 'text/plain' },
   { value: 'vtu', label: 'VTU volume', format: 'vtu', suffix: '.vtu', mime: 'application/xml', volume: true },
   { value: 'vtp', label: 'VTP boundary faces', format: 'vtp', suffix: '-boundary.vtp', mime: 'application/xml' },

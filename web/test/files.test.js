@@ -32,6 +32,7 @@ describe('file names', () => {
       [
         'model.msh',
         'model.msh',
+        'model.msh',
         'model.vtu',
         'model-boundary.vtp',
         'model-wall.stl',

@@ -160,6 +160,9 @@ describe('option controls', () => {
     const version = optionSpec(TABLE, 'mshVersion');
     assert.deepEqual([...new Set(EXPORT_FORMATS.map((f) => f.format))].sort(), [...format.choices].sort());
     for (const f of EXPORT_FORMATS) if (f.mshVersion) assert.ok(version.choices.includes(f.mshVersion), f.value);
+    // Binary MSH is the table's flag, with version 4.1 (the core refuses 2.2).
+    assert.equal(optionSpec(TABLE, 'mshBinary').type, 'flag');
+    for (const f of EXPORT_FORMATS) if (f.mshBinary) assert.deepEqual([f.format, f.mshVersion, f.mime], ['msh', '4.1', 'application/octet-stream'], f.value);
     assert.deepEqual([EXPORT_FORMATS[0].format, EXPORT_FORMATS[0].mshVersion], ['msh', version.default]);
     assert.equal(byId(HTML, 'format').options.length, 0, 'filled from files.js');
   });
