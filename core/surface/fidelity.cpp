@@ -204,12 +204,39 @@ size_t unpin_and_relax(Pinning& p, double min_gamma) {
   return freed;
 }
 
+/// Before a round is undone for a needle or a crossing it made: the pins
+/// within two rings of them are given up (the next round tries the others;
+/// a pin that split an edge leaves its vertex where it was even if freed,
+/// so undoing is the way back).
+void give_up_pins_near_trouble(Pinning& p) {
+  const std::vector<double> seen = star_visibility(p.mesh);
+  std::vector<uint8_t> near(seen.size());
+  for (size_t v = 0; v < seen.size(); ++v) near[v] = seen[v] < kNeedle;
+  if (p.floors.crossings == 0)
+    for (const auto& pair :
+         find_self_intersections_of(p.mesh, changed_triangles(p.kept.mesh, p.mesh), 64).examples)
+      for (int32_t t : pair)
+        for (int c = 0; c < 3; ++c) near[size_t(p.mesh.triangles[3 * size_t(t) + size_t(c)])] = 1;
+  for (int ring = 0; ring < 2; ++ring) {
+    std::vector<uint8_t> grown = near;
+    for (size_t t = 0; t < p.mesh.num_triangles(); ++t) {
+      const int32_t* T = &p.mesh.triangles[3 * t];
+      if (near[size_t(T[0])] || near[size_t(T[1])] || near[size_t(T[2])])
+        for (int c = 0; c < 3; ++c) grown[size_t(T[c])] = 1;
+    }
+    near.swap(grown);
+  }
+  for (size_t w = 0; w < near.size(); ++w)
+    if (near[w] && p.wall.fixed[w] == kPinned) p.given_up[size_t(p.wall.pin_of[w])] = 1;
+}
+
 /// After a round's pins: quality first (pins left in poor triangles are
 /// freed and the wall relaxes again; pins only decrease, so this ends),
 /// then the floors (pins of ever better triangles freed until they hold).
 /// The round is kept when they hold and it made no self-intersection or
-/// needle; else it is undone (the pins freed stay given up, so the next
-/// round tries the others). Returns whether it was kept.
+/// needle; else it is undone (the pins freed, and those near a needle or
+/// crossing it made, stay given up, so the next round tries the others).
+/// Returns whether it was kept.
 bool settle_round(Pinning& p, const std::vector<uint8_t>& before, double min_quality) {
   relax(p, before);
   for (int step = 0; step < 8 && unpin_and_relax(p, min_quality) > 0; ++step) {
@@ -223,6 +250,7 @@ bool settle_round(Pinning& p, const std::vector<uint8_t>& before, double min_qua
     p.kept_pairs = p.floors.crossings == 0 ? 0 : -1;
     return true;
   }
+  if (ok) give_up_pins_near_trouble(p);
   restore(p);
   return false;
 }
@@ -270,8 +298,7 @@ size_t pin_rounds(Pinning& p) {
     // Noise everywhere (more pins than a share of the output's vertices)
     // would cost more quality than the floors allow: not tried.
     if (far == 0 || round >= rounds ||
-        (!p.floors_set &&
-         double(far) > options.fidelity_max_share * double(p.mesh.num_vertices())))
+        (!p.floors_set && double(far) > options.fidelity_max_share * double(p.mesh.num_vertices())))
       return far;
     const double min_quality =
         round < options.fidelity_rounds ? options.fidelity_min_quality
@@ -314,8 +341,7 @@ size_t pin_rounds(Pinning& p) {
 /// pinning round (floors, no new needle or crossing), else undone.
 /// `tree`: over p.input.points. Returns whether it was kept.
 bool refine_around_far(Pinning& p, const PointKdTree& tree) {
-  const std::vector<int32_t> far =
-      far_input_vertices(p.input_gaps, p.asked, p.options.fidelity);
+  const std::vector<int32_t> far = far_input_vertices(p.input_gaps, p.asked, p.options.fidelity);
   std::vector<double> finer = p.h;
   std::vector<std::pair<uint32_t, double>> near;
   const nanoflann::SearchParams unsorted(32, 0, false);
@@ -364,6 +390,7 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
   p.relax_options.passes = options.fidelity_passes;
   p.relax_options.valence_passes =
       std::min(p.relax_options.valence_passes, options.fidelity_passes);
+  p.relax_options.region_rings = options.fidelity_relax_rings;
   p.given_up.assign(input.num_vertices(), 0);
   wall.pin_of.assign(wall.fixed.size(), -1);
   p.slack.input_h = &p.h;

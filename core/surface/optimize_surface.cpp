@@ -116,6 +116,21 @@ class Optimizer {
     for (size_t v = 0; v < recent_.size(); ++v) recent_[v] = flags[v] ? pass_ : pass_ - 2;
   }
 
+  /// Nothing changes beyond `rings` rings of the vertices flagged in
+  /// `flags` (one per vertex).
+  void restrict_to(const std::vector<uint8_t>& flags, int rings) {
+    region_ = flags;
+    for (int ring = 0; ring < rings; ++ring) {
+      std::vector<uint8_t> grown = region_;
+      for (size_t t = 0; t < m_.num_triangles(); ++t) {
+        const int32_t* T = tri(int32_t(t));
+        if (T[0] >= 0 && (region_[size_t(T[0])] || region_[size_t(T[1])] || region_[size_t(T[2])]))
+          for (int c = 0; c < 3; ++c) grown[size_t(T[c])] = 1;
+      }
+      region_.swap(grown);
+    }
+  }
+
   /// Splits the interior edges longer than split_ratio times the target
   /// size at their midpoint projected onto the input (see try_split).
   size_t split_pass() {
@@ -261,7 +276,11 @@ class Optimizer {
   }
 
  private:
-  bool movable(size_t v) const { return !fixed_[v] || (fixed_[v] == kPinned && pin_slack_ > 0); }
+  bool in_region(int32_t v) const { return region_.empty() || region_[size_t(v)]; }
+  bool movable(size_t v) const {
+    return (!fixed_[v] || (fixed_[v] == kPinned && pin_slack_ > 0)) &&
+           (region_.empty() || region_[v]);
+  }
   const double* p(int32_t v) const { return &m_.points[3 * size_t(v)]; }
   int32_t* tri(int32_t t) { return &m_.triangles[3 * size_t(t)]; }
   double gamma(int32_t a, int32_t b, int32_t c) const { return triangle_gamma(p(a), p(b), p(c)); }
@@ -367,7 +386,7 @@ class Optimizer {
     int32_t d = -1;
     for (int j = 0; j < 3; ++j)
       if (U[j] != a && U[j] != b) d = U[j];
-    if (d < 0 || d == c || on_crease(a, b)) return false;
+    if (d < 0 || d == c || on_crease(a, b) || !in_region(d)) return false;
     const int excess_before =
         valence_excess(a, 0) + valence_excess(b, 0) + valence_excess(c, 0) + valence_excess(d, 0);
     const int excess_after =
@@ -411,8 +430,11 @@ class Optimizer {
   /// A triangle with a vertex changed in this pass or the previous one.
   bool active(int32_t t) const {
     const int32_t* T = &m_.triangles[3 * size_t(t)];
-    return T[0] >= 0 && (recent_[size_t(T[0])] + 1 >= pass_ || recent_[size_t(T[1])] + 1 >= pass_ ||
-                         recent_[size_t(T[2])] + 1 >= pass_);
+    return T[0] >= 0 &&
+           (recent_[size_t(T[0])] + 1 >= pass_ || recent_[size_t(T[1])] + 1 >= pass_ ||
+            recent_[size_t(T[2])] + 1 >= pass_) &&
+           (region_.empty() ||
+            (region_[size_t(T[0])] && region_[size_t(T[1])] && region_[size_t(T[2])]));
   }
 
   /// Records that v and the vertices of its star changed. Two moves of a
@@ -539,6 +561,7 @@ class Optimizer {
     int32_t d = -1;
     for (int j = 0; j < 3; ++j)
       if (tri(u)[j] != a && tri(u)[j] != b) d = tri(u)[j];
+    if (!in_region(d)) return false;
     const double mid[3] = {0.5 * (p(a)[0] + p(b)[0]), 0.5 * (p(a)[1] + p(b)[1]),
                            0.5 * (p(a)[2] + p(b)[2])};
     double x[3];
@@ -559,6 +582,7 @@ class Optimizer {
     size_.push_back(0.5 * (size_[size_t(a)] + size_[size_t(b)]));
     vt_.emplace_back();
     recent_.push_back(pass_);
+    if (!region_.empty()) region_.push_back(1);
     if (!dead_.empty()) dead_.push_back(0);
     const int32_t t2 = int32_t(m_.num_triangles()), u2 = t2 + 1;
     edges_scratch().clear();
@@ -616,6 +640,11 @@ class Optimizer {
       if (T[0] == b || T[1] == b || T[2] == b) ++shared;
     }
     if (shared != 2 || common != 2) return false;
+    // Every triangle it changes, in the region.
+    if (!region_.empty() &&
+        (std::any_of(na_.begin(), na_.end(), [&](int32_t w) { return !in_region(w); }) ||
+         std::any_of(nb_.begin(), nb_.end(), [&](int32_t w) { return !in_region(w); })))
+      return false;
     double target[3];
     int32_t target_home = home_[size_t(b)];
     if (fixed_[size_t(b)]) {
@@ -785,7 +814,8 @@ class Optimizer {
   std::vector<uint8_t> block_inner_;  ///< find_block_inner()
   std::vector<int32_t> color_, by_color_, color_start_, inner_, block_start_;  ///< plan_smoothing()
   std::vector<int32_t> inner_tris_, tri_block_start_, border_tris_;            ///< plan_swaps()
-  std::vector<int> recent_;  ///< per vertex: the last pass it changed in
+  std::vector<int> recent_;      ///< per vertex: the last pass it changed in
+  std::vector<uint8_t> region_;  ///< per vertex: may change (empty: all); restrict_to()
   // See PinSlack: pin_of_ is renumbered whenever given.
   std::vector<int32_t>* pin_of_ = nullptr;
   const std::vector<double>* input_h_ = nullptr;
@@ -840,6 +870,7 @@ SurfaceOptimizeStats optimize_on_surface(SurfaceMesh& mesh, WallVertices& wall,
   Optimizer opt(mesh, wall.home, wall.fixed, wall.size, input, input_adj, options, pins,
                 &wall.pin_of);
   if (!start.empty()) opt.start_from(start);
+  if (!start.empty() && options.region_rings >= 0) opt.restrict_to(start, options.region_rings);
   for (int pass = 0; pass < options.passes; ++pass) {
     size_t splits = pass < options.valence_passes ? opt.split_pass() : 0;
     size_t collapses = pass < options.valence_passes ? opt.collapse_pass() : 0;

@@ -25,6 +25,11 @@ struct SurfaceOptimizeOptions {
   /// their midpoint projected onto the input (when sizes are given; 0 = no
   /// split).
   double split_ratio = 1.6;
+  /// With `start` flags: only the vertices within this many rings of the
+  /// flagged ones change (move, or have a triangle swapped, split or
+  /// collapsed), so that a local change stays local (-1: anywhere the
+  /// passes carry it).
+  int region_rings = -1;
 };
 
 /// Pinned vertices that may slide (see pin_to_input); the input vertex

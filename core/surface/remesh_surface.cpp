@@ -634,9 +634,8 @@ Result<OptimizedWall> mesh_wall(const SurfaceMesh& input, const RemeshOptions& o
 
 /// Phase 5 on `o` (from mesh_wall, its sizes in o.out.input_sizes): swaps
 /// and smoothing on the input surface (seed section 3); adds to `stats`.
-Status optimize_wall(const SurfaceMesh& input, const RemeshOptions& options,
-                     const Partition& part, OptimizedWall& o, RemeshStats& stats,
-                     const ProgressFn& progress) {
+Status optimize_wall(const SurfaceMesh& input, const RemeshOptions& options, const Partition& part,
+                     OptimizedWall& o, RemeshStats& stats, const ProgressFn& progress) {
   if (!report_progress(progress, 0.85, "optimizing")) return Status::Cancelled();
   const auto t0 = std::chrono::steady_clock::now();
   WallVertices& wall = o.wall;
@@ -693,56 +692,60 @@ Result<RemeshedSurface> remesh_at_sizes(const SurfaceMesh& input, const RemeshOp
   return pin_and_finish(input, options, asked, part, std::move(o).value(), stats);
 }
 
-/// Phase 7 before phases 5 and 6, once: the wall `o` just meshed at `asked`
-/// (phases 2-4) probes its own chord error. Where it leaves input vertices
-/// beyond fidelity h, and not as noise everywhere, the sizes around them
-/// are made finer (finer_where_far) and phases 2-4 run again on the same
-/// partition, so that few vertices are left for the pins. Then phase 5.
-/// The finer wall replaces `o` (its sizes `h`) unless its edges drift from
-/// the asked size (RemeshOptions::fidelity_size_drift); then the probe's
-/// meshing time (`probe_seconds`, in stats.seconds_mesh) counts as
-/// fidelity's. Returns an error only when cancelled.
+/// Phase 7 before phases 5 and 6 (RemeshOptions::fidelity_probe_rounds):
+/// the wall `o` just meshed at the sizes `h` (phases 2-4) probes its own
+/// chord error. Where it leaves input vertices beyond fidelity times
+/// `asked`, worth a size round, the sizes around them are made finer
+/// (finer_where_far) and phases 2-4 run again on the same partition, so
+/// that few vertices are left for the pins. A finer wall replaces `o` (and
+/// `h`) unless its edges drift from the asked size
+/// (RemeshOptions::fidelity_size_drift). Then phase 5 on `o`. The meshing
+/// of the walls replaced (the first one took `probe_seconds`, counted in
+/// stats.seconds_mesh) counts as fidelity's. Returns an error only when
+/// cancelled.
 Status size_by_chord_error(const SurfaceMesh& input, const RemeshOptions& options,
                            const std::vector<double>& asked, Partition& part, OptimizedWall& o,
                            std::vector<double>& h, double probe_seconds, RemeshStats& stats,
                            const ProgressFn& progress) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<double> gaps = distances_to_surface(o.out.mesh, input.points, true).per_point;
-  const std::vector<int32_t> far = far_input_vertices(gaps, asked, options.fidelity);
-  if (!worth_size_round(far.size(), o.out.mesh.num_vertices(), options)) {
-    stats.seconds_fidelity += seconds_since(t0);
-    return optimize_wall(input, options, part, o, stats, progress);
-  }
+  std::optional<PointKdTree> tree;
   const PointCloud cloud{input.points};
-  PointKdTree tree(3, cloud);
-  tree.buildIndex();
-  std::vector<double> finer = finer_where_far(input, tree, options, h, asked, far, gaps);
-  stats.seconds_fidelity += seconds_since(t0);
-  RemeshStats next = stats;
-  auto again = mesh_wall(input, options, finer, part, next, progress);
-  if (!again.ok() && again.cancelled()) return again.status();
-  if (again.ok()) {
-    const Status optimized = optimize_wall(input, options, part, again.value(), next, progress);
-    if (!optimized.ok()) return optimized;
+  for (int round = 0; round < options.fidelity_probe_rounds; ++round) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<double> gaps = distances_to_surface(o.out.mesh, input.points, true).per_point;
+    const std::vector<int32_t> far = far_input_vertices(gaps, asked, options.fidelity);
+    if (!worth_size_round(far.size(), o.out.mesh.num_vertices(), options)) {
+      stats.seconds_fidelity += seconds_since(t0);
+      break;
+    }
+    if (!tree) {
+      tree.emplace(3, cloud);
+      tree->buildIndex();
+    }
+    std::vector<double> finer = finer_where_far(input, *tree, options, h, asked, far, gaps);
+    stats.seconds_fidelity += seconds_since(t0);
+    RemeshStats next = stats;
+    auto again = mesh_wall(input, options, finer, part, next, progress);
+    if (!again.ok() && again.cancelled()) return again.status();
+    const double seconds = next.seconds_mesh - stats.seconds_mesh;
+    const bool kept =
+        again.ok() &&
+        edge_ratios(again.value().out, output_sizes(input, again.value().wall.home, asked))[1] >=
+            1 - options.fidelity_size_drift;
+    if (!kept) {
+      stats.seconds_partition = next.seconds_partition;
+      stats.seconds_fidelity += seconds;
+      break;
+    }
+    // The wall replaced was the price of fidelity.
+    o = std::move(again).value();
+    h = std::move(finer);
+    stats = next;
+    stats.seconds_mesh -= seconds;
+    stats.seconds_fidelity += probe_seconds;
+    probe_seconds = seconds;
+    ++stats.fidelity_size_rounds;
   }
-  const bool kept =
-      again.ok() && edge_ratios(again.value().out,
-                                output_sizes(input, again.value().wall.home, asked))[1] >=
-                        1 - options.fidelity_size_drift;
-  if (!kept) {
-    stats.seconds_mesh = next.seconds_mesh;
-    stats.seconds_optimize = next.seconds_optimize;
-    stats.seconds_partition = next.seconds_partition;
-    return optimize_wall(input, options, part, o, stats, progress);
-  }
-  // The probe's meshing is the price of fidelity.
-  o = std::move(again).value();
-  h = std::move(finer);
-  stats = next;
-  stats.seconds_mesh -= probe_seconds;
-  stats.seconds_fidelity += probe_seconds;
-  ++stats.fidelity_size_rounds;
-  return Status::Ok();
+  return optimize_wall(input, options, part, o, stats, progress);
 }
 
 /// Phases 2-7 on `input` at the sizes `asked` (one per input vertex).
@@ -754,7 +757,8 @@ Result<RemeshedSurface> remesh_at(const SurfaceMesh& input, const RemeshOptions&
   stats.seconds_partition += seconds_since(t0);
   // Phases 2-4, finer sizes where the wall's chord error calls for them
   // (and phases 2-4 again), phase 5, then phase 6.
-  const bool sized = options.fidelity_rounds > 0 && options.fidelity_size_rounds > 0;
+  const bool sized = options.fidelity_rounds > 0 && options.fidelity_size_rounds > 0 &&
+                     options.fidelity_probe_rounds > 0;
   const double mesh_seconds = stats.seconds_mesh;
   auto optimized = mesh_wall(input, options, asked, part, stats, progress);
   if (!optimized.ok()) return optimized.status();

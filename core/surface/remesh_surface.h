@@ -63,6 +63,12 @@ struct RemeshOptions {
   /// surface: on outputs of more than fidelity_small_surface vertices,
   /// only when more than fidelity_size_share of them are far.
   int fidelity_size_rounds = 10;
+  /// Probe rounds: the wall just meshed (before its optimization) measures
+  /// its own gaps to the input; where they are beyond fidelity h (and
+  /// worth a size round, see fidelity_size_share), the size is made finer
+  /// around them and the wall meshed again, at most this many times, so
+  /// that few input vertices are left to pin.
+  int fidelity_probe_rounds = 1;
   /// Local size rounds: when the pinning rounds leave input vertices beyond
   /// fidelity h, the size is halved within h of each and the wall split
   /// and relaxed there, then pinned again, at most this many times, before
@@ -75,6 +81,9 @@ struct RemeshOptions {
   /// fidelity h of its input vertex.
   int fidelity_passes = 10;
   double fidelity_pin_slack = 0.8;
+  /// Those passes change the wall only within this many rings of what the
+  /// round changed (-1: anywhere the passes carry it).
+  int fidelity_relax_rings = 2;
   /// Pins left in a triangle with gamma_k below this are freed again
   /// (and given up on), except in fidelity_last_rounds more rounds that
   /// retry every vertex left far with fidelity_last_min_quality (with
@@ -152,8 +161,8 @@ struct RemeshStats {
   /// the largest input-vertex distance to the output over the asked h,
   /// with the count of input vertices beyond kReportedGap h.
   size_t fidelity_rounds = 0, fidelity_pinned = 0;
-  bool fidelity_reverted = false;   ///< a pinning round was undone
-  size_t fidelity_size_rounds = 0;  ///< meshings again at a finer size
+  bool fidelity_reverted = false;    ///< a pinning round was undone
+  size_t fidelity_size_rounds = 0;   ///< meshings again at a finer size
   size_t fidelity_local_rounds = 0;  ///< local size rounds kept
   double max_input_gap = 0;
   size_t input_gap_vertices = 0;

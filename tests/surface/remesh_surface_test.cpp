@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <set>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -423,14 +424,26 @@ std::vector<std::pair<int32_t, int32_t>> sorted_boundary_edges(const SurfaceMesh
   return edges;
 }
 
-TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
+/// A fine cylinder (the input) and a coarse one whose vertices are points
+/// of the input jittered along it, so it is poorly shaped; its ends fixed.
+struct JitteredCylinder {
+  SurfaceMesh in;
+  TriangleAdjacency in_adj;
+  SurfaceMesh m;
+  WallVertices wall;
+};
+
+JitteredCylinder jittered_cylinder() {
+  JitteredCylinder j;
   // Input: a fine cylinder. Mesh: a coarse one whose vertices are points of
   // the input, jittered along it, so it is poorly shaped.
   const double R = 1.0, L = 4.0;
-  const SurfaceMesh in = testing::open_tube(64, 32, R, L);
-  const TriangleAdjacency in_adj = build_adjacency(in);
-  SurfaceMesh m = testing::open_tube(16, 8, R, L);
-  WallVertices wall;
+  j.in = testing::open_tube(64, 32, R, L);
+  j.in_adj = build_adjacency(j.in);
+  j.m = testing::open_tube(16, 8, R, L);
+  const SurfaceMesh& in = j.in;
+  SurfaceMesh& m = j.m;
+  WallVertices& wall = j.wall;
   std::vector<uint8_t>& fixed = wall.fixed;
   std::vector<int32_t>& home = wall.home;
   fixed.assign(m.num_vertices(), 0);
@@ -469,6 +482,17 @@ TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
       }
     }
   }
+  return j;
+}
+
+TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
+  JitteredCylinder j = jittered_cylinder();
+  const SurfaceMesh& in = j.in;
+  const TriangleAdjacency& in_adj = j.in_adj;
+  SurfaceMesh& m = j.m;
+  WallVertices& wall = j.wall;
+  const std::vector<uint8_t>& fixed = wall.fixed;
+  std::vector<int32_t>& home = wall.home;
   const SurfaceMesh before = m;
   const QualityStats qb = quality_stats(triangle_qualities(m));
   const std::vector<std::pair<int32_t, int32_t>> boundary_before = sorted_boundary_edges(m);
@@ -498,6 +522,56 @@ TEST(OptimizeSurface, ImprovesAJitteredCylinderAndStaysOnIt) {
   EXPECT_EQ(inconsistent_edges(m), 0u);
   std::cout << "[ info ] optimize: gamma min " << qb.min << " -> " << qa.min << ", mean " << qb.mean
             << " -> " << qa.mean << " (" << s.moves << " moves, " << s.swaps << " swaps)\n";
+}
+
+TEST(OptimizeSurface, ARegionKeepsALocalChangeLocal) {
+  // From one vertex, with and without a region of one ring around it.
+  JitteredCylinder j = jittered_cylinder();
+  size_t start_vertex = 0;
+  while (j.wall.fixed[start_vertex]) ++start_vertex;
+  std::vector<uint8_t> start(j.m.num_vertices(), 0);
+  start[start_vertex] = 1;
+  // The region: the vertex and its neighbours.
+  std::vector<uint8_t> region = start;
+  for (size_t t = 0; t < j.m.num_triangles(); ++t) {
+    const int32_t* T = &j.m.triangles[3 * t];
+    if (start[size_t(T[0])] || start[size_t(T[1])] || start[size_t(T[2])])
+      for (int c = 0; c < 3; ++c) region[size_t(T[c])] = 1;
+  }
+  SurfaceOptimizeOptions options;
+  SurfaceMesh free_mesh = j.m, local_mesh = j.m;
+  WallVertices free_wall = j.wall, local_wall = j.wall;
+  const SurfaceOptimizeStats free_stats =
+      optimize_on_surface(free_mesh, free_wall, j.in, j.in_adj, options, start);
+  options.region_rings = 1;
+  const SurfaceOptimizeStats local_stats =
+      optimize_on_surface(local_mesh, local_wall, j.in, j.in_adj, options, start);
+  std::cout << "[ info ] moves from one vertex: " << free_stats.moves << " anywhere, "
+            << local_stats.moves << " within one ring\n";
+  EXPECT_GT(local_stats.moves, 0u);
+  EXPECT_LT(local_stats.moves, free_stats.moves);
+  ASSERT_EQ(local_mesh.num_vertices(), j.m.num_vertices());
+  size_t moved = 0;
+  for (size_t v = 0; v < region.size(); ++v) {
+    const bool same =
+        std::equal(&local_mesh.points[3 * v], &local_mesh.points[3 * v + 3], &j.m.points[3 * v]);
+    if (!region[v]) {
+      EXPECT_TRUE(same) << "vertex " << v << " outside the region moved";
+    }
+    moved += !same;
+  }
+  EXPECT_GT(moved, 0u);
+  // Triangles with a corner outside the region are unchanged.
+  std::set<std::array<int32_t, 3>> before, after;
+  auto outside = [&](const SurfaceMesh& m, std::set<std::array<int32_t, 3>>& out) {
+    for (size_t t = 0; t < m.num_triangles(); ++t) {
+      std::array<int32_t, 3> T{m.triangles[3 * t], m.triangles[3 * t + 1], m.triangles[3 * t + 2]};
+      if (!region[size_t(T[0])] || !region[size_t(T[1])] || !region[size_t(T[2])]) out.insert(T);
+    }
+  };
+  outside(j.m, before);
+  outside(local_mesh, after);
+  EXPECT_EQ(before, after);
 }
 
 TEST(OptimizeSurface, CollapsesShortEdgesAndRegularizesValences) {
