@@ -348,6 +348,7 @@ TEST(RemeshSurface, LargeWallsPinDownToTheQualityFloor) {
   const SurfaceMesh in = testing::phantom(PhantomKind::kAneurysm, true, 0.1, 0.1);
   RemeshOptions o = testing::uniform_remesh(0.3);
   o.fidelity_size_rounds = 0;
+  o.fidelity_local_rounds = 0;
   RemeshStats small_stats, large_stats;
   auto small = remesh_surface(in, o, &small_stats);
   o.fidelity_small_surface = 0;
