@@ -7,8 +7,14 @@ preparation and checks, the surface's stages, its fidelity rounds, the
 volume). Reads ../shared/data/vascular and ../shared/data/vascular-hard in
 place (never copied).
 
+With --against OLD (another build's vesselmesh, e.g. a release built from
+its commit beside this one), each file is meshed by both in turn, natively
+(runs alternating, so that both see the same machine), and the table gives
+the ratio old / new of the medians, each one's fidelity share and its wall
+quality (gamma_k min / mean).
+
 usage: default_runs.py [--runs N] [--threads T] [--files a.stl,b.vtp] [--no-wasm]
-                       [--vesselmesh PATH] [--json OUT.json]
+                       [--vesselmesh PATH] [--against OLD] [--json OUT.json]
 """
 import argparse
 import json
@@ -30,6 +36,68 @@ def surfaces(folder):
                   if f.endswith((".stl", ".vtp", ".vtk", ".obj", ".ply")))
 
 
+def mesh_once(vesselmesh, path, threads, tmp):
+    """One native default run: (seconds, its report) or (None, stderr)."""
+    out, rep = os.path.join(tmp, "out.msh"), os.path.join(tmp, "report.json")
+    r = benchutil.run_measured([vesselmesh, "mesh", path, "-o", out, "--report", rep, "--quiet",
+                                "--threads", str(threads)])
+    if r["rc"] != 0:
+        return None, r["stderr"].strip()[-300:]
+    return r["seconds"], json.load(open(rep))
+
+
+def compare(args, files):
+    """Each file meshed by --against (old) and --vesselmesh (new) in turn."""
+    print(f"load average {benchutil.loadavg()[0]:.2f}; {args.runs} runs each, alternating, "
+          f"{args.threads} threads; old {args.against}, new {args.vesselmesh}")
+    print("| file | old s | new s | old / new | fidelity share old / new | "
+          "wall gamma_k min old / new | mean old / new | far input vertices old / new |")
+    print("|---|---|---|---|---|---|---|---|")
+    rows, ok = [], True
+    with tempfile.TemporaryDirectory() as tmp:
+        for path in files:
+            seconds = {"old": [], "new": []}
+            reports = {}
+            for _ in range(args.runs):
+                for key, exe in (("old", args.against), ("new", args.vesselmesh)):
+                    s, rep = mesh_once(exe, path, args.threads, tmp)
+                    if s is None:
+                        print(f"{os.path.basename(path)}: {key} failed: {rep}")
+                        ok = False
+                        continue
+                    seconds[key].append(s)
+                    reports[key] = rep
+            if not seconds["old"] or not seconds["new"]:
+                continue
+            row = dict(file=os.path.basename(path))
+            for key in ("old", "new"):
+                o = reports[key]["output"]
+                fidelity = o["remesh"]["seconds"]["fidelity"]
+                row[key] = dict(seconds=benchutil.median(seconds[key]),
+                                fidelity_share=fidelity / reports[key]["seconds"],
+                                gamma_min=o["quality"]["min"], gamma_mean=o["quality"]["mean"],
+                                far=o["remesh"]["fidelity"]["input_gap_vertices"])
+            old, new = row["old"], row["new"]
+            row["ratio"] = old["seconds"] / new["seconds"]
+            rows.append(row)
+            print(f"| {row['file']} | {old['seconds']:.2f} | {new['seconds']:.2f} | "
+                  f"{row['ratio']:.2f} | {100 * old['fidelity_share']:.0f} % / "
+                  f"{100 * new['fidelity_share']:.0f} % | {old['gamma_min']:.3f} / "
+                  f"{new['gamma_min']:.3f} | {old['gamma_mean']:.4f} / {new['gamma_mean']:.4f} | "
+                  f"{old['far']} / {new['far']} |", flush=True)
+    if rows:
+        total_old = sum(r["old"]["seconds"] for r in rows)
+        total_new = sum(r["new"]["seconds"] for r in rows)
+        print(f"all files: old {total_old:.2f} s, new {total_new:.2f} s, "
+              f"old / new {total_old / total_new:.2f}; smallest ratio "
+              f"{min(r['ratio'] for r in rows):.2f}")
+    if args.json:
+        os.makedirs(os.path.dirname(os.path.abspath(args.json)), exist_ok=True)
+        json.dump(dict(runs=args.runs, threads=args.threads, against=args.against, rows=rows),
+                  open(args.json, "w"), indent=1)
+    return 0 if ok else 1
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--runs", type=int, default=3)
@@ -37,11 +105,14 @@ def main():
     ap.add_argument("--files", help="comma-separated file names (default: all)")
     ap.add_argument("--no-wasm", action="store_true")
     ap.add_argument("--vesselmesh", default=benchutil.VESSELMESH)
+    ap.add_argument("--against", help="another vesselmesh to compare with, run alternately")
     ap.add_argument("--json")
     args = ap.parse_args()
     files = surfaces(benchutil.DATA) + surfaces(HARD)
     if args.files:
         files = [f for f in files if os.path.basename(f) in args.files.split(",")]
+    if args.against:
+        return compare(args, files)
     print(f"load average {benchutil.loadavg()[0]:.2f}; {args.runs} runs each, {args.threads} threads")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:

@@ -204,39 +204,12 @@ size_t unpin_and_relax(Pinning& p, double min_gamma) {
   return freed;
 }
 
-/// Before a round is undone for a needle or a crossing it made: the pins
-/// within two rings of them are given up (the next round tries the others;
-/// a pin that split an edge leaves its vertex where it was even if freed,
-/// so undoing is the way back).
-void give_up_pins_near_trouble(Pinning& p) {
-  const std::vector<double> seen = star_visibility(p.mesh);
-  std::vector<uint8_t> near(seen.size());
-  for (size_t v = 0; v < seen.size(); ++v) near[v] = seen[v] < kNeedle;
-  if (p.floors.crossings == 0)
-    for (const auto& pair :
-         find_self_intersections_of(p.mesh, changed_triangles(p.kept.mesh, p.mesh), 64).examples)
-      for (int32_t t : pair)
-        for (int c = 0; c < 3; ++c) near[size_t(p.mesh.triangles[3 * size_t(t) + size_t(c)])] = 1;
-  for (int ring = 0; ring < 2; ++ring) {
-    std::vector<uint8_t> grown = near;
-    for (size_t t = 0; t < p.mesh.num_triangles(); ++t) {
-      const int32_t* T = &p.mesh.triangles[3 * t];
-      if (near[size_t(T[0])] || near[size_t(T[1])] || near[size_t(T[2])])
-        for (int c = 0; c < 3; ++c) grown[size_t(T[c])] = 1;
-    }
-    near.swap(grown);
-  }
-  for (size_t w = 0; w < near.size(); ++w)
-    if (near[w] && p.wall.fixed[w] == kPinned) p.given_up[size_t(p.wall.pin_of[w])] = 1;
-}
-
 /// After a round's pins: quality first (pins left in poor triangles are
 /// freed and the wall relaxes again; pins only decrease, so this ends),
 /// then the floors (pins of ever better triangles freed until they hold).
 /// The round is kept when they hold and it made no self-intersection or
-/// needle; else it is undone (the pins freed, and those near a needle or
-/// crossing it made, stay given up, so the next round tries the others).
-/// Returns whether it was kept.
+/// needle; else it is undone (the pins freed stay given up, so the next
+/// round tries the others). Returns whether it was kept.
 bool settle_round(Pinning& p, const std::vector<uint8_t>& before, double min_quality) {
   relax(p, before);
   for (int step = 0; step < 8 && unpin_and_relax(p, min_quality) > 0; ++step) {
@@ -250,7 +223,6 @@ bool settle_round(Pinning& p, const std::vector<uint8_t>& before, double min_qua
     p.kept_pairs = p.floors.crossings == 0 ? 0 : -1;
     return true;
   }
-  if (ok) give_up_pins_near_trouble(p);
   restore(p);
   return false;
 }
