@@ -113,8 +113,8 @@ const OptionSpec kRows[] = {
      .type = T::kFlag,
      .group = "output",
      .doc = "compress the arrays of a VTU or VTP file with zlib (VTK's vtkZLibDataCompressor "
-            "blocks, read by ParaView, VTK and meshio): about a third of the raw bytes, slower "
-            "to write; the mesh-complete folder stays raw",
+            "blocks, read by ParaView, VTK and meshio): the same mesh in about 0.3 times the "
+            "bytes, a little slower to write and to read; the mesh-complete folder stays raw",
      .set =
          [](O& o, const V& v) {
            o.vtk_compress = v.flag;
@@ -125,8 +125,8 @@ const OptionSpec kRows[] = {
      .type = T::kFlag,
      .group = "output",
      .doc = "write the OpenFOAM case's points, faces, owner and neighbour in OpenFOAM's binary "
-            "format (32-bit labels, 64-bit scalars, little-endian): the same mesh, exact "
-            "coordinates, in about half the bytes",
+            "format (32-bit labels, 64-bit scalars, little-endian): the same mesh, the exact "
+            "coordinates, in about 0.7 times the bytes",
      .set =
          [](O& o, const V& v) {
            o.foam_binary = v.flag;
