@@ -1,7 +1,8 @@
 // OpenFOAM's native mesh, `constant/polyMesh` (FoamFile dictionaries, as
-// OpenFOAM v1912 and later read them; the large lists as text or binary): the cells of a mixed
-// volume mesh (tetrahedra and prisms) as faces with an owner and a neighbour, the surface groups as
-// boundary patches and the volume groups as cell zones.
+// OpenFOAM v1912 and later read them; the large lists as text or binary):
+// the cells of a mixed volume mesh (tetrahedra and prisms) as faces with an
+// owner and a neighbour, the surface groups as boundary patches and the
+// volume groups as cell zones.
 #pragma once
 
 #include <string>
