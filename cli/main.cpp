@@ -509,10 +509,7 @@ int cmd_mesh(int argc, char** argv) {
   // The file's hash for the provenance; its bytes are freed once prepared.
   const std::string hash = vm::input_hash(*bytes);
   const std::string options_text = vm::options_provenance(a.values);
-  vm::WriteOptions wo;
-  wo.msh_version = options.msh_version;
-  wo.msh_binary = options.msh_binary;
-  wo.units = options.output_units;
+  vm::WriteOptions wo = vm::write_options(options);
   wo.provenance = vm::provenance_text(vm::kVersion, hash, options_text);
   const vm::OptionValue* report_html = a.get("report_html");
   if (options.family > 1) {

@@ -1,6 +1,9 @@
+import { inflateSync } from 'node:zlib';
+
 import { expect, test } from '@playwright/test';
 
 import { cappedTubeVtp, exportDownload, nodeApi, openApp, screenshots, setSizeAndLayers, upload } from './helpers.js';
+import { readZip } from './zip.js';
 
 // The files a vascular pipeline exchanges: a capped SimVascular-like VTP
 // whose caps become named openings, every export format written from one
@@ -83,6 +86,30 @@ test('a capped VTP: caps become openings, one named, the mesh exported as VTU th
   const vtu = await exportDownload(page);
   expect(vtu.name).toBe('model.vtu');
   expect(vtu.bytes.toString()).toContain('<VTKFile type="UnstructuredGrid"');
+  // Compressed: the same cells, their types in VTK's zlib blocks (the block
+  // header, then each block inflated).
+  await page.getByTestId('format').selectOption('vtu-compressed');
+  await expect(page.getByTestId('export')).toHaveText('Export VTU volume, zlib-compressed');
+  await screenshots(page, 'formats-vtu-compressed', page.getByTestId('format'));
+  const vtuz = await exportDownload(page);
+  expect(vtuz.name).toBe('model.vtu');
+  const vtuzText = vtuz.bytes.toString('latin1');
+  expect(vtuzText).toContain('header_type="UInt64" compressor="vtkZLibDataCompressor"');
+  expect(vtuz.bytes.length).toBeLessThan(vtu.bytes.length / 2);
+  const cells = Number(vtu.bytes.toString().match(/NumberOfCells="(\d+)"/)[1]);
+  expect(vtuzText).toContain(`NumberOfCells="${cells}"`);
+  const data = vtuzText.indexOf('_', vtuzText.indexOf('<AppendedData')) + 1;
+  const at = data + Number(vtuzText.match(/Name="types" format="appended" offset="(\d+)"/)[1]);
+  const blocks = Number(vtuz.bytes.readBigUInt64LE(at));
+  let from = at + 24 + 8 * blocks;
+  const types = [];
+  for (let b = 0; b < blocks; ++b) {
+    const size = Number(vtuz.bytes.readBigUInt64LE(at + 24 + 8 * b));
+    types.push(...inflateSync(vtuz.bytes.subarray(from, from + size)));
+    from += size;
+  }
+  expect(types.length).toBe(cells);
+  expect(types.every((t) => t === 10)).toBe(true);
   await page.getByTestId('format').selectOption('msh-4.1');
   const msh = await exportDownload(page);
   expect(msh.name).toBe('model.msh');
@@ -133,6 +160,15 @@ test('a capped VTP: caps become openings, one named, the mesh exported as VTU th
   for (const name of ['constant/polyMesh/boundary', 'constant/polyMesh/faces', 'constant/polyMesh/owner']) {
     expect(foamText).toContain(name);
   }
+  // Binary: the same case, its faces a faceCompactList of raw labels.
+  await page.getByTestId('format').selectOption('foam-binary');
+  await expect(page.getByTestId('export')).toHaveText('Export OpenFOAM case, binary polyMesh');
+  const foamBinary = readZip((await exportDownload(page)).bytes);
+  const faces = foamBinary.get('constant/polyMesh/faces').toString('latin1');
+  expect(faces).toMatch(/format {6}binary;\n {4}class {7}faceCompactList;/);
+  const textFaces = readZip(foam.bytes).get('constant/polyMesh/faces').toString();
+  const nFaces = Number(textFaces.split('\n}\n')[1].trim().split('\n')[0]);
+  expect(faces.split('\n}\n')[1].trim().split('\n')[0]).toBe(String(nFaces + 1));  // the offsets
   expect(await meshJobs(page)).toBe('1');
   await screenshots(page, 'formats', rows.nth(1));
 

@@ -373,10 +373,7 @@ struct Mesh {
 /// provenance (a later value of an option wins).
 bool set_file(val& r, const Mesh& mesh, vm::OutputFormat format,
               const vm::MeshJobOptions& options, const Applied& extra = {}) {
-  vm::WriteOptions wo;
-  wo.msh_version = options.msh_version;
-  wo.msh_binary = options.msh_binary;
-  wo.units = options.output_units;
+  vm::WriteOptions wo = vm::write_options(options);
   Applied all = mesh.options;
   all.insert(all.end(), extra.begin(), extra.end());
   wo.provenance =
@@ -429,10 +426,7 @@ vm::Status add_member_files(std::vector<vm::OutputFile>& zip, int k, const vm::M
 /// `familyCsv`; the first member is the handle's mesh (with the table).
 val mesh_family(const std::vector<uint8_t>& bytes, const vm::MeshJobOptions& options,
                 vm::OutputFormat format, Applied applied, const std::string& hash, val progress) {
-  vm::WriteOptions wo;
-  wo.msh_version = options.msh_version;
-  wo.msh_binary = options.msh_binary;
-  wo.units = options.output_units;
+  vm::WriteOptions wo = vm::write_options(options);
   wo.provenance = vm::provenance_text(vm::kVersion, hash, vm::options_provenance(applied));
   std::vector<vm::OutputFile> zip;
   std::optional<Mesh> first;
@@ -549,17 +543,19 @@ val methods_report(const Mesh& mesh, val opts) {
 }
 
 /// `mesh` in another format, without meshing again.
-/// options: format (required), mshVersion, mshBinary, outputUnits.
+/// options: format (required), mshVersion, mshBinary, vtkCompress, foamBinary,
+/// outputUnits.
 val export_mesh(const Mesh& mesh, val opts) {
   vm::MeshJobOptions options;
   if (!opts.isUndefined() && !opts.isNull()) {
     val keys = val::global("Object").call<val>("keys", opts);
     for (size_t i = 0; i < keys["length"].as<size_t>(); ++i) {
       const std::string key = keys[i].as<std::string>();
-      if (key != "format" && key != "mshVersion" && key != "mshBinary" && key != "outputUnits")
-        return error(vm::Status::BadOption(
-            "",
-            "unknown export option '" + key + "' (format, mshVersion, mshBinary, outputUnits)"));
+      if (key != "format" && key != "mshVersion" && key != "mshBinary" && key != "vtkCompress" &&
+          key != "foamBinary" && key != "outputUnits")
+        return error(vm::Status::BadOption("", "unknown export option '" + key +
+                                                   "' (format, mshVersion, mshBinary, "
+                                                   "vtkCompress, foamBinary, outputUnits)"));
     }
   }
   Applied applied;

@@ -1,7 +1,8 @@
-// OpenFOAM's native mesh, `constant/polyMesh` (ASCII FoamFile dictionaries,
-// as OpenFOAM v1912 and later read them): the cells of a mixed volume mesh
-// (tetrahedra and prisms) as faces with an owner and a neighbour, the
-// surface groups as boundary patches and the volume groups as cell zones.
+// OpenFOAM's native mesh, `constant/polyMesh` (FoamFile dictionaries, as
+// OpenFOAM v1912 and later read them; the large lists as text or binary):
+// the cells of a mixed volume mesh (tetrahedra and prisms) as faces with an
+// owner and a neighbour, the surface groups as boundary patches and the
+// volume groups as cell zones.
 #pragma once
 
 #include <string>
@@ -12,6 +13,11 @@
 #include "core/util/result.h"
 
 namespace vm {
+
+/// How the mesh's lists are written: as text, or `format binary` with
+/// 32-bit labels and 64-bit scalars, little-endian (arch
+/// "LSB;label=32;scalar=64").
+enum class FoamFormat { kAscii, kBinary };
 
 /// The files of an OpenFOAM case holding `mesh`, paths relative to the case:
 /// - "constant/polyMesh/points": the vertices (mesh.points, in the model's
@@ -38,6 +44,11 @@ namespace vm {
 ///   foamToVTK, splitMeshRegions) run on the case as written; a solver run
 ///   replaces them.
 /// - "case.foam": empty; the file ParaView opens the case by.
+/// `format` kBinary: points, faces, owner and neighbour in OpenFOAM's binary
+/// layout (each list "n\n(" + n raw values + ")", an empty one "0"; points
+/// as 3n doubles; faces as a faceCompactList: the n + 1 offsets, then the
+/// faces' vertices in one list), controlDict's writeFormat binary; the
+/// boundary and zone dictionaries stay text.
 /// `surface_names[tag]` / `region_names[region]` name the tags ("" or
 /// missing = "patch_<tag+1>" / "zone_<region+1>"). `comment` (e.g.
 /// provenance_text) goes into each file's header as a note.
@@ -45,10 +56,11 @@ namespace vm {
 /// out of range, a face shared by more than two cells, a boundary face of a
 /// cell that no tagged triangle or quad covers, a tagged face that is no
 /// cell's face, a name that is not an OpenFOAM word (letters, digits, '_',
-/// '-', '.') or is used twice.
+/// '-', '.') or is used twice, in binary more than 2^31 face vertices in all.
 Result<std::vector<OutputFile>> foam_case_files(const VolumeMesh& mesh,
                                                 const std::vector<std::string>& surface_names,
                                                 const std::vector<std::string>& region_names,
-                                                const std::string& comment);
+                                                const std::string& comment,
+                                                FoamFormat format = FoamFormat::kAscii);
 
 }  // namespace vm

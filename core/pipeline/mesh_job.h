@@ -70,10 +70,13 @@ struct MeshJobOptions {
   PresetOutcome preset;
   /// How the result is to be written (write_outputs.h; the job itself
   /// writes nothing): the format (none: from the output's file name, else
-  /// MSH), the MSH version and file type (binary: 4.1 only), the unit.
+  /// MSH), the MSH version and file type (binary: 4.1 only), zlib for the
+  /// VTK files' arrays, the OpenFOAM case's lists in binary, the unit.
   std::optional<OutputFormat> format;
   MshVersion msh_version = MshVersion::k41;
   bool msh_binary = false;
+  bool vtk_compress = false;
+  bool foam_binary = false;
   /// Remesh the surface (else the repaired input surface is used).
   bool remesh = true;
   RemeshOptions remesh_options;

@@ -109,6 +109,30 @@ const OptionSpec kRows[] = {
            return true;
          },
      .read = [](const O& o) -> std::string { return flag(o.msh_binary); }},
+    {.key = "vtkCompress",
+     .type = T::kFlag,
+     .group = "output",
+     .doc = "compress the arrays of a VTU or VTP file with zlib (VTK's vtkZLibDataCompressor "
+            "blocks, read by ParaView, VTK and meshio): the same mesh in about 0.3 times the "
+            "bytes, a little slower to write and to read; the mesh-complete folder stays raw",
+     .set =
+         [](O& o, const V& v) {
+           o.vtk_compress = v.flag;
+           return true;
+         },
+     .read = [](const O& o) -> std::string { return flag(o.vtk_compress); }},
+    {.key = "foamBinary",
+     .type = T::kFlag,
+     .group = "output",
+     .doc = "write the OpenFOAM case's points, faces, owner and neighbour in OpenFOAM's binary "
+            "format (32-bit labels, 64-bit scalars, little-endian): the same mesh, the exact "
+            "coordinates, in about 0.7 times the bytes",
+     .set =
+         [](O& o, const V& v) {
+           o.foam_binary = v.flag;
+           return true;
+         },
+     .read = [](const O& o) -> std::string { return flag(o.foam_binary); }},
     {.key = "family",
      .type = T::kInteger,
      .group = "output",

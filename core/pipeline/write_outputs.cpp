@@ -102,6 +102,16 @@ Named named_mesh(const MeshJobResult& r, double scale) {
 
 }  // namespace
 
+WriteOptions write_options(const MeshJobOptions& options) {
+  WriteOptions wo;
+  wo.msh_version = options.msh_version;
+  wo.msh_binary = options.msh_binary;
+  wo.vtk_compress = options.vtk_compress;
+  wo.foam_binary = options.foam_binary;
+  wo.units = options.output_units;
+  return wo;
+}
+
 Result<MshEncoding> msh_encoding(MshVersion version, bool binary) {
   if (!binary) return MshEncoding::kAscii;
   if (version != MshVersion::k41)
@@ -212,6 +222,7 @@ Result<std::vector<OutputFile>> write_outputs(const MeshJobResult& r, OutputForm
                                            ": it holds a volume mesh, and this one is surface "
                                            "only ({surface_only}); use msh, vtp or stl");
   VtkWriteOptions vtk;
+  vtk.zlib = options.vtk_compress;
   vtk.comment = options.provenance;
   std::vector<OutputFile> files;
   switch (format) {
@@ -273,7 +284,8 @@ Result<std::vector<OutputFile>> write_outputs(const MeshJobResult& r, OutputForm
     }
     case OutputFormat::kFoam: {
       const Named n = named_mesh(r, scale);
-      auto folder = foam_case_files(n.mesh, n.surfaces, n.regions, options.provenance);
+      auto folder = foam_case_files(n.mesh, n.surfaces, n.regions, options.provenance,
+                                    options.foam_binary ? FoamFormat::kBinary : FoamFormat::kAscii);
       if (!folder.ok()) return folder.status();
       files = std::move(folder).value();
       break;

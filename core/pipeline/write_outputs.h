@@ -28,6 +28,11 @@ struct WriteOptions {
   MshVersion msh_version = MshVersion::k41;
   /// MSH in Gmsh's binary layout (version 4.1 only).
   bool msh_binary = false;
+  /// The arrays of a VTU or VTP file compressed with zlib in VTK's block
+  /// layout (the mesh-complete folder's files stay raw).
+  bool vtk_compress = false;
+  /// The OpenFOAM case's points, faces, owner and neighbour in binary.
+  bool foam_binary = false;
   /// The unit to write in (kGuess: the input's, no conversion).
   LengthUnit units = LengthUnit::kGuess;
   /// One line of provenance (provenance_text), written where the format
@@ -36,6 +41,10 @@ struct WriteOptions {
   /// bytes).
   std::string provenance;
 };
+
+/// The write options of a job's options (MSH version and file type, VTK
+/// compression, OpenFOAM binary, unit); no provenance.
+WriteOptions write_options(const MeshJobOptions& options);
 
 /// The MSH file type of the options {msh_version} and {msh_binary}: binary
 /// is version 4.1 only (a kBadOption naming {msh_binary} with 2.2).

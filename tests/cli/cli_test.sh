@@ -467,6 +467,27 @@ check "an existing OpenFOAM case folder gets its polyMesh" expect_exit 0 "wrote"
 check "the case's mesh replaced, its settings kept" [ "$(find "$T/of/constant/polyMesh/faces" -newer "$T/of2/bif.foam" | wc -l)" = 1 -a ! -e "$T/of/mesh-complete.mesh.vtu" -a "$(tail -1 "$T/of/system/controlDict")" = "// the user's own" -a ! -e "$T/of/constant/polyMesh/faceZones" ]
 check "openfoam zipped" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/of.zip" --format foam --size 0.3 --layers 1
 check "openfoam zip holds the case" python3 -c "import zipfile, sys; n = zipfile.ZipFile('$T/of.zip').namelist(); sys.exit(0 if 'constant/polyMesh/boundary' in n and 'case.foam' in n else 1)"
+# OpenFOAM binary (--foam-binary): points, faces (faceCompactList), owner
+# and neighbour as raw little-endian lists; checkMesh (when installed) reads
+# the same mesh as from the text case.
+check "openfoam binary case" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/ofb/" --format foam --size 0.3 --layers 1 --prisms --foam-binary
+check "openfoam binary: faces a faceCompactList" grep -aq "^    class       faceCompactList;" "$T/ofb/constant/polyMesh/faces"
+check "openfoam binary: points, 3 doubles a point" [ "$(/usr/bin/python3 -c "
+b = open('$T/ofb/constant/polyMesh/points', 'rb').read()
+at = b.index(b'\\n}\\n') + 3
+n, rest = b[at:].lstrip(b'\\n').split(b'\\n', 1)
+print(b'format      binary;' in b and rest[:1] == b'(' and rest[1 + 24 * int(n):1 + 24 * int(n) + 2] == b')\\n')")" = True ]
+if [[ -f /usr/share/openfoam/etc/bashrc ]] && command -v checkMesh > /dev/null; then
+  "$VM" mesh "$T/bif.stl" -o "$T/ofa/" --format foam --size 0.3 --layers 1 --prisms > /dev/null
+  foam_counts() {  # the mesh's counts as checkMesh reads them, and its verdict
+    bash -c "source /usr/share/openfoam/etc/bashrc > /dev/null 2>&1; checkMesh -case '$1'" 2>&1 |
+      grep -E "^ +(points|faces|internal faces|cells|prisms|tetrahedra): |^Mesh OK"
+  }
+  ascii_counts=$(foam_counts "$T/ofa")
+  check "checkMesh reads the binary case as the text one" [ -n "$ascii_counts" -a "$(foam_counts "$T/ofb")" = "$ascii_counts" -a "$(printf '%s\n' "$ascii_counts" | tail -n 1)" = "Mesh OK." ]
+else
+  echo "note: OpenFOAM not installed; checkMesh on the binary case skipped"
+fi
 check "unknown extension" expect_exit 2 "cannot tell the output format from" "$VM" mesh "$T/bif.stl" -o "$T/out.xyz"
 check "volume format needs a volume" expect_exit 2 "--format cannot be vtu: it holds a volume mesh, and --surface-only writes the wall alone" "$VM" mesh "$T/bif.stl" -o "$T/out.vtu" --surface-only
 check "format option wins" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/wall.dat" --format stl --surface-only --size 0.3
@@ -479,6 +500,22 @@ print(0.001 < max(box) < 0.02)")" = True ]
 if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import vtk, meshio" 2>/dev/null; then
   "$VM" mesh "$T/bif.stl" -o "$T/same.msh" --size 0.3 --layers 1 > /dev/null
   check "VTK and meshio read our VTU/VTP/mesh-complete" /usr/bin/python3 "$(dirname "$0")/../../validation/check_vtk_outputs.py" --msh "$T/same.msh" --vtu "$T/out.vtu" --vtp "$T/out.vtp" --mesh-complete "$T/out.zip"
+fi
+# Compressed VTK (--vtk-compress): the same VTU and VTP in VTK's zlib
+# blocks, under a third of the bytes; VTK and meshio read the same mesh.
+for f in vtu vtp; do
+  check "mesh to compressed .$f" expect_exit 0 "wrote" "$VM" mesh "$T/bif.stl" -o "$T/outz.$f" --size 0.3 --layers 1 --vtk-compress
+  check "compressed .$f: zlib blocks, smaller" [ "$(head -c 300 "$T/outz.$f" | grep -c 'header_type="UInt64" compressor="vtkZLibDataCompressor"')" = 1 -a $(($(stat -c %s "$T/outz.$f") * 2)) -lt "$(stat -c %s "$T/out.$f")" ]
+done
+if [[ -x /usr/bin/python3 ]] && /usr/bin/python3 -c "import vtk, meshio" 2>/dev/null; then
+  check "VTK and meshio read the compressed VTU/VTP" /usr/bin/python3 "$(dirname "$0")/../../validation/check_vtk_outputs.py" --msh "$T/same.msh" --vtu "$T/outz.vtu" --vtp "$T/outz.vtp"
+  check "meshio: the compressed VTU's arrays are the raw one's" /usr/bin/python3 -c "
+import sys, meshio, numpy as np
+a, b = meshio.read('$T/out.vtu'), meshio.read('$T/outz.vtu')
+same = np.array_equal(a.points, b.points) and len(a.cells) == len(b.cells) > 0 and all(
+    x.type == y.type and np.array_equal(x.data, y.data) for x, y in zip(a.cells, b.cells)) and all(
+    np.array_equal(a.cell_data[k][0], b.cell_data[k][0]) for k in ('ModelRegionID', 'GlobalElementID'))
+sys.exit(0 if same else 1)"
 fi
 
 # Flow extensions: each opening moved out along its normal by L radii.

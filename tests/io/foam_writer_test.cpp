@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <set>
 #include <sstream>
@@ -361,6 +362,100 @@ TEST(FoamWriter, PrismsAndTetrahedra) {
   EXPECT_EQ(p.face_zones.at("wall").size(), 2u);
   EXPECT_EQ(p.cell_zones.at("lumen"), (std::vector<int64_t>{0, 1}));
   EXPECT_EQ(p.cell_zones.at("layer"), (std::vector<int64_t>{2, 3}));
+}
+
+/// The lists of a binary file after its header, decoded here: each "n\n"
+/// then, when n > 0, "(" + n * `width` raw bytes + ")\n".
+std::vector<std::string> binary_lists(const std::string& text, size_t width) {
+  std::vector<std::string> lists;
+  size_t at = text.find("\n}\n") + 3;
+  while (at < text.size()) {
+    at = text.find_first_not_of('\n', at);
+    if (at == std::string::npos) break;
+    const size_t eol = text.find('\n', at);
+    const size_t n = std::stoull(text.substr(at, eol - at));
+    at = eol + 1;
+    if (n == 0) {
+      lists.emplace_back();
+      continue;
+    }
+    EXPECT_EQ(text[at], '(');
+    lists.push_back(text.substr(at + 1, n * width));
+    at += 1 + n * width;
+    EXPECT_EQ(text.substr(at, 2), ")\n");
+    at += 2;
+  }
+  return lists;
+}
+
+template <class T>
+std::vector<T> values_of(const std::string& bytes) {
+  std::vector<T> v(bytes.size() / sizeof(T));
+  std::memcpy(v.data(), bytes.data(), bytes.size());
+  return v;
+}
+
+// FoamFormat::kBinary: points, faces (compact: offsets, then vertices),
+// owner and neighbour decode to the text case's values, exactly; the
+// dictionaries are the text case's bytes.
+TEST(FoamWriter, BinaryListsAreTheTextCase) {
+  const VolumeMesh m = testing::prism_tet_stack();
+  const std::vector<std::string> surfaces = {"bottom", "sides", "top", "wall"};
+  auto text = foam_case_files(m, surfaces, {"lumen", "layer"}, "p");
+  auto binary = foam_case_files(m, surfaces, {"lumen", "layer"}, "p", FoamFormat::kBinary);
+  ASSERT_TRUE(text.ok() && binary.ok()) << binary.message();
+  const PolyMesh a = read_poly_mesh(text.value());
+  const std::string dir = "constant/polyMesh/";
+  for (const char* f : {"points", "faces", "owner", "neighbour"}) {
+    const std::string& bytes = file(binary.value(), dir + f);
+    EXPECT_EQ(header_entry(bytes, "format"), "binary") << f;
+    EXPECT_NE(bytes.find("\n    arch        \"LSB;label=32;scalar=64\";\n"), std::string::npos)
+        << f;
+  }
+  EXPECT_EQ(header_entry(file(binary.value(), dir + "faces"), "class"), "faceCompactList");
+  EXPECT_EQ(header_entry(file(binary.value(), dir + "owner"), "note"),
+            header_entry(file(text.value(), dir + "owner"), "note"));
+
+  const auto points = binary_lists(file(binary.value(), dir + "points"), 24);
+  ASSERT_EQ(points.size(), 1u);
+  EXPECT_EQ(values_of<double>(points[0]), a.points);
+  EXPECT_EQ(values_of<double>(points[0]), m.points);  // exact
+  const auto faces = binary_lists(file(binary.value(), dir + "faces"), 4);
+  ASSERT_EQ(faces.size(), 2u);
+  const auto offsets = values_of<int32_t>(faces[0]), vertices = values_of<int32_t>(faces[1]);
+  ASSERT_EQ(offsets.size(), a.faces.size() + 1);
+  EXPECT_EQ(offsets[0], 0);
+  EXPECT_EQ(size_t(offsets.back()), vertices.size());
+  for (size_t f = 0; f < a.faces.size(); ++f)
+    EXPECT_EQ(
+        std::vector<int64_t>(vertices.begin() + offsets[f], vertices.begin() + offsets[f + 1]),
+        a.faces[f])
+        << f;
+  for (const auto& [name, labels] :
+       {std::pair{"owner", &a.owner}, std::pair{"neighbour", &a.neighbour}}) {
+    const auto lists = binary_lists(file(binary.value(), dir + name), 4);
+    ASSERT_EQ(lists.size(), 1u);
+    const auto v = values_of<int32_t>(lists[0]);
+    EXPECT_EQ(std::vector<int64_t>(v.begin(), v.end()), *labels) << name;
+  }
+  for (const char* f : {"constant/polyMesh/boundary", "constant/polyMesh/cellZones",
+                        "constant/polyMesh/faceZones", "system/fvSchemes"})
+    EXPECT_EQ(file(binary.value(), f), file(text.value(), f)) << f;
+  EXPECT_NE(file(binary.value(), "system/controlDict").find("writeFormat     binary;"),
+            std::string::npos);
+
+  // One tetrahedron: no internal face, the neighbour list "0" (no brackets).
+  VolumeMesh one;
+  one.points = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  one.tets = {0, 1, 2, 3};
+  one.tet_region = {0};
+  one.triangles = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+  one.triangle_tag = {0, 0, 0, 0};
+  auto single = foam_case_files(one, {"wall"}, {"lumen"}, "", FoamFormat::kBinary);
+  ASSERT_TRUE(single.ok()) << single.message();
+  const std::string& neighbour = file(single.value(), dir + "neighbour");
+  EXPECT_EQ(neighbour.substr(neighbour.find("\n}\n") + 3), "\n0\n");
+  EXPECT_EQ(binary_lists(file(single.value(), dir + "owner"), 4)[0].size(), 16u);
 }
 
 TEST(FoamWriter, UnnamedTagsGetNames) {

@@ -107,6 +107,43 @@ TEST(WriteOutputs, VtkFilesCarryIdsAndProvenance) {
   for (int32_t e : elements) ASSERT_GE(e, 1);
 }
 
+// {vtk_compress}: the VTU and VTP files' arrays in zlib blocks, inflated by
+// the test reader (zlib's uncompress, the block header parsed here) to the
+// raw files' bytes: points, connectivity, offsets, types, ids.
+TEST(WriteOutputs, VtkCompressGivesTheRawArraysInZlibBlocks) {
+  MeshJobOptions job;
+  ASSERT_TRUE(set_option_text(job, "vtk_compress", "").ok());
+  const WriteOptions o = write_options(job);
+  EXPECT_TRUE(o.vtk_compress);
+  for (OutputFormat f : {OutputFormat::kVtu, OutputFormat::kVtp}) {
+    SCOPED_TRACE(format_name(f));
+    auto raw = write_outputs(tube(true), f), packed = write_outputs(tube(true), f, o);
+    ASSERT_TRUE(raw.ok() && packed.ok()) << packed.message();
+    auto a = testing::read_vtk_xml(raw.value()[0].bytes);
+    auto b = testing::read_vtk_xml(packed.value()[0].bytes);
+    ASSERT_TRUE(a.ok() && b.ok()) << b.message();
+    EXPECT_EQ(a.value().file_attributes.count("compressor"), 0u);
+    EXPECT_EQ(b.value().file_attributes["compressor"], "vtkZLibDataCompressor");
+    EXPECT_EQ(b.value().file_attributes["header_type"], "UInt64");
+    EXPECT_EQ(b.value().piece, a.value().piece);
+    ASSERT_EQ(b.value().arrays.size(), a.value().arrays.size());
+    for (size_t i = 0; i < a.value().arrays.size(); ++i) {
+      const testing::VtkArray &x = a.value().arrays[i], &y = b.value().arrays[i];
+      EXPECT_EQ(y.section + "/" + y.name, x.section + "/" + x.name);
+      EXPECT_EQ(y.bytes, x.bytes) << x.section << "/" << x.name;
+      EXPECT_EQ(y.blocks, (x.bytes.size() + 32767) / 32768);
+    }
+    EXPECT_EQ(b.value().values<uint8_t>("Cells", "types").size(),
+              f == OutputFormat::kVtu ? tube(true).volume.num_tets() : 0u);
+    EXPECT_LT(packed.value()[0].bytes.size(), raw.value()[0].bytes.size() / 2);
+  }
+  // The mesh-complete folder stays raw (svFSI's input).
+  auto folder = write_outputs(tube(true), OutputFormat::kMeshComplete, o);
+  ASSERT_TRUE(folder.ok()) << folder.message();
+  for (const OutputFile& file : folder.value())
+    EXPECT_EQ(file.bytes.find("compressor="), std::string::npos) << file.path;
+}
+
 TEST(WriteOutputs, MeshCompleteAndTheWallAlone) {
   auto folder = write_outputs(tube(true), OutputFormat::kMeshComplete);
   ASSERT_TRUE(folder.ok()) << folder.message();
@@ -186,6 +223,27 @@ TEST(WriteOutputs, FoamCaseInMetres) {
     max_z = std::max(max_z, std::abs(z));
   }
   EXPECT_NEAR(max_z, 0.004, 1e-12);
+}
+
+// {foam_binary}: the same case's files, the mesh's lists in binary (their
+// decoding is tested in tests/io/foam_writer_test.cpp).
+TEST(WriteOutputs, FoamBinaryWritesTheListsInBinary) {
+  MeshJobOptions job;
+  ASSERT_TRUE(set_option_text(job, "foam_binary", "").ok());
+  auto text = write_outputs(tube(true), OutputFormat::kFoam);
+  auto binary = write_outputs(tube(true), OutputFormat::kFoam, write_options(job));
+  ASSERT_TRUE(text.ok() && binary.ok()) << binary.message();
+  ASSERT_EQ(binary.value().size(), text.value().size());
+  for (size_t i = 0; i < text.value().size(); ++i) {
+    const OutputFile &a = text.value()[i], &b = binary.value()[i];
+    EXPECT_EQ(b.path, a.path);
+    const bool list = b.path.starts_with("constant/polyMesh/") && !b.path.ends_with("boundary") &&
+                      !b.path.ends_with("Zones");
+    EXPECT_EQ(b.bytes.find("format      binary;") != std::string::npos, list) << b.path;
+    if (b.path.ends_with("points")) {
+      EXPECT_LT(b.bytes.size(), a.bytes.size() / 2);  // doubles in 8 bytes, not ~20 characters
+    }
+  }
 }
 
 TEST(WriteOutputs, VolumeFormatsNeedAVolume) {

@@ -235,7 +235,7 @@ export function typesFor(table) {
     '/** What export() gives. */',
     'export type ExportResult = { ok: true; file: Uint8Array; fileName: string; format: OutputFormat } | Failure;',
     '',
-    "export type ExportOptions = Pick<MeshOptions, 'mshVersion' | 'mshBinary' | 'outputUnits'>;",
+    "export type ExportOptions = Pick<MeshOptions, 'mshVersion' | 'mshBinary' | 'vtkCompress' | 'foamBinary' | 'outputUnits'>;",
     '',
     '/** What keep() and release() give. */',
     'export type HandleResult = { ok: true } | Failure;',

@@ -4,7 +4,9 @@
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { before, describe, test } from 'node:test';
+import { inflateSync } from 'node:zlib';
 
+import { readZip } from '../../e2e/zip.js';
 import { transferables } from '../src/transfer.js';
 import { createVesselmesh } from '../src/vesselmesh.js';
 import { cappedTubeVtp as cappedTubeText } from './capped-tube-vtp.js';
@@ -360,6 +362,77 @@ describe('names and files out', () => {
     const refused = api.mesh(tube, { mshBinary: true, mshVersion: '2.2' });
     assert.equal(refused.option, 'mshBinary');
     assert.match(refused.error, /^mshBinary writes MSH 4\.1 only.*give mshVersion 4\.1, or drop mshBinary$/);
+  });
+
+  test('vtkCompress: VTK\'s zlib blocks, inflating to the raw VTU\'s arrays; foamBinary: raw lists of the same mesh', () => {
+    const m = api.mesh(tube, { size: 0.4, layers: 1, format: 'vtu', vtkCompress: true });
+    assert.equal(m.ok, true, m.error);
+    assert.match(text(m.file.subarray(0, 400)), /byte_order="LittleEndian" header_type="UInt64" compressor="vtkZLibDataCompressor">/);
+    const raw = api.export('vtu', { mesh: m.handle });
+    assert.ok(m.file.length < raw.file.length / 2, `${m.file.length} bytes, raw ${raw.file.length}`);
+    // Each DataArray's values: at its offset after the '_', a UInt64 byte
+    // count then the bytes (raw), or VTK's block header (count, block
+    // size, last partial size, each block's size) then zlib blocks.
+    const arrays = (bytes, zlib) => {
+      const latin1 = new TextDecoder('latin1').decode(bytes);
+      const data = latin1.indexOf('_', latin1.indexOf('<AppendedData encoding="raw">')) + 1;
+      const view = new DataView(bytes.buffer, bytes.byteOffset);
+      const u64 = (at) => Number(view.getBigUint64(data + at, true));
+      const out = {};
+      for (const [, name, offset] of latin1.slice(0, data).matchAll(/<DataArray type="\w+"(?: Name="(\w+)")?.*? offset="(\d+)"/g)) {
+        const at = Number(offset);
+        if (!zlib) {
+          out[name ?? 'Points'] = bytes.subarray(data + at + 8, data + at + 8 + u64(at));
+          continue;
+        }
+        const [blocks, size, last] = [u64(at), u64(at + 8), u64(at + 16)];
+        const parts = [];
+        let from = data + at + 24 + 8 * blocks;
+        for (let b = 0; b < blocks; ++b) {
+          const part = inflateSync(bytes.subarray(from, from + u64(at + 24 + 8 * b)));
+          assert.equal(part.length, b + 1 === blocks && last ? last : size);
+          parts.push(part);
+          from += u64(at + 24 + 8 * b);
+        }
+        out[name ?? 'Points'] = new Uint8Array(Buffer.concat(parts));
+      }
+      return out;
+    };
+    const [packed, plain] = [arrays(m.file, true), arrays(raw.file, false)];
+    assert.deepEqual(Object.keys(packed).sort(), ['GlobalElementID', 'GlobalNodeID', 'ModelRegionID', 'Points', 'connectivity', 'offsets', 'types']);
+    for (const name of Object.keys(plain)) assert.deepEqual(packed[name], plain[name], name);
+    const u32 = (u8) => new Uint32Array(u8.buffer.slice(u8.byteOffset, u8.byteOffset + u8.length));
+    assert.deepEqual(u32(packed.connectivity), m.volume.tets);
+    assert.equal(packed.types.length, m.volume.tets.length / 4);
+    assert.ok(packed.types.every((t) => t === 10));
+    // export() compresses as mesh() did.
+    const again = api.export('vtu', { mesh: m.handle, vtkCompress: true });
+    const body = (bytes) => bytes.subarray(text(bytes.subarray(0, 400)).indexOf('<VTKFile'));
+    assert.deepEqual(body(again.file), body(m.file));
+
+    // foamBinary: points as doubles (the volume's, shown as floats), owner
+    // as int32 labels.
+    const foam = readZip(api.export('foam', { mesh: m.handle, foamBinary: true }).file);
+    const list = (name, width) => {
+      const bytes = foam.get(`constant/polyMesh/${name}`);
+      const latin1 = new TextDecoder('latin1').decode(bytes);
+      assert.match(latin1, /\n {4}format {6}binary;\n {4}class {7}\w+;\n {4}arch {8}"LSB;label=32;scalar=64";/);
+      const at = latin1.indexOf('\n}\n') + 3;
+      const [, n] = latin1.slice(at).match(/^\n*(\d+)\n\(/);
+      const start = latin1.indexOf('(', at) + 1;
+      assert.equal(latin1.slice(start + Number(n) * width, start + Number(n) * width + 2), ')\n');
+      return new Uint8Array(bytes.subarray(start, start + Number(n) * width)).buffer;  // a copy, aligned
+    };
+    assert.deepEqual(Float32Array.from(new Float64Array(list('points', 24))), m.volume.positions);
+    const note = new TextDecoder().decode(foam.get('constant/polyMesh/owner')).match(/nCells:(\d+)\s+nFaces:(\d+)\s+nInternalFaces:(\d+)/);
+    const [cells, faces, internal] = note.slice(1).map(Number);
+    assert.equal(cells, m.volume.tets.length / 4);
+    const owner = new Int32Array(list('owner', 4));
+    assert.equal(owner.length, faces);
+    assert.ok(owner.every((c) => c >= 0 && c < cells));
+    // Internal faces in upper-triangular order: owners never decrease.
+    assert.ok(owner.subarray(0, internal).every((c, i, a) => i === 0 || a[i - 1] <= c));
+    assert.equal(new Int32Array(list('neighbour', 4)).length, internal);
   });
 
   test('export() records its own options in the provenance', () => {

@@ -1,7 +1,7 @@
 // The export: the format select (the formats of files.js; those that need
 // the volume off for a surface-only mesh), the Export button named after
 // the chosen format, the options of the file to write (format, MSH
-// version and binary, output units), and the press: the file written again from the
+// version and binary, VTK compression, OpenFOAM binary, output units), and the press: the file written again from the
 // worker's last mesh when that has the panel's options, else meshed
 // first; then downloaded, named after the input.
 import { EXPORT_FORMATS, exportFileName, exportFormat } from './files.js';
@@ -28,9 +28,16 @@ export function fillExportFormats() {
 
 /** The chosen file format and units to write: export() and mesh() options. */
 export function writeOptions() {
-  const { format, mshVersion, mshBinary } = exportFormat($('format').value);
+  const { format, mshVersion, mshBinary, vtkCompress, foamBinary } = exportFormat($('format').value);
   const outputUnits = $('output-units').value;
-  return { format, ...(mshVersion && { mshVersion }), ...(mshBinary && { mshBinary }), ...(outputUnits && { outputUnits }) };
+  return {
+    format,
+    ...(mshVersion && { mshVersion }),
+    ...(mshBinary && { mshBinary }),
+    ...(vtkCompress && { vtkCompress }),
+    ...(foamBinary && { foamBinary }),
+    ...(outputUnits && { outputUnits }),
+  };
 }
 
 /** The export formats that apply: a surface-only mesh has no volume formats. */

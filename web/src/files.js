@@ -18,9 +18,9 @@ export function baseName(name) {
 
 /**
  * The export formats offered: the select's value, its label, the API's
- * `format`, `mshVersion` and `mshBinary`, the file's suffix after the base
- * name, its MIME type, and whether it needs the volume (not a surface-only
- * result).
+ * `format`, `mshVersion`, `mshBinary`, `vtkCompress` and `foamBinary`, the
+ * file's suffix after the base name, its MIME type, and whether it needs
+ * the volume (not a surface-only result).
  */
 export const EXPORT_FORMATS = [
   { value: 'msh-4.1', label: 'MSH 4.1 (Gmsh)', format: 'msh', mshVersion: '4.1', suffix: '.msh', mime: 'text/plain' },
@@ -35,6 +35,15 @@ export const EXPORT_FORMATS = [
   },
   { value: 'msh-2.2', label: 'MSH 2.2 (Gmsh)', format: 'msh', mshVersion: '2.2', suffix: '.msh', mime: 'text/plain' },
   { value: 'vtu', label: 'VTU volume', format: 'vtu', suffix: '.vtu', mime: 'application/xml', volume: true },
+  {
+    value: 'vtu-compressed',
+    label: 'VTU volume, zlib-compressed',
+    format: 'vtu',
+    vtkCompress: true,
+    suffix: '.vtu',
+    mime: 'application/xml',
+    volume: true,
+  },
   { value: 'vtp', label: 'VTP boundary faces', format: 'vtp', suffix: '-boundary.vtp', mime: 'application/xml' },
   { value: 'stl', label: 'STL wall', format: 'stl', suffix: '-wall.stl', mime: 'model/stl' },
   {
@@ -49,6 +58,15 @@ export const EXPORT_FORMATS = [
     value: 'foam',
     label: 'OpenFOAM case, polyMesh (.zip)',
     format: 'foam',
+    suffix: '-openfoam.zip',
+    mime: 'application/zip',
+    volume: true,
+  },
+  {
+    value: 'foam-binary',
+    label: 'OpenFOAM case, binary polyMesh (.zip)',
+    format: 'foam',
+    foamBinary: true,
     suffix: '-openfoam.zip',
     mime: 'application/zip',
     volume: true,

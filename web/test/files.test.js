@@ -34,15 +34,17 @@ describe('file names', () => {
         'model.msh',
         'model.msh',
         'model.vtu',
+        'model.vtu',
         'model-boundary.vtp',
         'model-wall.stl',
         'model-mesh-complete.zip',
+        'model-openfoam.zip',
         'model-openfoam.zip',
       ],
     );
     assert.deepEqual(
       EXPORT_FORMATS.filter((f) => f.volume).map((f) => f.format),
-      ['vtu', 'mesh-complete', 'foam'],
+      ['vtu', 'vtu', 'mesh-complete', 'foam', 'foam'],
     );
   });
 

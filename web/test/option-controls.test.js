@@ -163,6 +163,10 @@ describe('option controls', () => {
     // Binary MSH is the table's flag, with version 4.1 (the core refuses 2.2).
     assert.equal(optionSpec(TABLE, 'mshBinary').type, 'flag');
     for (const f of EXPORT_FORMATS) if (f.mshBinary) assert.deepEqual([f.format, f.mshVersion, f.mime], ['msh', '4.1', 'application/octet-stream'], f.value);
+    // Compressed VTU and binary OpenFOAM: the table's flags, on their formats.
+    assert.deepEqual([optionSpec(TABLE, 'vtkCompress').type, optionSpec(TABLE, 'foamBinary').type], ['flag', 'flag']);
+    assert.deepEqual(EXPORT_FORMATS.filter((f) => f.vtkCompress).map((f) => f.format), ['vtu']);
+    assert.deepEqual(EXPORT_FORMATS.filter((f) => f.foamBinary).map((f) => f.format), ['foam']);
     assert.deepEqual([EXPORT_FORMATS[0].format, EXPORT_FORMATS[0].mshVersion], ['msh', version.default]);
     assert.equal(byId(HTML, 'format').options.length, 0, 'filled from files.js');
   });
