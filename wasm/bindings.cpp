@@ -8,11 +8,15 @@
 // delete()) and the calls on an analysis or a mesh take it (the JS wrapper
 // checks it is one of its live handles: a deleted one would throw).
 #include <emscripten/bind.h>
+#include <emscripten/em_asm.h>
+#include <emscripten/heap.h>
 #include <emscripten/val.h>
+#include <malloc.h>
 
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <new>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -246,10 +250,11 @@ std::vector<int32_t> view_across(const std::vector<int32_t>& tets, size_t num_ve
   // A face of three tetrahedra (never in a checked mesh): all faces shown.
   std::vector<int32_t> across =
       links.ok() ? std::move(links).value() : std::vector<int32_t>(4 * nt, vm::kNoTetAcross);
-  const std::vector<int32_t> on = vm::boundary_face_triangles(
-      tets.data(), nt, across, triangles.data(), triangles.size() / 3);
+  const std::vector<int32_t> on =
+      vm::boundary_face_triangles(tets.data(), nt, across, triangles.data(), triangles.size() / 3);
   for (size_t i = 0; i < across.size(); ++i)
-    across[i] = across[i] >= 0 ? across[i] >> 2 : -1 - (on[i] >= 0 ? tags[size_t(on[i])] : kUnknownTag);
+    across[i] =
+        across[i] >= 0 ? across[i] >> 2 : -1 - (on[i] >= 0 ? tags[size_t(on[i])] : kUnknownTag);
   return across;
 }
 
@@ -271,8 +276,7 @@ void set_volume(val& r, const vm::MeshJobResult& res) {
   v.set("triangleTag", copy_out(m.triangle_tag.data(), m.triangle_tag.size(), "Int32Array"));
   // The clipped view's tetrahedra and boundary (with prisms, their split
   // appended, as web/src/prisms.js appends it).
-  std::vector<int32_t> view_tets = m.tets, view_triangles = m.triangles,
-                       view_tags = m.triangle_tag;
+  std::vector<int32_t> view_tets = m.tets, view_triangles = m.triangles, view_tags = m.triangle_tag;
   if (!m.prisms.empty()) {  // kept prisms and their faces at the openings
     v.set("prisms", copy_out(reinterpret_cast<const uint32_t*>(m.prisms.data()), m.prisms.size(),
                              "Uint32Array"));
@@ -330,11 +334,17 @@ struct Analysis {
   std::vector<double> radius;
 };
 
+/// The bytes this module's memory can still give a job: its maximum
+/// (MAXIMUM_MEMORY) less what is allocated now (the analyses and meshes
+/// JS holds). The job's sizes are checked against it before meshing.
+double free_memory() { return double(emscripten_get_heap_max()) - double(mallinfo().uordblks); }
+
 /// The mesh options `opts` for a call on an analyzed surface, or an
 /// option's error.
 vm::Result<vm::MeshJobOptions> mesh_options(const val& opts) {
   vm::MeshJobOptions options;
   if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh); !st.ok()) return st;
+  options.memory_bytes = free_memory();
   return options;
 }
 
@@ -371,16 +381,15 @@ struct Mesh {
 /// mesh-complete and foam): {file, fileName} on `r`; false with `r` an error.
 /// `extra`: export()'s own options, recorded after mesh()'s in the
 /// provenance (a later value of an option wins).
-bool set_file(val& r, const Mesh& mesh, vm::OutputFormat format,
-              const vm::MeshJobOptions& options, const Applied& extra = {}) {
+bool set_file(val& r, const Mesh& mesh, vm::OutputFormat format, const vm::MeshJobOptions& options,
+              const Applied& extra = {}) {
   vm::WriteOptions wo;
   wo.msh_version = options.msh_version;
   wo.msh_binary = options.msh_binary;
   wo.units = options.output_units;
   Applied all = mesh.options;
   all.insert(all.end(), extra.begin(), extra.end());
-  wo.provenance =
-      vm::provenance_text(vm::kVersion, mesh.input_hash, vm::options_provenance(all));
+  wo.provenance = vm::provenance_text(vm::kVersion, mesh.input_hash, vm::options_provenance(all));
   auto files = vm::write_outputs(mesh.result, format, wo);
   if (!files.ok()) {
     r = error(files.status());
@@ -487,6 +496,7 @@ val mesh(val stl, val opts, val progress) {
     return error(st);
   const vm::OutputFormat format = vm::resolve_output_format(options, std::nullopt);
   if (vm::Status st = vm::validate_options(options, format); !st.ok()) return error(st);
+  options.memory_bytes = free_memory();
   std::vector<uint8_t> bytes = bytes_from(stl);
   // The file's hash for the provenance; its bytes are freed once prepared.
   const std::string hash = vm::input_hash(bytes);
@@ -588,8 +598,8 @@ val export_mesh(const Mesh& mesh, val opts) {
 val opening_names(const Analysis& analysis, val opts) {
   auto options = mesh_options(opts);
   if (!options.ok()) return error(options.status());
-  auto names = vm::opening_names(analysis.surface, options.value().opening_names,
-                                 options.value().inlet);
+  auto names =
+      vm::opening_names(analysis.surface, options.value().opening_names, options.value().inlet);
   if (!names.ok()) return error(names.status());
   val r = val::object();
   r.set("ok", true);
@@ -700,9 +710,19 @@ int set_thread_limit(int limit) {
   return vm::thread_count();
 }
 
+/// What a failed allocation does (std::set_new_handler): abort the module
+/// as Emscripten's own out-of-memory does, "Aborted(OOM)". This build does
+/// not catch C++ exceptions, so std::bad_alloc cannot become an error value
+/// here (run_mesh_job's catch is the native build's); without the handler
+/// the module aborts with no reason given. The JS API turns the abort into
+/// an out-of-memory failure (vesselmesh.js stopped()) and the worker client
+/// replaces the module.
+void abort_out_of_memory() { EM_ASM(abort('OOM')); }
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(vesselmesh) {
+  std::set_new_handler(abort_out_of_memory);
   // Handles: made only by analyze() and mesh(), owned by JS (delete()).
   emscripten::class_<Analysis>("Analysis");
   emscripten::class_<Mesh>("Mesh");

@@ -104,7 +104,7 @@ std::string budget_warning(const BudgetFit& f) {
            ") would make about " + count_text(f.asked_elements) + " " + f.counted + where +
            ", more than fit in " + memory_text(f.memory_bytes) +
            ": coarsened to {per_circumference} " + number_text(f.per_circumference) + " (about " +
-           count_text(f.elements) + "); the native command, vesselmesh mesh, has no such limit";
+           count_text(f.elements) + ")";
   return "the default size ({per_circumference} " + number_text(f.asked_per_circumference) +
          ") would make about " + count_text(f.asked_elements) + " " + f.counted + where +
          ", over the element budget of " + budget_text(f.max_elements) +
@@ -220,8 +220,7 @@ Status fit_element_budget(const SurfaceMesh& wall, const std::vector<Opening>& o
           number_text(trial.per_circumference) +
           ", the fewest that keep the vessels' volume within {max_volume_change}, still about " +
           count_text(still_count) + " " + still + ": more than fit in " +
-          memory_text(budget.memory_bytes) +
-          "; cut the model smaller, or mesh it with the native command, vesselmesh mesh");
+          memory_text(budget.memory_bytes) + ": cut the model smaller");
     return Status::BadOption(
         "max_elements",
         budget_text(max) + " is too small for this model: the default size ({per_circumference} " +
@@ -238,13 +237,12 @@ Status fit_element_budget(const SurfaceMesh& wall, const std::vector<Opening>& o
     fitting = per_circumference
                   ? " ({per_circumference} " + number_text(trial.per_circumference) + " fits)"
                   : " ({size} " + number_text(trial.size) + " fits)";
-  const std::string beyond =
-      memory
-          ? "more than fit in " + memory_text(budget.memory_bytes) + ": ask for larger elements" +
-                fitting + ", or mesh with the native command, vesselmesh mesh"
-          : "more than the element budget ({max_elements} " + budget_text(max) +
-                ") allows: ask for larger elements" + fitting +
-                (raise(count).empty() ? "" : ", or " + raise(count));
+  const std::string beyond = memory ? "more than fit in " + memory_text(budget.memory_bytes) +
+                                          ": ask for larger elements" + fitting
+                                    : "more than the element budget ({max_elements} " +
+                                          budget_text(max) + ") allows: ask for larger elements" +
+                                          fitting +
+                                          (raise(count).empty() ? "" : ", or " + raise(count));
   Status refused =
       Status::BadOption(option, "makes about " + count_text(count) + " " + counted + ", " + beyond);
   if (!fits) return refused;

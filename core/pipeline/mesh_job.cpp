@@ -210,7 +210,7 @@ Status check_volume_budget(const SurfaceMesh& wall, const std::vector<Opening>& 
   if (limit.memory)
     std::snprintf(buf, sizeof buf,
                   "makes about %.*g tetrahedra in the lumen, more than fit in %s: ask for larger "
-                  "elements ({%s} %s fits), or mesh with the native command, vesselmesh mesh",
+                  "elements ({%s} %s fits)",
                   estimate < 1e6 ? 6 : 3, estimate, memory_text(options.memory_bytes).c_str(),
                   option, number_text(fits).c_str());
   else
