@@ -250,11 +250,10 @@ std::vector<int32_t> view_across(const std::vector<int32_t>& tets, size_t num_ve
   // A face of three tetrahedra (never in a checked mesh): all faces shown.
   std::vector<int32_t> across =
       links.ok() ? std::move(links).value() : std::vector<int32_t>(4 * nt, vm::kNoTetAcross);
-  const std::vector<int32_t> on =
-      vm::boundary_face_triangles(tets.data(), nt, across, triangles.data(), triangles.size() / 3);
+  const std::vector<int32_t> on = vm::boundary_face_triangles(
+      tets.data(), nt, across, triangles.data(), triangles.size() / 3);
   for (size_t i = 0; i < across.size(); ++i)
-    across[i] =
-        across[i] >= 0 ? across[i] >> 2 : -1 - (on[i] >= 0 ? tags[size_t(on[i])] : kUnknownTag);
+    across[i] = across[i] >= 0 ? across[i] >> 2 : -1 - (on[i] >= 0 ? tags[size_t(on[i])] : kUnknownTag);
   return across;
 }
 
@@ -276,7 +275,8 @@ void set_volume(val& r, const vm::MeshJobResult& res) {
   v.set("triangleTag", copy_out(m.triangle_tag.data(), m.triangle_tag.size(), "Int32Array"));
   // The clipped view's tetrahedra and boundary (with prisms, their split
   // appended, as web/src/prisms.js appends it).
-  std::vector<int32_t> view_tets = m.tets, view_triangles = m.triangles, view_tags = m.triangle_tag;
+  std::vector<int32_t> view_tets = m.tets, view_triangles = m.triangles,
+                       view_tags = m.triangle_tag;
   if (!m.prisms.empty()) {  // kept prisms and their faces at the openings
     v.set("prisms", copy_out(reinterpret_cast<const uint32_t*>(m.prisms.data()), m.prisms.size(),
                              "Uint32Array"));
@@ -381,15 +381,16 @@ struct Mesh {
 /// mesh-complete and foam): {file, fileName} on `r`; false with `r` an error.
 /// `extra`: export()'s own options, recorded after mesh()'s in the
 /// provenance (a later value of an option wins).
-bool set_file(val& r, const Mesh& mesh, vm::OutputFormat format, const vm::MeshJobOptions& options,
-              const Applied& extra = {}) {
+bool set_file(val& r, const Mesh& mesh, vm::OutputFormat format,
+              const vm::MeshJobOptions& options, const Applied& extra = {}) {
   vm::WriteOptions wo;
   wo.msh_version = options.msh_version;
   wo.msh_binary = options.msh_binary;
   wo.units = options.output_units;
   Applied all = mesh.options;
   all.insert(all.end(), extra.begin(), extra.end());
-  wo.provenance = vm::provenance_text(vm::kVersion, mesh.input_hash, vm::options_provenance(all));
+  wo.provenance =
+      vm::provenance_text(vm::kVersion, mesh.input_hash, vm::options_provenance(all));
   auto files = vm::write_outputs(mesh.result, format, wo);
   if (!files.ok()) {
     r = error(files.status());
@@ -598,8 +599,8 @@ val export_mesh(const Mesh& mesh, val opts) {
 val opening_names(const Analysis& analysis, val opts) {
   auto options = mesh_options(opts);
   if (!options.ok()) return error(options.status());
-  auto names =
-      vm::opening_names(analysis.surface, options.value().opening_names, options.value().inlet);
+  auto names = vm::opening_names(analysis.surface, options.value().opening_names,
+                                 options.value().inlet);
   if (!names.ok()) return error(names.status());
   val r = val::object();
   r.set("ok", true);

@@ -41,6 +41,22 @@ bool fits(const PreparedSurface& s, const MeshJobOptions& o) {
       .ok();
 }
 
+/// The refusal `st` of `option` (per_circumference 20 or size 0.05 in `o`)
+/// has a `coarser` remedy: a coarser value of the same option, named in the
+/// message as the one that fits, and fitting (`o`'s budget and memory) on
+/// the prepared surface `s`.
+void expect_coarser_fits(const Status& st, const std::string& option, MeshJobOptions o,
+                         const PreparedSurface& s) {
+  ASSERT_EQ(st.remedy().action, "coarser") << st.message();
+  const double coarser = st.remedy().value;
+  EXPECT_NE(st.message().find("{" + option + "} " + number_text(coarser) + " fits"),
+            std::string::npos)
+      << st.message();
+  ASSERT_TRUE(set_option_text(o, option, number_text(coarser)).ok());
+  EXPECT_TRUE(option == "size" ? coarser > 0.05 : coarser < 20);
+  EXPECT_TRUE(fits(s, o)) << option << " " << coarser;
+}
+
 TEST(ElementBudget, TheDefaultSizeIsCoarsenedToFitAndSaysSo) {
   const std::vector<uint8_t> stl = bifurcation_stl();
   MeshJobOptions o = with_budget("15000");
@@ -104,15 +120,7 @@ TEST(ElementBudget, AGivenSizeIsRefusedWithTheSizeThatFits) {
     EXPECT_NE(st.message().find("more than the element budget ({max_elements} 15000)"),
               std::string::npos)
         << st.message();
-    // The remedy: a coarser value of the same option, that fits.
-    ASSERT_EQ(st.remedy().action, "coarser") << st.message();
-    const double coarser = st.remedy().value;
-    EXPECT_NE(st.message().find("{" + option + "} " + number_text(coarser) + " fits"),
-              std::string::npos)
-        << st.message();
-    ASSERT_TRUE(set_option_text(o, option, number_text(coarser)).ok());
-    EXPECT_TRUE(option == "size" ? coarser > 0.05 : coarser < 20);
-    EXPECT_TRUE(fits(prepared.value(), o)) << option << " " << coarser;
+    expect_coarser_fits(st, option, o, prepared.value());
   }
 }
 
@@ -147,20 +155,7 @@ TEST(ElementBudget, MemoryCapsTheTetrahedraBelowTheBudget) {
               std::string::npos)
         << memory_text(memory);
     EXPECT_EQ(st.message().find("max_elements"), std::string::npos) << st.message();
-    ASSERT_EQ(st.remedy().action, "coarser") << st.message();
-    const double coarser = st.remedy().value;
-    EXPECT_NE(st.message().find("{" + option + "} " + number_text(coarser) + " fits"),
-              std::string::npos)
-        << st.message();
-    // The size it names fits the memory.
-    ASSERT_TRUE(set_option_text(o, option, number_text(coarser)).ok());
-    SizeOptions size = o.remesh_options.size;
-    BudgetFit fit;
-    EXPECT_TRUE(fit_element_budget(prepared.value().mesh, prepared.value().topology.openings,
-                                   vessel_radius(prepared.value().mesh), element_budget(o), size,
-                                   fit)
-                    .ok())
-        << option << " " << coarser;
+    expect_coarser_fits(st, option, o, prepared.value());
   }
 
   // The default size: coarsened to fit, said as the memory's limit.
