@@ -1,7 +1,7 @@
 import { expect, test } from '@playwright/test';
 
 import { lookAt, meshThroughRemedies } from './guided.js';
-import { cappedTubeVtp, closedBifurcation, openApp, screenshots, setSizeAndLayers, undoOpenedEnds, upload } from './helpers.js';
+import { cappedTubeVtp, closedBifurcation, meshAgain, openApp, screenshots, setSizeAndLayers, undoOpenedEnds, upload } from './helpers.js';
 
 // How the page leads to a mesh (issue 45): the verdict on a good mesh and
 // on a mesh with known defects, a refusal said in the page's words with its
@@ -78,21 +78,28 @@ test('a mesh with known defects (a thinned layer, a volume loss): the verdict sa
 
 test('a refusal in the page’s words with its remedy; editing its cause clears it', async ({ page }) => {
   await sample(page);
-  // A size far beyond the element budget.
+  // A size far beyond what the mesher's memory holds (4 GB: about 14M
+  // tetrahedra, under the element budget of 15M): refused before meshing.
   await setSizeAndLayers(page, '0.004', '1');
   await page.getByTestId('remesh').click();
   const error = page.getByTestId('error');
-  await expect(error).toContainText(/^Mesh failed: sample-bifurcation\.stl: The edge length h makes about [\d.e+]+ tetrahedra in the lumen, more than the element budget \(15,000,000 elements\) allows/);
-  await expect(error).not.toContainText(/maxElements|perCircumference/);
+  await expect(error).toContainText(
+    /^Mesh failed: sample-bifurcation\.stl: The edge length h makes about [\d.e+]+ tetrahedra in the lumen, more than fit in the mesher's memory \(4\.\d GB free: about 1\.4e\+07 tetrahedra at 300 bytes each\): ask for larger elements \(h = 0\.0\d+ mm fits\)$/,
+  );
+  await expect(error).not.toContainText(/maxElements|perCircumference|element budget/);
+  await expect(page.getByTestId('progress')).toBeHidden();
   const remedy = page.getByTestId('remedy-coarser');
   await expect(remedy).toHaveText(/^Use a coarser size \(h = 0\.0\d+ mm\)$/);
   await expect(remedy).toBeFocused();
   await expect(page.getByTestId('next-step')).toContainText('Use the button above');
   await lookAt(page, 'guidance-refusal', error);
-  // The user changes the size: the refusal goes.
+  // The user changes the size: the refusal goes, and the page meshes.
   await page.getByTestId('size-value').fill('0.3');
   await expect(error).toBeHidden();
   await expect(remedy).toBeHidden();
+  await meshAgain(page);
+  await expect(page.getByTestId('verdict')).toBeVisible();
+  await screenshots(page, 'guidance-refusal-then-meshed', page.getByTestId('verdict'));
 });
 
 test('a failed action of the preparation: the bar says so and leads to its message; a side effect is said with Undo', async ({ page }) => {

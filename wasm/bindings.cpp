@@ -8,11 +8,15 @@
 // delete()) and the calls on an analysis or a mesh take it (the JS wrapper
 // checks it is one of its live handles: a deleted one would throw).
 #include <emscripten/bind.h>
+#include <emscripten/em_asm.h>
+#include <emscripten/heap.h>
 #include <emscripten/val.h>
+#include <malloc.h>
 
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <new>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -330,11 +334,17 @@ struct Analysis {
   std::vector<double> radius;
 };
 
+/// The bytes this module's memory can still give a job: its maximum
+/// (MAXIMUM_MEMORY) less what is allocated now (the analyses and meshes
+/// JS holds). The job's sizes are checked against it before meshing.
+double free_memory() { return double(emscripten_get_heap_max()) - double(mallinfo().uordblks); }
+
 /// The mesh options `opts` for a call on an analyzed surface, or an
 /// option's error.
 vm::Result<vm::MeshJobOptions> mesh_options(const val& opts) {
   vm::MeshJobOptions options;
   if (vm::Status st = apply_js_options(options, opts, vm::kCommandMesh); !st.ok()) return st;
+  options.memory_bytes = free_memory();
   return options;
 }
 
@@ -481,6 +491,7 @@ val mesh(val stl, val opts, val progress) {
     return error(st);
   const vm::OutputFormat format = vm::resolve_output_format(options, std::nullopt);
   if (vm::Status st = vm::validate_options(options, format); !st.ok()) return error(st);
+  options.memory_bytes = free_memory();
   std::vector<uint8_t> bytes = bytes_from(stl);
   // The file's hash for the provenance; its bytes are freed once prepared.
   const std::string hash = vm::input_hash(bytes);
@@ -696,9 +707,19 @@ int set_thread_limit(int limit) {
   return vm::thread_count();
 }
 
+/// What a failed allocation does (std::set_new_handler): abort the module
+/// as Emscripten's own out-of-memory does, "Aborted(OOM)". This build does
+/// not catch C++ exceptions, so std::bad_alloc cannot become an error value
+/// here (run_mesh_job's catch is the native build's); without the handler
+/// the module aborts with no reason given. The JS API turns the abort into
+/// an out-of-memory failure (vesselmesh.js stopped()) and the worker client
+/// replaces the module.
+void abort_out_of_memory() { EM_ASM(abort('OOM')); }
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(vesselmesh) {
+  std::set_new_handler(abort_out_of_memory);
   // Handles: made only by analyze() and mesh(), owned by JS (delete()).
   emscripten::class_<Analysis>("Analysis");
   emscripten::class_<Mesh>("Mesh");

@@ -50,16 +50,17 @@ Estimate estimate(const SurfaceMesh& wall, double volume, const std::vector<doub
   return e;
 }
 
-/// How much larger the sizes must get for `e` to fit `max` (1: it fits):
-/// triangles go as 1 / h^2, tetrahedra as 1 / h^3.
-double growth(const Estimate& e, double max) {
-  return std::max({1.0, std::sqrt(e.triangles / max), std::cbrt(e.tetrahedra / max)});
+/// How much larger the sizes must get for `e` to fit `max` triangles and
+/// `tets` tetrahedra (1: it fits): triangles go as 1 / h^2, tetrahedra as
+/// 1 / h^3.
+double growth(const Estimate& e, double max, double tets) {
+  return std::max({1.0, std::sqrt(e.triangles / max), std::cbrt(e.tetrahedra / tets)});
 }
 
 /// The estimate that needs the sizes to grow most, in words ("triangles on
 /// the wall"), and its value.
-std::pair<std::string, double> over(const Estimate& e, double max) {
-  if (std::sqrt(e.triangles / max) >= std::cbrt(e.tetrahedra / max))
+std::pair<std::string, double> over(const Estimate& e, double max, double tets) {
+  if (std::sqrt(e.triangles / max) >= std::cbrt(e.tetrahedra / tets))
     return {"triangles on the wall", e.triangles};
   return {"tetrahedra in the lumen", e.tetrahedra};
 }
@@ -78,8 +79,32 @@ std::string budget_text(double x) {
 
 }  // namespace
 
+double tetrahedra_in_memory(double memory_bytes) {
+  return memory_bytes > 0 ? memory_bytes / kWasmBytesPerTetrahedron : 0;
+}
+
+std::string memory_text(double memory_bytes) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf,
+                "the mesher's memory (%.2g GB free: about %.2g tetrahedra at %.0f bytes each)",
+                memory_bytes / 1e9, tetrahedra_in_memory(memory_bytes), kWasmBytesPerTetrahedron);
+  return buf;
+}
+
+TetrahedronLimit tetrahedron_limit(double max_elements, double memory_bytes) {
+  const double in_memory = tetrahedra_in_memory(memory_bytes);
+  if (in_memory > 0 && in_memory < max_elements) return {in_memory, true};
+  return {max_elements, false};
+}
+
 std::string budget_warning(const BudgetFit& f) {
   const std::string where = f.counted == "triangles" ? " on the wall" : " in the lumen";
+  if (f.memory)
+    return "the default size ({per_circumference} " + number_text(f.asked_per_circumference) +
+           ") would make about " + count_text(f.asked_elements) + " " + f.counted + where +
+           ", more than fit in " + memory_text(f.memory_bytes) +
+           ": coarsened to {per_circumference} " + number_text(f.per_circumference) + " (about " +
+           count_text(f.elements) + ")";
   return "the default size ({per_circumference} " + number_text(f.asked_per_circumference) +
          ") would make about " + count_text(f.asked_elements) + " " + f.counted + where +
          ", over the element budget of " + budget_text(f.max_elements) +
@@ -120,6 +145,7 @@ Status fit_element_budget(const SurfaceMesh& wall, const std::vector<Opening>& o
                           SizeOptions& size, BudgetFit& fit, std::vector<double>* sizes) {
   fit = BudgetFit{};
   fit.max_elements = budget.max_elements;
+  fit.memory_bytes = budget.memory_bytes;
   const bool per_circumference = size.mode == SizeMode::kPerCircumference;
   auto field = [&](const SizeOptions& o) {
     return vertex_sizes(wall, o, per_circumference ? radius : std::span<const double>{});
@@ -127,9 +153,11 @@ Status fit_element_budget(const SurfaceMesh& wall, const std::vector<Opening>& o
   auto first = field(size);
   if (!first.ok()) return first.status();
   const double max = budget.max_elements;
+  const TetrahedronLimit limit = tetrahedron_limit(max, budget.memory_bytes);
+  const double tets = limit.tetrahedra;
   const double volume = budget.volume ? std::abs(volume_closed_by_fans(wall, openings)) : 0;
   const Estimate asked = estimate(wall, volume, first.value(), budget);
-  if (!(max > 0) || growth(asked, max) <= 1) {
+  if (!(max > 0) || growth(asked, max, tets) <= 1) {
     if (sizes) *sizes = std::move(first).value();
     return Status::Ok();
   }
@@ -144,7 +172,7 @@ Status fit_element_budget(const SurfaceMesh& wall, const std::vector<Opening>& o
   Estimate at = asked;
   bool fits = false;
   for (int round = 0; round < 8 && !fits; ++round) {
-    const double g = 1.02 * growth(at, max);
+    const double g = 1.02 * growth(at, max, tets);
     if (per_circumference) {
       const double n = std::max(
           fewest, std::min(std::floor(trial.per_circumference / g), trial.per_circumference - 1));
@@ -157,9 +185,11 @@ Status fit_element_budget(const SurfaceMesh& wall, const std::vector<Opening>& o
     if (!next.ok()) return next.status();
     h = std::move(next).value();
     at = estimate(wall, volume, h, budget);
-    fits = growth(at, max) <= 1;
+    fits = growth(at, max, tets) <= 1;
   }
-  const auto [counted, count] = over(asked, max);
+  const auto [counted, count] = over(asked, max, tets);
+  // The memory is the limit when the tetrahedra are what is over it.
+  const bool memory = limit.memory && counted[0] == 't' && counted[1] == 'e';
   // Raising the budget is said when the option allows it.
   auto raise = [](double needed) {
     const double enough = round_up(1.05 * needed, 2);
@@ -176,12 +206,21 @@ Status fit_element_budget(const SurfaceMesh& wall, const std::vector<Opening>& o
     fit.asked_elements = count;
     fit.elements = fit.counted == "triangles" ? at.triangles : at.tetrahedra;
     fit.enough = round_up(1.05 * count, 2);
+    fit.memory = memory;
     size.per_circumference = trial.per_circumference;
     if (sizes) *sizes = std::move(h);
     return Status::Ok();
   }
   if (coarsen) {
-    const auto [still, still_count] = over(at, max);
+    const auto [still, still_count] = over(at, max, tets);
+    if (memory)
+      return Status::Error(
+          "the default size ({per_circumference} " + number_text(size.per_circumference) +
+          ") makes about " + count_text(count) + " " + counted + ", and {per_circumference} " +
+          number_text(trial.per_circumference) +
+          ", the fewest that keep the vessels' volume within {max_volume_change}, still about " +
+          count_text(still_count) + " " + still + ": more than fit in " +
+          memory_text(budget.memory_bytes) + ": cut the model smaller");
     return Status::BadOption(
         "max_elements",
         budget_text(max) + " is too small for this model: the default size ({per_circumference} " +
@@ -198,11 +237,14 @@ Status fit_element_budget(const SurfaceMesh& wall, const std::vector<Opening>& o
     fitting = per_circumference
                   ? " ({per_circumference} " + number_text(trial.per_circumference) + " fits)"
                   : " ({size} " + number_text(trial.size) + " fits)";
+  const std::string beyond = memory ? "more than fit in " + memory_text(budget.memory_bytes) +
+                                          ": ask for larger elements" + fitting
+                                    : "more than the element budget ({max_elements} " +
+                                          budget_text(max) + ") allows: ask for larger elements" +
+                                          fitting +
+                                          (raise(count).empty() ? "" : ", or " + raise(count));
   Status refused =
-      Status::BadOption(option, "makes about " + count_text(count) + " " + counted +
-                                    ", more than the element budget ({max_elements} " +
-                                    budget_text(max) + ") allows: ask for larger elements" +
-                                    fitting + (raise(count).empty() ? "" : ", or " + raise(count)));
+      Status::BadOption(option, "makes about " + count_text(count) + " " + counted + ", " + beyond);
   if (!fits) return refused;
   return refused.WithRemedy(
       {"coarser", {}, per_circumference ? trial.per_circumference : trial.size});

@@ -6,9 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <new>
 #include <numbers>
 #include <numeric>
 #include <optional>
+#include <string>
+#include <string_view>
 #include <tuple>
 
 #include "core/geom/vec3.h"
@@ -192,22 +195,30 @@ Status check_volume_budget(const SurfaceMesh& wall, const std::vector<Opening>& 
   if (!(h > 0)) return Status::Ok();
   const double volume = std::abs(volume_closed_by_fans(wall, openings));
   const double estimate = estimate_tetrahedra(volume, h);
-  if (estimate <= options.max_elements) return Status::Ok();
+  const TetrahedronLimit limit = tetrahedron_limit(options.max_elements, options.memory_bytes);
+  if (estimate <= limit.tetrahedra) return Status::Ok();
   // The remedy: the blamed option's value that fits.
   const char* option = options.core_size > 0           ? "core_size"
                        : so.mode == SizeMode::kUniform ? "size"
                                                        : "per_circumference";
   const double fits =
-      options.core_size > 0 ? fitting_size(0, volume, options.max_elements)
+      options.core_size > 0 ? fitting_size(0, volume, limit.tetrahedra)
       : so.mode == SizeMode::kUniform
-          ? fitting_size(surface_area(wall), volume, options.max_elements)
-          : std::floor(so.per_circumference / (1.02 * std::cbrt(estimate / options.max_elements)));
-  char buf[300];
-  std::snprintf(buf, sizeof buf,
-                "makes about %.*g tetrahedra in the lumen, more than the element budget "
-                "({max_elements} %.0f) allows: ask for larger elements ({%s} %s fits)",
-                estimate < 1e6 ? 6 : 3, estimate, options.max_elements, option,
-                number_text(fits).c_str());
+          ? fitting_size(surface_area(wall), volume, limit.tetrahedra)
+          : std::floor(so.per_circumference / (1.02 * std::cbrt(estimate / limit.tetrahedra)));
+  char buf[400];
+  if (limit.memory)
+    std::snprintf(buf, sizeof buf,
+                  "makes about %.*g tetrahedra in the lumen, more than fit in %s: ask for larger "
+                  "elements ({%s} %s fits)",
+                  estimate < 1e6 ? 6 : 3, estimate, memory_text(options.memory_bytes).c_str(),
+                  option, number_text(fits).c_str());
+  else
+    std::snprintf(buf, sizeof buf,
+                  "makes about %.*g tetrahedra in the lumen, more than the element budget "
+                  "({max_elements} %.0f) allows: ask for larger elements ({%s} %s fits)",
+                  estimate < 1e6 ? 6 : 3, estimate, options.max_elements, option,
+                  number_text(fits).c_str());
   Status refused = Status::BadOption(option, buf);
   const bool usable =
       so.mode == SizeMode::kPerCircumference && !(options.core_size > 0) ? fits >= 3 : fits > 0;
@@ -549,12 +560,51 @@ ElementBudget element_budget(const MeshJobOptions& options) {
   budget.core_size = options.core_size;
   budget.size_given = options.size_given;
   budget.max_volume_change = options.max_volume_change;
+  budget.memory_bytes = options.memory_bytes;
   return budget;
 }
 
-Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const MeshJobOptions& given,
-                                   const ProgressFn& progress,
-                                   const std::function<void()>& input_read) {
+Status out_of_memory_error(std::string_view stage, double fraction) {
+  const std::string during = stage.empty() ? std::string("before its first stage")
+                                           : "during \"" + std::string(stage) + "\" (" +
+                                                 std::to_string(int(std::lround(100 * fraction))) +
+                                                 "% of the job)";
+  return Status::Error("out of memory " + during +
+                       ": the mesh needs more memory than there is; try a coarser size (a larger "
+                       "{size} or a smaller {per_circumference}), or a smaller {max_elements}");
+}
+
+namespace {
+
+/// `job` run with `progress`, an allocation that fails (std::bad_alloc) in
+/// it returned as out_of_memory_error, at the last stage `progress` heard.
+template <class Job>
+Result<MeshJobResult> guarded(const ProgressFn& progress, const Job& job) {
+  std::string stage;
+  double fraction = 0;
+  ProgressFn heard = [&](double f, std::string_view s) {
+    stage = s;
+    fraction = f;
+    return !progress || progress(f, s);
+  };
+  try {
+    return job(heard);
+  } catch (const std::bad_alloc&) {
+    return out_of_memory_error(stage, fraction);
+  }
+}
+
+}  // namespace
+
+namespace {
+
+Result<MeshJobResult> mesh_surface(PreparedSurface surface, const MeshJobOptions& given,
+                                   const ProgressFn& progress);
+
+/// run_mesh_job unguarded.
+Result<MeshJobResult> mesh_file(std::span<const uint8_t> file_bytes, const MeshJobOptions& given,
+                                const ProgressFn& progress,
+                                const std::function<void()>& input_read) {
   auto t0 = std::chrono::steady_clock::now();
   if (Status st = validate_options(given, given.format); !st.ok()) return st;
   set_thread_count(given.threads);
@@ -565,15 +615,16 @@ Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const Me
   Result<PreparedSurface> prepared = prepare_surface(file_bytes, given.prepare, sub);
   if (input_read) input_read();
   if (!prepared.ok()) return prepared.status();
-  auto r = run_mesh_job_on(std::move(prepared).value(), given, progress);
+  auto r = mesh_surface(std::move(prepared).value(), given, progress);
   if (r.ok())
     r.value().seconds_total =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
 
-Result<MeshJobResult> run_mesh_job_on(PreparedSurface surface, const MeshJobOptions& given,
-                                      const ProgressFn& progress) {
+/// run_mesh_job_on unguarded.
+Result<MeshJobResult> mesh_surface(PreparedSurface surface, const MeshJobOptions& given,
+                                   const ProgressFn& progress) {
   auto t0 = std::chrono::steady_clock::now();
   if (Status st = validate_options(given, given.format); !st.ok()) return st;
   MeshJobOptions options = given;  // with what the surface decides (a y+ height)
@@ -609,6 +660,23 @@ Result<MeshJobResult> run_mesh_job_on(PreparedSurface surface, const MeshJobOpti
   }
   r.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
+}
+
+}  // namespace
+
+Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes, const MeshJobOptions& given,
+                                   const ProgressFn& progress,
+                                   const std::function<void()>& input_read) {
+  return guarded(progress, [&](const ProgressFn& heard) {
+    return mesh_file(file_bytes, given, heard, input_read);
+  });
+}
+
+Result<MeshJobResult> run_mesh_job_on(PreparedSurface surface, const MeshJobOptions& given,
+                                      const ProgressFn& progress) {
+  return guarded(progress, [&](const ProgressFn& heard) {
+    return mesh_surface(std::move(surface), given, heard);
+  });
 }
 
 }  // namespace vm

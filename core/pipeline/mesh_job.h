@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/io/msh_writer.h"
@@ -119,6 +120,12 @@ struct MeshJobOptions {
   /// estimated beyond it is refused before meshing them, unless its size is
   /// the default: that is coarsened to fit (element_budget.h).
   double max_elements = 15e6;
+  /// The memory the job may take, in bytes (0: no limit): set by the
+  /// WebAssembly binding to what its module can still grow by. A size whose
+  /// tetrahedra, at kWasmBytesPerTetrahedron each, need more is refused
+  /// before meshing (the default size coarsened) as the element budget is;
+  /// not an option of the table: a property of where the job runs.
+  double memory_bytes = 0;
   /// Whether the wall's size was given ({size} or {per_circumference}).
   bool size_given = false;
   /// The remeshed wall may enclose at most this fraction more or less
@@ -250,10 +257,18 @@ struct MeshJobResult {
 /// The element budget `options` set (element_budget.h).
 ElementBudget element_budget(const MeshJobOptions& options);
 
+/// The error of a job that ran out of memory during `stage` (a progress
+/// stage's name, "" before the first) at `fraction` of its progress.
+Status out_of_memory_error(std::string_view stage, double fraction);
+
 /// Meshes the surface file `file_bytes` per `options`. `input_read`, if
 /// given, is called once the bytes are no longer needed (after the
 /// preparation), so that the caller may free them before the later stages
-/// (a 25M-triangle binary STL is 1.25 GB).
+/// (a 25M-triangle binary STL is 1.25 GB). An allocation that fails
+/// (std::bad_alloc, here or on a worker thread) ends the job with an error
+/// saying which stage ran out of memory (out_of_memory_error); where C++
+/// exceptions are not caught (the WebAssembly build), the module aborts
+/// instead and the JS API says so.
 Result<MeshJobResult> run_mesh_job(std::span<const uint8_t> file_bytes,
                                    const MeshJobOptions& options = {},
                                    const ProgressFn& progress = {},

@@ -75,8 +75,8 @@ const OptionSpec kRows[] = {
      .max = kMostElements,
      .needs = "a number of elements from 1000 to 1000000000",
      .doc = "the element budget: sizes that would make more wall triangles or tetrahedra are "
-            "refused before meshing, the default size coarsened to fit (the default fits a 4 GB "
-            "browser tab)",
+            "refused before meshing, the default size coarsened to fit (in WebAssembly the "
+            "module's memory caps the tetrahedra further, at 300 bytes each: about 14M in 4 GB)",
      .set =
          [](O& o, const V& v) {
            o.max_elements = v.number;

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <numbers>
 #include <string>
+#include <string_view>
 
 #include "core/geom/vec3.h"
 #include "core/io/stl.h"
@@ -37,6 +39,22 @@ bool fits(const PreparedSurface& s, const MeshJobOptions& o) {
   return fit_element_budget(s.mesh, s.topology.openings, vessel_radius(s.mesh), element_budget(o),
                             size, fit)
       .ok();
+}
+
+/// The refusal `st` of `option` (per_circumference 20 or size 0.05 in `o`)
+/// has a `coarser` remedy: a coarser value of the same option, named in the
+/// message as the one that fits, and fitting (`o`'s budget and memory) on
+/// the prepared surface `s`.
+void expect_coarser_fits(const Status& st, const std::string& option, MeshJobOptions o,
+                         const PreparedSurface& s) {
+  ASSERT_EQ(st.remedy().action, "coarser") << st.message();
+  const double coarser = st.remedy().value;
+  EXPECT_NE(st.message().find("{" + option + "} " + number_text(coarser) + " fits"),
+            std::string::npos)
+      << st.message();
+  ASSERT_TRUE(set_option_text(o, option, number_text(coarser)).ok());
+  EXPECT_TRUE(option == "size" ? coarser > 0.05 : coarser < 20);
+  EXPECT_TRUE(fits(s, o)) << option << " " << coarser;
 }
 
 TEST(ElementBudget, TheDefaultSizeIsCoarsenedToFitAndSaysSo) {
@@ -102,16 +120,79 @@ TEST(ElementBudget, AGivenSizeIsRefusedWithTheSizeThatFits) {
     EXPECT_NE(st.message().find("more than the element budget ({max_elements} 15000)"),
               std::string::npos)
         << st.message();
-    // The remedy: a coarser value of the same option, that fits.
-    ASSERT_EQ(st.remedy().action, "coarser") << st.message();
-    const double coarser = st.remedy().value;
-    EXPECT_NE(st.message().find("{" + option + "} " + number_text(coarser) + " fits"),
+    expect_coarser_fits(st, option, o, prepared.value());
+  }
+}
+
+TEST(ElementBudget, MemoryCapsTheTetrahedraBelowTheBudget) {
+  const std::vector<uint8_t> stl = bifurcation_stl();
+  auto prepared = prepare_surface(stl);
+  ASSERT_TRUE(prepared.ok());
+  // Memory for 15000 tetrahedra, under the default budget of 15M.
+  const double memory = 15000 * kWasmBytesPerTetrahedron;
+  EXPECT_DOUBLE_EQ(tetrahedra_in_memory(memory), 15000);
+  EXPECT_EQ(tetrahedra_in_memory(0), 0);
+  EXPECT_TRUE(tetrahedron_limit(15e6, memory).memory);
+  EXPECT_FALSE(tetrahedron_limit(1e4, memory).memory);
+  EXPECT_FALSE(tetrahedron_limit(15e6, 0).memory);
+
+  // A given size: refused as the memory's limit, with the size that fits
+  // it and no larger budget offered (none would help).
+  for (const auto& [option, value] : std::vector<std::pair<std::string, std::string>>{
+           {"per_circumference", "20"}, {"size", "0.05"}}) {
+    MeshJobOptions o;
+    ASSERT_TRUE(set_option_text(o, option, value).ok());
+    o.memory_bytes = memory;
+    auto r = run_mesh_job(stl, o);
+    ASSERT_FALSE(r.ok()) << option;
+    const Status& st = r.status();
+    EXPECT_EQ(st.kind(), ErrorKind::kBadOption) << st.message();
+    EXPECT_EQ(st.option(), option);
+    EXPECT_NE(st.message().find("tetrahedra in the lumen, more than fit in " + memory_text(memory)),
               std::string::npos)
         << st.message();
-    ASSERT_TRUE(set_option_text(o, option, number_text(coarser)).ok());
-    EXPECT_TRUE(option == "size" ? coarser > 0.05 : coarser < 20);
-    EXPECT_TRUE(fits(prepared.value(), o)) << option << " " << coarser;
+    EXPECT_NE(memory_text(memory).find("about 1.5e+04 tetrahedra at 300 bytes each"),
+              std::string::npos)
+        << memory_text(memory);
+    EXPECT_EQ(st.message().find("max_elements"), std::string::npos) << st.message();
+    expect_coarser_fits(st, option, o, prepared.value());
   }
+
+  // The default size: coarsened to fit, said as the memory's limit.
+  MeshJobOptions o;
+  o.memory_bytes = memory;
+  auto r = run_mesh_job(stl, o);
+  ASSERT_TRUE(r.ok()) << r.message();
+  const BudgetFit& f = r.value().budget;
+  ASSERT_TRUE(f.coarsened);
+  EXPECT_TRUE(f.memory);
+  EXPECT_LE(f.elements, 15000);
+  EXPECT_NE(budget_warning(f).find("more than fit in the mesher's memory"), std::string::npos)
+      << budget_warning(f);
+  EXPECT_EQ(budget_warning(f).find("max_elements"), std::string::npos) << budget_warning(f);
+}
+
+TEST(ElementBudget, AFailedAllocationEndsTheJobWithAnError) {
+  // An allocation failing in the remeshing (std::bad_alloc thrown from
+  // within the job, as operator new throws it).
+  bool thrown = false;
+  auto r = run_mesh_job(bifurcation_stl(), {}, [&](double, std::string_view stage) {
+    if (stage == "partitioning" && !thrown) {
+      thrown = true;
+      throw std::bad_alloc();
+    }
+    return true;
+  });
+  ASSERT_TRUE(thrown);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().kind(), ErrorKind::kBadInput);
+  const std::string text = phrase_error(r.status(), kFaceJs);
+  EXPECT_EQ(text.rfind("out of memory during \"partitioning\" (", 0), 0u) << text;
+  EXPECT_NE(text.find("try a coarser size (a larger size or a smaller perCircumference)"),
+            std::string::npos)
+      << text;
+  // The next job runs.
+  EXPECT_TRUE(run_mesh_job(bifurcation_stl(), with_budget("15000")).ok());
 }
 
 TEST(ElementBudget, ABudgetTooSmallForTheDefaultIsRefusedNamingIt) {

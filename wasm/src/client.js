@@ -5,6 +5,9 @@
 // calls on one take it (options `analysis` or `mesh`), or act on the
 // worker's newest. The worker frees the newest of a kind when a newer job
 // replaces it, unless kept (keep()); release() frees one; a cancel frees all.
+// A result with `restart: true` (the worker's module ran out of memory, or
+// stopped) replaces the worker the same way, and calls onRestart(result):
+// the page keeps working, without the old worker's handles.
 
 const defaultWorker = () =>
   new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
@@ -13,6 +16,9 @@ export class VesselmeshClient {
   /** @param {{ createWorker?: () => Worker }} [options] */
   constructor({ createWorker = defaultWorker } = {}) {
     this._createWorker = createWorker;
+    /** Called with the failure after the worker was replaced because its
+     * module stopped (out of memory): the handles of the old one are gone. */
+    this.onRestart = null;
     this._nextId = 1;
     this._pending = new Map();
     this._start();
@@ -59,8 +65,21 @@ export class VesselmeshClient {
       job.onProgress?.(msg.fraction, msg.stage);
     } else if (msg.type === 'result') {
       this._pending.delete(msg.id);
-      job.resolve(msg.result);
+      if (!msg.result?.restart) {
+        job.resolve(msg.result);
+      } else {
+        job.resolve({ ...msg.result, error: `${msg.result.error}; the mesher was restarted` });
+        this._replace({ ok: false, error: `the mesher was restarted: ${msg.result.error}` });
+        this.onRestart?.(msg.result);
+      }
     }
+  }
+
+  /** A fresh worker for the old one; its pending jobs resolve `result`. */
+  _replace(result) {
+    this._worker.terminate();
+    this._failAll(result);
+    this._start();
   }
 
   _failAll(result) {
@@ -145,9 +164,7 @@ export class VesselmeshClient {
 
   /** Stops the running job: its promise resolves { ok: false, cancelled: true }. */
   cancel() {
-    this._worker.terminate();
-    this._failAll({ ok: false, cancelled: true, error: 'cancelled' });
-    this._start();
+    this._replace({ ok: false, cancelled: true, error: 'cancelled' });
   }
 
   /** Ends the worker for good. */

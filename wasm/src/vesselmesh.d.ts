@@ -61,7 +61,7 @@ export interface MeshOptions extends AnalyzeOptions {
   coreSize?: number;
   /** the group name of opening K (default: the file's face name, else inlet / outlet_k) Needs K=NAME with NAME 1-64 letters, digits, _ or -, starting with a letter. */
   names?: Record<number, string> | string[];
-  /** the element budget: sizes that would make more wall triangles or tetrahedra are refused before meshing, the default size coarsened to fit (the default fits a 4 GB browser tab) Needs a number of elements from 1000 to 1000000000. Default 15000000. */
+  /** the element budget: sizes that would make more wall triangles or tetrahedra are refused before meshing, the default size coarsened to fit (in WebAssembly the module's memory caps the tetrahedra further, at 300 bytes each: about 14M in 4 GB) Needs a number of elements from 1000 to 1000000000. Default 15000000. */
   maxElements?: number;
   /** the remeshed wall may enclose at most this fraction more or less volume than the input; beyond, the size is refused as too coarse for the vessels. Needs a fraction from 0 to 1. Default 0.05. */
   maxVolumeChange?: number;
@@ -152,10 +152,13 @@ export interface Failure {
   ok: false;
   /** What was found, where, and what to do, naming options by their JS keys. */
   error: string;
-  kind?: 'bad_input' | 'bad_option' | 'cancelled' | 'internal';
+  kind?: 'bad_input' | 'bad_option' | 'cancelled' | 'internal' | 'out_of_memory';
   /** The JS key of the option a bad_option error is about. */
   option?: string;
   cancelled?: true;
+  /** The module stopped (out of memory, or a throw inside it): this API object refuses every
+   * later call; create a new one. The worker client replaces its worker itself. */
+  restart?: true;
   /** What the user can do about it, when core knows: `action` one of trim_end, cut_here,
    * coarser, no_layers, smooth, repair, largest_component, units; `places` points the
    * message names (model unit), to mark in a view; `value` e.g. the size that fits. */
@@ -397,6 +400,8 @@ export class VesselmeshClient {
   threadsNote?: string;
   /** The option table, once ready. */
   optionTable?: OptionSpec[];
+  /** Called with the failure once the worker was replaced after its module stopped (`restart`). */
+  onRestart: ((failure: Failure) => void) | null;
   analyze(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: ClientAnalyzeOptions): Promise<AnalyzeResult<ClientAnalysisHandle>>;
   mesh(bytes: Uint8Array | ArrayBuffer | ArrayBufferView, options?: ClientMeshOptions): Promise<MeshResult<ClientMeshHandle>>;
   export(format: OutputFormat, options?: ExportOptions & { mesh?: ClientMeshHandle }): Promise<ExportResult>;

@@ -67,6 +67,37 @@ function answer(raw) {
   return raw.ok ? raw : failure(raw);
 }
 
+/** Whether what a core call threw is its memory running out: a failed
+ * growth or allocation (RangeError, Emscripten's "Aborted(OOM)"), or a
+ * C++ exception, which the WebAssembly build does not catch (it is thrown
+ * as a number) and the core throws none but std::bad_alloc: its own
+ * errors are values. */
+const isOutOfMemory = (thrown) =>
+  typeof thrown === 'number' || thrown instanceof RangeError || /\bOOM\b|out of memory|memory/i.test(String(thrown?.message ?? thrown));
+
+/** The failure of a core call `call` that threw `thrown`: the module is
+ * left unusable (its stack and heap unwound without the C++ cleanups), so
+ * `restart` says to load a new one (the worker client does). `heapBytes`:
+ * the module's memory then. */
+function stopped(call, thrown, heapBytes) {
+  const mb = (bytes) => `${Math.round(bytes / 2 ** 20)} MB`;
+  if (isOutOfMemory(thrown)) {
+    return {
+      ok: false,
+      kind: 'out_of_memory',
+      error: `out of memory ${DOING[call] ?? `in ${call}()`}: the mesher's memory (${heapBytes ? `${mb(heapBytes)} in use, ` : ''}at most ${mb(MAX_MEMORY)}) ran out; try a coarser size (a larger size or a smaller perCircumference)`,
+      restart: true,
+    };
+  }
+  return { ok: false, kind: 'internal', error: `internal error: the mesher stopped in ${call}() (${String(thrown?.message ?? thrown)}); please report it`, restart: true };
+}
+
+/** What the calls that take memory do, for the message. */
+const DOING = { analyze: 'while reading the surface', mesh: 'while meshing', export: 'while writing the file', report: 'while writing the report' };
+
+/** The WebAssembly module's MAXIMUM_MEMORY (wasm/CMakeLists.txt). */
+const MAX_MEMORY = 4 * 2 ** 30;
+
 /** Where the cores come from in the browser: the single-threaded core's
  * wasm fetched, the threaded core on Web Workers (threaded-core.js). The
  * Node entry (node.js) passes its own, of the same shape. */
@@ -123,6 +154,22 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
   const { core } = loaded;
 
   const withSurface = (raw, extra) => ({ ok: true, ...extra, surface: raw.surface });
+  /** The failure that stopped the module, once a core call threw: every
+   * later call refuses with it. */
+  let broken = null;
+  /** `call` (a name) run as `run()`, unless the module stopped; a throw
+   * stops it (stopped()). */
+  const guard = (call, run) => {
+    if (broken) {
+      return { ok: false, kind: broken.kind, error: `the mesher stopped after an earlier failure (${broken.error}): create a new one (createVesselmesh())`, restart: true };
+    }
+    try {
+      return run();
+    } catch (thrown) {
+      broken = stopped(call, thrown, core.HEAP8?.buffer.byteLength);
+      return broken;
+    }
+  };
   /** The analyses and meshes this API object gave, and its newest of each:
    * what the calls given no handle act on. */
   const handles = new HandleRegistry();
@@ -164,11 +211,13 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
     analyze(bytesIn, { onProgress, ...options } = {}) {
       const { bytes, progress, failed } = jobInput('analyze', bytesIn, onProgress);
       if (failed) return failed;
-      handles.retire('analysis');
-      const raw = core.analyze(bytes, options, progress);
-      if (!raw.ok) return failure(raw);
-      const handle = handles.issue('analysis', raw.handle);
-      return withSurface(raw, { analysis: JSON.parse(raw.analysisJson), handle });
+      return guard('analyze', () => {
+        handles.retire('analysis');
+        const raw = core.analyze(bytes, options, progress);
+        if (!raw.ok) return failure(raw);
+        const handle = handles.issue('analysis', raw.handle);
+        return withSurface(raw, { analysis: JSON.parse(raw.analysisJson), handle });
+      });
     },
 
     /**
@@ -196,18 +245,20 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
     mesh(bytesIn, { onProgress, ...options } = {}) {
       const { bytes, progress, failed } = jobInput('mesh', bytesIn, onProgress);
       if (failed) return failed;
-      handles.retire('mesh');
-      const raw = core.mesh(bytes, options, progress);
-      if (!raw.ok) return failure(raw);
-      return withSurface(raw, {
-        handle: handles.issue('mesh', raw.handle),
-        file: raw.file,
-        fileName: raw.fileName,
-        format: raw.format,
-        ...(raw.format === 'msh' && { msh: raw.file }),
-        report: JSON.parse(raw.reportJson),
-        ...(raw.volume && { volume: raw.volume }),
-        ...(raw.familyJson && { family: JSON.parse(raw.familyJson), familyCsv: raw.familyCsv }),
+      return guard('mesh', () => {
+        handles.retire('mesh');
+        const raw = core.mesh(bytes, options, progress);
+        if (!raw.ok) return failure(raw);
+        return withSurface(raw, {
+          handle: handles.issue('mesh', raw.handle),
+          file: raw.file,
+          fileName: raw.fileName,
+          format: raw.format,
+          ...(raw.format === 'msh' && { msh: raw.file }),
+          report: JSON.parse(raw.reportJson),
+          ...(raw.volume && { volume: raw.volume }),
+          ...(raw.familyJson && { family: JSON.parse(raw.familyJson), familyCsv: raw.familyCsv }),
+        });
       });
     },
 
@@ -227,7 +278,7 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
       if (images !== undefined && !Array.isArray(images)) return fail('report: images must be an array');
       const { handle, failed } = handles.pick('mesh', mesh, 'report', 'no report yet: mesh a surface first');
       if (failed) return failed;
-      return answer(core.methodsReport(handle, { ...(images && { images }), ...(inputName && { inputName }) }));
+      return guard('report', () => answer(core.methodsReport(handle, { ...(images && { images }), ...(inputName && { inputName }) })));
     },
 
     /**
@@ -243,7 +294,7 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
     export(format, { mesh, ...options } = {}) {
       const { handle, failed } = handles.pick('mesh', mesh, 'export', 'nothing to export: mesh a surface first');
       if (failed) return failed;
-      return answer(core.exportMesh(handle, { ...options, format }));
+      return guard('export', () => answer(core.exportMesh(handle, { ...options, format })));
     },
 
     /**
@@ -258,8 +309,10 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
     cutAt(point, { analysis } = {}) {
       const { handle, failed } = handles.pick('analysis', analysis, 'cutAt', NOTHING_ANALYZED);
       if (failed) return failed;
-      const raw = core.cutAt(handle, Array.from(point ?? []));
-      return raw.ok ? { ...raw, point: Array.from(raw.point), normal: Array.from(raw.normal) } : failure(raw);
+      return guard('cutAt', () => {
+        const raw = core.cutAt(handle, Array.from(point ?? []));
+        return raw.ok ? { ...raw, point: Array.from(raw.point), normal: Array.from(raw.normal) } : failure(raw);
+      });
     },
 
     /**
@@ -272,7 +325,7 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
     openingNames({ analysis, ...options } = {}) {
       const { handle, failed } = handles.pick('analysis', analysis, 'openingNames', NOTHING_ANALYZED);
       if (failed) return failed;
-      return answer(core.openingNames(handle, options));
+      return guard('openingNames', () => answer(core.openingNames(handle, options)));
     },
 
     /**
@@ -290,7 +343,7 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
     sizeField({ analysis, ...options } = {}) {
       const { handle, failed } = handles.pick('analysis', analysis, 'sizeField', NOTHING_ANALYZED);
       if (failed) return failed;
-      return answer(core.sizeField(handle, options));
+      return guard('sizeField', () => answer(core.sizeField(handle, options)));
     },
 
     /**
@@ -322,7 +375,7 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
      * @returns {{ok: true, fractions: Float64Array} | {ok: false, error: string}}
      */
     layerFractions(options = {}) {
-      return answer(core.layerFractions(options));
+      return guard('layerFractions', () => answer(core.layerFractions(options)));
     },
 
     /**
@@ -332,7 +385,7 @@ export async function createVesselmeshIn(host, { wasmBinary, threads } = {}) {
      * @returns {{ok: true, stl: Uint8Array, vtp?: Uint8Array} | {ok: false, error: string}}
      */
     makePhantom(options = {}) {
-      return answer(core.makePhantom(options));
+      return guard('makePhantom', () => answer(core.makePhantom(options)));
     },
   };
 }

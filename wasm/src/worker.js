@@ -12,7 +12,9 @@
 //        every 50 ms); { id, type: 'result', result } at the end, with the
 //        result's typed-array buffers (file, msh, stl, surface.*, volume.*,
 //        sizeField's arrays)
-//        transferred, not copied.
+//        transferred, not copied; a result with `restart: true` (the module
+//        ran out of memory or stopped, see the API's stopped()) is this
+//        worker's last: the client replaces it.
 // Handles: the API's handles (Embind objects) stay here, in a Map owned by
 // this worker; the client gets { kind: 'analysis' | 'mesh', id, worker }
 // (worker: this worker's token, as a handle of a restarted worker is
@@ -148,6 +150,23 @@ self.onmessage = async (event) => {
     }
     return true;
   };
-  const result = answer(api, op, args, onProgress);
-  self.postMessage({ id, type: 'result', result }, transferables(result));
+  // A call that throws past the API, or a result too large to post, is
+  // this worker's end: the client replaces it (restart).
+  const failed = (what, error) => ({
+    ok: false,
+    kind: error instanceof RangeError ? 'out_of_memory' : 'internal',
+    error: `${error instanceof RangeError ? 'out of memory' : 'internal error'}: the mesher worker failed ${what} ${op} (${error?.message ?? error})`,
+    restart: true,
+  });
+  let result;
+  try {
+    result = answer(api, op, args, onProgress);
+  } catch (error) {
+    result = failed('in', error);
+  }
+  try {
+    self.postMessage({ id, type: 'result', result }, transferables(result));
+  } catch (error) {
+    self.postMessage({ id, type: 'result', result: failed('to send the result of', error) });
+  }
 };

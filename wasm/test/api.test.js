@@ -784,6 +784,50 @@ describe('mesh: volume', () => {
     assert.deepEqual(transferables({ ok: false, error: 'x' }), []);
   });
 
+  test('a size whose tetrahedra do not fit the module\'s memory is refused before meshing, with the size that fits', () => {
+    // 4 GB hold about 14M tetrahedra at 300 bytes each; h = 0.005 on the
+    // bifurcation is about 2.6e9, beyond any element budget given.
+    const started = performance.now();
+    let stages = 0;
+    const m = api.mesh(stl, { size: 0.005, maxElements: 1e9, onProgress: (f, stage) => void (stages += /remesh|meshing|volume|tetra/.test(stage)) });
+    assert.ok(performance.now() - started < 10_000, 'refused before meshing');
+    assert.equal(stages, 0);
+    assert.equal(m.ok, false);
+    assert.equal(m.kind, 'bad_option');
+    assert.equal(m.option, 'size');
+    assert.match(m.error, /^size makes about [\d.]+e\+09 tetrahedra in the lumen, more than fit in the mesher's memory \(4\.\d GB free: about 1\.4e\+07 tetrahedra at 300 bytes each\): ask for larger elements \(size 0\.0\d+ fits\)$/);
+    assert.doesNotMatch(m.error, /maxElements|--|vesselmesh/);
+    assert.equal(m.remedy.action, 'coarser');
+    assert.ok(m.remedy.value > 0.005 && m.error.includes(`(size ${Number(m.remedy.value.toPrecision(3))} fits)`), m.error);
+  });
+
+  test('a core call that throws stops this API object, said as out of memory for a memory error; a new one meshes', async () => {
+    // A RangeError thrown through the core's frames, as a failed memory
+    // growth throws it (a real one: Emscripten's "Aborted(OOM)", which a
+    // 4 GB module reaches only after minutes).
+    const own = await createVesselmesh({ wasmBinary: readFileSync(new URL('../dist/vesselmesh_core.wasm', import.meta.url)) });
+    const m = own.mesh(stl, {
+      onProgress: () => {
+        throw new RangeError('WebAssembly.Memory.grow(): Maximum memory size exceeded');
+      },
+    });
+    assert.equal(m.ok, false);
+    assert.equal(m.kind, 'out_of_memory');
+    assert.equal(m.restart, true);
+    assert.match(m.error, /^out of memory while meshing: the mesher's memory \(\d+ MB in use, at most 4096 MB\) ran out; try a coarser size \(a larger size or a smaller perCircumference\)$/);
+    const after = own.makePhantom({ kind: 'tube' });
+    assert.equal(after.ok, false);
+    assert.equal(after.restart, true);
+    assert.match(after.error, /^the mesher stopped after an earlier failure \(out of memory while meshing: .*\): create a new one \(createVesselmesh\(\)\)$/);
+    // Another error is no memory's: internal.
+    const other = await createVesselmesh({ wasmBinary: readFileSync(new URL('../dist/vesselmesh_core.wasm', import.meta.url)) });
+    const o = other.analyze(stl, { onProgress: () => { throw new Error('a callback failed'); } });
+    assert.equal(o.kind, 'internal');
+    assert.match(o.error, /^internal error: the mesher stopped in analyze\(\) \(a callback failed\); please report it$/);
+    // The API object the other tests use meshes on.
+    assert.equal(api.makePhantom({ kind: 'tube' }).ok, true);
+  });
+
   test('bad volume options are refused with the JS option name', () => {
     const cases = [
       [{ inlet: 0 }, /^inlet needs an opening number from 1 to 1000000 \(as the analysis lists them\)$/],
@@ -901,7 +945,7 @@ describe('mesh: boundary layers and vessel wall', () => {
     assert.match(api.mesh(tube, { prisms: 'yes' }).error, /^prisms must be true or false$/);
   });
 
-  test('sizes beyond the element budget are refused as values, never thrown', () => {
+  test('sizes beyond the element budget or the memory are refused as values, never thrown', () => {
     const stl = api.makePhantom({ kind: 'tube', voxel: 0.3 }).stl;
     for (const [options, option] of [
       [{ size: 1e-30 }, 'size'],
@@ -914,7 +958,8 @@ describe('mesh: boundary layers and vessel wall', () => {
       assert.equal(r.ok, false, JSON.stringify(options));
       assert.equal(r.kind, 'bad_option');
       assert.equal(r.option, option);
-      assert.match(r.error, /element budget \(maxElements 15000000\)/);
+      // Tetrahedra: the memory is the limit (about 14M in 4 GB); triangles: the budget.
+      assert.match(r.error, /triangles on the wall, more than the element budget \(maxElements 15000000\)|tetrahedra in the lumen, more than fit in the mesher's memory/);
     }
   });
 

@@ -198,6 +198,7 @@ describe('analysis handles', () => {
 describe('worker client handles', () => {
   let instances = 0;
   let current = null;
+  let failGrowth = false;
   class StandInWorker {
     constructor() {
       this.onmessage = null;
@@ -216,6 +217,9 @@ describe('worker client handles', () => {
     }
     answer(message, transfer) {
       if (this.terminated) return;
+      // A failed memory growth while the core runs (the progress callback
+      // is called from inside it).
+      if (failGrowth && message.type === 'progress') throw new RangeError('WebAssembly.Memory.grow(): Maximum memory size exceeded');
       const data = structuredClone(message, { transfer });
       setImmediate(() => this.onmessage?.({ data }));
     }
@@ -284,5 +288,26 @@ describe('worker client handles', () => {
     assert.deepEqual(await client.openingNames(), { ok: false, error: 'nothing analyzed yet: analyze a surface first', kind: 'bad_input' });
     assert.deepEqual(await client.release(t.handle), { ok: true }, 'nothing to free');
     assert.match((await client.keep(t.handle)).error, /restarted/);
+  });
+
+  test('a worker whose module runs out of memory is replaced: the failure says so, the next job runs', async () => {
+    const a = await client.mesh(tube, { perCircumference: 10, layers: 1 });
+    assert.ok(a.ok, a.error);
+    const before = instances;
+    let restarted = null;
+    client.onRestart = (failure) => (restarted = failure);
+    failGrowth = true;
+    const m = await client.mesh(tube, { perCircumference: 12, layers: 1 });
+    failGrowth = false;
+    assert.equal(m.ok, false);
+    assert.equal(m.kind, 'out_of_memory');
+    assert.match(m.error, /^out of memory while meshing: the mesher's memory \(\d+ MB in use, at most 4096 MB\) ran out; try a coarser size \(a larger size or a smaller perCircumference\); the mesher was restarted$/);
+    assert.equal(restarted?.kind, 'out_of_memory');
+    assert.equal(instances, before + 1, 'a new worker');
+    await client.ready;
+    assert.match((await client.export('msh', { mesh: a.handle })).error, /was made by a mesher worker since restarted/);
+    const again = await client.mesh(tube, { perCircumference: 12, layers: 1 });
+    assert.ok(again.ok, again.error);
+    client.onRestart = null;
   });
 });

@@ -586,6 +586,11 @@ for (const button of $('units-prompt').querySelectorAll('button')) {
     reanalyze();
   });
 }
+// A worker whose module ran out of memory was replaced (client.js): it
+// holds no analysis nor mesh, as after a cancel.
+client.onRestart = () => {
+  held.analysis = held.mesh = null;
+};
 $('cancel').addEventListener('click', () => {
   client.cancel(); // a new worker: it holds no analysis nor mesh
   held.analysis = held.mesh = null;

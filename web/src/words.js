@@ -75,6 +75,10 @@ export function inPageWords(message, { unit = '', scale = 0 } = {}) {
   for (const [re, to] of PHRASES) text = text.replace(re, to);
   text = text.replace(OPTION_RE, (key) => OPTION_WORDS[key]);
   text = text.replace(TRIPLE, (_, x, y, z) => `${point([x, y, z].map(Number), scale)}${unit ? ` ${unit}` : ''}`);
+  // The size that fits, as the size field names it: h in the model's unit.
+  text = text.replace(new RegExp(String.raw`\((size|the core size) (${NUM}) fits\)`, 'g'), (_, what, h) =>
+    `(${what === 'size' ? 'h' : what} = ${h}${unit ? ` ${unit}` : ''} fits)`,
+  );
   if (unit) {
     text = text.replace(new RegExp(String.raw`\bof radius (${NUM})(?! ?(?:mm|cm|m)\b)`, 'g'), `of radius $1 ${unit}`);
     text = text.replace(new RegExp(String.raw`\((${NUM}) of area removed\)`, 'g'), `($1 ${unit}² of area removed)`);

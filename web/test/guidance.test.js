@@ -25,6 +25,8 @@ const BUDGET_WALL =
   'perCircumference makes about 1.32e+04 triangles on the wall, more than the element budget (maxElements 1000) allows: ask for larger elements';
 const BUDGET_TETS =
   'size makes about 7.65e+03 tetrahedra in the lumen, more than the element budget (maxElements 1000) allows: ask for larger elements';
+const MEMORY =
+  "size makes about 5.15e+09 tetrahedra in the lumen, more than fit in the mesher's memory (4.3 GB free: about 1.4e+07 tetrahedra at 300 bytes each): ask for larger elements (size 0.03 fits)";
 const CROSSING =
   'the input crosses itself at (26.9164, 23.5701, 27.4715) mm (1 place; fix it in the segmentation, or cut that part off with clipPlanes): remeshing failed';
 const LAYER = 'boundary layer: fronts collide at (1, 2, 3) (a wall too irregular for layers: remesh it, or use layers 0)';
@@ -44,6 +46,8 @@ describe('messages in the page’s words', () => {
     assert.match(inPageWords(BUDGET_WALL), /^N \(edges per circumference\) makes about/);
     assert.match(inPageWords(BUDGET_WALL), /\(1,000 elements\)/);
     assert.match(inPageWords(BUDGET_TETS), /^The edge length h makes/);
+    assert.match(inPageWords(MEMORY, { unit: 'mm' }), /^The edge length h makes about 5\.15e\+09 tetrahedra .*: ask for larger elements \(h = 0\.03 mm fits\)$/);
+    assert.match(inPageWords(MEMORY.replace('size 0.03', 'coreSize 0.03'), { unit: 'cm' }), /\(the core size = 0\.03 cm fits\)$/);
     assert.match(inPageWords(LAYER), /Layers 0 \(no boundary layer\)/);
     assert.match(inPageWords(CLOSED), /the proposed cuts \(or add your own\)/);
   });
