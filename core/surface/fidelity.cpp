@@ -57,6 +57,25 @@ std::array<double, 3> edge_ratios(const RemeshedSurface& out, const std::vector<
 
 namespace {
 
+/// `h` (one per input vertex) made at most target(v) within h[v] of each
+/// input vertex v of `far`, then graded (`gradation`). `tree`: over
+/// input.points.
+template <class Target>
+std::vector<double> finer_around(const SurfaceMesh& input, const PointKdTree& tree,
+                                 std::vector<double> h, const std::vector<int32_t>& far,
+                                 double gradation, Target target) {
+  std::vector<double> finer = h;
+  std::vector<std::pair<uint32_t, double>> near;
+  const nanoflann::SearchParams unsorted(32, 0, false);
+  for (int32_t v : far) {
+    const double t = target(v);
+    tree.radiusSearch(&input.points[3 * size_t(v)], h[size_t(v)] * h[size_t(v)], near, unsorted);
+    for (const auto& item : near) finer[item.first] = std::min(finer[item.first], t);
+  }
+  limit_gradation(input, finer, gradation);
+  return finer;
+}
+
 /// A vertex whose star_visibility is below this is a needle (no boundary
 /// layer could grow from it).
 constexpr double kNeedle = 0.05;
@@ -314,16 +333,9 @@ size_t pin_rounds(Pinning& p) {
 /// `tree`: over p.input.points. Returns whether it was kept.
 bool refine_around_far(Pinning& p, const PointKdTree& tree) {
   const std::vector<int32_t> far = far_input_vertices(p.input_gaps, p.asked, p.options.fidelity);
-  std::vector<double> finer = p.h;
-  std::vector<std::pair<uint32_t, double>> near;
-  const nanoflann::SearchParams unsorted(32, 0, false);
-  for (int32_t v : far) {
-    const double h = p.h[size_t(v)];
-    const double target = std::max(0.5 * h, p.options.size.size_min);
-    tree.radiusSearch(&p.input.points[3 * size_t(v)], h * h, near, unsorted);
-    for (const auto& item : near) finer[item.first] = std::min(finer[item.first], target);
-  }
-  limit_gradation(p.input, finer, p.options.size.gradation);
+  std::vector<double> finer = finer_around(
+      p.input, tree, p.h, far, p.options.size.gradation,
+      [&](int32_t v) { return std::max(0.5 * p.h[size_t(v)], p.options.size.size_min); });
   const std::vector<double> old_size = p.wall.size;
   p.h = std::move(finer);
   const std::vector<double> new_size = output_sizes(p.input, p.wall.home, p.h);
@@ -386,24 +398,16 @@ void pin_far_input_vertices(const SurfaceMesh& input, const TriangleAdjacency& a
 }
 
 std::vector<double> finer_where_far(const SurfaceMesh& input, const PointKdTree& tree,
-                                    const RemeshOptions& options, std::vector<double> h,
+                                    const RemeshOptions& options, const std::vector<double>& h,
                                     const std::vector<double>& asked,
                                     const std::vector<int32_t>& far,
                                     const std::vector<double>& gaps) {
-  std::vector<std::pair<uint32_t, double>> near;
-  const nanoflann::SearchParams unsorted(32, 0, false);
-  std::vector<double> finer = h;
-  for (int32_t v : far) {
+  return finer_around(input, tree, h, far, options.size.gradation, [&](int32_t v) {
     // A chord's gap from a bend grows as h^2.
     const double rel = gaps[size_t(v)] / asked[size_t(v)];
-    const double target =
-        std::max(h[size_t(v)] * std::clamp(std::sqrt(0.8 * options.fidelity / rel), 0.5, 0.9),
-                 options.size.size_min);
-    tree.radiusSearch(&input.points[3 * size_t(v)], h[size_t(v)] * h[size_t(v)], near, unsorted);
-    for (const auto& item : near) finer[item.first] = std::min(finer[item.first], target);
-  }
-  limit_gradation(input, finer, options.size.gradation);
-  return finer;
+    return std::max(h[size_t(v)] * std::clamp(std::sqrt(0.8 * options.fidelity / rel), 0.5, 0.9),
+                    options.size.size_min);
+  });
 }
 
 std::vector<int32_t> far_input_vertices(const std::vector<double>& gaps,

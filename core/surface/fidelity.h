@@ -81,7 +81,7 @@ std::vector<int32_t> far_input_vertices(const std::vector<double>& gaps,
 /// 0.5 times what it was, and not below options.size.size_min), then
 /// graded (options.size.gradation). `tree`: over input.points.
 std::vector<double> finer_where_far(const SurfaceMesh& input, const PointKdTree& tree,
-                                    const RemeshOptions& options, std::vector<double> h,
+                                    const RemeshOptions& options, const std::vector<double>& h,
                                     const std::vector<double>& asked,
                                     const std::vector<int32_t>& far,
                                     const std::vector<double>& gaps);
