@@ -24,6 +24,7 @@ export function baseName(name) {
  */
 export const EXPORT_FORMATS = [
   { value: 'msh-4.1', label: 'MSH 4.1 (Gmsh)', format: 'msh', mshVersion: '4.1', suffix: '.msh', mime: 'text/plain' },
+  { value: 'msh-2.2', label: 'MSH 2.2 (Gmsh)', format: 'msh', mshVersion: '2.2', suffix: '.msh', mime: 'text/plain' },
   {
     value: 'msh-4.1-binary',
     label: 'MSH 4.1 binary (Gmsh)',
@@ -33,7 +34,6 @@ export const EXPORT_FORMATS = [
     suffix: '.msh',
     mime: 'application/octet-stream',
   },
-  { value: 'msh-2.2', label: 'MSH 2.2 (Gmsh)', format: 'msh', mshVersion: '2.2', suffix: '.msh', mime: 'text/plain' },
   { value: 'vtu', label: 'VTU volume', format: 'vtu', suffix: '.vtu', mime: 'application/xml', volume: true },
   {
     value: 'vtu-compressed',
