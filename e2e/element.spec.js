@@ -92,7 +92,12 @@ test('two <vessel-mesher> elements on a host page mesh independently and send th
       const result = await el.mesh({ mshVersion: '2.2' });
       const msh = await (await el.export('msh')).text();
       const vtp = await el.export('vtp');
+      const mshType = (await el.export('msh')).type;
+      await el.mesh({ mshBinary: true });
+      const binaryType = (await el.export('msh')).type;
       return {
+        mshType,
+        binaryType,
         ok: result.ok,
         hasVolume: Boolean(result.volume),
         triangles: result.report.output.triangles,
@@ -102,6 +107,7 @@ test('two <vessel-mesher> elements on a host page mesh independently and send th
       };
     });
     expect(meshed.ok).toBe(true);
+    expect([meshed.mshType, meshed.binaryType]).toEqual(['text/plain', 'application/octet-stream']);
     expect(meshed.hasVolume).toBe(false); // surfaceOnly from its options attribute
     expect(meshed.triangles).toBeGreaterThan(100);
     expect(meshed.head).toBe('$MeshFormat\n2.2 0 8\n');

@@ -39,6 +39,12 @@ import { VolumeView } from '../volume-view.js';
 const FORMATS = ['msh', 'vtu', 'vtp', 'stl', 'mesh-complete'];
 const MIME = { msh: 'text/plain', vtu: 'application/xml', vtp: 'application/xml', stl: 'model/stl', 'mesh-complete': 'application/zip' };
 
+/** Whether MSH bytes (or text) are Gmsh's binary layout (header line "4.1 1 8"). */
+function isBinaryMsh(file) {
+  const head = typeof file === 'string' ? file.slice(0, 24) : new TextDecoder().decode(file.subarray(0, 24));
+  return /^\$MeshFormat\r?\n\S+ 1 /.test(head);
+}
+
 const STYLE = `
 :host { display: block; position: relative; min-height: 320px; height: 420px; border: 1px solid #c9d2dc;
   border-radius: 6px; overflow: hidden; font: 14px/1.4 system-ui, sans-serif; color: #17212b; background: #e9edf1;
@@ -229,7 +235,10 @@ export class VesselMesher extends HTMLElement {
       if (!result.ok) throw this._fail(result.error);
       file = result.file;
     }
-    return new Blob([file], { type: zip ? 'application/zip' : MIME[format] ?? 'application/octet-stream' });
+    // A binary MSH (meshed with mshBinary) says so in its header: "4.1 1 8".
+    const binary = format === 'msh' && isBinaryMsh(file);
+    const type = zip ? 'application/zip' : binary ? 'application/octet-stream' : MIME[format];
+    return new Blob([file], { type: type ?? 'application/octet-stream' });
   }
 
   /** The methods report of the last mesh as a Blob (text/html): the pictures
